@@ -1,0 +1,18 @@
+"""tcarod: soft robots actuated by twisted-and-coiled actuators (TCAs).
+
+Implements Pawlowski et al., "Modeling of Soft Robots Actuated by
+Twisted-and-Coiled Actuators", IEEE/ASME T-Mech 24(1), 2019, on a Rust core.
+SI units throughout (m, N, Pa, kg, s) except temperatures, in degrees C.
+"""
+
+from __future__ import annotations
+
+from ._core import ConvergenceError, __version__
+from .tca import Material, Tca
+
+__all__ = [
+    "ConvergenceError",
+    "Material",
+    "Tca",
+    "__version__",
+]

@@ -1,0 +1,111 @@
+//! Structured errors of the numerical core.
+//!
+//! Every fallible function of the crate returns [`Result`]. The Python
+//! bindings map these variants to Python exceptions in exactly one place
+//! (`src/python/errors.rs`): argument errors become `ValueError`, failed
+//! solves become `tcarod.ConvergenceError`.
+
+/// Errors raised by the tcarod core.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A scalar argument is non-finite or outside its allowed range.
+    #[error("invalid {name} = {value}: allowed {allowed}")]
+    InvalidParameter {
+        /// Name of the argument, with its unit (e.g. `temperature [C]`).
+        name: String,
+        /// The offending value (SI units).
+        value: f64,
+        /// Human-readable allowed range, e.g. `25 <= T <= 160 C`.
+        allowed: String,
+    },
+    /// A structured argument (array shape, actuator layout, ...) is invalid.
+    #[error("invalid {name}: {reason}")]
+    InvalidInput {
+        /// Name of the argument.
+        name: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// A scalar equation has no solution inside the allowed interval
+    /// (e.g. no temperature in the material's range produces a requested
+    /// displacement).
+    #[error("no solution: {reason}")]
+    NoSolution {
+        /// Why no solution exists, naming the interval searched.
+        reason: String,
+    },
+    /// A Newton (or other iterative) solve stopped without meeting its tolerance.
+    #[error(
+        "{solver} did not converge: residual {residual:.3e} after {iterations} iterations ({reason})"
+    )]
+    NotConverged {
+        /// Which solver.
+        solver: &'static str,
+        /// Iterations performed.
+        iterations: usize,
+        /// Final residual norm (dimensionless unless the solver says otherwise).
+        residual: f64,
+        /// Why it stopped.
+        reason: String,
+    },
+    /// The rod's initial value problem could not be integrated (singular
+    /// stiffness system, an actuator stretched past its straight-fibre limit,
+    /// non-finite state).
+    #[error("integration failed at s = {s:.6e} m: {reason}")]
+    Integration {
+        /// Arc length [m] at which integration failed.
+        s: f64,
+        /// Why.
+        reason: String,
+    },
+}
+
+/// Result alias of the crate.
+pub type Result<T> = std::result::Result<T, Error>;
+
+impl Error {
+    /// Shorthand for [`Error::InvalidParameter`].
+    pub fn param(name: &str, value: f64, allowed: impl Into<String>) -> Self {
+        Error::InvalidParameter {
+            name: name.to_string(),
+            value,
+            allowed: allowed.into(),
+        }
+    }
+
+    /// Shorthand for [`Error::InvalidInput`].
+    pub fn input(name: &str, reason: impl Into<String>) -> Self {
+        Error::InvalidInput {
+            name: name.to_string(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// Check that `value` is finite and strictly positive.
+pub fn positive(name: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::param(name, value, "finite and > 0"))
+    }
+}
+
+/// Check that `value` is finite and non-negative.
+pub fn non_negative(name: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::param(name, value, "finite and >= 0"))
+    }
+}
+
+/// Check that `value` is finite.
+pub fn finite(name: &str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::param(name, value, "a finite number"))
+    }
+}

@@ -1,0 +1,30 @@
+//! # tcarod
+//!
+//! Kinetostatics of soft robots actuated by twisted-and-coiled actuators,
+//! after Pawlowski, Sun, Xu, Liu and Zhao, "Modeling of Soft Robots Actuated
+//! by Twisted-and-Coiled Actuators", IEEE/ASME T-Mech 24(1), 2019.
+//!
+//! Modules follow the paper:
+//! * [`material`], [`tca`]: Section II, the TCA constitutive law (eqs 1-6);
+//! * [`rod`]: Section III, the Cosserat rod with embedded string-like
+//!   actuators (eqs 7-31) and its initial value problem;
+//! * [`shooting`]: Section III, the boundary value problem (eqs 32-33) solved
+//!   by Newton shooting with a line search;
+//! * [`inverse`]: Section IV, Jacobian and compliance (eqs 34-43);
+//! * [`experiments`]: Section V, the paper's test problems, shared by tests
+//!   and benches.
+//!
+//! SI units throughout (m, N, Pa, kg), except temperatures, in degrees Celsius.
+
+pub mod error;
+pub mod experiments;
+pub mod material;
+pub mod roots;
+pub mod tca;
+
+#[cfg(feature = "python")]
+mod python;
+
+pub use error::{Error, Result};
+pub use material::Material;
+pub use tca::{Chirality, Tca};

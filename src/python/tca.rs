@@ -1,0 +1,337 @@
+//! Bindings of the material and the TCA law.
+
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::material::Material;
+use crate::tca::{Chirality, Tca};
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyMaterial>()?;
+    m.add_class::<PyTca>()?;
+    Ok(())
+}
+
+/// Temperature-dependent properties of a TCA's twisted fibre.
+#[pyclass(name = "Material", module = "tcarod._core", frozen)]
+#[derive(Clone)]
+pub struct PyMaterial {
+    pub(crate) inner: Material,
+}
+
+#[pymethods]
+impl PyMaterial {
+    #[new]
+    #[pyo3(signature = (*, youngs_modulus, shear_modulus, expansion, youngs_modulus_slope=0.0,
+        shear_modulus_slope=None, expansion_slope=0.0, t_ref=25.0, t_min=25.0, t_max=160.0,
+        name="custom".to_string()))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        youngs_modulus: f64,
+        shear_modulus: f64,
+        expansion: f64,
+        youngs_modulus_slope: f64,
+        shear_modulus_slope: Option<f64>,
+        expansion_slope: f64,
+        t_ref: f64,
+        t_min: f64,
+        t_max: f64,
+        name: String,
+    ) -> PyResult<Self> {
+        let g_slope =
+            shear_modulus_slope.unwrap_or(youngs_modulus_slope * shear_modulus / youngs_modulus);
+        Ok(PyMaterial {
+            inner: Material::new(
+                name,
+                youngs_modulus,
+                youngs_modulus_slope,
+                shear_modulus,
+                g_slope,
+                expansion,
+                expansion_slope,
+                t_ref,
+                t_min,
+                t_max,
+            )?,
+        })
+    }
+
+    /// The paper's silver-coated nylon 6,6 thread with the documented defaults.
+    #[staticmethod]
+    fn silver_coated_nylon() -> Self {
+        PyMaterial {
+            inner: Material::silver_coated_nylon(),
+        }
+    }
+
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.name().to_string()
+    }
+    #[getter]
+    fn t_ref(&self) -> f64 {
+        self.inner.t_ref()
+    }
+    #[getter]
+    fn t_min(&self) -> f64 {
+        self.inner.t_min()
+    }
+    #[getter]
+    fn t_max(&self) -> f64 {
+        self.inner.t_max()
+    }
+    /// `(E_ref [Pa], dE/dT [Pa/C], G_ref [Pa], dG/dT [Pa/C], rho_ref [1/C], drho/dT [1/C^2])`.
+    #[getter]
+    fn coefficients(&self) -> (f64, f64, f64, f64, f64, f64) {
+        self.inner.coefficients()
+    }
+    fn youngs_modulus(&self, temperature: f64) -> PyResult<f64> {
+        Ok(self.inner.youngs_modulus(temperature)?)
+    }
+    fn shear_modulus(&self, temperature: f64) -> PyResult<f64> {
+        Ok(self.inner.shear_modulus(temperature)?)
+    }
+    fn expansion(&self, temperature: f64) -> PyResult<f64> {
+        Ok(self.inner.expansion(temperature)?)
+    }
+    fn diameter_ratio(&self, temperature: f64) -> PyResult<f64> {
+        Ok(self.inner.diameter_ratio(temperature)?)
+    }
+    fn __repr__(&self) -> String {
+        let (e, es, g, gs, r, rs) = self.inner.coefficients();
+        format!(
+            "Material(name={:?}, youngs_modulus={e:e}, youngs_modulus_slope={es:e}, shear_modulus={g:e}, \
+             shear_modulus_slope={gs:e}, expansion={r:e}, expansion_slope={rs:e}, t_ref={}, t_min={}, t_max={})",
+            self.inner.name(),
+            self.inner.t_ref(),
+            self.inner.t_min(),
+            self.inner.t_max()
+        )
+    }
+}
+
+pub(crate) fn parse_chirality(s: &str) -> Result<Chirality> {
+    match s {
+        "extension" => Ok(Chirality::Extension),
+        "contraction" => Ok(Chirality::Contraction),
+        _ => Err(Error::input(
+            "chirality",
+            format!("{s:?} is not one of 'extension', 'contraction'"),
+        )),
+    }
+}
+
+/// Apply `f` elementwise over two equal-length arrays, naming the index of the
+/// first failing element in the error.
+fn map2(
+    py: Python<'_>,
+    a: &PyReadonlyArray1<'_, f64>,
+    b: &PyReadonlyArray1<'_, f64>,
+    f: impl Fn(f64, f64) -> Result<f64> + Send + Sync,
+) -> PyResult<Py<PyArray1<f64>>> {
+    let a = a.as_slice()?.to_vec();
+    let b = b.as_slice()?.to_vec();
+    if a.len() != b.len() {
+        return Err(Error::input(
+            "arrays",
+            format!("lengths differ ({} and {})", a.len(), b.len()),
+        )
+        .into());
+    }
+    let out: Result<Vec<f64>> = py.detach(|| {
+        a.iter()
+            .zip(&b)
+            .enumerate()
+            .map(|(i, (&x, &y))| {
+                f(x, y).map_err(|e| match e {
+                    Error::InvalidParameter {
+                        name,
+                        value,
+                        allowed,
+                    } => Error::InvalidParameter {
+                        name: format!("{name} (element {i})"),
+                        value,
+                        allowed,
+                    },
+                    Error::NoSolution { reason } => Error::NoSolution {
+                        reason: format!("element {i}: {reason}"),
+                    },
+                    other => other,
+                })
+            })
+            .collect()
+    });
+    Ok(PyArray1::from_vec(py, out?).unbind())
+}
+
+/// A twisted-and-coiled actuator (paper Section II).
+#[pyclass(name = "Tca", module = "tcarod._core", subclass, frozen)]
+#[derive(Clone)]
+pub struct PyTca {
+    pub(crate) inner: Tca,
+}
+
+#[pymethods]
+impl PyTca {
+    #[new]
+    #[pyo3(signature = (fibre_length, coiled_length, coil_diameter, turns, chirality="extension", material=None))]
+    fn new(
+        fibre_length: f64,
+        coiled_length: f64,
+        coil_diameter: f64,
+        turns: f64,
+        chirality: &str,
+        material: Option<PyMaterial>,
+    ) -> PyResult<Self> {
+        let material = material.map_or_else(Material::silver_coated_nylon, |m| m.inner);
+        Ok(PyTca {
+            inner: Tca::new(
+                fibre_length,
+                coiled_length,
+                coil_diameter,
+                turns,
+                parse_chirality(chirality)?,
+                material,
+            )?,
+        })
+    }
+
+    /// Build from coiled length `L` [m] and pitch angle `alpha0` [rad]: `l = L / sin(alpha0)`.
+    #[classmethod]
+    #[pyo3(signature = (coiled_length, alpha0, coil_diameter, turns, chirality="extension", material=None))]
+    fn from_pitch_angle(
+        cls: &Bound<'_, pyo3::types::PyType>,
+        coiled_length: f64,
+        alpha0: f64,
+        coil_diameter: f64,
+        turns: f64,
+        chirality: &str,
+        material: Option<PyMaterial>,
+    ) -> PyResult<Py<PyAny>> {
+        let material = material.map_or_else(Material::silver_coated_nylon, |m| m.inner);
+        let t = Tca::from_pitch_angle(
+            coiled_length,
+            alpha0,
+            coil_diameter,
+            turns,
+            parse_chirality(chirality)?,
+            material,
+        )?;
+        let mat = PyMaterial {
+            inner: t.material().clone(),
+        };
+        // Construct through the (possibly Python-subclassed) class.
+        Ok(cls
+            .call1((
+                t.fibre_length(),
+                t.coiled_length(),
+                t.coil_diameter(),
+                t.turns(),
+                chirality,
+                mat,
+            ))?
+            .unbind())
+    }
+
+    #[getter]
+    fn fibre_length(&self) -> f64 {
+        self.inner.fibre_length()
+    }
+    #[getter]
+    fn coiled_length(&self) -> f64 {
+        self.inner.coiled_length()
+    }
+    #[getter]
+    fn coil_diameter(&self) -> f64 {
+        self.inner.coil_diameter()
+    }
+    #[getter]
+    fn turns(&self) -> f64 {
+        self.inner.turns()
+    }
+    #[getter]
+    fn chirality(&self) -> &'static str {
+        match self.inner.chirality() {
+            Chirality::Extension => "extension",
+            Chirality::Contraction => "contraction",
+        }
+    }
+    #[getter]
+    fn material(&self) -> PyMaterial {
+        PyMaterial {
+            inner: self.inner.material().clone(),
+        }
+    }
+    #[getter]
+    fn alpha0(&self) -> f64 {
+        self.inner.alpha0()
+    }
+    #[getter]
+    fn n_coils(&self) -> f64 {
+        self.inner.n_coils()
+    }
+    #[getter]
+    fn phi0(&self) -> f64 {
+        self.inner.phi0()
+    }
+    #[getter]
+    fn d0(&self) -> f64 {
+        self.inner.d0()
+    }
+    #[getter]
+    fn max_displacement(&self) -> f64 {
+        self.inner.max_displacement()
+    }
+    fn pitch_angle(&self, displacement: f64) -> PyResult<f64> {
+        Ok(self.inner.pitch_angle(displacement)?)
+    }
+    fn f11(&self, alpha: f64, temperature: f64) -> PyResult<f64> {
+        Ok(self.inner.at(temperature)?.f11(alpha))
+    }
+    fn f12(&self, alpha: f64, temperature: f64) -> PyResult<f64> {
+        Ok(self.inner.at(temperature)?.f12(alpha))
+    }
+    fn torque(&self, temperature: f64) -> PyResult<f64> {
+        Ok(self.inner.at(temperature)?.tau)
+    }
+    fn fibre_diameter(&self, temperature: f64) -> PyResult<f64> {
+        Ok(self.inner.at(temperature)?.d)
+    }
+    fn _displacement_flat(
+        &self,
+        py: Python<'_>,
+        force: PyReadonlyArray1<'_, f64>,
+        temperature: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Py<PyArray1<f64>>> {
+        map2(py, &force, &temperature, |f, t| self.inner.displacement(f, t))
+    }
+    fn _force_flat(
+        &self,
+        py: Python<'_>,
+        displacement: PyReadonlyArray1<'_, f64>,
+        temperature: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Py<PyArray1<f64>>> {
+        map2(py, &displacement, &temperature, |d, t| self.inner.force(d, t))
+    }
+    fn _temperature_flat(
+        &self,
+        py: Python<'_>,
+        force: PyReadonlyArray1<'_, f64>,
+        displacement: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Py<PyArray1<f64>>> {
+        map2(py, &force, &displacement, |f, d| self.inner.temperature(f, d))
+    }
+    fn __repr__(&self) -> String {
+        let t = &self.inner;
+        format!(
+            "Tca(fibre_length={}, coiled_length={}, coil_diameter={}, turns={}, chirality={:?}, material={:?})",
+            t.fibre_length(),
+            t.coiled_length(),
+            t.coil_diameter(),
+            t.turns(),
+            self.chirality(),
+            t.material().name()
+        )
+    }
+}

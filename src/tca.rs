@@ -1,0 +1,428 @@
+//! The TCA constitutive law (paper Section II, eqs 1-6).
+//!
+//! Units: lengths in m, forces in N, torques in N m, temperatures in C.
+//! Sign convention (eq 2): `delta > 0` is extension, `F > 0` pulls the TCA
+//! longer (tension). An extension (heterochiral) TCA lengthens when heated; a
+//! contraction (homochiral) TCA uses the same law with the untwisting term's
+//! sign reversed.
+//!
+//! Coil contact: a TCA is built with its coils touching (the `d0` relation
+//! assumes it), so it cannot shorten below its coiled length: `delta >= 0`.
+//! Under a load that would compress it further it stays at `delta = 0`.
+
+use std::f64::consts::PI;
+
+use crate::error::{positive, Error, Result};
+use crate::material::Material;
+use crate::roots::brent;
+
+/// Which way a TCA moves when heated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Chirality {
+    /// Twist and coil of opposite handedness: lengthens when heated.
+    Extension,
+    /// Twist and coil of the same handedness: shortens when heated.
+    Contraction,
+}
+
+impl Chirality {
+    /// `+1` for extension, `-1` for contraction: the sign of the untwisting term.
+    pub fn sign(self) -> f64 {
+        match self {
+            Chirality::Extension => 1.0,
+            Chirality::Contraction => -1.0,
+        }
+    }
+}
+
+/// A twisted-and-coiled actuator described by what a user measures.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tca {
+    fibre_length: f64,
+    coiled_length: f64,
+    coil_diameter: f64,
+    turns: f64,
+    chirality: Chirality,
+    material: Material,
+    // derived (paper, below eq. 6)
+    alpha0: f64,
+    n_coils: f64,
+    phi0: f64,
+    d0: f64,
+}
+
+impl Tca {
+    /// Build a TCA from the twisted-fibre length `l` [m], the coiled length
+    /// `L` [m], the coil's outer diameter `D` [m], the inserted turns `N` [-],
+    /// the chirality and the fibre material.
+    ///
+    /// Errors on non-finite or non-positive values, on `L >= l` (no pitch angle
+    /// `asin(L/l)`), and on geometries whose derived fibre diameter
+    /// `d0 = 2 D L / l` is not smaller than the coil diameter `D` (`L/l >= 1/2`).
+    pub fn new(
+        fibre_length: f64,
+        coiled_length: f64,
+        coil_diameter: f64,
+        turns: f64,
+        chirality: Chirality,
+        material: Material,
+    ) -> Result<Self> {
+        let l = positive("fibre_length l [m]", fibre_length)?;
+        let cl = positive("coiled_length L [m]", coiled_length)?;
+        let dd = positive("coil_diameter D [m]", coil_diameter)?;
+        let nn = positive("turns N [-]", turns)?;
+        if cl >= l {
+            return Err(Error::param(
+                "coiled_length L [m]",
+                cl,
+                format!("0 < L < fibre_length l = {l} m (alpha0 = asin(L/l))"),
+            ));
+        }
+        if 2.0 * cl >= l {
+            return Err(Error::param(
+                "coiled_length L [m]",
+                cl,
+                format!(
+                    "L < l/2 = {} m so that the fibre diameter d0 = 2 D L / l is smaller than D",
+                    0.5 * l
+                ),
+            ));
+        }
+        let alpha0 = (cl / l).asin();
+        Ok(Tca {
+            fibre_length: l,
+            coiled_length: cl,
+            coil_diameter: dd,
+            turns: nn,
+            chirality,
+            material,
+            alpha0,
+            n_coils: 2.0 * alpha0.cos() * l / (PI * dd),
+            phi0: 2.0 * PI * nn,
+            d0: 2.0 * dd * cl / l,
+        })
+    }
+
+    /// A TCA specified, as in the paper's manipulators (Section V-B), by its
+    /// coiled length `L` [m], pitch angle `alpha0` [rad], coil diameter `D` [m]
+    /// and turns `N`: the fibre length follows as `l = L / sin(alpha0)`.
+    pub fn from_pitch_angle(
+        coiled_length: f64,
+        alpha0: f64,
+        coil_diameter: f64,
+        turns: f64,
+        chirality: Chirality,
+        material: Material,
+    ) -> Result<Self> {
+        if !(alpha0.is_finite() && alpha0 > 0.0 && alpha0 < PI / 6.0) {
+            return Err(Error::param(
+                "alpha0 [rad]",
+                alpha0,
+                "0 < alpha0 < pi/6 (30 degrees)",
+            ));
+        }
+        let cl = positive("coiled_length L [m]", coiled_length)?;
+        Tca::new(cl / alpha0.sin(), cl, coil_diameter, turns, chirality, material)
+    }
+
+    /// Twisted-fibre length `l` [m].
+    pub fn fibre_length(&self) -> f64 {
+        self.fibre_length
+    }
+    /// Coiled length `L` [m].
+    pub fn coiled_length(&self) -> f64 {
+        self.coiled_length
+    }
+    /// Coil outer diameter `D` [m].
+    pub fn coil_diameter(&self) -> f64 {
+        self.coil_diameter
+    }
+    /// Inserted turns `N` [-].
+    pub fn turns(&self) -> f64 {
+        self.turns
+    }
+    /// Chirality.
+    pub fn chirality(&self) -> Chirality {
+        self.chirality
+    }
+    /// The fibre material.
+    pub fn material(&self) -> &Material {
+        &self.material
+    }
+    /// Initial pitch angle `alpha0 = asin(L/l)` [rad].
+    pub fn alpha0(&self) -> f64 {
+        self.alpha0
+    }
+    /// Number of coils `n = 2 cos(alpha0) l / (pi D)` [-].
+    pub fn n_coils(&self) -> f64 {
+        self.n_coils
+    }
+    /// Initial twist `phi0 = 2 pi N` [rad].
+    pub fn phi0(&self) -> f64 {
+        self.phi0
+    }
+    /// Fibre diameter at the reference temperature, `d0 = 2 D L / l` [m].
+    pub fn d0(&self) -> f64 {
+        self.d0
+    }
+    /// Largest elongation [m]: the fibre straight (`alpha = 90 deg`),
+    /// `l (1 - sin alpha0)` (eq 5).
+    pub fn max_displacement(&self) -> f64 {
+        self.fibre_length * (1.0 - self.alpha0.sin())
+    }
+
+    /// Pitch angle [rad] at elongation `delta` [m], from eq (5):
+    /// `delta = l (sin(alpha) - sin(alpha0))`.
+    pub fn pitch_angle(&self, delta: f64) -> Result<f64> {
+        let s = self.alpha0.sin() + delta / self.fibre_length;
+        if !(delta.is_finite() && s > 0.0 && s < 1.0) {
+            return Err(Error::param(
+                "displacement [m]",
+                delta,
+                format!(
+                    "-L < delta < l (1 - sin alpha0) = {:.6e} m (pitch angle between 0 and 90 deg)",
+                    self.max_displacement()
+                ),
+            ));
+        }
+        Ok(s.asin())
+    }
+
+    /// The law's temperature-dependent quantities at `temperature` [C].
+    pub fn at(&self, temperature: f64) -> Result<TcaAt<'_>> {
+        let (e, g, ratio) = self.material.state(temperature)?;
+        let d = self.d0 * ratio;
+        // eq (1): tau = G_T J_T phi0 (1 - d0/d) / l, J_T = pi d^4 / 32
+        let j = PI * d.powi(4) / 32.0;
+        let tau = g * j * self.phi0 * (1.0 - self.d0 / d) / self.fibre_length;
+        Ok(TcaAt {
+            tca: self,
+            temperature,
+            e,
+            g,
+            d,
+            tau,
+        })
+    }
+
+    /// Elongation `delta` [m] under an axial force `force` [N] (tension > 0)
+    /// at `temperature` [C], with coil contact (`delta >= 0`).
+    pub fn displacement(&self, force: f64, temperature: f64) -> Result<f64> {
+        self.at(temperature)?.displacement(force)
+    }
+
+    /// Axial force [N] (tension > 0) that holds the TCA at elongation
+    /// `displacement` [m] at `temperature` [C]. At `delta = 0` this is the
+    /// force at which the coils just touch (any more compression is carried
+    /// by coil contact).
+    pub fn force(&self, displacement: f64, temperature: f64) -> Result<f64> {
+        self.at(temperature)?.force(displacement)
+    }
+
+    /// Temperature [C] at which a TCA under `force` [N] has elongation
+    /// `displacement` [m] (`>= 0`). With `displacement = 0` this is the onset
+    /// temperature at which the coils separate. Errors with
+    /// [`Error::NoSolution`] if no temperature in the material's range does it.
+    pub fn temperature(&self, force: f64, displacement: f64) -> Result<f64> {
+        crate::error::finite("force [N]", force)?;
+        if displacement < 0.0 || !displacement.is_finite() {
+            return Err(Error::param(
+                "displacement [m]",
+                displacement,
+                "delta >= 0 (coils cannot close further than touching)",
+            ));
+        }
+        let alpha = self.pitch_angle(displacement)?;
+        let m = &self.material;
+        let resid = |t: f64| -> f64 {
+            match self.at(t) {
+                Ok(s) => displacement - s.f11(alpha) * force - s.sign() * s.f12(alpha) * s.tau,
+                Err(_) => f64::NAN,
+            }
+        };
+        let (lo, hi) = (m.t_min(), m.t_max());
+        brent(resid, lo, hi, 1e-10).ok_or_else(|| Error::NoSolution {
+            reason: format!(
+                "no temperature in [{lo}, {hi}] C gives displacement {displacement:.6e} m under force {force:.6e} N"
+            ),
+        })
+    }
+
+    /// Free stroke [m]: the elongation at `temperature` [C] with no load.
+    pub fn free_stroke(&self, temperature: f64) -> Result<f64> {
+        self.displacement(0.0, temperature)
+    }
+
+    /// Blocked force [N] at `temperature` [C]: the axial force that holds the
+    /// TCA at its coiled length (`delta = 0`). Negative (compressive: the TCA
+    /// pushes) for a heated extension TCA, positive for a contraction TCA.
+    pub fn blocked_force(&self, temperature: f64) -> Result<f64> {
+        self.force(0.0, temperature)
+    }
+}
+
+/// The TCA law frozen at one temperature.
+#[derive(Debug, Clone, Copy)]
+pub struct TcaAt<'a> {
+    tca: &'a Tca,
+    /// Temperature [C].
+    pub temperature: f64,
+    /// `E_T(T)` [Pa].
+    pub e: f64,
+    /// `G_T(T)` [Pa].
+    pub g: f64,
+    /// Fibre diameter `d(T)` [m].
+    pub d: f64,
+    /// Untwisting torque `tau(T)` [N m], eq (1).
+    pub tau: f64,
+}
+
+impl<'a> TcaAt<'a> {
+    fn sign(&self) -> f64 {
+        self.tca.chirality.sign()
+    }
+
+    /// `f11(alpha)` [m/N], eq (3).
+    pub fn f11(&self, alpha: f64) -> f64 {
+        let t = self.tca;
+        let n = t.n_coils;
+        let ln = t.fibre_length / n;
+        let (s, c) = alpha.sin_cos();
+        let (s2, c2) = (s * s, c * c);
+        8.0 * n / (PI.powi(3) * self.d.powi(4)) * ln.powi(3) * (c2 * c2 / self.g + 2.0 * s2 * c2 / self.e)
+            + 8.0 * n / (PI * self.d * self.d) * ln * (c2 / (2.0 * self.g) + s2 / (2.0 * self.e))
+    }
+
+    /// `f12(alpha)` [1/N... m/(N m)], eq (4).
+    pub fn f12(&self, alpha: f64) -> f64 {
+        let t = self.tca;
+        let n = t.n_coils;
+        let ln = t.fibre_length / n;
+        let c = alpha.cos();
+        8.0 * n / (PI * PI * self.d.powi(4)) * ln * ln * c * c / self.g
+    }
+
+    /// Elongation [m] under `force` [N], with coil contact. Solves
+    /// `delta = f11(alpha(delta)) F + s f12(alpha(delta)) tau` (eqs 2, 5).
+    pub fn displacement(&self, force: f64) -> Result<f64> {
+        crate::error::finite("force [N]", force)?;
+        let t = self.tca;
+        let s = self.sign();
+        let h = |delta: f64| -> f64 {
+            let sa = t.alpha0.sin() + delta / t.fibre_length;
+            if sa >= 1.0 {
+                return f64::INFINITY;
+            }
+            let a = sa.asin();
+            delta - self.f11(a) * force - s * self.f12(a) * self.tau
+        };
+        let h0 = h(0.0);
+        if h0 >= 0.0 {
+            // coils in contact: the law asks for delta <= 0
+            return Ok(0.0);
+        }
+        let dmax = t.max_displacement() * (1.0 - 1e-12);
+        if h(dmax) <= 0.0 {
+            return Err(Error::NoSolution {
+                reason: format!(
+                    "force {force:.6e} N straightens the fibre (delta would exceed l (1 - sin alpha0) = {:.6e} m)",
+                    t.max_displacement()
+                ),
+            });
+        }
+        brent(h, 0.0, dmax, 1e-15 * t.fibre_length).ok_or_else(|| Error::NoSolution {
+            reason: "displacement equation has no root".into(),
+        })
+    }
+
+    /// Axial force [N] at elongation `delta >= 0` [m]: eq (6),
+    /// `F = (delta - s f12 tau) / f11`.
+    pub fn force(&self, delta: f64) -> Result<f64> {
+        if delta < 0.0 || !delta.is_finite() {
+            return Err(Error::param(
+                "displacement [m]",
+                delta,
+                "delta >= 0 (coils cannot close further than touching)",
+            ));
+        }
+        let a = self.tca.pitch_angle(delta)?;
+        Ok((delta - self.sign() * self.f12(a) * self.tau) / self.f11(a))
+    }
+
+    /// Stiffness [N/m] used for coil contact inside a body: the stacked coils
+    /// as a solid ring column, `E_T pi (D - d) d / L`. Far stiffer than the
+    /// coil spring (about 400x for the paper's manipulator TCAs), so a TCA
+    /// shortens by micrometres at most once its coils touch.
+    pub fn contact_stiffness(&self) -> f64 {
+        let t = self.tca;
+        self.e * PI * (t.coil_diameter - self.d).max(self.d) * self.d / t.coiled_length
+    }
+
+    /// Tension [N] at any elongation `delta` [m], for use inside a body:
+    /// eq (6) for `delta >= 0`; for `delta < 0` (coils pressed together) the
+    /// contact force grows with [`Self::contact_stiffness`].
+    pub fn tension(&self, delta: f64) -> Result<f64> {
+        if delta >= 0.0 {
+            self.force(delta)
+        } else if delta.is_finite() {
+            Ok(self.force(0.0)? + self.contact_stiffness() * delta)
+        } else {
+            Err(Error::param("displacement [m]", delta, "a finite number"))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fig5_three_thread() -> Tca {
+        Tca::new(0.497, 0.110, 2e-3, 300.0, Chirality::Extension, Material::silver_coated_nylon())
+            .unwrap()
+    }
+
+    #[test]
+    fn derived_quantities_follow_the_paper() {
+        let t = fig5_three_thread();
+        assert!((t.alpha0() - (0.110f64 / 0.497).asin()).abs() < 1e-15);
+        assert!((t.n_coils() - 2.0 * t.alpha0().cos() * 0.497 / (PI * 2e-3)).abs() < 1e-12);
+        assert!((t.d0() - 2.0 * 2e-3 * 0.110 / 0.497).abs() < 1e-15);
+        assert!((t.phi0() - 600.0 * PI).abs() < 1e-12);
+    }
+
+    #[test]
+    fn reference_temperature_gives_no_torque_and_hookean_response() {
+        let t = fig5_three_thread();
+        let s = t.at(25.0).unwrap();
+        assert_eq!(s.tau, 0.0);
+        // compression at T_ref: coils in contact
+        assert_eq!(t.displacement(-0.1, 25.0).unwrap(), 0.0);
+        // tension: delta = f11(alpha(delta)) F
+        let f = 0.05;
+        let d = t.displacement(f, 25.0).unwrap();
+        let a = t.pitch_angle(d).unwrap();
+        assert!((d - s.f11(a) * f).abs() < 1e-14);
+    }
+
+    #[test]
+    fn force_and_displacement_are_inverse() {
+        let t = fig5_three_thread();
+        for temp in [25.0, 80.0, 160.0] {
+            for f in [0.0, 0.02, 0.2] {
+                let d = t.displacement(f, temp).unwrap();
+                if d > 0.0 {
+                    let f2 = t.force(d, temp).unwrap();
+                    assert!((f2 - f).abs() < 1e-9, "{temp} {f} {f2}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn invalid_geometry_rejected() {
+        let m = Material::silver_coated_nylon();
+        assert!(Tca::new(0.1, 0.11, 2e-3, 300.0, Chirality::Extension, m.clone()).is_err());
+        assert!(Tca::new(0.5, 0.11, f64::NAN, 300.0, Chirality::Extension, m.clone()).is_err());
+        assert!(Tca::new(0.5, 0.11, 2e-3, -1.0, Chirality::Extension, m).is_err());
+    }
+}
