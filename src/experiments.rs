@@ -16,3 +16,71 @@ pub fn fig5_tca(threads: u32) -> Tca {
     Tca::new(l, 0.110, d, turns, Chirality::Extension, Material::silver_coated_nylon())
         .expect("Fig. 5 TCA is valid")
 }
+
+use std::sync::Arc;
+
+use nalgebra::Vector3;
+
+use crate::rod::{Actuator, Body, Robot, Routing, Section, TcaLaw};
+
+/// EcoFlex 10 (Section V): density [kg/m^3], Young's modulus [Pa], Poisson ratio.
+pub const ECOFLEX10: (f64, f64, f64) = (1040.0, 37.8e3, 0.5);
+/// Standard gravity [m/s^2].
+pub const G0: f64 = 9.81;
+/// Offset of the manipulators' TCAs from the neutral axis [m] (Section V-B).
+pub const TCA_OFFSET: f64 = 3e-3;
+/// Half the spacing of the two legs of a U-shaped TCA along body `y` [m]. Not
+/// printed in the paper; any symmetric spacing gives the same planar bending.
+pub const U_LEG_HALF_SPACING: f64 = 2.5e-3;
+/// Assumed initial (pre-curvature) radius of the circular manipulator [m];
+/// the paper states it had initial bending but prints no value.
+pub const CIRCLE_PRECURVATURE_RADIUS: f64 = 0.2;
+
+/// The manipulators' TCA: `D = 1.7 mm`, `alpha0 = 15 deg`, `N = 76.4`, coiled
+/// length = body length (Section V-B).
+pub fn manipulator_tca(length: f64) -> Tca {
+    Tca::from_pitch_angle(
+        length,
+        15f64.to_radians(),
+        1.7e-3,
+        76.4,
+        Chirality::Extension,
+        Material::silver_coated_nylon(),
+    )
+    .expect("manipulator TCA is valid")
+}
+
+/// A square EcoFlex body of side 10 mm with a U-shaped TCA (two legs at
+/// `x = +3 mm`, `y = +-2.5 mm`), standing upright (gravity `-z`) if `gravity`.
+pub fn square_manipulator(length: f64, gravity: bool) -> Robot {
+    let (psi, e, nu) = ECOFLEX10;
+    let mut body = Body::new(length, Section::Rectangle { width: 10e-3, height: 10e-3 }, e, nu, psi).expect("valid");
+    if gravity {
+        body.gravity = Vector3::new(0.0, 0.0, -G0);
+    }
+    let law = Arc::new(TcaLaw(manipulator_tca(length)));
+    let legs = [U_LEG_HALF_SPACING, -U_LEG_HALF_SPACING]
+        .iter()
+        .map(|&y| Actuator::new(Routing::Straight { x: TCA_OFFSET, y }, 0.0, length, law.clone()))
+        .collect();
+    Robot::new(body, legs).expect("valid")
+}
+
+/// Fig. 6 top: circular EcoFlex body, 8 mm diameter, 40 mm long, one TCA at
+/// `x = +3 mm`, pre-curved toward `-x` with radius [`CIRCLE_PRECURVATURE_RADIUS`].
+pub fn fig6_circle(gravity: bool) -> Robot {
+    let (psi, e, nu) = ECOFLEX10;
+    let length = 0.040;
+    let mut body = Body::new(length, Section::Circle { diameter: 8e-3 }, e, nu, psi).expect("valid");
+    body.omega_star = Vector3::new(0.0, -1.0 / CIRCLE_PRECURVATURE_RADIUS, 0.0);
+    if gravity {
+        body.gravity = Vector3::new(0.0, 0.0, -G0);
+    }
+    let law = Arc::new(TcaLaw(manipulator_tca(length)));
+    Robot::new(body, vec![Actuator::new(Routing::Straight { x: TCA_OFFSET, y: 0.0 }, 0.0, length, law)]).expect("valid")
+}
+
+/// Fig. 6 bottom: square manipulator, 40 mm long.
+pub fn fig6_square(gravity: bool) -> Robot {
+    square_manipulator(0.040, gravity)
+}

@@ -20,6 +20,8 @@ pub mod error;
 pub mod experiments;
 pub mod material;
 pub mod roots;
+pub mod rod;
+pub mod shooting;
 pub mod tca;
 
 #[cfg(feature = "python")]

@@ -3,6 +3,9 @@
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 
+use std::f64::consts::FRAC_PI_2;
+
+use super::errors::{finite_output, Real};
 use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::tca::{Chirality, Tca};
@@ -23,22 +26,30 @@ pub struct PyMaterial {
 #[pymethods]
 impl PyMaterial {
     #[new]
-    #[pyo3(signature = (*, youngs_modulus, shear_modulus, expansion, youngs_modulus_slope=0.0,
-        shear_modulus_slope=None, expansion_slope=0.0, t_ref=25.0, t_min=25.0, t_max=160.0,
-        name="custom".to_string()))]
+    #[pyo3(signature = (*, youngs_modulus, shear_modulus, expansion, youngs_modulus_slope=Real(0.0),
+        shear_modulus_slope=None, expansion_slope=Real(0.0), t_ref=Real(25.0), t_min=Real(25.0), t_max=Real(160.0),
+        name="custom".to_string()),
+        text_signature = "(*, youngs_modulus, shear_modulus, expansion, youngs_modulus_slope=0.0, \
+            shear_modulus_slope=None, expansion_slope=0.0, t_ref=25.0, t_min=25.0, t_max=160.0, name='custom')")]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        youngs_modulus: f64,
-        shear_modulus: f64,
-        expansion: f64,
-        youngs_modulus_slope: f64,
-        shear_modulus_slope: Option<f64>,
-        expansion_slope: f64,
-        t_ref: f64,
-        t_min: f64,
-        t_max: f64,
+        youngs_modulus: Real,
+        shear_modulus: Real,
+        expansion: Real,
+        youngs_modulus_slope: Real,
+        shear_modulus_slope: Option<Real>,
+        expansion_slope: Real,
+        t_ref: Real,
+        t_min: Real,
+        t_max: Real,
         name: String,
     ) -> PyResult<Self> {
+        let (Real(youngs_modulus), Real(shear_modulus), Real(expansion)) =
+            (youngs_modulus, shear_modulus, expansion);
+        let (Real(youngs_modulus_slope), Real(expansion_slope)) =
+            (youngs_modulus_slope, expansion_slope);
+        let shear_modulus_slope = shear_modulus_slope.map(|r| r.0);
+        let (Real(t_ref), Real(t_min), Real(t_max)) = (t_ref, t_min, t_max);
         let g_slope =
             shear_modulus_slope.unwrap_or(youngs_modulus_slope * shear_modulus / youngs_modulus);
         Ok(PyMaterial {
@@ -86,17 +97,17 @@ impl PyMaterial {
     fn coefficients(&self) -> (f64, f64, f64, f64, f64, f64) {
         self.inner.coefficients()
     }
-    fn youngs_modulus(&self, temperature: f64) -> PyResult<f64> {
-        Ok(self.inner.youngs_modulus(temperature)?)
+    fn youngs_modulus(&self, temperature: Real) -> PyResult<f64> {
+        Ok(finite_output("youngs_modulus [Pa]", self.inner.youngs_modulus(temperature.0)?)?)
     }
-    fn shear_modulus(&self, temperature: f64) -> PyResult<f64> {
-        Ok(self.inner.shear_modulus(temperature)?)
+    fn shear_modulus(&self, temperature: Real) -> PyResult<f64> {
+        Ok(finite_output("shear_modulus [Pa]", self.inner.shear_modulus(temperature.0)?)?)
     }
-    fn expansion(&self, temperature: f64) -> PyResult<f64> {
-        Ok(self.inner.expansion(temperature)?)
+    fn expansion(&self, temperature: Real) -> PyResult<f64> {
+        Ok(finite_output("expansion [1/C]", self.inner.expansion(temperature.0)?)?)
     }
-    fn diameter_ratio(&self, temperature: f64) -> PyResult<f64> {
-        Ok(self.inner.diameter_ratio(temperature)?)
+    fn diameter_ratio(&self, temperature: Real) -> PyResult<f64> {
+        Ok(finite_output("diameter_ratio [-]", self.inner.diameter_ratio(temperature.0)?)?)
     }
     fn __repr__(&self) -> String {
         let (e, es, g, gs, r, rs) = self.inner.coefficients();
@@ -108,6 +119,15 @@ impl PyMaterial {
             self.inner.t_min(),
             self.inner.t_max()
         )
+    }
+}
+
+/// Error unless `alpha` is a pitch angle strictly between 0 and 90 degrees.
+fn check_alpha(alpha: f64) -> Result<f64> {
+    if alpha.is_finite() && alpha > 0.0 && alpha < FRAC_PI_2 {
+        Ok(alpha)
+    } else {
+        Err(Error::param("alpha [rad]", alpha, "0 < alpha < pi/2"))
     }
 }
 
@@ -123,9 +143,11 @@ pub(crate) fn parse_chirality(s: &str) -> Result<Chirality> {
 }
 
 /// Apply `f` elementwise over two equal-length arrays, naming the index of the
-/// first failing element in the error.
+/// first failing element in the error; `output` names the result (with its
+/// unit) in the error raised if a result is not finite.
 fn map2(
     py: Python<'_>,
+    output: &str,
     a: &PyReadonlyArray1<'_, f64>,
     b: &PyReadonlyArray1<'_, f64>,
     f: impl Fn(f64, f64) -> Result<f64> + Send + Sync,
@@ -144,7 +166,7 @@ fn map2(
             .zip(&b)
             .enumerate()
             .map(|(i, (&x, &y))| {
-                f(x, y).map_err(|e| match e {
+                f(x, y).and_then(|v| finite_output(output, v)).map_err(|e| match e {
                     Error::InvalidParameter {
                         name,
                         value,
@@ -156,6 +178,10 @@ fn map2(
                     },
                     Error::NoSolution { reason } => Error::NoSolution {
                         reason: format!("element {i}: {reason}"),
+                    },
+                    Error::InvalidInput { name, reason } => Error::InvalidInput {
+                        name: format!("{name} (element {i})"),
+                        reason,
                     },
                     other => other,
                 })
@@ -177,20 +203,20 @@ impl PyTca {
     #[new]
     #[pyo3(signature = (fibre_length, coiled_length, coil_diameter, turns, chirality="extension", material=None))]
     fn new(
-        fibre_length: f64,
-        coiled_length: f64,
-        coil_diameter: f64,
-        turns: f64,
+        fibre_length: Real,
+        coiled_length: Real,
+        coil_diameter: Real,
+        turns: Real,
         chirality: &str,
         material: Option<PyMaterial>,
     ) -> PyResult<Self> {
         let material = material.map_or_else(Material::silver_coated_nylon, |m| m.inner);
         Ok(PyTca {
             inner: Tca::new(
-                fibre_length,
-                coiled_length,
-                coil_diameter,
-                turns,
+                fibre_length.0,
+                coiled_length.0,
+                coil_diameter.0,
+                turns.0,
                 parse_chirality(chirality)?,
                 material,
             )?,
@@ -202,19 +228,19 @@ impl PyTca {
     #[pyo3(signature = (coiled_length, alpha0, coil_diameter, turns, chirality="extension", material=None))]
     fn from_pitch_angle(
         cls: &Bound<'_, pyo3::types::PyType>,
-        coiled_length: f64,
-        alpha0: f64,
-        coil_diameter: f64,
-        turns: f64,
+        coiled_length: Real,
+        alpha0: Real,
+        coil_diameter: Real,
+        turns: Real,
         chirality: &str,
         material: Option<PyMaterial>,
     ) -> PyResult<Py<PyAny>> {
         let material = material.map_or_else(Material::silver_coated_nylon, |m| m.inner);
         let t = Tca::from_pitch_angle(
-            coiled_length,
-            alpha0,
-            coil_diameter,
-            turns,
+            coiled_length.0,
+            alpha0.0,
+            coil_diameter.0,
+            turns.0,
             parse_chirality(chirality)?,
             material,
         )?;
@@ -283,20 +309,27 @@ impl PyTca {
     fn max_displacement(&self) -> f64 {
         self.inner.max_displacement()
     }
-    fn pitch_angle(&self, displacement: f64) -> PyResult<f64> {
-        Ok(self.inner.pitch_angle(displacement)?)
+    /// Pitch angle [rad] at elongation `displacement` [m], eq (5).
+    fn pitch_angle(&self, displacement: Real) -> PyResult<f64> {
+        Ok(self.inner.pitch_angle(displacement.0)?)
     }
-    fn f11(&self, alpha: f64, temperature: f64) -> PyResult<f64> {
-        Ok(self.inner.at(temperature)?.f11(alpha))
+    /// `f11` [m/N] of eq (3) at pitch angle `alpha` [rad] and `temperature` [C].
+    fn f11(&self, alpha: Real, temperature: Real) -> PyResult<f64> {
+        let a = check_alpha(alpha.0)?;
+        Ok(finite_output("f11 [m/N]", self.inner.at(temperature.0)?.f11(a))?)
     }
-    fn f12(&self, alpha: f64, temperature: f64) -> PyResult<f64> {
-        Ok(self.inner.at(temperature)?.f12(alpha))
+    /// `f12` [1/N] (m of elongation per N m of torque) of eq (4) at pitch angle `alpha` [rad] and `temperature` [C].
+    fn f12(&self, alpha: Real, temperature: Real) -> PyResult<f64> {
+        let a = check_alpha(alpha.0)?;
+        Ok(finite_output("f12 [1/N]", self.inner.at(temperature.0)?.f12(a))?)
     }
-    fn torque(&self, temperature: f64) -> PyResult<f64> {
-        Ok(self.inner.at(temperature)?.tau)
+    /// Untwisting torque `tau` [N m] of eq (1) at `temperature` [C].
+    fn torque(&self, temperature: Real) -> PyResult<f64> {
+        Ok(finite_output("torque [N m]", self.inner.at(temperature.0)?.tau)?)
     }
-    fn fibre_diameter(&self, temperature: f64) -> PyResult<f64> {
-        Ok(self.inner.at(temperature)?.d)
+    /// Fibre diameter `d` [m] at `temperature` [C].
+    fn fibre_diameter(&self, temperature: Real) -> PyResult<f64> {
+        Ok(finite_output("fibre_diameter [m]", self.inner.at(temperature.0)?.d)?)
     }
     fn _displacement_flat(
         &self,
@@ -304,7 +337,7 @@ impl PyTca {
         force: PyReadonlyArray1<'_, f64>,
         temperature: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Py<PyArray1<f64>>> {
-        map2(py, &force, &temperature, |f, t| self.inner.displacement(f, t))
+        map2(py, "displacement [m]", &force, &temperature, |f, t| self.inner.displacement(f, t))
     }
     fn _force_flat(
         &self,
@@ -312,7 +345,7 @@ impl PyTca {
         displacement: PyReadonlyArray1<'_, f64>,
         temperature: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Py<PyArray1<f64>>> {
-        map2(py, &displacement, &temperature, |d, t| self.inner.force(d, t))
+        map2(py, "force [N]", &displacement, &temperature, |d, t| self.inner.force(d, t))
     }
     fn _temperature_flat(
         &self,
@@ -320,7 +353,7 @@ impl PyTca {
         force: PyReadonlyArray1<'_, f64>,
         displacement: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Py<PyArray1<f64>>> {
-        map2(py, &force, &displacement, |f, d| self.inner.temperature(f, d))
+        map2(py, "temperature [C]", &force, &displacement, |f, d| self.inner.temperature(f, d))
     }
     fn __repr__(&self) -> String {
         let t = &self.inner;

@@ -1,0 +1,881 @@
+//! The Cosserat rod with embedded string-like actuators (paper Section III,
+//! eqs 7-31) and its initial value problem.
+//!
+//! Frames and signs:
+//! * world frame: base at the origin, reference tangent `+z`; `R(s)` maps body
+//!   to world; body strains `v = nu` (linear) and `u = omega` (angular);
+//! * actuator `i` runs at body-frame offset `r_i(s)` between arc lengths
+//!   `s_start` and `s_end`; its scalar force `tau_i` is a *tension* (positive
+//!   pulls the anchors together); a heated extension TCA pushes, `tau_i < 0`;
+//! * loads are given in the world frame: gravity `g` [m/s^2], distributed force
+//!   [N/m] and moment [N m/m], tip force [N] and moment [N m].
+//!
+//! Rotation: `R` is carried as a unit quaternion `q` with `q' = q (0, u) / 2`
+//! (eq 8), integrated by RK4 and renormalised after every step. `R(q)` is
+//! orthogonal to rounding for any unit `q`, so the only drift is the
+//! quaternion's norm, which renormalisation removes each step.
+//!
+//! String mechanics (Rucker & Webster, T-RO 2011): a string of constant tension
+//! `tau` on the curve `p_a = p + R r` loads the body by `tau t_a'` per unit
+//! length (eqs 14-15) and by point forces `-tau t_a` at its distal anchor and
+//! `+tau t_a` at its proximal anchor. The distributed load depends on `v'` and
+//! `u'`, which gives the linear system (25) with blocks (26)-(31).
+
+use std::f64::consts::PI;
+use std::fmt::Debug;
+use std::sync::Arc;
+
+use nalgebra::{Matrix3, Matrix6, Quaternion, Vector3, Vector6};
+
+use crate::error::{finite, non_negative, positive, Error, Result};
+use crate::tca::Tca;
+
+/// Cross-section of the body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Section {
+    /// Solid circle of the given diameter [m].
+    Circle {
+        /// Diameter [m].
+        diameter: f64,
+    },
+    /// Solid rectangle, `width` [m] along body `x`, `height` [m] along body `y`.
+    Rectangle {
+        /// Extent along body x [m].
+        width: f64,
+        /// Extent along body y [m].
+        height: f64,
+    },
+    /// User-given properties.
+    Custom {
+        /// Area [m^2].
+        area: f64,
+        /// Second moment about body x [m^4] (bending with curvature `u_x`).
+        ix: f64,
+        /// Second moment about body y [m^4] (bending with curvature `u_y`).
+        iy: f64,
+        /// Torsion constant [m^4].
+        j: f64,
+    },
+}
+
+impl Section {
+    /// `(A, I_x, I_y, J)` in m^2 and m^4. For a rectangle `J` is Saint-Venant's
+    /// torsion constant `a b^3 (1/3 - 0.21 (b/a) (1 - b^4 / (12 a^4)))`
+    /// (`a >= b`), not the polar moment, which overstates a square's torsional
+    /// stiffness by 18%.
+    pub fn properties(&self) -> (f64, f64, f64, f64) {
+        match *self {
+            Section::Circle { diameter } => {
+                let a = PI * diameter * diameter / 4.0;
+                let i = PI * diameter.powi(4) / 64.0;
+                (a, i, i, 2.0 * i)
+            }
+            Section::Rectangle { width, height } => {
+                let (a, b) = if width >= height {
+                    (width, height)
+                } else {
+                    (height, width)
+                };
+                let j = a * b.powi(3) * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b.powi(4) / (12.0 * a.powi(4))));
+                (
+                    width * height,
+                    width * height.powi(3) / 12.0,
+                    height * width.powi(3) / 12.0,
+                    j,
+                )
+            }
+            Section::Custom { area, ix, iy, j } => (area, ix, iy, j),
+        }
+    }
+
+    /// Distance [m] from the centre line to the section's edge in the body-frame
+    /// direction `(cos(theta), sin(theta))`.
+    pub fn edge_distance(&self, theta: f64) -> f64 {
+        match *self {
+            Section::Circle { diameter } => 0.5 * diameter,
+            Section::Rectangle { width, height } => {
+                let (s, c) = theta.sin_cos();
+                let tx = if c.abs() > 1e-12 { 0.5 * width / c.abs() } else { f64::INFINITY };
+                let ty = if s.abs() > 1e-12 { 0.5 * height / s.abs() } else { f64::INFINITY };
+                tx.min(ty)
+            }
+            Section::Custom { area, .. } => (area / PI).sqrt(),
+        }
+    }
+
+    fn validate(&self) -> Result<()> {
+        match *self {
+            Section::Circle { diameter } => {
+                positive("section diameter [m]", diameter)?;
+            }
+            Section::Rectangle { width, height } => {
+                positive("section width [m]", width)?;
+                positive("section height [m]", height)?;
+            }
+            Section::Custom { area, ix, iy, j } => {
+                positive("section area [m^2]", area)?;
+                positive("section ix [m^4]", ix)?;
+                positive("section iy [m^4]", iy)?;
+                positive("section j [m^4]", j)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The soft body: geometry, material, reference strains and external loads.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// Length of the centre line [m].
+    pub length: f64,
+    /// Cross-section.
+    pub section: Section,
+    /// Young's modulus `E_B` [Pa].
+    pub youngs_modulus: f64,
+    /// Shear modulus `G_B` [Pa].
+    pub shear_modulus: f64,
+    /// Density `psi` [kg/m^3].
+    pub density: f64,
+    /// Shear correction factor `k` in `K_nu = diag(k G A, k G A, E A)`
+    /// (1 in the paper).
+    pub shear_coefficient: f64,
+    /// Reference linear strain `nu*` [-] (`(0, 0, 1)` for an unstretched body).
+    pub nu_star: Vector3<f64>,
+    /// Reference angular strain `omega*` [1/m] (non-zero for a pre-curved body).
+    pub omega_star: Vector3<f64>,
+    /// Gravitational acceleration in the world frame [m/s^2].
+    pub gravity: Vector3<f64>,
+    /// Extra distributed force in the world frame [N/m].
+    pub distributed_force: Vector3<f64>,
+    /// Distributed moment in the world frame [N m/m].
+    pub distributed_moment: Vector3<f64>,
+    /// Tip force in the world frame [N].
+    pub tip_force: Vector3<f64>,
+    /// Tip moment in the world frame [N m].
+    pub tip_moment: Vector3<f64>,
+}
+
+impl Body {
+    /// A straight, unloaded, weightless body of isotropic material: `G_B = E_B / (2 (1 + poisson))`.
+    pub fn new(length: f64, section: Section, youngs_modulus: f64, poisson: f64, density: f64) -> Result<Self> {
+        if !(poisson.is_finite() && poisson > -1.0 && poisson <= 0.5) {
+            return Err(Error::param("poisson [-]", poisson, "-1 < poisson <= 0.5"));
+        }
+        let e = positive("youngs_modulus E_B [Pa]", youngs_modulus)?;
+        let b = Body {
+            length,
+            section,
+            youngs_modulus: e,
+            shear_modulus: e / (2.0 * (1.0 + poisson)),
+            density,
+            shear_coefficient: 1.0,
+            nu_star: Vector3::z(),
+            omega_star: Vector3::zeros(),
+            gravity: Vector3::zeros(),
+            distributed_force: Vector3::zeros(),
+            distributed_moment: Vector3::zeros(),
+            tip_force: Vector3::zeros(),
+            tip_moment: Vector3::zeros(),
+        };
+        b.validate()?;
+        Ok(b)
+    }
+
+    /// Validate every field.
+    pub fn validate(&self) -> Result<()> {
+        positive("body length [m]", self.length)?;
+        self.section.validate()?;
+        positive("youngs_modulus E_B [Pa]", self.youngs_modulus)?;
+        positive("shear_modulus G_B [Pa]", self.shear_modulus)?;
+        non_negative("density [kg/m^3]", self.density)?;
+        positive("shear_coefficient [-]", self.shear_coefficient)?;
+        let vecs: [(&str, &Vector3<f64>); 7] = [
+            ("nu_star [-]", &self.nu_star),
+            ("omega_star [1/m]", &self.omega_star),
+            ("gravity [m/s^2]", &self.gravity),
+            ("distributed_force [N/m]", &self.distributed_force),
+            ("distributed_moment [N m/m]", &self.distributed_moment),
+            ("tip_force [N]", &self.tip_force),
+            ("tip_moment [N m]", &self.tip_moment),
+        ];
+        for (name, v) in vecs {
+            for (k, x) in v.iter().enumerate() {
+                finite(&format!("{name}[{k}]"), *x)?;
+            }
+        }
+        if self.nu_star.z <= 0.0 {
+            return Err(Error::param("nu_star[2] [-]", self.nu_star.z, "> 0 (the body must not fold back)"));
+        }
+        Ok(())
+    }
+
+    /// `K_nu = diag(k G A, k G A, E A)` [N] and `K_omega = diag(E I_x, E I_y, G J)` [N m^2].
+    pub fn stiffness(&self) -> (Matrix3<f64>, Matrix3<f64>) {
+        let (a, ix, iy, j) = self.section.properties();
+        let (e, g, k) = (self.youngs_modulus, self.shear_modulus, self.shear_coefficient);
+        (
+            Matrix3::from_diagonal(&Vector3::new(k * g * a, k * g * a, e * a)),
+            Matrix3::from_diagonal(&Vector3::new(e * ix, e * iy, g * j)),
+        )
+    }
+
+    /// Total distributed force in the world frame [N/m]: `psi A g + f`.
+    pub fn distributed_load(&self) -> Vector3<f64> {
+        let (a, ..) = self.section.properties();
+        self.density * a * self.gravity + self.distributed_force
+    }
+}
+
+/// Path of an actuator in the body frame, with exact derivatives in `s`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Routing {
+    /// Parallel to the centre line at a constant offset `(x, y)` [m].
+    Straight {
+        /// Body-frame x offset [m].
+        x: f64,
+        /// Body-frame y offset [m].
+        y: f64,
+    },
+    /// Helix about the centre line: `r = radius (cos(rate s + phase), sin(rate s + phase), 0)`.
+    Helix {
+        /// Radius [m].
+        radius: f64,
+        /// Angular rate [rad/m] (positive: right-handed about +z).
+        rate: f64,
+        /// Angle at `s = 0` [rad].
+        phase: f64,
+    },
+}
+
+impl Routing {
+    /// `(r, r', r'')` at arc length `s` [m].
+    #[inline]
+    pub fn eval(&self, s: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        match *self {
+            Routing::Straight { x, y } => (Vector3::new(x, y, 0.0), Vector3::zeros(), Vector3::zeros()),
+            Routing::Helix { radius, rate, phase } => {
+                let (sn, cs) = (rate * s + phase).sin_cos();
+                (
+                    Vector3::new(radius * cs, radius * sn, 0.0),
+                    Vector3::new(-radius * rate * sn, radius * rate * cs, 0.0),
+                    Vector3::new(-radius * rate * rate * cs, -radius * rate * rate * sn, 0.0),
+                )
+            }
+        }
+    }
+
+    fn validate(&self) -> Result<()> {
+        match *self {
+            Routing::Straight { x, y } => {
+                finite("routing x [m]", x)?;
+                finite("routing y [m]", y)?;
+            }
+            Routing::Helix { radius, rate, phase } => {
+                non_negative("helix radius [m]", radius)?;
+                finite("helix rate [rad/m]", rate)?;
+                finite("helix phase [rad]", phase)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The force law of a string-like actuator: tension as a function of the
+/// actuator's total elongation and of its actuation input.
+///
+/// The rod model (eqs 22-33) never looks inside: any law that returns a
+/// tension works, which is the paper's point that the equations hold for any
+/// string-like actuator.
+pub trait ForceLaw: Send + Sync + Debug {
+    /// Tension [N] (positive pulls the anchors together) at total elongation
+    /// `elongation` [m] (current length minus reference length) and input
+    /// `input` (unit in [`ForceLaw::input_name`]).
+    fn tension(&self, elongation: f64, input: f64) -> Result<f64>;
+    /// Name and unit of the input, e.g. `temperature [C]`.
+    fn input_name(&self) -> &'static str;
+    /// Valid input interval.
+    fn input_bounds(&self) -> (f64, f64);
+    /// The input at which the actuator is passive (reference state).
+    fn reference_input(&self) -> f64;
+    /// Error unless `input` is valid.
+    fn check_input(&self, input: f64) -> Result<()> {
+        let (lo, hi) = self.input_bounds();
+        if input.is_finite() && input >= lo && input <= hi {
+            Ok(())
+        } else {
+            Err(Error::param(self.input_name(), input, format!("{lo} <= input <= {hi}")))
+        }
+    }
+    /// Short name of the law.
+    fn kind(&self) -> &'static str;
+    /// Inverse law: the elongation [m] at which the actuator carries
+    /// `tension` [N] at `input`, where that is unique. Used only to build
+    /// initial guesses (a warm start keeps the tension, a cold start begins at
+    /// zero tension), so `None` is always safe.
+    fn elongation(&self, _tension: f64, _input: f64) -> Option<f64> {
+        None
+    }
+}
+
+/// The TCA law (eq 13) at the input temperature [C]: tension from the TCA's
+/// total elongation, with coil contact below zero elongation.
+#[derive(Debug, Clone)]
+pub struct TcaLaw(pub Tca);
+
+impl ForceLaw for TcaLaw {
+    fn tension(&self, elongation: f64, input: f64) -> Result<f64> {
+        self.0.at(input)?.tension(elongation)
+    }
+    fn input_name(&self) -> &'static str {
+        "temperature [C]"
+    }
+    fn input_bounds(&self) -> (f64, f64) {
+        (self.0.material().t_min(), self.0.material().t_max())
+    }
+    fn reference_input(&self) -> f64 {
+        self.0.material().t_ref()
+    }
+    fn kind(&self) -> &'static str {
+        "tca"
+    }
+    fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
+        let at = self.0.at(input).ok()?;
+        let f0 = at.force(0.0).ok()?;
+        if tension >= f0 {
+            at.displacement(tension).ok()
+        } else {
+            Some((tension - f0) / at.contact_stiffness())
+        }
+    }
+}
+
+/// A tendon pulled with a given tension [N] (the input), whatever its elongation.
+#[derive(Debug, Clone, Copy)]
+pub struct ConstantTension;
+
+impl ForceLaw for ConstantTension {
+    fn tension(&self, _elongation: f64, input: f64) -> Result<f64> {
+        Ok(input)
+    }
+    fn input_name(&self) -> &'static str {
+        "tension [N]"
+    }
+    fn input_bounds(&self) -> (f64, f64) {
+        (0.0, f64::MAX)
+    }
+    fn reference_input(&self) -> f64 {
+        0.0
+    }
+    fn kind(&self) -> &'static str {
+        "tension"
+    }
+}
+
+/// A linearly elastic tendon of stiffness `k` [N/m] under displacement
+/// control: the input is the length [m] pulled in at the base, the tension is
+/// `k (pull + elongation)` and zero when slack.
+#[derive(Debug, Clone, Copy)]
+pub struct LinearTendon {
+    /// Axial stiffness of the tendon [N/m].
+    pub stiffness: f64,
+}
+
+impl ForceLaw for LinearTendon {
+    fn tension(&self, elongation: f64, input: f64) -> Result<f64> {
+        Ok((self.stiffness * (input + elongation)).max(0.0))
+    }
+    fn input_name(&self) -> &'static str {
+        "pull [m]"
+    }
+    fn input_bounds(&self) -> (f64, f64) {
+        (f64::MIN, f64::MAX)
+    }
+    fn reference_input(&self) -> f64 {
+        0.0
+    }
+    fn kind(&self) -> &'static str {
+        "linear_tendon"
+    }
+    fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
+        Some(tension.max(0.0) / self.stiffness - input)
+    }
+}
+
+/// A string-like actuator embedded in the body.
+#[derive(Debug, Clone)]
+pub struct Actuator {
+    /// Path in the body frame.
+    pub routing: Routing,
+    /// Proximal anchor [m] (0: anchored to the base).
+    pub s_start: f64,
+    /// Distal anchor [m] (the body length: anchored at the tip).
+    pub s_end: f64,
+    /// The paper's length ratio `L_i` (eq 18). `None`: computed pointwise from
+    /// the reference configuration, `|nu* + omega* x r + r'|`, which makes the
+    /// reference configuration exactly unstrained for any routing and
+    /// pre-curvature.
+    pub length_ratio: Option<f64>,
+    /// Force law.
+    pub law: Arc<dyn ForceLaw>,
+}
+
+impl Actuator {
+    /// An actuator from `s_start` to `s_end` [m].
+    pub fn new(routing: Routing, s_start: f64, s_end: f64, law: Arc<dyn ForceLaw>) -> Self {
+        Actuator {
+            routing,
+            s_start,
+            s_end,
+            length_ratio: None,
+            law,
+        }
+    }
+}
+
+/// A body with its actuators.
+#[derive(Debug, Clone)]
+pub struct Robot {
+    /// The soft body.
+    pub body: Body,
+    /// Embedded actuators.
+    pub actuators: Vec<Actuator>,
+}
+
+/// Number of states besides the actuator elongations: p (3), q (4), v (3), u (3).
+pub const BASE_STATES: usize = 13;
+
+impl Robot {
+    /// Validate and build.
+    pub fn new(body: Body, actuators: Vec<Actuator>) -> Result<Self> {
+        let r = Robot { body, actuators };
+        r.validate()?;
+        Ok(r)
+    }
+
+    /// Validate body and actuator layout.
+    pub fn validate(&self) -> Result<()> {
+        self.body.validate()?;
+        let len = self.body.length;
+        for (i, a) in self.actuators.iter().enumerate() {
+            a.routing.validate()?;
+            if !(a.s_start.is_finite() && a.s_start >= 0.0 && a.s_start < len) {
+                return Err(Error::param(&format!("actuators[{i}].s_start [m]"), a.s_start, format!("0 <= s_start < body length {len} m")));
+            }
+            if !(a.s_end.is_finite() && a.s_end > a.s_start && a.s_end <= len * (1.0 + 1e-12)) {
+                return Err(Error::param(
+                    &format!("actuators[{i}].s_end [m]"),
+                    a.s_end,
+                    format!("s_start = {} < s_end <= body length {len} m", a.s_start),
+                ));
+            }
+            if let Some(l) = a.length_ratio {
+                positive(&format!("actuators[{i}].length_ratio [-]"), l)?;
+            }
+            // The actuator must not run through the centre line's singular
+            // configuration: |nu* + omega* x r + r'| > 0 along it.
+            for k in 0..=8 {
+                let s = a.s_start + (a.s_end - a.s_start) * k as f64 / 8.0;
+                let (r, rp, _) = a.routing.eval(s);
+                let w = self.body.nu_star + self.body.omega_star.cross(&r) + rp;
+                if w.norm() < 1e-9 {
+                    return Err(Error::input(&format!("actuators[{i}]"), "its reference path has zero length rate"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Number of ODE states: 13 + number of actuators.
+    pub fn n_states(&self) -> usize {
+        BASE_STATES + self.actuators.len()
+    }
+
+    /// Check one input per actuator.
+    pub fn check_inputs(&self, inputs: &[f64]) -> Result<()> {
+        if inputs.len() != self.actuators.len() {
+            return Err(Error::input(
+                "inputs",
+                format!("expected {} values (one per actuator), got {}", self.actuators.len(), inputs.len()),
+            ));
+        }
+        for (i, (a, &x)) in self.actuators.iter().zip(inputs).enumerate() {
+            a.law.check_input(x).map_err(|e| match e {
+                Error::InvalidParameter { name, value, allowed } => Error::InvalidParameter {
+                    name: format!("inputs[{i}] ({name})"),
+                    value,
+                    allowed,
+                },
+                other => other,
+            })?;
+        }
+        Ok(())
+    }
+
+    /// Reference (passive) inputs: ambient temperature for TCAs, zero tension/pull for tendons.
+    pub fn reference_inputs(&self) -> Vec<f64> {
+        self.actuators.iter().map(|a| a.law.reference_input()).collect()
+    }
+
+    /// Sorted unique breakpoints: 0, L and every actuator anchor.
+    pub fn breakpoints(&self) -> Vec<f64> {
+        let len = self.body.length;
+        let mut b = vec![0.0, len];
+        for a in &self.actuators {
+            b.push(a.s_start);
+            b.push(a.s_end.min(len));
+        }
+        b.sort_by(|x, y| x.partial_cmp(y).unwrap());
+        b.dedup_by(|x, y| (*x - *y).abs() <= 1e-12 * len);
+        b
+    }
+}
+
+/// Rotation matrix of a (unit) quaternion `[w, x, y, z]`.
+#[inline]
+pub fn rot(q: &Quaternion<f64>) -> Matrix3<f64> {
+    let (w, x, y, z) = (q.w, q.i, q.j, q.k);
+    Matrix3::new(
+        1.0 - 2.0 * (y * y + z * z),
+        2.0 * (x * y - w * z),
+        2.0 * (x * z + w * y),
+        2.0 * (x * y + w * z),
+        1.0 - 2.0 * (x * x + z * z),
+        2.0 * (y * z - w * x),
+        2.0 * (x * z - w * y),
+        2.0 * (y * z + w * x),
+        1.0 - 2.0 * (x * x + y * y),
+    )
+}
+
+/// A state of the rod at one arc length.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RodState {
+    /// Position [m], world frame.
+    pub p: Vector3<f64>,
+    /// Orientation (unit quaternion, body to world).
+    pub q: Quaternion<f64>,
+    /// Linear strain `nu` [-], body frame.
+    pub v: Vector3<f64>,
+    /// Angular strain `omega` [1/m], body frame.
+    pub u: Vector3<f64>,
+    /// Actuator elongations `delta_i(s)` [m].
+    pub delta: Vec<f64>,
+}
+
+impl RodState {
+    fn from_slice(y: &[f64]) -> Self {
+        RodState {
+            p: Vector3::new(y[0], y[1], y[2]),
+            q: Quaternion::new(y[3], y[4], y[5], y[6]),
+            v: Vector3::new(y[7], y[8], y[9]),
+            u: Vector3::new(y[10], y[11], y[12]),
+            delta: y[13..].to_vec(),
+        }
+    }
+    /// Rotation matrix `R` (body to world).
+    pub fn rotation(&self) -> Matrix3<f64> {
+        rot(&self.q)
+    }
+}
+
+/// Everything an IVP needs besides the state: robot, tensions, loads.
+pub struct IvpSpec<'a> {
+    /// The robot.
+    pub robot: &'a Robot,
+    /// Tension of each actuator [N] (constant along a string).
+    pub tensions: &'a [f64],
+    /// Tip force [N], world frame (overrides `body.tip_force`, so that
+    /// Jacobians can perturb it).
+    pub tip_force: Vector3<f64>,
+    /// Tip moment [N m], world frame.
+    pub tip_moment: Vector3<f64>,
+    /// RK4 steps over the body length.
+    pub steps: usize,
+}
+
+/// Output of one IVP.
+#[derive(Debug, Clone)]
+pub struct IvpResult {
+    /// Tip state.
+    pub tip: RodState,
+    /// Elongation of each actuator at its distal anchor [m].
+    pub elongation: Vec<f64>,
+    /// Tip residual in body frame: `K_nu (v - nu*) - R^T F + sum tau t_b` [N]
+    /// and `K_omega (u - omega*) - R^T M + sum r x tau t_b` [N m] (eqs 32-33).
+    pub tip_force_residual: Vector3<f64>,
+    /// See `tip_force_residual`.
+    pub tip_moment_residual: Vector3<f64>,
+    /// Recorded nodes `(s, state)`, if asked for.
+    pub nodes: Vec<(f64, RodState)>,
+}
+
+struct Frozen<'a> {
+    robot: &'a Robot,
+    tensions: &'a [f64],
+    kse: Matrix3<f64>,
+    kbt: Matrix3<f64>,
+    fe: Vector3<f64>,
+    le: Vector3<f64>,
+}
+
+impl<'a> Frozen<'a> {
+    /// Body-frame tangent rate of actuator `i`: `v + u x r + r'` (eq 19 without `R`).
+    #[inline]
+    fn pb(&self, i: usize, s: f64, v: &Vector3<f64>, u: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+        let (r, rp, _) = self.robot.actuators[i].routing.eval(s);
+        (v + u.cross(&r) + rp, r)
+    }
+
+    /// Reference length rate of actuator `i` at `s` (the paper's `L_i`).
+    #[inline]
+    fn ref_rate(&self, i: usize, s: f64) -> f64 {
+        let a = &self.robot.actuators[i];
+        match a.length_ratio {
+            Some(l) => l,
+            None => {
+                let (r, rp, _) = a.routing.eval(s);
+                (self.robot.body.nu_star + self.robot.body.omega_star.cross(&r) + rp).norm()
+            }
+        }
+    }
+
+    /// `dy/ds` (eqs 22-25) with the actuators in `active` (indices).
+    fn deriv(&self, s: f64, y: &[f64], active: &[usize], dy: &mut [f64]) -> Result<()> {
+        let body = &self.robot.body;
+        let q = Quaternion::new(y[3], y[4], y[5], y[6]);
+        let r_mat = rot(&q);
+        let v = Vector3::new(y[7], y[8], y[9]);
+        let u = Vector3::new(y[10], y[11], y[12]);
+        let nse = self.kse * (v - body.nu_star);
+        let nbt = self.kbt * (u - body.omega_star);
+        let rt = r_mat.transpose();
+        // eq (25) assembled as [[a, b], [c, d]] [v'; u'] = [e; f]
+        let mut m11 = self.kse;
+        let mut m12 = Matrix3::zeros();
+        let mut m21 = Matrix3::zeros();
+        let mut m22 = self.kbt;
+        let mut rhs_v = -u.cross(&nse) - rt * self.fe;
+        let mut rhs_u = -u.cross(&nbt) - v.cross(&nse) - rt * self.le;
+        for k in 0..self.robot.actuators.len() {
+            dy[BASE_STATES + k] = 0.0;
+        }
+        for &i in active {
+            let act = &self.robot.actuators[i];
+            let (r, rp, rpp) = act.routing.eval(s);
+            let pb = v + u.cross(&r) + rp; // eq (19), body frame
+            let nrm = pb.norm();
+            if !(nrm > 1e-12) {
+                return Err(Error::Integration {
+                    s,
+                    reason: format!("actuator {i} has zero length rate"),
+                });
+            }
+            let tau = self.tensions[i];
+            // A_i = -tau pb^2 / |pb|^3 (eq 20: tau t_a' = A_i R^T p_a'')
+            let a_i = (Matrix3::identity() * (nrm * nrm) - pb * pb.transpose()) * (tau / (nrm * nrm * nrm));
+            let rhat = r.cross_matrix();
+            let g_i = u.cross(&(pb + rp)) + rpp; // omega^(nu + omega^ r + 2 r') + r''
+            let ag = a_i * g_i;
+            let ar = a_i * rhat;
+            m11 += a_i; // (26)
+            m12 -= ar; // (27)
+            m21 += rhat * a_i; // (28)
+            m22 -= rhat * ar; // (29)
+            rhs_v -= ag; // (30)
+            rhs_u -= rhat * ag; // (31)
+            dy[BASE_STATES + i] = nrm - self.ref_rate(i, s); // (24)
+        }
+        let mut m = Matrix6::zeros();
+        m.fixed_view_mut::<3, 3>(0, 0).copy_from(&m11);
+        m.fixed_view_mut::<3, 3>(0, 3).copy_from(&m12);
+        m.fixed_view_mut::<3, 3>(3, 0).copy_from(&m21);
+        m.fixed_view_mut::<3, 3>(3, 3).copy_from(&m22);
+        let rhs = Vector6::new(rhs_v.x, rhs_v.y, rhs_v.z, rhs_u.x, rhs_u.y, rhs_u.z);
+        let sol = m.lu().solve(&rhs).ok_or_else(|| Error::Integration {
+            s,
+            reason: "singular stiffness system (25): actuator compression exceeds the body's stiffness".into(),
+        })?;
+        let pd = r_mat * v; // (22)
+        dy[0] = pd.x;
+        dy[1] = pd.y;
+        dy[2] = pd.z;
+        // (23) as q' = q (0, u) / 2
+        let qd = q * Quaternion::new(0.0, u.x, u.y, u.z) * 0.5;
+        dy[3] = qd.w;
+        dy[4] = qd.i;
+        dy[5] = qd.j;
+        dy[6] = qd.k;
+        for k in 0..6 {
+            dy[7 + k] = sol[k];
+        }
+        if dy.iter().any(|x| !x.is_finite()) {
+            return Err(Error::Integration {
+                s,
+                reason: "non-finite derivative".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Point load of actuator `i` anchored at `s`: `sign = -1` at its distal
+    /// anchor (pulls toward the base), `+1` at its proximal one. Updates `v`
+    /// and `u` across the anchor:
+    /// `K_nu dv = -sign... ` see body.
+    fn jump(&self, i: usize, s: f64, y: &mut [f64], distal: bool) -> Result<()> {
+        let tau = self.tensions[i];
+        if tau == 0.0 {
+            return Ok(());
+        }
+        let v0 = Vector3::new(y[7], y[8], y[9]);
+        let u0 = Vector3::new(y[10], y[11], y[12]);
+        let kse_inv = self.kse.try_inverse().expect("positive diagonal");
+        let kbt_inv = self.kbt.try_inverse().expect("positive diagonal");
+        // n(s+) = n(s-) + tau t  at a distal anchor (explicit: t from s-),
+        // n(s+) = n(s-) - tau t  at a proximal anchor, with t from s+ (implicit).
+        let update = |v: &Vector3<f64>, u: &Vector3<f64>, sign: f64| -> (Vector3<f64>, Vector3<f64>) {
+            let (pb, r) = self.pb(i, s, v, u);
+            let t = pb / pb.norm();
+            (v0 + kse_inv * (t * (sign * tau)), u0 + kbt_inv * (r.cross(&t) * (sign * tau)))
+        };
+        let (v, u) = if distal {
+            update(&v0, &u0, 1.0)
+        } else {
+            let (mut v, mut u) = (v0, u0);
+            let mut converged = false;
+            for _ in 0..100 {
+                let (vn, un) = update(&v, &u, -1.0);
+                let change = (vn - v).norm() + (un - u).norm() * self.robot.body.length;
+                v = vn;
+                u = un;
+                if change < 1e-15 {
+                    converged = true;
+                    break;
+                }
+            }
+            if !converged {
+                return Err(Error::Integration {
+                    s,
+                    reason: format!("anchor load of actuator {i} did not converge"),
+                });
+            }
+            (v, u)
+        };
+        y[7..10].copy_from_slice(v.as_slice());
+        y[10..13].copy_from_slice(u.as_slice());
+        Ok(())
+    }
+}
+
+/// Integrate the rod from the base with unknown initial strains `v0`, `u0`
+/// (eqs 22-25), by fixed-step RK4 on a grid that has a node at every actuator
+/// anchor. Actuator elongations start at zero at their proximal anchors.
+pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, record: bool) -> Result<IvpResult> {
+    let robot = spec.robot;
+    let body = &robot.body;
+    let (kse, kbt) = body.stiffness();
+    let fz = Frozen {
+        robot,
+        tensions: spec.tensions,
+        kse,
+        kbt,
+        fe: body.distributed_load(),
+        le: body.distributed_moment,
+    };
+    let na = robot.actuators.len();
+    let n = robot.n_states();
+    let len = body.length;
+    let steps = spec.steps.max(1);
+    let mut y = vec![0.0; n];
+    y[3] = 1.0;
+    y[7..10].copy_from_slice(v0.as_slice());
+    y[10..13].copy_from_slice(u0.as_slice());
+    let (mut k1, mut k2, mut k3, mut k4, mut yt) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let bps = robot.breakpoints();
+    let tol = 1e-12 * len;
+    let mut nodes = Vec::new();
+    let mut elongation = vec![0.0; na];
+    let mut active: Vec<usize> = Vec::with_capacity(na);
+    for w in bps.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        // anchors at `a`: distal ends first (explicit), then proximal starts
+        for i in 0..na {
+            let act = &robot.actuators[i];
+            if (act.s_end - a).abs() <= tol && a > 0.0 {
+                elongation[i] = y[BASE_STATES + i];
+                fz.jump(i, a, &mut y, true)?;
+            }
+        }
+        for i in 0..na {
+            let act = &robot.actuators[i];
+            if (act.s_start - a).abs() <= tol && a > 0.0 {
+                fz.jump(i, a, &mut y, false)?;
+            }
+        }
+        if record {
+            nodes.push((a, RodState::from_slice(&y)));
+        }
+        active.clear();
+        for (i, act) in robot.actuators.iter().enumerate() {
+            if act.s_start <= a + tol && act.s_end >= b - tol {
+                active.push(i);
+            }
+        }
+        let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
+        let h = (b - a) / m as f64;
+        for k in 0..m {
+            let s = a + k as f64 * h;
+            fz.deriv(s, &y, &active, &mut k1)?;
+            for j in 0..n {
+                yt[j] = y[j] + 0.5 * h * k1[j];
+            }
+            fz.deriv(s + 0.5 * h, &yt, &active, &mut k2)?;
+            for j in 0..n {
+                yt[j] = y[j] + 0.5 * h * k2[j];
+            }
+            fz.deriv(s + 0.5 * h, &yt, &active, &mut k3)?;
+            for j in 0..n {
+                yt[j] = y[j] + h * k3[j];
+            }
+            fz.deriv(s + h, &yt, &active, &mut k4)?;
+            for j in 0..n {
+                y[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+            }
+            let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();
+            for yq in &mut y[3..7] {
+                *yq /= qn;
+            }
+            if record && k + 1 < m {
+                nodes.push((s + h, RodState::from_slice(&y)));
+            }
+        }
+    }
+    // tip: actuators anchored at the tip close the balance (32)-(33)
+    let v = Vector3::new(y[7], y[8], y[9]);
+    let u = Vector3::new(y[10], y[11], y[12]);
+    let q = Quaternion::new(y[3], y[4], y[5], y[6]);
+    let rt = rot(&q).transpose();
+    let mut rf = kse * (v - body.nu_star) - rt * spec.tip_force;
+    let mut rm = kbt * (u - body.omega_star) - rt * spec.tip_moment;
+    for i in 0..na {
+        let act = &robot.actuators[i];
+        if (act.s_end - len).abs() <= tol {
+            elongation[i] = y[BASE_STATES + i];
+            let (pb, r) = fz.pb(i, len, &v, &u);
+            let t = pb / pb.norm();
+            let tau = spec.tensions[i];
+            rf += t * tau;
+            rm += r.cross(&t) * tau;
+        }
+    }
+    let tip = RodState::from_slice(&y);
+    if record {
+        nodes.push((len, tip.clone()));
+    }
+    Ok(IvpResult {
+        tip,
+        elongation,
+        tip_force_residual: rf,
+        tip_moment_residual: rm,
+        nodes,
+    })
+}

@@ -1,0 +1,502 @@
+//! The boundary value problem (paper Section III, eqs 32-33) by Newton
+//! shooting with a backtracking line search.
+//!
+//! Unknowns (scaled to be dimensionless and of order one):
+//! `x = [nu(0), L omega(0), delta_1/L, ..., delta_N/L]` where `delta_i` is
+//! the guessed total elongation of actuator `i` that sets its tension.
+//! Residuals: the tip force and moment balance (32)-(33) as strain errors,
+//! `K_nu^-1 r_F` and `L K_omega^-1 r_M`, and the elongation agreement
+//! `(delta_i(s_end) - delta_i) / L`. The conditions at actuator anchors inside
+//! the body are met exactly by the point loads applied during integration.
+
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+
+use crate::error::{Error, Result};
+use crate::rod::{integrate, IvpResult, IvpSpec, Robot};
+
+/// Options of the Newton shooting solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveOptions {
+    /// RK4 steps over the body length.
+    pub steps: usize,
+    /// Convergence tolerance on the max-norm of the dimensionless residual.
+    pub tol: f64,
+    /// Newton iteration limit.
+    pub max_iter: usize,
+    /// Smallest line-search step before giving up.
+    pub min_step: f64,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            steps: 100,
+            tol: 1e-10,
+            max_iter: 50,
+            min_step: 1e-6,
+        }
+    }
+}
+
+impl SolveOptions {
+    /// Validate.
+    pub fn validate(&self) -> Result<()> {
+        if self.steps == 0 || self.steps > 10_000_000 {
+            return Err(Error::param("steps", self.steps as f64, "1 <= steps <= 1e7"));
+        }
+        if !(self.tol.is_finite() && self.tol > 0.0) {
+            return Err(Error::param("tol", self.tol, "finite and > 0"));
+        }
+        if self.max_iter == 0 {
+            return Err(Error::param("max_iter", 0.0, ">= 1"));
+        }
+        if !(self.min_step > 0.0 && self.min_step < 1.0) {
+            return Err(Error::param("min_step", self.min_step, "0 < min_step < 1"));
+        }
+        Ok(())
+    }
+}
+
+/// Outcome of [`newton`].
+#[derive(Debug, Clone)]
+pub struct NewtonResult {
+    /// Solution.
+    pub x: Vec<f64>,
+    /// Residual at `x`.
+    pub residual: Vec<f64>,
+    /// Newton iterations performed.
+    pub iterations: usize,
+    /// Residual evaluations (IVPs for shooting).
+    pub evaluations: usize,
+}
+
+fn inf_norm(r: &[f64]) -> f64 {
+    r.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+fn sq_norm(r: &[f64]) -> f64 {
+    r.iter().map(|x| x * x).sum()
+}
+
+/// Newton's method on `f(x) = 0` with a forward-difference Jacobian (step
+/// `sqrt(eps) max(1, |x_j|)`) and Armijo backtracking on `|f|^2`. A trial
+/// point where `f` fails (e.g. the IVP cannot be integrated) counts as an
+/// infinite residual, so the line search backs off from it.
+pub fn newton<F>(x0: &[f64], mut f: F, opts: &SolveOptions, solver: &'static str) -> Result<NewtonResult>
+where
+    F: FnMut(&[f64]) -> Result<Vec<f64>>,
+{
+    let n = x0.len();
+    let mut x = x0.to_vec();
+    let mut evals = 1;
+    let mut r = f(&x)?;
+    let m = r.len();
+    let h0 = f64::EPSILON.sqrt();
+    let mut iterations = 0;
+    loop {
+        let res = inf_norm(&r);
+        if res <= opts.tol {
+            return Ok(NewtonResult {
+                x,
+                residual: r,
+                iterations,
+                evaluations: evals,
+            });
+        }
+        if iterations >= opts.max_iter {
+            return Err(Error::NotConverged {
+                solver,
+                iterations,
+                residual: res,
+                reason: "iteration limit reached".into(),
+            });
+        }
+        iterations += 1;
+        let mut jac = DMatrix::<f64>::zeros(m, n);
+        let mut xp = x.clone();
+        for j in 0..n {
+            let h = h0 * x[j].abs().max(1.0);
+            xp[j] = x[j] + h;
+            let h = xp[j] - x[j];
+            let rp = f(&xp).or_else(|_| {
+                // one-sided step into a failing region: step the other way
+                xp[j] = x[j] - h;
+                evals += 1;
+                f(&xp).map(|v| v.iter().map(|z| -z).collect::<Vec<_>>()).map(|neg| {
+                    // neg = -f(x - h); column = (f(x) - f(x - h)) / h
+                    neg.iter().zip(&r).map(|(a, b)| a + 2.0 * b).collect()
+                })
+            })?;
+            evals += 1;
+            for i in 0..m {
+                jac[(i, j)] = (rp[i] - r[i]) / h;
+            }
+            xp[j] = x[j];
+        }
+        let rhs = -DVector::from_column_slice(&r);
+        let dx = if m == n {
+            jac.clone().lu().solve(&rhs)
+        } else {
+            jac.clone().svd(true, true).solve(&rhs, 1e-14).ok()
+        }
+        .ok_or_else(|| Error::NotConverged {
+            solver,
+            iterations,
+            residual: res,
+            reason: "singular Jacobian".into(),
+        })?;
+        let phi0 = sq_norm(&r);
+        let mut t = 1.0;
+        loop {
+            let xt: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + t * b).collect();
+            evals += 1;
+            if let Ok(rt) = f(&xt) {
+                let phi = sq_norm(&rt);
+                if phi.is_finite() && phi <= (1.0 - 1e-4 * t) * phi0 {
+                    x = xt;
+                    r = rt;
+                    break;
+                }
+            }
+            t *= 0.5;
+            if t < opts.min_step {
+                return Err(Error::NotConverged {
+                    solver,
+                    iterations,
+                    residual: res,
+                    reason: "line search failed to reduce the residual".into(),
+                });
+            }
+        }
+    }
+}
+
+/// Scaled unknowns `[nu*, L omega*, 0...]` of the reference (straight or
+/// pre-curved, unactuated) configuration: the paper's initial guess.
+pub fn reference_guess(robot: &Robot) -> Vec<f64> {
+    let b = &robot.body;
+    let mut x = vec![0.0; 6 + robot.actuators.len()];
+    x[0..3].copy_from_slice(b.nu_star.as_slice());
+    for k in 0..3 {
+        x[3 + k] = b.omega_star[k] * b.length;
+    }
+    x
+}
+
+/// Tensions [N] of all actuators for guessed elongations `delta` [m].
+pub fn tensions(robot: &Robot, inputs: &[f64], delta: &[f64]) -> Result<Vec<f64>> {
+    robot
+        .actuators
+        .iter()
+        .zip(inputs)
+        .zip(delta)
+        .map(|((a, &inp), &d)| a.law.tension(d, inp))
+        .collect()
+}
+
+/// Tip loads and step count of one forward problem.
+#[derive(Debug, Clone, Copy)]
+pub struct Loads {
+    /// Tip force [N], world frame.
+    pub tip_force: Vector3<f64>,
+    /// Tip moment [N m], world frame.
+    pub tip_moment: Vector3<f64>,
+}
+
+impl Loads {
+    /// The body's own tip loads.
+    pub fn of(robot: &Robot) -> Self {
+        Loads {
+            tip_force: robot.body.tip_force,
+            tip_moment: robot.body.tip_moment,
+        }
+    }
+}
+
+/// One IVP from scaled unknowns `x`, and its scaled residual.
+pub fn shoot(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize, record: bool) -> Result<(Vec<f64>, IvpResult, Vec<f64>)> {
+    let len = robot.body.length;
+    let na = robot.actuators.len();
+    let v0 = Vector3::new(x[0], x[1], x[2]);
+    let u0 = Vector3::new(x[3], x[4], x[5]) / len;
+    let delta: Vec<f64> = x[6..6 + na].iter().map(|d| d * len).collect();
+    let tau = tensions(robot, inputs, &delta)?;
+    let spec = IvpSpec {
+        robot,
+        tensions: &tau,
+        tip_force: loads.tip_force,
+        tip_moment: loads.tip_moment,
+        steps,
+    };
+    let ivp = integrate(&spec, &v0, &u0, record)?;
+    let (kse, kbt) = robot.body.stiffness();
+    let ef = inv_diag(&kse) * ivp.tip_force_residual;
+    let em = inv_diag(&kbt) * ivp.tip_moment_residual * len;
+    let mut r = Vec::with_capacity(6 + na);
+    r.extend_from_slice(ef.as_slice());
+    r.extend_from_slice(em.as_slice());
+    for i in 0..na {
+        r.push((ivp.elongation[i] - delta[i]) / len);
+    }
+    Ok((r, ivp, tau))
+}
+
+fn inv_diag(k: &Matrix3<f64>) -> Matrix3<f64> {
+    Matrix3::from_diagonal(&Vector3::new(1.0 / k[(0, 0)], 1.0 / k[(1, 1)], 1.0 / k[(2, 2)]))
+}
+
+/// A converged forward solution, sampled at the integration nodes.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// Arc length of each node [m].
+    pub s: Vec<f64>,
+    /// Centre-line positions [m], world frame.
+    pub positions: Vec<Vector3<f64>>,
+    /// Rotations (body to world).
+    pub rotations: Vec<Matrix3<f64>>,
+    /// Linear strains `nu` [-], body frame.
+    pub nu: Vec<Vector3<f64>>,
+    /// Angular strains `omega` [1/m], body frame.
+    pub omega: Vec<Vector3<f64>>,
+    /// Internal force `n = R K_nu (nu - nu*)` [N], world frame.
+    pub internal_force: Vec<Vector3<f64>>,
+    /// Internal moment `m = R K_omega (omega - omega*)` [N m], world frame.
+    pub internal_moment: Vec<Vector3<f64>>,
+    /// Elongation of each actuator up to each node [m] (`nodes x actuators`).
+    pub elongation_profile: Vec<Vec<f64>>,
+    /// Actuator paths `p + R r_i(s)` [m] at the nodes within each actuator's span.
+    pub actuator_paths: Vec<Vec<Vector3<f64>>>,
+    /// Actuator tensions [N] (negative: the actuator pushes).
+    pub tensions: Vec<f64>,
+    /// Actuator total elongations [m].
+    pub elongations: Vec<f64>,
+    /// Actuation inputs the solution is for.
+    pub inputs: Vec<f64>,
+    /// Force [N] the body and its actuators transmit to the base (world
+    /// frame); the base reaction is its negative.
+    pub base_force: Vector3<f64>,
+    /// Moment [N m] about the base origin transmitted to the base.
+    pub base_moment: Vector3<f64>,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// IVPs integrated.
+    pub evaluations: usize,
+    /// Final max-norm residual (dimensionless).
+    pub residual: f64,
+    /// Scaled shooting unknowns, for warm starts.
+    pub unknowns: Vec<f64>,
+}
+
+impl Solution {
+    /// Tip position [m].
+    pub fn tip_position(&self) -> Vector3<f64> {
+        *self.positions.last().expect("a solution has nodes")
+    }
+    /// Tip rotation.
+    pub fn tip_rotation(&self) -> Matrix3<f64> {
+        *self.rotations.last().expect("a solution has nodes")
+    }
+}
+
+/// Build a [`Solution`] by integrating once more from converged unknowns.
+pub fn assemble(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize, iterations: usize, evaluations: usize) -> Result<Solution> {
+    let (r, ivp, tau) = shoot(robot, inputs, loads, x, steps, true)?;
+    let body = &robot.body;
+    let (kse, kbt) = body.stiffness();
+    let na = robot.actuators.len();
+    let mut sol = Solution {
+        s: Vec::with_capacity(ivp.nodes.len()),
+        positions: Vec::new(),
+        rotations: Vec::new(),
+        nu: Vec::new(),
+        omega: Vec::new(),
+        internal_force: Vec::new(),
+        internal_moment: Vec::new(),
+        elongation_profile: Vec::new(),
+        actuator_paths: vec![Vec::new(); na],
+        tensions: tau.clone(),
+        elongations: ivp.elongation.clone(),
+        inputs: inputs.to_vec(),
+        base_force: Vector3::zeros(),
+        base_moment: Vector3::zeros(),
+        iterations,
+        evaluations,
+        residual: inf_norm(&r),
+        unknowns: x.to_vec(),
+    };
+    let tol = 1e-12 * body.length;
+    for (s, st) in &ivp.nodes {
+        let rm = st.rotation();
+        sol.s.push(*s);
+        sol.positions.push(st.p);
+        sol.rotations.push(rm);
+        sol.nu.push(st.v);
+        sol.omega.push(st.u);
+        sol.internal_force.push(rm * kse * (st.v - body.nu_star));
+        sol.internal_moment.push(rm * kbt * (st.u - body.omega_star));
+        sol.elongation_profile.push(st.delta.clone());
+        for (i, a) in robot.actuators.iter().enumerate() {
+            if *s >= a.s_start - tol && *s <= a.s_end + tol {
+                let (ri, _, _) = a.routing.eval(*s);
+                sol.actuator_paths[i].push(st.p + rm * ri);
+            }
+        }
+    }
+    // Wrench transmitted to the base: body (n, m at s = 0) plus the strings
+    // anchored there, each pulling the base toward the tip with tau t.
+    let st0 = &ivp.nodes[0].1;
+    let r0 = st0.rotation();
+    let mut f = r0 * kse * (st0.v - body.nu_star);
+    let mut m = r0 * kbt * (st0.u - body.omega_star) + st0.p.cross(&f);
+    for (i, a) in robot.actuators.iter().enumerate() {
+        if a.s_start <= tol {
+            let (ri, rp, _) = a.routing.eval(0.0);
+            let pb = st0.v + st0.u.cross(&ri) + rp;
+            let t = r0 * pb / pb.norm();
+            f += t * tau[i];
+            m += (st0.p + r0 * ri).cross(&(t * tau[i]));
+        }
+    }
+    sol.base_force = f;
+    sol.base_moment = m;
+    Ok(sol)
+}
+
+/// Initial guess at `inputs`: the strains of `warm` (a nearby solution) or of
+/// the reference configuration, and actuator elongations that keep the warm
+/// solution's tensions (cold: zero tension, i.e. each actuator's free
+/// elongation). Keeping tensions rather than elongations matters: a TCA is
+/// far stiffer than a silicone body, so at a new temperature the old
+/// elongation would imply a very different force, while the old force is
+/// close to the new one.
+pub fn initial_guess(robot: &Robot, inputs: &[f64], warm: Option<&Solution>) -> Vec<f64> {
+    let len = robot.body.length;
+    let mut x = match warm {
+        Some(w) => w.unknowns.clone(),
+        None => reference_guess(robot),
+    };
+    for (i, a) in robot.actuators.iter().enumerate() {
+        let tension = warm.map_or(0.0, |w| w.tensions[i]);
+        if let Some(d) = a.law.elongation(tension, inputs[i]) {
+            if d.is_finite() {
+                x[6 + i] = d / len;
+            }
+        }
+    }
+    x
+}
+
+/// Solve the forward kinetostatics for actuator `inputs` (temperature [C]
+/// for TCAs, tension [N] or pull [m] for tendons).
+///
+/// Starts from [`initial_guess`] (warm from `warm` if given). If Newton fails
+/// from there, falls back to continuation in the inputs from the warm
+/// solution's inputs (or the reference inputs) in halving steps. The returned
+/// `iterations` and `evaluations` count all Newton work done.
+pub fn solve(robot: &Robot, inputs: &[f64], opts: &SolveOptions, warm: Option<&Solution>) -> Result<Solution> {
+    solve_loaded(robot, inputs, &Loads::of(robot), opts, warm)
+}
+
+fn is_input_error(e: &Error) -> bool {
+    matches!(e, Error::InvalidParameter { .. } | Error::InvalidInput { .. })
+}
+
+/// [`solve`] with explicit tip loads.
+pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptions, warm: Option<&Solution>) -> Result<Solution> {
+    robot.validate()?;
+    robot.check_inputs(inputs)?;
+    opts.validate()?;
+    if let Some(w) = warm {
+        if w.unknowns.len() != 6 + robot.actuators.len() || w.tensions.len() != robot.actuators.len() {
+            return Err(Error::input(
+                "warm_start",
+                format!("solution of a robot with {} actuators, this one has {}", w.tensions.len(), robot.actuators.len()),
+            ));
+        }
+    }
+    for (name, v) in [("tip_force [N]", &loads.tip_force), ("tip_moment [N m]", &loads.tip_moment)] {
+        for (k, z) in v.iter().enumerate() {
+            crate::error::finite(&format!("{name}[{k}]"), *z)?;
+        }
+    }
+    let mut work = (0usize, 0usize);
+    match newton_from(robot, inputs, loads, opts, &initial_guess(robot, inputs, warm), &mut work) {
+        Ok(x) => assemble(robot, inputs, loads, &x, opts.steps, work.0, work.1),
+        Err(e) if is_input_error(&e) => Err(e),
+        Err(first) => {
+            let (from, start) = match warm {
+                Some(w) => (w.inputs.clone(), w.clone()),
+                None => {
+                    let r = robot.reference_inputs();
+                    let x = newton_from(robot, &r, loads, opts, &initial_guess(robot, &r, None), &mut work)?;
+                    (r.clone(), assemble(robot, &r, loads, &x, opts.steps, 0, 0)?)
+                }
+            };
+            match continuation(robot, loads, &from, inputs, &start, opts, 10, &mut work) {
+                Ok(mut s) => {
+                    s.iterations = work.0;
+                    s.evaluations = work.1;
+                    Ok(s)
+                }
+                Err(_) => Err(first),
+            }
+        }
+    }
+}
+
+fn newton_from(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptions, x0: &[f64], work: &mut (usize, usize)) -> Result<Vec<f64>> {
+    let r = newton(x0, |x| shoot(robot, inputs, loads, x, opts.steps, false).map(|t| t.0), opts, "forward shooting");
+    match r {
+        Ok(nr) => {
+            work.0 += nr.iterations;
+            work.1 += nr.evaluations;
+            Ok(nr.x)
+        }
+        Err(Error::NotConverged { solver, iterations, residual, reason }) => {
+            work.0 += iterations;
+            Err(Error::NotConverged {
+                solver,
+                iterations: work.0,
+                residual,
+                reason,
+            })
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// Reach `target` inputs from a solution `start` at inputs `from` by halving
+/// the input step (at most `depth` times), each step warm-started.
+#[allow(clippy::too_many_arguments)]
+fn continuation(
+    robot: &Robot,
+    loads: &Loads,
+    from: &[f64],
+    target: &[f64],
+    start: &Solution,
+    opts: &SolveOptions,
+    depth: usize,
+    work: &mut (usize, usize),
+) -> Result<Solution> {
+    let x0 = initial_guess(robot, target, Some(start));
+    match newton_from(robot, target, loads, opts, &x0, work) {
+        Ok(x) => assemble(robot, target, loads, &x, opts.steps, 0, 0),
+        Err(e) if depth == 0 || is_input_error(&e) => Err(e),
+        Err(_) => {
+            let mid: Vec<f64> = from.iter().zip(target).map(|(a, b)| 0.5 * (a + b)).collect();
+            let half = continuation(robot, loads, from, &mid, start, opts, depth - 1, work)?;
+            continuation(robot, loads, &mid, target, &half, opts, depth - 1, work)
+        }
+    }
+}
+
+/// Solve along a sequence of input vectors, each warm-started from the
+/// previous solution (continuation helper for temperature or load sweeps).
+pub fn sweep(robot: &Robot, inputs: &[Vec<f64>], opts: &SolveOptions) -> Result<Vec<Solution>> {
+    let mut out: Vec<Solution> = Vec::with_capacity(inputs.len());
+    for q in inputs {
+        let sol = solve(robot, q, opts, out.last())?;
+        out.push(sol);
+    }
+    Ok(out)
+}
