@@ -18,6 +18,7 @@
 
 pub mod error;
 pub mod experiments;
+pub mod inverse;
 pub mod material;
 pub mod roots;
 pub mod rod;

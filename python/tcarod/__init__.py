@@ -8,9 +8,18 @@ SI units throughout (m, N, Pa, kg, s) except temperatures, in degrees C.
 from __future__ import annotations
 
 from ._core import ConvergenceError, __version__
+from .rod import Actuator, Body, Robot, Routing, Section, Solution, circle_radius, inner_edge_radius
 from .tca import Material, Tca
 
 __all__ = [
+    "Actuator",
+    "Body",
+    "Robot",
+    "Routing",
+    "Section",
+    "Solution",
+    "circle_radius",
+    "inner_edge_radius",
     "ConvergenceError",
     "Material",
     "Tca",

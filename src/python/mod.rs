@@ -4,6 +4,7 @@
 //! pyo3-free core and converts back. Errors map to Python in `errors.rs`.
 
 mod errors;
+mod rod;
 mod tca;
 
 use pyo3::prelude::*;
@@ -15,5 +16,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
     tca::register(m)?;
+    rod::register(m)?;
     Ok(())
 }

@@ -1,0 +1,75 @@
+"""Forward kinetostatics (paper Section III): a Cosserat rod with embedded
+string-like actuators, solved by Newton shooting in the Rust core.
+
+Frames: the base is at the origin with the reference tangent along world
+``+z``; body-frame ``x`` and ``y`` span the cross-section. Actuator forces
+are tensions (N, negative when the actuator pushes). SI units; temperatures
+in degrees C.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _core
+
+Section = _core.Section
+Routing = _core.Routing
+Body = _core.Body
+Actuator = _core.Actuator
+Robot = _core.Robot
+Solution = _core.Solution
+
+FloatArray = npt.NDArray[np.float64]
+
+__all__ = [
+    "Actuator",
+    "Body",
+    "Robot",
+    "Routing",
+    "Section",
+    "Solution",
+    "circle_radius",
+    "inner_edge_radius",
+]
+
+
+def circle_radius(a: Sequence[float] | FloatArray, b: Sequence[float] | FloatArray, c: Sequence[float] | FloatArray) -> float:
+    """Radius [m] of the circle through three points [m]; ``inf`` if collinear."""
+    pa, pb, pc = (np.asarray(x, dtype=np.float64) for x in (a, b, c))
+    ab = float(np.linalg.norm(pb - pa))
+    bc = float(np.linalg.norm(pc - pb))
+    ca = float(np.linalg.norm(pa - pc))
+    area2 = float(np.linalg.norm(np.cross(pb - pa, pc - pa)))
+    if area2 <= 1e-15 * max(ab, bc, ca) ** 2:
+        return float("inf")
+    return ab * bc * ca / (2.0 * area2)
+
+
+def inner_edge_radius(solution: Solution) -> float:
+    """Bending radius [m] as measured in the paper (Section V-B): the circle
+    through three points on the inner (concave) edge of the body, at the base,
+    the middle and the tip.
+
+    The inner edge is taken on the body-frame direction of the mean curvature
+    vector (``omega`` projected on the cross-section, averaged along the body),
+    at the section's edge distance in that direction. Returns ``inf`` for a
+    straight body.
+    """
+    omega = solution.omega
+    mean = omega[:, :2].mean(axis=0)
+    if not np.all(np.isfinite(mean)) or float(np.hypot(*mean)) == 0.0:
+        return float("inf")
+    # curvature omega about body axis w bends the tangent toward w x e3
+    toward = np.array([mean[1], -mean[0], 0.0])
+    toward /= np.linalg.norm(toward)
+    theta = float(np.arctan2(toward[1], toward[0]))
+    edge = solution.robot.body.section.edge_distance(theta) * toward
+    s = solution.s
+    length = s[-1]
+    idx = [0, int(np.argmin(np.abs(s - 0.5 * length))), len(s) - 1]
+    pts = [solution.positions[i] + solution.rotations[i] @ edge for i in idx]
+    return circle_radius(*pts)
