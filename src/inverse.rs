@@ -127,6 +127,16 @@ pub fn load_scales(robot: &Robot) -> (f64, f64) {
 /// `J` and `C` at a converged solution, from finite differences of IVPs
 /// around it (eqs 41-42), the paper's way.
 pub fn sensitivities(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Groups, steps: usize, scheme: Scheme) -> Result<Sensitivities> {
+    let rel = match scheme {
+        Scheme::Forward => f64::EPSILON.sqrt(),
+        Scheme::Central => f64::EPSILON.cbrt(),
+    };
+    sensitivities_with_step(robot, sol, loads, groups, steps, scheme, rel)
+}
+
+/// [`sensitivities`] with a chosen relative step (for studies of step-size error).
+#[allow(clippy::too_many_arguments)]
+pub fn sensitivities_with_step(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Groups, steps: usize, scheme: Scheme, rel: f64) -> Result<Sensitivities> {
     groups.validate(robot)?;
     let nx = sol.unknowns.len();
     let nz = groups.n_vars();
@@ -137,10 +147,6 @@ pub fn sensitivities(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Grou
     let p0 = ivp0.tip.p;
     let r0 = ivp0.tip.rotation();
     let mut evals = 1;
-    let rel = match scheme {
-        Scheme::Forward => f64::EPSILON.sqrt(),
-        Scheme::Central => f64::EPSILON.cbrt(),
-    };
     // Evaluate pose and residual at a perturbation; returns (E column, B column).
     let mut column = |x: &[f64], inputs: &[f64], l: &Loads| -> Result<([f64; 6], Vec<f64>)> {
         let (b, ivp, _) = shoot(robot, inputs, l, x, steps, false)?;
@@ -165,7 +171,12 @@ pub fn sensitivities(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Grou
     };
     // unknowns u
     for j in 0..nx {
-        let h = rel * sol.unknowns[j].abs().max(1.0);
+        // Typical sizes: strains ~1; actuator elongations / L ~1e-2. The
+        // elongation columns are the most nonlinear (a TCA is far stiffer
+        // than the body, so micrometres of elongation move the tip a lot), so
+        // they get a step scaled to their size rather than to 1.
+        let typical = if j < 6 { 1.0 } else { 1e-2 };
+        let h = rel * sol.unknowns[j].abs().max(typical);
         let mut xp = sol.unknowns.clone();
         xp[j] += h;
         let plus = column(&xp, &sol.inputs, loads)?;

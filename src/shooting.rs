@@ -195,7 +195,7 @@ pub fn tensions(robot: &Robot, inputs: &[f64], delta: &[f64]) -> Result<Vec<f64>
 }
 
 /// Tip loads and step count of one forward problem.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Loads {
     /// Tip force [N], world frame.
     pub tip_force: Vector3<f64>,
@@ -285,6 +285,10 @@ pub struct Solution {
     pub residual: f64,
     /// Scaled shooting unknowns, for warm starts.
     pub unknowns: Vec<f64>,
+    /// Tip loads the solution is for.
+    pub loads: Loads,
+    /// RK4 steps used.
+    pub steps: usize,
 }
 
 impl Solution {
@@ -323,6 +327,8 @@ pub fn assemble(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: 
         evaluations,
         residual: inf_norm(&r),
         unknowns: x.to_vec(),
+        loads: *loads,
+        steps,
     };
     let tol = 1e-12 * body.length;
     for (s, st) in &ivp.nodes {

@@ -4,6 +4,7 @@
 //! pyo3-free core and converts back. Errors map to Python in `errors.rs`.
 
 mod errors;
+mod inverse;
 mod rod;
 mod tca;
 
@@ -17,5 +18,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
     tca::register(m)?;
     rod::register(m)?;
+    inverse::register(m)?;
     Ok(())
 }

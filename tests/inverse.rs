@@ -1,0 +1,160 @@
+//! Checks of the inverse kinetostatics against brute force.
+use nalgebra::{DMatrix, Vector3};
+use tcarod::experiments::{fig6_circle, fig6_square, square_manipulator, G0};
+use tcarod::inverse::*;
+use tcarod::shooting::{solve, solve_loaded, Loads, SolveOptions};
+
+fn opts() -> SolveOptions {
+    SolveOptions { tol: 1e-12, ..Default::default() }
+}
+
+/// Brute-force J and C: central differences of full BVP solves.
+fn brute(robot: &tcarod::rod::Robot, inputs: &[f64], loads: &Loads, groups: &Groups) -> (DMatrix<f64>, DMatrix<f64>) {
+    let base = solve_loaded(robot, inputs, loads, &opts(), None).unwrap();
+    let nz = groups.n_vars();
+    let z0 = groups.vars(inputs);
+    let pose = |s: &tcarod::shooting::Solution| {
+        let th = rotation_vector(&(s.tip_rotation() * base.tip_rotation().transpose()));
+        let p = s.tip_position();
+        DMatrix::from_column_slice(6, 1, &[p.x, p.y, p.z, th.x, th.y, th.z])
+    };
+    let mut j = DMatrix::zeros(6, nz);
+    for k in 0..nz {
+        let h = 1e-2; // C; O(h^2) error ~1e-8 relative for this smooth response
+        let mut zp = z0.clone();
+        zp[k] += h;
+        let sp = solve_loaded(robot, &groups.inputs(&zp), loads, &opts(), Some(&base)).unwrap();
+        zp[k] -= 2.0 * h;
+        let sm = solve_loaded(robot, &groups.inputs(&zp), loads, &opts(), Some(&base)).unwrap();
+        j.set_column(k, &((pose(&sp) - pose(&sm)) / (2.0 * h)).column(0));
+    }
+    let (fc, mc) = load_scales(robot);
+    let mut c = DMatrix::zeros(6, 6);
+    for k in 0..6 {
+        let h = 1e-3 * if k < 3 { fc } else { mc };
+        let mut lp = *loads;
+        let mut lm = *loads;
+        if k < 3 {
+            lp.tip_force[k] += h;
+            lm.tip_force[k] -= h;
+        } else {
+            lp.tip_moment[k - 3] += h;
+            lm.tip_moment[k - 3] -= h;
+        }
+        let sp = solve_loaded(robot, inputs, &lp, &opts(), Some(&base)).unwrap();
+        let sm = solve_loaded(robot, inputs, &lm, &opts(), Some(&base)).unwrap();
+        c.set_column(k, &((pose(&sp) - pose(&sm)) / (2.0 * h)).column(0));
+    }
+    (j, c)
+}
+
+#[test]
+fn jacobian_and_compliance_match_brute_force() {
+    let cases = [
+        (fig6_square(true), vec![100.0, 100.0], Groups(vec![0, 0])),
+        (fig6_square(false), vec![70.0, 130.0], Groups(vec![0, 1])),
+        (fig6_circle(true), vec![120.0], Groups(vec![0])),
+    ];
+    for (robot, inputs, groups) in cases {
+        let mut loads = Loads::of(&robot);
+        loads.tip_force = Vector3::new(1e-3, -5e-4, 2e-3);
+        let sol = solve_loaded(&robot, &inputs, &loads, &opts(), None).unwrap();
+        let s = sensitivities(&robot, &sol, &loads, &groups, sol.steps, Scheme::Central).unwrap();
+        let (jb, cb) = brute(&robot, &inputs, &loads, &groups);
+        // central differences on both sides: agreement to ~1e-6 relative
+        let ej = (&s.jacobian - &jb).norm() / jb.norm();
+        let ec = (&s.compliance - &cb).norm() / cb.norm();
+        assert!(ej < 1e-5, "J rel err {ej:e}\n{}\n{}", s.jacobian, jb);
+        assert!(ec < 1e-5, "C rel err {ec:e}");
+        // the paper's forward differences: ~sqrt(eps) relative error
+        let f = sensitivities(&robot, &sol, &loads, &groups, sol.steps, Scheme::Forward).unwrap();
+        let ejf = (&f.jacobian - &jb).norm() / jb.norm();
+        assert!(ejf < 1e-3, "forward J rel err {ejf:e}");
+        assert_eq!(f.evaluations, 1 + 6 + robot.actuators.len() + groups.n_vars() + 6);
+    }
+}
+
+#[test]
+fn compliance_is_symmetric_and_matches_the_linear_cantilever() {
+    // Loads here are conservative (elastic strings, gravity, dead tip loads),
+    // so C is a Hessian inverse: symmetric at any equilibrium.
+    for (robot, inputs) in [(fig6_square(true), vec![100.0, 100.0]), (fig6_circle(false), vec![140.0])] {
+        let sol = solve(&robot, &inputs, &opts(), None).unwrap();
+        let groups = Groups::identity(robot.actuators.len());
+        let c = sensitivities(&robot, &sol, &Loads::of(&robot), &groups, sol.steps, Scheme::Central).unwrap().compliance;
+        let asym = (&c - c.transpose()).norm() / c.norm();
+        assert!(asym < 1e-6, "asymmetry {asym:e}"); // central FD error ~1e-8
+    }
+    // Linear-elastic limit: a bare straight cantilever, no load. C is SPD and
+    // its translational block is Timoshenko's: L^3/(3EI) + L/(k G A) in
+    // bending, L/(EA) axially.
+    let body = fig6_square(false).body.clone();
+    let robot = tcarod::rod::Robot::new(body, vec![]).unwrap();
+    let sol = solve(&robot, &[], &opts(), None).unwrap();
+    let c = sensitivities(&robot, &sol, &Loads::of(&robot), &Groups(vec![]), sol.steps, Scheme::Central).unwrap().compliance;
+    let asym = (&c - c.transpose()).norm() / c.norm();
+    assert!(asym < 1e-8, "asymmetry {asym:e}");
+    let eig = c.clone().symmetric_eigen().eigenvalues;
+    assert!(eig.iter().all(|&l| l > 0.0), "{eig}");
+    let b = &robot.body;
+    let (a, ix, iy, _) = b.section.properties();
+    let l = b.length;
+    let want_x = l.powi(3) / (3.0 * b.youngs_modulus * iy) + l / (b.shear_modulus * a);
+    let want_y = l.powi(3) / (3.0 * b.youngs_modulus * ix) + l / (b.shear_modulus * a);
+    let want_z = l / (b.youngs_modulus * a);
+    // exact for the linearised rod; central FD relative error ~1e-9
+    for (k, want) in [(0, want_x), (1, want_y), (2, want_z)] {
+        assert!((c[(k, k)] - want).abs() / want < 1e-7, "C[{k},{k}] = {} vs {want}", c[(k, k)]);
+    }
+    // rotation per tip moment: L / (E I)
+    let want = l / (b.youngs_modulus * iy);
+    assert!((c[(4, 4)] - want).abs() / want < 1e-7);
+}
+
+#[test]
+fn incremental_blocked_temperature_matches_direct_solve() {
+    let robot = square_manipulator(0.026, true);
+    let groups = Groups(vec![0, 0]);
+    let start = solve(&robot, &[55.0, 55.0], &opts(), None).unwrap();
+    let block = Block::new(start.tip_position(), Vector3::new(-1.0, 0.0, 0.0)).unwrap();
+    for force in [5e-3, 2e-2] {
+        let inc = blocked_temperature(&robot, &groups, &block, &start, force, 10, &opts()).unwrap();
+        let dir = blocked_variable_direct(&robot, &groups, &block, force, 80.0, &opts(), None).unwrap();
+        // both converge the same equations to 1e-9 m tip gap and 1e-10 strain
+        assert!((inc.variables[0] - dir.variables[0]).abs() < 1e-5, "{} vs {}", inc.variables[0], dir.variables[0]);
+        // and the force solve at that temperature returns the force
+        let f = blocked_force(&robot, &groups, &block, &dir.variables, &opts(), None).unwrap();
+        assert!((f.force - force).abs() < 1e-9 * force.max(1e-3) * 1e3, "{} vs {force}", f.force);
+        assert!(inc.variables[0] > 55.0);
+    }
+}
+
+#[test]
+fn tip_position_inverse_reaches_reachable_and_reports_unreachable_targets() {
+    let robot = fig6_square(false);
+    let groups = Groups(vec![0, 1]);
+    let truth = solve(&robot, &[90.0, 140.0], &opts(), None).unwrap();
+    let res = tip_position_inverse(&robot, &groups, &truth.tip_position(), None, &[25.0, 25.0], &InverseOptions::default()).unwrap();
+    assert!(res.reached, "{res:?}");
+    assert!((res.solution.tip_position() - truth.tip_position()).norm() < 1e-7);
+    // the tip cannot move toward +x: extension TCAs at +x only bend toward -x
+    let far = Vector3::new(0.02, 0.0, 0.03);
+    let res = tip_position_inverse(&robot, &groups, &far, None, &[60.0, 60.0], &InverseOptions::default()).unwrap();
+    assert!(!res.reached);
+    assert!(res.at_bound.iter().all(|&b| b), "{:?}", res.variables);
+    assert!(res.variables.iter().all(|&t| (t - 25.0).abs() < 1e-9));
+}
+
+#[test]
+fn grasp_temperature_rises_with_mass() {
+    let mut finger = square_manipulator(0.020, false);
+    finger.body.gravity = Vector3::new(0.0, 0.0, G0);
+    let groups = Groups(vec![0, 0]);
+    let mut last = 25.0;
+    for m in [1e-3, 2e-3, 3e-3] {
+        let r = grasp(&finger, &groups, &Vector3::new(-1.0, 0.0, 0.0), m, 1.1, 2, G0, 8, &opts()).unwrap();
+        assert!((r.force - m * G0 / 2.2).abs() < 1e-15);
+        assert!(r.variables[0] > last);
+        last = r.variables[0];
+    }
+}
