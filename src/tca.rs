@@ -16,6 +16,10 @@ use crate::error::{positive, Error, Result};
 use crate::material::Material;
 use crate::roots::brent;
 
+/// Absolute tolerance of the displacement solve, relative to the fibre
+/// length `l`: the root of eqs (2), (5) is found to `1e-15 l`.
+const DISPLACEMENT_XTOL_REL: f64 = 1e-15;
+
 /// Which way a TCA moves when heated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Chirality {
@@ -241,10 +245,31 @@ impl Tca {
             }
         };
         let (lo, hi) = (m.t_min(), m.t_max());
-        brent(resid, lo, hi, 1e-10).ok_or_else(|| Error::NoSolution {
+        brent(resid, lo, hi, 1e-10)
+            .or_else(|| self.range_end_attaining(force, displacement))
+            .ok_or_else(|| Error::NoSolution {
             reason: format!(
                 "no temperature in [{lo}, {hi}] C gives displacement {displacement:.6e} m under force {force:.6e} N"
             ),
+        })
+    }
+
+    /// The end of the temperature range [C] at which `force` [N] gives an
+    /// elongation within the forward solve's tolerance of `displacement` [m]
+    /// (`> 0`), if any. A state computed *at* an end of the range (e.g.
+    /// `displacement(F, t_max)`) satisfies eqs (2), (5) only to that
+    /// tolerance, so the residual at that end may have either sign and the
+    /// bracket of [`Self::temperature`] can miss it.
+    fn range_end_attaining(&self, force: f64, displacement: f64) -> Option<f64> {
+        if displacement <= 0.0 {
+            // coils closed: an onset, which needs a genuine sign change
+            return None;
+        }
+        let tol = 4.0 * DISPLACEMENT_XTOL_REL * self.fibre_length;
+        let m = &self.material;
+        [m.t_min(), m.t_max()].into_iter().find(|&t| {
+            self.displacement(force, t)
+                .is_ok_and(|d| (d - displacement).abs() <= tol)
         })
     }
 
@@ -330,8 +355,10 @@ impl<'a> TcaAt<'a> {
                 ),
             });
         }
-        brent(h, 0.0, dmax, 1e-15 * t.fibre_length).ok_or_else(|| Error::NoSolution {
-            reason: "displacement equation has no root".into(),
+        brent(h, 0.0, dmax, DISPLACEMENT_XTOL_REL * t.fibre_length).ok_or_else(|| {
+            Error::NoSolution {
+                reason: "displacement equation has no root".into(),
+            }
         })
     }
 
@@ -413,6 +440,24 @@ mod tests {
                 if d > 0.0 {
                     let f2 = t.force(d, temp).unwrap();
                     assert!((f2 - f).abs() < 1e-9, "{temp} {f} {f2}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn temperature_inverts_displacement_at_the_ends_of_the_range() {
+        // A state computed at t_min or t_max satisfies the law only to the
+        // displacement solve's tolerance; the inverse must still find it.
+        let t = fig5_three_thread();
+        for temp in [25.0, 160.0] {
+            for i in 0..=40 {
+                let f = -0.3 + 0.02 * f64::from(i);
+                let d = t.displacement(f, temp).unwrap();
+                if d > 0.0 {
+                    let back = t.temperature(f, d).unwrap();
+                    // Brent's 1e-10 C, or the exact end
+                    assert!((back - temp).abs() < 1e-7, "{temp} {f} {back}");
                 }
             }
         }

@@ -2,10 +2,18 @@
 
 Units: lengths and displacements in m, forces in N (tension > 0, i.e. a force
 that pulls the TCA longer), torques in N m, temperatures in degrees C.
+
+Errors: ``ValueError`` for numbers outside the law's domain (NaN, inf,
+non-positive sizes, ``L >= l/2``, temperatures outside the material's range,
+loads that straighten the fibre, shapes that do not broadcast); its message
+names the argument and its unit. ``TypeError`` for arguments that are not real
+numbers or arrays of them (``str``, ``None``, ``complex``), as with any Python
+function taking a float. No function returns NaN.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Union, overload
 
 import numpy as np
@@ -20,13 +28,49 @@ __all__ = ["Material", "Tca"]
 
 Material = _core.Material
 
+# dtype kinds accepted as real numbers: bool, signed and unsigned int, float.
+_REAL_KINDS = "biuf"
 
-def _broadcast(a: ArrayLike, b: ArrayLike, names: tuple[str, str]) -> tuple[FloatArray, FloatArray, tuple[int, ...], bool]:
+
+def _real_scalar(name: str, value: object) -> float:
+    """One element of an object array as a float; ints beyond the double range
+    saturate to +-inf (rejected downstream, naming the argument)."""
+    if isinstance(value, (bool, np.bool_)):
+        return float(value)
+    if isinstance(value, (int, np.integer)):
+        try:
+            return float(value)
+        except OverflowError:
+            return math.inf if value > 0 else -math.inf
+    if isinstance(value, (float, np.floating)):
+        return float(value)
+    raise TypeError(f"{name} must be a real number or an array of real numbers, not {type(value).__name__}")
+
+
+def _as_float_array(name: str, value: ArrayLike) -> FloatArray:
+    """``value`` as a float64 array.
+
+    Raises ``TypeError`` if ``value`` is not a real number or an array of real
+    numbers (str, None, complex, ...) and ``ValueError`` if it is a ragged
+    sequence. Values themselves (NaN, inf, ranges) are checked by the core.
+    """
     try:
-        x = np.asarray(a, dtype=np.float64)
-        y = np.asarray(b, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{names[0]} and {names[1]} must be numbers or numeric arrays: {exc}") from None
+        arr = np.asarray(value)
+    except ValueError as exc:  # ragged nested sequences
+        raise ValueError(f"{name} must be a rectangular array of numbers: {exc}") from None
+    if arr.dtype.kind in _REAL_KINDS:
+        return arr.astype(np.float64)
+    if arr.dtype.kind == "O":  # Python ints beyond int64, or mixed objects
+        flat = [_real_scalar(name, v) for v in arr.ravel()]
+        return np.asarray(flat, dtype=np.float64).reshape(arr.shape)
+    raise TypeError(f"{name} must be a real number or an array of real numbers, not dtype {arr.dtype}")
+
+
+def _broadcast(
+    a: ArrayLike, b: ArrayLike, names: tuple[str, str]
+) -> tuple[FloatArray, FloatArray, tuple[int, ...], bool]:
+    x = _as_float_array(names[0], a)
+    y = _as_float_array(names[1], b)
     try:
         x, y = np.broadcast_arrays(x, y)
     except ValueError:
@@ -110,14 +154,30 @@ class Tca(_core.Tca):
         f, d, shape, scalar = _broadcast(force, displacement, ("force", "displacement"))
         return _unwrap(self._temperature_flat(f, d), shape, scalar)
 
+    @overload
+    def onset_temperature(self, force: float) -> float: ...
+    @overload
+    def onset_temperature(self, force: ArrayLike) -> float | FloatArray: ...
     def onset_temperature(self, force: ArrayLike) -> float | FloatArray:
-        """Temperature [C] at which the coils separate under ``force`` [N] (< 0: compressive)."""
+        """Temperature [C] at which the coils separate under ``force`` [N] (< 0: compressive).
+
+        Raises ``ValueError`` if the coils do not separate (or are already
+        apart) anywhere in the material's temperature range.
+        """
         return self.temperature(force, 0.0)
 
+    @overload
+    def free_stroke(self, temperature: float) -> float: ...
+    @overload
+    def free_stroke(self, temperature: ArrayLike) -> float | FloatArray: ...
     def free_stroke(self, temperature: ArrayLike) -> float | FloatArray:
         """Unloaded elongation [m] at ``temperature`` [C]."""
         return self.displacement(0.0, temperature)
 
+    @overload
+    def blocked_force(self, temperature: float) -> float: ...
+    @overload
+    def blocked_force(self, temperature: ArrayLike) -> float | FloatArray: ...
     def blocked_force(self, temperature: ArrayLike) -> float | FloatArray:
         """Force [N] holding the TCA at its coiled length at ``temperature`` [C].
 

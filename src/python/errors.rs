@@ -60,7 +60,7 @@ pub(crate) fn finite_output(name: &str, value: f64) -> Result<f64> {
 }
 
 pyo3::create_exception!(
-    _core,
+    tcarod._core,
     ConvergenceError,
     PyRuntimeError,
     "A solve stopped without meeting its tolerance. Attributes: `residual` \

@@ -98,16 +98,28 @@ impl PyMaterial {
         self.inner.coefficients()
     }
     fn youngs_modulus(&self, temperature: Real) -> PyResult<f64> {
-        Ok(finite_output("youngs_modulus [Pa]", self.inner.youngs_modulus(temperature.0)?)?)
+        Ok(finite_output(
+            "youngs_modulus [Pa]",
+            self.inner.youngs_modulus(temperature.0)?,
+        )?)
     }
     fn shear_modulus(&self, temperature: Real) -> PyResult<f64> {
-        Ok(finite_output("shear_modulus [Pa]", self.inner.shear_modulus(temperature.0)?)?)
+        Ok(finite_output(
+            "shear_modulus [Pa]",
+            self.inner.shear_modulus(temperature.0)?,
+        )?)
     }
     fn expansion(&self, temperature: Real) -> PyResult<f64> {
-        Ok(finite_output("expansion [1/C]", self.inner.expansion(temperature.0)?)?)
+        Ok(finite_output(
+            "expansion [1/C]",
+            self.inner.expansion(temperature.0)?,
+        )?)
     }
     fn diameter_ratio(&self, temperature: Real) -> PyResult<f64> {
-        Ok(finite_output("diameter_ratio [-]", self.inner.diameter_ratio(temperature.0)?)?)
+        Ok(finite_output(
+            "diameter_ratio [-]",
+            self.inner.diameter_ratio(temperature.0)?,
+        )?)
     }
     fn __repr__(&self) -> String {
         let (e, es, g, gs, r, rs) = self.inner.coefficients();
@@ -166,25 +178,27 @@ fn map2(
             .zip(&b)
             .enumerate()
             .map(|(i, (&x, &y))| {
-                f(x, y).and_then(|v| finite_output(output, v)).map_err(|e| match e {
-                    Error::InvalidParameter {
-                        name,
-                        value,
-                        allowed,
-                    } => Error::InvalidParameter {
-                        name: format!("{name} (element {i})"),
-                        value,
-                        allowed,
-                    },
-                    Error::NoSolution { reason } => Error::NoSolution {
-                        reason: format!("element {i}: {reason}"),
-                    },
-                    Error::InvalidInput { name, reason } => Error::InvalidInput {
-                        name: format!("{name} (element {i})"),
-                        reason,
-                    },
-                    other => other,
-                })
+                f(x, y)
+                    .and_then(|v| finite_output(output, v))
+                    .map_err(|e| match e {
+                        Error::InvalidParameter {
+                            name,
+                            value,
+                            allowed,
+                        } => Error::InvalidParameter {
+                            name: format!("{name} (element {i})"),
+                            value,
+                            allowed,
+                        },
+                        Error::NoSolution { reason } => Error::NoSolution {
+                            reason: format!("element {i}: {reason}"),
+                        },
+                        Error::InvalidInput { name, reason } => Error::InvalidInput {
+                            name: format!("{name} (element {i})"),
+                            reason,
+                        },
+                        other => other,
+                    })
             })
             .collect()
     });
@@ -316,20 +330,32 @@ impl PyTca {
     /// `f11` [m/N] of eq (3) at pitch angle `alpha` [rad] and `temperature` [C].
     fn f11(&self, alpha: Real, temperature: Real) -> PyResult<f64> {
         let a = check_alpha(alpha.0)?;
-        Ok(finite_output("f11 [m/N]", self.inner.at(temperature.0)?.f11(a))?)
+        Ok(finite_output(
+            "f11 [m/N]",
+            self.inner.at(temperature.0)?.f11(a),
+        )?)
     }
     /// `f12` [1/N] (m of elongation per N m of torque) of eq (4) at pitch angle `alpha` [rad] and `temperature` [C].
     fn f12(&self, alpha: Real, temperature: Real) -> PyResult<f64> {
         let a = check_alpha(alpha.0)?;
-        Ok(finite_output("f12 [1/N]", self.inner.at(temperature.0)?.f12(a))?)
+        Ok(finite_output(
+            "f12 [1/N]",
+            self.inner.at(temperature.0)?.f12(a),
+        )?)
     }
     /// Untwisting torque `tau` [N m] of eq (1) at `temperature` [C].
     fn torque(&self, temperature: Real) -> PyResult<f64> {
-        Ok(finite_output("torque [N m]", self.inner.at(temperature.0)?.tau)?)
+        Ok(finite_output(
+            "torque [N m]",
+            self.inner.at(temperature.0)?.tau,
+        )?)
     }
     /// Fibre diameter `d` [m] at `temperature` [C].
     fn fibre_diameter(&self, temperature: Real) -> PyResult<f64> {
-        Ok(finite_output("fibre_diameter [m]", self.inner.at(temperature.0)?.d)?)
+        Ok(finite_output(
+            "fibre_diameter [m]",
+            self.inner.at(temperature.0)?.d,
+        )?)
     }
     fn _displacement_flat(
         &self,
@@ -337,7 +363,9 @@ impl PyTca {
         force: PyReadonlyArray1<'_, f64>,
         temperature: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Py<PyArray1<f64>>> {
-        map2(py, "displacement [m]", &force, &temperature, |f, t| self.inner.displacement(f, t))
+        map2(py, "displacement [m]", &force, &temperature, |f, t| {
+            self.inner.displacement(f, t)
+        })
     }
     fn _force_flat(
         &self,
@@ -345,7 +373,9 @@ impl PyTca {
         displacement: PyReadonlyArray1<'_, f64>,
         temperature: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Py<PyArray1<f64>>> {
-        map2(py, "force [N]", &displacement, &temperature, |d, t| self.inner.force(d, t))
+        map2(py, "force [N]", &displacement, &temperature, |d, t| {
+            self.inner.force(d, t)
+        })
     }
     fn _temperature_flat(
         &self,
@@ -353,7 +383,9 @@ impl PyTca {
         force: PyReadonlyArray1<'_, f64>,
         displacement: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Py<PyArray1<f64>>> {
-        map2(py, "temperature [C]", &force, &displacement, |f, d| self.inner.temperature(f, d))
+        map2(py, "temperature [C]", &force, &displacement, |f, d| {
+            self.inner.temperature(f, d)
+        })
     }
     fn __repr__(&self) -> String {
         let t = &self.inner;

@@ -1,0 +1,462 @@
+"""The paper's experiments (Section V) as typed fixtures, and their predictions.
+
+Each experiment is a frozen dataclass holding what the paper specifies: the
+actuators, the loads, the temperatures, and the published data (``None`` where
+the paper prints none -- numbers are never invented). Its ``predict()`` runs the
+model and returns a result object with the :class:`ExperimentResult` interface
+(``table()``, ``to_json()``, ``plot(path)``).
+
+:data:`REGISTRY` maps the names used by ``tcarod reproduce NAME`` to
+zero-argument callables returning such results. A new experiment (Fig. 6,
+Fig. 8, Table I) slots in beside Fig. 5 by defining its fixture and result
+classes and registering a callable::
+
+    @register("fig6")
+    def _fig6() -> Fig6Result:
+        return FIG6.predict()
+
+Units: SI inside (m, N, kg), temperatures in degrees C; every name says its
+unit. Sign convention (paper eq 2): force > 0 is tension (pulls the TCA
+longer), displacement > 0 is extension; a compressive dead weight is a
+negative force.
+"""
+
+from __future__ import annotations
+
+import os
+import textwrap
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Final, Literal, Protocol, TypeVar
+
+import numpy as np
+import numpy.typing as npt
+
+from .tca import Material, Tca
+
+__all__ = [
+    "FIG5",
+    "GRAVITY_M_PER_S2",
+    "REGISTRY",
+    "DeadWeight",
+    "ExperimentResult",
+    "Fig5Case",
+    "Fig5Curve",
+    "Fig5Experiment",
+    "Fig5Result",
+    "PublishedCurve",
+    "TcaSpec",
+    "onset_temperature_c",
+    "predict_fig5",
+    "register",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+#: Acceleration of gravity [m/s^2] used to turn the paper's masses into forces.
+GRAVITY_M_PER_S2: Final[float] = 9.81
+
+
+# --------------------------------------------------------------------------
+# Registry
+# --------------------------------------------------------------------------
+
+
+class ExperimentResult(Protocol):
+    """What ``tcarod reproduce`` needs from an experiment's prediction."""
+
+    @property
+    def name(self) -> str:
+        """Registry name, e.g. ``"fig5"``."""
+        ...
+
+    def table(self) -> str:
+        """Human-readable table of the prediction (units in the headers)."""
+        ...
+
+    def to_json(self) -> dict[str, Any]:
+        """JSON-serialisable dict; every key names its unit (``temperature_c``, ``displacement_m``)."""
+        ...
+
+    def plot(self, path: str | os.PathLike[str]) -> Path:
+        """Write the figure as PNG to ``path``; return the path written."""
+        ...
+
+
+#: Experiment name -> zero-argument callable returning its predicted result.
+REGISTRY: dict[str, Callable[[], ExperimentResult]] = {}
+
+_F = TypeVar("_F", bound=Callable[[], ExperimentResult])
+
+
+def register(name: str) -> Callable[[_F], _F]:
+    """Decorator adding a zero-argument result factory to :data:`REGISTRY` as ``name``."""
+
+    def deco(fn: _F) -> _F:
+        if name in REGISTRY:
+            raise ValueError(f"experiment {name!r} is already registered")
+        REGISTRY[name] = fn
+        return fn
+
+    return deco
+
+
+# --------------------------------------------------------------------------
+# Building blocks shared by experiments
+# --------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class TcaSpec:
+    """A TCA as fabricated, described by what a user measures.
+
+    Lengths in m; ``turns`` is the inserted twist ``N`` [turns].
+    """
+
+    label: str
+    threads: int
+    fibre_length_m: float
+    coiled_length_m: float
+    coil_diameter_m: float
+    turns: float
+    chirality: Literal["extension", "contraction"] = "extension"
+
+    def build(self, material: Material | None = None) -> Tca:
+        """The whole TCA (default material: :meth:`Material.silver_coated_nylon`)."""
+        return Tca(
+            self.fibre_length_m,
+            self.coiled_length_m,
+            self.coil_diameter_m,
+            self.turns,
+            self.chirality,
+            material,
+        )
+
+
+@dataclass(frozen=True)
+class DeadWeight:
+    """A hanging mass [kg] plus the paper's friction-equivalent mass [kg]."""
+
+    mass_kg: float
+    friction_equivalent_kg: float = 0.0
+
+    @property
+    def effective_mass_kg(self) -> float:
+        """Mass [kg] whose weight the actuator carries: hanging mass + friction equivalent."""
+        return self.mass_kg + self.friction_equivalent_kg
+
+    @property
+    def weight_n(self) -> float:
+        """Weight [N] of the effective mass, ``effective_mass_kg * GRAVITY_M_PER_S2`` (> 0)."""
+        return self.effective_mass_kg * GRAVITY_M_PER_S2
+
+    @property
+    def label(self) -> str:
+        """E.g. ``"5 g"`` (the hanging mass, as the paper labels its curves)."""
+        return f"{self.mass_kg * 1e3:g} g"
+
+
+@dataclass(frozen=True)
+class PublishedCurve:
+    """Digitised experimental data of one curve: mean and standard deviation
+    of the measured quantity [SI unit of the experiment] at each temperature [C]."""
+
+    label: str
+    temperatures_c: tuple[float, ...]
+    mean: tuple[float, ...]
+    std: tuple[float, ...]
+
+
+def onset_temperature_c(tca: Tca, force_n: float) -> float | None:
+    """Temperature [C] at which the coils of ``tca`` separate under ``force_n``
+    [N] (< 0: compressive), or ``None`` if that does not happen inside the
+    material's temperature range (never opens, or already open at its lowest
+    temperature). Computed with :meth:`Tca.onset_temperature`."""
+    material = tca.material
+    t_lo, t_hi = material.t_min, material.t_max
+    if tca.displacement(force_n, t_hi) == 0.0:
+        return None  # coils still touching at the top of the range
+    if tca.displacement(force_n, t_lo) > 0.0:
+        return None  # already open at the bottom of the range: no onset inside it
+    # Coils closed at t_lo and open at t_hi: the onset is bracketed.
+    return tca.onset_temperature(force_n)
+
+
+# --------------------------------------------------------------------------
+# Fig. 5: extension TCAs under dead weights (Section V-A)
+# --------------------------------------------------------------------------
+
+_FIG5_LOAD_SHARING: Final[str] = (
+    "The TCA is folded into two halves (55 mm coiled each) standing side by side on "
+    "guide rods; the weight hangs at the fold, so each half carries half of "
+    "(mass + friction equivalent) * g as a compressive force, and the measured "
+    "displacement is one half's elongation. A half is Tca(l/2, L/2, D, N/2): same "
+    "alpha0 and d0, half the coils and turns."
+)
+
+
+@dataclass(frozen=True)
+class Fig5Case:
+    """One curve of Fig. 5: a TCA under one dead weight.
+
+    Load sharing (a modelling choice; the paper does not state it): the TCA
+    is folded into two halves standing side by side on guide rods and the
+    weight hangs at the fold, so each half carries half of
+    ``(mass + friction equivalent) * g`` as a *compressive* force, and the
+    measured displacement is one half's elongation. A half is
+    ``Tca(l/2, L/2, D, N/2)``: the same ``alpha0`` and ``d0`` as the whole TCA,
+    half its coils and turns.
+    """
+
+    tca: TcaSpec
+    load: DeadWeight
+
+    @property
+    def label(self) -> str:
+        """E.g. ``"3 threads, 5 g"``."""
+        return f"{self.tca.label}, {self.load.label}"
+
+    @property
+    def force_per_half_n(self) -> float:
+        """Axial force [N] on each half: ``-(mass + friction equivalent) g / 2`` (compressive, < 0)."""
+        return -0.5 * self.load.weight_n
+
+    def half_tca(self, material: Material | None = None) -> Tca:
+        """One folded half, ``Tca(l/2, L/2, D, N/2)``."""
+        s = self.tca
+        return Tca(
+            0.5 * s.fibre_length_m,
+            0.5 * s.coiled_length_m,
+            s.coil_diameter_m,
+            0.5 * s.turns,
+            s.chirality,
+            material,
+        )
+
+
+@dataclass(frozen=True)
+class Fig5Experiment:
+    """Fig. 5 of the paper: displacement of free extension TCAs under dead
+    weights, heated in an oven. See :class:`Fig5Case` for the load sharing."""
+
+    tcas: tuple[TcaSpec, ...]
+    loads: tuple[DeadWeight, ...]
+    temperatures_c: tuple[float, ...]
+    #: ``None``: the paper prints no numeric data for Fig. 5 (NOTES.md 4); the
+    #: curves exist only as a plot. Fill with digitised :class:`PublishedCurve`
+    #: objects if such data become available.
+    published_data: tuple[PublishedCurve, ...] | None = None
+    published_data_note: str = "The paper prints no numeric data for Fig. 5, only the plotted curves."
+    name: str = "fig5"
+    title: str = "Fig. 5: extension TCAs under dead weights"
+    source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-A, Fig. 5"
+    load_sharing: str = field(default=_FIG5_LOAD_SHARING)
+
+    @property
+    def cases(self) -> tuple[Fig5Case, ...]:
+        """Every TCA under every load, TCA-major (the order of the table and the JSON)."""
+        return tuple(Fig5Case(t, w) for t in self.tcas for w in self.loads)
+
+    def predict(self, material: Material | None = None) -> Fig5Result:
+        """Predicted displacement curves and onset temperatures; see :func:`predict_fig5`."""
+        return predict_fig5(self, material)
+
+
+#: The paper's Fig. 5 experiment (Section V-A; ``l`` and ``L`` un-swapped per
+#: NOTES.md 1: coiled length ``L = 110 mm``, fibre length ``l = 497 / 471 mm``).
+#: Friction equivalents 2.5 g (5 g case) and 5 g (10 g case).
+FIG5: Final[Fig5Experiment] = Fig5Experiment(
+    tcas=(
+        TcaSpec(
+            label="3 threads",
+            threads=3,
+            fibre_length_m=0.497,
+            coiled_length_m=0.110,
+            coil_diameter_m=2.0e-3,
+            turns=300.0,
+        ),
+        TcaSpec(
+            label="4 threads",
+            threads=4,
+            fibre_length_m=0.471,
+            coiled_length_m=0.110,
+            coil_diameter_m=2.13e-3,
+            turns=259.0,
+        ),
+    ),
+    loads=(
+        DeadWeight(mass_kg=5e-3, friction_equivalent_kg=2.5e-3),
+        DeadWeight(mass_kg=10e-3, friction_equivalent_kg=5e-3),
+    ),
+    temperatures_c=tuple(float(t) for t in range(25, 161, 5)),
+)
+
+
+@dataclass(frozen=True, eq=False)
+class Fig5Curve:
+    """Prediction for one :class:`Fig5Case`."""
+
+    case: Fig5Case
+    temperatures_c: FloatArray
+    #: Elongation [m] of one folded half at each temperature.
+    displacements_m: FloatArray
+    #: Temperature [C] at which the coils separate; ``None`` if not in range.
+    onset_temperature_c: float | None
+    #: Largest possible elongation [m] of one half (fibre straight), ``l/2 (1 - sin alpha0)``.
+    straight_fibre_limit_m: float
+
+    @property
+    def final_temperature_c(self) -> float:
+        """Last (highest) temperature [C] of the sweep."""
+        return float(self.temperatures_c[-1])
+
+    @property
+    def displacement_at_final_temperature_m(self) -> float:
+        """Displacement [m] at :attr:`final_temperature_c`."""
+        return float(self.displacements_m[-1])
+
+
+def _fmt_onset(t: float | None) -> str:
+    return "none" if t is None else f"{t:.1f}"
+
+
+@dataclass(frozen=True, eq=False)
+class Fig5Result:
+    """Predicted Fig. 5: one :class:`Fig5Curve` per case."""
+
+    experiment: Fig5Experiment
+    curves: tuple[Fig5Curve, ...]
+
+    @property
+    def name(self) -> str:
+        """Registry name, ``"fig5"``."""
+        return self.experiment.name
+
+    @property
+    def temperatures_c(self) -> FloatArray:
+        """Temperatures [C] of the sweep (shared by all curves)."""
+        return np.asarray(self.experiment.temperatures_c, dtype=np.float64)
+
+    def table(self) -> str:
+        """Displacement [mm] against temperature [C] for every case, then the
+        onset temperatures [C] and the final-temperature displacements [mm]."""
+        exp = self.experiment
+        labels = [c.case.label for c in self.curves]
+        width = max(14, *(len(s) for s in labels))
+        t_final = self.curves[0].final_temperature_c if self.curves else float("nan")
+        final_label = f"displacement at {t_final:.0f} C [mm]"
+        first = max(len("straight-fibre limit [mm]"), len(final_label))
+        head = f"{'T [C]':>{first}} | " + " | ".join(f"{s:>{width}}" for s in labels)
+        rule = "-" * len(head)
+        forces = " | ".join(f"{c.case.force_per_half_n:>{width}.5f}" for c in self.curves)
+        lines = [
+            f"{exp.title} ({exp.source})",
+            "Predicted displacement [mm] of one folded half.",
+            *textwrap.wrap(f"Load sharing: {exp.load_sharing}", width=max(len(rule), 60)),
+            rule,
+            head,
+            f"{'force per half [N]':>{first}} | {forces}",
+            rule,
+        ]
+        for i, t in enumerate(self.temperatures_c):
+            row = " | ".join(f"{c.displacements_m[i] * 1e3:>{width}.3f}" for c in self.curves)
+            lines.append(f"{t:>{first}.0f} | {row}")
+        lines.append(rule)
+        lines.append(
+            f"{'onset temperature [C]':>{first}} | "
+            + " | ".join(f"{_fmt_onset(c.onset_temperature_c):>{width}}" for c in self.curves)
+        )
+        lines.append(
+            f"{final_label:>{first}} | "
+            + " | ".join(f"{c.displacement_at_final_temperature_m * 1e3:>{width}.3f}" for c in self.curves)
+        )
+        lines.append(
+            f"{'straight-fibre limit [mm]':>{first}} | "
+            + " | ".join(f"{c.straight_fibre_limit_m * 1e3:>{width}.1f}" for c in self.curves)
+        )
+        lines.append(rule)
+        if exp.published_data is None:
+            lines.append(f"Published data: none. {exp.published_data_note}")
+        return "\n".join(lines)
+
+    def to_json(self) -> dict[str, Any]:
+        """JSON-serialisable prediction; temperatures in C, lengths in m, forces in N, masses in kg."""
+        exp = self.experiment
+        published: list[dict[str, Any]] | None = None
+        if exp.published_data is not None:
+            published = [
+                {
+                    "label": p.label,
+                    "temperature_c": list(p.temperatures_c),
+                    "mean": list(p.mean),
+                    "std": list(p.std),
+                }
+                for p in exp.published_data
+            ]
+        return {
+            "name": exp.name,
+            "title": exp.title,
+            "source": exp.source,
+            "gravity_m_per_s2": GRAVITY_M_PER_S2,
+            "load_sharing": exp.load_sharing,
+            "temperature_c": [float(t) for t in self.temperatures_c],
+            "published_data": published,
+            "published_data_note": exp.published_data_note,
+            "cases": [
+                {
+                    "label": c.case.label,
+                    "threads": c.case.tca.threads,
+                    "fibre_length_m": c.case.tca.fibre_length_m,
+                    "coiled_length_m": c.case.tca.coiled_length_m,
+                    "coil_diameter_m": c.case.tca.coil_diameter_m,
+                    "turns": c.case.tca.turns,
+                    "chirality": c.case.tca.chirality,
+                    "mass_kg": c.case.load.mass_kg,
+                    "friction_equivalent_kg": c.case.load.friction_equivalent_kg,
+                    "force_per_half_n": c.case.force_per_half_n,
+                    "displacement_m": [float(d) for d in c.displacements_m],
+                    "onset_temperature_c": c.onset_temperature_c,
+                    "final_temperature_c": c.final_temperature_c,
+                    "displacement_at_final_temperature_m": c.displacement_at_final_temperature_m,
+                    "straight_fibre_limit_m": c.straight_fibre_limit_m,
+                }
+                for c in self.curves
+            ],
+        }
+
+    def plot(self, path: str | os.PathLike[str]) -> Path:
+        """Write the Fig. 5 plot (see :func:`tcarod.plotting.plot_fig5`) as PNG to ``path``."""
+        from .plotting import plot_fig5, save_png  # matplotlib only when plotting
+
+        return save_png(plot_fig5(self), path)
+
+
+def predict_fig5(experiment: Fig5Experiment = FIG5, material: Material | None = None) -> Fig5Result:
+    """Predicted displacement [m] of one folded half against temperature [C]
+    for every case of ``experiment``, with onset temperatures [C] from
+    :meth:`Tca.onset_temperature` (``None`` if no onset in the material's range).
+
+    Raises ``ValueError`` if a temperature lies outside the material's range or
+    a load straightens the fibre.
+    """
+    temps = np.asarray(experiment.temperatures_c, dtype=np.float64)
+    curves = []
+    for case in experiment.cases:
+        half = case.half_tca(material)
+        force = case.force_per_half_n
+        disp = np.asarray(half.displacement(force, temps), dtype=np.float64)
+        curves.append(
+            Fig5Curve(
+                case=case,
+                temperatures_c=temps,
+                displacements_m=disp,
+                onset_temperature_c=onset_temperature_c(half, force),
+                straight_fibre_limit_m=half.max_displacement,
+            )
+        )
+    return Fig5Result(experiment=experiment, curves=tuple(curves))
+
+
+@register("fig5")
+def _fig5() -> Fig5Result:
+    return FIG5.predict()

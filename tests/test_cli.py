@@ -1,0 +1,134 @@
+"""The command line, ``tcarod reproduce``: run as a user would, in a subprocess."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import sysconfig
+from pathlib import Path
+
+import pytest
+
+import tcarod
+from tcarod import cli
+from tcarod.experiments import FIG5, REGISTRY, ExperimentResult
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+def run(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "tcarod.cli", *args],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+
+
+def test_reproduce_fig5_json(tmp_path: Path) -> None:
+    out = tmp_path / "pngs"
+    proc = run("reproduce", "fig5", "--json", "--out", str(out), cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)  # stdout is JSON and nothing else
+    assert doc["tcarod_version"] == tcarod.__version__
+    assert list(doc["experiments"]) == ["fig5"]
+    fig5 = doc["experiments"]["fig5"]
+    assert fig5["temperature_c"] == list(FIG5.temperatures_c)
+    assert fig5["published_data"] is None
+    assert fig5["gravity_m_per_s2"] == 9.81
+    assert len(fig5["cases"]) == 4
+    for case in fig5["cases"]:
+        for key in (
+            "label", "threads", "fibre_length_m", "coiled_length_m", "coil_diameter_m", "turns",
+            "mass_kg", "friction_equivalent_kg", "force_per_half_n", "displacement_m",
+            "onset_temperature_c", "final_temperature_c", "displacement_at_final_temperature_m",
+            "straight_fibre_limit_m",
+        ):
+            assert key in case, key
+        assert len(case["displacement_m"]) == len(fig5["temperature_c"])
+        assert 25.0 < case["onset_temperature_c"] < 160.0
+        assert 0.0 < case["displacement_at_final_temperature_m"] < case["straight_fibre_limit_m"]
+    png = Path(fig5["png_path"])
+    assert png == out / "fig5.png"
+    data = png.read_bytes()
+    assert data.startswith(PNG_MAGIC) and len(data) > 10_000  # a real plot, not an empty canvas
+
+
+def test_reproduce_all_prints_table_and_writes_default_png(tmp_path: Path) -> None:
+    proc = run("reproduce", cwd=tmp_path)  # no name: every registered experiment
+    assert proc.returncode == 0, proc.stderr
+    assert "onset temperature [C]" in proc.stdout
+    assert "displacement at 160 C [mm]" in proc.stdout
+    for c in FIG5.predict().curves:
+        assert f"{c.onset_temperature_c:.1f}" in proc.stdout
+    for name in REGISTRY:
+        png = tmp_path / "tcarod-output" / f"{name}.png"
+        assert png.read_bytes().startswith(PNG_MAGIC)
+
+
+def test_version(tmp_path: Path) -> None:
+    proc = run("--version", cwd=tmp_path)
+    assert proc.returncode == 0
+    assert proc.stdout.strip() == f"tcarod {tcarod.__version__}"
+
+
+def test_console_script_is_installed(tmp_path: Path) -> None:
+    # pyproject declares `tcarod = "tcarod.cli:main"`; pip writes it into the
+    # install scheme's scripts directory (beside python in a venv or pyenv,
+    # /usr/local/bin for a Debian system python).
+    candidates = [Path(sysconfig.get_path("scripts")) / "tcarod", Path(sys.executable).parent / "tcarod"]
+    found = [c for c in candidates if c.exists()]
+    assert found, f"none of {candidates} exists: is the package installed (pip install -e .)?"
+    proc = subprocess.run([str(found[0]), "--version"], capture_output=True, text=True, timeout=60, check=False)
+    assert proc.returncode == 0 and tcarod.__version__ in proc.stdout
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        [],  # no command
+        ["reproduce", "fig99"],  # unknown experiment
+        ["reproduce", "--bogus"],
+        ["frobnicate"],
+        ["reproduce", "fig5", "--out"],  # option without its value
+    ],
+    ids=["no-command", "unknown-experiment", "unknown-option", "unknown-command", "missing-value"],
+)
+def test_bad_arguments_exit_2(tmp_path: Path, args: list[str]) -> None:
+    proc = run(*args, cwd=tmp_path)
+    assert proc.returncode == 2
+    assert proc.stderr.strip()
+    assert "Traceback" not in proc.stderr
+    assert proc.stdout == ""
+
+
+def test_unwritable_output_exits_2_with_one_line(tmp_path: Path) -> None:
+    blocker = tmp_path / "file"
+    blocker.write_text("not a directory")
+    proc = run("reproduce", "fig5", "--out", str(blocker / "sub"), cwd=tmp_path)
+    assert proc.returncode == 2
+    assert len(proc.stderr.strip().splitlines()) == 1
+    assert "Traceback" not in proc.stderr
+
+
+@pytest.mark.parametrize(
+    "exc",
+    [ValueError("invalid temperature [C] = 200:\n allowed 25 <= T <= 160 C"), tcarod.ConvergenceError("did not converge")],
+    ids=["ValueError", "ConvergenceError"],
+)
+def test_model_errors_exit_2_with_one_line(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], tmp_path: Path, exc: Exception
+) -> None:
+    def failing() -> ExperimentResult:
+        raise exc
+
+    monkeypatch.setitem(REGISTRY, "broken", failing)
+    status = cli.main(["reproduce", "broken", "--out", str(tmp_path)])
+    captured = capsys.readouterr()
+    assert status == 2
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1 and type(exc).__name__ in lines[0]
+    assert captured.out == ""
