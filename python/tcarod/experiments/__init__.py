@@ -32,7 +32,7 @@ from typing import Any, Callable, Final, Literal, Protocol, TypeVar
 import numpy as np
 import numpy.typing as npt
 
-from .tca import Material, Tca
+from ..tca import Material, Tca
 
 __all__ = [
     "FIG5",
@@ -426,7 +426,7 @@ class Fig5Result:
 
     def plot(self, path: str | os.PathLike[str]) -> Path:
         """Write the Fig. 5 plot (see :func:`tcarod.plotting.plot_fig5`) as PNG to ``path``."""
-        from .plotting import plot_fig5, save_png  # matplotlib only when plotting
+        from ..plotting import plot_fig5, save_png  # matplotlib only when plotting
 
         return save_png(plot_fig5(self), path)
 
@@ -460,3 +460,9 @@ def predict_fig5(experiment: Fig5Experiment = FIG5, material: Material | None = 
 @register("fig5")
 def _fig5() -> Fig5Result:
     return FIG5.predict()
+
+
+# Further experiments live in their own modules and register themselves on
+# import. Keep this import list at the bottom: the modules use `register`.
+# (One module per experiment so that they can be developed independently.)
+from . import _extra  # noqa: E402,F401
