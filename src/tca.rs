@@ -273,6 +273,29 @@ impl Tca {
         })
     }
 
+    /// A piece of this TCA: the fraction `fraction` (`0 < fraction <= 1`) of
+    /// its length, as one segment of a TCA cut (or electrically divided) into
+    /// segments in series. Fibre length `l`, coiled length `L` and turns `N`
+    /// scale by `fraction`; the coil diameter, chirality and material stay, so
+    /// the pitch angle `alpha0 = asin(L/l)`, the fibre diameter
+    /// `d0 = 2 D L / l` and the twist density `N / l` are the same as the
+    /// whole TCA's. The number of coils scales by `fraction`, so at one
+    /// temperature and force a segment's elongation is `fraction` times the
+    /// whole TCA's (eqs 2-5 are linear in `n` at fixed `l/n`).
+    pub fn segment(&self, fraction: f64) -> Result<Tca> {
+        if !(fraction.is_finite() && fraction > 0.0 && fraction <= 1.0) {
+            return Err(Error::param("fraction [-]", fraction, "0 < fraction <= 1"));
+        }
+        Tca::new(
+            self.fibre_length * fraction,
+            self.coiled_length * fraction,
+            self.coil_diameter,
+            self.turns * fraction,
+            self.chirality,
+            self.material.clone(),
+        )
+    }
+
     /// Free stroke [m]: the elongation at `temperature` [C] with no load.
     pub fn free_stroke(&self, temperature: f64) -> Result<f64> {
         self.displacement(0.0, temperature)
@@ -460,6 +483,39 @@ mod tests {
                     assert!((back - temp).abs() < 1e-7, "{temp} {f} {back}");
                 }
             }
+        }
+    }
+
+    #[test]
+    fn segment_keeps_geometry_ratios_and_scales_elongation() {
+        let t = fig5_three_thread();
+        for frac in [0.25, 0.5, 1.0 / 3.0, 1.0] {
+            let s = t.segment(frac).unwrap();
+            // ratios of scaled lengths: equal to rounding (a few ulps)
+            assert!((s.alpha0() - t.alpha0()).abs() < 1e-14, "{frac}");
+            assert!((s.d0() - t.d0()).abs() < 1e-15 * t.d0().max(1.0), "{frac}");
+            assert!((s.turns() / s.fibre_length() - t.turns() / t.fibre_length()).abs() < 1e-9, "{frac}");
+            assert!((s.n_coils() - frac * t.n_coils()).abs() < 1e-12 * t.n_coils());
+            assert_eq!(s.coil_diameter(), t.coil_diameter());
+            assert_eq!(s.chirality(), t.chirality());
+            // the law is linear in n at fixed l/n, d, alpha: a segment
+            // stretches by `frac` of the whole under the same force and
+            // temperature (to the displacement solve's 1e-15 l tolerance,
+            // amplified by the conditioning of the root; 1e-9 relative is
+            // far above that and far below any modelling difference)
+            for (f, temp) in [(0.02, 25.0), (-0.05, 120.0), (0.0, 160.0)] {
+                let dw = t.displacement(f, temp).unwrap();
+                let ds = s.displacement(f, temp).unwrap();
+                assert!((ds - frac * dw).abs() <= 1e-9 * dw.abs().max(1e-12), "{frac} {f} {temp}: {ds} vs {}", frac * dw);
+                if dw > 0.0 {
+                    let fw = t.force(dw, temp).unwrap();
+                    let fs = s.force(frac * dw, temp).unwrap();
+                    assert!((fw - fs).abs() < 1e-9 * fw.abs().max(1e-3));
+                }
+            }
+        }
+        for bad in [0.0, -0.5, 1.5, f64::NAN] {
+            assert!(t.segment(bad).is_err(), "{bad}");
         }
     }
 

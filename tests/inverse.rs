@@ -158,3 +158,20 @@ fn grasp_temperature_rises_with_mass() {
         last = r.variables[0];
     }
 }
+
+#[test]
+fn incremental_blocked_temperature_reaches_the_top_of_the_range() {
+    // The blocked force at exactly 160 C (the material's top), fed back to the
+    // incremental method, must give 160 C, not "outside [25, 160]" from a
+    // rounding error above the bound.
+    let robot = square_manipulator(0.026, true);
+    let groups = Groups(vec![0, 0]);
+    let start = solve(&robot, &[55.0, 55.0], &opts(), None).unwrap();
+    let block = Block::new(start.tip_position(), Vector3::new(-1.0, 0.0, 0.0)).unwrap();
+    let top = blocked_force(&robot, &groups, &block, &[160.0], &opts(), None).unwrap();
+    let inc = blocked_temperature(&robot, &groups, &block, &start, top.force, 10, &opts()).unwrap();
+    // gap tolerance 1e-9 L and dT/dF ~ 1.5e3 C/N: agreement far below 1e-6 C
+    assert!((inc.variables[0] - 160.0).abs() < 1e-6, "{}", inc.variables[0]);
+    // a force beyond the range is still refused
+    assert!(blocked_temperature(&robot, &groups, &block, &start, top.force * 1.01, 10, &opts()).is_err());
+}

@@ -10,6 +10,16 @@ from __future__ import annotations
 from ._core import ConvergenceError, __version__
 from .rod import Actuator, Body, Robot, Routing, Section, Solution, circle_radius, inner_edge_radius
 from .tca import Material, Tca
+from .grasp import grasp_temperature
+from .inverse import (
+    BlockedResult,
+    InverseResult,
+    blocked_force,
+    blocked_temperature,
+    blocked_temperature_direct,
+    jacobian_and_compliance,
+    tip_position,
+)
 
 __all__ = [
     "Actuator",
@@ -24,4 +34,12 @@ __all__ = [
     "Material",
     "Tca",
     "__version__",
+    "BlockedResult",
+    "InverseResult",
+    "blocked_force",
+    "blocked_temperature",
+    "blocked_temperature_direct",
+    "grasp_temperature",
+    "jacobian_and_compliance",
+    "tip_position",
 ]

@@ -6,10 +6,12 @@ temperatures in degrees C. Argument errors raise ``ValueError`` naming the
 argument; wrong Python types raise ``TypeError``.
 """
 
-from typing import Final, Literal, final
+from collections.abc import Sequence
+from typing import Any, Final, Literal, final
 
 import numpy as np
 import numpy.typing as npt
+from matplotlib.figure import Figure
 from typing_extensions import Self, disjoint_base
 
 _Chirality = Literal["extension", "contraction"]
@@ -100,6 +102,9 @@ class Tca:
         material: Material | None = None,
     ) -> Self:
         """Build from coiled length ``L`` [m] and pitch angle ``alpha0`` [rad]: ``l = L / sin(alpha0)``."""
+    def segment(self, fraction: float) -> Self:
+        """The fraction ``fraction`` (0 < fraction <= 1) of this TCA as a segment in series:
+        ``l``, ``L`` and ``N`` scaled by ``fraction``; same ``D``, ``alpha0``, ``d0``, material."""
     @property
     def fibre_length(self) -> float:
         """Twisted-fibre length ``l`` [m]."""
@@ -144,3 +149,412 @@ class Tca:
     def _displacement_flat(self, force: _FloatArray, temperature: _FloatArray) -> _FloatArray: ...
     def _force_flat(self, displacement: _FloatArray, temperature: _FloatArray) -> _FloatArray: ...
     def _temperature_flat(self, force: _FloatArray, displacement: _FloatArray) -> _FloatArray: ...
+
+# ---------------------------------------------------------------------------
+# Forward kinetostatics (src/python/rod.rs; paper Section III, eqs 7-33).
+# World frame: base at the origin, reference tangent +z. Vectors given to or
+# returned by these classes are length-3 world-frame vectors unless noted;
+# body-frame offsets (routing) span the cross-section (x, y). Actuator forces
+# are tensions [N] (negative: the actuator pushes). No getter returns NaN.
+# ---------------------------------------------------------------------------
+
+_Vec3 = Sequence[float] | _FloatArray
+
+@final
+class Section:
+    """Cross-section of a body: ``Section.circle``, ``Section.rectangle`` or ``Section.custom``."""
+
+    @staticmethod
+    def circle(diameter: float) -> Section:
+        """Solid circle of ``diameter`` [m]."""
+    @staticmethod
+    def rectangle(width: float, height: float) -> Section:
+        """Solid rectangle: ``width`` [m] along body x, ``height`` [m] along body y."""
+    @staticmethod
+    def custom(area: float, ix: float, iy: float, j: float) -> Section:
+        """User-given area [m^2], second moments about body x and y [m^4], torsion constant [m^4]."""
+    @property
+    def properties(self) -> tuple[float, float, float, float]:
+        """``(area [m^2], ix [m^4], iy [m^4], j [m^4])``."""
+    def edge_distance(self, theta: float) -> float:
+        """Distance [m] from the centre line to the edge in body-frame direction angle ``theta`` [rad]
+        (a custom section is treated as the circle of its area)."""
+    @property
+    def kind(self) -> Literal["circle", "rectangle", "custom"]: ...
+
+@final
+class Routing:
+    """Body-frame path of an actuator: ``Routing.straight`` or ``Routing.helix``."""
+
+    @staticmethod
+    def straight(x: float, y: float) -> Routing:
+        """Parallel to the centre line at body-frame offset ``(x, y)`` [m]."""
+    @staticmethod
+    def helix(radius: float, rate: float, phase: float = 0.0) -> Routing:
+        """``r(s) = radius (cos(rate s + phase), sin(rate s + phase), 0)``: ``radius`` [m],
+        ``rate`` [rad/m] (positive: right-handed about +z), ``phase`` [rad]."""
+    def evaluate(self, s: float) -> tuple[_FloatArray, _FloatArray, _FloatArray]:
+        """``(r [m], r' [-], r'' [1/m])`` at arc length ``s`` [m], body frame, length 3 each."""
+
+@final
+class Body:
+    """The soft body (a Cosserat rod): geometry, material, reference strains, loads.
+
+    ``poisson`` (default 0.5) or ``shear_modulus`` [Pa] sets ``G_B``;
+    ``density`` [kg/m^3]; ``shear_coefficient`` ``k`` in ``K_nu = diag(k G A, k G A, E A)``;
+    ``nu_star`` [-] and ``omega_star`` [1/m] are the body-frame reference strains
+    (default ``(0, 0, 1)`` and zero; non-zero ``omega_star``: pre-curved);
+    ``gravity`` [m/s^2], ``distributed_force`` [N/m], ``distributed_moment``
+    [N m/m], ``tip_force`` [N], ``tip_moment`` [N m] in the world frame.
+    """
+
+    def __new__(
+        cls,
+        length: float,
+        section: Section,
+        youngs_modulus: float,
+        *,
+        poisson: float | None = None,
+        shear_modulus: float | None = None,
+        density: float = 0.0,
+        shear_coefficient: float = 1.0,
+        nu_star: _Vec3 | None = None,
+        omega_star: _Vec3 | None = None,
+        gravity: _Vec3 | None = None,
+        distributed_force: _Vec3 | None = None,
+        distributed_moment: _Vec3 | None = None,
+        tip_force: _Vec3 | None = None,
+        tip_moment: _Vec3 | None = None,
+    ) -> Self: ...
+    def replace(self, **changes: Any) -> Body:
+        """A copy with some fields replaced (same keywords as the constructor)."""
+    def kwargs(self) -> dict[str, Any]:
+        """Constructor keywords of this body (``shear_modulus`` rather than ``poisson``)."""
+    @property
+    def length(self) -> float:
+        """Length of the centre line [m]."""
+    @property
+    def section(self) -> Section: ...
+    @property
+    def youngs_modulus(self) -> float:
+        """``E_B`` [Pa]."""
+    @property
+    def shear_modulus(self) -> float:
+        """``G_B`` [Pa]."""
+    @property
+    def density(self) -> float:
+        """``psi`` [kg/m^3]."""
+    @property
+    def nu_star(self) -> _FloatArray:
+        """Reference linear strain [-], body frame."""
+    @property
+    def omega_star(self) -> _FloatArray:
+        """Reference angular strain [1/m], body frame."""
+    @property
+    def gravity(self) -> _FloatArray:
+        """Gravitational acceleration [m/s^2], world frame."""
+    @property
+    def tip_force(self) -> _FloatArray:
+        """Tip force [N], world frame."""
+    @property
+    def tip_moment(self) -> _FloatArray:
+        """Tip moment [N m], world frame."""
+    @property
+    def distributed_load(self) -> _FloatArray:
+        """Total distributed force ``psi A g + f`` [N/m], world frame."""
+    @property
+    def distributed_moment(self) -> _FloatArray:
+        """Distributed moment [N m/m], world frame."""
+    def stiffness(self) -> tuple[_FloatArray, _FloatArray]:
+        """``(K_nu [N], K_omega [N m^2])``, diagonal 3x3 matrices."""
+
+@final
+class Actuator:
+    """A string-like actuator: ``Actuator.tca`` (input: temperature [C]),
+    ``Actuator.tendon`` (input: tension [N]) or ``Actuator.linear_tendon``
+    (input: length pulled in at the base [m]). It runs from arc length
+    ``s_start`` [m] to ``s_end`` [m] (``None``: the tip); ``length_ratio`` is
+    the paper's ``L_i`` (``None``: the reference configuration is unstrained)."""
+
+    @staticmethod
+    def tca(
+        tca: Tca,
+        routing: Routing,
+        s_start: float = 0.0,
+        s_end: float | None = None,
+        length_ratio: float | None = None,
+    ) -> Actuator: ...
+    @staticmethod
+    def tendon(
+        routing: Routing,
+        s_start: float = 0.0,
+        s_end: float | None = None,
+        length_ratio: float | None = None,
+    ) -> Actuator: ...
+    @staticmethod
+    def linear_tendon(
+        stiffness: float,
+        routing: Routing,
+        s_start: float = 0.0,
+        s_end: float | None = None,
+        length_ratio: float | None = None,
+    ) -> Actuator:
+        """``stiffness`` [N/m]: tension ``k (pull + elongation)``, zero when slack."""
+    @property
+    def kind(self) -> Literal["tca", "tension", "linear_tendon"]: ...
+    @property
+    def input_name(self) -> str:
+        """Name and unit of the input, e.g. ``"temperature [C]"``."""
+    @property
+    def input_bounds(self) -> tuple[float, float]:
+        """``(lowest, highest)`` valid input."""
+    @property
+    def reference_input(self) -> float:
+        """Input of the passive (reference) state."""
+    @property
+    def routing(self) -> Routing: ...
+    @property
+    def s_start(self) -> float:
+        """Proximal anchor [m]."""
+    @property
+    def s_end(self) -> float:
+        """Distal anchor [m]; ``inf`` means the tip."""
+    @property
+    def length_ratio(self) -> float | None: ...
+    @property
+    def tca_model(self) -> Tca | None:
+        """The TCA, for TCA actuators."""
+    def tension(self, elongation: float, input: float) -> float:
+        """Tension [N] at total elongation ``elongation`` [m] and ``input``."""
+
+@disjoint_base
+class Robot:
+    """A body with its embedded actuators (see ``tcarod.Robot``)."""
+
+    def __new__(cls, body: Body, actuators: Sequence[Actuator] = ...) -> Self: ...
+    @property
+    def body(self) -> Body: ...
+    @property
+    def actuators(self) -> list[Actuator]: ...
+    @property
+    def reference_inputs(self) -> list[float]:
+        """Passive inputs (25 C for TCAs, zero for tendons)."""
+    def solve(
+        self,
+        inputs: float | Sequence[float] | _FloatArray,
+        *,
+        steps: int = 100,
+        tol: float = 1e-10,
+        max_iter: int = 50,
+        warm_start: Solution | None = None,
+    ) -> Solution:
+        """Forward kinetostatics for one input per actuator (temperature [C] for TCAs);
+        ``steps`` RK4 steps over the body. Raises ``ValueError`` on bad input and
+        ``ConvergenceError`` if Newton fails."""
+    def sweep(
+        self,
+        inputs: Sequence[Sequence[float] | _FloatArray] | _FloatArray,
+        *,
+        steps: int = 100,
+        tol: float = 1e-10,
+        max_iter: int = 50,
+    ) -> list[Solution]:
+        """Solve along rows of ``inputs`` (shape ``(k, n_actuators)``), each warm-started from the previous."""
+
+@final
+class Solution:
+    """A converged forward solution at ``n`` nodes; NumPy arrays, SI units,
+    world frame unless noted."""
+
+    @property
+    def robot(self) -> Robot: ...
+    @property
+    def s(self) -> _FloatArray:
+        """Arc length of each node [m], shape ``(n,)``."""
+    @property
+    def positions(self) -> _FloatArray:
+        """Centre-line positions [m], shape ``(n, 3)``."""
+    @property
+    def rotations(self) -> _FloatArray:
+        """Rotation matrices (body to world), shape ``(n, 3, 3)``."""
+    @property
+    def nu(self) -> _FloatArray:
+        """Linear strain [-], body frame, shape ``(n, 3)``."""
+    @property
+    def omega(self) -> _FloatArray:
+        """Angular strain [1/m], body frame, shape ``(n, 3)``."""
+    @property
+    def internal_force(self) -> _FloatArray:
+        """Internal force ``n`` [N], shape ``(n, 3)``."""
+    @property
+    def internal_moment(self) -> _FloatArray:
+        """Internal moment ``m`` [N m], shape ``(n, 3)``."""
+    @property
+    def elongation_profile(self) -> _FloatArray:
+        """Elongation of each actuator up to each node [m], shape ``(n, n_actuators)``."""
+    @property
+    def actuator_paths(self) -> list[_FloatArray]:
+        """Path ``p + R r_i`` [m] of each actuator over its span, ``(k_i, 3)`` each."""
+    @property
+    def tensions(self) -> _FloatArray:
+        """Actuator tensions [N] (negative: pushes), shape ``(n_actuators,)``."""
+    @property
+    def elongations(self) -> _FloatArray:
+        """Actuator total elongations [m], shape ``(n_actuators,)``."""
+    @property
+    def inputs(self) -> _FloatArray:
+        """Inputs solved for (temperature [C] for TCAs)."""
+    @property
+    def base_force(self) -> _FloatArray:
+        """Force [N] transmitted to the base by body and actuators (the reaction is its negative)."""
+    @property
+    def base_moment(self) -> _FloatArray:
+        """Moment [N m] about the origin transmitted to the base."""
+    @property
+    def tip_position(self) -> _FloatArray:
+        """Tip position [m], shape ``(3,)``."""
+    @property
+    def tip_rotation(self) -> _FloatArray:
+        """Tip rotation, shape ``(3, 3)``."""
+    @property
+    def iterations(self) -> int:
+        """Newton iterations used (including any fallback continuation)."""
+    @property
+    def evaluations(self) -> int:
+        """IVPs integrated."""
+    @property
+    def residual(self) -> float:
+        """Final residual (max-norm, dimensionless strain units)."""
+    @property
+    def unknowns(self) -> _FloatArray:
+        """Scaled shooting unknowns ``[nu(0), L omega(0), delta_i / L]``."""
+    def plot(self, **kwargs: Any) -> Figure:
+        """3-D plot of the shape with the actuators; see ``tcarod.plotting.plot_solution``."""
+
+def _experiment_robot(name: Literal["fig6_circle", "fig6_square"], gravity: bool) -> Robot:
+    """The Rust fixture ``name`` of ``src/experiments.rs`` (for tests; not public API)."""
+
+# ---------------------------------------------------------------------------
+# Inverse kinetostatics (src/python/inverse.rs; paper Section IV, eqs 34-43).
+# `Robot` and `Solution` are the rod classes stubbed above. Tip poses are
+# `[dp (m); dtheta (rad)]` in the world frame; tip wrenches `[F (N); M (N m)]`.
+# `groups[i]` is the actuation variable driving actuator `i` (the two legs of
+# a U-shaped TCA share one temperature: `groups=[0, 0]`); default: one
+# variable per actuator.
+# ---------------------------------------------------------------------------
+
+@final
+class InverseResult:
+    """Result of :func:`tip_inverse`: the final (or closest reachable) configuration."""
+
+    @property
+    def solution(self) -> Solution:
+        """Forward solution at :attr:`variables`."""
+    @property
+    def variables(self) -> list[float]:
+        """Actuation variables (temperatures [C] for TCAs), one per group."""
+    @property
+    def error(self) -> float:
+        """Remaining tip error [m] (plus weighted angle if an orientation was asked)."""
+    @property
+    def iterations(self) -> int:
+        """Jacobian evaluations (outer iterations)."""
+    @property
+    def reached(self) -> bool:
+        """Whether the target was reached to ``tol``."""
+    @property
+    def at_bound(self) -> list[bool]:
+        """Per variable: resting on a bound of its input range at the end."""
+    @property
+    def evaluations(self) -> int:
+        """IVPs integrated in total."""
+
+@final
+class BlockedResult:
+    """A blocked-tip solution: contact ``force`` [N] at actuation ``variables``."""
+
+    @property
+    def solution(self) -> Solution:
+        """Forward solution with the contact force applied at the tip."""
+    @property
+    def force(self) -> float:
+        """Contact force [N] with which the tip presses along the block normal."""
+    @property
+    def variables(self) -> list[float]:
+        """Actuation variables (temperatures [C] for TCAs)."""
+    @property
+    def iterations(self) -> int:
+        """Increments (incremental method) or Newton iterations (direct solves)."""
+    @property
+    def evaluations(self) -> int:
+        """IVPs integrated."""
+
+def sensitivities(
+    solution: Solution,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    scheme: Literal["forward", "central"] = "forward",
+) -> tuple[_FloatArray, _FloatArray]:
+    """``(J, C)`` at ``solution`` (eqs 41-42): ``J`` is ``6 x n_vars`` [m or rad per C],
+    ``C`` is ``6 x 6`` [m or rad per N or N m]."""
+
+def tip_inverse(
+    robot: Robot,
+    target: Sequence[float] | _FloatArray,
+    *,
+    start: Sequence[float] | _FloatArray | None = None,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    target_rotation: Sequence[Sequence[float]] | _FloatArray | None = None,
+    orientation_weight: float = 0.01,
+    tol: float = 1e-7,
+    max_iter: int = 50,
+    damping: float = 1e-6,
+    steps: int = 100,
+) -> InverseResult:
+    """Iterate the local inverse to put the tip at ``target`` [m]; unreachable
+    targets end at the closest configuration with ``reached=False``."""
+
+def blocked_force(
+    robot: Robot,
+    point: Sequence[float] | _FloatArray,
+    normal: Sequence[float] | _FloatArray,
+    variables: Sequence[float] | _FloatArray,
+    *,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+    warm_start: BlockedResult | None = None,
+) -> BlockedResult:
+    """Contact force [N] with the tip held on the plane through ``point`` [m]
+    with unit ``normal`` (the direction the tip presses in), at ``variables``."""
+
+def blocked_temperature(
+    robot: Robot,
+    point: Sequence[float] | _FloatArray,
+    normal: Sequence[float] | _FloatArray,
+    force: float,
+    start: Solution,
+    *,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    increments: int = 10,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> BlockedResult:
+    """The paper's incremental method (eq 43, ``dx = 0``): the single actuation
+    variable at which the blocked tip presses with ``force`` [N]."""
+
+def blocked_temperature_direct(
+    robot: Robot,
+    point: Sequence[float] | _FloatArray,
+    normal: Sequence[float] | _FloatArray,
+    force: float,
+    guess: float,
+    *,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> BlockedResult:
+    """Direct mixed solve: the actuation variable is a shooting unknown, the
+    contact ``force`` [N] is given (check of :func:`blocked_temperature`)."""

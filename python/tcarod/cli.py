@@ -1,4 +1,5 @@
-"""Command line: ``tcarod reproduce [NAME ...] [--out DIR] [--json]``.
+"""Command line: ``tcarod reproduce [NAME ...] [--out DIR] [--json]`` and
+``tcarod solve DESIGN.toml [--temperature T [T ...]] [--out DIR] [--json]``.
 
 ``tcarod reproduce fig5`` prints the predicted table of the paper's Fig. 5 and
 writes ``DIR/fig5.png`` (default ``DIR`` = ``tcarod-output``). Without a name,
@@ -68,7 +69,76 @@ def _parser() -> argparse.ArgumentParser:
         help="print one machine-readable JSON document on stdout instead of the tables "
         "(temperatures in C, lengths in m, forces in N)",
     )
+    _add_solve_parser(sub)
     return parser
+
+
+def _add_solve_parser(sub: Any) -> None:
+    """``tcarod solve DESIGN.toml --temperature T [T ...]`` (see :mod:`tcarod.design`)."""
+    sol = sub.add_parser(
+        "solve",
+        help="solve a robot design file (TOML) at given temperatures: print the tip pose, write a plot",
+        description="Load DESIGN.toml (see tcarod.design), solve the forward kinetostatics at the "
+        "given temperatures [C] (one per actuator, or one for all; default: the file's "
+        "temperatures_c), print the tip pose and write DIR/<design name>.png.",
+    )
+    sol.add_argument("design", metavar="DESIGN.toml", help="robot design file")
+    sol.add_argument("--temperature", "-T", nargs="+", type=float, metavar="T",
+                     help="temperature [C] of each actuator, or one for all")
+    sol.add_argument("--out", metavar="DIR", default=DEFAULT_OUT_DIR,
+                     help=f"directory for the PNG (default: {DEFAULT_OUT_DIR}/)")
+    sol.add_argument("--json", action="store_true",
+                     help="print one JSON document (tip position in m, rotation, tensions in N)")
+
+
+def _solve_design(design_path: str, temperatures: Sequence[float] | None, out_dir: Path, as_json: bool) -> int:
+    from .design import load_design
+
+    design = load_design(design_path)
+    n = len(design.robot.actuators)
+    temps: list[float] | None
+    if temperatures is None:
+        temps = design.temperatures_c
+        if temps is None:
+            raise ValueError(f"{design_path}: no temperatures_c in the file; give --temperature T [T ...] ({n} values)")
+    elif len(temperatures) == 1:
+        temps = [float(temperatures[0])] * n
+    elif len(temperatures) == n:
+        temps = [float(t) for t in temperatures]
+    else:
+        raise ValueError(f"--temperature: expected 1 or {n} values (one per actuator), got {len(temperatures)}")
+    solution = design.solve(temps)
+    png = out_dir / f"{Path(design_path).stem}.png"
+    from . import plotting
+
+    plot = getattr(plotting, "plot_solution", None)
+    if plot is not None:
+        fig = plot(solution)
+    else:  # pragma: no cover - plot_solution is part of tcarod.plotting
+        raise RuntimeError("tcarod.plotting.plot_solution is missing")
+    plotting.save_png(fig, png)
+    tip = [float(x) for x in solution.tip_position]
+    rot = [[float(x) for x in row] for row in solution.tip_rotation]
+    if as_json:
+        doc = {
+            "tcarod_version": __version__,
+            "design": str(design_path),
+            "temperature_c": temps,
+            "tip_position_m": tip,
+            "tip_rotation": rot,
+            "tensions_n": [float(x) for x in solution.tensions],
+            "iterations": int(solution.iterations),
+            "png_path": str(png),
+        }
+        print(json.dumps(doc, indent=2, allow_nan=False))
+    else:
+        print(f"design: {design_path} ({n} actuators)")
+        print("temperatures [C]: " + ", ".join(f"{t:g}" for t in temps))
+        print("tip position [mm]: " + ", ".join(f"{x * 1e3:.4f}" for x in tip))
+        print("tip tangent [-]:   " + ", ".join(f"{row[2]:.6f}" for row in rot))
+        print("tensions [mN]:     " + ", ".join(f"{float(x) * 1e3:.3f}" for x in solution.tensions))
+        print(f"wrote {png}")
+    return 0
 
 
 def _reproduce(names: Sequence[str], out_dir: Path, as_json: bool) -> int:
@@ -108,6 +178,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.command == "reproduce":
             return _reproduce(args.names, Path(args.out), args.json)
+        if args.command == "solve":
+            return _solve_design(args.design, args.temperature, Path(args.out), args.json)
     except (ValueError, ConvergenceError, OSError) as exc:
         message = " ".join(str(exc).split())  # one line
         print(f"tcarod: error: {type(exc).__name__}: {message}", file=sys.stderr)

@@ -7,8 +7,9 @@ use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use super::errors::{finite_output, Real};
 use super::tca::PyTca;
-use crate::error::Error;
+use crate::error::{Error, Result};
 use crate::rod::{Actuator, Body, ConstantTension, ForceLaw, LinearTendon, Robot, Routing, Section, TcaLaw};
 use crate::shooting::{solve, SolveOptions, Solution};
 
@@ -19,7 +20,36 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyActuator>()?;
     m.add_class::<PyRobot>()?;
     m.add_class::<PySolution>()?;
+    m.add_function(wrap_pyfunction!(experiment_robot, m)?)?;
     Ok(())
+}
+
+/// The Rust fixture `name` of `src/experiments.rs` (`"fig6_circle"`,
+/// `"fig6_square"`), standing upright under gravity if `gravity`. For tests
+/// that check the Python fixtures of `tcarod.experiments` against the Rust
+/// ones; not public API.
+#[pyfunction]
+#[pyo3(name = "_experiment_robot")]
+fn experiment_robot(name: &str, gravity: bool) -> PyResult<PyRobot> {
+    let robot = match name {
+        "fig6_circle" => crate::experiments::fig6_circle(gravity),
+        "fig6_square" => crate::experiments::fig6_square(gravity),
+        _ => return Err(Error::input("name", format!("unknown fixture {name:?} (fig6_circle, fig6_square)")).into()),
+    };
+    let body = PyBody { inner: robot.body.clone() };
+    let actuators = robot
+        .actuators
+        .iter()
+        .map(|a| PyActuator {
+            inner: a.clone(),
+            tca: None,
+        })
+        .collect();
+    Ok(PyRobot {
+        inner: Arc::new(robot),
+        body,
+        actuators,
+    })
 }
 
 /// Cross-section of a body. Build with `Section.circle`, `Section.rectangle`
@@ -34,24 +64,25 @@ pub struct PySection {
 impl PySection {
     /// Solid circle of `diameter` [m].
     #[staticmethod]
-    fn circle(diameter: f64) -> PyResult<Self> {
-        crate::error::positive("diameter [m]", diameter)?;
-        Ok(PySection { inner: Section::Circle { diameter } })
+    fn circle(diameter: Real) -> PyResult<Self> {
+        let diameter = crate::error::positive("diameter [m]", diameter.0)?;
+        Ok(checked_section("diameter [m]", Section::Circle { diameter })?)
     }
     /// Solid rectangle: `width` [m] along body x, `height` [m] along body y.
     #[staticmethod]
-    fn rectangle(width: f64, height: f64) -> PyResult<Self> {
-        crate::error::positive("width [m]", width)?;
-        crate::error::positive("height [m]", height)?;
-        Ok(PySection { inner: Section::Rectangle { width, height } })
+    fn rectangle(width: Real, height: Real) -> PyResult<Self> {
+        let width = crate::error::positive("width [m]", width.0)?;
+        let height = crate::error::positive("height [m]", height.0)?;
+        Ok(checked_section("width [m] / height [m]", Section::Rectangle { width, height })?)
     }
     /// User-given area [m^2], second moments about body x and y [m^4] and torsion constant [m^4].
     #[staticmethod]
-    fn custom(area: f64, ix: f64, iy: f64, j: f64) -> PyResult<Self> {
+    fn custom(area: Real, ix: Real, iy: Real, j: Real) -> PyResult<Self> {
+        let (area, ix, iy, j) = (area.0, ix.0, iy.0, j.0);
         for (n, v) in [("area [m^2]", area), ("ix [m^4]", ix), ("iy [m^4]", iy), ("j [m^4]", j)] {
             crate::error::positive(n, v)?;
         }
-        Ok(PySection { inner: Section::Custom { area, ix, iy, j } })
+        Ok(checked_section("area [m^2]", Section::Custom { area, ix, iy, j })?)
     }
     /// `(area [m^2], ix [m^4], iy [m^4], j [m^4])`.
     #[getter]
@@ -59,8 +90,9 @@ impl PySection {
         self.inner.properties()
     }
     /// Distance [m] from the centre line to the edge in body-frame direction angle `theta` [rad].
-    fn edge_distance(&self, theta: f64) -> f64 {
-        self.inner.edge_distance(theta)
+    fn edge_distance(&self, theta: Real) -> PyResult<f64> {
+        let theta = crate::error::finite("theta [rad]", theta.0)?;
+        Ok(finite_output("edge_distance [m]", self.inner.edge_distance(theta))?)
     }
     /// `"circle"`, `"rectangle"` or `"custom"`.
     #[getter]
@@ -76,6 +108,22 @@ impl PySection {
     }
 }
 
+/// A section whose derived properties (area, second moments, edge distance)
+/// are finite and positive: a size so small or large that they under- or
+/// overflow is rejected, naming `name`.
+fn checked_section(name: &str, inner: Section) -> Result<PySection> {
+    let (a, ix, iy, j) = inner.properties();
+    for v in [a, ix, iy, j, inner.edge_distance(0.0)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(Error::input(
+                name,
+                format!("derived section property {v} (area, second moment or edge distance) is not finite and > 0 in double precision"),
+            ));
+        }
+    }
+    Ok(PySection { inner })
+}
+
 /// Body-frame path of an actuator: `Routing.straight(x, y)` or `Routing.helix(radius, rate, phase)`.
 #[pyclass(name = "Routing", module = "tcarod._core", frozen)]
 #[derive(Clone)]
@@ -87,24 +135,31 @@ pub struct PyRouting {
 impl PyRouting {
     /// Parallel to the centre line at body-frame offset `(x, y)` [m].
     #[staticmethod]
-    fn straight(x: f64, y: f64) -> PyResult<Self> {
-        crate::error::finite("x [m]", x)?;
-        crate::error::finite("y [m]", y)?;
+    fn straight(x: Real, y: Real) -> PyResult<Self> {
+        let x = crate::error::finite("x [m]", x.0)?;
+        let y = crate::error::finite("y [m]", y.0)?;
         Ok(PyRouting { inner: Routing::Straight { x, y } })
     }
     /// Helix of `radius` [m] turning at `rate` [rad/m] from angle `phase` [rad].
     #[staticmethod]
-    #[pyo3(signature = (radius, rate, phase=0.0))]
-    fn helix(radius: f64, rate: f64, phase: f64) -> PyResult<Self> {
-        crate::error::non_negative("radius [m]", radius)?;
-        crate::error::finite("rate [rad/m]", rate)?;
-        crate::error::finite("phase [rad]", phase)?;
+    #[pyo3(signature = (radius, rate, phase=Real(0.0)), text_signature = "(radius, rate, phase=0.0)")]
+    fn helix(radius: Real, rate: Real, phase: Real) -> PyResult<Self> {
+        let radius = crate::error::non_negative("radius [m]", radius.0)?;
+        let rate = crate::error::finite("rate [rad/m]", rate.0)?;
+        let phase = crate::error::finite("phase [rad]", phase.0)?;
         Ok(PyRouting { inner: Routing::Helix { radius, rate, phase } })
     }
     /// `(r, r', r'')` at arc length `s` [m] as three length-3 arrays (body frame).
-    fn evaluate<'py>(&self, py: Python<'py>, s: f64) -> (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>) {
+    #[allow(clippy::type_complexity)]
+    fn evaluate<'py>(&self, py: Python<'py>, s: Real) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+        let s = crate::error::finite("s [m]", s.0)?;
         let (r, rp, rpp) = self.inner.eval(s);
-        (vec3(py, &r), vec3(py, &rp), vec3(py, &rpp))
+        for (name, v) in [("r [m]", &r), ("r' [-]", &rp), ("r'' [1/m]", &rpp)] {
+            for x in v.iter() {
+                finite_output(name, *x)?;
+            }
+        }
+        Ok((vec3(py, &r), vec3(py, &rp), vec3(py, &rpp)))
     }
     fn __repr__(&self) -> String {
         format!("Routing({:?})", self.inner)
@@ -115,16 +170,34 @@ fn vec3<'py>(py: Python<'py>, v: &Vector3<f64>) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, v.as_slice())
 }
 
-fn v3(name: &str, v: Option<[f64; 3]>, default: Vector3<f64>) -> PyResult<Vector3<f64>> {
+fn v3(name: &str, v: Option<[Real; 3]>, default: Vector3<f64>) -> PyResult<Vector3<f64>> {
     match v {
         None => Ok(default),
         Some(a) => {
             for (k, x) in a.iter().enumerate() {
-                crate::error::finite(&format!("{name}[{k}]"), *x)?;
+                crate::error::finite(&format!("{name}[{k}]"), x.0)?;
             }
-            Ok(Vector3::from(a))
+            Ok(Vector3::new(a[0].0, a[1].0, a[2].0))
         }
     }
+}
+
+/// Error unless the body's derived quantities (stiffnesses, weight per
+/// length) are finite and the stiffnesses positive, so that no getter can
+/// return inf or NaN.
+fn check_derived(b: &Body) -> Result<()> {
+    let (kv, kw) = b.stiffness();
+    for k in 0..3 {
+        for (name, v) in [("stiffness K_nu [N]", kv[(k, k)]), ("stiffness K_omega [N m^2]", kw[(k, k)])] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(Error::input(name, format!("is {v}: youngs_modulus / shear_modulus times the section properties leave double range")));
+            }
+        }
+    }
+    for (k, x) in b.distributed_load().iter().enumerate() {
+        finite_output(&format!("distributed_load [N/m][{k}] (density x area x gravity)"), *x)?;
+    }
+    Ok(())
 }
 
 /// The soft body (Cosserat rod): geometry, material, reference strains, loads.
@@ -139,26 +212,31 @@ pub struct PyBody {
 #[pymethods]
 impl PyBody {
     #[new]
-    #[pyo3(signature = (length, section, youngs_modulus, *, poisson=None, shear_modulus=None, density=0.0,
-        shear_coefficient=1.0, nu_star=None, omega_star=None, gravity=None, distributed_force=None,
-        distributed_moment=None, tip_force=None, tip_moment=None))]
+    #[pyo3(signature = (length, section, youngs_modulus, *, poisson=None, shear_modulus=None, density=Real(0.0),
+        shear_coefficient=Real(1.0), nu_star=None, omega_star=None, gravity=None, distributed_force=None,
+        distributed_moment=None, tip_force=None, tip_moment=None),
+        text_signature = "(length, section, youngs_modulus, *, poisson=None, shear_modulus=None, density=0.0, \
+            shear_coefficient=1.0, nu_star=None, omega_star=None, gravity=None, distributed_force=None, \
+            distributed_moment=None, tip_force=None, tip_moment=None)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        length: f64,
+        length: Real,
         section: PySection,
-        youngs_modulus: f64,
-        poisson: Option<f64>,
-        shear_modulus: Option<f64>,
-        density: f64,
-        shear_coefficient: f64,
-        nu_star: Option<[f64; 3]>,
-        omega_star: Option<[f64; 3]>,
-        gravity: Option<[f64; 3]>,
-        distributed_force: Option<[f64; 3]>,
-        distributed_moment: Option<[f64; 3]>,
-        tip_force: Option<[f64; 3]>,
-        tip_moment: Option<[f64; 3]>,
+        youngs_modulus: Real,
+        poisson: Option<Real>,
+        shear_modulus: Option<Real>,
+        density: Real,
+        shear_coefficient: Real,
+        nu_star: Option<[Real; 3]>,
+        omega_star: Option<[Real; 3]>,
+        gravity: Option<[Real; 3]>,
+        distributed_force: Option<[Real; 3]>,
+        distributed_moment: Option<[Real; 3]>,
+        tip_force: Option<[Real; 3]>,
+        tip_moment: Option<[Real; 3]>,
     ) -> PyResult<Self> {
+        let (length, youngs_modulus, density, shear_coefficient) = (length.0, youngs_modulus.0, density.0, shear_coefficient.0);
+        let (poisson, shear_modulus) = (poisson.map(|r| r.0), shear_modulus.map(|r| r.0));
         crate::error::positive("length [m]", length)?;
         let mut b = match (poisson, shear_modulus) {
             (Some(_), Some(_)) => {
@@ -180,6 +258,7 @@ impl PyBody {
         b.tip_force = v3("tip_force", tip_force, Vector3::zeros())?;
         b.tip_moment = v3("tip_moment", tip_moment, Vector3::zeros())?;
         b.validate()?;
+        check_derived(&b)?;
         Ok(PyBody { inner: b })
     }
 
@@ -299,7 +378,8 @@ pub struct PyActuator {
     tca: Option<PyTca>,
 }
 
-fn make_actuator(routing: PyRouting, s_start: f64, s_end: Option<f64>, length_ratio: Option<f64>, law: Arc<dyn ForceLaw>) -> PyResult<Actuator> {
+fn make_actuator(routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>, law: Arc<dyn ForceLaw>) -> PyResult<Actuator> {
+    let (s_start, s_end, length_ratio) = (s_start.0, s_end.map(|r| r.0), length_ratio.map(|r| r.0));
     crate::error::non_negative("s_start [m]", s_start)?;
     let mut a = Actuator::new(routing.inner, s_start, s_end.unwrap_or(f64::INFINITY), law);
     if let Some(e) = s_end {
@@ -316,8 +396,9 @@ fn make_actuator(routing: PyRouting, s_start: f64, s_end: Option<f64>, length_ra
 impl PyActuator {
     /// A TCA whose input is its temperature [C]. `s_end=None` anchors it at the tip.
     #[staticmethod]
-    #[pyo3(signature = (tca, routing, s_start=0.0, s_end=None, length_ratio=None))]
-    fn tca(tca: PyTca, routing: PyRouting, s_start: f64, s_end: Option<f64>, length_ratio: Option<f64>) -> PyResult<Self> {
+    #[pyo3(signature = (tca, routing, s_start=Real(0.0), s_end=None, length_ratio=None),
+        text_signature = "(tca, routing, s_start=0.0, s_end=None, length_ratio=None)")]
+    fn tca(tca: PyTca, routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>) -> PyResult<Self> {
         let law = Arc::new(TcaLaw(tca.inner.clone()));
         Ok(PyActuator {
             inner: make_actuator(routing, s_start, s_end, length_ratio, law)?,
@@ -326,8 +407,9 @@ impl PyActuator {
     }
     /// A tendon whose input is its tension [N] (>= 0).
     #[staticmethod]
-    #[pyo3(signature = (routing, s_start=0.0, s_end=None, length_ratio=None))]
-    fn tendon(routing: PyRouting, s_start: f64, s_end: Option<f64>, length_ratio: Option<f64>) -> PyResult<Self> {
+    #[pyo3(signature = (routing, s_start=Real(0.0), s_end=None, length_ratio=None),
+        text_signature = "(routing, s_start=0.0, s_end=None, length_ratio=None)")]
+    fn tendon(routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>) -> PyResult<Self> {
         Ok(PyActuator {
             inner: make_actuator(routing, s_start, s_end, length_ratio, Arc::new(ConstantTension))?,
             tca: None,
@@ -335,9 +417,10 @@ impl PyActuator {
     }
     /// An elastic tendon of `stiffness` [N/m] whose input is the length pulled in at the base [m].
     #[staticmethod]
-    #[pyo3(signature = (stiffness, routing, s_start=0.0, s_end=None, length_ratio=None))]
-    fn linear_tendon(stiffness: f64, routing: PyRouting, s_start: f64, s_end: Option<f64>, length_ratio: Option<f64>) -> PyResult<Self> {
-        crate::error::positive("stiffness [N/m]", stiffness)?;
+    #[pyo3(signature = (stiffness, routing, s_start=Real(0.0), s_end=None, length_ratio=None),
+        text_signature = "(stiffness, routing, s_start=0.0, s_end=None, length_ratio=None)")]
+    fn linear_tendon(stiffness: Real, routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>) -> PyResult<Self> {
+        let stiffness = crate::error::positive("stiffness [N/m]", stiffness.0)?;
         Ok(PyActuator {
             inner: make_actuator(routing, s_start, s_end, length_ratio, Arc::new(LinearTendon { stiffness }))?,
             tca: None,
@@ -386,9 +469,10 @@ impl PyActuator {
         self.tca.clone()
     }
     /// Tension [N] at total elongation `elongation` [m] and `input`.
-    fn tension(&self, elongation: f64, input: f64) -> PyResult<f64> {
-        self.inner.law.check_input(input)?;
-        Ok(self.inner.law.tension(elongation, input)?)
+    fn tension(&self, elongation: Real, input: Real) -> PyResult<f64> {
+        let elongation = crate::error::finite("elongation [m]", elongation.0)?;
+        self.inner.law.check_input(input.0)?;
+        Ok(finite_output("tension [N]", self.inner.law.tension(elongation, input.0)?)?)
     }
     fn __repr__(&self) -> String {
         format!(
@@ -423,16 +507,65 @@ pub(crate) fn options(steps: usize, tol: f64, max_iter: usize) -> PyResult<Solve
 
 #[derive(FromPyObject)]
 pub(crate) enum Inputs {
-    One(f64),
-    Many(Vec<f64>),
+    One(Real),
+    Many(Vec<Real>),
 }
 
 impl Inputs {
     pub(crate) fn into_vec(self) -> Vec<f64> {
         match self {
-            Inputs::One(x) => vec![x],
-            Inputs::Many(v) => v,
+            Inputs::One(x) => vec![x.0],
+            Inputs::Many(v) => v.into_iter().map(|x| x.0).collect(),
         }
+    }
+}
+
+/// A non-negative integer argument (a count): saturates instead of raising
+/// `OverflowError`, so that out-of-range values reach validation and fail
+/// with a `ValueError` naming the argument (negative -> 0, beyond `usize`
+/// -> `usize::MAX`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Count(pub usize);
+
+impl<'py> FromPyObject<'_, 'py> for Count {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'_, 'py, PyAny>) -> PyResult<Self> {
+        match obj.extract::<usize>() {
+            Ok(v) => Ok(Count(v)),
+            Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(obj.py()) => {
+                Ok(Count(if obj.gt(0)? { usize::MAX } else { 0 }))
+            }
+            Err(e) => Err(e),
+        }
+    }
+}
+
+/// Every number of a solution is finite (the IVP rejects non-finite
+/// derivatives, so this holds by construction; checked once more at the
+/// boundary so that no getter can hand NaN to Python).
+fn checked_solution(sol: Solution) -> Result<Solution> {
+    let vecs = sol
+        .positions
+        .iter()
+        .chain(&sol.nu)
+        .chain(&sol.omega)
+        .chain(&sol.internal_force)
+        .chain(&sol.internal_moment)
+        .chain(sol.actuator_paths.iter().flatten())
+        .chain([&sol.base_force, &sol.base_moment]);
+    let ok = vecs.flat_map(|v| v.iter()).all(|x| x.is_finite())
+        && sol.rotations.iter().all(|r| r.iter().all(|x| x.is_finite()))
+        && sol.s.iter().chain(&sol.tensions).chain(&sol.elongations).chain(&sol.unknowns).all(|x| x.is_finite())
+        && sol.elongation_profile.iter().flatten().all(|x| x.is_finite())
+        && sol.residual.is_finite();
+    if ok {
+        Ok(sol)
+    } else {
+        Err(Error::Integration {
+            s: sol.s.last().copied().unwrap_or(0.0),
+            reason: "the solution holds a non-finite value".into(),
+        })
     }
 }
 
@@ -476,22 +609,23 @@ impl PyRobot {
     /// Solve the forward kinetostatics for one input per actuator (temperature
     /// [C] for TCAs). `warm_start`: a nearby `Solution` of this robot.
     /// Raises `ValueError` on bad input and `ConvergenceError` if Newton fails.
-    #[pyo3(signature = (inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None))]
+    #[pyo3(signature = (inputs, *, steps=Count(100), tol=Real(1e-10), max_iter=Count(50), warm_start=None),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None)")]
     fn solve(
         slf: &Bound<'_, Self>,
         py: Python<'_>,
         inputs: Inputs,
-        steps: usize,
-        tol: f64,
-        max_iter: usize,
+        steps: Count,
+        tol: Real,
+        max_iter: Count,
         warm_start: Option<PyRef<'_, PySolution>>,
     ) -> PyResult<PySolution> {
         let this = slf.get();
-        let opts = options(steps, tol, max_iter)?;
+        let opts = options(steps.0, tol.0, max_iter.0)?;
         let q = inputs.into_vec();
         let robot = this.inner.clone();
         let warm = warm_start.map(|w| w.inner.clone());
-        let sol = py.detach(|| solve(&robot, &q, &opts, warm.as_ref()))?;
+        let sol = py.detach(|| solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution))?;
         Ok(PySolution {
             inner: sol,
             robot: slf.clone().unbind(),
@@ -500,11 +634,15 @@ impl PyRobot {
 
     /// Solve along rows of `inputs` (shape `(k, n_actuators)`), each warm-started
     /// from the previous one. Returns a list of `Solution`.
-    #[pyo3(signature = (inputs, *, steps=100, tol=1e-10, max_iter=50))]
-    fn sweep(slf: &Bound<'_, Self>, py: Python<'_>, inputs: Vec<Vec<f64>>, steps: usize, tol: f64, max_iter: usize) -> PyResult<Vec<PySolution>> {
-        let opts = options(steps, tol, max_iter)?;
+    #[pyo3(signature = (inputs, *, steps=Count(100), tol=Real(1e-10), max_iter=Count(50)),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50)")]
+    fn sweep(slf: &Bound<'_, Self>, py: Python<'_>, inputs: Vec<Vec<Real>>, steps: Count, tol: Real, max_iter: Count) -> PyResult<Vec<PySolution>> {
+        let opts = options(steps.0, tol.0, max_iter.0)?;
+        let inputs: Vec<Vec<f64>> = inputs.into_iter().map(|row| row.into_iter().map(|x| x.0).collect()).collect();
         let robot = slf.get().inner.clone();
-        let sols = py.detach(|| crate::shooting::sweep(&robot, &inputs, &opts))?;
+        let sols = py.detach(|| {
+            crate::shooting::sweep(&robot, &inputs, &opts)?.into_iter().map(checked_solution).collect::<Result<Vec<_>>>()
+        })?;
         Ok(sols
             .into_iter()
             .map(|s| PySolution {

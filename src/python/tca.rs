@@ -274,6 +274,25 @@ impl PyTca {
             .unbind())
     }
 
+    /// The fraction `fraction` (`0 < fraction <= 1`) of this TCA as a
+    /// segment in series: fibre length, coiled length and turns scaled by
+    /// `fraction`; same coil diameter, `alpha0`, `d0`, twist density,
+    /// chirality and material. Returns an instance of this object's class.
+    fn segment(slf: &Bound<'_, Self>, fraction: Real) -> PyResult<Py<PyAny>> {
+        let t = slf.get().inner.segment(fraction.0)?;
+        let chirality = match t.chirality() {
+            Chirality::Extension => "extension",
+            Chirality::Contraction => "contraction",
+        };
+        let mat = PyMaterial {
+            inner: t.material().clone(),
+        };
+        Ok(slf
+            .get_type()
+            .call1((t.fibre_length(), t.coiled_length(), t.coil_diameter(), t.turns(), chirality, mat))?
+            .unbind())
+    }
+
     #[getter]
     fn fibre_length(&self) -> f64 {
         self.inner.fibre_length()

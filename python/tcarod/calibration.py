@@ -1,0 +1,220 @@
+"""Calibration: fit a TCA's uncertain parameters to measured
+displacement-temperature data (experiments of the paper's Fig. 5 kind), with
+confidence intervals.
+
+Fitted parameters (any subset; the others stay at their given values):
+
+* ``youngs_modulus_slope_pa_per_c``: ``dE_T/dT`` [Pa/C] (``G_T`` follows with
+  constant ``G/E``, as in :class:`tcarod.Material`'s default);
+* ``expansion_scale``: a factor [-] on the expansion coefficient ``rho(T)``
+  (both its reference value and its slope), i.e. on the fibre-diameter
+  growth ``d/d0 - 1``;
+* ``friction_mass_kg``: a friction-equivalent mass [kg] added to the dead
+  weight, the same in every experiment;
+* ``friction_ratio``: a friction-equivalent mass as a fraction [-] of each
+  experiment's hanging mass (the paper's 2.5 g for 5 g and 5 g for 10 g are
+  a ratio of 0.5).
+
+One load alone hardly separates the modulus slope from the friction (both
+enter only through ``f11 F``): fit data from two or more loads together
+(pass lists of experiments and data), or fix the slope.
+
+Model of one measurement: a TCA (or one folded half of it) carrying the
+compressive force ``-(mass + friction) g x load_share`` at temperature ``T``
+has elongation :meth:`Tca.displacement`. Fit by
+``scipy.optimize.least_squares`` (trust-region reflective, finite-difference
+Jacobian) on scaled parameters.
+
+Confidence intervals (assumptions, check them before trusting the numbers):
+measurement errors are independent, zero-mean, of one common variance and
+only in the displacement (temperatures exact); the model is locally linear in
+the parameters over the interval, so the covariance is
+``s^2 (J^T J)^-1`` with ``s^2 = SSR / (n - p)`` and the interval is
+``estimate +- t_{n-p, 0.975} x standard error``. Near the onset of extension
+the model has a kink (coil contact), where the linearisation is poorest.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Final, Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+from .tca import Material, Tca
+
+__all__ = ["PARAMETERS", "CalibrationResult", "TcaExperiment", "calibrate"]
+
+FloatArray = npt.NDArray[np.float64]
+
+#: Fittable parameter names, with the scale [unit] used inside the optimiser.
+PARAMETERS: Final[dict[str, float]] = {
+    "youngs_modulus_slope_pa_per_c": 1e6,
+    "expansion_scale": 1.0,
+    "friction_mass_kg": 1e-3,
+    "friction_ratio": 0.1,
+}
+
+
+@dataclass(frozen=True)
+class TcaExperiment:
+    """What is known about an experiment: the TCA's geometry [m, turns], the
+    hanging mass [kg], the share of the weight one measured TCA carries
+    (0.5 for each half of the paper's folded TCA) and ``g`` [m/s^2]."""
+
+    fibre_length_m: float
+    coiled_length_m: float
+    coil_diameter_m: float
+    turns: float
+    mass_kg: float
+    load_share: float = 1.0
+    gravity_m_per_s2: float = 9.81
+    chirality: str = "extension"
+
+    def material(self, base: Material, youngs_modulus_slope_pa_per_c: float, expansion_scale: float) -> Material:
+        """``base`` with its modulus slope replaced and its expansion scaled."""
+        e, _, g, _, rho, rho_slope = base.coefficients
+        return Material(
+            youngs_modulus=e,
+            shear_modulus=g,
+            expansion=rho * expansion_scale,
+            youngs_modulus_slope=youngs_modulus_slope_pa_per_c,
+            expansion_slope=rho_slope * expansion_scale,
+            t_ref=base.t_ref,
+            t_min=base.t_min,
+            t_max=base.t_max,
+            name=f"{base.name} (calibrated)",
+        )
+
+    def predict(self, temperatures_c: FloatArray, base: Material, params: dict[str, float]) -> FloatArray:
+        """Displacement [m] at ``temperatures_c`` [C] for parameter values ``params``."""
+        mat = self.material(base, params["youngs_modulus_slope_pa_per_c"], params["expansion_scale"])
+        tca = Tca(self.fibre_length_m, self.coiled_length_m, self.coil_diameter_m, self.turns, self.chirality, mat)  # type: ignore[arg-type]
+        friction = params.get("friction_mass_kg", 0.0) + params.get("friction_ratio", 0.0) * self.mass_kg
+        force = -(self.mass_kg + friction) * self.gravity_m_per_s2 * self.load_share
+        return np.asarray(tca.displacement(force, temperatures_c), dtype=np.float64)
+
+
+@dataclass(frozen=True, eq=False)
+class CalibrationResult:
+    """Fitted parameters with standard errors and 95 % confidence intervals
+    (same units as the parameter names)."""
+
+    names: tuple[str, ...]
+    estimate: FloatArray
+    standard_error: FloatArray
+    ci_low: FloatArray
+    ci_high: FloatArray
+    covariance: FloatArray
+    residual_std_m: float
+    n_points: int
+    success: bool
+    message: str
+
+    def as_dict(self) -> dict[str, dict[str, float]]:
+        """``{name: {"estimate", "standard_error", "ci_low", "ci_high"}}``."""
+        return {
+            n: {
+                "estimate": float(self.estimate[k]),
+                "standard_error": float(self.standard_error[k]),
+                "ci_low": float(self.ci_low[k]),
+                "ci_high": float(self.ci_high[k]),
+            }
+            for k, n in enumerate(self.names)
+        }
+
+
+def calibrate(
+    experiment: TcaExperiment | Sequence[TcaExperiment],
+    temperatures_c: Sequence[float] | FloatArray | Sequence[Sequence[float] | FloatArray],
+    displacements_m: Sequence[float] | FloatArray | Sequence[Sequence[float] | FloatArray],
+    fit: Sequence[str] = tuple(PARAMETERS),
+    initial: dict[str, float] | None = None,
+    base: Material | None = None,
+    confidence: float = 0.95,
+) -> CalibrationResult:
+    """Fit ``fit`` (names from :data:`PARAMETERS`) to measured displacement [m]
+    against temperature [C]; parameters not fitted keep their ``initial``
+    value. Defaults: ``base`` material :meth:`Material.silver_coated_nylon`,
+    initial slope from it, expansion scale 1, no friction.
+
+    Several experiments (e.g. two loads) are fitted together by passing a
+    sequence of :class:`TcaExperiment` and one data array per experiment.
+
+    Needs scipy (``pip install scipy``). Raises ``ValueError`` on unknown
+    names, mismatched data or fewer points than parameters + 1.
+    """
+    from scipy import optimize, stats  # optional dependency: only calibration needs it
+
+    mat = Material.silver_coated_nylon() if base is None else base
+    if isinstance(experiment, TcaExperiment):
+        exps: list[TcaExperiment] = [experiment]
+        ts = [np.asarray(temperatures_c, dtype=np.float64)]
+        ys = [np.asarray(displacements_m, dtype=np.float64)]
+    else:
+        exps = list(experiment)
+        ts = [np.asarray(x, dtype=np.float64) for x in temperatures_c]
+        ys = [np.asarray(x, dtype=np.float64) for x in displacements_m]
+        if not (len(exps) == len(ts) == len(ys)) or not exps:
+            raise ValueError(f"give one temperature and one displacement array per experiment ({len(exps)})")
+    for k, (tk, yk) in enumerate(zip(ts, ys)):
+        if tk.shape != yk.shape or tk.ndim != 1:
+            raise ValueError(f"experiment {k}: temperatures_c {tk.shape} and displacements_m {yk.shape} must be 1-D of one length")
+    t = np.concatenate(ts)
+    y = np.concatenate(ys)
+    names = tuple(fit)
+    unknown = [n for n in names if n not in PARAMETERS]
+    if unknown or not names:
+        raise ValueError(f"fit: unknown parameter(s) {unknown}; choose from {list(PARAMETERS)}")
+    p = len(names)
+    if t.size < p + 1:
+        raise ValueError(f"need at least {p + 1} data points to fit {p} parameters, got {t.size}")
+    values: dict[str, float] = {
+        "youngs_modulus_slope_pa_per_c": mat.coefficients[1],
+        "expansion_scale": 1.0,
+        "friction_mass_kg": 0.0,
+        "friction_ratio": 0.0,
+    }
+    values.update(initial or {})
+    scale = np.array([PARAMETERS[n] for n in names])
+    x0 = np.array([values[n] for n in names]) / scale
+
+    def params_of(x: FloatArray) -> dict[str, float]:
+        d = dict(values)
+        d.update({n: float(v) for n, v in zip(names, x * scale)})
+        return d
+
+    def residual(x: FloatArray) -> FloatArray:
+        try:
+            p_ = params_of(x)
+            return np.concatenate([e.predict(tk, mat, p_) for e, tk in zip(exps, ts)]) - y
+        except ValueError:  # e.g. a material with E_T <= 0 in range: far from the data
+            return np.full_like(y, 1.0)
+
+    # Unbounded: a bound at the start (friction 0) stalls the trust region,
+    # and the linearised interval assumes an interior optimum anyway.
+    sol: Any = optimize.least_squares(residual, x0, x_scale="jac", diff_step=1e-6)
+    j = np.asarray(sol.jac, dtype=np.float64)
+    dof = max(t.size - p, 1)
+    ssr = float(np.sum(np.asarray(sol.fun) ** 2))
+    s2 = ssr / dof
+    jtj_inv = np.linalg.pinv(j.T @ j)
+    cov_scaled = s2 * jtj_inv
+    cov = np.asarray(cov_scaled * np.outer(scale, scale), dtype=np.float64)
+    se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    est = np.asarray(sol.x, dtype=np.float64) * scale
+    q = float(stats.t.ppf(0.5 + 0.5 * confidence, dof))
+    return CalibrationResult(
+        names=names,
+        estimate=est,
+        standard_error=se,
+        ci_low=est - q * se,
+        ci_high=est + q * se,
+        covariance=cov,
+        residual_std_m=math.sqrt(s2),
+        n_points=int(t.size),
+        success=bool(sol.success),
+        message=str(sol.message),
+    )

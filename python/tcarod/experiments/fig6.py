@@ -1,0 +1,410 @@
+"""Fig. 6 of the paper (Section V-B): bending radius of TCA-actuated soft
+manipulators against temperature.
+
+Two EcoFlex 10 manipulators (``psi = 1040 kg/m^3``, ``E_B = 37.8 kPa``,
+Poisson 0.5), 40 mm long, each with the paper's manipulator TCA
+(``D = 1.7 mm``, ``alpha0 = 15 deg``, ``N = 76.4`` turns, coiled length = body
+length, extension type), heated from 25 to 160 C in 5 C steps:
+
+* **circle** (Fig. 6 top): solid circle of 8 mm diameter, one TCA 3 mm off
+  the axis at body ``+x``, *pre-curved* toward ``-x`` (the paper: "the
+  manipulator with a circular cross section has some initial bending");
+* **square** (Fig. 6 bottom): 10 mm square, a U-shaped TCA = two TCAs
+  (the legs) 3 mm off the neutral layer on the same side (``x = +3 mm``).
+
+Assumptions (the paper does not print these; they match ``src/experiments.rs``):
+
+* the circle's pre-curvature radius is **0.2 m** (:data:`CIRCLE_PRECURVATURE_RADIUS_M`),
+  an assumed value: the paper prints none;
+* the U legs sit at ``y = +-2.5 mm`` (:data:`U_LEG_HALF_SPACING_M`); any
+  symmetric spacing gives the same planar bending.
+
+The measured quantity is the paper's bending radius: the circle through three
+points on the inner (concave) edge -- base, middle, tip
+(:func:`tcarod.inner_edge_radius`). The manipulators stood base-down in an
+oven, so the model runs upright with gravity ``(0, 0, -9.81) m/s^2`` and, for
+comparison, without gravity. Each sweep is solved warm-started
+(:meth:`Robot.sweep`) and, as a check, cold (every temperature from the
+reference guess); both iteration counts are reported.
+
+The paper prints no numeric data for Fig. 6 (``published_data = None``).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import textwrap
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Final, Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from ..rod import Actuator, Body, Robot, Routing, Section, Solution, inner_edge_radius
+from ..tca import Tca
+from . import GRAVITY_M_PER_S2, PublishedCurve, register
+
+__all__ = [
+    "CIRCLE_PRECURVATURE_RADIUS_M",
+    "FIG6",
+    "Fig6Curve",
+    "Fig6Experiment",
+    "Fig6Manipulator",
+    "Fig6Result",
+    "U_LEG_HALF_SPACING_M",
+    "manipulator_tca",
+    "predict_fig6",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+#: EcoFlex 10 (Section V): density [kg/m^3], Young's modulus [Pa], Poisson ratio [-].
+ECOFLEX10_DENSITY_KG_PER_M3: Final[float] = 1040.0
+ECOFLEX10_YOUNGS_MODULUS_PA: Final[float] = 37.8e3
+ECOFLEX10_POISSON: Final[float] = 0.5
+#: Offset of the manipulators' TCAs from the neutral axis [m] (Section V-B).
+TCA_OFFSET_M: Final[float] = 3e-3
+#: ASSUMPTION: half the spacing of the U-shaped TCA's legs along body y [m]
+#: (not printed; any symmetric spacing gives the same planar bending).
+U_LEG_HALF_SPACING_M: Final[float] = 2.5e-3
+#: ASSUMPTION: pre-curvature radius of the circular manipulator [m]; the paper
+#: says it was initially bent but prints no value.
+CIRCLE_PRECURVATURE_RADIUS_M: Final[float] = 0.2
+
+_ASSUMPTIONS: Final[tuple[str, ...]] = (
+    f"The circular manipulator's pre-curvature radius is {CIRCLE_PRECURVATURE_RADIUS_M} m (bent toward "
+    "-x, away from its TCA), an ASSUMED value: the paper states only that it had some initial bending.",
+    f"The U-shaped TCA's two legs sit at x = +{TCA_OFFSET_M * 1e3:g} mm, y = +-{U_LEG_HALF_SPACING_M * 1e3:g} mm "
+    "(the leg spacing is not printed; any symmetric spacing gives the same planar bending).",
+    "Each TCA (and each U leg) runs the whole body length, anchored at base and tip.",
+    "TCA material: Material.silver_coated_nylon() (values the paper does not print; see README).",
+)
+
+
+def manipulator_tca(length_m: float) -> Tca:
+    """The manipulators' extension TCA (Section V-B): ``D = 1.7 mm``,
+    ``alpha0 = 15 deg``, ``N = 76.4`` turns, coiled length ``length_m`` [m]."""
+    return Tca.from_pitch_angle(length_m, math.radians(15.0), 1.7e-3, 76.4, "extension")
+
+
+@dataclass(frozen=True)
+class Fig6Manipulator:
+    """One manipulator of Fig. 6. Lengths in m.
+
+    ``section`` is ``"circle"`` (``size_m`` = diameter) or ``"square"``
+    (``size_m`` = side). ``tca_y_m`` lists the body-frame ``y`` [m] of each
+    TCA leg, all at ``x = tca_offset_m``. ``precurvature_radius_m``: radius
+    [m] of the reference shape, bent toward ``-x`` (``None``: straight).
+    """
+
+    label: str
+    section: Literal["circle", "square"]
+    size_m: float
+    length_m: float
+    tca_offset_m: float
+    tca_y_m: tuple[float, ...]
+    precurvature_radius_m: float | None = None
+    #: Whether ``precurvature_radius_m`` is an assumption (not printed in the paper).
+    precurvature_is_assumption: bool = False
+
+    def robot(self, gravity: bool = True) -> Robot:
+        """The manipulator as a :class:`Robot`; upright (base down, gravity
+        ``(0, 0, -9.81) m/s^2``) if ``gravity``, weightless otherwise."""
+        section = (
+            Section.circle(self.size_m) if self.section == "circle" else Section.rectangle(self.size_m, self.size_m)
+        )
+        omega_star = (0.0, 0.0, 0.0)
+        if self.precurvature_radius_m is not None:
+            # curvature about body -y turns the tangent toward -x
+            omega_star = (0.0, -1.0 / self.precurvature_radius_m, 0.0)
+        body = Body(
+            self.length_m,
+            section,
+            ECOFLEX10_YOUNGS_MODULUS_PA,
+            poisson=ECOFLEX10_POISSON,
+            density=ECOFLEX10_DENSITY_KG_PER_M3,
+            omega_star=omega_star,
+            gravity=(0.0, 0.0, -GRAVITY_M_PER_S2) if gravity else None,
+        )
+        tca = manipulator_tca(self.length_m)
+        return Robot(body, [Actuator.tca(tca, Routing.straight(self.tca_offset_m, y)) for y in self.tca_y_m])
+
+
+@dataclass(frozen=True)
+class Fig6Experiment:
+    """Fig. 6: bending radius [m] against temperature [C] of the circular
+    (pre-curved) and square manipulators (see the module docstring)."""
+
+    manipulators: tuple[Fig6Manipulator, ...]
+    temperatures_c: tuple[float, ...]
+    assumptions: tuple[str, ...] = _ASSUMPTIONS
+    #: ``None``: the paper prints no numeric data for Fig. 6 (NOTES.md 4).
+    published_data: tuple[PublishedCurve, ...] | None = None
+    published_data_note: str = "The paper prints no numeric data for Fig. 6, only the plotted curves."
+    name: str = "fig6"
+    title: str = "Fig. 6: bending radius of the soft manipulators"
+    source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-B, Fig. 6"
+    #: RK4 steps over the body length.
+    steps: int = 100
+
+    def predict(self) -> Fig6Result:
+        """Predicted radii; see :func:`predict_fig6`."""
+        return predict_fig6(self)
+
+
+#: The paper's Fig. 6 experiment, 25-160 C in 5 C steps.
+FIG6: Final[Fig6Experiment] = Fig6Experiment(
+    manipulators=(
+        Fig6Manipulator(
+            label="circle (8 mm, pre-curved)",
+            section="circle",
+            size_m=8e-3,
+            length_m=0.040,
+            tca_offset_m=TCA_OFFSET_M,
+            tca_y_m=(0.0,),
+            precurvature_radius_m=CIRCLE_PRECURVATURE_RADIUS_M,
+            precurvature_is_assumption=True,
+        ),
+        Fig6Manipulator(
+            label="square (10 mm, U-shaped TCA)",
+            section="square",
+            size_m=10e-3,
+            length_m=0.040,
+            tca_offset_m=TCA_OFFSET_M,
+            tca_y_m=(U_LEG_HALF_SPACING_M, -U_LEG_HALF_SPACING_M),
+        ),
+    ),
+    temperatures_c=tuple(float(t) for t in range(25, 161, 5)),
+)
+
+
+@dataclass(frozen=True, eq=False)
+class Fig6Curve:
+    """Prediction for one manipulator, with or without gravity."""
+
+    manipulator: Fig6Manipulator
+    gravity: bool
+    temperatures_c: FloatArray
+    #: Inner-edge bending radius [m] at each temperature (``inf``: straight).
+    radii_m: FloatArray
+    #: Tip position [m] at each temperature, shape ``(k, 3)``.
+    tip_positions_m: FloatArray
+    #: Tension [N] of each TCA leg at each temperature, shape ``(k, n_legs)`` (< 0: pushes).
+    tensions_n: FloatArray
+    #: Newton iterations per temperature of the warm-started sweep (``Robot.sweep``).
+    iterations_warm: tuple[int, ...]
+    #: Newton iterations per temperature solved cold (from the reference guess).
+    iterations_cold: tuple[int, ...]
+    #: Largest relative difference of the cold and warm radii (same equations, same tolerance).
+    cold_warm_max_relative_difference: float
+    #: The warm-started solutions themselves.
+    solutions: tuple[Solution, ...]
+
+
+def _mm(x: float) -> str:
+    return "inf" if not math.isfinite(x) else f"{x * 1e3:.2f}"
+
+
+def _finite_or_none(x: float) -> float | None:
+    return float(x) if math.isfinite(x) else None
+
+
+@dataclass(frozen=True, eq=False)
+class Fig6Result:
+    """Predicted Fig. 6: for each manipulator a curve with and one without gravity."""
+
+    experiment: Fig6Experiment
+    #: ``(with gravity, without gravity)`` per manipulator, in the experiment's order.
+    curves: tuple[tuple[Fig6Curve, Fig6Curve], ...]
+
+    @property
+    def name(self) -> str:
+        """Registry name, ``"fig6"``."""
+        return self.experiment.name
+
+    @property
+    def temperatures_c(self) -> FloatArray:
+        """Temperatures [C] of the sweep."""
+        return np.asarray(self.experiment.temperatures_c, dtype=np.float64)
+
+    def gravity_radius_change_m(self, index: int) -> FloatArray:
+        """Radius with gravity minus radius without [m] for manipulator ``index``
+        (NaN where either radius is infinite)."""
+        with_g, without = self.curves[index]
+        diff = np.full(len(with_g.radii_m), np.nan)
+        ok = np.isfinite(with_g.radii_m) & np.isfinite(without.radii_m)
+        diff[ok] = with_g.radii_m[ok] - without.radii_m[ok]
+        return diff
+
+    def table(self) -> str:
+        """Per manipulator: radius [mm] with and without gravity against
+        temperature [C], the change gravity makes, and the Newton iterations
+        of the warm-started sweep and of cold solves."""
+        exp = self.experiment
+        lines = [f"{exp.title} ({exp.source})"]
+        lines.append("Inner-edge bending radius (circle through base, middle and tip of the concave edge).")
+        for a in exp.assumptions:
+            lines.extend(textwrap.wrap(f"Assumption: {a}", width=100))
+        head = (
+            f"{'T [C]':>6} | {'R gravity [mm]':>14} | {'R no gravity [mm]':>17} | {'gravity change [mm]':>19} | "
+            f"{'Newton it. warm g/no-g':>22} | {'cold g/no-g':>11}"
+        )
+        rule = "-" * len(head)
+        for k, (with_g, without) in enumerate(self.curves):
+            m = with_g.manipulator
+            lines += ["", f"{m.label}: {m.length_m * 1e3:g} mm long, TCA {m.tca_offset_m * 1e3:g} mm off the axis"
+                      + (f", pre-curvature radius {m.precurvature_radius_m * 1e3:g} mm (assumed)"
+                         if m.precurvature_radius_m is not None else ""), rule, head, rule]
+            change = self.gravity_radius_change_m(k)
+            for i, t in enumerate(self.temperatures_c):
+                ch = "n/a" if not math.isfinite(change[i]) else f"{change[i] * 1e3:+.2f}"
+                its = f"{with_g.iterations_warm[i]}/{without.iterations_warm[i]}"
+                cold = f"{with_g.iterations_cold[i]}/{without.iterations_cold[i]}"
+                lines.append(
+                    f"{t:>6.0f} | {_mm(with_g.radii_m[i]):>14} | {_mm(without.radii_m[i]):>17} | {ch:>19} | "
+                    f"{its:>22} | {cold:>11}"
+                )
+            lines.append(rule)
+            lines.append(
+                f"Newton iterations in total: warm {sum(with_g.iterations_warm)}/{sum(without.iterations_warm)}, "
+                f"cold {sum(with_g.iterations_cold)}/{sum(without.iterations_cold)} (gravity/no gravity); "
+                f"cold and warm radii agree to "
+                f"{max(with_g.cold_warm_max_relative_difference, without.cold_warm_max_relative_difference):.1e} "
+                "(relative)."
+            )
+            lines.append(_gravity_summary(with_g, without))
+        lines.append("")
+        if exp.published_data is None:
+            lines.append(f"Published data: none. {exp.published_data_note}")
+        return "\n".join(lines)
+
+    def to_json(self) -> dict[str, Any]:
+        """JSON-serialisable prediction: temperatures in C, lengths in m, forces in N;
+        ``null`` for an infinite radius (straight body)."""
+        exp = self.experiment
+        manipulators = []
+        for k, (with_g, without) in enumerate(self.curves):
+            m = with_g.manipulator
+
+            def case(c: Fig6Curve) -> dict[str, Any]:
+                return {
+                    "gravity_m_per_s2": [0.0, 0.0, -GRAVITY_M_PER_S2] if c.gravity else [0.0, 0.0, 0.0],
+                    "radius_m": [_finite_or_none(r) for r in c.radii_m],
+                    "tip_position_m": [[float(x) for x in p] for p in c.tip_positions_m],
+                    "tension_n": [[float(x) for x in row] for row in c.tensions_n],
+                    "newton_iterations_warm": list(c.iterations_warm),
+                    "newton_iterations_cold": list(c.iterations_cold),
+                    "cold_warm_max_relative_difference": c.cold_warm_max_relative_difference,
+                }
+
+            manipulators.append(
+                {
+                    "label": m.label,
+                    "section": m.section,
+                    "size_m": m.size_m,
+                    "length_m": m.length_m,
+                    "tca_offset_m": m.tca_offset_m,
+                    "tca_y_m": list(m.tca_y_m),
+                    "precurvature_radius_m": m.precurvature_radius_m,
+                    "precurvature_is_assumption": m.precurvature_is_assumption,
+                    "with_gravity": case(with_g),
+                    "without_gravity": case(without),
+                    "gravity_radius_change_m": [_finite_or_none(d) for d in self.gravity_radius_change_m(k)],
+                    "gravity_summary": _gravity_summary(with_g, without),
+                }
+            )
+        published: list[dict[str, Any]] | None = None
+        if exp.published_data is not None:
+            published = [
+                {"label": p.label, "temperature_c": list(p.temperatures_c), "mean": list(p.mean), "std": list(p.std)}
+                for p in exp.published_data
+            ]
+        return {
+            "name": exp.name,
+            "title": exp.title,
+            "source": exp.source,
+            "radius_definition": "circle through base, middle and tip points on the inner (concave) edge",
+            "assumptions": list(exp.assumptions),
+            "temperature_c": [float(t) for t in self.temperatures_c],
+            "rk4_steps": exp.steps,
+            "published_data": published,
+            "published_data_note": exp.published_data_note,
+            "manipulators": manipulators,
+        }
+
+    def plot(self, path: str | os.PathLike[str]) -> Path:
+        """Write the Fig. 6 plot (see :func:`tcarod.plotting.plot_fig6`) as PNG to ``path``."""
+        from ..plotting import plot_fig6, save_png  # matplotlib only when plotting
+
+        return save_png(plot_fig6(self), path)
+
+
+def _gravity_summary(with_g: Fig6Curve, without: Fig6Curve) -> str:
+    """One sentence: what gravity changes for one manipulator."""
+    t = with_g.temperatures_c
+    ok = np.isfinite(with_g.radii_m) & np.isfinite(without.radii_m)
+    rel = np.full(len(t), np.nan)
+    rel[ok] = (with_g.radii_m[ok] - without.radii_m[ok]) / without.radii_m[ok]
+    i_hot = len(t) - 1
+    text = (
+        f"Gravity (body upright) changes the radius by {rel[i_hot] * 100:+.1f}% at {t[i_hot]:.0f} C"
+        if ok[i_hot]
+        else "Gravity changes the radius"
+    )
+    if ok.any():
+        worst = int(np.nanargmax(np.abs(rel)))
+        text += f" and by up to {rel[worst] * 100:+.1f}% (at {t[worst]:.0f} C)"
+    r0_g, r0 = with_g.radii_m[0], without.radii_m[0]
+    text += f"; at {t[0]:.0f} C the radius is {_mm(r0_g)} mm with gravity, {_mm(r0)} mm without."
+    return text
+
+
+def _relative_difference(a: FloatArray, b: FloatArray) -> float:
+    both_inf = np.isinf(a) & np.isinf(b)
+    ok = np.isfinite(a) & np.isfinite(b)
+    if not np.all(ok | both_inf):
+        return math.inf  # one straight, the other not
+    if not ok.any():
+        return 0.0
+    return float(np.max(np.abs(a[ok] - b[ok]) / np.abs(b[ok])))
+
+
+def _curve(experiment: Fig6Experiment, m: Fig6Manipulator, gravity: bool) -> Fig6Curve:
+    robot = m.robot(gravity)
+    temps = np.asarray(experiment.temperatures_c, dtype=np.float64)
+    n = len(m.tca_y_m)
+    rows = [[float(t)] * n for t in temps]
+    warm = robot.sweep(rows, steps=experiment.steps)
+    cold = [robot.solve(row, steps=experiment.steps) for row in rows]
+    radii = np.array([inner_edge_radius(s) for s in warm])
+    radii_cold = np.array([inner_edge_radius(s) for s in cold])
+    return Fig6Curve(
+        manipulator=m,
+        gravity=gravity,
+        temperatures_c=temps,
+        radii_m=radii,
+        tip_positions_m=np.array([s.tip_position for s in warm]),
+        tensions_n=np.array([s.tensions for s in warm]),
+        iterations_warm=tuple(s.iterations for s in warm),
+        iterations_cold=tuple(s.iterations for s in cold),
+        cold_warm_max_relative_difference=_relative_difference(radii_cold, radii),
+        solutions=tuple(warm),
+    )
+
+
+def predict_fig6(experiment: Fig6Experiment = FIG6) -> Fig6Result:
+    """Bending radius [m] against temperature [C] for every manipulator of
+    ``experiment``, with gravity (upright, as in the oven) and without.
+
+    Raises ``ValueError`` on temperatures outside the TCA material's range and
+    ``tcarod.ConvergenceError`` if a solve fails.
+    """
+    curves = tuple((_curve(experiment, m, True), _curve(experiment, m, False)) for m in experiment.manipulators)
+    return Fig6Result(experiment=experiment, curves=curves)
+
+
+@register("fig6")
+def _fig6() -> Fig6Result:
+    return FIG6.predict()

@@ -1,0 +1,260 @@
+"""Fig. 8 of the paper (Section V-C): blocked-tip force of a TCA manipulator.
+
+The 26 mm square manipulator (10 mm EcoFlex section, U-shaped TCA at body
+``x = +3 mm``) stands upright in an oven with gravity. A thin copper wire
+tied to its tip runs to a force gauge; it is loose from 25 C to about 55 C
+(no force), then taut, and the gauge reads the force the bending tip pulls
+with as the temperature rises in 5 C steps. The paper prints no data points,
+only the rms difference of 0.74 mN between its model and the mean measured
+force.
+
+Blocking geometry (a modelling choice; the paper gives no wire geometry):
+the wire becomes taut exactly when the free tip reaches it, assumed at 55 C,
+so the block point is the free tip position at 55 C. The wire is horizontal
+and pulls the tip toward ``+x``; heating bends the body toward ``-x``, so the
+tip presses along ``-x`` against it. A taut wire fixes the tip's
+displacement along the wire only (small motions across it are free), which is
+the plane contact ``normal . (p(L) - point) = 0`` with ``normal = -x`` of
+:mod:`tcarod.inverse`. A wire cannot push: the force is 0 below 55 C.
+
+Method: at each temperature 55..160 C the direct mixed solve
+(:func:`tcarod.inverse.blocked_force`, the force is a shooting unknown),
+warm-started from the previous temperature; cross-checked at a few
+temperatures by the paper's incremental eq-43 method
+(:func:`tcarod.inverse.blocked_temperature`), which must return the
+temperature from that force.
+"""
+
+from __future__ import annotations
+
+import os
+import textwrap
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Final
+
+import numpy as np
+
+from ..manipulators import UPRIGHT, square_manipulator
+from ..inverse import blocked_force, blocked_temperature
+from ..rod import Robot
+from ..tca import Material
+from . import FloatArray, register
+
+__all__ = ["FIG8", "Fig8CrossCheck", "Fig8Experiment", "Fig8Result", "predict_fig8"]
+
+_BLOCKING: Final[str] = (
+    "The wire is loose until the free tip reaches it, assumed at 55 C (paper: loose from 25 to "
+    "about 55 C); the block point is the free tip position at 55 C. The wire is horizontal and "
+    "pulls toward +x, so the tip (bending toward -x when heated) presses along -x; a taut wire "
+    "fixes the tip displacement along it only (plane contact, normal -x). Force 0 below 55 C "
+    "(a wire cannot push)."
+)
+
+
+@dataclass(frozen=True)
+class Fig8Experiment:
+    """The Fig. 8 set-up; see the module docstring for the blocking geometry."""
+
+    length_m: float = 0.026
+    #: Temperature [C] at which the wire becomes taut (the paper: about 55 C).
+    taut_temperature_c: float = 55.0
+    temperatures_c: tuple[float, ...] = tuple(float(t) for t in range(25, 161, 5))
+    #: Temperatures [C] at which the incremental eq-43 method re-derives the temperature from the force.
+    cross_check_temperatures_c: tuple[float, ...] = (70.0, 100.0, 130.0, 160.0)
+    #: Direction in which the tip presses on the wire (world frame); the wire pulls along its negative.
+    normal: tuple[float, float, float] = (-1.0, 0.0, 0.0)
+    #: Gravity [m/s^2] in the body-aligned frame: upright.
+    gravity_m_per_s2: tuple[float, float, float] = UPRIGHT
+    #: The paper's only number for Fig. 8: rms of model minus mean measured force [N].
+    published_rms_n: float = 0.74e-3
+    #: ``None``: the paper prints no data points for Fig. 8 (NOTES.md 4).
+    published_data: None = None
+    published_data_note: str = (
+        "The paper prints no data points for Fig. 8, only the plot and the rms difference "
+        "0.74 mN between its model and the mean measured force."
+    )
+    blocking: str = field(default=_BLOCKING)
+    name: str = "fig8"
+    title: str = "Fig. 8: blocked-tip force of the 26 mm square manipulator"
+    source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-C, Fig. 8"
+
+    def robot(self, material: Material | None = None) -> Robot:
+        """The manipulator: :func:`tcarod.manipulators.square_manipulator` of ``length_m``, upright."""
+        return square_manipulator(self.length_m, gravity_m_per_s2=self.gravity_m_per_s2, material=material)
+
+    def predict(self, material: Material | None = None) -> Fig8Result:
+        """Predicted force against temperature; see :func:`predict_fig8`."""
+        return predict_fig8(self, material)
+
+
+#: The paper's Fig. 8 experiment (Section V-C).
+FIG8: Final[Fig8Experiment] = Fig8Experiment()
+
+
+@dataclass(frozen=True)
+class Fig8CrossCheck:
+    """The incremental eq-43 method fed the direct solve's force at one temperature."""
+
+    temperature_c: float
+    force_n: float
+    #: Temperature [C] the incremental method returns for ``force_n``.
+    incremental_temperature_c: float
+
+    @property
+    def difference_c(self) -> float:
+        """``incremental_temperature_c - temperature_c`` [C]."""
+        return self.incremental_temperature_c - self.temperature_c
+
+
+@dataclass(frozen=True, eq=False)
+class Fig8Result:
+    """Predicted Fig. 8."""
+
+    experiment: Fig8Experiment
+    temperatures_c: FloatArray
+    #: Force [N] the tip pulls the wire with (0 while the wire is slack).
+    forces_n: FloatArray
+    #: Block point [m]: the free tip position at the taut temperature.
+    block_point_m: tuple[float, float, float]
+    cross_checks: tuple[Fig8CrossCheck, ...]
+
+    @property
+    def name(self) -> str:
+        """Registry name, ``"fig8"``."""
+        return self.experiment.name
+
+    def force_at(self, temperature_c: float) -> float:
+        """Predicted force [N] at a temperature [C] of the sweep."""
+        k = int(np.argmin(np.abs(self.temperatures_c - temperature_c)))
+        if abs(self.temperatures_c[k] - temperature_c) > 1e-9:
+            raise ValueError(f"temperature {temperature_c} C is not in the sweep")
+        return float(self.forces_n[k])
+
+    def table(self) -> str:
+        """Force [mN] against temperature [C], the blocking geometry and the cross-checks."""
+        exp = self.experiment
+        p = self.block_point_m
+        lines = [
+            f"{exp.title} ({exp.source})",
+            *textwrap.wrap(f"Blocking: {exp.blocking}", 78),
+            f"Block point [mm]: ({p[0] * 1e3:.3f}, {p[1] * 1e3:.3f}, {p[2] * 1e3:.3f})",
+            "-" * 24,
+            f"{'T [C]':>8} | {'force [mN]':>11}",
+            "-" * 24,
+        ]
+        for t, f in zip(self.temperatures_c, self.forces_n):
+            lines.append(f"{t:>8.0f} | {f * 1e3:>11.3f}")
+        lines.append("-" * 24)
+        lines.append("Cross-check, incremental eq-43 method fed the direct force:")
+        for c in self.cross_checks:
+            lines.append(
+                f"  {c.temperature_c:.0f} C: {c.force_n * 1e3:.3f} mN -> {c.incremental_temperature_c:.6f} C "
+                f"(difference {c.difference_c:.2e} C)"
+            )
+        lines.append(f"Published data: none. {exp.published_data_note}")
+        return "\n".join(lines)
+
+    def to_json(self) -> dict[str, Any]:
+        """JSON-serialisable prediction; temperatures in C, forces in N, lengths in m."""
+        exp = self.experiment
+        return {
+            "name": exp.name,
+            "title": exp.title,
+            "source": exp.source,
+            "length_m": exp.length_m,
+            "gravity_m_per_s2": list(exp.gravity_m_per_s2),
+            "blocking": exp.blocking,
+            "taut_temperature_c": exp.taut_temperature_c,
+            "block_point_m": list(self.block_point_m),
+            "normal": list(exp.normal),
+            "method": "direct mixed solve (force as shooting unknown), warm-started along the sweep",
+            "temperature_c": [float(t) for t in self.temperatures_c],
+            "force_n": [float(f) for f in self.forces_n],
+            "cross_checks": [
+                {
+                    "temperature_c": c.temperature_c,
+                    "force_n": c.force_n,
+                    "incremental_temperature_c": c.incremental_temperature_c,
+                    "difference_c": c.difference_c,
+                }
+                for c in self.cross_checks
+            ],
+            "published_data": None,
+            "published_rms_n": exp.published_rms_n,
+            "published_data_note": exp.published_data_note,
+        }
+
+    def plot(self, path: str | os.PathLike[str]) -> Path:
+        """Write force [mN] against temperature [C] as PNG to ``path``."""
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+
+        from ..plotting import save_png
+
+        exp = self.experiment
+        fig = Figure(figsize=(4.5, 3.4), layout="constrained")
+        FigureCanvasAgg(fig)
+        ax = fig.add_subplot()
+        ax.plot(self.temperatures_c, self.forces_n * 1e3, "k-", marker=".", label="model (direct solve)")
+        ax.plot(
+            [c.temperature_c for c in self.cross_checks],
+            [c.force_n * 1e3 for c in self.cross_checks],
+            "o",
+            markerfacecolor="none",
+            color="tab:red",
+            label="incremental eq 43 check",
+        )
+        ax.axvline(exp.taut_temperature_c, color="0.6", linestyle=":", label=f"wire taut ({exp.taut_temperature_c:g} °C)")
+        ax.set_xlabel("Temperature [°C]")
+        ax.set_ylabel("Tip force [mN]")
+        ax.set_title("Fig. 8: blocked-tip force, 26 mm manipulator", fontsize="medium")
+        ax.grid(True, linewidth=0.3)
+        ax.legend(fontsize="small", loc="upper left")
+        fig.suptitle("Model prediction (the paper prints no data points; its rms: 0.74 mN)", fontsize="small")
+        return save_png(fig, path)
+
+
+def predict_fig8(experiment: Fig8Experiment = FIG8, material: Material | None = None) -> Fig8Result:
+    """Blocked-tip force [N] at each temperature [C] of ``experiment``.
+
+    Below the taut temperature the force is 0 (slack wire). From it on, the
+    direct mixed solve (:func:`tcarod.inverse.blocked_force`) warm-started
+    along the sweep; a negative solved force (the tip would move away from the
+    wire) is reported as 0. At ``cross_check_temperatures_c`` the incremental
+    eq-43 method (:func:`tcarod.inverse.blocked_temperature`, 10 increments)
+    is fed the force and must return the temperature.
+    """
+    robot = experiment.robot(material)
+    groups = [0] * len(robot.actuators)
+    t_taut = experiment.taut_temperature_c
+    free = robot.solve([t_taut] * len(robot.actuators))
+    tip = free.tip_position
+    point = (float(tip[0]), float(tip[1]), float(tip[2]))
+    temps = np.asarray(experiment.temperatures_c, dtype=np.float64)
+    forces = np.zeros_like(temps)
+    warm = None
+    for k, t in enumerate(temps):
+        if t < t_taut:
+            continue
+        warm = blocked_force(robot, point, experiment.normal, [float(t)], groups=groups, warm_start=warm)
+        forces[k] = max(warm.force, 0.0)
+    checks = []
+    for t in experiment.cross_check_temperatures_c:
+        f = float(np.interp(t, temps, forces)) if t in temps else None
+        if f is None or f <= 0.0:
+            continue
+        inc = blocked_temperature(robot, point, experiment.normal, f, free, groups=groups)
+        checks.append(Fig8CrossCheck(temperature_c=float(t), force_n=f, incremental_temperature_c=float(inc.variables[0])))
+    return Fig8Result(
+        experiment=experiment,
+        temperatures_c=temps,
+        forces_n=forces,
+        block_point_m=point,
+        cross_checks=tuple(checks),
+    )
+
+
+@register("fig8")
+def _fig8() -> Fig8Result:
+    return FIG8.predict()

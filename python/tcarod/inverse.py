@@ -1,0 +1,251 @@
+"""Inverse kinetostatics (paper Section IV, eqs 34-43), on the Rust core.
+
+* :func:`jacobian_and_compliance`: the actuation Jacobian ``J`` and the
+  compliance ``C`` of eqs (41)-(42) at a converged solution, from finite
+  differences of IVP solves around it (Rucker & Webster, ICRA 2011).
+* :func:`tip_position`: temperatures that put the tip at a target position,
+  iterating the local inverse ``dq = J^+ dx`` (damped least squares, within the
+  temperature range).
+* Blocked tip (Section V-C/V-D): the tip is held on a plane through ``point``
+  with unit ``normal``; the tip presses on it along ``+normal`` with contact
+  force ``f >= 0`` [N] (the environment pushes back with ``-f normal``).
+  :func:`blocked_force` gives ``f`` at given temperatures (direct mixed
+  solve: ``f`` is a shooting unknown); :func:`blocked_temperature` gives the
+  temperature for a wanted ``f`` by the paper's incremental method, eq (43)
+  with ``dx = 0``; :func:`blocked_temperature_direct` solves the same
+  equations directly (the temperature is a shooting unknown) as a check.
+
+Conventions: world frame with the base at the origin and the reference
+tangent along ``+z``; tip poses ``[dp (m); dtheta (rad)]``, tip wrenches
+``[F (N); M (N m)]``, temperatures in degrees C. ``groups[i]`` is the
+actuation variable driving actuator ``i``: the two legs of a U-shaped TCA
+share one temperature with ``groups=[0, 0]``; the default is one variable per
+actuator. Argument errors raise ``ValueError``; a failed solve raises
+:class:`tcarod.ConvergenceError`.
+"""
+
+from __future__ import annotations
+
+from typing import Literal, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _core
+from ._core import BlockedResult, InverseResult
+from .rod import Robot, Solution
+
+__all__ = [
+    "BlockedResult",
+    "InverseResult",
+    "blocked_force",
+    "blocked_temperature",
+    "blocked_temperature_direct",
+    "jacobian_and_compliance",
+    "tip_position",
+]
+
+FloatArray = npt.NDArray[np.float64]
+Vector = Union[Sequence[float], FloatArray]
+
+
+def _vector(name: str, value: Vector | float, size: int | None = None) -> list[float]:
+    """``value`` as a list of floats (``size`` of them if given); ``ValueError`` otherwise."""
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.ndim == 0:
+        arr = arr.reshape(1)
+    if arr.ndim != 1 or (size is not None and arr.shape[0] != size):
+        want = f"{size} numbers" if size is not None else "a 1-D sequence of numbers"
+        raise ValueError(f"{name} must be {want}, got shape {arr.shape}")
+    return [float(x) for x in arr]
+
+
+def _groups(groups: Sequence[int] | None) -> Optional[list[int]]:
+    if groups is None:
+        return None
+    out = []
+    for g in groups:
+        if isinstance(g, bool) or not isinstance(g, (int, np.integer)) or g < 0:
+            raise ValueError(f"groups must be non-negative integers, got {g!r}")
+        out.append(int(g))
+    return out
+
+
+def jacobian_and_compliance(
+    solution: Solution,
+    groups: Sequence[int] | None = None,
+    scheme: Literal["forward", "central"] = "forward",
+) -> tuple[FloatArray, FloatArray]:
+    """``(J, C)`` at a converged ``solution`` (eqs 41-42).
+
+    ``J = E_q - E_u B_u^-1 B_q`` is ``6 x n_vars``: tip ``[dp (m); dtheta (rad)]``
+    per unit actuation variable (per C for TCAs). ``C = E_W - E_u B_u^-1 B_W`` is
+    ``6 x 6``: tip pose per unit tip wrench ``[F (N); M (N m)]``. World frame;
+    evaluated at the solution's own tip loads (a blocked solution includes its
+    contact force). ``scheme="forward"`` integrates ``12 + 2N`` IVPs (the
+    paper's count; relative error ~1e-8), ``"central"`` twice as many (~1e-11).
+    """
+    if scheme not in ("forward", "central"):
+        raise ValueError(f"scheme must be 'forward' or 'central', got {scheme!r}")
+    j, c = _core.sensitivities(solution, _groups(groups), scheme)
+    return np.asarray(j, dtype=np.float64), np.asarray(c, dtype=np.float64)
+
+
+def tip_position(
+    robot: Robot,
+    target: Vector,
+    *,
+    start: Vector | None = None,
+    groups: Sequence[int] | None = None,
+    target_rotation: Sequence[Sequence[float]] | FloatArray | None = None,
+    orientation_weight: float = 0.01,
+    tol: float = 1e-7,
+    max_iter: int = 50,
+    damping: float = 1e-6,
+    steps: int = 100,
+) -> InverseResult:
+    """Actuation variables (temperatures [C]) that put the tip at ``target`` [m].
+
+    Iterates the paper's local inverse: at each iterate, ``J`` from
+    :func:`jacobian_and_compliance` (``12 + 2N`` IVPs), a damped least-squares
+    step ``dz = (J^T J + damping^2 I)^-1 J^T dx`` with variables frozen at a
+    bound they would cross, a backtracking line search on the tip error, one
+    BVP solve per trial. ``start``: initial variables (default: the reference
+    inputs, ambient temperature). With ``target_rotation`` (a 3x3 rotation
+    matrix) the orientation is matched too, angles weighted by
+    ``orientation_weight`` [m/rad].
+
+    An unreachable target is not an error: the result has ``reached=False``,
+    the closest configuration found, its ``error`` [m] and which variables rest
+    on a bound (``at_bound``).
+    """
+    rot = None
+    if target_rotation is not None:
+        m = np.asarray(target_rotation, dtype=np.float64)
+        if m.shape != (3, 3):
+            raise ValueError(f"target_rotation must be a 3x3 rotation matrix, got shape {m.shape}")
+        rot = [[float(x) for x in row] for row in m]
+    return _core.tip_inverse(
+        robot,
+        _vector("target [m]", target, 3),
+        start=None if start is None else _vector("start", start),
+        groups=_groups(groups),
+        target_rotation=rot,
+        orientation_weight=orientation_weight,
+        tol=tol,
+        max_iter=max_iter,
+        damping=damping,
+        steps=steps,
+    )
+
+
+def blocked_force(
+    robot: Robot,
+    point: Vector,
+    normal: Vector,
+    variables: Vector | float,
+    *,
+    groups: Sequence[int] | None = None,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+    warm_start: BlockedResult | None = None,
+) -> BlockedResult:
+    """Contact force [N] of a tip held on the plane through ``point`` [m] with
+    unit ``normal`` (the direction the tip presses in), at actuation
+    ``variables`` (temperatures [C], one per group).
+
+    A mixed boundary-value problem solved directly: the contact force is an
+    extra shooting unknown and ``normal . (p(L) - point) = 0`` an extra
+    residual. The force comes out negative if the tip would pull away from
+    the plane; whether contact holds is the caller's decision. ``warm_start``:
+    a nearby :class:`BlockedResult` (e.g. the previous temperature of a sweep).
+    """
+    return _core.blocked_force(
+        robot,
+        _vector("point [m]", point, 3),
+        _vector("normal", normal, 3),
+        _vector("variables", variables),
+        groups=_groups(groups),
+        steps=steps,
+        tol=tol,
+        max_iter=max_iter,
+        warm_start=warm_start,
+    )
+
+
+def blocked_temperature(
+    robot: Robot,
+    point: Vector,
+    normal: Vector,
+    force: float,
+    start: Solution | None = None,
+    *,
+    groups: Sequence[int] | None = None,
+    increments: int = 10,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> BlockedResult:
+    """The actuation variable (temperature [C]) at which the blocked tip
+    presses with ``force`` [N]: the paper's incremental method, eq (43).
+
+    From ``start``, a solution whose tip touches the plane with no force
+    (default: the free solution at the reference inputs, whose tip must then
+    lie on the plane), the contact force rises to ``force`` in ``increments``
+    steps; each step is ``dq = -(n^T J)^-1 n^T C dW`` with ``J`` and ``C`` from
+    finite differences of IVPs, then one BVP solve and a position correction
+    that keeps the tip on the plane. Needs exactly one actuation variable
+    (e.g. ``groups=[0, 0]`` for a U-shaped TCA). Raises ``ValueError`` if the
+    force needs a temperature outside the material's range.
+    """
+    if start is None:
+        start = robot.solve(robot.reference_inputs, steps=steps, tol=tol, max_iter=max_iter)
+    return _core.blocked_temperature(
+        robot,
+        _vector("point [m]", point, 3),
+        _vector("normal", normal, 3),
+        float(force),
+        start,
+        groups=_groups(groups),
+        increments=increments,
+        steps=steps,
+        tol=tol,
+        max_iter=max_iter,
+    )
+
+
+def blocked_temperature_direct(
+    robot: Robot,
+    point: Vector,
+    normal: Vector,
+    force: float,
+    guess: float | None = None,
+    *,
+    groups: Sequence[int] | None = None,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> BlockedResult:
+    """The same unknown as :func:`blocked_temperature`, solved directly: the
+    single actuation variable is an extra shooting unknown of the mixed
+    boundary-value problem with the contact ``force`` [N] given.
+
+    ``guess``: starting temperature [C] (default: the midpoint of the first
+    actuator's input range). Newton from a poor guess may fail with
+    :class:`tcarod.ConvergenceError`; the incremental method is the robust one.
+    """
+    if guess is None:
+        lo, hi = robot.actuators[0].input_bounds
+        guess = 0.5 * (lo + hi)
+    return _core.blocked_temperature_direct(
+        robot,
+        _vector("point [m]", point, 3),
+        _vector("normal", normal, 3),
+        float(force),
+        float(guess),
+        groups=_groups(groups),
+        steps=steps,
+        tol=tol,
+        max_iter=max_iter,
+    )

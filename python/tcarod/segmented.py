@@ -1,0 +1,66 @@
+"""Segmented (distributed) actuation: one TCA divided into segments in series,
+each anchored to the body at its ends and heated on its own (the leftmost TCA
+of the paper's Fig. 1(b): "we can apply different voltages to different
+segments of each TCA ... to enable distributed actuation").
+
+Each segment is an actuator of its own, from ``s_k`` to ``s_{k+1}`` [m] along
+the body, with the TCA law of :meth:`Tca.segment`: the whole TCA's fibre
+length, coiled length and turns scaled by the segment's share of the span,
+so the same pitch angle, fibre diameter and twist density. Anchoring every
+segment to the body is what makes the actuation *distributed*: a segment's
+force acts only between its own anchors.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Sequence
+
+import numpy as np
+
+from .rod import Actuator
+from .tca import Tca
+
+__all__ = ["segment_bounds", "segmented_actuators"]
+
+
+def segment_bounds(segments: int | Sequence[float], s_start: float, s_end: float) -> list[tuple[float, float]]:
+    """Consecutive ``(s_start, s_end)`` [m] of the segments over ``[s_start, s_end]``.
+
+    ``segments``: a number of equal segments, or the fractions of the span
+    (positive, summing to 1), proximal first.
+    """
+    if not (np.isfinite(s_start) and np.isfinite(s_end) and 0.0 <= s_start < s_end):
+        raise ValueError(f"invalid span [m]: need 0 <= s_start < s_end, got s_start={s_start}, s_end={s_end}")
+    if isinstance(segments, (int, np.integer)):
+        if segments < 1:
+            raise ValueError(f"invalid segments = {segments}: need at least 1")
+        fractions = np.full(int(segments), 1.0 / int(segments))
+    else:
+        fractions = np.asarray(segments, dtype=np.float64)
+        if fractions.ndim != 1 or fractions.size == 0 or not np.all(np.isfinite(fractions)) or np.any(fractions <= 0.0):
+            raise ValueError(f"invalid segments = {list(segments)}: need positive fractions of the span")
+        if abs(float(fractions.sum()) - 1.0) > 1e-9:
+            raise ValueError(f"invalid segments = {list(segments)}: fractions sum to {fractions.sum()}, not 1")
+    edges = s_start + (s_end - s_start) * np.concatenate(([0.0], np.cumsum(fractions)))
+    edges[-1] = s_end  # exact distal anchor despite rounding
+    return [(float(a), float(b)) for a, b in zip(edges[:-1], edges[1:])]
+
+
+def segmented_actuators(
+    tca: Tca,
+    routing: Any,
+    segments: int | Sequence[float],
+    s_start: float,
+    s_end: float,
+) -> list[Any]:
+    """Actuators for ``tca``, spanning ``[s_start, s_end]`` [m] along ``routing``,
+    divided into segments in series (proximal first).
+
+    ``segments``: a number of equal segments or the fractions of the span.
+    Segment ``k`` is ``Actuator.tca(tca.segment(f_k), routing, s_k, s_{k+1})``;
+    give it one temperature [C] per segment when solving. With one segment
+    this is the whole TCA between the same anchors.
+    """
+    bounds = segment_bounds(segments, s_start, s_end)
+    span = s_end - s_start
+    return [Actuator.tca(tca.segment((b - a) / span) if len(bounds) > 1 else tca, routing, a, b) for a, b in bounds]

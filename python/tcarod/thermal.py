@@ -1,0 +1,512 @@
+"""Voltage to temperature: a lumped electro-thermal model of a Joule-heated TCA,
+and quasi-static shape trajectories of a robot driven by voltages.
+
+Model (Sun & Zhao, T-RO 2022 code, ``thermal_model.m``; NOTES.md section 5)::
+
+    m c_p dT/dt = V^2 / R - h A (T - T_amb)
+
+* ``m = density x threads x pi r^2 l`` [kg]: the threads' volume (``r`` the
+  thread radius, 0.1 mm for the paper's 0.2 mm Shieldex thread; ``l`` the
+  twisted-fibre length);
+* ``A = threads x 2 pi r l`` [m^2]: the threads' lateral surface;
+* ``density = 1127 kg/m^3``, ``c_p = 2000 J/(kg K)``, ``h = 23 W/(m^2 K)``.
+
+The time constant ``m c_p / (h A) = density c_p r / (2 h)`` does not depend on
+the length or the number of threads: 4.90 s with these coefficients. NOTES.md
+quotes "about 3-4 s"; the coefficients above do not give that. (The source
+code computes its mass as ``density^2 V / 1000``, 1.127 times the threads'
+mass, from *one* fibre of radius ``r_t`` with three fibres' surface; its time
+constant is about ``18400 r_t`` s/m, 3-4 s for ``r_t`` = 0.16-0.22 mm.) This
+module follows the coefficients as stated; pass your own to change them.
+
+Resistance is a **required** input, with no default: a TCA's resistance
+depends on the thread, the number of threads, the twist and the coiling, and
+changes with temperature and strain (the paper's refs [24], [25] use that
+change for self-sensing). Measure it, or take the linear resistance of the
+thread from its datasheet (Shieldex publishes ohms per metre for its
+silver-coated nylon threads) times the fibre length divided by the number of
+threads in parallel. Give it as a constant [ohm], a :class:`LinearResistance`
+``R0 (1 + alpha_R (T - T_ref) + k_strain strain)``, or any callable
+``R(temperature_c, strain) -> ohm``. Constant resistance and piecewise-constant
+voltage give exact exponentials; otherwise a fixed-step RK4 integrates.
+
+Temperatures are never clipped: a steady state above the material's ``t_max``
+raises ``ValueError``; a transient that exceeds it is reported
+(:attr:`TemperatureTrajectory.exceeds_t_max_at_s`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable, Final, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = [
+    "DENSITY_KG_PER_M3",
+    "HEAT_TRANSFER_W_PER_M2K",
+    "SPECIFIC_HEAT_J_PER_KGK",
+    "THREAD_RADIUS_M",
+    "LinearResistance",
+    "ShapeTrajectory",
+    "TemperatureTrajectory",
+    "ThermalModel",
+    "VoltageProfile",
+    "plot_shape_trajectory",
+    "plot_step_response",
+    "quasi_static_trajectory",
+    "solve_with_voltages",
+    "steady_temperatures",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+#: Fibre density [kg/m^3] (thermal_model.m).
+DENSITY_KG_PER_M3: Final[float] = 1127.0
+#: Specific heat [J/(kg K)] (thermal_model.m: between silver 2400... and nylon 1700).
+SPECIFIC_HEAT_J_PER_KGK: Final[float] = 2000.0
+#: Convective heat-transfer coefficient [W/(m^2 K)] (thermal_model.m, "used 23 for dynamics").
+HEAT_TRANSFER_W_PER_M2K: Final[float] = 23.0
+#: Radius [m] of the paper's 0.2 mm silver-coated nylon thread.
+THREAD_RADIUS_M: Final[float] = 0.1e-3
+
+
+@dataclass(frozen=True)
+class LinearResistance:
+    """``R = r0_ohm (1 + alpha_per_c (T - t_ref_c) + strain_coefficient strain)`` [ohm].
+
+    ``strain`` is the TCA's elongation over its coiled length [-]. All
+    coefficients are the user's (measured); none has a default value in the
+    literature that would fit every TCA.
+    """
+
+    r0_ohm: float
+    alpha_per_c: float = 0.0
+    t_ref_c: float = 25.0
+    strain_coefficient: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.r0_ohm) and self.r0_ohm > 0.0):
+            raise ValueError(f"invalid r0_ohm = {self.r0_ohm}: need a finite resistance > 0 ohm")
+        for name in ("alpha_per_c", "t_ref_c", "strain_coefficient"):
+            if not math.isfinite(getattr(self, name)):
+                raise ValueError(f"invalid {name} = {getattr(self, name)}: need a finite number")
+
+    def __call__(self, temperature_c: float, strain: float = 0.0) -> float:
+        return self.r0_ohm * (1.0 + self.alpha_per_c * (temperature_c - self.t_ref_c) + self.strain_coefficient * strain)
+
+    @property
+    def is_constant(self) -> bool:
+        """True if neither temperature nor strain changes it."""
+        return self.alpha_per_c == 0.0 and self.strain_coefficient == 0.0
+
+
+Resistance = Union[float, LinearResistance, Callable[[float, float], float]]
+
+
+@dataclass(frozen=True)
+class VoltageProfile:
+    """Piecewise-constant voltage: ``voltages_v[k]`` [V] from ``times_s[k]`` [s]
+    until ``times_s[k+1]`` (the last one holds on). ``times_s[0]`` is the start."""
+
+    times_s: tuple[float, ...]
+    voltages_v: tuple[float, ...]
+
+    def __post_init__(self) -> None:
+        t = np.asarray(self.times_s, dtype=np.float64)
+        v = np.asarray(self.voltages_v, dtype=np.float64)
+        if t.ndim != 1 or t.size == 0 or t.shape != v.shape:
+            raise ValueError("times_s and voltages_v must be non-empty sequences of the same length")
+        if not (np.all(np.isfinite(t)) and np.all(np.isfinite(v))):
+            raise ValueError("times_s [s] and voltages_v [V] must be finite")
+        if np.any(np.diff(t) <= 0.0):
+            raise ValueError(f"times_s [s] must increase strictly, got {list(self.times_s)}")
+
+    @classmethod
+    def step(cls, voltage_v: float, at_s: float = 0.0) -> VoltageProfile:
+        """0 V until ``at_s`` [s], then ``voltage_v`` [V] (from t = 0 if ``at_s`` = 0)."""
+        if at_s == 0.0:
+            return cls((0.0,), (float(voltage_v),))
+        return cls((0.0, float(at_s)), (0.0, float(voltage_v)))
+
+    def __call__(self, t_s: float) -> float:
+        k = int(np.searchsorted(np.asarray(self.times_s), t_s, side="right")) - 1
+        return float(self.voltages_v[max(k, 0)])
+
+
+@dataclass(frozen=True, eq=False)
+class TemperatureTrajectory:
+    """Temperature [C] of one TCA at ``time_s`` [s], with the voltage [V] and
+    Joule power [W] at those instants."""
+
+    time_s: FloatArray
+    temperature_c: FloatArray
+    voltage_v: FloatArray
+    power_w: FloatArray
+    t_max_c: float
+    method: str
+
+    @property
+    def exceeds_t_max_at_s(self) -> float | None:
+        """First sample time [s] above the material's ``t_max`` [C], or ``None``."""
+        over = np.nonzero(self.temperature_c > self.t_max_c)[0]
+        return None if over.size == 0 else float(self.time_s[over[0]])
+
+
+@dataclass(frozen=True)
+class ThermalModel:
+    """Lumped electro-thermal model of one Joule-heated TCA (see the module docstring).
+
+    ``fibre_length_m``: twisted-fibre length ``l`` [m] (``Tca.fibre_length``);
+    ``threads``: number of threads twisted together; ``resistance``: [ohm],
+    required (see the module docstring). Temperatures in C, times in s.
+    """
+
+    fibre_length_m: float
+    threads: int
+    resistance: Resistance
+    thread_radius_m: float = THREAD_RADIUS_M
+    density_kg_per_m3: float = DENSITY_KG_PER_M3
+    specific_heat_j_per_kgk: float = SPECIFIC_HEAT_J_PER_KGK
+    heat_transfer_w_per_m2k: float = HEAT_TRANSFER_W_PER_M2K
+    ambient_c: float = 25.0
+    t_max_c: float = 160.0
+    _r: Callable[[float, float], float] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        for name in ("fibre_length_m", "thread_radius_m", "density_kg_per_m3", "specific_heat_j_per_kgk", "heat_transfer_w_per_m2k"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0.0):
+                raise ValueError(f"invalid {name} = {v!r}: need a finite number > 0")
+        if not (isinstance(self.threads, int) and self.threads >= 1):
+            raise ValueError(f"invalid threads = {self.threads!r}: need an integer >= 1")
+        if not (math.isfinite(self.ambient_c) and math.isfinite(self.t_max_c) and self.t_max_c > self.ambient_c):
+            raise ValueError(f"invalid ambient_c = {self.ambient_c}, t_max_c = {self.t_max_c}: need ambient < t_max")
+        r = self.resistance
+        if r is None:
+            raise ValueError("resistance [ohm] is required: give an ohm value, a LinearResistance or a callable R(T, strain)")
+        if isinstance(r, (int, float)):
+            if not (math.isfinite(r) and r > 0.0):
+                raise ValueError(f"invalid resistance = {r} ohm: need a finite value > 0")
+            const = float(r)
+            fn: Callable[[float, float], float] = lambda t, e: const  # noqa: E731
+        elif callable(r):
+            fn = r
+        else:
+            raise TypeError(f"resistance must be a number [ohm], a LinearResistance or a callable, not {type(r).__name__}")
+        object.__setattr__(self, "_r", fn)
+
+    # -- lumped parameters ---------------------------------------------------
+    @property
+    def mass_kg(self) -> float:
+        """Threads' mass ``density x threads x pi r^2 l`` [kg]."""
+        return self.density_kg_per_m3 * self.threads * math.pi * self.thread_radius_m**2 * self.fibre_length_m
+
+    @property
+    def area_m2(self) -> float:
+        """Cooled surface ``threads x 2 pi r l`` [m^2]."""
+        return self.threads * 2.0 * math.pi * self.thread_radius_m * self.fibre_length_m
+
+    @property
+    def heat_capacity_j_per_k(self) -> float:
+        """``m c_p`` [J/K]."""
+        return self.mass_kg * self.specific_heat_j_per_kgk
+
+    @property
+    def conductance_w_per_k(self) -> float:
+        """``h A`` [W/K]."""
+        return self.heat_transfer_w_per_m2k * self.area_m2
+
+    @property
+    def time_constant_s(self) -> float:
+        """``m c_p / (h A)`` [s] (with constant resistance the response is ``1 - exp(-t/tau)``)."""
+        return self.heat_capacity_j_per_k / self.conductance_w_per_k
+
+    @property
+    def constant_resistance(self) -> bool:
+        """True if the resistance depends on neither temperature nor strain."""
+        r = self.resistance
+        return isinstance(r, (int, float)) or (isinstance(r, LinearResistance) and r.is_constant)
+
+    def resistance_ohm(self, temperature_c: float, strain: float = 0.0) -> float:
+        """Resistance [ohm] at ``temperature_c`` [C] and ``strain`` [-]; ``ValueError`` if not > 0."""
+        r = float(self._r(temperature_c, strain))
+        if not (math.isfinite(r) and r > 0.0):
+            raise ValueError(f"resistance = {r} ohm at {temperature_c} C, strain {strain}: need a finite value > 0")
+        return r
+
+    def power_w(self, voltage_v: float, temperature_c: float, strain: float = 0.0) -> float:
+        """Joule power ``V^2 / R`` [W]."""
+        return voltage_v * voltage_v / self.resistance_ohm(temperature_c, strain)
+
+    def rate_c_per_s(self, voltage_v: float, temperature_c: float, strain: float = 0.0) -> float:
+        """``dT/dt`` [C/s] of the model."""
+        q = self.power_w(voltage_v, temperature_c, strain) - self.conductance_w_per_k * (temperature_c - self.ambient_c)
+        return q / self.heat_capacity_j_per_k
+
+    # -- steady state ----------------------------------------------------------
+    def steady_temperature(self, voltage_v: float, strain: float = 0.0) -> float:
+        """Steady temperature [C] under ``voltage_v`` [V]: ``T_amb + V^2 / (R h A)``
+        (solved for ``T`` if ``R`` depends on it). ``ValueError`` above ``t_max_c``."""
+        v = float(voltage_v)
+        if not math.isfinite(v):
+            raise ValueError(f"invalid voltage = {voltage_v} V")
+        ha = self.conductance_w_per_k
+
+        def g(t: float) -> float:
+            return t - self.ambient_c - v * v / (self.resistance_ohm(t, strain) * ha)
+
+        if self.constant_resistance:
+            t = self.ambient_c + v * v / (self.resistance_ohm(self.ambient_c, strain) * ha)
+        else:
+            # bracket on [T_amb, t_max]: g(T_amb) <= 0; if g(t_max) < 0 the root lies above t_max
+            lo, hi = self.ambient_c, self.t_max_c
+            if g(hi) < 0.0:
+                t = math.inf
+            else:
+                for _ in range(200):
+                    mid = 0.5 * (lo + hi)
+                    if g(mid) < 0.0:
+                        lo = mid
+                    else:
+                        hi = mid
+                t = 0.5 * (lo + hi)
+        if t > self.t_max_c:
+            raise ValueError(
+                f"voltage {v:g} V gives a steady temperature above t_max = {self.t_max_c:g} C"
+                + ("" if math.isinf(t) else f" ({t:.1f} C)")
+            )
+        return t
+
+    def steady_voltage(self, temperature_c: float, strain: float = 0.0) -> float:
+        """Voltage [V] that holds ``temperature_c`` [C] in steady state:
+        ``sqrt((T - T_amb) h A R(T))``. ``ValueError`` outside ``[T_amb, t_max]``."""
+        t = float(temperature_c)
+        if not (math.isfinite(t) and self.ambient_c <= t <= self.t_max_c):
+            raise ValueError(
+                f"invalid temperature = {temperature_c} C: a steady state needs "
+                f"ambient {self.ambient_c:g} <= T <= t_max {self.t_max_c:g} C"
+            )
+        return math.sqrt((t - self.ambient_c) * self.conductance_w_per_k * self.resistance_ohm(t, strain))
+
+    # -- transient ---------------------------------------------------------------
+    def transient(
+        self,
+        profile: VoltageProfile,
+        times_s: Sequence[float] | FloatArray,
+        initial_c: float | None = None,
+        strain: float = 0.0,
+        max_step_s: float | None = None,
+    ) -> TemperatureTrajectory:
+        """Temperature [C] at ``times_s`` [s] (increasing, from ``profile.times_s[0]``)
+        starting from ``initial_c`` (default ambient). Exact exponentials for a
+        constant resistance; otherwise RK4 with steps of at most ``max_step_s``
+        (default ``tau / 200``), restarted at every voltage switch."""
+        t_out = np.asarray(times_s, dtype=np.float64)
+        if t_out.ndim != 1 or t_out.size == 0 or np.any(np.diff(t_out) < 0.0) or t_out[0] < profile.times_s[0]:
+            raise ValueError("times_s [s] must be a non-empty increasing sequence starting at or after the profile's start")
+        t0 = float(profile.times_s[0])
+        temp0 = self.ambient_c if initial_c is None else float(initial_c)
+        tau = self.time_constant_s
+        # integration knots: voltage switches, plus the output times
+        switches = [s for s in profile.times_s if t0 < s < t_out[-1]]
+        out = np.empty_like(t_out)
+        if self.constant_resistance:
+            method = "analytic (exponential)"
+            r = self.resistance_ohm(self.ambient_c, strain)
+            ha = self.conductance_w_per_k
+            knots = [t0, *switches]
+            temps = [temp0]
+            for a, b in zip(knots[:-1], knots[1:]):
+                v = profile(a)
+                tss = self.ambient_c + v * v / (r * ha)
+                temps.append(tss + (temps[-1] - tss) * math.exp(-(b - a) / tau))
+            for i, t in enumerate(t_out):
+                k = int(np.searchsorted(np.asarray(knots), t, side="right")) - 1
+                a = knots[k]
+                v = profile(a)
+                tss = self.ambient_c + v * v / (r * ha)
+                out[i] = tss + (temps[k] - tss) * math.exp(-(t - a) / tau)
+        else:
+            method = "numeric (RK4)"
+            h_max = tau / 200.0 if max_step_s is None else float(max_step_s)
+            events = sorted({t0, *switches, *map(float, t_out)})
+            state = temp0
+            values = {t0: temp0}
+            for a, b in zip(events[:-1], events[1:]):
+                v = profile(a)  # constant on [a, b): switches are knots
+                n = max(1, math.ceil((b - a) / h_max))
+                dt = (b - a) / n
+                for _ in range(n):
+                    k1 = self.rate_c_per_s(v, state, strain)
+                    k2 = self.rate_c_per_s(v, state + 0.5 * dt * k1, strain)
+                    k3 = self.rate_c_per_s(v, state + 0.5 * dt * k2, strain)
+                    k4 = self.rate_c_per_s(v, state + dt * k3, strain)
+                    state += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+                values[b] = state
+            out = np.array([values[float(t)] for t in t_out])
+        volts = np.array([profile(float(t)) for t in t_out])
+        power = np.array([self.power_w(v, float(tc), strain) for v, tc in zip(volts, out)])
+        return TemperatureTrajectory(t_out, out, volts, power, self.t_max_c, method)
+
+
+# --------------------------------------------------------------------------
+# Robots driven by voltages
+# --------------------------------------------------------------------------
+
+
+def steady_temperatures(models: Sequence[ThermalModel], voltages_v: Sequence[float]) -> list[float]:
+    """Steady temperature [C] of each actuator under its voltage [V]."""
+    if len(models) != len(voltages_v):
+        raise ValueError(f"voltages_v: expected {len(models)} values (one per thermal model), got {len(voltages_v)}")
+    return [m.steady_temperature(v) for m, v in zip(models, voltages_v)]
+
+
+def solve_with_voltages(robot: Any, models: Sequence[ThermalModel], voltages_v: Sequence[float], **solve_kwargs: Any) -> Any:
+    """Forward solution of ``robot`` with each actuator at the steady
+    temperature of its voltage [V] (one :class:`ThermalModel` per actuator)."""
+    if len(models) != len(robot.actuators):
+        raise ValueError(f"models: expected {len(robot.actuators)} (one per actuator), got {len(models)}")
+    return robot.solve(steady_temperatures(models, voltages_v), **solve_kwargs)
+
+
+@dataclass(frozen=True, eq=False)
+class ShapeTrajectory:
+    """Quasi-static shapes along a heating transient: at each ``time_s`` [s],
+    the actuator temperatures [C] (``(n_t, n_actuators)``), the tip position [m]
+    (``(n_t, 3)``) and the forward solution."""
+
+    time_s: FloatArray
+    temperatures_c: FloatArray
+    tip_positions_m: FloatArray
+    solutions: list[Any]
+
+
+def quasi_static_trajectory(
+    robot: Any,
+    models: Sequence[ThermalModel],
+    profiles: Sequence[VoltageProfile],
+    times_s: Sequence[float] | FloatArray,
+    steps: int = 100,
+) -> ShapeTrajectory:
+    """Temperatures from each actuator's voltage profile, then the quasi-static
+    shape at every time (heating takes seconds, the body settles in far less),
+    each solve warm-started from the previous one.
+
+    With constant or temperature-dependent resistance the temperature
+    trajectories are computed first (:meth:`ThermalModel.transient`). If a
+    resistance depends on strain, heating and mechanics are coupled: between
+    output times the temperatures advance by RK4 with each TCA's strain
+    (elongation / coiled length) frozen at the last solved shape.
+
+    Raises ``ValueError`` naming the time [s] at which a temperature first
+    exceeds ``t_max`` (the mechanics is not defined there).
+    """
+    n = len(robot.actuators)
+    if len(models) != n or len(profiles) != n:
+        raise ValueError(f"models and profiles: expected {n} each (one per actuator), got {len(models)} and {len(profiles)}")
+    t = np.asarray(times_s, dtype=np.float64)
+    coupled = any(not _temperature_only(m) for m in models)
+    temps = np.empty((t.size, n))
+    if not coupled:
+        for i, (m, p) in enumerate(zip(models, profiles)):
+            temps[:, i] = m.transient(p, t).temperature_c
+    over = np.nonzero(np.any(temps > np.array([m.t_max_c for m in models]), axis=1))[0] if not coupled else np.array([], int)
+    if over.size:
+        raise ValueError(f"the temperature exceeds t_max at t = {t[over[0]]:.3f} s: lower the voltage")
+    coiled = [_coiled_length(a) for a in robot.actuators]
+    sols: list[Any] = []
+    tips = np.empty((t.size, 3))
+    state = [m.ambient_c for m in models]
+    for k in range(t.size):
+        if coupled:
+            if k == 0:
+                state = [m.transient(p, t[:1]).temperature_c[0] for m, p in zip(models, profiles)]
+            else:
+                strains = [float(e) / c for e, c in zip(sols[-1].elongations, coiled)]
+                state = [
+                    float(m.transient(_shifted(p, t[k - 1]), [t[k - 1], t[k]], initial_c=s0, strain=e).temperature_c[-1])
+                    for m, p, s0, e in zip(models, profiles, state, strains)
+                ]
+            for m, s0 in zip(models, state):
+                if s0 > m.t_max_c:
+                    raise ValueError(f"the temperature exceeds t_max at t = {t[k]:.3f} s: lower the voltage")
+            temps[k] = state
+        sol = robot.solve([float(x) for x in temps[k]], steps=steps, warm_start=sols[-1] if sols else None)
+        sols.append(sol)
+        tips[k] = np.asarray(sol.tip_position, dtype=np.float64)
+    return ShapeTrajectory(t, temps, tips, sols)
+
+
+def _temperature_only(m: ThermalModel) -> bool:
+    r = m.resistance
+    return isinstance(r, (int, float)) or (isinstance(r, LinearResistance) and r.strain_coefficient == 0.0)
+
+
+def _coiled_length(actuator: Any) -> float:
+    tca = actuator.tca_model
+    return float(tca.coiled_length) if tca is not None else 1.0
+
+
+def _shifted(p: VoltageProfile, start: float) -> VoltageProfile:
+    """The profile restricted to ``t >= start`` (a new first knot at ``start``)."""
+    times = [start] + [s for s in p.times_s if s > start]
+    return VoltageProfile(tuple(times), tuple(p(s) for s in times))
+
+
+# --------------------------------------------------------------------------
+# Plots
+# --------------------------------------------------------------------------
+
+
+def plot_step_response(model: ThermalModel, voltage_v: float, duration_s: float | None = None) -> Any:
+    """Temperature [C] after a voltage step ``voltage_v`` [V] at t = 0, with the
+    steady state and the time constant marked. Returns a matplotlib ``Figure``."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    tau = model.time_constant_s
+    dur = 5.0 * tau if duration_s is None else float(duration_s)
+    t = np.linspace(0.0, dur, 400)
+    traj = model.transient(VoltageProfile.step(voltage_v), t)
+    fig = Figure(figsize=(5.0, 3.4), layout="constrained")
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
+    ax.plot(t, traj.temperature_c, color="black", label=f"{voltage_v:g} V step ({traj.method})")
+    try:
+        tss = model.steady_temperature(voltage_v)
+        ax.axhline(tss, color="0.5", linestyle="--", label=f"steady state {tss:.1f} °C")
+        t63 = model.ambient_c + (1.0 - math.exp(-1.0)) * (tss - model.ambient_c)
+        ax.plot([tau], [t63], "o", color="black", markerfacecolor="white", label=f"tau = {tau:.2f} s")
+    except ValueError:
+        pass
+    ax.axhline(model.t_max_c, color="red", linewidth=0.8, label=f"t_max {model.t_max_c:g} °C")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("temperature [°C]")
+    ax.grid(True, linewidth=0.3)
+    ax.legend(fontsize="small")
+    return fig
+
+
+def plot_shape_trajectory(traj: ShapeTrajectory) -> Any:
+    """Tip position [mm] and actuator temperatures [C] against time [s]. Returns a ``Figure``."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(6.0, 5.0), layout="constrained")
+    FigureCanvasAgg(fig)
+    ax1, ax2 = fig.subplots(2, 1, sharex=True)
+    for k, name in enumerate("xyz"):
+        ax1.plot(traj.time_s, traj.tip_positions_m[:, k] * 1e3, label=f"tip {name}")
+    ax1.set_ylabel("tip position [mm]")
+    ax1.grid(True, linewidth=0.3)
+    ax1.legend(fontsize="small")
+    for i in range(traj.temperatures_c.shape[1]):
+        ax2.plot(traj.time_s, traj.temperatures_c[:, i], label=f"actuator {i}")
+    ax2.set_xlabel("time [s]")
+    ax2.set_ylabel("temperature [°C]")
+    ax2.grid(True, linewidth=0.3)
+    ax2.legend(fontsize="small")
+    return fig

@@ -1,0 +1,145 @@
+"""Workspace maps: the tip positions a robot reaches over a grid of actuator
+inputs (temperatures [C] for TCAs), as arrays and as a 3-D scatter plot.
+
+The solves go through one function, :func:`solve_rows`, which today walks the
+grid with :meth:`Robot.sweep` (each solve warm-started from the previous one,
+rows ordered as a snake so that neighbours differ in one input) and falls back
+to one cold solve per point if a sweep stops. A batch API can replace its body
+without touching the rest.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import Any, Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+from ._core import ConvergenceError
+
+__all__ = ["Workspace", "plot_workspace", "snake_grid", "solve_rows", "workspace_map"]
+
+FloatArray = npt.NDArray[np.float64]
+
+
+def snake_grid(levels: Sequence[Sequence[float]]) -> FloatArray:
+    """All combinations of ``levels[i]`` (one list per input), ordered so that
+    consecutive rows differ in one input by one level (a boustrophedon), which
+    keeps warm starts close. Shape ``(prod(len), len(levels))``."""
+    rows: list[list[float]] = [[]]
+    for lv in levels:
+        new: list[list[float]] = []
+        for k, r in enumerate(rows):
+            seq = list(lv) if k % 2 == 0 else list(lv)[::-1]
+            new.extend(r + [float(x)] for x in seq)
+        rows = new
+    return np.asarray(rows, dtype=np.float64)
+
+
+def solve_rows(robot: Any, inputs: FloatArray, steps: int = 100) -> list[Any | None]:
+    """Forward solutions for each row of ``inputs`` (``None`` where a solve fails).
+
+    The one place the workspace's solves happen: a warm-started
+    :meth:`Robot.sweep` over all rows; if it raises, the rows are solved one
+    at a time, warm-started from the last success.
+    """
+    rows = [list(map(float, r)) for r in inputs]
+    try:
+        return list(robot.sweep(rows, steps=steps))
+    except (ValueError, ConvergenceError):
+        pass
+    out: list[Any | None] = []
+    warm = None
+    for r in rows:
+        try:
+            sol = robot.solve(r, steps=steps, warm_start=warm)
+        except ConvergenceError:
+            try:
+                sol = robot.solve(r, steps=steps)
+            except ConvergenceError:
+                out.append(None)
+                continue
+        out.append(sol)
+        warm = sol
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class Workspace:
+    """Tip positions over a grid of inputs.
+
+    ``temperatures_c``: one row of inputs per point, shape ``(n, n_inputs)``
+    [C for TCAs]; ``tip_positions_m``: shape ``(n, 3)`` [m], NaN where the
+    solve failed; ``tip_tangents``: unit tip tangent (third column of the tip
+    rotation), shape ``(n, 3)``; ``bending_angle_rad``: angle between tip
+    tangent and the base tangent ``+z`` [rad]; ``elapsed_s``: wall time of
+    the solves [s].
+    """
+
+    grid_c: FloatArray
+    temperatures_c: FloatArray
+    tip_positions_m: FloatArray
+    tip_tangents: FloatArray
+    elapsed_s: float
+
+    @property
+    def n_failed(self) -> int:
+        """Points whose solve failed."""
+        return int(np.sum(~np.all(np.isfinite(self.tip_positions_m), axis=1)))
+
+    @property
+    def bending_angle_rad(self) -> FloatArray:
+        """Angle [rad] between the tip tangent and ``+z``."""
+        return np.asarray(np.arccos(np.clip(self.tip_tangents[:, 2], -1.0, 1.0)), dtype=np.float64)
+
+
+def workspace_map(robot: Any, grid_c: Sequence[float] | FloatArray, steps: int = 100) -> Workspace:
+    """Tip positions of ``robot`` over the ``k^n`` grid of inputs, each input
+    taking every value of ``grid_c`` [C for TCAs] (``n`` = number of actuators).
+    """
+    grid = np.asarray(grid_c, dtype=np.float64)
+    n = len(robot.actuators)
+    inputs = snake_grid([[float(x) for x in grid]] * n)
+    t0 = time.perf_counter()
+    sols = solve_rows(robot, inputs, steps=steps)
+    elapsed = time.perf_counter() - t0
+    tips = np.full((len(sols), 3), np.nan)
+    tangents = np.full((len(sols), 3), np.nan)
+    for k, s in enumerate(sols):
+        if s is not None:
+            tips[k] = np.asarray(s.tip_position, dtype=np.float64)
+            tangents[k] = np.asarray(s.tip_rotation, dtype=np.float64)[:, 2]
+    return Workspace(grid, inputs, tips, tangents, elapsed)
+
+
+def plot_workspace(ws: Workspace, colour_by: str = "bending") -> Any:
+    """3-D scatter of the reachable tip positions [mm], coloured by the
+    bending angle [deg] (``colour_by="bending"``) or by the hottest input [C]
+    (``"max_temperature"``). Returns a matplotlib ``Figure`` (Agg, no display)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    ok = np.all(np.isfinite(ws.tip_positions_m), axis=1)
+    p = ws.tip_positions_m[ok] * 1e3
+    if colour_by == "bending":
+        c = np.degrees(ws.bending_angle_rad[ok])
+        label = "bending angle of the tip [deg]"
+    elif colour_by == "max_temperature":
+        c = ws.temperatures_c[ok].max(axis=1)
+        label = "hottest actuator [°C]"
+    else:
+        raise ValueError(f"colour_by = {colour_by!r}: use 'bending' or 'max_temperature'")
+    fig = Figure(figsize=(6.0, 5.0), layout="constrained")
+    FigureCanvasAgg(fig)
+    ax: Any = fig.add_subplot(projection="3d")
+    sc = ax.scatter(p[:, 0], p[:, 1], p[:, 2], c=c, cmap="viridis", s=14)
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_zlabel("z [mm]")
+    n_in = ws.temperatures_c.shape[1]
+    ax.set_title(f"Reachable tip positions: {len(ws.grid_c)}^{n_in} = {ws.temperatures_c.shape[0]} input combinations")
+    fig.colorbar(sc, ax=ax, shrink=0.7, label=label)
+    return fig
+

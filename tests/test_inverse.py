@@ -1,0 +1,214 @@
+"""Inverse kinetostatics from Python (tcarod.inverse, tcarod.grasp,
+tcarod.bruteforce): wrappers, physics signs, agreement of the paper's
+finite-difference method with a brute-force optimiser, bad input."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from tcarod import ConvergenceError
+from tcarod.bruteforce import brute_force_blocked_temperature, brute_force_tip_position
+from tcarod.grasp import grasp, grasp_temperature, table1_finger
+from tcarod.inverse import (
+    blocked_force,
+    blocked_temperature,
+    blocked_temperature_direct,
+    jacobian_and_compliance,
+    tip_position,
+)
+from tcarod.manipulators import square_manipulator
+
+MINUS_X = (-1.0, 0.0, 0.0)
+
+
+@pytest.fixture(scope="module")
+def square40():  # type: ignore[no-untyped-def]
+    return square_manipulator(0.040)
+
+
+@pytest.fixture(scope="module")
+def fig8_setup():  # type: ignore[no-untyped-def]
+    """26 mm manipulator, upright; tip blocked where it is at 55 C, pressing along -x."""
+    robot = square_manipulator(0.026)
+    free = robot.solve([55.0, 55.0])
+    return robot, free, [float(x) for x in free.tip_position]
+
+
+def test_jacobian_matches_bvp_differences_and_heating_bends_toward_minus_x(square40) -> None:  # type: ignore[no-untyped-def]
+    sol = square40.solve([100.0, 100.0])
+    j, c = jacobian_and_compliance(sol, groups=[0, 0], scheme="central")
+    assert j.shape == (6, 1) and c.shape == (6, 6)
+    assert j.dtype == np.float64 and c.dtype == np.float64
+    # brute-force column: central difference of two BVP solves, h = 0.01 C
+    # (O(h^2) truncation ~1e-8 relative for this smooth response)
+    h = 0.01
+    plus = square40.solve([100.0 + h] * 2, tol=1e-12).tip_position
+    minus = square40.solve([100.0 - h] * 2, tol=1e-12).tip_position
+    fd = (plus - minus) / (2 * h)
+    # central FD of IVPs vs central FD of BVPs: both ~1e-8 relative; 1e-5 leaves margin
+    assert np.allclose(j[:3, 0], fd, rtol=1e-5, atol=1e-5 * np.abs(fd).max())
+    assert j[0, 0] < 0.0  # TCA at +x: heating moves the tip toward -x
+    # conservative loads: C is symmetric (central differences, ~1e-8) and positive on its diagonal
+    assert np.abs(c - c.T).max() < 1e-6 * np.abs(c).max()
+    assert np.all(np.diag(c) > 0)
+
+
+def test_forward_and_central_schemes_agree(square40) -> None:  # type: ignore[no-untyped-def]
+    sol = square40.solve([80.0, 120.0])
+    jf, cf = jacobian_and_compliance(sol)  # one variable per leg, forward differences
+    jc, cc = jacobian_and_compliance(sol, scheme="central")
+    assert jf.shape == (6, 2)
+    # forward differences: relative error ~sqrt(eps) x curvature ~1e-7; 1e-4 is generous
+    assert np.abs(jf - jc).max() < 1e-4 * np.abs(jc).max()
+    assert np.abs(cf - cc).max() < 1e-4 * np.abs(cc).max()
+
+
+def test_tip_position_reaches_a_reachable_target(square40) -> None:  # type: ignore[no-untyped-def]
+    truth = square40.solve([90.0, 140.0])
+    res = tip_position(square40, truth.tip_position, groups=[0, 1], start=[25.0, 25.0])
+    assert res.reached
+    assert res.error <= 1e-7  # the default tol [m]
+    assert np.linalg.norm(res.solution.tip_position - truth.tip_position) <= 1e-7
+    assert res.at_bound == [False, False]
+    # the two legs' temperatures are identifiable (they bend about different axes):
+    # a 1e-7 m tip error maps to ~1e-3 C through the smallest singular value of J
+    assert res.variables == pytest.approx([90.0, 140.0], abs=5e-3)
+
+
+def test_tip_position_unreachable_target_returns_closest_configuration(square40) -> None:  # type: ignore[no-untyped-def]
+    # extension TCAs at +x only bend the body toward -x: a target at +x is unreachable
+    res = tip_position(square40, [0.02, 0.0, 0.03], groups=[0, 0], start=[60.0])
+    assert not res.reached
+    assert res.at_bound == [True]
+    assert res.variables == pytest.approx([25.0], abs=1e-9)  # closest: not heated at all
+    free = square40.solve([25.0, 25.0])
+    assert res.error == pytest.approx(float(np.linalg.norm(free.tip_position - [0.02, 0.0, 0.03])), rel=1e-9)
+
+
+def test_blocked_force_and_both_inverse_methods_round_trip(fig8_setup) -> None:  # type: ignore[no-untyped-def]
+    robot, free, point = fig8_setup
+    at_100 = blocked_force(robot, point, MINUS_X, 100.0, groups=[0, 0])
+    assert at_100.force > 0.0  # heated past the taut temperature: the tip presses on the wire
+    assert at_100.solution.tip_position[0] == pytest.approx(point[0], abs=1e-9 * 0.026)
+    inc = blocked_temperature(robot, point, MINUS_X, at_100.force, free, groups=[0, 0])
+    direct = blocked_temperature_direct(robot, point, MINUS_X, at_100.force, groups=[0, 0])
+    # both close the tip gap to 1e-9 L (~3e-11 m); dT/dx ~ 1e4 C/m: agreement << 1e-6 C
+    assert inc.variables[0] == pytest.approx(100.0, abs=1e-6)
+    assert direct.variables[0] == pytest.approx(100.0, abs=1e-6)
+    assert inc.force == pytest.approx(at_100.force, rel=1e-12)
+
+
+def test_blocked_temperature_at_the_top_of_the_range(fig8_setup) -> None:  # type: ignore[no-untyped-def]
+    robot, free, point = fig8_setup
+    top = blocked_force(robot, point, MINUS_X, [160.0], groups=[0, 0])
+    inc = blocked_temperature(robot, point, MINUS_X, top.force, free, groups=[0, 0])
+    assert inc.variables[0] == pytest.approx(160.0, abs=1e-6)
+    with pytest.raises(ValueError, match="outside"):
+        blocked_temperature(robot, point, MINUS_X, 1.05 * top.force, free, groups=[0, 0])
+
+
+@settings(max_examples=8, deadline=None)  # each example: two ~5 ms mixed solves
+@given(st.floats(60.0, 155.0), st.floats(0.5, 5.0))
+def test_blocked_force_rises_with_temperature(t: float, dt: float) -> None:
+    robot = square_manipulator(0.026)
+    point = [float(x) for x in robot.solve([55.0, 55.0]).tip_position]
+    lo = blocked_force(robot, point, MINUS_X, [t], groups=[0, 0])
+    hi = blocked_force(robot, point, MINUS_X, [t + dt], groups=[0, 0], warm_start=lo)
+    assert hi.force > lo.force > 0.0
+
+
+def test_grasp_eq44_and_monotone_in_mass() -> None:
+    temps = [grasp_temperature(m) for m in (1e-3, 2e-3, 3e-3)]
+    assert 25.0 < temps[0] < temps[1] < temps[2] < 160.0
+    g = grasp(2e-3)
+    assert g.force_per_finger_n == pytest.approx(2e-3 * 9.81 / (1.1 * 2), rel=1e-15)
+    assert g.blocked.force == pytest.approx(g.force_per_finger_n, rel=1e-12)
+    assert g.temperature_c == temps[1]
+    # the tip stays on the block (reference tip position) along the normal
+    assert g.blocked.solution.tip_position[0] == pytest.approx(g.block_point_m[0], abs=1e-9 * 0.02)
+    # eq 44 only sees m / (mu n): 4 fingers holding 2 g == 2 fingers holding 1 g
+    assert grasp_temperature(2e-3, fingers=4) == pytest.approx(temps[0], abs=1e-9)
+    # incremental (eq 43) and direct solves converge the same equations
+    assert grasp_temperature(2e-3, method="direct") == pytest.approx(temps[1], abs=1e-6)
+
+
+def test_grasp_default_finger_hangs_and_bends_toward_minus_x() -> None:
+    finger = table1_finger()
+    cold = finger.solve([25.0, 25.0])
+    hot = finger.solve([60.0, 60.0])
+    assert cold.tip_position[2] > 0.020  # hanging: gravity stretches it along +z (body-aligned frame)
+    assert hot.tip_position[0] < cold.tip_position[0]
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"mass_kg": 0.0}, "mass_kg"),
+        ({"mass_kg": math.nan}, "mass_kg"),
+        ({"mass_kg": 1e-3, "mu": -1.0}, "mu"),
+        ({"mass_kg": 1e-3, "fingers": 0}, "fingers"),
+        ({"mass_kg": 1e-3, "method": "newton"}, "method"),
+        ({"mass_kg": 0.05}, "outside"),  # 50 g needs more than 160 C
+    ],
+)
+def test_grasp_bad_input(kwargs: dict[str, object], match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        grasp(**kwargs)  # type: ignore[arg-type]
+
+
+def test_wrapper_bad_input(square40) -> None:  # type: ignore[no-untyped-def]
+    sol = square40.solve([25.0, 25.0])
+    with pytest.raises(ValueError, match="scheme"):
+        jacobian_and_compliance(sol, scheme="backward")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="groups"):
+        jacobian_and_compliance(sol, groups=[0, -1])
+    with pytest.raises(ValueError, match="groups"):
+        jacobian_and_compliance(sol, groups=[1, 1])  # variable 0 drives nothing
+    with pytest.raises(ValueError, match="target"):
+        tip_position(square40, [0.0, 0.04])
+    with pytest.raises(ValueError, match="target"):
+        tip_position(square40, [0.0, math.nan, 0.04])
+    with pytest.raises(ValueError, match="normal"):
+        blocked_force(square40, [0.0, 0.0, 0.04], [0.0, 0.0, 0.0], [50.0], groups=[0, 0])
+    with pytest.raises(ValueError, match="variables"):
+        blocked_force(square40, [0.0, 0.0, 0.04], MINUS_X, [50.0, 60.0], groups=[0, 0])
+    with pytest.raises(ValueError):
+        blocked_temperature(square40, [0.0, 0.0, 0.04], MINUS_X, 1e-3, sol)  # two variables: needs one
+
+
+def test_direct_solve_from_a_hopeless_guess_raises_convergence_error(fig8_setup) -> None:  # type: ignore[no-untyped-def]
+    robot, _, point = fig8_setup
+    # a force the actuator cannot reach within its range: Newton cannot converge in range
+    with pytest.raises((ConvergenceError, ValueError)):
+        blocked_temperature_direct(robot, point, MINUS_X, 10.0, guess=150.0, groups=[0, 0], max_iter=10)
+
+
+# --------------------------------------------------------------------------
+# The paper's finite-difference method and brute force agree
+# --------------------------------------------------------------------------
+
+
+def test_brute_force_grasp_temperature_agrees_with_eq43() -> None:
+    finger = table1_finger()
+    g = grasp(2e-3, finger)
+    bf = brute_force_blocked_temperature(finger, g.block_point_m, g.normal, g.force_per_finger_n)
+    # Brent stops at xatol = 1e-6 C; eq 43 closes the gap to 2e-11 m (~1e-7 C)
+    assert bf.variables[0] == pytest.approx(g.temperature_c, abs=1e-4)
+    assert bf.error_m < 1e-8
+    assert bf.forward_solves > 10  # it really is an optimisation over BVP solves
+
+
+def test_brute_force_tip_position_agrees_with_finite_differences(square40) -> None:  # type: ignore[no-untyped-def]
+    target = square40.solve([90.0, 140.0]).tip_position
+    fd = tip_position(square40, target, groups=[0, 1], start=[25.0, 25.0])
+    bf = brute_force_tip_position(square40, target, groups=[0, 1], start=[25.0, 25.0])
+    assert fd.reached and bf.error_m < 1e-7
+    # both within 1e-7 m of the target; the worst-conditioned direction of J
+    # turns that into up to ~1e-3 C, so 5e-3 C
+    assert bf.variables == pytest.approx(tuple(fd.variables), abs=5e-3)
+    assert bf.forward_solves > 3 * fd.iterations

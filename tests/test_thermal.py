@@ -1,0 +1,163 @@
+"""Electro-thermal model of a Joule-heated TCA, and voltage-driven shapes."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from tcarod.experiments.fig1b import FIG1B
+from tcarod.thermal import (
+    LinearResistance,
+    ThermalModel,
+    VoltageProfile,
+    plot_shape_trajectory,
+    plot_step_response,
+    quasi_static_trajectory,
+    solve_with_voltages,
+)
+
+L_FIBRE = FIG1B.tca().fibre_length  # ~0.232 m
+MODEL = ThermalModel(fibre_length_m=L_FIBRE, threads=3, resistance=60.0)
+
+
+def test_lumped_parameters_and_time_constant() -> None:
+    r = 0.1e-3
+    m = 1127.0 * 3 * math.pi * r * r * L_FIBRE
+    a = 3 * 2 * math.pi * r * L_FIBRE
+    assert MODEL.mass_kg == pytest.approx(m, rel=1e-14)
+    assert MODEL.area_m2 == pytest.approx(a, rel=1e-14)
+    # tau = m c_p / (h A) = density c_p r / (2 h): independent of l and threads
+    assert MODEL.time_constant_s == pytest.approx(1127.0 * 2000.0 * r / (2 * 23.0), rel=1e-12)
+    assert MODEL.time_constant_s == pytest.approx(4.9, abs=0.01)
+    assert replace(MODEL, threads=4, fibre_length_m=0.5).time_constant_s == pytest.approx(MODEL.time_constant_s, rel=1e-12)
+
+
+def test_resistance_is_required_and_checked() -> None:
+    with pytest.raises(TypeError):
+        ThermalModel(fibre_length_m=0.2, threads=3)  # type: ignore[call-arg]
+    with pytest.raises(ValueError, match="resistance"):
+        ThermalModel(fibre_length_m=0.2, threads=3, resistance=None)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="resistance"):
+        ThermalModel(fibre_length_m=0.2, threads=3, resistance=-1.0)
+
+
+def test_steady_state_is_analytic_and_inverse() -> None:
+    v = 2.0
+    expected = 25.0 + v * v / (60.0 * MODEL.conductance_w_per_k)
+    assert MODEL.steady_temperature(v) == pytest.approx(expected, rel=1e-14)
+    assert MODEL.steady_voltage(expected) == pytest.approx(v, rel=1e-12)
+    with pytest.raises(ValueError, match="t_max"):
+        MODEL.steady_voltage(170.0)
+    with pytest.raises(ValueError, match="t_max"):
+        MODEL.steady_temperature(50.0)
+
+
+def test_step_response_reaches_63_percent_at_tau() -> None:
+    tau = MODEL.time_constant_s
+    tss = MODEL.steady_temperature(2.0)
+    traj = MODEL.transient(VoltageProfile.step(2.0), [0.0, tau, 10 * tau])
+    assert traj.method.startswith("analytic")
+    rise = (traj.temperature_c - 25.0) / (tss - 25.0)
+    assert rise[0] == 0.0
+    assert rise[1] == pytest.approx(1 - math.exp(-1), rel=1e-12)
+    assert rise[2] == pytest.approx(1 - math.exp(-10), rel=1e-12)
+    assert traj.exceeds_t_max_at_s is None
+
+
+def _energy_residual(model: ThermalModel, profile: VoltageProfile, t_end: float) -> tuple[float, float]:
+    t = np.linspace(0.0, t_end, 20001)
+    traj = model.transient(profile, t)
+    # power on each interval with the voltage of that interval (the voltage
+    # jumps at switches; sampling it at a switch would cost |dP| dt / 2)
+    v_mid = np.array([profile(0.5 * (a + b)) for a, b in zip(t[:-1], t[1:])])
+    r = np.array([model.resistance_ohm(float(x)) for x in traj.temperature_c])
+    p_left, p_right = v_mid**2 / r[:-1], v_mid**2 / r[1:]
+    e_in = float(np.sum(0.5 * (p_left + p_right) * np.diff(t)))
+    q = model.conductance_w_per_k * (traj.temperature_c - model.ambient_c)
+    e_loss = float(np.sum(0.5 * (q[:-1] + q[1:]) * np.diff(t)))  # trapezoid (numpy < 2 has no np.trapezoid)
+    e_stored = model.heat_capacity_j_per_k * (traj.temperature_c[-1] - traj.temperature_c[0])
+    return float(e_in - e_loss - e_stored), float(e_in)
+
+
+@pytest.mark.parametrize(
+    "resistance",
+    [60.0, LinearResistance(60.0, alpha_per_c=-1e-3), lambda t, e: 50.0 + 0.1 * (t - 25.0)],
+    ids=["constant", "linear", "callable"],
+)
+def test_energy_balance(resistance: object) -> None:
+    model = replace(MODEL, resistance=resistance)
+    profile = VoltageProfile((0.0, 6.0, 9.0), (8.0, 2.0, 5.0))
+    resid, e_in = _energy_residual(model, profile, 15.0)
+    # electrical energy = stored + convected; the trapezoid rule on 20001
+    # samples errs by O(dt^2) = O(1e-7) relative: 1e-6 of the input is safe
+    assert abs(resid) < 1e-6 * e_in
+
+
+def test_numeric_integrator_matches_analytic_for_constant_resistance() -> None:
+    # a callable constant resistance takes the RK4 path: it must agree with the
+    # exponentials to RK4's O(dt^4) (tau/200 steps: ~1e-10 relative)
+    profile = VoltageProfile((0.0, 4.0), (2.0, 0.7))
+    t = np.linspace(0.0, 12.0, 25)
+    exact = MODEL.transient(profile, t).temperature_c
+    numeric = replace(MODEL, resistance=lambda T, e: 60.0).transient(profile, t)
+    assert numeric.method.startswith("numeric")
+    assert np.max(np.abs(numeric.temperature_c - exact)) < 1e-7
+
+
+def test_transient_reports_exceeding_t_max() -> None:
+    traj = MODEL.transient(VoltageProfile.step(12.0), np.linspace(0, 20, 201))
+    assert traj.exceeds_t_max_at_s is not None and 0.0 < traj.exceeds_t_max_at_s < 20.0
+    assert traj.temperature_c[-1] > 160.0  # not clipped
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(min_value=20.0, max_value=200.0), st.floats(min_value=-2e-3, max_value=2e-3))
+def test_steady_voltage_inverts_steady_temperature_for_linear_resistance(r0: float, alpha: float) -> None:
+    model = replace(MODEL, resistance=LinearResistance(r0, alpha_per_c=alpha))
+    for t in (40.0, 100.0, 155.0):
+        v = model.steady_voltage(t)
+        # bisection to 2^-200 of the bracket: round-off level
+        assert model.steady_temperature(v) == pytest.approx(t, abs=1e-9)
+
+
+def test_voltages_drive_the_robot_and_trajectory_ends_at_steady_shape(tmp_path: Path) -> None:
+    robot = FIG1B.robot()
+    models = [MODEL] * 3
+    volts = [MODEL.steady_voltage(120.0), 0.0, MODEL.steady_voltage(60.0)]
+    steady = solve_with_voltages(robot, models, volts)
+    assert np.allclose(steady.inputs, [120.0, 25.0, 60.0], atol=1e-9)
+    profiles = [VoltageProfile.step(v) for v in volts]
+    t = np.linspace(0.0, 12 * MODEL.time_constant_s, 25)
+    traj = quasi_static_trajectory(robot, models, profiles, t)
+    assert traj.tip_positions_m.shape == (25, 3)
+    # starts straight (ambient), ends at the steady shape: after 12 tau the
+    # temperatures are within 6e-6 of the rise (~1e-3 C), and the tip moves
+    # ~0.3 mm/C, so 1e-6 m
+    assert np.allclose(traj.tip_positions_m[0], [0, 0, robot.solve([25.0] * 3).tip_position[2]], atol=1e-9)
+    assert np.linalg.norm(traj.tip_positions_m[-1] - steady.tip_position) < 1e-5
+    # the tip moves monotonically away from the heated TCA 0 (at +x)
+    assert np.all(np.diff(traj.tip_positions_m[:, 0]) <= 1e-12)
+    fig = plot_shape_trajectory(traj)
+    fig.savefig(tmp_path / "traj.png")
+    plot_step_response(MODEL, 2.0).savefig(tmp_path / "step.png")
+    assert (tmp_path / "traj.png").stat().st_size > 1000
+
+
+def test_strain_dependent_resistance_couples_heating_and_shape() -> None:
+    robot = FIG1B.robot()
+    base = [MODEL] * 3
+    coupled = [replace(MODEL, resistance=LinearResistance(60.0, strain_coefficient=2.0))] + [MODEL] * 2
+    volts = [MODEL.steady_voltage(110.0), 0.0, 0.0]
+    profiles = [VoltageProfile.step(v) for v in volts]
+    t = np.linspace(0.0, 15.0, 16)
+    a = quasi_static_trajectory(robot, base, profiles, t)
+    b = quasi_static_trajectory(robot, coupled, profiles, t)
+    # the heated TCA lengthens, its resistance rises, it draws less power:
+    # cooler than with constant resistance (a visible difference, > 0.1 C)
+    assert b.temperatures_c[-1, 0] < a.temperatures_c[-1, 0] - 0.1
