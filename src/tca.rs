@@ -408,17 +408,36 @@ impl<'a> TcaAt<'a> {
         self.e * PI * (t.coil_diameter - self.d).max(self.d) * self.d / t.coiled_length
     }
 
+    /// Width [m] of the smoothed onset of coil contact inside a body (see
+    /// [`Self::tension`]): 0.1 um, far below any elongation of interest
+    /// (the paper's TCAs move by millimetres) and far above the finite-
+    /// difference steps of the shooting Jacobian (~1e-9 m).
+    pub const CONTACT_SMOOTHING: f64 = 1e-7;
+
     /// Tension [N] at any elongation `delta` [m], for use inside a body:
     /// eq (6) for `delta >= 0`; for `delta < 0` (coils pressed together) the
-    /// contact force grows with [`Self::contact_stiffness`].
+    /// slope rises from the coil spring's `k_s = dF/d delta (0+)` to the
+    /// contact stiffness `k_c` ([`Self::contact_stiffness`]) linearly over
+    /// [`Self::CONTACT_SMOOTHING`], and stays `k_c` beyond. The law is C1, so
+    /// Newton's method converges through contact onset (a kink would stall it
+    /// when a passive TCA is pressed).
     pub fn tension(&self, delta: f64) -> Result<f64> {
         if delta >= 0.0 {
-            self.force(delta)
-        } else if delta.is_finite() {
-            Ok(self.force(0.0)? + self.contact_stiffness() * delta)
-        } else {
-            Err(Error::param("displacement [m]", delta, "a finite number"))
+            return self.force(delta);
         }
+        if !delta.is_finite() {
+            return Err(Error::param("displacement [m]", delta, "a finite number"));
+        }
+        let f0 = self.force(0.0)?;
+        let h = 1e-9 * self.tca.coiled_length;
+        let ks = (self.force(h)? - f0) / h;
+        let kc = self.contact_stiffness().max(ks);
+        let eps = Self::CONTACT_SMOOTHING;
+        Ok(if delta >= -eps {
+            f0 + ks * delta - (kc - ks) * delta * delta / (2.0 * eps)
+        } else {
+            f0 - ks * eps - (kc - ks) * eps / 2.0 + kc * (delta + eps)
+        })
     }
 }
 
@@ -429,6 +448,28 @@ mod tests {
     fn fig5_three_thread() -> Tca {
         Tca::new(0.497, 0.110, 2e-3, 300.0, Chirality::Extension, Material::silver_coated_nylon())
             .unwrap()
+    }
+
+    #[test]
+    fn contact_law_is_continuous_and_monotone() {
+        let t = fig5_three_thread();
+        let at = t.at(25.0).unwrap();
+        let e = TcaAt::CONTACT_SMOOTHING;
+        let f = |d: f64| at.tension(d).unwrap();
+        // continuity at 0 and at -eps (relative 1e-9: rounding of the pieces)
+        assert!((f(-1e-18) - f(0.0)).abs() < 1e-12);
+        assert!((f(-e * (1.0 - 1e-12)) - f(-e * (1.0 + 1e-12))).abs() < 1e-9 * f(-e).abs().max(1e-12));
+        // slope rises from the spring's to the contact stiffness
+        let slope = |d: f64| (f(d + 1e-12) - f(d - 1e-12)) / 2e-12;
+        assert!(slope(-2.0 * e) > 100.0 * slope(1e-6));
+        assert!((slope(-3.0 * e) - at.contact_stiffness()).abs() < 1e-3 * at.contact_stiffness());
+        // tension increases with elongation through the whole contact region
+        let mut last = f64::NEG_INFINITY;
+        for k in 0..50 {
+            let d = -3.0 * e + 1e-8 * k as f64;
+            assert!(f(d) > last, "not increasing at {d}");
+            last = f(d);
+        }
     }
 
     #[test]
