@@ -19,6 +19,7 @@ from tcarod.thermal import (
     plot_shape_trajectory,
     plot_step_response,
     quasi_static_trajectory,
+    save_trajectory_frames,
     solve_with_voltages,
 )
 
@@ -147,6 +148,8 @@ def test_voltages_drive_the_robot_and_trajectory_ends_at_steady_shape(tmp_path: 
     fig.savefig(tmp_path / "traj.png")
     plot_step_response(MODEL, 2.0).savefig(tmp_path / "step.png")
     assert (tmp_path / "traj.png").stat().st_size > 1000
+    frames = save_trajectory_frames(traj, tmp_path / "frames", every=12)
+    assert [p.name for p in frames] == ["frame_0000.png", "frame_0012.png", "frame_0024.png"]
 
 
 def test_strain_dependent_resistance_couples_heating_and_shape() -> None:

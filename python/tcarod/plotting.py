@@ -230,7 +230,8 @@ def plot_solution(
     ax.set_ylabel("y [mm]")
     ax.set_zlabel("z [mm]")
     ax.view_init(elev=view[0], azim=view[1])
-    inputs = ", ".join(f"{x:g}" for x in solution.inputs)
-    ax.set_title(title if title is not None else f"inputs [{inputs}]", fontsize="small")
+    names = [a.input_name for a in solution.robot.actuators]
+    inputs = ", ".join(f"{name} {x:g}" for name, x in zip(names, solution.inputs))
+    ax.set_title(title if title is not None else (inputs or "no actuators"), fontsize="small")
     ax.legend(fontsize="x-small", loc="upper left")
     return figure

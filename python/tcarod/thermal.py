@@ -38,7 +38,9 @@ raises ``ValueError``; a transient that exceeds it is reported
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any, Callable, Final, Sequence, Union
 
 import numpy as np
@@ -56,6 +58,7 @@ __all__ = [
     "VoltageProfile",
     "plot_shape_trajectory",
     "plot_step_response",
+    "save_trajectory_frames",
     "quasi_static_trajectory",
     "solve_with_voltages",
     "steady_temperatures",
@@ -510,3 +513,28 @@ def plot_shape_trajectory(traj: ShapeTrajectory) -> Any:
     ax2.grid(True, linewidth=0.3)
     ax2.legend(fontsize="small")
     return fig
+
+
+def save_trajectory_frames(traj: ShapeTrajectory, directory: str | os.PathLike[str], every: int = 1) -> list[Path]:
+    """Animation frames: one PNG of the 3-D shape (:func:`tcarod.plotting.plot_solution`)
+    per ``every``-th time of ``traj``, on fixed axes, titled with the time [s] and
+    temperatures [C]. Returns the paths written (``frame_0000.png``, ...)."""
+    from .plotting import plot_solution, save_png
+
+    if every < 1:
+        raise ValueError(f"invalid every = {every}: need >= 1")
+    out = Path(directory)
+    tips = traj.tip_positions_m * 1e3
+    lo = np.minimum(tips.min(axis=0), 0.0)
+    hi = np.maximum(tips.max(axis=0), 0.0)
+    centre, half = 0.5 * (lo + hi), 0.55 * float(np.max(hi - lo)) + 5.0
+    paths = []
+    for k in range(0, len(traj.solutions), every):
+        temps = ", ".join(f"{t:.0f}" for t in traj.temperatures_c[k])
+        fig = plot_solution(traj.solutions[k], title=f"t = {traj.time_s[k]:.1f} s, T = [{temps}] °C")
+        ax: Any = fig.axes[0]
+        ax.set_xlim(centre[0] - half, centre[0] + half)
+        ax.set_ylim(centre[1] - half, centre[1] + half)
+        ax.set_zlim(centre[2] - half, centre[2] + half)
+        paths.append(save_png(fig, out / f"frame_{k:04d}.png", dpi=80))
+    return paths
