@@ -93,7 +93,7 @@ impl Tca {
             ));
         }
         let alpha0 = (cl / l).asin();
-        Ok(Tca {
+        let t = Tca {
             fibre_length: l,
             coiled_length: cl,
             coil_diameter: dd,
@@ -104,7 +104,24 @@ impl Tca {
             n_coils: 2.0 * alpha0.cos() * l / (PI * dd),
             phi0: 2.0 * PI * nn,
             d0: 2.0 * dd * cl / l,
-        })
+        };
+        // Extreme inputs can pass every range check and still overflow or
+        // underflow the law's powers (d^4, (l/n)^3); refuse them here rather
+        // than return NaN from a solve later.
+        let probe = t.at(t.material.t_max()).and_then(|a| {
+            let f11 = a.f11(alpha0);
+            let f12 = a.f12(alpha0);
+            if [t.n_coils, t.d0, f11, f12, a.tau].iter().all(|x| x.is_finite()) && f11 > 0.0 && f12 > 0.0 {
+                Ok(())
+            } else {
+                Err(Error::input(
+                    "TCA geometry",
+                    "derived quantities (n, d0, f11, f12, tau) are not finite positive numbers: sizes out of floating-point range",
+                ))
+            }
+        });
+        probe?;
+        Ok(t)
     }
 
     /// A TCA specified, as in the paper's manipulators (Section V-B), by its
