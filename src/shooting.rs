@@ -493,6 +493,126 @@ pub fn solve(robot: &Robot, inputs: &[f64], opts: &SolveOptions, warm: Option<&S
     solve_loaded(robot, inputs, &Loads::of(robot), opts, warm)
 }
 
+/// Newton shooting on two grids: converge on a grid of a tenth of the steps
+/// (a tenth of the cost per IVP), then polish on the full grid from that
+/// solution with a finite-difference Jacobian taken on the coarse grid.
+/// (At least 2 steps; grids under 10 steps are solved directly.)
+fn two_level(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    x0: &[f64],
+    jac0: Option<&DMatrix<f64>>,
+    work: &mut (usize, usize),
+) -> Result<(Vec<f64>, Option<DMatrix<f64>>, LastTip)> {
+    // Two levels: converge on a grid of a tenth of the steps (a tenth of the
+    // cost per IVP; RK4's error there is ~1e-4 of the fine one's strains), then
+    // polish on the full grid from that solution and its Jacobian.
+    let coarse = if opts.steps >= 10 {
+        let copts = SolveOptions { steps: (opts.steps / 10).max(2), ..*opts };
+        newton_from(robot, inputs, loads, &copts, x0, jac0, work).ok().and_then(|(xc, _)| {
+            // a finite-difference Jacobian at the coarse solution (cheap IVPs)
+            // for the fine polish: Broyden's matrix is no accurate Jacobian
+            let mut f = |x: &[f64]| shoot(robot, inputs, loads, x, copts.steps, false).map(|t| t.0);
+            let rc = f(&xc).ok()?;
+            let mut ev = 1;
+            let jc = fd_jacobian(&xc, &rc, &mut f, &mut ev).ok()?;
+            work.1 += ev;
+            Some((xc, Some(jc)))
+        })
+    } else {
+        None
+    };
+    match &coarse {
+        Some((xc, jc)) => newton_from_tip(robot, inputs, loads, opts, xc, jc.as_ref(), work)
+            .or_else(|_| newton_from_tip(robot, inputs, loads, opts, x0, jac0, work)),
+        None => newton_from_tip(robot, inputs, loads, opts, x0, jac0, work),
+    }
+}
+
+/// Tip pose of a forward solution, without the sampled profile (for batches).
+#[derive(Debug, Clone)]
+pub struct TipSolution {
+    /// Tip position [m].
+    pub position: Vector3<f64>,
+    /// Tip rotation (body to world).
+    pub rotation: Matrix3<f64>,
+    /// Scaled shooting unknowns.
+    pub unknowns: Vec<f64>,
+    /// Actuator tensions [N].
+    pub tensions: Vec<f64>,
+    /// Inputs the solution is for.
+    pub inputs: Vec<f64>,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// IVPs integrated (coarse-grid ones included).
+    pub evaluations: usize,
+    /// Final Newton Jacobian, for warm starts.
+    pub newton_jacobian: Option<DMatrix<f64>>,
+}
+
+impl TipSolution {
+    fn from_solution(s: Solution) -> Self {
+        TipSolution {
+            position: s.tip_position(),
+            rotation: s.tip_rotation(),
+            unknowns: s.unknowns,
+            tensions: s.tensions,
+            inputs: s.inputs,
+            iterations: s.iterations,
+            evaluations: s.evaluations,
+            newton_jacobian: s.newton_jacobian,
+        }
+    }
+}
+
+/// [`solve_loaded`] returning only the tip pose (no profile is recorded,
+/// which saves an IVP and its allocations). `warm`: a neighbouring tip
+/// solution. Falls back on [`solve_loaded`] (with its continuation) when the
+/// direct Newton solve fails. Inputs are not validated here: call
+/// `robot.check_inputs` first.
+pub fn solve_tip(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptions, warm: Option<&TipSolution>) -> Result<TipSolution> {
+    let len = robot.body.length;
+    let mut x0 = match warm {
+        Some(w) => w.unknowns.clone(),
+        None => reference_guess(robot),
+    };
+    for (i, a) in robot.actuators.iter().enumerate() {
+        let tension = warm.map_or(0.0, |w| w.tensions[i]);
+        if let Some(d) = a.law.elongation(tension, inputs[i]) {
+            if d.is_finite() {
+                x0[6 + i] = d / len;
+            }
+        }
+    }
+    let mut work = (0usize, 0usize);
+    let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
+    match two_level(robot, inputs, loads, opts, &x0, jac0, &mut work) {
+        Ok((x, jac, (p, r, tau))) => Ok(TipSolution {
+            position: p,
+            rotation: r,
+            unknowns: x,
+            tensions: tau,
+            inputs: inputs.to_vec(),
+            iterations: work.0,
+            evaluations: work.1,
+            newton_jacobian: jac,
+        }),
+        Err(e) if is_input_error(&e) => Err(e),
+        Err(_) => {
+            let w = match warm {
+                Some(w) => Some(assemble(robot, &w.inputs, loads, &w.unknowns, opts.steps, 0, 0)?),
+                None => None,
+            };
+            let mut s = TipSolution::from_solution(solve_loaded(robot, inputs, loads, opts, w.as_ref())?);
+            s.iterations += work.0;
+            s.evaluations += work.1;
+            Ok(s)
+        }
+    }
+}
+
 fn is_input_error(e: &Error) -> bool {
     matches!(e, Error::InvalidParameter { .. } | Error::InvalidInput { .. })
 }
@@ -518,29 +638,7 @@ pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOp
     let mut work = (0usize, 0usize);
     let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
     let x0 = initial_guess(robot, inputs, warm);
-    // Two levels: converge on a grid of a tenth of the steps (a tenth of the
-    // cost per IVP; RK4's error there is ~1e-4 of the fine one's strains), then
-    // polish on the full grid from that solution and its Jacobian.
-    let coarse = if opts.steps >= 40 {
-        let copts = SolveOptions { steps: opts.steps / 10, ..*opts };
-        newton_from(robot, inputs, loads, &copts, &x0, jac0, &mut work).ok().and_then(|(xc, _)| {
-            // a finite-difference Jacobian at the coarse solution (cheap IVPs)
-            // for the fine polish: Broyden's matrix is no accurate Jacobian
-            let mut f = |x: &[f64]| shoot(robot, inputs, loads, x, copts.steps, false).map(|t| t.0);
-            let rc = f(&xc).ok()?;
-            let mut ev = 1;
-            let jc = fd_jacobian(&xc, &rc, &mut f, &mut ev).ok()?;
-            work.1 += ev;
-            Some((xc, Some(jc)))
-        })
-    } else {
-        None
-    };
-    let first = match &coarse {
-        Some((xc, jc)) => newton_from(robot, inputs, loads, opts, xc, jc.as_ref(), &mut work)
-            .or_else(|_| newton_from(robot, inputs, loads, opts, &x0, jac0, &mut work)),
-        None => newton_from(robot, inputs, loads, opts, &x0, jac0, &mut work),
-    };
+    let first = two_level(robot, inputs, loads, opts, &x0, jac0, &mut work).map(|(x, j, _)| (x, j));
     match first {
         Ok((x, jac)) => assemble(robot, inputs, loads, &x, opts.steps, work.0, work.1).map(|mut s| {
             s.newton_jacobian = jac;
@@ -570,7 +668,12 @@ pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOp
     }
 }
 
-fn newton_from(
+/// Tip position, rotation and actuator tensions of the last IVP integrated.
+type LastTip = (Vector3<f64>, Matrix3<f64>, Vec<f64>);
+
+/// Newton from `x0`; returns the solution, the final Jacobian and the tip of
+/// the solution (the last IVP Newton integrates is at the point it returns).
+fn newton_from_tip(
     robot: &Robot,
     inputs: &[f64],
     loads: &Loads,
@@ -578,10 +681,16 @@ fn newton_from(
     x0: &[f64],
     jac0: Option<&DMatrix<f64>>,
     work: &mut (usize, usize),
-) -> Result<(Vec<f64>, Option<DMatrix<f64>>)> {
+) -> Result<(Vec<f64>, Option<DMatrix<f64>>, LastTip)> {
+    let mut last: LastTip = (Vector3::zeros(), Matrix3::identity(), Vec::new());
     let r = newton_with_jacobian(
         x0,
-        |x| shoot(robot, inputs, loads, x, opts.steps, false).map(|t| t.0),
+        |x| {
+            shoot(robot, inputs, loads, x, opts.steps, false).map(|(r, ivp, tau)| {
+                last = (ivp.tip.p, ivp.tip.rotation(), tau);
+                r
+            })
+        },
         opts,
         "forward shooting",
         jac0,
@@ -591,7 +700,7 @@ fn newton_from(
             work.0 += nr.iterations;
             work.1 += nr.evaluations;
             let jac = if nr.iterations > 0 { Some(jac) } else { jac0.cloned() };
-            Ok((nr.x, jac))
+            Ok((nr.x, jac, last))
         }
         Err(Error::NotConverged { solver, iterations, residual, reason }) => {
             work.0 += iterations;
@@ -604,6 +713,18 @@ fn newton_from(
         }
         Err(e) => Err(e),
     }
+}
+
+fn newton_from(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    x0: &[f64],
+    jac0: Option<&DMatrix<f64>>,
+    work: &mut (usize, usize),
+) -> Result<(Vec<f64>, Option<DMatrix<f64>>)> {
+    newton_from_tip(robot, inputs, loads, opts, x0, jac0, work).map(|(x, j, _)| (x, j))
 }
 
 /// Reach `target` inputs from a solution `start` at inputs `from` by halving
