@@ -18,6 +18,7 @@
 
 pub mod error;
 pub mod batch;
+pub mod bench;
 pub mod experiments;
 pub mod inverse;
 pub mod material;

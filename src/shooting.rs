@@ -496,7 +496,7 @@ pub fn solve(robot: &Robot, inputs: &[f64], opts: &SolveOptions, warm: Option<&S
 /// Newton shooting on two grids: converge on a grid of a tenth of the steps
 /// (a tenth of the cost per IVP), then polish on the full grid from that
 /// solution with a finite-difference Jacobian taken on the coarse grid.
-/// (At least 2 steps; grids under 10 steps are solved directly.)
+/// (At least 1 step; grids under 10 steps are solved directly.)
 fn two_level(
     robot: &Robot,
     inputs: &[f64],
@@ -510,8 +510,14 @@ fn two_level(
     // cost per IVP; RK4's error there is ~1e-4 of the fine one's strains), then
     // polish on the full grid from that solution and its Jacobian.
     let coarse = if opts.steps >= 10 {
-        let copts = SolveOptions { steps: (opts.steps / 10).max(2), ..*opts };
-        newton_from(robot, inputs, loads, &copts, x0, jac0, work).ok().and_then(|(xc, _)| {
+        let copts = SolveOptions { steps: (opts.steps / 10).max(1), ..*opts };
+        // cold: the coarse problem is itself solved on two grids, down to one
+        // step; warm (a Jacobian given): one coarse grid is enough
+        let coarse = match jac0 {
+            None => two_level(robot, inputs, loads, &copts, x0, jac0, work).map(|(x, j, _)| (x, j)),
+            Some(_) => newton_from(robot, inputs, loads, &copts, x0, jac0, work),
+        };
+        coarse.ok().and_then(|(xc, _)| {
             // a finite-difference Jacobian at the coarse solution (cheap IVPs)
             // for the fine polish: Broyden's matrix is no accurate Jacobian
             let mut f = |x: &[f64]| shoot(robot, inputs, loads, x, copts.steps, false).map(|t| t.0);

@@ -68,6 +68,9 @@ def _parser() -> argparse.ArgumentParser:
         help="print one machine-readable JSON document on stdout instead of the tables "
         "(temperatures in C, lengths in m, forces in N)",
     )
+    from .bench import add_parser as _add_bench_parser
+
+    _add_bench_parser(sub)
     return parser
 
 
@@ -108,6 +111,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.command == "reproduce":
             return _reproduce(args.names, Path(args.out), args.json)
+        if args.command == "bench":
+            from .bench import run as _run_bench
+
+            return _run_bench(args)
     except (ValueError, ConvergenceError, OSError) as exc:
         message = " ".join(str(exc).split())  # one line
         print(f"tcarod: error: {type(exc).__name__}: {message}", file=sys.stderr)
