@@ -394,6 +394,23 @@ impl Solution {
 /// Build a [`Solution`] by integrating once more from converged unknowns.
 pub fn assemble(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize, iterations: usize, evaluations: usize) -> Result<Solution> {
     let (r, ivp, tau) = shoot(robot, inputs, loads, x, steps, true)?;
+    assemble_from(robot, inputs, loads, x, steps, iterations, evaluations, r, ivp, tau)
+}
+
+/// [`assemble`] from the recorded IVP at `x` (residual `r`, tensions `tau`).
+#[allow(clippy::too_many_arguments)]
+fn assemble_from(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    steps: usize,
+    iterations: usize,
+    evaluations: usize,
+    r: Vec<f64>,
+    ivp: IvpResult,
+    tau: Vec<f64>,
+) -> Result<Solution> {
     let body = &robot.body;
     let (kse, kbt) = body.stiffness();
     let na = robot.actuators.len();
@@ -505,6 +522,7 @@ fn two_level(
     x0: &[f64],
     jac0: Option<&DMatrix<f64>>,
     work: &mut (usize, usize),
+    record: bool,
 ) -> Result<(Vec<f64>, Option<DMatrix<f64>>, LastTip)> {
     // Two levels: converge on a grid of a tenth of the steps (a tenth of the
     // cost per IVP; RK4's error there is ~1e-4 of the fine one's strains), then
@@ -514,7 +532,7 @@ fn two_level(
         // cold: the coarse problem is itself solved on two grids, down to one
         // step; warm (a Jacobian given): one coarse grid is enough
         let coarse = match jac0 {
-            None => two_level(robot, inputs, loads, &copts, x0, jac0, work).map(|(x, j, _)| (x, j)),
+            None => two_level(robot, inputs, loads, &copts, x0, jac0, work, false).map(|(x, j, _)| (x, j)),
             Some(_) => newton_from(robot, inputs, loads, &copts, x0, jac0, work),
         };
         coarse.ok().and_then(|(xc, _)| {
@@ -531,9 +549,9 @@ fn two_level(
         None
     };
     match &coarse {
-        Some((xc, jc)) => newton_from_tip(robot, inputs, loads, opts, xc, jc.as_ref(), work)
-            .or_else(|_| newton_from_tip(robot, inputs, loads, opts, x0, jac0, work)),
-        None => newton_from_tip(robot, inputs, loads, opts, x0, jac0, work),
+        Some((xc, jc)) => newton_from_tip(robot, inputs, loads, opts, xc, jc.as_ref(), work, record)
+            .or_else(|_| newton_from_tip(robot, inputs, loads, opts, x0, jac0, work, record)),
+        None => newton_from_tip(robot, inputs, loads, opts, x0, jac0, work, record),
     }
 }
 
@@ -594,10 +612,10 @@ pub fn solve_tip(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptio
     }
     let mut work = (0usize, 0usize);
     let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
-    match two_level(robot, inputs, loads, opts, &x0, jac0, &mut work) {
-        Ok((x, jac, (p, r, tau))) => Ok(TipSolution {
-            position: p,
-            rotation: r,
+    match two_level(robot, inputs, loads, opts, &x0, jac0, &mut work, false) {
+        Ok((x, jac, Some((_, ivp, tau)))) => Ok(TipSolution {
+            position: ivp.tip.p,
+            rotation: ivp.tip.rotation(),
             unknowns: x,
             tensions: tau,
             inputs: inputs.to_vec(),
@@ -606,7 +624,7 @@ pub fn solve_tip(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptio
             newton_jacobian: jac,
         }),
         Err(e) if is_input_error(&e) => Err(e),
-        Err(_) => {
+        _ => {
             let w = match warm {
                 Some(w) => Some(assemble(robot, &w.inputs, loads, &w.unknowns, opts.steps, 0, 0)?),
                 None => None,
@@ -644,12 +662,18 @@ pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOp
     let mut work = (0usize, 0usize);
     let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
     let x0 = initial_guess(robot, inputs, warm);
-    let first = two_level(robot, inputs, loads, opts, &x0, jac0, &mut work).map(|(x, j, _)| (x, j));
-    match first {
-        Ok((x, jac)) => assemble(robot, inputs, loads, &x, opts.steps, work.0, work.1).map(|mut s| {
-            s.newton_jacobian = jac;
-            s
-        }),
+    // the last IVP of Newton is at its solution: recorded, it is the profile
+    match two_level(robot, inputs, loads, opts, &x0, jac0, &mut work, true) {
+        Ok((x, jac, last)) => {
+            let sol = match last {
+                Some((r, ivp, tau)) if !ivp.nodes.is_empty() => assemble_from(robot, inputs, loads, &x, opts.steps, work.0, work.1, r, ivp, tau),
+                _ => assemble(robot, inputs, loads, &x, opts.steps, work.0, work.1),
+            };
+            sol.map(|mut s| {
+                s.newton_jacobian = jac;
+                s
+            })
+        }
         Err(e) if is_input_error(&e) => Err(e),
         Err(first) => {
             let (from, start) = match warm {
@@ -675,7 +699,7 @@ pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOp
 }
 
 /// Tip position, rotation and actuator tensions of the last IVP integrated.
-type LastTip = (Vector3<f64>, Matrix3<f64>, Vec<f64>);
+type LastTip = Option<(Vec<f64>, IvpResult, Vec<f64>)>;
 
 /// Newton from `x0`; returns the solution, the final Jacobian and the tip of
 /// the solution (the last IVP Newton integrates is at the point it returns).
@@ -687,13 +711,14 @@ fn newton_from_tip(
     x0: &[f64],
     jac0: Option<&DMatrix<f64>>,
     work: &mut (usize, usize),
+    record: bool,
 ) -> Result<(Vec<f64>, Option<DMatrix<f64>>, LastTip)> {
-    let mut last: LastTip = (Vector3::zeros(), Matrix3::identity(), Vec::new());
+    let mut last: LastTip = None;
     let r = newton_with_jacobian(
         x0,
         |x| {
-            shoot(robot, inputs, loads, x, opts.steps, false).map(|(r, ivp, tau)| {
-                last = (ivp.tip.p, ivp.tip.rotation(), tau);
+            shoot(robot, inputs, loads, x, opts.steps, record).map(|(r, ivp, tau)| {
+                last = Some((r.clone(), ivp, tau));
                 r
             })
         },
@@ -730,7 +755,7 @@ fn newton_from(
     jac0: Option<&DMatrix<f64>>,
     work: &mut (usize, usize),
 ) -> Result<(Vec<f64>, Option<DMatrix<f64>>)> {
-    newton_from_tip(robot, inputs, loads, opts, x0, jac0, work).map(|(x, j, _)| (x, j))
+    newton_from_tip(robot, inputs, loads, opts, x0, jac0, work, false).map(|(x, j, _)| (x, j))
 }
 
 /// Reach `target` inputs from a solution `start` at inputs `from` by halving
