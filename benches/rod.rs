@@ -14,7 +14,9 @@ fn rows(c: &mut Criterion) {
         if row.name == "grasp" {
             g.sample_size(20);
         }
-        g.bench_function(row.name, |b| b.iter(|| op().expect("bench operation succeeds")));
+        g.bench_function(row.name, |b| {
+            b.iter(|| op().expect("bench operation succeeds"))
+        });
         g.finish();
     }
 }
@@ -22,13 +24,21 @@ fn rows(c: &mut Criterion) {
 fn batch(c: &mut Criterion) {
     let robot = fig6_square(true);
     let n = 400;
-    let inputs: Vec<f64> = (0..n).flat_map(|k| [40.0 + 100.0 * k as f64 / n as f64; 2]).collect();
+    let inputs: Vec<f64> = (0..n)
+        .flat_map(|k| [40.0 + 100.0 * k as f64 / n as f64; 2])
+        .collect();
     let mut g = c.benchmark_group("batch");
     g.sample_size(10);
     g.throughput(Throughput::Elements(n as u64));
     for threads in [1, 2] {
-        let opts = BatchOptions { threads, chunk_size: 50, ..Default::default() };
-        g.bench_function(format!("sweep_{n}_threads_{threads}"), |b| b.iter(|| solve_batch(&robot, &inputs, None, &opts).unwrap()));
+        let opts = BatchOptions {
+            threads,
+            chunk_size: 50,
+            ..Default::default()
+        };
+        g.bench_function(format!("sweep_{n}_threads_{threads}"), |b| {
+            b.iter(|| solve_batch(&robot, &inputs, None, &opts).unwrap())
+        });
     }
     g.finish();
 }

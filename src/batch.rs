@@ -82,7 +82,12 @@ pub fn thread_count(requested: usize) -> usize {
 /// Invalid inputs are an error (naming the row) before any work; a solve that
 /// does not converge gives `converged = false` and NaN pose, and the next row
 /// of its chunk starts cold.
-pub fn solve_batch(robot: &Robot, inputs: &[f64], wrenches: Option<&[f64]>, opts: &BatchOptions) -> Result<BatchOutput> {
+pub fn solve_batch(
+    robot: &Robot,
+    inputs: &[f64],
+    wrenches: Option<&[f64]>,
+    opts: &BatchOptions,
+) -> Result<BatchOutput> {
     robot.validate()?;
     opts.solve.validate()?;
     let na = robot.actuators.len();
@@ -92,37 +97,64 @@ pub fn solve_batch(robot: &Robot, inputs: &[f64], wrenches: Option<&[f64]>, opts
     let n = if na == 0 {
         match wrenches {
             Some(w) => w.len() / 6,
-            None => return Err(Error::input("inputs", "a robot without actuators needs wrenches to set the batch size")),
+            None => {
+                return Err(Error::input(
+                    "inputs",
+                    "a robot without actuators needs wrenches to set the batch size",
+                ))
+            }
         }
     } else {
         if inputs.len() % na != 0 {
-            return Err(Error::input("inputs", format!("length {} is not a multiple of {na} actuators", inputs.len())));
+            return Err(Error::input(
+                "inputs",
+                format!(
+                    "length {} is not a multiple of {na} actuators",
+                    inputs.len()
+                ),
+            ));
         }
         inputs.len() / na
     };
     if let Some(w) = wrenches {
         if w.len() != 6 * n {
-            return Err(Error::input("wrenches", format!("expected {n} rows of 6, got {} values", w.len())));
+            return Err(Error::input(
+                "wrenches",
+                format!("expected {n} rows of 6, got {} values", w.len()),
+            ));
         }
         for (k, x) in w.iter().enumerate() {
             crate::error::finite(&format!("wrenches[{}, {}]", k / 6, k % 6), *x)?;
         }
     }
     for k in 0..n {
-        robot.check_inputs(&inputs[k * na..(k + 1) * na]).map_err(|e| match e {
-            Error::InvalidParameter { name, value, allowed } => Error::InvalidParameter {
-                name: format!("row {k}: {name}"),
-                value,
-                allowed,
-            },
-            other => other,
-        })?;
+        robot
+            .check_inputs(&inputs[k * na..(k + 1) * na])
+            .map_err(|e| match e {
+                Error::InvalidParameter {
+                    name,
+                    value,
+                    allowed,
+                } => Error::InvalidParameter {
+                    name: format!("row {k}: {name}"),
+                    value,
+                    allowed,
+                },
+                other => other,
+            })?;
     }
     let mut out = BatchOutput::with_len(n);
     let cs = opts.chunk_size;
     let n_chunks = n.div_ceil(cs);
     // One work item per chunk: its index and its disjoint slices of the output.
-    type Item<'a> = (usize, &'a mut [[f64; 3]], &'a mut [[f64; 9]], &'a mut [u32], &'a mut [u32], &'a mut [bool]);
+    type Item<'a> = (
+        usize,
+        &'a mut [[f64; 3]],
+        &'a mut [[f64; 9]],
+        &'a mut [u32],
+        &'a mut [u32],
+        &'a mut [bool],
+    );
     let items: Vec<Item<'_>> = out
         .tip_positions
         .chunks_mut(cs)
@@ -133,14 +165,21 @@ pub fn solve_batch(robot: &Robot, inputs: &[f64], wrenches: Option<&[f64]>, opts
         .enumerate()
         .map(|(c, ((((p, r), it), ev), ok))| (c, p, r, it, ev, ok))
         .collect();
-    let items: Vec<std::sync::Mutex<Option<Item<'_>>>> = items.into_iter().map(|i| std::sync::Mutex::new(Some(i))).collect();
+    let items: Vec<std::sync::Mutex<Option<Item<'_>>>> = items
+        .into_iter()
+        .map(|i| std::sync::Mutex::new(Some(i)))
+        .collect();
     let next = AtomicUsize::new(0);
     let work = || loop {
         let c = next.fetch_add(1, Ordering::Relaxed);
         if c >= n_chunks {
             break;
         }
-        let (c, p, r, it, ev, ok) = items[c].lock().expect("no panics while held").take().expect("each chunk once");
+        let (c, p, r, it, ev, ok) = items[c]
+            .lock()
+            .expect("no panics while held")
+            .take()
+            .expect("each chunk once");
         solve_chunk(robot, inputs, wrenches, opts, c * cs, p, r, it, ev, ok);
     };
     let threads = thread_count(opts.threads).min(n_chunks.max(1));
@@ -185,7 +224,13 @@ fn solve_chunk(
             None => base,
         };
         let q = &inputs[k * na..(k + 1) * na];
-        match solve_tip(robot, q, &loads, &opts.solve, if opts.warm { warm.as_ref() } else { None }) {
+        match solve_tip(
+            robot,
+            q,
+            &loads,
+            &opts.solve,
+            if opts.warm { warm.as_ref() } else { None },
+        ) {
             Ok(s) => {
                 pos[j] = [s.position.x, s.position.y, s.position.z];
                 for a in 0..3 {

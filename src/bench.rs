@@ -11,7 +11,9 @@ use std::time::Instant;
 use nalgebra::Vector3;
 
 use crate::error::Result;
-use crate::experiments::{fig6_square, table1_finger, G0, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL};
+use crate::experiments::{
+    fig6_square, table1_finger, G0, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL,
+};
 use crate::inverse::{grasp, sensitivities_fast, Groups, Scheme};
 use crate::shooting::{shoot, solve, Loads, SolveOptions};
 
@@ -36,12 +38,36 @@ pub struct Row {
 
 /// The rows, in table order.
 pub const ROWS: [Row; 6] = [
-    Row { name: "ivp", description: "one IVP (integrate the rod once)", target: 25e-6 },
-    Row { name: "cold", description: "one forward solve from the straight guess", target: 500e-6 },
-    Row { name: "warm", description: "one forward solve warm-started 5 C away", target: 100e-6 },
-    Row { name: "jc", description: "J and C at a solution", target: 300e-6 },
-    Row { name: "grasp", description: "one blocked-force grasp temperature (Table I, 1 g)", target: 5e-3 },
-    Row { name: "cold_1um", description: "cold forward solve within 1 um of a 5,000-step reference (10 RK4 steps)", target: 100e-6 },
+    Row {
+        name: "ivp",
+        description: "one IVP (integrate the rod once)",
+        target: 25e-6,
+    },
+    Row {
+        name: "cold",
+        description: "one forward solve from the straight guess",
+        target: 500e-6,
+    },
+    Row {
+        name: "warm",
+        description: "one forward solve warm-started 5 C away",
+        target: 100e-6,
+    },
+    Row {
+        name: "jc",
+        description: "J and C at a solution",
+        target: 300e-6,
+    },
+    Row {
+        name: "grasp",
+        description: "one blocked-force grasp temperature (Table I, 1 g)",
+        target: 5e-3,
+    },
+    Row {
+        name: "cold_1um",
+        description: "cold forward solve within 1 um of a 5,000-step reference (10 RK4 steps)",
+        target: 100e-6,
+    },
 ];
 
 /// A prepared operation of row `name`: calling it runs the operation once.
@@ -53,9 +79,21 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
         "ivp" => {
             let sol = solve(&robot, &t, &opts, None)?;
             let loads = Loads::of(&robot);
-            Box::new(move || shoot(&robot, &sol.inputs, &loads, std::hint::black_box(&sol.unknowns), opts.steps, false).map(|_| ()))
+            Box::new(move || {
+                shoot(
+                    &robot,
+                    &sol.inputs,
+                    &loads,
+                    std::hint::black_box(&sol.unknowns),
+                    opts.steps,
+                    false,
+                )
+                .map(|_| ())
+            })
         }
-        "cold" => Box::new(move || solve(&robot, std::hint::black_box(&t), &opts, None).map(|_| ())),
+        "cold" => {
+            Box::new(move || solve(&robot, std::hint::black_box(&t), &opts, None).map(|_| ()))
+        }
         "warm" => {
             let w = solve(&robot, &[BENCH_TEMPERATURE - WARM_STEP; 2], &opts, None)?;
             Box::new(move || solve(&robot, std::hint::black_box(&t), &opts, Some(&w)).map(|_| ()))
@@ -64,21 +102,50 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
             let sol = solve(&robot, &t, &opts, None)?;
             let loads = Loads::of(&robot);
             let groups = Groups(vec![0, 0]);
-            Box::new(move || sensitivities_fast(&robot, std::hint::black_box(&sol), &loads, &groups, opts.steps, Scheme::Forward).map(|_| ()))
+            Box::new(move || {
+                sensitivities_fast(
+                    &robot,
+                    std::hint::black_box(&sol),
+                    &loads,
+                    &groups,
+                    opts.steps,
+                    Scheme::Forward,
+                )
+                .map(|_| ())
+            })
         }
         "grasp" => {
             let finger = table1_finger();
             let groups = Groups(vec![0, 0]);
             let normal = Vector3::from(TABLE1_NORMAL);
             Box::new(move || {
-                grasp(&finger, &groups, &normal, std::hint::black_box(TABLE1_MASSES[0]), TABLE1_MU, TABLE1_FINGERS, G0, 8, &opts).map(|_| ())
+                grasp(
+                    &finger,
+                    &groups,
+                    &normal,
+                    std::hint::black_box(TABLE1_MASSES[0]),
+                    TABLE1_MU,
+                    TABLE1_FINGERS,
+                    G0,
+                    8,
+                    &opts,
+                )
+                .map(|_| ())
             })
         }
         "cold_1um" => {
-            let o = SolveOptions { steps: ACCURATE_STEPS, ..opts };
+            let o = SolveOptions {
+                steps: ACCURATE_STEPS,
+                ..opts
+            };
             Box::new(move || solve(&robot, std::hint::black_box(&t), &o, None).map(|_| ()))
         }
-        other => return Err(crate::error::Error::input("row", format!("unknown bench row {other:?}"))),
+        other => {
+            return Err(crate::error::Error::input(
+                "row",
+                format!("unknown bench row {other:?}"),
+            ))
+        }
     })
 }
 

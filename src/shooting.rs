@@ -514,6 +514,7 @@ pub fn solve(robot: &Robot, inputs: &[f64], opts: &SolveOptions, warm: Option<&S
 /// (a tenth of the cost per IVP), then polish on the full grid from that
 /// solution with a finite-difference Jacobian taken on the coarse grid.
 /// (At least 1 step; grids under 10 steps are solved directly.)
+#[allow(clippy::too_many_arguments)]
 fn two_level(
     robot: &Robot,
     inputs: &[f64],
@@ -703,6 +704,7 @@ type LastTip = Option<(Vec<f64>, IvpResult, Vec<f64>)>;
 
 /// Newton from `x0`; returns the solution, the final Jacobian and the tip of
 /// the solution (the last IVP Newton integrates is at the point it returns).
+#[allow(clippy::too_many_arguments)]
 fn newton_from_tip(
     robot: &Robot,
     inputs: &[f64],

@@ -1,7 +1,9 @@
 //! Bindings of the batch solver and of the bench timings (`tcarod.batch`,
 //! `tcarod bench`).
 
-use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{
+    PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
 
 use super::rod::{options, PyRobot};
@@ -50,7 +52,11 @@ fn solve_batch<'py>(
     let na = r.actuators.len();
     let shape = inputs.shape();
     if shape[1] != na {
-        return Err(Error::input("inputs", format!("expected shape (n, {na}), got ({}, {})", shape[0], shape[1])).into());
+        return Err(Error::input(
+            "inputs",
+            format!("expected shape (n, {na}), got ({}, {})", shape[0], shape[1]),
+        )
+        .into());
     }
     let n = shape[0];
     let q: Vec<f64> = inputs.as_array().iter().copied().collect(); // row-major
@@ -58,7 +64,11 @@ fn solve_batch<'py>(
         Some(w) => {
             let s = w.shape();
             if s[0] != n || s[1] != 6 {
-                return Err(Error::input("wrenches", format!("expected shape ({n}, 6), got ({}, {})", s[0], s[1])).into());
+                return Err(Error::input(
+                    "wrenches",
+                    format!("expected shape ({n}, 6), got ({}, {})", s[0], s[1]),
+                )
+                .into());
             }
             Some(w.as_array().iter().copied().collect())
         }
@@ -71,8 +81,10 @@ fn solve_batch<'py>(
         warm,
     };
     let out = py.detach(|| core_solve_batch(&r, &q, w.as_deref(), &opts))?;
-    let pos = PyArray1::from_iter(py, out.tip_positions.iter().flatten().copied()).reshape([n, 3])?;
-    let rot = PyArray1::from_iter(py, out.tip_rotations.iter().flatten().copied()).reshape([n, 3, 3])?;
+    let pos =
+        PyArray1::from_iter(py, out.tip_positions.iter().flatten().copied()).reshape([n, 3])?;
+    let rot =
+        PyArray1::from_iter(py, out.tip_rotations.iter().flatten().copied()).reshape([n, 3, 3])?;
     let it = PyArray1::from_iter(py, out.iterations.iter().map(|&k| k as i64));
     let ev = PyArray1::from_iter(py, out.evaluations.iter().map(|&k| k as i64));
     let ok = PyArray1::from_iter(py, out.converged.iter().copied());
@@ -88,7 +100,10 @@ fn default_threads() -> usize {
 /// Rows of the performance table: `(name, description, target [s])`.
 #[pyfunction]
 fn bench_rows() -> Vec<(&'static str, &'static str, f64)> {
-    crate::bench::ROWS.iter().map(|r| (r.name, r.description, r.target)).collect()
+    crate::bench::ROWS
+        .iter()
+        .map(|r| (r.name, r.description, r.target))
+        .collect()
 }
 
 /// Time row `name` in Rust: `repeats` runs, each a loop of at least
