@@ -921,6 +921,14 @@ impl<'a> Frozen<'a> {
     }
 }
 
+/// `out = y + h k`, elementwise.
+#[inline(always)]
+fn axpy(out: &mut [f64], y: &[f64], h: f64, k: &[f64]) {
+    for ((o, a), b) in out.iter_mut().zip(y).zip(k) {
+        *o = a + h * b;
+    }
+}
+
 /// Integrate the rod from the base with unknown initial strains `v0`, `u0`
 /// (eqs 22-25), by fixed-step RK4 on a grid that has a node at every actuator
 /// anchor. Actuator elongations start at zero at their proximal anchors.
@@ -974,20 +982,14 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
         for k in 0..m {
             let s = a + k as f64 * h;
             fz.deriv(s, &y, &active, &mut k1)?;
-            for j in 0..n {
-                yt[j] = y[j] + h2 * k1[j];
-            }
+            axpy(&mut yt, &y, h2, &k1);
             fz.deriv(s + h2, &yt, &active, &mut k2)?;
-            for j in 0..n {
-                yt[j] = y[j] + h2 * k2[j];
-            }
+            axpy(&mut yt, &y, h2, &k2);
             fz.deriv(s + h2, &yt, &active, &mut k3)?;
-            for j in 0..n {
-                yt[j] = y[j] + h * k3[j];
-            }
+            axpy(&mut yt, &y, h, &k3);
             fz.deriv(s + h, &yt, &active, &mut k4)?;
-            for j in 0..n {
-                y[j] += h6 * (k1[j] + 2.0 * (k2[j] + k3[j]) + k4[j]);
+            for ((((yj, a), b), c), d) in y.iter_mut().zip(&k1).zip(&k2).zip(&k3).zip(&k4) {
+                *yj += h6 * (a + 2.0 * (b + c) + d);
             }
             let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();
             for yq in &mut y[3..7] {
