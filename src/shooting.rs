@@ -529,7 +529,9 @@ fn two_level(
     // cost per IVP; RK4's error there is ~1e-4 of the fine one's strains), then
     // polish on the full grid from that solution and its Jacobian.
     let coarse = if opts.steps >= 10 {
-        let copts = SolveOptions { steps: (opts.steps / 10).max(1), ..*opts };
+        // the coarse solution is only a predictor: converge it to 1e-6, well
+        // below the coarse grid's own discretisation error
+        let copts = SolveOptions { steps: (opts.steps / 10).max(1), tol: opts.tol.max(1e-6), ..*opts };
         // cold: the coarse problem is itself solved on two grids, down to one
         // step; warm (a Jacobian given): one coarse grid is enough
         let coarse = match jac0 {
