@@ -84,3 +84,22 @@ pub fn fig6_circle(gravity: bool) -> Robot {
 pub fn fig6_square(gravity: bool) -> Robot {
     square_manipulator(0.040, gravity)
 }
+
+/// Table I finger: square manipulator 20 mm long, hanging tip-down (gravity
+/// `+z` in the base frame), its U-shaped TCA's two legs sharing one
+/// temperature; it presses along `-x` on the grasped mass.
+pub fn table1_finger() -> Robot {
+    let mut finger = square_manipulator(0.020, false);
+    finger.body.gravity = Vector3::new(0.0, 0.0, G0);
+    finger
+}
+
+/// Table I grasp constants: friction coefficient, fingers, the direction a
+/// finger presses in, and the masses [kg].
+pub const TABLE1_MU: f64 = 1.1;
+/// Number of fingers of the Table I gripper.
+pub const TABLE1_FINGERS: usize = 2;
+/// Masses [kg] of Table I.
+pub const TABLE1_MASSES: [f64; 3] = [1e-3, 2e-3, 3e-3];
+/// Unit direction a Table I finger presses in (world frame).
+pub const TABLE1_NORMAL: [f64; 3] = [-1.0, 0.0, 0.0];

@@ -134,15 +134,41 @@ pub fn sensitivities(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Grou
     sensitivities_with_step(robot, sol, loads, groups, steps, scheme, rel)
 }
 
+/// [`sensitivities`] with the wrench columns exact instead of differenced:
+/// for fixed unknowns a tip wrench moves no state and enters the tip balance
+/// (32)-(33) linearly, so `B_W` is known in closed form and `E_W = 0`. Needs
+/// `1 + 6 + N + n_vars` IVPs (forward) instead of the paper's `12 + 2N`;
+/// `C` has no truncation error from the wrench steps.
+pub fn sensitivities_fast(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Groups, steps: usize, scheme: Scheme) -> Result<Sensitivities> {
+    let rel = match scheme {
+        Scheme::Forward => f64::EPSILON.sqrt(),
+        Scheme::Central => f64::EPSILON.cbrt(),
+    };
+    sensitivities_impl(robot, sol, loads, groups, steps, scheme, rel, true)
+}
+
 /// [`sensitivities`] with a chosen relative step (for studies of step-size error).
 #[allow(clippy::too_many_arguments)]
 pub fn sensitivities_with_step(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Groups, steps: usize, scheme: Scheme, rel: f64) -> Result<Sensitivities> {
+    sensitivities_impl(robot, sol, loads, groups, steps, scheme, rel, false)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn sensitivities_impl(
+    robot: &Robot,
+    sol: &Solution,
+    loads: &Loads,
+    groups: &Groups,
+    steps: usize,
+    scheme: Scheme,
+    rel: f64,
+    exact_wrench: bool,
+) -> Result<Sensitivities> {
     groups.validate(robot)?;
     let nx = sol.unknowns.len();
     let nz = groups.n_vars();
     let z0 = groups.vars(&sol.inputs);
     let bounds = groups.bounds(robot);
-    let (fc, mc) = load_scales(robot);
     let (b0, ivp0, _) = shoot(robot, &sol.inputs, loads, &sol.unknowns, steps, false)?;
     let p0 = ivp0.tip.p;
     let r0 = ivp0.tip.rotation();
@@ -203,27 +229,43 @@ pub fn sensitivities_with_step(robot: &Robot, sol: &Solution, loads: &Loads, gro
         let plus = column(&sol.unknowns, &groups.inputs(&zp), loads)?;
         put(nx + k, plus, minus, h);
     }
-    // tip wrench W = [F; M]
-    for k in 0..6 {
-        let scale = if k < 3 { fc } else { mc };
-        let w0 = if k < 3 { loads.tip_force[k] } else { loads.tip_moment[k - 3] };
-        let h = rel * (w0.abs() / scale).max(1.0) * scale;
-        let perturbed = |d: f64| {
-            let mut l = *loads;
-            if k < 3 {
-                l.tip_force[k] += d;
-            } else {
-                l.tip_moment[k - 3] += d;
+    if exact_wrench {
+        // tip wrench W = [F; M]: exact, no IVP. For fixed unknowns the wrench
+        // moves no state (E_W = 0) and enters only the tip balance (32)-(33),
+        // linearly: d r_F / dF = -(L^2/EI) R^T, d r_M / dM = -(L/EI) R^T
+        // in the scaled residual of `shoot`.
+        let (fs, ms) = crate::shooting::residual_scales(robot);
+        for k in 0..6 {
+            let col = nx + nz + k;
+            for i in 0..3 {
+                let (row, val) = if k < 3 { (i, -r0[(k, i)] * fs) } else { (3 + i, -r0[(k - 3, i)] * ms) };
+                bm[(row, col)] = val;
             }
-            l
-        };
-        let plus = column(&sol.unknowns, &sol.inputs, &perturbed(h))?;
-        let minus = if scheme == Scheme::Central {
-            Some(column(&sol.unknowns, &sol.inputs, &perturbed(-h))?)
-        } else {
-            None
-        };
-        put(nx + nz + k, plus, minus, h);
+        }
+    } else {
+        // tip wrench W = [F; M] by differences, the paper's way
+        let (fc, mc) = load_scales(robot);
+        for k in 0..6 {
+            let scale = if k < 3 { fc } else { mc };
+            let w0 = if k < 3 { loads.tip_force[k] } else { loads.tip_moment[k - 3] };
+            let h = rel * (w0.abs() / scale).max(1.0) * scale;
+            let perturbed = |d: f64| {
+                let mut l = *loads;
+                if k < 3 {
+                    l.tip_force[k] += d;
+                } else {
+                    l.tip_moment[k - 3] += d;
+                }
+                l
+            };
+            let plus = column(&sol.unknowns, &sol.inputs, &perturbed(h))?;
+            let minus = if scheme == Scheme::Central {
+                Some(column(&sol.unknowns, &sol.inputs, &perturbed(-h))?)
+            } else {
+                None
+            };
+            put(nx + nz + k, plus, minus, h);
+        }
     }
     let bu = bm.columns(0, nx).into_owned();
     let lu = bu.lu();
@@ -333,7 +375,7 @@ pub fn tip_position_inverse(
     let mut iterations = 0;
     while err.norm() > opts.tol && iterations < opts.max_iter {
         iterations += 1;
-        let sens = sensitivities(robot, &sol, &loads, groups, opts.forward.steps, Scheme::Forward)?;
+        let sens = sensitivities_fast(robot, &sol, &loads, groups, opts.forward.steps, Scheme::Forward)?;
         evals += sens.evaluations;
         let mut jr = sens.jacobian.rows(0, rows).into_owned();
         if let Some((_, w)) = target_rotation {
@@ -552,7 +594,7 @@ pub fn blocked_temperature(robot: &Robot, groups: &Groups, block: &Block, start:
     let df = force / increments as f64;
     for k in 0..increments + 3 {
         let l = block.loads(robot, f);
-        let sens = sensitivities(robot, &sol, &l, groups, opts.steps, Scheme::Forward)?;
+        let sens = sensitivities_fast(robot, &sol, &l, groups, opts.steps, Scheme::Forward)?;
         evals += sens.evaluations;
         let nj: f64 = (0..3).map(|i| n[i] * sens.jacobian[(i, 0)]).sum();
         if nj.abs() < 1e-300 {

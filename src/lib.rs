@@ -17,6 +17,8 @@
 //! SI units throughout (m, N, Pa, kg), except temperatures, in degrees Celsius.
 
 pub mod error;
+pub mod batch;
+pub mod bench;
 pub mod experiments;
 pub mod inverse;
 pub mod material;

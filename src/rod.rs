@@ -25,7 +25,7 @@ use std::f64::consts::PI;
 use std::fmt::Debug;
 use std::sync::Arc;
 
-use nalgebra::{Matrix3, Matrix6, Quaternion, Vector3, Vector6};
+use nalgebra::{Matrix3, Quaternion, Vector3};
 
 use crate::error::{finite, non_negative, positive, Error, Result};
 use crate::tca::Tca;
@@ -609,16 +609,82 @@ pub struct IvpResult {
     pub nodes: Vec<(f64, RodState)>,
 }
 
+/// Per-actuator constants of one IVP: a straight actuator's offset, its
+/// cross-product matrix and reference length rate do not change along `s`.
+struct ActConst {
+    /// `(r, r^, L_i)` for a straight routing; `None` for a helix (evaluated per stage).
+    straight: Option<(Vector3<f64>, Matrix3<f64>, f64)>,
+}
+
 struct Frozen<'a> {
     robot: &'a Robot,
     tensions: &'a [f64],
-    kse: Matrix3<f64>,
-    kbt: Matrix3<f64>,
+    /// Diagonals of `K_nu`, `K_omega` and their inverses.
+    kse: Vector3<f64>,
+    kbt: Vector3<f64>,
+    kse_inv: Vector3<f64>,
+    kbt_inv: Vector3<f64>,
     fe: Vector3<f64>,
     le: Vector3<f64>,
+    has_le: bool,
+    acts: Vec<ActConst>,
+}
+
+/// Inverse of a symmetric 3x3 matrix (upper triangle read) by cofactors, `None` if singular.
+#[inline(always)]
+fn inv_sym3a(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    let (a, b, c) = (m[0][0], m[0][1], m[0][2]);
+    let (d, e) = (m[1][1], m[1][2]);
+    let f = m[2][2];
+    let c00 = d * f - e * e;
+    let c01 = c * e - b * f;
+    let c02 = b * e - c * d;
+    let det = a * c00 + b * c01 + c * c02;
+    if !(det.is_finite() && det != 0.0) {
+        return None;
+    }
+    let id = 1.0 / det;
+    let c11 = (a * f - c * c) * id;
+    let c12 = (b * c - a * e) * id;
+    let c22 = (a * d - b * b) * id;
+    let (c00, c01, c02) = (c00 * id, c01 * id, c02 * id);
+    Some([[c00, c01, c02], [c01, c11, c12], [c02, c12, c22]])
 }
 
 impl<'a> Frozen<'a> {
+    fn new(robot: &'a Robot, tensions: &'a [f64]) -> Self {
+        let body = &robot.body;
+        let (kse, kbt) = body.stiffness();
+        let kse = kse.diagonal();
+        let kbt = kbt.diagonal();
+        let acts = robot
+            .actuators
+            .iter()
+            .map(|a| ActConst {
+                straight: match a.routing {
+                    Routing::Straight { x, y } => {
+                        let r = Vector3::new(x, y, 0.0);
+                        let l = a.length_ratio.unwrap_or_else(|| (body.nu_star + body.omega_star.cross(&r)).norm());
+                        Some((r, r.cross_matrix(), l))
+                    }
+                    Routing::Helix { .. } => None,
+                },
+            })
+            .collect();
+        Frozen {
+            robot,
+            tensions,
+            kse,
+            kbt,
+            kse_inv: kse.map(|x| 1.0 / x),
+            kbt_inv: kbt.map(|x| 1.0 / x),
+            fe: body.distributed_load(),
+            le: body.distributed_moment,
+            has_le: body.distributed_moment != Vector3::zeros(),
+            acts,
+        }
+    }
+
     /// Body-frame tangent rate of actuator `i`: `v + u x r + r'` (eq 19 without `R`).
     #[inline]
     fn pb(&self, i: usize, s: f64, v: &Vector3<f64>, u: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
@@ -640,61 +706,144 @@ impl<'a> Frozen<'a> {
     }
 
     /// `dy/ds` (eqs 22-25) with the actuators in `active` (indices).
+    ///
+    /// The 6x6 system (25) is symmetric, `[[M11, M12], [M12^T, M22]]` with
+    /// `M11 = K_nu + sum A_i`, `M12 = -sum A_i r_i^`, `M22 = K_omega - sum r_i^ A_i r_i^`
+    /// (`A_i` symmetric, `r^T = -r^`), and is solved by block elimination on
+    /// its 3x3 blocks: `M11^-1`, then the Schur complement `S = M22 - M12^T M11^-1 M12`.
+    #[inline]
     fn deriv(&self, s: f64, y: &[f64], active: &[usize], dy: &mut [f64]) -> Result<()> {
         let body = &self.robot.body;
         let q = Quaternion::new(y[3], y[4], y[5], y[6]);
         let r_mat = rot(&q);
         let v = Vector3::new(y[7], y[8], y[9]);
         let u = Vector3::new(y[10], y[11], y[12]);
-        let nse = self.kse * (v - body.nu_star);
-        let nbt = self.kbt * (u - body.omega_star);
-        let rt = r_mat.transpose();
-        // eq (25) assembled as [[a, b], [c, d]] [v'; u'] = [e; f]
-        let mut m11 = self.kse;
-        let mut m12 = Matrix3::zeros();
-        let mut m21 = Matrix3::zeros();
-        let mut m22 = self.kbt;
-        let mut rhs_v = -u.cross(&nse) - rt * self.fe;
-        let mut rhs_u = -u.cross(&nbt) - v.cross(&nse) - rt * self.le;
+        let nse = self.kse.component_mul(&(v - body.nu_star));
+        let nbt = self.kbt.component_mul(&(u - body.omega_star));
+        // eq (25) right-hand side: [e; f]
+        let rhs_v = -u.cross(&nse) - r_mat.tr_mul(&self.fe);
+        let mut rhs_u = -u.cross(&nbt) - v.cross(&nse);
+        if self.has_le {
+            rhs_u -= r_mat.tr_mul(&self.le);
+        }
         for k in 0..self.robot.actuators.len() {
             dy[BASE_STATES + k] = 0.0;
         }
-        for &i in active {
-            let act = &self.robot.actuators[i];
-            let (r, rp, rpp) = act.routing.eval(s);
-            let pb = v + u.cross(&r) + rp; // eq (19), body frame
-            let nrm = pb.norm();
-            if !(nrm > 1e-12) {
-                return Err(Error::Integration {
-                    s,
-                    reason: format!("actuator {i} has zero length rate"),
-                });
+        let (vd, ud) = if active.is_empty() {
+            (rhs_v.component_mul(&self.kse_inv), rhs_u.component_mul(&self.kbt_inv))
+        } else {
+            // Blocks in plain arrays (nalgebra's generic 3x3 arithmetic costs
+            // several times the flops here). Symmetric blocks are stored whole.
+            let mut m11 = [[0.0; 3]; 3];
+            let mut m12 = [[0.0; 3]; 3];
+            let mut m22 = [[0.0; 3]; 3];
+            for k in 0..3 {
+                m11[k][k] = self.kse[k];
+                m22[k][k] = self.kbt[k];
             }
-            let tau = self.tensions[i];
-            // A_i = -tau pb^2 / |pb|^3 (eq 20: tau t_a' = A_i R^T p_a'')
-            let a_i = (Matrix3::identity() * (nrm * nrm) - pb * pb.transpose()) * (tau / (nrm * nrm * nrm));
-            let rhat = r.cross_matrix();
-            let g_i = u.cross(&(pb + rp)) + rpp; // omega^(nu + omega^ r + 2 r') + r''
-            let ag = a_i * g_i;
-            let ar = a_i * rhat;
-            m11 += a_i; // (26)
-            m12 -= ar; // (27)
-            m21 += rhat * a_i; // (28)
-            m22 -= rhat * ar; // (29)
-            rhs_v -= ag; // (30)
-            rhs_u -= rhat * ag; // (31)
-            dy[BASE_STATES + i] = nrm - self.ref_rate(i, s); // (24)
-        }
-        let mut m = Matrix6::zeros();
-        m.fixed_view_mut::<3, 3>(0, 0).copy_from(&m11);
-        m.fixed_view_mut::<3, 3>(0, 3).copy_from(&m12);
-        m.fixed_view_mut::<3, 3>(3, 0).copy_from(&m21);
-        m.fixed_view_mut::<3, 3>(3, 3).copy_from(&m22);
-        let rhs = Vector6::new(rhs_v.x, rhs_v.y, rhs_v.z, rhs_u.x, rhs_u.y, rhs_u.z);
-        let sol = m.lu().solve(&rhs).ok_or_else(|| Error::Integration {
-            s,
-            reason: "singular stiffness system (25): actuator compression exceeds the body's stiffness".into(),
-        })?;
+            let (mut e, mut f) = ([rhs_v.x, rhs_v.y, rhs_v.z], [rhs_u.x, rhs_u.y, rhs_u.z]);
+            for &i in active {
+                let (r, rp, rpp, lref) = match self.acts[i].straight {
+                    Some((r, _, l)) => (r, Vector3::zeros(), Vector3::zeros(), l),
+                    None => {
+                        let (r, rp, rpp) = self.robot.actuators[i].routing.eval(s);
+                        (r, rp, rpp, self.ref_rate(i, s))
+                    }
+                };
+                let pb = v + u.cross(&r) + rp; // eq (19), body frame
+                let nrm = pb.norm();
+                if !(nrm > 1e-12) {
+                    return Err(Error::Integration {
+                        s,
+                        reason: format!("actuator {i} has zero length rate"),
+                    });
+                }
+                let tau = self.tensions[i];
+                // A_i = -tau pb^2 / |pb|^3 = c (I - t t^T), c = tau / |pb| (eq 20:
+                // tau t_a' = A_i R^T p_a''). With r^ x = r x x, w = t x r and
+                // r^ r^ = r r^T - |r|^2 I:
+                //   A_i r^ = c (r^ - t w^T),  r^ A_i r^ = c (r r^T - |r|^2 I + w w^T).
+                let c = tau / nrm;
+                let t = pb / nrm;
+                let w = t.cross(&r);
+                let ct = t * c;
+                let g_i = u.cross(&(pb + rp)) + rpp; // omega^(nu + omega^ r + 2 r') + r''
+                let ag = g_i * c - ct * t.dot(&g_i); // A_i g_i
+                let rag = r.cross(&ag);
+                let cr2 = c * r.norm_squared();
+                let cw = w * c;
+                // (26): M11 += c I - c t t^T (symmetric: upper triangle, mirrored below)
+                m11[0][0] += c - ct.x * t.x;
+                m11[0][1] -= ct.x * t.y;
+                m11[0][2] -= ct.x * t.z;
+                m11[1][1] += c - ct.y * t.y;
+                m11[1][2] -= ct.y * t.z;
+                m11[2][2] += c - ct.z * t.z;
+                // (27): M12 += -c r^ + c t w^T; (28) is its transpose
+                let cr = r * c;
+                for p in 0..3 {
+                    m12[p][0] += ct[p] * w.x;
+                    m12[p][1] += ct[p] * w.y;
+                    m12[p][2] += ct[p] * w.z;
+                }
+                m12[0][1] += cr.z;
+                m12[0][2] -= cr.y;
+                m12[1][0] -= cr.z;
+                m12[1][2] += cr.x;
+                m12[2][0] += cr.y;
+                m12[2][1] -= cr.x;
+                // (29): M22 += c |r|^2 I - c r r^T - c w w^T
+                m22[0][0] += cr2 - cr.x * r.x - cw.x * w.x;
+                m22[0][1] -= cr.x * r.y + cw.x * w.y;
+                m22[0][2] -= cr.x * r.z + cw.x * w.z;
+                m22[1][1] += cr2 - cr.y * r.y - cw.y * w.y;
+                m22[1][2] -= cr.y * r.z + cw.y * w.z;
+                m22[2][2] += cr2 - cr.z * r.z - cw.z * w.z;
+                for p in 0..3 {
+                    e[p] -= ag[p]; // (30)
+                    f[p] -= rag[p]; // (31)
+                }
+                dy[BASE_STATES + i] = nrm - lref; // (24)
+            }
+            for (p, q) in [(1, 0), (2, 0), (2, 1)] {
+                m11[p][q] = m11[q][p];
+                m22[p][q] = m22[q][p];
+            }
+            let singular = || Error::Integration {
+                s,
+                reason: "singular stiffness system (25): actuator compression exceeds the body's stiffness".into(),
+            };
+            let m11_inv = inv_sym3a(&m11).ok_or_else(singular)?;
+            // Y = M11^-1 M12, a = M11^-1 e
+            let mut y12 = [[0.0; 3]; 3];
+            let mut ae = [0.0; 3];
+            for p in 0..3 {
+                for q in 0..3 {
+                    y12[p][q] = m11_inv[p][0] * m12[0][q] + m11_inv[p][1] * m12[1][q] + m11_inv[p][2] * m12[2][q];
+                }
+                ae[p] = m11_inv[p][0] * e[0] + m11_inv[p][1] * e[1] + m11_inv[p][2] * e[2];
+            }
+            // S = M22 - M12^T Y (symmetric), g = f - M12^T a
+            let mut sc = [[0.0; 3]; 3];
+            let mut g = [0.0; 3];
+            for p in 0..3 {
+                for q in p..3 {
+                    sc[p][q] = m22[p][q] - (m12[0][p] * y12[0][q] + m12[1][p] * y12[1][q] + m12[2][p] * y12[2][q]);
+                    sc[q][p] = sc[p][q];
+                }
+                g[p] = f[p] - (m12[0][p] * ae[0] + m12[1][p] * ae[1] + m12[2][p] * ae[2]);
+            }
+            let s_inv = inv_sym3a(&sc).ok_or_else(singular)?;
+            let mut ud = Vector3::zeros();
+            for p in 0..3 {
+                ud[p] = s_inv[p][0] * g[0] + s_inv[p][1] * g[1] + s_inv[p][2] * g[2];
+            }
+            let mut vd = Vector3::zeros();
+            for p in 0..3 {
+                vd[p] = ae[p] - (y12[p][0] * ud[0] + y12[p][1] * ud[1] + y12[p][2] * ud[2]);
+            }
+            (vd, ud)
+        };
         let pd = r_mat * v; // (22)
         dy[0] = pd.x;
         dy[1] = pd.y;
@@ -705,10 +854,13 @@ impl<'a> Frozen<'a> {
         dy[4] = qd.i;
         dy[5] = qd.j;
         dy[6] = qd.k;
-        for k in 0..6 {
-            dy[7 + k] = sol[k];
-        }
-        if dy.iter().any(|x| !x.is_finite()) {
+        dy[7] = vd.x;
+        dy[8] = vd.y;
+        dy[9] = vd.z;
+        dy[10] = ud.x;
+        dy[11] = ud.y;
+        dy[12] = ud.z;
+        if !dy.iter().fold(0.0, |acc, x| acc + x * 0.0).is_finite() {
             return Err(Error::Integration {
                 s,
                 reason: "non-finite derivative".into(),
@@ -717,52 +869,129 @@ impl<'a> Frozen<'a> {
         Ok(())
     }
 
-    /// Point load of actuator `i` anchored at `s`: `sign = -1` at its distal
-    /// anchor (pulls toward the base), `+1` at its proximal one. Updates `v`
-    /// and `u` across the anchor:
-    /// `K_nu dv = -sign... ` see body.
-    fn jump(&self, i: usize, s: f64, y: &mut [f64], distal: bool) -> Result<()> {
-        let tau = self.tensions[i];
-        if tau == 0.0 {
-            return Ok(());
-        }
+    /// Point loads on the body at an interior breakpoint `s` where strings
+    /// are anchored. With `P` the total point force on the body,
+    /// `n(s+) = n(s-) - P` and `m(s+) = m(s-) - sum r_i x P_i`, where a string
+    /// ending at `s` contributes `P_i = -tau_i t_i(s-)` (it pulls toward the
+    /// base), one starting at `s` contributes `+tau_i t_i(s+)`, and one passing
+    /// `s` contributes `tau_i (t_i(s+) - t_i(s-))`: the strains jump at an
+    /// anchor, so every string passing it has a kink there and presses on the
+    /// body. `t(s+)` depends on the post-jump strains, so the jump is solved
+    /// by Newton's method on the six strains (a 6x6 system; converges in a
+    /// few iterations even where plain fixed-point iteration diverges).
+    fn anchor_loads(&self, s: f64, y: &mut [f64]) -> Result<()> {
+        let len = self.robot.body.length;
+        let tol = 1e-12 * len;
         let v0 = Vector3::new(y[7], y[8], y[9]);
         let u0 = Vector3::new(y[10], y[11], y[12]);
-        let kse_inv = self.kse.try_inverse().expect("positive diagonal");
-        let kbt_inv = self.kbt.try_inverse().expect("positive diagonal");
-        // n(s+) = n(s-) + tau t  at a distal anchor (explicit: t from s-),
-        // n(s+) = n(s-) - tau t  at a proximal anchor, with t from s+ (implicit).
-        let update = |v: &Vector3<f64>, u: &Vector3<f64>, sign: f64| -> (Vector3<f64>, Vector3<f64>) {
+        // (index, before-side weight, after-side weight): P_i = tau (a t+ - b t-)
+        let mut terms: Vec<(usize, f64, f64)> = Vec::new();
+        for (i, act) in self.robot.actuators.iter().enumerate() {
+            if self.tensions[i] == 0.0 {
+                continue;
+            }
+            let ends = (act.s_end - s).abs() <= tol;
+            let starts = (act.s_start - s).abs() <= tol;
+            let passes = act.s_start < s - tol && act.s_end > s + tol;
+            let before = if ends || passes { 1.0 } else { 0.0 };
+            let after = if starts || passes { 1.0 } else { 0.0 };
+            if before != 0.0 || after != 0.0 {
+                terms.push((i, before, after));
+            }
+        }
+        if terms.is_empty() {
+            return Ok(());
+        }
+        let tangent = |i: usize, v: &Vector3<f64>, u: &Vector3<f64>| -> (Vector3<f64>, Vector3<f64>) {
             let (pb, r) = self.pb(i, s, v, u);
-            let t = pb / pb.norm();
-            (v0 + kse_inv * (t * (sign * tau)), u0 + kbt_inv * (r.cross(&t) * (sign * tau)))
+            (pb / pb.norm(), r)
         };
-        let (v, u) = if distal {
-            update(&v0, &u0, 1.0)
-        } else {
-            let (mut v, mut u) = (v0, u0);
-            let mut converged = false;
-            for _ in 0..100 {
-                let (vn, un) = update(&v, &u, -1.0);
-                let change = (vn - v).norm() + (un - u).norm() * self.robot.body.length;
-                v = vn;
-                u = un;
-                if change < 1e-15 {
-                    converged = true;
-                    break;
+        // explicit part (from s-)
+        let mut f_minus = Vector3::zeros();
+        let mut m_minus = Vector3::zeros();
+        for &(i, b, _) in &terms {
+            if b != 0.0 {
+                let (t, r) = tangent(i, &v0, &u0);
+                let p = t * (-b * self.tensions[i]);
+                f_minus += p;
+                m_minus += r.cross(&p);
+            }
+        }
+        // residual of the jump for post-jump strains w = (v, u)
+        let resid = |w: &nalgebra::Vector6<f64>| -> nalgebra::Vector6<f64> {
+            let v = Vector3::new(w[0], w[1], w[2]);
+            let u = Vector3::new(w[3], w[4], w[5]);
+            let mut f = f_minus;
+            let mut m = m_minus;
+            for &(i, _, a) in &terms {
+                if a != 0.0 {
+                    let (t, r) = tangent(i, &v, &u);
+                    let p = t * (a * self.tensions[i]);
+                    f += p;
+                    m += r.cross(&p);
                 }
             }
-            if !converged {
-                return Err(Error::Integration {
-                    s,
-                    reason: format!("anchor load of actuator {i} did not converge"),
-                });
-            }
-            (v, u)
+            let dv = v - v0 + self.kse_inv.component_mul(&f);
+            let du = (u - u0 + self.kbt_inv.component_mul(&m)) * len;
+            nalgebra::Vector6::new(dv.x, dv.y, dv.z, du.x, du.y, du.z)
         };
-        y[7..10].copy_from_slice(v.as_slice());
-        y[10..13].copy_from_slice(u.as_slice());
+        let mut w = nalgebra::Vector6::new(v0.x, v0.y, v0.z, u0.x, u0.y, u0.z);
+        let mut r = resid(&w);
+        let mut done = false;
+        for _ in 0..50 {
+            if r.amax() < 1e-14 {
+                done = true;
+                break;
+            }
+            let mut jac = nalgebra::Matrix6::zeros();
+            for k in 0..6 {
+                let scale = if k < 3 { 1.0 } else { 1.0 / len };
+                let h = 1e-8 * w[k].abs().max(scale);
+                let mut wp = w;
+                wp[k] += h;
+                jac.set_column(k, &((resid(&wp) - r) / h));
+            }
+            let dw = jac.lu().solve(&(-r)).ok_or_else(|| Error::Integration {
+                s,
+                reason: "singular anchor-load system".into(),
+            })?;
+            // backtrack if the full step does not reduce the residual
+            let mut t = 1.0;
+            loop {
+                let wt = w + dw * t;
+                let rt = resid(&wt);
+                if rt.amax() < r.amax() || t < 1e-4 {
+                    w = wt;
+                    r = rt;
+                    break;
+                }
+                t *= 0.5;
+            }
+        }
+        if !done && r.amax() > 1e-12 {
+            return Err(Error::Integration {
+                s,
+                reason: format!("anchor loads did not converge (residual {:.3e})", r.amax()),
+            });
+        }
+        if w.iter().any(|x| !x.is_finite()) {
+            return Err(Error::Integration {
+                s,
+                reason: "non-finite strains after anchor loads".into(),
+            });
+        }
+        y[7..10].copy_from_slice(&[w[0], w[1], w[2]]);
+        y[10..13].copy_from_slice(&[w[3], w[4], w[5]]);
         Ok(())
+    }
+
+}
+
+/// `out = y + h k`, elementwise.
+#[inline(always)]
+fn axpy(out: &mut [f64], y: &[f64], h: f64, k: &[f64]) {
+    for ((o, a), b) in out.iter_mut().zip(y).zip(k) {
+        *o = a + h * b;
     }
 }
 
@@ -773,14 +1002,7 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
     let robot = spec.robot;
     let body = &robot.body;
     let (kse, kbt) = body.stiffness();
-    let fz = Frozen {
-        robot,
-        tensions: spec.tensions,
-        kse,
-        kbt,
-        fe: body.distributed_load(),
-        le: body.distributed_moment,
-    };
+    let fz = Frozen::new(robot, spec.tensions);
     let na = robot.actuators.len();
     let n = robot.n_states();
     let len = body.length;
@@ -797,18 +1019,22 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
     let mut active: Vec<usize> = Vec::with_capacity(na);
     for w in bps.windows(2) {
         let (a, b) = (w[0], w[1]);
-        // anchors at `a`: distal ends first (explicit), then proximal starts
-        for i in 0..na {
-            let act = &robot.actuators[i];
-            if (act.s_end - a).abs() <= tol && a > 0.0 {
-                elongation[i] = y[BASE_STATES + i];
-                fz.jump(i, a, &mut y, true)?;
+        // anchors at `a`: record the elongation of strings ending here, then
+        // apply all anchor and kink loads at `a` together
+        if a > 0.0 {
+            let mut any = false;
+            for i in 0..na {
+                let act = &robot.actuators[i];
+                if (act.s_end - a).abs() <= tol {
+                    elongation[i] = y[BASE_STATES + i];
+                    any = true;
+                }
+                if (act.s_start - a).abs() <= tol {
+                    any = true;
+                }
             }
-        }
-        for i in 0..na {
-            let act = &robot.actuators[i];
-            if (act.s_start - a).abs() <= tol && a > 0.0 {
-                fz.jump(i, a, &mut y, false)?;
+            if any {
+                fz.anchor_loads(a, &mut y)?;
             }
         }
         if record {
@@ -822,23 +1048,18 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
         }
         let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
         let h = (b - a) / m as f64;
+        let (h2, h6) = (0.5 * h, h / 6.0);
         for k in 0..m {
             let s = a + k as f64 * h;
             fz.deriv(s, &y, &active, &mut k1)?;
-            for j in 0..n {
-                yt[j] = y[j] + 0.5 * h * k1[j];
-            }
-            fz.deriv(s + 0.5 * h, &yt, &active, &mut k2)?;
-            for j in 0..n {
-                yt[j] = y[j] + 0.5 * h * k2[j];
-            }
-            fz.deriv(s + 0.5 * h, &yt, &active, &mut k3)?;
-            for j in 0..n {
-                yt[j] = y[j] + h * k3[j];
-            }
+            axpy(&mut yt, &y, h2, &k1);
+            fz.deriv(s + h2, &yt, &active, &mut k2)?;
+            axpy(&mut yt, &y, h2, &k2);
+            fz.deriv(s + h2, &yt, &active, &mut k3)?;
+            axpy(&mut yt, &y, h, &k3);
             fz.deriv(s + h, &yt, &active, &mut k4)?;
-            for j in 0..n {
-                y[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+            for ((((yj, a), b), c), d) in y.iter_mut().zip(&k1).zip(&k2).zip(&k3).zip(&k4) {
+                *yj += h6 * (a + 2.0 * (b + c) + d);
             }
             let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();
             for yq in &mut y[3..7] {

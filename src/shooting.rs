@@ -5,7 +5,7 @@
 //! `x = [nu(0), L omega(0), delta_1/L, ..., delta_N/L]` where `delta_i` is
 //! the guessed total elongation of actuator `i` that sets its tension.
 //! Residuals: the tip force and moment balance (32)-(33) as strain errors,
-//! `K_nu^-1 r_F` and `L K_omega^-1 r_M`, and the elongation agreement
+//! `r_F L^2 / (E I)` and `r_M L / (E I)`, and the elongation agreement
 //! `(delta_i(s_end) - delta_i) / L`. The conditions at actuator anchors inside
 //! the body are met exactly by the point loads applied during integration.
 
@@ -70,6 +70,9 @@ pub struct NewtonResult {
     pub evaluations: usize,
 }
 
+/// Largest `|f|^2` ratio at which a quasi-Newton (Broyden) step is accepted.
+const QUASI_DECREASE: f64 = 0.5;
+
 fn inf_norm(r: &[f64]) -> f64 {
     r.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
@@ -82,7 +85,60 @@ fn sq_norm(r: &[f64]) -> f64 {
 /// `sqrt(eps) max(1, |x_j|)`) and Armijo backtracking on `|f|^2`. A trial
 /// point where `f` fails (e.g. the IVP cannot be integrated) counts as an
 /// infinite residual, so the line search backs off from it.
-pub fn newton<F>(x0: &[f64], mut f: F, opts: &SolveOptions, solver: &'static str) -> Result<NewtonResult>
+///
+/// Between finite-difference Jacobians the Jacobian is updated by Broyden's
+/// rank-one formula (see [`newton_with_jacobian`]).
+pub fn newton<F>(x0: &[f64], f: F, opts: &SolveOptions, solver: &'static str) -> Result<NewtonResult>
+where
+    F: FnMut(&[f64]) -> Result<Vec<f64>>,
+{
+    newton_with_jacobian(x0, f, opts, solver, None).map(|(nr, _)| nr)
+}
+
+/// Forward-difference Jacobian of `f` at `x` with `r = f(x)` (one-sided step
+/// into the other direction where `f` fails). Adds the evaluations to `evals`.
+fn fd_jacobian<F>(x: &[f64], r: &[f64], f: &mut F, evals: &mut usize) -> Result<DMatrix<f64>>
+where
+    F: FnMut(&[f64]) -> Result<Vec<f64>>,
+{
+    let (n, m) = (x.len(), r.len());
+    let h0 = f64::EPSILON.sqrt();
+    let mut jac = DMatrix::<f64>::zeros(m, n);
+    let mut xp = x.to_vec();
+    for j in 0..n {
+        let h = h0 * x[j].abs().max(1.0);
+        xp[j] = x[j] + h;
+        let h = xp[j] - x[j];
+        *evals += 1;
+        let col: Vec<f64> = match f(&xp) {
+            Ok(rp) => rp.iter().zip(r).map(|(a, b)| (a - b) / h).collect(),
+            Err(_) => {
+                // one-sided step into a failing region: step the other way
+                xp[j] = x[j] - h;
+                *evals += 1;
+                let rm = f(&xp)?;
+                r.iter().zip(&rm).map(|(a, b)| (a - b) / h).collect()
+            }
+        };
+        for i in 0..m {
+            jac[(i, j)] = col[i];
+        }
+        xp[j] = x[j];
+    }
+    Ok(jac)
+}
+
+/// [`newton`] from an optional initial Jacobian `jac0` (e.g. the final
+/// Jacobian of a neighbouring solve, for warm starts); returns the final
+/// Jacobian too.
+///
+/// Quasi-Newton: a Jacobian by forward differences (or `jac0`) is updated by
+/// Broyden's rank-one formula after every accepted step, and re-differenced
+/// only when a full step fails to decrease `|f|^2` by a quarter. With a fresh
+/// finite-difference Jacobian the step is Newton's with the usual
+/// backtracking. The convergence test is the same as Newton's, so a converged
+/// result meets the same tolerance.
+pub fn newton_with_jacobian<F>(x0: &[f64], mut f: F, opts: &SolveOptions, solver: &'static str, jac0: Option<&DMatrix<f64>>) -> Result<(NewtonResult, DMatrix<f64>)>
 where
     F: FnMut(&[f64]) -> Result<Vec<f64>>,
 {
@@ -91,17 +147,28 @@ where
     let mut evals = 1;
     let mut r = f(&x)?;
     let m = r.len();
-    let h0 = f64::EPSILON.sqrt();
+    let mut jac = match jac0 {
+        Some(j) if j.nrows() == m && j.ncols() == n && j.iter().all(|v| v.is_finite()) => Some(j.clone()),
+        _ => None,
+    };
+    let mut fresh = false;
     let mut iterations = 0;
     loop {
         let res = inf_norm(&r);
         if res <= opts.tol {
-            return Ok(NewtonResult {
-                x,
-                residual: r,
-                iterations,
-                evaluations: evals,
-            });
+            let jac = match jac {
+                Some(j) => j,
+                None => DMatrix::zeros(m, n),
+            };
+            return Ok((
+                NewtonResult {
+                    x,
+                    residual: r,
+                    iterations,
+                    evaluations: evals,
+                },
+                jac,
+            ));
         }
         if iterations >= opts.max_iter {
             return Err(Error::NotConverged {
@@ -112,51 +179,47 @@ where
             });
         }
         iterations += 1;
-        let mut jac = DMatrix::<f64>::zeros(m, n);
-        let mut xp = x.clone();
-        for j in 0..n {
-            let h = h0 * x[j].abs().max(1.0);
-            xp[j] = x[j] + h;
-            let h = xp[j] - x[j];
-            let rp = f(&xp).or_else(|_| {
-                // one-sided step into a failing region: step the other way
-                xp[j] = x[j] - h;
-                evals += 1;
-                f(&xp).map(|v| v.iter().map(|z| -z).collect::<Vec<_>>()).map(|neg| {
-                    // neg = -f(x - h); column = (f(x) - f(x - h)) / h
-                    neg.iter().zip(&r).map(|(a, b)| a + 2.0 * b).collect()
-                })
-            })?;
-            evals += 1;
-            for i in 0..m {
-                jac[(i, j)] = (rp[i] - r[i]) / h;
-            }
-            xp[j] = x[j];
+        if jac.is_none() {
+            jac = Some(fd_jacobian(&x, &r, &mut f, &mut evals)?);
+            fresh = true;
         }
+        let j = jac.as_ref().expect("set above");
         let rhs = -DVector::from_column_slice(&r);
-        let dx = if m == n {
-            jac.clone().lu().solve(&rhs)
-        } else {
-            jac.clone().svd(true, true).solve(&rhs, 1e-14).ok()
-        }
-        .ok_or_else(|| Error::NotConverged {
-            solver,
-            iterations,
-            residual: res,
-            reason: "singular Jacobian".into(),
-        })?;
+        let dx = if m == n { j.clone().lu().solve(&rhs) } else { j.clone().svd(true, true).solve(&rhs, 1e-14).ok() };
+        let dx = match dx {
+            Some(d) if d.iter().all(|v| v.is_finite()) => d,
+            _ if !fresh => {
+                jac = None;
+                iterations -= 1;
+                continue;
+            }
+            _ => {
+                return Err(Error::NotConverged {
+                    solver,
+                    iterations,
+                    residual: res,
+                    reason: "singular Jacobian".into(),
+                })
+            }
+        };
         let phi0 = sq_norm(&r);
         let mut t = 1.0;
+        let mut accepted = None;
         loop {
             let xt: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + t * b).collect();
             evals += 1;
             if let Ok(rt) = f(&xt) {
                 let phi = sq_norm(&rt);
-                if phi.is_finite() && phi <= (1.0 - 1e-4 * t) * phi0 {
-                    x = xt;
-                    r = rt;
+                // a quasi-Newton step must do clearly better than Armijo, or
+                // the Jacobian is refreshed
+                let bound = if fresh { 1.0 - 1e-4 * t } else { QUASI_DECREASE };
+                if phi.is_finite() && phi <= bound * phi0 {
+                    accepted = Some((xt, rt));
                     break;
                 }
+            }
+            if !fresh {
+                break;
             }
             t *= 0.5;
             if t < opts.min_step {
@@ -166,6 +229,27 @@ where
                     residual: res,
                     reason: "line search failed to reduce the residual".into(),
                 });
+            }
+        }
+        match accepted {
+            Some((xt, rt)) => {
+                // Broyden: J += (dr - J s) s^T / (s^T s)
+                let s = DVector::from_iterator(n, xt.iter().zip(&x).map(|(a, b)| a - b));
+                let dr = DVector::from_iterator(m, rt.iter().zip(&r).map(|(a, b)| a - b));
+                let ss = s.dot(&s);
+                if ss > 0.0 {
+                    let jm = jac.as_mut().expect("set above");
+                    let corr = (dr - &*jm * &s) / ss;
+                    jm.ger(1.0, &corr, &s, 1.0);
+                }
+                fresh = false;
+                x = xt;
+                r = rt;
+            }
+            None => {
+                // stale Jacobian: re-difference at x and retry this iteration
+                jac = None;
+                iterations -= 1;
             }
         }
     }
@@ -229,9 +313,9 @@ pub fn shoot(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usi
         steps,
     };
     let ivp = integrate(&spec, &v0, &u0, record)?;
-    let (kse, kbt) = robot.body.stiffness();
-    let ef = inv_diag(&kse) * ivp.tip_force_residual;
-    let em = inv_diag(&kbt) * ivp.tip_moment_residual * len;
+    let (fs, ms) = residual_scales(robot);
+    let ef = ivp.tip_force_residual * fs;
+    let em = ivp.tip_moment_residual * ms;
     let mut r = Vec::with_capacity(6 + na);
     r.extend_from_slice(ef.as_slice());
     r.extend_from_slice(em.as_slice());
@@ -241,8 +325,17 @@ pub fn shoot(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usi
     Ok((r, ivp, tau))
 }
 
-fn inv_diag(k: &Matrix3<f64>) -> Matrix3<f64> {
-    Matrix3::from_diagonal(&Vector3::new(1.0 / k[(0, 0)], 1.0 / k[(1, 1)], 1.0 / k[(2, 2)]))
+/// Factors that make the tip balance dimensionless: force residuals [N] are
+/// multiplied by `L^2 / (E I)` and moment residuals [N m] by `L / (E I)`
+/// (`E I` the smaller bending stiffness), so that both measure the same thing,
+/// a tip load relative to what bends the body by order one. (Scaling the
+/// force by `K_nu^-1` instead made the line search blind to force errors of
+/// axially stiff bodies.)
+pub fn residual_scales(robot: &Robot) -> (f64, f64) {
+    let b = &robot.body;
+    let (_, ix, iy, _) = b.section.properties();
+    let ei = b.youngs_modulus * ix.min(iy);
+    (b.length * b.length / ei, b.length / ei)
 }
 
 /// A converged forward solution, sampled at the integration nodes.
@@ -289,6 +382,11 @@ pub struct Solution {
     pub loads: Loads,
     /// RK4 steps used.
     pub steps: usize,
+    /// The shooting Jacobian (scaled residual by scaled unknowns) of the last
+    /// Newton iteration, finite-difference or Broyden-updated; `None` if no
+    /// iteration was needed. Reused as the initial Jacobian of solves
+    /// warm-started from this one.
+    pub newton_jacobian: Option<DMatrix<f64>>,
 }
 
 impl Solution {
@@ -305,6 +403,23 @@ impl Solution {
 /// Build a [`Solution`] by integrating once more from converged unknowns.
 pub fn assemble(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize, iterations: usize, evaluations: usize) -> Result<Solution> {
     let (r, ivp, tau) = shoot(robot, inputs, loads, x, steps, true)?;
+    assemble_from(robot, inputs, loads, x, steps, iterations, evaluations, r, ivp, tau)
+}
+
+/// [`assemble`] from the recorded IVP at `x` (residual `r`, tensions `tau`).
+#[allow(clippy::too_many_arguments)]
+fn assemble_from(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    steps: usize,
+    iterations: usize,
+    evaluations: usize,
+    r: Vec<f64>,
+    ivp: IvpResult,
+    tau: Vec<f64>,
+) -> Result<Solution> {
     let body = &robot.body;
     let (kse, kbt) = body.stiffness();
     let na = robot.actuators.len();
@@ -329,6 +444,7 @@ pub fn assemble(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: 
         unknowns: x.to_vec(),
         loads: *loads,
         steps,
+        newton_jacobian: None,
     };
     let tol = 1e-12 * body.length;
     for (s, st) in &ivp.nodes {
@@ -403,6 +519,136 @@ pub fn solve(robot: &Robot, inputs: &[f64], opts: &SolveOptions, warm: Option<&S
     solve_loaded(robot, inputs, &Loads::of(robot), opts, warm)
 }
 
+/// Newton shooting on two grids: converge on a grid of a tenth of the steps
+/// (a tenth of the cost per IVP), then polish on the full grid from that
+/// solution with a finite-difference Jacobian taken on the coarse grid.
+/// (At least 1 step; grids under 10 steps are solved directly.)
+#[allow(clippy::too_many_arguments)]
+fn two_level(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    x0: &[f64],
+    jac0: Option<&DMatrix<f64>>,
+    work: &mut (usize, usize),
+    record: bool,
+) -> Result<(Vec<f64>, Option<DMatrix<f64>>, LastTip)> {
+    // Two levels: converge on a grid of a tenth of the steps (a tenth of the
+    // cost per IVP; RK4's error there is ~1e-4 of the fine one's strains), then
+    // polish on the full grid from that solution and its Jacobian.
+    let coarse = if opts.steps >= 10 {
+        // the coarse solution is only a predictor: converge it to 1e-6, well
+        // below the coarse grid's own discretisation error
+        let copts = SolveOptions { steps: (opts.steps / 10).max(1), tol: opts.tol.max(1e-6), ..*opts };
+        // cold: the coarse problem is itself solved on two grids, down to one
+        // step; warm (a Jacobian given): one coarse grid is enough
+        let coarse = match jac0 {
+            None => two_level(robot, inputs, loads, &copts, x0, jac0, work, false).map(|(x, j, _)| (x, j)),
+            Some(_) => newton_from(robot, inputs, loads, &copts, x0, jac0, work),
+        };
+        coarse.ok().and_then(|(xc, _)| {
+            // a finite-difference Jacobian at the coarse solution (cheap IVPs)
+            // for the fine polish: Broyden's matrix is no accurate Jacobian
+            let mut f = |x: &[f64]| shoot(robot, inputs, loads, x, copts.steps, false).map(|t| t.0);
+            let rc = f(&xc).ok()?;
+            let mut ev = 1;
+            let jc = fd_jacobian(&xc, &rc, &mut f, &mut ev).ok()?;
+            work.1 += ev;
+            Some((xc, Some(jc)))
+        })
+    } else {
+        None
+    };
+    match &coarse {
+        Some((xc, jc)) => newton_from_tip(robot, inputs, loads, opts, xc, jc.as_ref(), work, record)
+            .or_else(|_| newton_from_tip(robot, inputs, loads, opts, x0, jac0, work, record)),
+        None => newton_from_tip(robot, inputs, loads, opts, x0, jac0, work, record),
+    }
+}
+
+/// Tip pose of a forward solution, without the sampled profile (for batches).
+#[derive(Debug, Clone)]
+pub struct TipSolution {
+    /// Tip position [m].
+    pub position: Vector3<f64>,
+    /// Tip rotation (body to world).
+    pub rotation: Matrix3<f64>,
+    /// Scaled shooting unknowns.
+    pub unknowns: Vec<f64>,
+    /// Actuator tensions [N].
+    pub tensions: Vec<f64>,
+    /// Inputs the solution is for.
+    pub inputs: Vec<f64>,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// IVPs integrated (coarse-grid ones included).
+    pub evaluations: usize,
+    /// Final Newton Jacobian, for warm starts.
+    pub newton_jacobian: Option<DMatrix<f64>>,
+}
+
+impl TipSolution {
+    fn from_solution(s: Solution) -> Self {
+        TipSolution {
+            position: s.tip_position(),
+            rotation: s.tip_rotation(),
+            unknowns: s.unknowns,
+            tensions: s.tensions,
+            inputs: s.inputs,
+            iterations: s.iterations,
+            evaluations: s.evaluations,
+            newton_jacobian: s.newton_jacobian,
+        }
+    }
+}
+
+/// [`solve_loaded`] returning only the tip pose (no profile is recorded,
+/// which saves an IVP and its allocations). `warm`: a neighbouring tip
+/// solution. Falls back on [`solve_loaded`] (with its continuation) when the
+/// direct Newton solve fails. Inputs are not validated here: call
+/// `robot.check_inputs` first.
+pub fn solve_tip(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptions, warm: Option<&TipSolution>) -> Result<TipSolution> {
+    let len = robot.body.length;
+    let mut x0 = match warm {
+        Some(w) => w.unknowns.clone(),
+        None => reference_guess(robot),
+    };
+    for (i, a) in robot.actuators.iter().enumerate() {
+        let tension = warm.map_or(0.0, |w| w.tensions[i]);
+        if let Some(d) = a.law.elongation(tension, inputs[i]) {
+            if d.is_finite() {
+                x0[6 + i] = d / len;
+            }
+        }
+    }
+    let mut work = (0usize, 0usize);
+    let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
+    match two_level(robot, inputs, loads, opts, &x0, jac0, &mut work, false) {
+        Ok((x, jac, Some((_, ivp, tau)))) => Ok(TipSolution {
+            position: ivp.tip.p,
+            rotation: ivp.tip.rotation(),
+            unknowns: x,
+            tensions: tau,
+            inputs: inputs.to_vec(),
+            iterations: work.0,
+            evaluations: work.1,
+            newton_jacobian: jac,
+        }),
+        Err(e) if is_input_error(&e) => Err(e),
+        _ => {
+            let w = match warm {
+                Some(w) => Some(assemble(robot, &w.inputs, loads, &w.unknowns, opts.steps, 0, 0)?),
+                None => None,
+            };
+            let mut s = TipSolution::from_solution(solve_loaded(robot, inputs, loads, opts, w.as_ref())?);
+            s.iterations += work.0;
+            s.evaluations += work.1;
+            Ok(s)
+        }
+    }
+}
+
 fn is_input_error(e: &Error) -> bool {
     matches!(e, Error::InvalidParameter { .. } | Error::InvalidInput { .. })
 }
@@ -426,16 +672,30 @@ pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOp
         }
     }
     let mut work = (0usize, 0usize);
-    match newton_from(robot, inputs, loads, opts, &initial_guess(robot, inputs, warm), &mut work) {
-        Ok(x) => assemble(robot, inputs, loads, &x, opts.steps, work.0, work.1),
+    let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
+    let x0 = initial_guess(robot, inputs, warm);
+    // the last IVP of Newton is at its solution: recorded, it is the profile
+    match two_level(robot, inputs, loads, opts, &x0, jac0, &mut work, true) {
+        Ok((x, jac, last)) => {
+            let sol = match last {
+                Some((r, ivp, tau)) if !ivp.nodes.is_empty() => assemble_from(robot, inputs, loads, &x, opts.steps, work.0, work.1, r, ivp, tau),
+                _ => assemble(robot, inputs, loads, &x, opts.steps, work.0, work.1),
+            };
+            sol.map(|mut s| {
+                s.newton_jacobian = jac;
+                s
+            })
+        }
         Err(e) if is_input_error(&e) => Err(e),
         Err(first) => {
             let (from, start) = match warm {
                 Some(w) => (w.inputs.clone(), w.clone()),
                 None => {
                     let r = robot.reference_inputs();
-                    let x = newton_from(robot, &r, loads, opts, &initial_guess(robot, &r, None), &mut work)?;
-                    (r.clone(), assemble(robot, &r, loads, &x, opts.steps, 0, 0)?)
+                    let (x, jac) = newton_from(robot, &r, loads, opts, &initial_guess(robot, &r, None), None, &mut work)?;
+                    let mut s = assemble(robot, &r, loads, &x, opts.steps, 0, 0)?;
+                    s.newton_jacobian = jac;
+                    (r.clone(), s)
                 }
             };
             match continuation(robot, loads, &from, inputs, &start, opts, 10, &mut work) {
@@ -450,13 +710,41 @@ pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOp
     }
 }
 
-fn newton_from(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptions, x0: &[f64], work: &mut (usize, usize)) -> Result<Vec<f64>> {
-    let r = newton(x0, |x| shoot(robot, inputs, loads, x, opts.steps, false).map(|t| t.0), opts, "forward shooting");
+/// Tip position, rotation and actuator tensions of the last IVP integrated.
+type LastTip = Option<(Vec<f64>, IvpResult, Vec<f64>)>;
+
+/// Newton from `x0`; returns the solution, the final Jacobian and the tip of
+/// the solution (the last IVP Newton integrates is at the point it returns).
+#[allow(clippy::too_many_arguments)]
+fn newton_from_tip(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    x0: &[f64],
+    jac0: Option<&DMatrix<f64>>,
+    work: &mut (usize, usize),
+    record: bool,
+) -> Result<(Vec<f64>, Option<DMatrix<f64>>, LastTip)> {
+    let mut last: LastTip = None;
+    let r = newton_with_jacobian(
+        x0,
+        |x| {
+            shoot(robot, inputs, loads, x, opts.steps, record).map(|(r, ivp, tau)| {
+                last = Some((r.clone(), ivp, tau));
+                r
+            })
+        },
+        opts,
+        "forward shooting",
+        jac0,
+    );
     match r {
-        Ok(nr) => {
+        Ok((nr, jac)) => {
             work.0 += nr.iterations;
             work.1 += nr.evaluations;
-            Ok(nr.x)
+            let jac = if nr.iterations > 0 { Some(jac) } else { jac0.cloned() };
+            Ok((nr.x, jac, last))
         }
         Err(Error::NotConverged { solver, iterations, residual, reason }) => {
             work.0 += iterations;
@@ -469,6 +757,18 @@ fn newton_from(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptions
         }
         Err(e) => Err(e),
     }
+}
+
+fn newton_from(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    x0: &[f64],
+    jac0: Option<&DMatrix<f64>>,
+    work: &mut (usize, usize),
+) -> Result<(Vec<f64>, Option<DMatrix<f64>>)> {
+    newton_from_tip(robot, inputs, loads, opts, x0, jac0, work, false).map(|(x, j, _)| (x, j))
 }
 
 /// Reach `target` inputs from a solution `start` at inputs `from` by halving
@@ -485,8 +785,11 @@ fn continuation(
     work: &mut (usize, usize),
 ) -> Result<Solution> {
     let x0 = initial_guess(robot, target, Some(start));
-    match newton_from(robot, target, loads, opts, &x0, work) {
-        Ok(x) => assemble(robot, target, loads, &x, opts.steps, 0, 0),
+    match newton_from(robot, target, loads, opts, &x0, start.newton_jacobian.as_ref(), work) {
+        Ok((x, jac)) => assemble(robot, target, loads, &x, opts.steps, 0, 0).map(|mut s| {
+            s.newton_jacobian = jac;
+            s
+        }),
         Err(e) if depth == 0 || is_input_error(&e) => Err(e),
         Err(_) => {
             let mid: Vec<f64> = from.iter().zip(target).map(|(a, b)| 0.5 * (a + b)).collect();

@@ -101,8 +101,10 @@ def test_cold_and_warm_sweeps_agree(result: Fig6Result) -> None:
             # same equations, tolerance 1e-10 in strain: radii agree to ~1e-9 relative
             assert curve.cold_warm_max_relative_difference < 1e-7
             assert len(curve.iterations_warm) == len(curve.iterations_cold) == len(FIG6.temperatures_c)
-            # after the first step, a warm start needs at most 3 Newton iterations here
-            assert max(curve.iterations_warm[1:]) <= 3
+            # after the first step a warm start needs few iterations: the solver
+            # counts each Broyden (quasi-Newton) update as an iteration, one IVP
+            # each, so a warm step takes 3-7 here (full Newton took 2-3)
+            assert max(curve.iterations_warm[1:]) <= 8
             assert sum(curve.iterations_warm) <= sum(curve.iterations_cold)
 
 

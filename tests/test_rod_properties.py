@@ -201,16 +201,9 @@ def test_base_wrench_balances_external_loads(design: Design) -> None:
     np.testing.assert_allclose(sol.base_moment, want_m, rtol=0.0, atol=m_tol)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="Rust core (src/rod.rs integrate/jump): at an anchor inside the body the strains jump, "
-    "so every other string passing or sharing that anchor has a kink there, and a string over a "
-    "kink presses on the body with tau_i (t_i(s+) - t_i(s-)); that point force is not applied "
-    "(and shared anchors are jumped one after the other, each with the tangent left by the previous "
-    "jump). The base force then misses up to ~1e-3 of the tip load; with larger tensions the solve "
-    "diverges (two tendons on one path, the second anchored at mid-length, 0.05 / 0.1 N, tip load "
-    "0.02 N: ConvergenceError).",
-)
+# At an interior anchor the strains jump, so strings passing or sharing it
+# have a kink there; the kink forces are applied together with the anchor loads
+# (src/rod.rs Frozen::anchor_loads).
 @pytest.mark.parametrize(
     "spans",
     [

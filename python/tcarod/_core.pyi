@@ -558,3 +558,28 @@ def blocked_temperature_direct(
 ) -> BlockedResult:
     """Direct mixed solve: the actuation variable is a shooting unknown, the
     contact ``force`` [N] is given (check of :func:`blocked_temperature`)."""
+# --- batch solves and bench timings (src/python/batch.rs; see tcarod.batch) ---
+
+def solve_batch(
+    robot: Robot,
+    inputs: _FloatArray,
+    wrenches: _FloatArray | None = None,
+    *,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+    chunk_size: int = 256,
+    threads: int = 0,
+    warm: bool = True,
+) -> tuple[_FloatArray, _FloatArray, npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.bool_]]:
+    """Solve every row of ``inputs`` ``(n, n_actuators)`` in parallel; returns
+    ``(tip_positions (n, 3), tip_rotations (n, 3, 3), iterations, evaluations, converged)``."""
+
+def default_threads() -> int:
+    """Worker threads ``solve_batch`` uses for ``threads=0``."""
+
+def bench_rows() -> list[tuple[str, str, float]]:
+    """Rows of the performance table: ``(name, description, target [s])``."""
+
+def bench_time(name: str, repeats: int = 7, min_time: float = 0.05) -> list[float]:
+    """Seconds per operation of row ``name``, one value per run (timed in Rust)."""

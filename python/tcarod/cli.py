@@ -70,6 +70,9 @@ def _parser() -> argparse.ArgumentParser:
         "(temperatures in C, lengths in m, forces in N)",
     )
     _add_solve_parser(sub)
+    from .bench import add_parser as _add_bench_parser
+
+    _add_bench_parser(sub)
     return parser
 
 
@@ -180,6 +183,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _reproduce(args.names, Path(args.out), args.json)
         if args.command == "solve":
             return _solve_design(args.design, args.temperature, Path(args.out), args.json)
+        if args.command == "bench":
+            from .bench import run as _run_bench
+
+            return _run_bench(args)
     except (ValueError, ConvergenceError, OSError) as exc:
         message = " ".join(str(exc).split())  # one line
         print(f"tcarod: error: {type(exc).__name__}: {message}", file=sys.stderr)

@@ -3,6 +3,7 @@
 //! Thin wrappers only: every function converts its arguments, calls the
 //! pyo3-free core and converts back. Errors map to Python in `errors.rs`.
 
+mod batch;
 mod errors;
 mod inverse;
 mod rod;
@@ -19,5 +20,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tca::register(m)?;
     rod::register(m)?;
     inverse::register(m)?;
+    batch::register(m)?;
     Ok(())
 }

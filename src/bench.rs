@@ -1,0 +1,187 @@
+//! The performance table's operations, shared by the criterion benches
+//! (`benches/rod.rs`) and `tcarod bench` (through `_core.bench_*`): each row
+//! is a prepared problem with a closure that runs the timed operation once.
+//!
+//! Problem: Fig. 6 square manipulator ([`fig6_square`]`(true)`: 2 TCAs,
+//! gravity), both TCAs at [`BENCH_TEMPERATURE`], 100 RK4 steps unless a row
+//! says otherwise.
+
+use std::time::Instant;
+
+use nalgebra::Vector3;
+
+use crate::error::Result;
+use crate::experiments::{
+    fig6_square, table1_finger, G0, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL,
+};
+use crate::inverse::{grasp, sensitivities_fast, Groups, Scheme};
+use crate::shooting::{shoot, solve, Loads, SolveOptions};
+
+/// Temperature [C] of both TCAs in the benches.
+pub const BENCH_TEMPERATURE: f64 = 100.0;
+/// Temperature step [C] of the warm-start row.
+pub const WARM_STEP: f64 = 5.0;
+/// RK4 steps of the "within 1 um of a 5,000-step reference" row (measured by
+/// `tests/perf.rs`: at most 0.43 um over 40-160 C).
+pub const ACCURATE_STEPS: usize = 10;
+
+/// One row of the table: name, what it times, its target [s].
+#[derive(Debug, Clone, Copy)]
+pub struct Row {
+    /// Short name (`ivp`, `cold`, ...).
+    pub name: &'static str,
+    /// What is timed.
+    pub description: &'static str,
+    /// Target time [s].
+    pub target: f64,
+}
+
+/// The rows, in table order.
+pub const ROWS: [Row; 6] = [
+    Row {
+        name: "ivp",
+        description: "one IVP (integrate the rod once)",
+        target: 25e-6,
+    },
+    Row {
+        name: "cold",
+        description: "one forward solve from the straight guess",
+        target: 500e-6,
+    },
+    Row {
+        name: "warm",
+        description: "one forward solve warm-started 5 C away",
+        target: 100e-6,
+    },
+    Row {
+        name: "jc",
+        description: "J and C at a solution",
+        target: 300e-6,
+    },
+    Row {
+        name: "grasp",
+        description: "one blocked-force grasp temperature (Table I, 1 g)",
+        target: 5e-3,
+    },
+    Row {
+        name: "cold_1um",
+        description: "cold forward solve within 1 um of a 5,000-step reference (10 RK4 steps)",
+        target: 100e-6,
+    },
+];
+
+/// A prepared operation of row `name`: calling it runs the operation once.
+pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
+    let robot = fig6_square(true);
+    let t = [BENCH_TEMPERATURE, BENCH_TEMPERATURE];
+    let opts = SolveOptions::default();
+    Ok(match name {
+        "ivp" => {
+            let sol = solve(&robot, &t, &opts, None)?;
+            let loads = Loads::of(&robot);
+            Box::new(move || {
+                shoot(
+                    &robot,
+                    &sol.inputs,
+                    &loads,
+                    std::hint::black_box(&sol.unknowns),
+                    opts.steps,
+                    false,
+                )
+                .map(|_| ())
+            })
+        }
+        "cold" => {
+            Box::new(move || solve(&robot, std::hint::black_box(&t), &opts, None).map(|_| ()))
+        }
+        "warm" => {
+            let w = solve(&robot, &[BENCH_TEMPERATURE - WARM_STEP; 2], &opts, None)?;
+            Box::new(move || solve(&robot, std::hint::black_box(&t), &opts, Some(&w)).map(|_| ()))
+        }
+        "jc" => {
+            let sol = solve(&robot, &t, &opts, None)?;
+            let loads = Loads::of(&robot);
+            let groups = Groups(vec![0, 0]);
+            Box::new(move || {
+                sensitivities_fast(
+                    &robot,
+                    std::hint::black_box(&sol),
+                    &loads,
+                    &groups,
+                    opts.steps,
+                    Scheme::Forward,
+                )
+                .map(|_| ())
+            })
+        }
+        "grasp" => {
+            let finger = table1_finger();
+            let groups = Groups(vec![0, 0]);
+            let normal = Vector3::from(TABLE1_NORMAL);
+            Box::new(move || {
+                grasp(
+                    &finger,
+                    &groups,
+                    &normal,
+                    std::hint::black_box(TABLE1_MASSES[0]),
+                    TABLE1_MU,
+                    TABLE1_FINGERS,
+                    G0,
+                    8,
+                    &opts,
+                )
+                .map(|_| ())
+            })
+        }
+        "cold_1um" => {
+            let o = SolveOptions {
+                steps: ACCURATE_STEPS,
+                ..opts
+            };
+            Box::new(move || solve(&robot, std::hint::black_box(&t), &o, None).map(|_| ()))
+        }
+        other => {
+            return Err(crate::error::Error::input(
+                "row",
+                format!("unknown bench row {other:?}"),
+            ))
+        }
+    })
+}
+
+/// Time `repeats` runs of row `name` (after one warm-up run), each run
+/// repeated in a loop for at least `min_time` [s]; returns seconds per
+/// operation of each run.
+pub fn time_row(name: &str, repeats: usize, min_time: f64) -> Result<Vec<f64>> {
+    let mut op = operation(name)?;
+    op()?;
+    // inner loop length: enough calls for min_time
+    let t0 = Instant::now();
+    op()?;
+    let one = t0.elapsed().as_secs_f64().max(1e-9);
+    let inner = ((min_time / one).ceil() as usize).max(1);
+    let mut out = Vec::with_capacity(repeats);
+    for _ in 0..repeats {
+        let t = Instant::now();
+        for _ in 0..inner {
+            op()?;
+        }
+        out.push(t.elapsed().as_secs_f64() / inner as f64);
+    }
+    Ok(out)
+}
+
+/// Median of a sample (NaN if empty).
+pub fn median(x: &[f64]) -> f64 {
+    if x.is_empty() {
+        return f64::NAN;
+    }
+    let mut v = x.to_vec();
+    v.sort_by(|a, b| a.total_cmp(b));
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        0.5 * (v[m - 1] + v[m])
+    }
+}

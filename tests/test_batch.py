@@ -1,0 +1,125 @@
+"""Batch API (tcarod.batch), the NumPy/SciPy baseline and `tcarod bench`.
+
+No timing assertions: only results and structure.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import sys
+from pathlib import Path
+from types import ModuleType
+
+import numpy as np
+import pytest
+
+from tcarod import _core
+from tcarod.batch import BatchResult, fig6_square_robot, iter_batches, solve_batch
+from tcarod.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _baseline() -> ModuleType:
+    spec = importlib.util.spec_from_file_location("numpy_baseline", ROOT / "benches" / "numpy_baseline.py")
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _sweep(n: int) -> np.ndarray:
+    t = np.linspace(40.0, 150.0, n)
+    t[n // 2] = 30.0  # a jump back along the sweep
+    return np.column_stack([t, t + 2.0])
+
+
+def test_batch_equals_individual_solves() -> None:
+    robot = fig6_square_robot()
+    q = _sweep(21)
+    res = solve_batch(robot, q, chunk_size=4, threads=2)
+    assert res.tip_positions.shape == (21, 3)
+    assert res.tip_rotations.shape == (21, 3, 3)
+    assert res.converged.all()
+    assert (res.iterations >= 0).all()
+    for k in range(len(q)):
+        s = robot.solve(list(q[k]))
+        # both converge to the same residual tolerance: ~1e-12 m apart
+        np.testing.assert_allclose(res.tip_positions[k], s.positions[-1], rtol=0, atol=1e-9)
+        np.testing.assert_allclose(res.tip_rotations[k], s.rotations[-1], rtol=0, atol=1e-9)
+
+
+def test_batch_does_not_depend_on_threads_and_streams_in_blocks() -> None:
+    robot = fig6_square_robot()
+    q = _sweep(30)
+    a = solve_batch(robot, q, chunk_size=5, threads=1)
+    b = solve_batch(robot, q, chunk_size=5, threads=2)
+    np.testing.assert_array_equal(a.tip_positions, b.tip_positions)
+    parts = list(iter_batches(robot, q, chunk_size=5, block_chunks=2))
+    assert [len(p) for p in parts] == [10, 10, 10]
+    c = BatchResult.concatenate(parts)
+    np.testing.assert_array_equal(a.tip_positions, c.tip_positions)
+    # an iterable of blocks (e.g. a generator of a huge sweep) streams the same way
+    d = BatchResult.concatenate(iter_batches(robot, (q[i : i + 10] for i in range(0, 30, 10)), chunk_size=5))
+    np.testing.assert_array_equal(a.tip_positions, d.tip_positions)
+
+
+def test_progress_bar_and_wrenches(capsys: pytest.CaptureFixture[str]) -> None:
+    robot = fig6_square_robot()
+    q = _sweep(6)
+    w = np.zeros((6, 6))
+    w[:, 0] = 1e-3
+    res = solve_batch(robot, q, w, chunk_size=2, progress=True)
+    assert res.converged.all()
+    assert "6/6" in capsys.readouterr().err
+    plain = solve_batch(robot, q, chunk_size=2)
+    assert np.all(res.tip_positions[:, 0] > plain.tip_positions[:, 0])  # pushed toward +x
+
+
+def test_batch_rejects_bad_input() -> None:
+    robot = fig6_square_robot()
+    with pytest.raises(ValueError, match="row 1"):
+        solve_batch(robot, [[50.0, 50.0], [50.0, 500.0]])
+    with pytest.raises(ValueError, match="shape"):
+        solve_batch(robot, np.zeros((3, 3)))
+    with pytest.raises(ValueError, match="chunk_size"):
+        solve_batch(robot, [[50.0, 50.0]], chunk_size=0)
+
+
+def test_dask_client_gives_the_local_results() -> None:
+    distributed = pytest.importorskip("distributed")
+    robot = fig6_square_robot()
+    q = _sweep(12)
+    local = solve_batch(robot, q, chunk_size=3)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            remote = solve_batch(fig6_square_robot, q, chunk_size=3, client=client)
+    np.testing.assert_array_equal(local.tip_positions, remote.tip_positions)
+    np.testing.assert_array_equal(local.converged, remote.converged)
+
+
+@pytest.mark.parametrize(("gravity", "temperature"), [(True, 60.0), (True, 130.0), (False, 100.0)])
+def test_numpy_baseline_matches_the_core(gravity: bool, temperature: float) -> None:
+    nb = _baseline()
+    steps = 20  # the same RK4 grid on both sides; 20 steps keeps the NumPy solve short
+    p, r, _, _ = nb.solve(nb.Fig6Square(gravity), np.array([temperature, temperature]), steps=steps)
+    s = fig6_square_robot(gravity).solve([temperature, temperature], steps=steps)
+    np.testing.assert_allclose(p, s.positions[-1], rtol=0, atol=1e-8)
+    np.testing.assert_allclose(r, s.rotations[-1], rtol=0, atol=1e-8)
+
+
+def test_bench_rows_and_cli_json(capsys: pytest.CaptureFixture[str]) -> None:
+    names = [r[0] for r in _core.bench_rows()]
+    assert names == ["ivp", "cold", "warm", "jc", "grasp", "cold_1um"]
+    times = _core.bench_time("ivp", 2, 0.0)
+    assert len(times) == 2 and all(t > 0 for t in times)
+    with pytest.raises(ValueError, match="unknown bench row"):
+        _core.bench_time("nope")
+    assert main(["bench", "--json", "--repeats", "1", "--min-time", "0", "--batch", "8", "--no-baseline"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert [r["name"] for r in doc["rows"]] == names
+    assert set(doc["batch_throughput"]) == {"threads_1", "threads_2"}
+    assert doc["python_overhead"]["python_warm_solve_s"] > 0
+    assert doc["numpy_baseline"] is None
