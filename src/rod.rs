@@ -519,7 +519,8 @@ impl Robot {
     /// Sorted unique breakpoints: 0, L and every actuator anchor.
     pub fn breakpoints(&self) -> Vec<f64> {
         let len = self.body.length;
-        let mut b = vec![0.0, len];
+        let mut b = Vec::with_capacity(2 + 2 * self.actuators.len());
+        b.extend_from_slice(&[0.0, len]);
         for a in &self.actuators {
             b.push(a.s_start);
             b.push(a.s_end.min(len));
@@ -987,6 +988,9 @@ impl<'a> Frozen<'a> {
 
 }
 
+/// States held on the stack by [`integrate`] (13 + up to 19 actuators).
+const STACK_STATES: usize = 32;
+
 /// `out = y + h k`, elementwise.
 #[inline(always)]
 fn axpy(out: &mut [f64], y: &[f64], h: f64, k: &[f64]) {
@@ -1007,11 +1011,24 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
     let n = robot.n_states();
     let len = body.length;
     let steps = spec.steps.max(1);
-    let mut y = vec![0.0; n];
+    // state and RK4 stages on the stack for up to STACK_STATES states (no
+    // allocation per IVP; cheap IVPs of coarse grids are dominated by it)
+    let mut stack = [0.0f64; 6 * STACK_STATES];
+    let mut heap: Vec<f64>;
+    let all: &mut [f64] = if n <= STACK_STATES {
+        &mut stack[..6 * n]
+    } else {
+        heap = vec![0.0; 6 * n];
+        &mut heap
+    };
+    let (y, rest) = all.split_at_mut(n);
+    let (k1, rest) = rest.split_at_mut(n);
+    let (k2, rest) = rest.split_at_mut(n);
+    let (k3, rest) = rest.split_at_mut(n);
+    let (k4, yt) = rest.split_at_mut(n);
     y[3] = 1.0;
     y[7..10].copy_from_slice(v0.as_slice());
     y[10..13].copy_from_slice(u0.as_slice());
-    let (mut k1, mut k2, mut k3, mut k4, mut yt) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let bps = robot.breakpoints();
     let tol = 1e-12 * len;
     let mut nodes = Vec::new();
@@ -1034,7 +1051,7 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
                 }
             }
             if any {
-                fz.anchor_loads(a, &mut y)?;
+                fz.anchor_loads(a, y)?;
             }
         }
         if record {
@@ -1051,14 +1068,14 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
         let (h2, h6) = (0.5 * h, h / 6.0);
         for k in 0..m {
             let s = a + k as f64 * h;
-            fz.deriv(s, &y, &active, &mut k1)?;
-            axpy(&mut yt, &y, h2, &k1);
-            fz.deriv(s + h2, &yt, &active, &mut k2)?;
-            axpy(&mut yt, &y, h2, &k2);
-            fz.deriv(s + h2, &yt, &active, &mut k3)?;
-            axpy(&mut yt, &y, h, &k3);
-            fz.deriv(s + h, &yt, &active, &mut k4)?;
-            for ((((yj, a), b), c), d) in y.iter_mut().zip(&k1).zip(&k2).zip(&k3).zip(&k4) {
+            fz.deriv(s, y, &active, k1)?;
+            axpy(yt, y, h2, k1);
+            fz.deriv(s + h2, yt, &active, k2)?;
+            axpy(yt, y, h2, k2);
+            fz.deriv(s + h2, yt, &active, k3)?;
+            axpy(yt, y, h, k3);
+            fz.deriv(s + h, yt, &active, k4)?;
+            for ((((yj, a), b), c), d) in y.iter_mut().zip(k1.iter()).zip(k2.iter()).zip(k3.iter()).zip(k4.iter()) {
                 *yj += h6 * (a + 2.0 * (b + c) + d);
             }
             let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();
