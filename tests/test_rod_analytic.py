@@ -185,7 +185,13 @@ def test_stiff_section_large_load_converges_from_straight(area_factor: float, al
     body = Body(LENGTH, section, E_B, poisson=0.5, tip_force=(alpha * EI / LENGTH**2, 0.0, 0.0))
     sol = Robot(body).solve([])
     _, _, y = elastica(alpha)
-    assert sol.tip_position[0] / LENGTH == pytest.approx(y, abs=0.02)  # within compliance effects
+    # Shear and axial compliance only add deflection along the load, and by at
+    # most the largest shear plus axial strain, P/(k G A) + P/(E A), integrated
+    # over the length (|d(p - p_inextensible)/ds| <= those strains).
+    p_load = alpha * EI / LENGTH**2
+    bound = p_load / (E_B / 3.0 * AREA * area_factor) + p_load / (E_B * AREA * area_factor)
+    excess = sol.tip_position[0] / LENGTH - y
+    assert -1e-6 < excess < bound, (excess, bound)
 
 
 # ------------------------------------------------ tendon of constant tension
