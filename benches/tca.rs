@@ -1,5 +1,6 @@
 //! Criterion benches of the TCA law's solves (Fig. 5 three-thread TCA).
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
 use tcarod::experiments::fig5_tca;
 
 fn tca_solves(c: &mut Criterion) {

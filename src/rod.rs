@@ -1055,7 +1055,7 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
             }
         }
         if record {
-            nodes.push((a, RodState::from_slice(&y)));
+            nodes.push((a, RodState::from_slice(y)));
         }
         active.clear();
         for (i, act) in robot.actuators.iter().enumerate() {
@@ -1083,7 +1083,7 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
                 *yq /= qn;
             }
             if record && k + 1 < m {
-                nodes.push((s + h, RodState::from_slice(&y)));
+                nodes.push((s + h, RodState::from_slice(y)));
             }
         }
     }
@@ -1105,7 +1105,7 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
             rm += r.cross(&t) * tau;
         }
     }
-    let tip = RodState::from_slice(&y);
+    let tip = RodState::from_slice(y);
     if record {
         nodes.push((len, tip.clone()));
     }
