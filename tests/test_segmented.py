@@ -96,9 +96,8 @@ def test_with_gravity_segmented_differs_from_one_tca() -> None:
 
 def test_with_gravity_in_the_3_tca_fixture_segmented_differs_too() -> None:
     # FIG1B standing base-down, TCA 0 in four segments at 100 C: 3.4 mm at
-    # the tip. (TCAs 1 and 2 pass over the segment anchors, where the core
-    # omits their kink force; that error is ~1e-3 N against ~0.07 N of
-    # weight, so the difference is dominated by the segmentation.)
+    # the tip (TCAs 1 and 2 pass over the segment anchors; their kink forces
+    # there are applied by the core).
     whole_robot, f1 = _robot(1, gravity=True)
     seg_robot, f4 = _robot(4, gravity=True)
     temps = [100.0, 25.0, 25.0]
