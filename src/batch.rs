@@ -130,18 +130,7 @@ pub fn solve_batch(
     for k in 0..n {
         robot
             .check_inputs(&inputs[k * na..(k + 1) * na])
-            .map_err(|e| match e {
-                Error::InvalidParameter {
-                    name,
-                    value,
-                    allowed,
-                } => Error::InvalidParameter {
-                    name: format!("row {k}: {name}"),
-                    value,
-                    allowed,
-                },
-                other => other,
-            })?;
+            .map_err(|e| e.renamed(|name| format!("row {k}: {name}")))?;
     }
     let mut out = BatchOutput::with_len(n);
     let cs = opts.chunk_size;

@@ -74,6 +74,24 @@ impl Error {
         }
     }
 
+    /// The same error with the name of its offending argument rewritten by
+    /// `rename` (to say which element of an array or which actuator it was);
+    /// other variants are returned unchanged.
+    pub fn renamed(self, rename: impl FnOnce(&str) -> String) -> Self {
+        match self {
+            Error::InvalidParameter { name, value, allowed } => Error::InvalidParameter {
+                name: rename(&name),
+                value,
+                allowed,
+            },
+            Error::InvalidInput { name, reason } => Error::InvalidInput {
+                name: rename(&name),
+                reason,
+            },
+            other => other,
+        }
+    }
+
     /// Shorthand for [`Error::InvalidInput`].
     pub fn input(name: &str, reason: impl Into<String>) -> Self {
         Error::InvalidInput {

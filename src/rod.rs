@@ -499,14 +499,7 @@ impl Robot {
             ));
         }
         for (i, (a, &x)) in self.actuators.iter().zip(inputs).enumerate() {
-            a.law.check_input(x).map_err(|e| match e {
-                Error::InvalidParameter { name, value, allowed } => Error::InvalidParameter {
-                    name: format!("inputs[{i}] ({name})"),
-                    value,
-                    allowed,
-                },
-                other => other,
-            })?;
+            a.law.check_input(x).map_err(|e| e.renamed(|name| format!("inputs[{i}] ({name})")))?;
         }
         Ok(())
     }

@@ -181,23 +181,10 @@ fn map2(
                 f(x, y)
                     .and_then(|v| finite_output(output, v))
                     .map_err(|e| match e {
-                        Error::InvalidParameter {
-                            name,
-                            value,
-                            allowed,
-                        } => Error::InvalidParameter {
-                            name: format!("{name} (element {i})"),
-                            value,
-                            allowed,
-                        },
                         Error::NoSolution { reason } => Error::NoSolution {
                             reason: format!("element {i}: {reason}"),
                         },
-                        Error::InvalidInput { name, reason } => Error::InvalidInput {
-                            name: format!("{name} (element {i})"),
-                            reason,
-                        },
-                        other => other,
+                        other => other.renamed(|name| format!("{name} (element {i})")),
                     })
             })
             .collect()

@@ -42,8 +42,15 @@ from typing import Any, Final, Literal
 import numpy as np
 import numpy.typing as npt
 
+from ..manipulators import (
+    ECOFLEX10_DENSITY_KG_PER_M3,
+    ECOFLEX10_POISSON,
+    ECOFLEX10_YOUNGS_MODULUS_PA,
+    TCA_OFFSET_M,
+    U_LEG_HALF_SPACING_M,
+    manipulator_tca,
+)
 from ..rod import Actuator, Body, Robot, Routing, Section, Solution, inner_edge_radius
-from ..tca import Tca
 from . import GRAVITY_M_PER_S2, PublishedCurve, register
 
 __all__ = [
@@ -60,15 +67,6 @@ __all__ = [
 
 FloatArray = npt.NDArray[np.float64]
 
-#: EcoFlex 10 (Section V): density [kg/m^3], Young's modulus [Pa], Poisson ratio [-].
-ECOFLEX10_DENSITY_KG_PER_M3: Final[float] = 1040.0
-ECOFLEX10_YOUNGS_MODULUS_PA: Final[float] = 37.8e3
-ECOFLEX10_POISSON: Final[float] = 0.5
-#: Offset of the manipulators' TCAs from the neutral axis [m] (Section V-B).
-TCA_OFFSET_M: Final[float] = 3e-3
-#: ASSUMPTION: half the spacing of the U-shaped TCA's legs along body y [m]
-#: (not printed; any symmetric spacing gives the same planar bending).
-U_LEG_HALF_SPACING_M: Final[float] = 2.5e-3
 #: ASSUMPTION: pre-curvature radius of the circular manipulator [m]; the paper
 #: says it was initially bent but prints no value.
 CIRCLE_PRECURVATURE_RADIUS_M: Final[float] = 0.2
@@ -81,12 +79,6 @@ _ASSUMPTIONS: Final[tuple[str, ...]] = (
     "Each TCA (and each U leg) runs the whole body length, anchored at base and tip.",
     "TCA material: Material.silver_coated_nylon() (values the paper does not print; see README).",
 )
-
-
-def manipulator_tca(length_m: float) -> Tca:
-    """The manipulators' extension TCA (Section V-B): ``D = 1.7 mm``,
-    ``alpha0 = 15 deg``, ``N = 76.4`` turns, coiled length ``length_m`` [m]."""
-    return Tca.from_pitch_angle(length_m, math.radians(15.0), 1.7e-3, 76.4, "extension")
 
 
 @dataclass(frozen=True)
