@@ -36,14 +36,50 @@ pub const U_LEG_HALF_SPACING: f64 = 2.5e-3;
 /// the paper states it had initial bending but prints no value.
 pub const CIRCLE_PRECURVATURE_RADIUS: f64 = 0.2;
 
-/// The manipulators' TCA: `D = 1.7 mm`, `alpha0 = 15 deg`, `N = 76.4`, coiled
-/// length = body length (Section V-B).
-pub fn manipulator_tca(length: f64) -> Tca {
+/// Turns printed for "all the TCAs used in the manipulator" (Section V-B).
+pub const MANIPULATOR_TURNS: f64 = 76.4;
+/// Coiled length [m] of the circular manipulator's single TCA, the one TCA
+/// whose printed turns are unambiguous (anchor of [`TurnsReading::PerLength`]).
+pub const TURNS_ANCHOR_LENGTH: f64 = 0.040;
+
+/// How to read the paper's "N = 76.4 rotations" for a manipulator TCA whose
+/// U shape makes two legs (the paper does not say; issue 13).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TurnsReading {
+    /// 76.4 turns per fabricated TCA; a U-shaped TCA's two legs share them
+    /// (38.2 per leg), as the folded Fig. 5 TCA's halves do. The default: the
+    /// paper calls the U "a TCA" / "a single extension TCA" and considers its
+    /// halves "as separate TCAs" only for their length.
+    PerTca,
+    /// 76.4 turns in every leg (each leg read as a TCA of its own).
+    PerLeg,
+    /// A twist density: 76.4 turns per 40 mm of coiled length (the circle's
+    /// single TCA), so a leg of length `L` has `76.4 L / 40 mm` turns.
+    PerLength,
+}
+
+impl TurnsReading {
+    /// Turns [-] of one leg of coiled length `length` [m] of a TCA with `legs` legs.
+    pub fn leg_turns(self, length: f64, legs: usize) -> f64 {
+        match self {
+            TurnsReading::PerTca => MANIPULATOR_TURNS / legs as f64,
+            TurnsReading::PerLeg => MANIPULATOR_TURNS,
+            TurnsReading::PerLength => MANIPULATOR_TURNS * length / TURNS_ANCHOR_LENGTH,
+        }
+    }
+}
+
+/// The default turns reading of the fixtures ([`TurnsReading::PerTca`]).
+pub const DEFAULT_TURNS_READING: TurnsReading = TurnsReading::PerTca;
+
+/// The manipulators' TCA: `D = 1.7 mm`, `alpha0 = 15 deg`, `turns` turns,
+/// coiled length = body length (Section V-B).
+pub fn manipulator_tca(length: f64, turns: f64) -> Tca {
     Tca::from_pitch_angle(
         length,
         15f64.to_radians(),
         1.7e-3,
-        76.4,
+        turns,
         Chirality::Extension,
         Material::silver_coated_nylon(),
     )
@@ -51,14 +87,16 @@ pub fn manipulator_tca(length: f64) -> Tca {
 }
 
 /// A square EcoFlex body of side 10 mm with a U-shaped TCA (two legs at
-/// `x = +3 mm`, `y = +-2.5 mm`), standing upright (gravity `-z`) if `gravity`.
+/// `x = +3 mm`, `y = +-2.5 mm`; turns per [`DEFAULT_TURNS_READING`]),
+/// standing upright (gravity `-z`) if `gravity`.
 pub fn square_manipulator(length: f64, gravity: bool) -> Robot {
     let (psi, e, nu) = ECOFLEX10;
     let mut body = Body::new(length, Section::Rectangle { width: 10e-3, height: 10e-3 }, e, nu, psi).expect("valid");
     if gravity {
         body.gravity = Vector3::new(0.0, 0.0, -G0);
     }
-    let law = Arc::new(TcaLaw(manipulator_tca(length)));
+    let turns = DEFAULT_TURNS_READING.leg_turns(length, 2);
+    let law = Arc::new(TcaLaw(manipulator_tca(length, turns)));
     let legs = [U_LEG_HALF_SPACING, -U_LEG_HALF_SPACING]
         .iter()
         .map(|&y| Actuator::new(Routing::Straight { x: TCA_OFFSET, y }, 0.0, length, law.clone()))
@@ -76,7 +114,7 @@ pub fn fig6_circle(gravity: bool) -> Robot {
     if gravity {
         body.gravity = Vector3::new(0.0, 0.0, -G0);
     }
-    let law = Arc::new(TcaLaw(manipulator_tca(length)));
+    let law = Arc::new(TcaLaw(manipulator_tca(length, DEFAULT_TURNS_READING.leg_turns(length, 1))));
     Robot::new(body, vec![Actuator::new(Routing::Straight { x: TCA_OFFSET, y: 0.0 }, 0.0, length, law)]).expect("valid")
 }
 
@@ -87,7 +125,8 @@ pub fn fig6_square(gravity: bool) -> Robot {
 
 /// Table I finger: square manipulator 20 mm long, hanging tip-down (gravity
 /// `+z` in the base frame), its U-shaped TCA's two legs sharing one
-/// temperature; it presses along `-x` on the grasped mass.
+/// temperature; it closes freely until its tip touches the grasped mass at
+/// [`table1_contact_temperature`], then presses along `-x`.
 pub fn table1_finger() -> Robot {
     let mut finger = square_manipulator(0.020, false);
     finger.body.gravity = Vector3::new(0.0, 0.0, G0);
@@ -103,3 +142,51 @@ pub const TABLE1_FINGERS: usize = 2;
 pub const TABLE1_MASSES: [f64; 3] = [1e-3, 2e-3, 3e-3];
 /// Unit direction a Table I finger presses in (world frame).
 pub const TABLE1_NORMAL: [f64; 3] = [-1.0, 0.0, 0.0];
+
+/// The paper's own Table I predictions [C] for [`TABLE1_MASSES`].
+pub const TABLE1_PAPER_PREDICTIONS: [f64; 3] = [93.7, 114.8, 136.3];
+
+/// Default contact temperature [C] of the Table I fingers: the zero-force
+/// intercept of the paper's predictions, which are linear in the force per
+/// finger `m g / (mu n)` (least-squares line of temperature on force,
+/// evaluated at zero force: 72.33 C). The paper prints no gap between the
+/// fingertips and the object; this is the contact its model implies.
+pub fn table1_contact_temperature() -> f64 {
+    let f: Vec<f64> = TABLE1_MASSES
+        .iter()
+        .map(|m| m * G0 / (TABLE1_MU * TABLE1_FINGERS as f64))
+        .collect();
+    let t = TABLE1_PAPER_PREDICTIONS;
+    let n = f.len() as f64;
+    let (fm, tm) = (f.iter().sum::<f64>() / n, t.iter().sum::<f64>() / n);
+    let sff: f64 = f.iter().map(|x| (x - fm) * (x - fm)).sum();
+    let sft: f64 = f.iter().zip(&t).map(|(x, y)| (x - fm) * (y - tm)).sum();
+    tm - sft / sff * fm
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn turns_readings() {
+        // the Table I finger's 20 mm legs: per TCA and per length agree (38.2)
+        assert_eq!(TurnsReading::PerTca.leg_turns(0.020, 2), 38.2);
+        assert!((TurnsReading::PerLength.leg_turns(0.020, 2) - 38.2).abs() < 1e-12);
+        assert_eq!(TurnsReading::PerLeg.leg_turns(0.020, 2), 76.4);
+        // Fig. 8's 26 mm legs: 38.2 / 76.4 / 49.66
+        assert!((TurnsReading::PerLength.leg_turns(0.026, 2) - 49.66).abs() < 1e-12);
+        // the circle's single TCA has 76.4 turns in every reading
+        for r in [TurnsReading::PerTca, TurnsReading::PerLeg, TurnsReading::PerLength] {
+            assert!((r.leg_turns(0.040, 1) - 76.4).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn contact_temperature_is_the_papers_intercept() {
+        // by hand: equally spaced forces, so the line runs through the mean
+        // (114.933 C at 2 g) with 21.3 C per gram: 114.933 - 2 * 21.3 = 72.333 C
+        let t = table1_contact_temperature();
+        assert!((t - (344.8 / 3.0 - 42.6)).abs() < 1e-9, "{t}");
+    }
+}

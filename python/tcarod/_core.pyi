@@ -55,6 +55,19 @@ class Material:
     @staticmethod
     def silver_coated_nylon() -> Material:
         """The paper's silver-coated nylon 6,6 thread with the documented defaults."""
+    @staticmethod
+    def nylon66_measured_cte() -> Material:
+        """The same thread with the measured radial CTE of oriented nylon 6,6 (Choy et al. 1984)."""
+    @staticmethod
+    def measured_radial_cte(temperature: float) -> float:
+        """Measured radial CTE [1/K] of oriented nylon 6,6 at ``temperature`` [C] (-41..160 C)."""
+    @staticmethod
+    def measured_radial_cte_data() -> list[tuple[float, float]]:
+        """The measured ``(T [C], alpha_r [1/K])`` points (Choy et al. 1984)."""
+    def with_expansion_scale(self, factor: float) -> Material:
+        """This material with ``rho(T)`` scaled by ``factor`` [-]."""
+    def instantaneous_expansion(self, temperature: float) -> float:
+        """Instantaneous expansion coefficient ``d'(T)/d(T)`` [1/C] at ``temperature`` [C]."""
     @property
     def name(self) -> str: ...
     @property

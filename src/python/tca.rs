@@ -76,6 +76,39 @@ impl PyMaterial {
         }
     }
 
+    /// The same thread with the measured radial CTE of oriented nylon 6,6
+    /// (Choy et al. 1984) in place of the Sun & Zhao diameter fit.
+    #[staticmethod]
+    fn nylon66_measured_cte() -> Self {
+        PyMaterial {
+            inner: Material::nylon66_measured_cte(),
+        }
+    }
+    /// Measured radial CTE [1/K] of oriented nylon 6,6 at `temperature` [C]
+    /// (Choy et al. 1984, linear interpolation, -41..160 C).
+    #[staticmethod]
+    fn measured_radial_cte(temperature: Real) -> PyResult<f64> {
+        Ok(crate::material::nylon66_radial_cte(temperature.0)?)
+    }
+    /// The measured data `[(T [C], alpha_r [1/K]), ...]` behind `measured_radial_cte`.
+    #[staticmethod]
+    fn measured_radial_cte_data() -> Vec<(f64, f64)> {
+        crate::material::NYLON66_RADIAL_CTE.to_vec()
+    }
+    /// This material with `rho(T)` scaled by `factor` [-] (identification studies).
+    fn with_expansion_scale(&self, factor: Real) -> PyResult<Self> {
+        Ok(PyMaterial {
+            inner: self.inner.with_expansion_scale(factor.0)?,
+        })
+    }
+    /// Instantaneous expansion coefficient `d'(T)/d(T)` [1/C] at `temperature` [C].
+    fn instantaneous_expansion(&self, temperature: Real) -> PyResult<f64> {
+        Ok(finite_output(
+            "instantaneous_expansion [1/C]",
+            self.inner.instantaneous_expansion(temperature.0)?,
+        )?)
+    }
+
     #[getter]
     fn name(&self) -> String {
         self.inner.name().to_string()
