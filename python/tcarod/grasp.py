@@ -25,8 +25,8 @@ import math
 from dataclasses import dataclass
 from typing import Any, Final, Literal, Sequence
 
-from .manipulators import HANGING, square_manipulator
-from .inverse import BlockedResult, blocked_temperature, blocked_temperature_direct
+from .manipulators import DEFAULT_TURNS_READING, HANGING, TurnsReading, square_manipulator
+from .inverse import BlockedResult, blocked_force, blocked_temperature, blocked_temperature_direct
 from .rod import Robot
 from .tca import Material
 
@@ -38,6 +38,12 @@ __all__ = [
     "grasp",
     "grasp_temperature",
     "table1_finger",
+    "blocked_force_curve",
+    "force_line",
+    "TABLE1_CONTACT_TEMPERATURE_C",
+    "TABLE1_EXPERIMENT_C",
+    "TABLE1_MASSES_KG",
+    "TABLE1_PAPER_PREDICTIONS_C",
 ]
 
 #: Length of each gripper finger [m] (Section V-D).
@@ -46,6 +52,11 @@ TABLE1_FINGER_LENGTH_M: Final[float] = 0.020
 FRICTION_COEFFICIENT: Final[float] = 1.1
 #: Direction [-] (body-aligned frame) in which the fingertip presses on the object.
 GRASP_NORMAL: Final[tuple[float, float, float]] = (-1.0, 0.0, 0.0)
+#: Table I masses [kg], measured firm-grip temperatures [C] (oven steps of 5 C)
+#: and the paper's own model predictions [C] (Section V-D).
+TABLE1_MASSES_KG: Final[tuple[float, ...]] = (1e-3, 2e-3, 3e-3)
+TABLE1_EXPERIMENT_C: Final[tuple[float, ...]] = (95.0, 120.0, 135.0)
+TABLE1_PAPER_PREDICTIONS_C: Final[tuple[float, ...]] = (93.7, 114.8, 136.3)
 
 
 def table1_finger(
@@ -54,11 +65,12 @@ def table1_finger(
     body_youngs_modulus_pa: float | None = None,
     tca_offset_m: float | None = None,
     coil_diameter_m: float | None = None,
+    turns_reading: TurnsReading = DEFAULT_TURNS_READING,
 ) -> Robot:
     """The Table I gripper finger (see the module docstring), hanging down.
     Keywords replace one design parameter (default: the paper's / the
-    documented default material)."""
-    kw: dict[str, Any] = {}
+    documented default material; turns per :mod:`tcarod.manipulators`)."""
+    kw: dict[str, Any] = {"turns_reading": turns_reading}
     if body_youngs_modulus_pa is not None:
         kw["body_youngs_modulus_pa"] = body_youngs_modulus_pa
     if tca_offset_m is not None:
@@ -80,7 +92,7 @@ class Grasp:
     force_per_finger_n: float
     #: Grip temperature [C] of the TCA(s) of each finger.
     temperature_c: float
-    #: Where the fingertip is blocked [m] (its reference position) and the unit direction it presses in.
+    #: Where the fingertip is blocked [m] (its free position at contact) and the unit direction it presses in.
     block_point_m: tuple[float, float, float]
     normal: tuple[float, float, float]
     method: Literal["incremental", "direct"]
@@ -108,13 +120,17 @@ def grasp(
     increments: int = 10,
     steps: int = 100,
     tol: float = 1e-10,
+    contact_temperature_c: float | None = None,
 ) -> Grasp:
     """Grip temperature [C] for a mass ``mass_kg`` [kg] held by ``fingers``
     identical fingers with friction coefficient ``mu`` [-] under gravity
     ``gravity`` [m/s^2] (eq 44), with its blocked-tip solution.
 
-    ``finger``: the finger design (default :func:`table1_finger`); its tip is
-    blocked at its position at the reference (ambient) inputs and presses
+    ``finger``: the finger design (default :func:`table1_finger`).
+    ``contact_temperature_c`` [C]: the temperature at which the freely
+    closing fingertip touches the object (default: the finger's reference
+    inputs, i.e. contact at ambient); below it the force is zero, above it
+    the tip is blocked at its free position at that temperature and presses
     along ``normal``. ``groups``: actuation variables (default: all actuators
     of the finger share one temperature). ``method``: ``"incremental"`` (the
     paper's eq 43, ``increments`` steps) or ``"direct"`` (the temperature as a
@@ -132,15 +148,24 @@ def grasp(
     robot = table1_finger() if finger is None else finger
     grp = list(groups) if groups is not None else [0] * len(robot.actuators)
     force = m * g / (mu_ * fingers)  # eq (44)
-    start = robot.solve(robot.reference_inputs, steps=steps, tol=tol)
+    inputs = robot.reference_inputs
+    if contact_temperature_c is not None:
+        tc = float(contact_temperature_c)
+        lo, hi = robot.actuators[0].input_bounds
+        if not (math.isfinite(tc) and lo <= tc <= hi):
+            raise ValueError(f"invalid contact_temperature_c = {contact_temperature_c!r}: must be in [{lo}, {hi}] C")
+        inputs = [tc] * len(robot.actuators)
+    start = robot.solve(inputs, steps=steps, tol=tol)
     point = tuple(float(x) for x in start.tip_position)
     nrm = [float(x) for x in normal]
+    hi_t = robot.actuators[0].input_bounds[1]
     if method == "incremental":
         res = blocked_temperature(
             robot, point, nrm, force, start, groups=grp, increments=increments, steps=steps, tol=tol
         )
     else:
-        res = blocked_temperature_direct(robot, point, nrm, force, groups=grp, steps=steps, tol=tol)
+        guess = None if contact_temperature_c is None else 0.5 * (float(contact_temperature_c) + hi_t)
+        res = blocked_temperature_direct(robot, point, nrm, force, guess, groups=grp, steps=steps, tol=tol)
     n = math.sqrt(sum(x * x for x in nrm))
     return Grasp(
         mass_kg=m,
@@ -156,6 +181,64 @@ def grasp(
     )
 
 
+def force_line(
+    masses_kg: Sequence[float],
+    temperatures_c: Sequence[float],
+    mu: float = FRICTION_COEFFICIENT,
+    fingers: int = 2,
+    gravity: float = 9.81,
+) -> tuple[float, float]:
+    """Least-squares line through grip temperatures: the force per finger
+    ``m g / (mu n)`` [N] against temperature [C]. Returns ``(slope [N/C],
+    zero-force intercept [C])``: how fast a finger's force rises after
+    contact, and where it touches. The paper's Table I predictions give
+    0.209 mN/C and 72.3 C, its experiment 0.218 mN/C and 75.8 C."""
+    f = [m * gravity / (mu * fingers) for m in masses_kg]
+    t = [float(x) for x in temperatures_c]
+    if len(f) != len(t) or len(f) < 2:
+        raise ValueError("force_line needs at least two masses_kg and one temperature [C] per mass")
+    fm, tm = sum(f) / len(f), sum(t) / len(t)
+    sff = sum((x - fm) ** 2 for x in f)
+    sft = sum((x - fm) * (y - tm) for x, y in zip(f, t))
+    if sff == 0.0 or sft == 0.0:
+        raise ValueError("force_line needs distinct masses_kg and temperatures [C]")
+    dt_df = sft / sff  # temperature on force, as table1_contact_temperature() in src/experiments.rs
+    return 1.0 / dt_df, tm - dt_df * fm
+
+
+#: Default contact temperature [C] of the Table I fingers: the zero-force
+#: intercept of the paper's predictions, linear in the force per finger
+#: (:func:`force_line`; 72.33 C, as ``table1_contact_temperature()`` in
+#: ``src/experiments.rs``). The paper prints no gap between fingertip and object.
+TABLE1_CONTACT_TEMPERATURE_C: Final[float] = force_line(TABLE1_MASSES_KG, TABLE1_PAPER_PREDICTIONS_C)[1]
+
+
+def blocked_force_curve(
+    finger: Robot,
+    contact_temperature_c: float,
+    temperatures_c: Sequence[float],
+    *,
+    normal: Sequence[float] = GRASP_NORMAL,
+    steps: int = 100,
+) -> list[float]:
+    """Contact force [N] of one finger at each temperature [C] (ascending):
+    zero up to ``contact_temperature_c`` (the fingertip closes freely until
+    it touches the object there), then the blocked-tip force at the free
+    tip position at contact (direct mixed solve, warm-started)."""
+    tc = float(contact_temperature_c)
+    n = len(finger.actuators)
+    point = tuple(float(x) for x in finger.solve([tc] * n, steps=steps).tip_position)
+    out: list[float] = []
+    warm = None
+    for t in temperatures_c:
+        if t <= tc:
+            out.append(0.0)
+            continue
+        warm = blocked_force(finger, point, normal, [float(t)], groups=[0] * n, steps=steps, warm_start=warm)
+        out.append(max(warm.force, 0.0))
+    return out
+
+
 def grasp_temperature(
     mass_kg: float,
     finger: Robot | None = None,
@@ -169,6 +252,7 @@ def grasp_temperature(
     increments: int = 10,
     steps: int = 100,
     tol: float = 1e-10,
+    contact_temperature_c: float | None = None,
 ) -> float:
     """Grip temperature [C] for ``mass_kg`` [kg]: ``mu n F(T) = m g`` (eq 44)
     solved on the blocked-tip finger; see :func:`grasp` for the arguments."""
@@ -184,4 +268,5 @@ def grasp_temperature(
         increments=increments,
         steps=steps,
         tol=tol,
+        contact_temperature_c=contact_temperature_c,
     ).temperature_c

@@ -10,30 +10,37 @@ default material (README, NOTES.md section 5) the same model predicts about
    all others held (``dG_T/dT`` is held too when ``E_T`` or ``dE_T/dT`` move),
    and the grip temperature recomputed for each mass. Reported per parameter
    and mass: ``dT/dln p`` [C per unit relative change] (central difference)
-   and the elasticity of the temperature *rise* above ambient,
-   ``d ln(T - 25) / d ln p`` [-] (the rise, not T in C, has a meaningful zero).
-2. :func:`identify_table1`: an *identification*, not a default. Scale factors
-   on the one or two most sensitive parameters are fitted in least squares
-   to the paper's own predictions, with residuals, and the fitted values are
-   compared with what is known for nylon 6,6 (radial CTE of oriented nylon
-   6,6: 15.5e-5 to 43.7e-5 1/K, NOTES.md section 5).
+   and the elasticity of the temperature *rise* above contact,
+   ``d ln(T - T_contact) / d ln p`` [-] (the rise has a meaningful zero).
+2. :mod:`tcarod.identification`: an *identification*, not a default: at
+   most two parameters (contact temperature, one ``rho`` scale) fitted to
+   the paper's predictions and, separately, to the experiment, with
+   leave-one-out errors and plausibility checks.
 
-Both use the direct blocked-tip solve (:func:`tcarod.inverse.
-blocked_temperature_direct`, falling back on the incremental eq-43 method if
-Newton fails); the two agree to ~1e-9 C. Nothing here changes a default.
+The sensitivity uses the default finger (turns read per TCA) touching the
+object at :data:`tcarod.grasp.TABLE1_CONTACT_TEMPERATURE_C`, and the direct
+blocked-tip solve (:func:`tcarod.inverse.blocked_temperature_direct`,
+falling back on the incremental eq-43 method if Newton fails); the two agree
+to ~1e-9 C. Nothing here changes a default.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Callable, Final, Sequence
+from typing import Any, Final, Sequence
 
 import numpy as np
 
 from ._core import ConvergenceError
 from .manipulators import TCA_COIL_DIAMETER_M, TCA_OFFSET_M, ECOFLEX10_YOUNGS_MODULUS_PA
-from .grasp import grasp_temperature, table1_finger
+from .grasp import (
+    TABLE1_CONTACT_TEMPERATURE_C,
+    TABLE1_MASSES_KG,
+    TABLE1_PAPER_PREDICTIONS_C,
+    grasp_temperature,
+    table1_finger,
+)
 from .rod import Robot
 from .tca import Material
 
@@ -41,20 +48,15 @@ __all__ = [
     "PAPER_TABLE1_PREDICTIONS_C",
     "PARAMETERS",
     "TABLE1_MASSES_KG",
-    "Identification",
     "Parameter",
     "Sensitivity",
-    "identify_table1",
     "perturbed_finger",
     "table1_grip_temperatures",
     "table1_sensitivity",
 ]
 
-#: Table I masses [kg] and the paper's own model predictions [C] for them.
-TABLE1_MASSES_KG: Final[tuple[float, ...]] = (1e-3, 2e-3, 3e-3)
-PAPER_TABLE1_PREDICTIONS_C: Final[tuple[float, ...]] = (93.7, 114.8, 136.3)
-#: Ambient (reference) temperature [C] of the default material.
-_AMBIENT_C: Final[float] = 25.0
+#: The paper's own Table I predictions [C] (alias of :data:`tcarod.grasp.TABLE1_PAPER_PREDICTIONS_C`).
+PAPER_TABLE1_PREDICTIONS_C: Final[tuple[float, ...]] = TABLE1_PAPER_PREDICTIONS_C
 
 
 @dataclass(frozen=True)
@@ -124,10 +126,11 @@ def perturbed_finger(scales: dict[str, float] | None = None) -> Robot:
 
 
 def _grip(finger: Robot, mass_kg: float) -> float:
+    tc = TABLE1_CONTACT_TEMPERATURE_C
     try:
-        return grasp_temperature(mass_kg, finger, method="direct")
+        return grasp_temperature(mass_kg, finger, method="direct", contact_temperature_c=tc)
     except ConvergenceError:
-        return grasp_temperature(mass_kg, finger, method="incremental")
+        return grasp_temperature(mass_kg, finger, method="incremental", contact_temperature_c=tc)
 
 
 def table1_grip_temperatures(
@@ -158,8 +161,8 @@ class Sensitivity:
 
     @property
     def elasticity(self) -> tuple[float, ...]:
-        """``d ln(T - 25 C) / d ln p`` [-] per mass."""
-        return tuple(s / (b - _AMBIENT_C) for s, b in zip(self.slope_c, self.base_c))
+        """``d ln(T - T_contact) / d ln p`` [-] per mass (the rise above contact)."""
+        return tuple(s / (b - TABLE1_CONTACT_TEMPERATURE_C) for s, b in zip(self.slope_c, self.base_c))
 
     @property
     def mean_abs_elasticity(self) -> float:
@@ -197,95 +200,3 @@ def table1_sensitivity(
         plus = table1_grip_temperatures({p.key: 1.0 + step}, masses_kg)
         out.append(Sensitivity(parameter=p, step=step, base_c=base, minus_c=minus, plus_c=plus))
     return tuple(sorted(out, key=lambda s: -s.mean_abs_elasticity))
-
-
-@dataclass(frozen=True)
-class Identification:
-    """Least-squares scale factors that make the model reproduce a target set
-    of grip temperatures. An identification, not a default."""
-
-    keys: tuple[str, ...]
-    scales: tuple[float, ...]
-    target_c: tuple[float, ...]
-    fitted_c: tuple[float, ...]
-    #: Evaluations of the three-mass prediction used by the fit.
-    evaluations: int
-
-    @property
-    def residuals_c(self) -> tuple[float, ...]:
-        """``fitted - target`` [C] per mass."""
-        return tuple(f - t for f, t in zip(self.fitted_c, self.target_c))
-
-    @property
-    def rms_c(self) -> float:
-        """Root-mean-square residual [C]."""
-        return float(np.sqrt(np.mean(np.square(self.residuals_c))))
-
-    def values(self) -> dict[str, float]:
-        """Fitted parameter values (default x scale), in their SI units."""
-        default = {p.key: p.default for p in PARAMETERS}
-        return {k: default[k] * s for k, s in zip(self.keys, self.scales)}
-
-    def to_json(self) -> dict[str, Any]:
-        """JSON-serialisable; temperatures in C."""
-        units = {p.key: p.unit for p in PARAMETERS}
-        return {
-            "parameters": list(self.keys),
-            "scale_factors": list(self.scales),
-            "fitted_values": {k: {"value": v, "unit": units[k]} for k, v in self.values().items()},
-            "target_c": list(self.target_c),
-            "fitted_c": list(self.fitted_c),
-            "residuals_c": list(self.residuals_c),
-            "rms_c": self.rms_c,
-            "evaluations": self.evaluations,
-        }
-
-
-def identify_table1(
-    keys: Sequence[str] = ("rho", "drho/dT"),
-    target_c: Sequence[float] = PAPER_TABLE1_PREDICTIONS_C,
-    masses_kg: Sequence[float] = TABLE1_MASSES_KG,
-    start: Sequence[float] | None = None,
-) -> Identification:
-    """Scale factors on the parameters ``keys`` (one or two) minimising
-    ``sum (T_model(m) - target(m))^2`` over the masses (scipy
-    ``least_squares``, trust-region reflective, scales in [0.01, 100], log
-    parameterised). Where a trial needs more than the material's top
-    temperature, its residual is the distance of that top temperature plus the
-    missing margin, so the fit is steered back into range.
-
-    ``start``: initial scale factors (default 1).
-    """
-    from scipy.optimize import least_squares  # test dependency; imported only here
-
-    ks = tuple(keys)
-    if not 1 <= len(ks) <= 2 or any(k not in _KEYS for k in ks):
-        raise ValueError(f"keys must be one or two of {list(_KEYS)}, got {list(ks)}")
-    tgt = np.asarray(target_c, dtype=np.float64)
-    if tgt.shape != (len(masses_kg),):
-        raise ValueError("target_c needs one temperature [C] per mass")
-    x0 = np.log(np.asarray(start if start is not None else [1.0] * len(ks), dtype=np.float64))
-    count = [0]
-    cache: dict[tuple[float, ...], np.ndarray] = {}
-
-    def model(x: np.ndarray) -> np.ndarray:
-        key = tuple(float(v) for v in x)
-        if key not in cache:
-            count[0] += 1
-            scales = {k: math.exp(v) for k, v in zip(ks, x)}
-            try:
-                cache[key] = np.asarray(table1_grip_temperatures(scales, masses_kg))
-            except ValueError:
-                cache[key] = np.full(len(masses_kg), 250.0)  # out of range: far above any target
-        return cache[key]
-
-    res_fn: Callable[[np.ndarray], np.ndarray] = lambda x: model(x) - tgt  # noqa: E731
-    fit = least_squares(res_fn, x0, bounds=(math.log(0.01), math.log(100.0)), x_scale=1.0, diff_step=1e-4, xtol=1e-10)
-    fitted = model(fit.x)
-    return Identification(
-        keys=ks,
-        scales=tuple(float(math.exp(v)) for v in fit.x),
-        target_c=tuple(float(t) for t in tgt),
-        fitted_c=tuple(float(t) for t in fitted),
-        evaluations=count[0],
-    )

@@ -35,13 +35,21 @@ from typing import Any, Final
 
 import numpy as np
 
-from ..manipulators import UPRIGHT, square_manipulator
+from ..manipulators import (
+    DEFAULT_TURNS_READING,
+    MATERIAL_PRESETS,
+    TURNS_READINGS,
+    UPRIGHT,
+    TurnsReading,
+    material_preset,
+    square_manipulator,
+)
 from ..inverse import blocked_force, blocked_temperature
 from ..rod import Robot
 from ..tca import Material
 from . import FloatArray, register
 
-__all__ = ["FIG8", "Fig8CrossCheck", "Fig8Experiment", "Fig8Result", "predict_fig8"]
+__all__ = ["FIG8", "Fig8CrossCheck", "Fig8Experiment", "Fig8Reading", "Fig8Result", "fig8_forces", "predict_fig8"]
 
 _BLOCKING: Final[str] = (
     "The wire is loose until the free tip reaches it, assumed at 55 C (paper: loose from 25 to "
@@ -79,9 +87,17 @@ class Fig8Experiment:
     title: str = "Fig. 8: blocked-tip force of the 26 mm square manipulator"
     source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-C, Fig. 8"
 
-    def robot(self, material: Material | None = None) -> Robot:
+    #: How the printed 76.4 turns apply to the U's legs (:mod:`tcarod.manipulators`).
+    turns_reading: TurnsReading = DEFAULT_TURNS_READING
+    #: Temperatures [C] at which every reading's force is reported.
+    reading_temperatures_c: tuple[float, ...] = (100.0, 140.0)
+
+    def robot(self, material: Material | None = None, turns_reading: TurnsReading | None = None) -> Robot:
         """The manipulator: :func:`tcarod.manipulators.square_manipulator` of ``length_m``, upright."""
-        return square_manipulator(self.length_m, gravity_m_per_s2=self.gravity_m_per_s2, material=material)
+        reading = self.turns_reading if turns_reading is None else turns_reading
+        return square_manipulator(
+            self.length_m, gravity_m_per_s2=self.gravity_m_per_s2, material=material, turns_reading=reading
+        )
 
     def predict(self, material: Material | None = None) -> Fig8Result:
         """Predicted force against temperature; see :func:`predict_fig8`."""
@@ -107,6 +123,49 @@ class Fig8CrossCheck:
         return self.incremental_temperature_c - self.temperature_c
 
 
+@dataclass(frozen=True)
+class Fig8Reading:
+    """Blocked force [N] of one reading (turns, material) at a few temperatures [C]."""
+
+    turns_reading: str
+    material: str
+    temperatures_c: tuple[float, ...]
+    forces_n: tuple[float, ...]
+
+    def to_json(self) -> dict[str, Any]:
+        """JSON-serialisable; forces in N."""
+        return {
+            "turns_reading": self.turns_reading,
+            "material": self.material,
+            "force_n_at_c": {f"{t:g}": f for t, f in zip(self.temperatures_c, self.forces_n)},
+        }
+
+
+def fig8_forces(
+    temperatures_c: tuple[float, ...],
+    material: Material | None = None,
+    turns_reading: TurnsReading | None = None,
+    experiment: Fig8Experiment | None = None,
+) -> tuple[float, ...]:
+    """Blocked-tip force [N] of the Fig. 8 set-up at each temperature [C]
+    (ascending) for a material and turns reading: 0 below the taut
+    temperature, else the direct mixed solve at the free tip's position at
+    the taut temperature (warm-started)."""
+    exp = FIG8 if experiment is None else experiment
+    robot = exp.robot(material, turns_reading)
+    n = len(robot.actuators)
+    tip = robot.solve([exp.taut_temperature_c] * n).tip_position
+    point = (float(tip[0]), float(tip[1]), float(tip[2]))
+    out, warm = [], None
+    for t in temperatures_c:
+        if t <= exp.taut_temperature_c:
+            out.append(0.0)
+            continue
+        warm = blocked_force(robot, point, exp.normal, [float(t)], groups=[0] * n, warm_start=warm)
+        out.append(max(warm.force, 0.0))
+    return tuple(out)
+
+
 @dataclass(frozen=True, eq=False)
 class Fig8Result:
     """Predicted Fig. 8."""
@@ -118,6 +177,8 @@ class Fig8Result:
     #: Block point [m]: the free tip position at the taut temperature.
     block_point_m: tuple[float, float, float]
     cross_checks: tuple[Fig8CrossCheck, ...]
+    #: Every turns reading x material preset at ``reading_temperatures_c``.
+    readings: tuple[Fig8Reading, ...] = ()
 
     @property
     def name(self) -> str:
@@ -152,6 +213,10 @@ class Fig8Result:
                 f"  {c.temperature_c:.0f} C: {c.force_n * 1e3:.3f} mN -> {c.incremental_temperature_c:.6f} C "
                 f"(difference {c.difference_c:.2e} C)"
             )
+        lines.append(f"Turns read {exp.turns_reading!r} (default; see tcarod.manipulators). Every reading [mN]:")
+        for r in self.readings:
+            vals = ", ".join(f"{f * 1e3:.2f} at {t:g} C" for t, f in zip(r.temperatures_c, r.forces_n))
+            lines.append(f"  {r.turns_reading:>10} / {r.material:<12}: {vals}")
         lines.append(f"Published data: none. {exp.published_data_note}")
         return "\n".join(lines)
 
@@ -166,6 +231,8 @@ class Fig8Result:
             "gravity_m_per_s2": list(exp.gravity_m_per_s2),
             "blocking": exp.blocking,
             "taut_temperature_c": exp.taut_temperature_c,
+            "turns_reading": exp.turns_reading,
+            "readings": [r.to_json() for r in self.readings],
             "block_point_m": list(self.block_point_m),
             "normal": list(exp.normal),
             "method": "direct mixed solve (force as shooting unknown), warm-started along the sweep",
@@ -215,7 +282,9 @@ class Fig8Result:
         return save_png(fig, path)
 
 
-def predict_fig8(experiment: Fig8Experiment = FIG8, material: Material | None = None) -> Fig8Result:
+def predict_fig8(
+    experiment: Fig8Experiment = FIG8, material: Material | None = None, *, readings: bool = True
+) -> Fig8Result:
     """Blocked-tip force [N] at each temperature [C] of ``experiment``.
 
     Below the taut temperature the force is 0 (slack wire). From it on, the
@@ -223,7 +292,9 @@ def predict_fig8(experiment: Fig8Experiment = FIG8, material: Material | None = 
     along the sweep; a negative solved force (the tip would move away from the
     wire) is reported as 0. At ``cross_check_temperatures_c`` the incremental
     eq-43 method (:func:`tcarod.inverse.blocked_temperature`, 10 increments)
-    is fed the force and must return the temperature.
+    is fed the force and must return the temperature. ``readings``: also
+    the force of every turns reading x material preset at
+    ``reading_temperatures_c``.
     """
     robot = experiment.robot(material)
     groups = [0] * len(robot.actuators)
@@ -246,12 +317,20 @@ def predict_fig8(experiment: Fig8Experiment = FIG8, material: Material | None = 
             continue
         inc = blocked_temperature(robot, point, experiment.normal, f, free, groups=groups)
         checks.append(Fig8CrossCheck(temperature_c=float(t), force_n=f, incremental_temperature_c=float(inc.variables[0])))
+    rd = []
+    if readings:
+        ts = experiment.reading_temperatures_c
+        for tr in TURNS_READINGS:
+            for mat in MATERIAL_PRESETS:
+                f = fig8_forces(ts, material_preset(mat), tr, experiment)
+                rd.append(Fig8Reading(turns_reading=tr, material=mat, temperatures_c=ts, forces_n=f))
     return Fig8Result(
         experiment=experiment,
         temperatures_c=temps,
         forces_n=forces,
         block_point_m=point,
         cross_checks=tuple(checks),
+        readings=tuple(rd),
     )
 
 

@@ -2,40 +2,61 @@
 
 Each finger is a 20 mm long square EcoFlex body (10 mm side) with a U-shaped
 TCA at body ``x = +3 mm``, hanging down. The gripper holds a mass ``m`` when
-``mu n F(T) = m g`` (eq 44), ``mu = 1.1``, ``n = 2``, with ``F(T)`` the
-blocked-tip force of one finger whose tip is held at its relaxed position
-and presses along ``-x`` (:mod:`tcarod.grasp`). The paper lists the measured
-"firm grip" temperatures (oven steps of 5 C) and its own model's predictions.
+``mu n F(T) = m g`` (eq 44), ``mu = 1.1``, ``n = 2``. ``F(T)`` is one
+finger's contact force: the free fingertip closes as the TCA heats until it
+touches the object at the *contact temperature*; below it the force is zero,
+above it the tip is blocked at its position at contact and presses along
+``-x`` (:func:`tcarod.grasp.blocked_force_curve`).
 
-tcarod's prediction uses the documented default material (README, NOTES.md
-section 5; the paper does not print its values) and is **far below** both the
-experiment and the paper's model (about 38 / 47 / 54 C against 95 / 120 /
-135 C). Nothing is tuned to close that gap. The optional study (on by default
-in ``tcarod reproduce table1``) reports which parameter moves the prediction
-most and, as a clearly separate *identification*, which parameter values
-would reproduce the paper's own predictions, and whether those values are
-physically plausible (:mod:`tcarod.studies`).
+Defaults (documented, not tuned; ``docs/table1.md``):
+
+* contact at 72.33 C, the zero-force intercept of the paper's own
+  predictions, which are linear in the force (0.209 mN/C); the paper prints
+  no gap between fingertip and object;
+* turns read per U-shaped TCA (38.2 per 20 mm leg; :mod:`tcarod.manipulators`);
+* the documented default material (Sun & Zhao's ``rho(T)``).
+
+With them the finger's force rises several times faster than the paper's
+(see the force slope in the table), so the grip temperatures are far below
+the paper's. The readings (turns x ``rho(T)`` preset) and the
+*identification* of at most two parameters per reading
+(:mod:`tcarod.identification`) are reported beside them, never used as
+defaults.
 """
 
 from __future__ import annotations
 
 import os
 import textwrap
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Final
 
-from ..grasp import FRICTION_COEFFICIENT, Grasp, grasp, table1_finger
-from ..studies import Identification, Sensitivity, identify_table1, table1_sensitivity
+from ..grasp import (
+    FRICTION_COEFFICIENT,
+    TABLE1_CONTACT_TEMPERATURE_C,
+    TABLE1_EXPERIMENT_C,
+    TABLE1_MASSES_KG,
+    TABLE1_PAPER_PREDICTIONS_C,
+    Grasp,
+    force_line,
+    grasp,
+    table1_finger,
+)
+from ..identification import IDENTIFICATION_READINGS, Identification, identify
+from ..manipulators import DEFAULT_TURNS_READING, MATERIAL_PRESETS, TURNS_READINGS, TurnsReading, material_preset
+from ..studies import Sensitivity, table1_sensitivity
 from ..tca import Material
 from . import register
+from .fig8 import fig8_forces
 
-__all__ = ["TABLE1", "Table1Experiment", "Table1Result", "Table1Row", "Table1Study", "predict_table1"]
+__all__ = ["TABLE1", "Table1Experiment", "Table1Reading", "Table1Result", "Table1Row", "predict_table1"]
 
-_PLAUSIBILITY: Final[str] = (
-    "Radial CTE of oriented nylon 6,6 is 15.5e-5 (32 C) to 43.7e-5 1/K (160 C) (Choy et al. 1984, "
-    "NOTES.md 5); the default rho(T) is 1.1e-4 .. 5.9e-4 1/C, of that order. EcoFlex 10 moduli "
-    "reported are tens of kPa (paper: 37.8 kPa); the coil diameter 1.7 mm is measured."
+_CONTACT: Final[str] = (
+    "The free fingertip closes until it touches the object at the contact temperature (default "
+    "72.33 C: the zero-force intercept of the paper's predictions, linear in the force per finger; the "
+    "paper prints no gap); zero force below it, then the tip is blocked at its position at contact and "
+    "presses along -x (plane contact)."
 )
 
 
@@ -43,25 +64,27 @@ _PLAUSIBILITY: Final[str] = (
 class Table1Experiment:
     """The Table I set-up and the paper's numbers."""
 
-    masses_kg: tuple[float, ...] = (1e-3, 2e-3, 3e-3)
+    masses_kg: tuple[float, ...] = TABLE1_MASSES_KG
     #: Measured firm-grip temperatures [C] (oven steps of 5 C).
-    experiment_c: tuple[float, ...] = (95.0, 120.0, 135.0)
+    experiment_c: tuple[float, ...] = TABLE1_EXPERIMENT_C
     #: The paper's own model predictions [C].
-    paper_prediction_c: tuple[float, ...] = (93.7, 114.8, 136.3)
+    paper_prediction_c: tuple[float, ...] = TABLE1_PAPER_PREDICTIONS_C
     mu: float = FRICTION_COEFFICIENT
     fingers: int = 2
     gravity_m_per_s2: float = 9.81
+    #: Temperature [C] at which the fingertip touches the object (see ``blocking``).
+    contact_temperature_c: float = TABLE1_CONTACT_TEMPERATURE_C
+    turns_reading: TurnsReading = DEFAULT_TURNS_READING
     name: str = "table1"
     title: str = "Table I: grip temperature of a two-finger TCA gripper"
     source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-D, Table I, eq (44)"
-    blocking: str = (
-        "Each fingertip is held at its relaxed (25 C) position, hanging down, and presses along -x "
-        "(plane contact); F(T) is the contact force."
-    )
+    blocking: str = field(default=_CONTACT)
 
-    def predict(self, material: Material | None = None, *, study: bool = False) -> Table1Result:
+    def predict(
+        self, material: Material | None = None, *, study: bool = False, identification: bool = False
+    ) -> Table1Result:
         """Predicted grip temperatures; see :func:`predict_table1`."""
-        return predict_table1(self, material, study=study)
+        return predict_table1(self, material, study=study, identification=identification)
 
 
 #: The paper's Table I.
@@ -95,31 +118,58 @@ class Table1Row:
         return self.predicted_c - self.paper_prediction_c
 
 
-@dataclass(frozen=True, eq=False)
-class Table1Study:
-    """Sensitivity ranking and identifications (not defaults); see :mod:`tcarod.studies`."""
+@dataclass(frozen=True)
+class Table1Reading:
+    """Grip temperatures [C] of one reading (turns x material preset) at the default contact."""
 
-    sensitivities: tuple[Sensitivity, ...]
-    identifications: tuple[Identification, ...]
-    plausibility: str
-    verdict: str
+    turns_reading: str
+    material: str
+    grip_c: tuple[float, ...]
+    #: Force slope after contact [N/C] (line through the grips).
+    slope_n_per_c: float
+
+    def to_json(self) -> dict[str, Any]:
+        """JSON-serialisable; temperatures in C."""
+        return {
+            "turns_reading": self.turns_reading,
+            "material": self.material,
+            "grip_temperature_c": list(self.grip_c),
+            "force_slope_mn_per_c": self.slope_n_per_c * 1e3,
+        }
 
 
 @dataclass(frozen=True, eq=False)
 class Table1Result:
-    """Predicted Table I (and, optionally, the parameter study)."""
+    """Predicted Table I, the readings, and (optionally) the study and identification."""
 
     experiment: Table1Experiment
     rows: tuple[Table1Row, ...]
-    study: Table1Study | None = None
+    readings: tuple[Table1Reading, ...] = ()
+    sensitivities: tuple[Sensitivity, ...] = ()
+    identifications: tuple[Identification, ...] = ()
+    #: Fig. 8 blocked force [N] at 100 and 140 C of each identification's material and turns.
+    identification_fig8_n: tuple[tuple[float, ...], ...] = ()
 
     @property
     def name(self) -> str:
         """Registry name, ``"table1"``."""
         return self.experiment.name
 
+    def _lines(self, masses: tuple[float, ...], temps: tuple[float, ...]) -> tuple[float, float]:
+        exp = self.experiment
+        return force_line(masses, temps, exp.mu, exp.fingers, exp.gravity_m_per_s2)
+
+    def force_slopes_n_per_c(self) -> dict[str, tuple[float, float]]:
+        """``(force slope [N/C], zero-force intercept [C])`` of tcarod, the paper's model and the experiment."""
+        exp = self.experiment
+        return {
+            "tcarod": self._lines(exp.masses_kg, tuple(r.predicted_c for r in self.rows)),
+            "paper_model": self._lines(exp.masses_kg, exp.paper_prediction_c),
+            "experiment": self._lines(exp.masses_kg, exp.experiment_c),
+        }
+
     def table(self) -> str:
-        """Grip temperatures [C] per mass: tcarod, experiment, paper's model, differences."""
+        """Grip temperatures [C] and force slopes [mN/C]; readings; identification."""
         exp = self.experiment
         head = (
             f"{'mass [g]':>8} | {'F/finger [mN]':>13} | {'tcarod [C]':>10} | {'experiment [C]':>14} | "
@@ -134,32 +184,57 @@ class Table1Result:
                 f"{r.error_vs_paper_c:>16.1f}"
             )
         lines.append(rule)
+        sl = self.force_slopes_n_per_c()
+        lines.append(
+            "Force slope after contact [mN/C] (zero-force intercept [C]): "
+            + ", ".join(f"{k} {v[0] * 1e3:.3f} ({v[1]:.1f})" for k, v in sl.items())
+        )
         lines += textwrap.wrap(
-            f"mu = {exp.mu}, {exp.fingers} fingers, g = {exp.gravity_m_per_s2} m/s^2; default material "
-            "(documented, not tuned). The incremental eq-43 and direct solves agree to "
+            f"Defaults: contact {exp.contact_temperature_c:.2f} C, turns read {exp.turns_reading!r}, default "
+            "material (documented, not tuned). Incremental eq-43 and direct solves agree to "
             f"{max(abs(r.predicted_c - r.direct_c) for r in self.rows):.1e} C.",
             len(rule),
         )
-        if self.study is not None:
-            st = self.study
-            lines.append(rule)
-            lines.append("Sensitivity (each parameter x 0.9 and x 1.1): elasticity of the rise T - 25 C")
-            for s in st.sensitivities:
+        if self.readings:
+            lines += [rule, f"Readings at contact {exp.contact_temperature_c:.2f} C (grip [C] for 1/2/3 g; slope):"]
+            for rd in self.readings:
+                g = " / ".join(f"{t:.1f}" for t in rd.grip_c)
+                lines.append(f"  {rd.turns_reading:>10} / {rd.material:<12}: {g}  ({rd.slope_n_per_c * 1e3:.3f} mN/C)")
+        if self.sensitivities:
+            lines += [rule, "Sensitivity (each parameter x 0.9 and x 1.1): elasticity of the rise T - T_contact"]
+            for s in self.sensitivities:
                 el = ", ".join(f"{e:+.3f}" for e in s.elasticity)
-                sl = ", ".join(f"{v:+.1f}" for v in s.slope_c)
-                lines.append(f"  {s.parameter.key:>14}: {el}   (dT/dln p [C]: {sl})")
-            lines.append("IDENTIFICATION (not defaults): scale factors fitted to the paper's predictions")
-            for ident in st.identifications:
-                sc = ", ".join(f"{k} x {v:.3g}" for k, v in zip(ident.keys, ident.scales))
-                fc = " / ".join(f"{t:.1f}" for t in ident.fitted_c)
-                lines.append(f"  {sc}: {fc} C, rms residual {ident.rms_c:.1f} C")
-            lines += textwrap.wrap(f"Plausibility: {st.verdict}", len(rule))
+                lines.append(f"  {s.parameter.key:>14}: {el}")
+        if self.identifications:
+            lines += [rule, "IDENTIFICATION (identified, not defaults; tcarod.identification):"]
+            for i, f8 in zip(self.identifications, self.identification_fig8_n or [()] * len(self.identifications)):
+                ps = ", ".join(
+                    f"{k} = {p.value:.4g} [{p.plausible_range[0]:.3g}, {p.plausible_range[1]:.3g}] "
+                    f"{'plausible' if p.plausible else 'NOT plausible'}"
+                    for k, p in i.parameters.items()
+                )
+                loo = ", ".join(f"{v:+.1f}" for v in i.leave_one_out_c)
+                fit = " / ".join(f"{t:.1f}" for t in i.fitted_c)
+                lines += textwrap.wrap(f"* {i.reading.text}; fitted to {i.fitted_to}:", len(rule))
+                lines.append(f"    {ps}")
+                f8s = " / ".join(f"{f * 1e3:.2f}" for f in f8)
+                lines.append(
+                    f"    fitted {fit} C, rms {i.rms_c:.2f} C, leave-one-out {loo} C; "
+                    f"d'/d / measured CTE {min(i.cte_ratio):.2f}-{max(i.cte_ratio):.2f}; Fig. 8 at 100/140 C: {f8s} mN"
+                )
         return "\n".join(lines)
 
     def to_json(self) -> dict[str, Any]:
-        """JSON-serialisable; temperatures in C, masses in kg, forces in N."""
+        """JSON-serialisable; temperatures in C, masses in kg, forces in N (slopes in mN/C)."""
         exp = self.experiment
-        out: dict[str, Any] = {
+        sl = self.force_slopes_n_per_c()
+        idents = []
+        for k, i in enumerate(self.identifications):
+            d = i.to_json()
+            if self.identification_fig8_n:
+                d["fig8_force_n_at_c"] = {"100": self.identification_fig8_n[k][0], "140": self.identification_fig8_n[k][1]}
+            idents.append(d)
+        return {
             "name": exp.name,
             "title": exp.title,
             "source": exp.source,
@@ -167,7 +242,12 @@ class Table1Result:
             "fingers": exp.fingers,
             "gravity_m_per_s2": exp.gravity_m_per_s2,
             "blocking": exp.blocking,
-            "method": "incremental eq 43 (10 increments), checked by the direct mixed solve",
+            "contact_temperature_c": exp.contact_temperature_c,
+            "contact_temperature_source": "zero-force intercept of the paper's Table I predictions (force_line)",
+            "turns_reading": exp.turns_reading,
+            "method": "incremental eq 43 (10 increments) from the free solution at contact, checked by the direct solve",
+            "force_slope_mn_per_c": {k: v[0] * 1e3 for k, v in sl.items()},
+            "zero_force_intercept_c": {k: v[1] for k, v in sl.items()},
             "rows": [
                 {
                     "mass_kg": r.mass_kg,
@@ -183,16 +263,10 @@ class Table1Result:
                 }
                 for r in self.rows
             ],
-            "study": None,
+            "readings": [r.to_json() for r in self.readings],
+            "sensitivity": [s.to_json() for s in self.sensitivities],
+            "identification": idents,
         }
-        if self.study is not None:
-            out["study"] = {
-                "sensitivity": [s.to_json() for s in self.study.sensitivities],
-                "identification_not_defaults": [i.to_json() for i in self.study.identifications],
-                "plausibility": self.study.plausibility,
-                "verdict": self.study.verdict,
-            }
-        return out
 
     def plot(self, path: str | os.PathLike[str]) -> Path:
         """Write grip temperature [C] against mass [g] (tcarod, experiment, paper's model) as PNG."""
@@ -201,17 +275,17 @@ class Table1Result:
 
         from ..plotting import save_png
 
-        fig = Figure(figsize=(4.5, 3.4), layout="constrained")
+        fig = Figure(figsize=(4.8, 3.6), layout="constrained")
         FigureCanvasAgg(fig)
         ax = fig.add_subplot()
         grams = [r.mass_kg * 1e3 for r in self.rows]
         ax.plot(grams, [r.experiment_c for r in self.rows], "ks", label="experiment (firm grip)")
         ax.plot(grams, [r.paper_prediction_c for r in self.rows], "k^--", markerfacecolor="none", label="paper's model")
-        ax.plot(grams, [r.predicted_c for r in self.rows], "o-", color="tab:red", label="tcarod (default material)")
-        if self.study is not None and self.study.identifications:
-            best = min(self.study.identifications, key=lambda i: i.rms_c)
-            lab = ", ".join(f"{k} x {v:.2g}" for k, v in zip(best.keys, best.scales))
-            ax.plot(grams, best.fitted_c, ":", color="tab:blue", label=f"identified ({lab})")
+        ax.plot(grams, [r.predicted_c for r in self.rows], "o-", color="tab:red", label="tcarod (defaults)")
+        for i in self.identifications:
+            if i.fitted_to == "paper_model" and i.all_plausible and len(i.parameters) == 2:
+                ax.plot(grams, i.fitted_c, ":", label=f"identified ({i.reading.turns_reading}, {i.reading.material})")
+                break
         ax.set_xlabel("Grasped mass [g]")
         ax.set_ylabel("Grip temperature [°C]")
         ax.set_xticks(grams)
@@ -221,61 +295,62 @@ class Table1Result:
         return save_png(fig, path)
 
 
-def _describe(ident: Identification) -> str:
-    parts = []
-    for k, sc in zip(ident.keys, ident.scales):
-        bound = " (at the fit's bound)" if sc <= 0.0101 or sc >= 99.0 else ""
-        parts.append(f"{k} x {sc:.3g}{bound}")
-    return f"{', '.join(parts)}: rms {ident.rms_c:.1f} C"
-
-
-def _study() -> Table1Study:
-    sens = table1_sensitivity()
-    # the two most sensitive independent parameters ("rho(T)" is rho and drho/dT together)
-    top2 = tuple(s.parameter.key for s in sens if s.parameter.key != "rho(T)")[:2]
-    idents = [identify_table1(("rho(T)",)), identify_table1(("rho", "drho/dT"))]
-    if set(top2) != {"rho", "drho/dT"}:
-        idents.append(identify_table1(top2))
-    c = Material.silver_coated_nylon().coefficients  # (E, dE/dT, G, dG/dT, rho(25 C), drho/dT)
-    k = idents[0].scales[0]
-    rho25, rho160 = c[4] * k, (c[4] + c[5] * 135.0) * k
-    cte32, cte160 = 15.5e-5, 43.7e-5
-    verdict = (
-        f"One scale on the whole rho(T) (x {k:.3g}: rho = {rho25:.2e} 1/C at 25 C, {rho160:.2e} 1/C at "
-        f"160 C) leaves rms {idents[0].rms_c:.1f} C and is {cte32 / rho25:.0f} (near 30 C) to "
-        f"{cte160 / rho160:.0f} (160 C) times below the measured radial CTE of oriented nylon 6,6: "
-        "not plausible. Other fits: "
-        + "; ".join(_describe(i) for i in idents[1:])
-        + ". They hit the scale bounds or need a coil diameter, body modulus or expansion far from "
-        "measured values: not plausible either. The paper's predictions rise nearly linearly with mass "
-        "(about +21 C per g), this model's rise is concave (+9 then +7 C per g), so the gap looks like a "
-        "modelling difference (the paper's unprinted material fits or contact set-up), not one "
-        "mis-set parameter. The defaults stay as documented."
-    )
-    return Table1Study(sensitivities=sens, identifications=tuple(idents), plausibility=_PLAUSIBILITY, verdict=verdict)
+def _grips(exp: Table1Experiment, finger: Any, method: str) -> list[Grasp]:
+    kw: dict[str, Any] = {"mu": exp.mu, "fingers": exp.fingers, "gravity": exp.gravity_m_per_s2}
+    return [
+        grasp(m, finger, method=method, contact_temperature_c=exp.contact_temperature_c, **kw)  # type: ignore[arg-type]
+        for m in exp.masses_kg
+    ]
 
 
 def predict_table1(
-    experiment: Table1Experiment = TABLE1, material: Material | None = None, *, study: bool = False
+    experiment: Table1Experiment = TABLE1,
+    material: Material | None = None,
+    *,
+    study: bool = False,
+    identification: bool = False,
 ) -> Table1Result:
     """Grip temperature [C] for each mass of ``experiment`` on the Table I
-    finger (:func:`tcarod.grasp.table1_finger`) by the incremental eq-43
-    method, each checked by the direct mixed solve. ``study=True`` adds the
-    sensitivity study and the identification (a few seconds; default
-    material only)."""
-    finger = table1_finger(material=material)
-    rows = []
-    for m, t_exp, t_paper in zip(experiment.masses_kg, experiment.experiment_c, experiment.paper_prediction_c):
-        kw: dict[str, Any] = {"mu": experiment.mu, "fingers": experiment.fingers, "gravity": experiment.gravity_m_per_s2}
-        inc = grasp(m, finger, **kw)
-        direct = grasp(m, finger, method="direct", **kw)
-        rows.append(
-            Table1Row(mass_kg=m, grasp=inc, direct_c=direct.temperature_c, experiment_c=t_exp, paper_prediction_c=t_paper)
+    finger by the incremental eq-43 method from the free solution at contact,
+    each checked by the direct solve; every turns reading x material preset
+    at the same contact. ``study``: the sensitivity ranking (default material
+    only, ~1 s); ``identification``: the fits of
+    :data:`tcarod.identification.IDENTIFICATION_READINGS` to the paper's
+    model and to the experiment (about a minute), each applied to Fig. 8."""
+    finger = table1_finger(material=material, turns_reading=experiment.turns_reading)
+    inc, direct = _grips(experiment, finger, "incremental"), _grips(experiment, finger, "direct")
+    rows = tuple(
+        Table1Row(mass_kg=m, grasp=g, direct_c=d.temperature_c, experiment_c=te, paper_prediction_c=tp)
+        for m, g, d, te, tp in zip(
+            experiment.masses_kg, inc, direct, experiment.experiment_c, experiment.paper_prediction_c
         )
-    st = _study() if study and material is None else None
-    return Table1Result(experiment=experiment, rows=tuple(rows), study=st)
+    )
+    readings = []
+    for tr in TURNS_READINGS:
+        for mat in MATERIAL_PRESETS:
+            f = table1_finger(material=material_preset(mat), turns_reading=tr)
+            grips = tuple(g.temperature_c for g in _grips(experiment, f, "incremental"))
+            slope = force_line(experiment.masses_kg, grips, experiment.mu, experiment.fingers, experiment.gravity_m_per_s2)[0]
+            readings.append(Table1Reading(turns_reading=tr, material=mat, grip_c=grips, slope_n_per_c=slope))
+    sens = table1_sensitivity() if study and material is None else ()
+    idents: list[Identification] = []
+    fig8: list[tuple[float, ...]] = []
+    if identification:
+        for reading in IDENTIFICATION_READINGS:
+            for target in ("paper_model", "experiment"):
+                ident = identify(reading, target)  # type: ignore[arg-type]
+                idents.append(ident)
+                fig8.append(fig8_forces((100.0, 140.0), ident.material(), reading.turns_reading))
+    return Table1Result(
+        experiment=experiment,
+        rows=rows,
+        readings=tuple(readings),
+        sensitivities=tuple(sens),
+        identifications=tuple(idents),
+        identification_fig8_n=tuple(fig8),
+    )
 
 
 @register("table1")
 def _table1() -> Table1Result:
-    return TABLE1.predict(study=True)
+    return TABLE1.predict(study=True, identification=True)
