@@ -72,8 +72,29 @@ def test_radius_shrinks_with_temperature(result: Fig6Result) -> None:
             # strictly decreasing where finite (a straight body has radius inf)
             finite = r[np.isfinite(r)]
             assert np.all(np.diff(finite) < 0.0), curve.manipulator.label
-            # 160 C bends the 40 mm body to a radius below its length
-            assert 0.01 < r[-1] < 0.04
+            # 160 C bends the 40 mm body to a radius near its length: below it for
+            # the circle (76.4 turns), below 1.5 lengths for the square whose legs
+            # share the U's 76.4 turns (per_tca: half the free stroke per leg)
+            limit = 0.04 if curve.manipulator.section == "circle" else 0.07  # square: 56 / 67 mm
+            assert 0.01 < r[-1] < limit
+
+
+def test_turns_readings(result: Fig6Result) -> None:
+    # the circle's single TCA has 76.4 turns in every reading: identical radii
+    circle = [v for (label, _), v in result.readings.items() if label.startswith("circle")]
+    assert len(circle) == 3 and circle[0] == circle[1] == circle[2]
+    sq = {reading: v for (label, reading), v in result.readings.items() if label.startswith("square")}
+    # 40 mm legs: per_length (76.4 per 40 mm) is per_leg; same robot, same radii
+    assert sq["per_length"] == sq["per_leg"]
+    # twice the turns per leg -> twice the free stroke -> tighter bending at every temperature
+    assert all(a < b for a, b in zip(sq["per_leg"], sq["per_tca"]))
+    # the default reading is the sweep itself (same equations: to the Newton tolerance)
+    with_g = result.curves[1][0]
+    for t, r in zip(FIG6.reading_temperatures_c, sq["per_tca"]):
+        k = list(FIG6.temperatures_c).index(t)
+        assert r == pytest.approx(with_g.radii_m[k], rel=1e-7)
+    doc = result.to_json()
+    assert doc["turns_reading"] == "per_tca" and len(doc["readings"]) == 6
 
 
 def test_square_is_straight_at_25_c_without_gravity(result: Fig6Result) -> None:

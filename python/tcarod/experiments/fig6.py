@@ -35,7 +35,7 @@ from __future__ import annotations
 import math
 import os
 import textwrap
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Final, Literal
 
@@ -43,6 +43,10 @@ import numpy as np
 import numpy.typing as npt
 
 from ..manipulators import (
+    DEFAULT_TURNS_READING,
+    TURNS_READINGS,
+    TurnsReading,
+    leg_turns,
     ECOFLEX10_DENSITY_KG_PER_M3,
     ECOFLEX10_POISSON,
     ECOFLEX10_YOUNGS_MODULUS_PA,
@@ -77,6 +81,8 @@ _ASSUMPTIONS: Final[tuple[str, ...]] = (
     f"The U-shaped TCA's two legs sit at x = +{TCA_OFFSET_M * 1e3:g} mm, y = +-{U_LEG_HALF_SPACING_M * 1e3:g} mm "
     "(the leg spacing is not printed; any symmetric spacing gives the same planar bending).",
     "Each TCA (and each U leg) runs the whole body length, anchored at base and tip.",
+    "Turns: 76.4 per fabricated TCA (default reading 'per_tca'): the circle's single TCA has 76.4, each "
+    "leg of the square's U-shaped TCA 38.2 (tcarod.manipulators; the other readings are shown beside).",
     "TCA material: Material.silver_coated_nylon() (values the paper does not print; see README).",
 )
 
@@ -101,9 +107,10 @@ class Fig6Manipulator:
     #: Whether ``precurvature_radius_m`` is an assumption (not printed in the paper).
     precurvature_is_assumption: bool = False
 
-    def robot(self, gravity: bool = True) -> Robot:
+    def robot(self, gravity: bool = True, turns_reading: TurnsReading = DEFAULT_TURNS_READING) -> Robot:
         """The manipulator as a :class:`Robot`; upright (base down, gravity
-        ``(0, 0, -9.81) m/s^2``) if ``gravity``, weightless otherwise."""
+        ``(0, 0, -9.81) m/s^2``) if ``gravity``, weightless otherwise; each
+        leg with :func:`tcarod.manipulators.leg_turns` turns under ``turns_reading``."""
         section = (
             Section.circle(self.size_m) if self.section == "circle" else Section.rectangle(self.size_m, self.size_m)
         )
@@ -120,7 +127,7 @@ class Fig6Manipulator:
             omega_star=omega_star,
             gravity=(0.0, 0.0, -GRAVITY_M_PER_S2) if gravity else None,
         )
-        tca = manipulator_tca(self.length_m)
+        tca = manipulator_tca(self.length_m, turns=leg_turns(self.length_m, len(self.tca_y_m), turns_reading))
         return Robot(body, [Actuator.tca(tca, Routing.straight(self.tca_offset_m, y)) for y in self.tca_y_m])
 
 
@@ -140,10 +147,14 @@ class Fig6Experiment:
     source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-B, Fig. 6"
     #: RK4 steps over the body length.
     steps: int = 100
+    #: How the printed 76.4 turns apply to a U's legs (:mod:`tcarod.manipulators`).
+    turns_reading: TurnsReading = DEFAULT_TURNS_READING
+    #: Temperatures [C] at which every reading's radius (with gravity) is reported.
+    reading_temperatures_c: tuple[float, ...] = (60.0, 100.0, 140.0)
 
-    def predict(self) -> Fig6Result:
+    def predict(self, *, readings: bool = True) -> Fig6Result:
         """Predicted radii; see :func:`predict_fig6`."""
-        return predict_fig6(self)
+        return predict_fig6(self, readings=readings)
 
 
 #: The paper's Fig. 6 experiment, 25-160 C in 5 C steps.
@@ -210,6 +221,8 @@ class Fig6Result:
     experiment: Fig6Experiment
     #: ``(with gravity, without gravity)`` per manipulator, in the experiment's order.
     curves: tuple[tuple[Fig6Curve, Fig6Curve], ...]
+    #: ``(manipulator label, turns reading) -> radii [m]`` with gravity at ``reading_temperatures_c``.
+    readings: dict[tuple[str, str], tuple[float, ...]] = field(default_factory=dict)
 
     @property
     def name(self) -> str:
@@ -268,6 +281,11 @@ class Fig6Result:
             )
             lines.append(_gravity_summary(with_g, without))
         lines.append("")
+        if self.readings:
+            ts = ", ".join(f"{t:g}" for t in exp.reading_temperatures_c)
+            lines.append(f"Turns readings (default {exp.turns_reading!r}): radius [mm] with gravity at {ts} C")
+            for (label, reading), radii in self.readings.items():
+                lines.append(f"  {label:<30} {reading:>10}: " + ", ".join(_mm(r) for r in radii))
         if exp.published_data is None:
             lines.append(f"Published data: none. {exp.published_data_note}")
         return "\n".join(lines)
@@ -321,6 +339,16 @@ class Fig6Result:
             "assumptions": list(exp.assumptions),
             "temperature_c": [float(t) for t in self.temperatures_c],
             "rk4_steps": exp.steps,
+            "turns_reading": exp.turns_reading,
+            "readings": [
+                {
+                    "manipulator": label,
+                    "turns_reading": reading,
+                    "temperature_c": list(exp.reading_temperatures_c),
+                    "radius_with_gravity_m": [_finite_or_none(r) for r in radii],
+                }
+                for (label, reading), radii in self.readings.items()
+            ],
             "published_data": published,
             "published_data_note": exp.published_data_note,
             "manipulators": manipulators,
@@ -364,7 +392,7 @@ def _relative_difference(a: FloatArray, b: FloatArray) -> float:
 
 
 def _curve(experiment: Fig6Experiment, m: Fig6Manipulator, gravity: bool) -> Fig6Curve:
-    robot = m.robot(gravity)
+    robot = m.robot(gravity, experiment.turns_reading)
     temps = np.asarray(experiment.temperatures_c, dtype=np.float64)
     n = len(m.tca_y_m)
     rows = [[float(t)] * n for t in temps]
@@ -386,15 +414,24 @@ def _curve(experiment: Fig6Experiment, m: Fig6Manipulator, gravity: bool) -> Fig
     )
 
 
-def predict_fig6(experiment: Fig6Experiment = FIG6) -> Fig6Result:
+def predict_fig6(experiment: Fig6Experiment = FIG6, *, readings: bool = True) -> Fig6Result:
     """Bending radius [m] against temperature [C] for every manipulator of
-    ``experiment``, with gravity (upright, as in the oven) and without.
+    ``experiment``, with gravity (upright, as in the oven) and without;
+    ``readings``: also the radius with gravity of every turns reading at
+    ``reading_temperatures_c``.
 
     Raises ``ValueError`` on temperatures outside the TCA material's range and
     ``tcarod.ConvergenceError`` if a solve fails.
     """
     curves = tuple((_curve(experiment, m, True), _curve(experiment, m, False)) for m in experiment.manipulators)
-    return Fig6Result(experiment=experiment, curves=curves)
+    rd: dict[tuple[str, str], tuple[float, ...]] = {}
+    if readings:
+        for m in experiment.manipulators:
+            for reading in TURNS_READINGS:
+                robot = m.robot(True, reading)
+                sols = robot.sweep([[t] * len(m.tca_y_m) for t in experiment.reading_temperatures_c], steps=experiment.steps)
+                rd[(m.label, reading)] = tuple(float(inner_edge_radius(s)) for s in sols)
+    return Fig6Result(experiment=experiment, curves=curves, readings=rd)
 
 
 @register("fig6")
