@@ -1,5 +1,7 @@
-"""Fig. 8 (blocked-tip force) and Table I (grip temperatures) fixtures, and
-the Table I parameter study (tcarod.studies)."""
+"""Fig. 8 (blocked-tip force) and Table I (grip temperatures) fixtures: the
+contact temperature, the force slope, the turns readings, and the Table I
+sensitivity study (tcarod.studies). The identification is in
+tests/test_identification.py."""
 
 from __future__ import annotations
 
@@ -10,15 +12,18 @@ import numpy as np
 import pytest
 
 from tcarod.experiments import REGISTRY
-from tcarod.experiments.fig8 import FIG8, Fig8Result
+from tcarod.experiments.fig8 import FIG8, Fig8Result, fig8_forces
 from tcarod.experiments.table1 import TABLE1, Table1Result
-from tcarod.studies import (
-    PARAMETERS,
-    identify_table1,
-    perturbed_finger,
-    table1_grip_temperatures,
-    table1_sensitivity,
+from tcarod.grasp import (
+    TABLE1_CONTACT_TEMPERATURE_C,
+    blocked_force_curve,
+    force_line,
+    grasp,
+    grasp_temperature,
+    table1_finger,
 )
+from tcarod.studies import PARAMETERS, perturbed_finger, table1_sensitivity
+from tcarod.tca import Material
 
 
 @pytest.fixture(scope="module")
@@ -28,7 +33,7 @@ def fig8() -> Fig8Result:
 
 @pytest.fixture(scope="module")
 def table1() -> Table1Result:
-    return TABLE1.predict()  # without the (slower) study
+    return TABLE1.predict()  # without the (slower) study and identification
 
 
 def test_registered() -> None:
@@ -71,27 +76,98 @@ def test_fig8_json_table_plot(fig8: Fig8Result, tmp_path: Path) -> None:
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_fig8_readings(fig8: Fig8Result) -> None:
+    rd = {(r.turns_reading, r.material): r.forces_n for r in fig8.readings}
+    assert len(rd) == 6 and fig8.to_json()["turns_reading"] == "per_tca"
+    for (turns, mat), (f100, f140) in rd.items():
+        assert 0.0 < f100 < f140, (turns, mat)
+        assert rd[("per_leg", mat)][0] > rd[("per_length", mat)][0] > rd[("per_tca", mat)][0]
+    # the smaller measured CTE gives less untwisting, less force
+    for turns in ("per_tca", "per_leg", "per_length"):
+        assert rd[(turns, "measured_cte")][1] < rd[(turns, "sun_zhao")][1]
+    # the default reading and material are the sweep itself (direct solves, Newton tol 1e-10)
+    for k, t in enumerate(FIG8.reading_temperatures_c):
+        assert rd[("per_tca", "sun_zhao")][k] == pytest.approx(fig8.force_at(t), rel=1e-7)
+    doc = fig8.to_json()["readings"]
+    assert {"100", "140"} == set(doc[0]["force_n_at_c"])
+    # the slack wire pushes nothing below the taut temperature
+    assert fig8_forces((40.0, 55.0), None, "per_leg") == (0.0, 0.0)
+
+
+def test_table1_contact_default_is_the_papers_intercept() -> None:
+    # by hand: equally spaced forces, so the line runs through (2 g, 114.933 C), 21.3 C per g
+    assert TABLE1_CONTACT_TEMPERATURE_C == pytest.approx(344.8 / 3.0 - 42.6, abs=1e-12)
+    assert TABLE1.contact_temperature_c == TABLE1_CONTACT_TEMPERATURE_C
+    slope, t0 = force_line((1e-3, 2e-3, 3e-3), (93.7, 114.8, 136.3))
+    # 4.4591 mN per gram (9.81e-3 / 2.2) over 21.3 C per gram
+    assert slope == pytest.approx(9.81e-3 / 2.2 / 21.3, rel=1e-12)
+    assert t0 == TABLE1_CONTACT_TEMPERATURE_C
+    with pytest.raises(ValueError):
+        force_line((1e-3,), (90.0,))
+
+
 def test_table1_rows(table1: Table1Result) -> None:
     rows = table1.rows
     assert [r.mass_kg for r in rows] == [1e-3, 2e-3, 3e-3]
     assert [r.experiment_c for r in rows] == [95.0, 120.0, 135.0]
     assert [r.paper_prediction_c for r in rows] == [93.7, 114.8, 136.3]
+    free = table1_finger().solve([TABLE1_CONTACT_TEMPERATURE_C] * 2)
     t = [r.predicted_c for r in rows]
-    assert 25.0 < t[0] < t[1] < t[2] < 160.0
+    assert TABLE1_CONTACT_TEMPERATURE_C < t[0] < t[1] < t[2] < 160.0
     for r in rows:
         # eq 43 (incremental) and the direct mixed solve agree (both to tip gap 1e-9 L)
         assert r.direct_c == pytest.approx(r.predicted_c, abs=1e-6)
-        assert r.error_vs_experiment_c == r.predicted_c - r.experiment_c
-        assert r.error_vs_paper_c == r.predicted_c - r.paper_prediction_c
         assert r.grasp.force_per_finger_n == pytest.approx(r.mass_kg * 9.81 / 2.2, rel=1e-15)
+        # the tip is blocked where the free finger touched at contact: bent toward -x
+        assert r.grasp.block_point_m == pytest.approx(tuple(free.tip_position), abs=1e-15)
+        assert r.grasp.block_point_m[0] < -0.5e-3  # ~0.93 mm closed by 72.3 C
+    slopes = table1.force_slopes_n_per_c()
+    # the default finger's force rises faster than the paper's after contact (issue 13)
+    assert slopes["tcarod"][0] > 2.0 * slopes["paper_model"][0] > 0.0
+
+
+def test_force_is_zero_below_contact_then_rises() -> None:
+    finger = table1_finger()
+    tc = TABLE1_CONTACT_TEMPERATURE_C
+    temps = [30.0, 60.0, tc, 75.0, 90.0, 110.0, 140.0, 160.0]
+    f = blocked_force_curve(finger, tc, temps)
+    assert f[:3] == [0.0, 0.0, 0.0]
+    assert all(b > a > 0.0 for a, b in zip(f[3:], f[4:]))
+    # the grip temperature of a mass is where that curve reaches m g / (mu n)
+    t2 = grasp_temperature(2e-3, finger, contact_temperature_c=tc)
+    (f2,) = blocked_force_curve(finger, tc, [t2])
+    assert f2 == pytest.approx(2e-3 * 9.81 / 2.2, rel=1e-6)  # blocked solves to 1e-10, eq-43 to ~1e-8 C
+    # a later contact shifts every grip up
+    assert grasp_temperature(2e-3, finger, contact_temperature_c=tc + 10.0) > t2
+    for bad in (200.0, float("nan"), 10.0):
+        with pytest.raises(ValueError, match="contact_temperature_c"):
+            grasp(2e-3, finger, contact_temperature_c=bad)
+
+
+def test_table1_readings(table1: Table1Result) -> None:
+    rd = {(r.turns_reading, r.material): r for r in table1.readings}
+    assert len(rd) == 6
+    for mat in ("sun_zhao", "measured_cte"):
+        # 20 mm legs: per_length (76.4 per 40 mm) gives 38.2 turns, as per_tca: the same finger
+        assert rd[("per_length", mat)].grip_c == rd[("per_tca", mat)].grip_c
+        # twice the turns: twice the free stroke, a stiffer force rise, lower grips
+        assert all(a < b for a, b in zip(rd[("per_leg", mat)].grip_c, rd[("per_tca", mat)].grip_c))
+        assert rd[("per_leg", mat)].slope_n_per_c > rd[("per_tca", mat)].slope_n_per_c
+    for turns in ("per_tca", "per_leg"):
+        # the measured CTE is smaller than Sun & Zhao's fit: higher grip temperatures
+        assert all(a > b for a, b in zip(rd[(turns, "measured_cte")].grip_c, rd[(turns, "sun_zhao")].grip_c))
+    assert rd[("per_tca", "sun_zhao")].grip_c == tuple(r.predicted_c for r in table1.rows)
 
 
 def test_table1_json_table_plot(table1: Table1Result, tmp_path: Path) -> None:
     doc = json.loads(json.dumps(table1.to_json(), allow_nan=False))
-    assert doc["study"] is None
+    assert doc["identification"] == [] and doc["sensitivity"] == []
     assert [r["experiment_c"] for r in doc["rows"]] == [95.0, 120.0, 135.0]
+    assert doc["contact_temperature_c"] == pytest.approx(72.3333, abs=1e-4)
+    assert doc["force_slope_mn_per_c"]["paper_model"] == pytest.approx(0.2093, abs=1e-4)
+    assert doc["turns_reading"] == "per_tca" and len(doc["readings"]) == 6
     text = table1.table()
-    assert "93.7" in text and "tcarod-exp [C]" in text
+    assert "93.7" in text and "tcarod-exp [C]" in text and "mN/C" in text
     png = table1.plot(tmp_path / "table1.png")
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
@@ -111,20 +187,12 @@ def test_sensitivity_ranking_and_signs() -> None:
     assert all(m > b > p for m, b, p in zip(s.minus_c, s.base_c, s.plus_c))
 
 
-def test_identification_recovers_a_known_scale() -> None:
-    # synthetic target: the model itself with rho(T) halved; the fit must find 0.5
-    target = table1_grip_temperatures({"rho(T)": 0.5})
-    ident = identify_table1(("rho(T)",), target_c=target)
-    # least_squares xtol 1e-10 on log scale; the model is smooth in the scale
-    assert ident.scales[0] == pytest.approx(0.5, rel=1e-4)
-    assert ident.rms_c < 1e-3
-    assert ident.values()["rho(T)"] == pytest.approx(0.5 * PARAMETERS[3].default, rel=1e-4)
-
-
 def test_perturbed_finger_rejects_unknown_parameters() -> None:
     with pytest.raises(ValueError, match="unknown"):
         perturbed_finger({"youngs": 1.1})
     with pytest.raises(ValueError, match="scale"):
         perturbed_finger({"E_B": -1.0})
-    with pytest.raises(ValueError, match="keys"):
-        identify_table1(("rho", "E_B", "G_T"))
+    tca = perturbed_finger({"rho(T)": 0.5}).actuators[0].tca_model
+    assert tca is not None and tca.turns == 38.2  # the default reading: 76.4 per U-shaped TCA
+    half, full = tca.material.coefficients[4], Material.silver_coated_nylon().coefficients[4]
+    assert half == pytest.approx(0.5 * full, rel=1e-15)
