@@ -303,7 +303,7 @@ def identify(
     loo = []
     for i in range(len(tgt)):
         keep = [j for j in range(len(tgt)) if j != i]
-        xi, _ = _fit(reading, [masses_kg[j] for j in keep], [tgt[j] for j in keep], x, count)
+        xi, _ = _fit(reading, [masses_kg[j] for j in keep], [tgt[j] for j in keep], [float(v) for v in x], count)
         k = math.exp(xi[1]) if "rho_scale" in reading.free else 1.0
         try:
             pred = reading_grip_temperatures(reading, float(xi[0]), k, [masses_kg[i]])[0]

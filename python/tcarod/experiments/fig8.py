@@ -322,8 +322,8 @@ def predict_fig8(
         ts = experiment.reading_temperatures_c
         for tr in TURNS_READINGS:
             for mat in MATERIAL_PRESETS:
-                f = fig8_forces(ts, material_preset(mat), tr, experiment)
-                rd.append(Fig8Reading(turns_reading=tr, material=mat, temperatures_c=ts, forces_n=f))
+                fr = fig8_forces(ts, material_preset(mat), tr, experiment)
+                rd.append(Fig8Reading(turns_reading=tr, material=mat, temperatures_c=ts, forces_n=fr))
     return Fig8Result(
         experiment=experiment,
         temperatures_c=temps,

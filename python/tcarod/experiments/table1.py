@@ -338,7 +338,7 @@ def predict_table1(
     if identification:
         for reading in IDENTIFICATION_READINGS:
             for target in ("paper_model", "experiment"):
-                ident = identify(reading, target)  # type: ignore[arg-type]
+                ident = identify(reading, target)
                 idents.append(ident)
                 fig8.append(fig8_forces((100.0, 140.0), ident.material(), reading.turns_reading))
     return Table1Result(
