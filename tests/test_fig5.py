@@ -145,3 +145,18 @@ def test_whole_and_half_predictions_relate() -> None:
     f = case.force_per_half_n
     assert case.half_tca().onset_temperature(f) == pytest.approx(whole.onset_temperature(f), abs=1e-7)
     assert math.isfinite(whole.onset_temperature(f))
+
+
+def test_measured_cte_material_option() -> None:
+    # the measured radial CTE of oriented nylon 6,6 is about half the default's d'/d
+    # (issue 13): less untwisting, so every onset is later and the 160 C stroke smaller
+    from tcarod.tca import Material
+
+    default = FIG5.predict()
+    measured = FIG5.predict(Material.nylon66_measured_cte())
+    for a, b in zip(default.curves, measured.curves):
+        assert a.onset_temperature_c is not None and b.onset_temperature_c is not None
+        assert b.onset_temperature_c > a.onset_temperature_c, a.case.label
+        # the free stroke scales roughly with d/d0 - 1 at 160 C: 3.7 % (measured) against 7.9 % (default)
+        ratio = b.displacement_at_final_temperature_m / a.displacement_at_final_temperature_m
+        assert 0.4 < ratio < 0.55, (a.case.label, ratio)
