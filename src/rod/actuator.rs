@@ -98,6 +98,28 @@ pub trait ForceLaw: Send + Sync + Debug {
     fn elongation(&self, _tension: f64, _input: f64) -> Option<f64> {
         None
     }
+    /// Tension [N] with its derivatives with respect to the elongation
+    /// [N/m] and to the input [N per input unit], for the exact shooting
+    /// Jacobian. The default differences [`ForceLaw::tension`] centrally
+    /// (relative step `eps^(1/3)`, error ~1e-10 relative): override it with
+    /// the exact derivatives.
+    fn tension_derivatives(&self, elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
+        let f = self.tension(elongation, input)?;
+        let h = f64::EPSILON.cbrt() * elongation.abs().max(1e-6);
+        let de = (self.tension(elongation + h, input)? - self.tension(elongation - h, input)?) / (2.0 * h);
+        Ok((f, de, self.input_slope(elongation, input)?))
+    }
+    /// `d tension / d input` by central differences within the input bounds
+    /// (step `eps^(1/3) max(1, |input|)`, one-sided at a bound).
+    fn input_slope(&self, elongation: f64, input: f64) -> Result<f64> {
+        let (lo, hi) = self.input_bounds();
+        let h = f64::EPSILON.cbrt() * input.abs().max(1.0);
+        let (a, b) = ((input - h).max(lo), (input + h).min(hi));
+        if b <= a {
+            return Ok(0.0);
+        }
+        Ok((self.tension(elongation, b)? - self.tension(elongation, a)?) / (b - a))
+    }
 }
 
 /// The TCA law (eq 13) at the input temperature [C]: tension from the TCA's
@@ -120,6 +142,13 @@ impl ForceLaw for TcaLaw {
     }
     fn kind(&self) -> &'static str {
         "tca"
+    }
+    /// Exact in the elongation ([`crate::tca::TcaAt::tension_slope`]);
+    /// differenced in the temperature, whose effect runs through the
+    /// material's tabulated moduli.
+    fn tension_derivatives(&self, elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
+        let at = self.0.at(input)?;
+        Ok((at.tension(elongation)?, at.tension_slope(elongation)?, self.input_slope(elongation, input)?))
     }
     fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
         let at = self.0.at(input).ok()?;
@@ -152,6 +181,9 @@ impl ForceLaw for ConstantTension {
     fn kind(&self) -> &'static str {
         "tension"
     }
+    fn tension_derivatives(&self, _elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
+        Ok((input, 0.0, 1.0))
+    }
 }
 
 /// A linearly elastic tendon of stiffness `k` [N/m] under displacement
@@ -178,6 +210,12 @@ impl ForceLaw for LinearTendon {
     }
     fn kind(&self) -> &'static str {
         "linear_tendon"
+    }
+    fn tension_derivatives(&self, elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
+        let f = self.stiffness * (input + elongation);
+        // at the onset (f = 0) the taut side's slope, so that Newton from a
+        // zero-tension guess sees the tendon
+        Ok(if f >= 0.0 { (f, self.stiffness, self.stiffness) } else { (0.0, 0.0, 0.0) })
     }
     fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
         Some(tension.max(0.0) / self.stiffness - input)

@@ -24,16 +24,19 @@
 mod actuator;
 mod anchors;
 mod body;
+pub mod dual;
 mod ivp;
 mod ode;
 mod robot;
 mod section;
+mod tangent;
 
 pub use actuator::{Actuator, ConstantTension, ForceLaw, LinearTendon, Routing, TcaLaw};
 pub use body::Body;
 pub use ivp::{integrate, IvpResult, IvpSpec};
 pub use robot::{Robot, BASE_STATES};
 pub use section::Section;
+pub use tangent::{integrate_tangent, TangentIvp, TangentNode, TangentSeeds};
 
 use nalgebra::{Matrix3, Quaternion, Vector3};
 
