@@ -371,6 +371,7 @@ pub fn integrate_tangent(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64
         let part = match w {
             0..=4 => pass::<4>(spec, v0, u0, seeds, c0, w, record)?,
             5..=8 => pass::<8>(spec, v0, u0, seeds, c0, w, record)?,
+            9..=12 => pass::<12>(spec, v0, u0, seeds, c0, w, record)?,
             _ => pass::<MAX_PASS>(spec, v0, u0, seeds, c0, w, record)?,
         };
         out = Some(match out {

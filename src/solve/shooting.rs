@@ -380,9 +380,6 @@ pub fn initial_guess(robot: &Robot, inputs: &[f64], warm: Option<&Solution>) -> 
             }
         }
     }
-    if warm.is_none() {
-        linear_guess(robot, inputs, &Loads::of(robot), &mut x);
-    }
     x
 }
 
