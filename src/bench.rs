@@ -18,22 +18,22 @@ use crate::experiments::{steel_tendon_robot, STEEL_TENDON_TENSIONS};
 use crate::inverse::{grasp, sensitivities_exact, sensitivities_fast, Groups, Scheme};
 use crate::shooting::{shoot, shoot_jacobian, solve, Loads, SolveOptions};
 
-/// Temperature [C] of both TCAs in the benches.
+/// Temperature \[C\] of both TCAs in the benches.
 pub const BENCH_TEMPERATURE: f64 = 100.0;
-/// Temperature step [C] of the warm-start row.
+/// Temperature step \[C\] of the warm-start row.
 pub const WARM_STEP: f64 = 5.0;
 /// RK4 steps of the "within 1 um of a 5,000-step reference" row (measured by
 /// `tests/perf.rs`: at most 0.43 um over 40-160 C).
 pub const ACCURATE_STEPS: usize = 10;
 
-/// One row of the table: name, what it times, its target [s].
+/// One row of the table: name, what it times, its target \[s\].
 #[derive(Debug, Clone, Copy)]
 pub struct Row {
     /// Short name (`ivp`, `cold`, ...).
     pub name: &'static str,
     /// What is timed.
     pub description: &'static str,
-    /// Target time [s].
+    /// Target time \[s\].
     pub target: f64,
 }
 
@@ -198,7 +198,7 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
 }
 
 /// Time `repeats` runs of row `name` (after one warm-up run), each run
-/// repeated in a loop for at least `min_time` [s]; returns seconds per
+/// repeated in a loop for at least `min_time` \[s\]; returns seconds per
 /// operation of each run.
 pub fn time_row(name: &str, repeats: usize, min_time: f64) -> Result<Vec<f64>> {
     let mut op = operation(name)?;
