@@ -312,8 +312,17 @@ fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
             Routing::Straight { x, y } => x.hypot(y),
             Routing::Helix { radius, .. } => radius,
         };
-        // tip rotation this actuator alone would cause, for the tendon inputs
+        // tendon curvature: a tip rotation theta over the span, capped so that
+        // the body's surface strain kappa * (half width) stays <= 0.3, and the
+        // tension E I kappa / r capped at 0.2 E A / (actuators): the body
+        // must not be crushed axially (nu_z = 1 - tau / E A)
         let theta = rng.range(0.1, 3.0);
+        let half_max = match section {
+            Section::Rectangle { width, height } => 0.5 * width.max(height),
+            _ => half_min,
+        };
+        let ea = e * section.properties().0;
+        let kappa = (theta / span).min(0.3 / half_max).min(0.2 * ea / n_act as f64 * offset / ei);
         let (law, input): (Arc<dyn crate::rod::ForceLaw>, f64) = match kind {
             ActuatorKind::Tca => {
                 let chirality = if rng.chance(0.7) { Chirality::Extension } else { Chirality::Contraction };
@@ -322,17 +331,13 @@ fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
                 let tca = Tca::from_pitch_angle(span, alpha0, 2.0 * own, turns, chirality, Material::silver_coated_nylon()).ok()?;
                 (Arc::new(TcaLaw(tca)), rng.range(25.0, 160.0))
             }
-            ActuatorKind::ConstantTension => {
-                // tau r span / (E I) = theta
-                (Arc::new(ConstantTension), theta * ei / (offset * span))
-            }
+            ActuatorKind::ConstantTension => (Arc::new(ConstantTension), ei * kappa / offset),
             ActuatorKind::LinearTendon => {
                 // stiffness k against the bending stiffness seen at the tendon,
-                // E I / (r^2 span); pull for curvature kappa = theta / span:
+                // E I / (r^2 span); pull for curvature kappa:
                 // k (pull - kappa r span) = E I kappa / r
                 let k_body = ei / (offset * offset * span);
                 let k = rng.log_range(1.0, 100.0) * k_body;
-                let kappa = theta / span;
                 let pull = (ei * kappa / offset) / k + kappa * offset * span;
                 (Arc::new(LinearTendon { stiffness: k }), pull)
             }
