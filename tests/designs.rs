@@ -183,9 +183,11 @@ const SUBSET: usize = 40;
 /// Designs of the subset, not past self-weight buckling, that the solver on
 /// main (commit bcb9266, FD-Jacobian Newton with Broyden updates, two grids
 /// and input continuation) fails to converge cold. Measured; the issue-10
-/// target is 0. Lower it as the solver improves (the test fails if fewer
-/// designs fail than this, so the number stays honest).
-const KNOWN_COLD_FAILURES: usize = usize::MAX;
+/// target is 0: designs #12 (a helical linear tendon and a tendon, both
+/// anchored inside a 14 kPa body lying sideways under gravity) and #33 (one
+/// straight tendon in a 35 kPa, 154 mm body, gravity and a tip load) end with
+/// "line search failed to reduce the residual". Lower it as the solver improves.
+const KNOWN_COLD_FAILURES: usize = 2;
 
 #[test]
 fn seeded_subset_converges_and_balances() {
