@@ -7,8 +7,10 @@ Cases (100 RK4 steps, default tolerances, one thread):
   TCA legs at 100 C, solved from the straight guess (target <= 200 us);
 * ``fig6_warm``: the same, warm-started from the solution at 95 C (target
   <= 3 full-grid IVP times);
-* ``fig6_jc``: J and C (eqs 39-42) at the 100 C solution, both legs one
-  variable (target <= 3 IVP times);
+* ``fig6_jc`` / ``fig6_jc_exact``: J and C (eqs 39-42) at the 100 C
+  solution, both legs one variable, by forward differences (the paper's) and
+  from the tangent IVP (``_core.sensitivities(..., "exact")``; the
+  ``tcarod.inverse`` wrapper does not take it yet) (target <= 3 IVP times);
 * ``grasp_1g``: Table I grasp temperature for 1 g (target <= 1 ms);
 * ``steel_cold``: the steel tendon robot (L 0.5 m, r 1 mm, E 200 GPa, G 80
   GPa, 8000 kg/m^3, gravity 9.81 m/s^2 along base-frame +x, four straight
@@ -110,6 +112,7 @@ def cases() -> dict[str, tuple[Callable[[], Any], Callable[[Any], int], str]]:
         "fig6_cold": (lambda: sq.solve(t, steps=STEPS), evals, "<= 200 us"),
         "fig6_warm": (lambda: sq.solve(t, steps=STEPS, warm_start=warm), evals, "<= 3 IVP"),
         "fig6_jc": (lambda: jacobian_and_compliance(sol100, groups=[0, 0]), lambda _: -1, "<= 3 IVP"),
+        "fig6_jc_exact": (lambda: _core.sensitivities(sol100, [0, 0], "exact"), lambda _: -1, "<= 3 IVP"),
         "grasp_1g": (lambda: grasp(1e-3, steps=STEPS), lambda g: int(g.blocked.evaluations), "<= 1 ms"),
         "steel_cold": (lambda: steel.solve(STEEL_TENSIONS_N, steps=STEPS), evals, "<= 300 us"),
         "steel_warm": (lambda: steel.solve(steel_up, steps=STEPS, warm_start=steel_sol), evals, "<= 300 us"),
@@ -139,13 +142,13 @@ def main() -> None:
     print(f"load average before {load_before[0]:.2f} {load_before[1]:.2f} {load_before[2]:.2f}, "
           f"after {load_after[0]:.2f} {load_after[1]:.2f} {load_after[2]:.2f}; {os.cpu_count()} CPUs")
     print(f"Fig. 6 square: one full-grid IVP (Rust row 'ivp', CPU) {ivp_s * 1e6:.1f} us")
-    print(f"{'case':<12} {'median':>10} {'min':>10} {'IVPs':>5} {'xIVP':>6}  target")
+    print(f"{'case':<14} {'median':>10} {'min':>10} {'IVPs':>5} {'xIVP':>6}  target")
     rows = []
     for k, (_, _, target) in ops.items():
         med = statistics.median(times[k])
         ratio = med / ivp_s if k.startswith("fig6") else float("nan")
         n = ivps[k]
-        print(f"{k:<12} {med * 1e6:8.1f}us {min(times[k]) * 1e6:8.1f}us {n if n >= 0 else '-':>5} "
+        print(f"{k:<14} {med * 1e6:8.1f}us {min(times[k]) * 1e6:8.1f}us {n if n >= 0 else '-':>5} "
               f"{ratio:6.2f}  {target}")
         rows.append({"case": k, "median_s": med, "min_s": min(times[k]), "ivps": n, "target": target})
     if args.json:
