@@ -26,6 +26,7 @@ pub mod roots;
 pub mod rod;
 pub mod shooting;
 pub mod tca;
+pub mod validate;
 
 #[cfg(feature = "python")]
 mod python;
