@@ -901,7 +901,8 @@ impl PyRobot {
     /// tendons). `steps`: RK4 steps over the body (1 to 100,000); `tol`:
     /// Newton tolerance on the dimensionless residual; `max_iter`: Newton
     /// iterations (1 to 100,000); `warm_start`: a nearby `Solution` of this
-    /// robot. Raises `ValueError` on bad input, `TypeError` on wrong types and
+    /// robot, or of a robot with the same actuators under other loads (load
+    /// continuation). Raises `ValueError` on bad input, `TypeError` on wrong types and
     /// `ConvergenceError` if Newton fails.
     #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None),
         text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None)")]
@@ -918,11 +919,6 @@ impl PyRobot {
         let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
         let q = reals("inputs", &inputs, None)?;
         check_ambient(&this.inner, &q)?;
-        if let Some(w) = &warm_start {
-            if !w.robot.bind(py).get().same_as(this) {
-                return Err(Error::input("warm_start", "a Solution of a different robot").into());
-            }
-        }
         let robot = this.inner.clone();
         let warm = warm_start.map(|w| w.inner.clone());
         let sol = py.detach(|| solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution))?;
