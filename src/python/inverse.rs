@@ -107,19 +107,19 @@ pub struct PyInverseResult {
     /// Remaining tip error [m] (plus weighted angle if orientation was asked).
     #[pyo3(get)]
     error: f64,
-    /// Iterations (Jacobian evaluations) used.
+    /// Iterations (Jacobian evaluations) used (`nit`).
     #[pyo3(get)]
     iterations: usize,
     /// Whether the target was reached to `tol`.
     #[pyo3(get)]
     reached: bool,
-    /// Which variables rest on a bound of their range at the end.
+    /// Whether each variable rests on a bound of its range at the end (`list[bool]`).
     #[pyo3(get)]
     at_bound: Vec<bool>,
-    /// IVPs integrated in total.
+    /// IVPs integrated in total (`nfev`).
     #[pyo3(get)]
     evaluations: usize,
-    /// The iteration budget the solve had.
+    /// The iteration budget the solve had (`max_iter` argument).
     #[pyo3(get)]
     max_iter: usize,
 }
@@ -145,12 +145,12 @@ impl PyInverseResult {
     fn success(&self) -> bool {
         self.reached
     }
-    /// 0 reached, 1 unreachable (closest point at the bounds), 2 out of budget, 3 stalled.
+    /// `0` reached, `1` unreachable (closest point at the bounds), `2` out of budget, `3` stalled.
     #[getter]
     fn status(&self) -> i64 {
         self.code()
     }
-    /// Why the solve stopped, in words.
+    /// Why the solve stopped, in words (`str`).
     #[getter]
     fn message(&self) -> String {
         match self.code() {
@@ -349,10 +349,10 @@ pub struct PyBlockedResult {
     /// Actuation variables (temperature [C] per group for TCAs).
     #[pyo3(get)]
     variables: Vec<f64>,
-    /// Iterations (Newton iterations or eq-43 increments).
+    /// Iterations (Newton iterations or eq-43 increments; `nit`).
     #[pyo3(get)]
     iterations: usize,
-    /// IVPs integrated in total.
+    /// IVPs integrated in total (`nfev`).
     #[pyo3(get)]
     evaluations: usize,
 }
@@ -364,12 +364,12 @@ impl PyBlockedResult {
     fn success(&self) -> bool {
         true
     }
-    /// Always 0 (converged).
+    /// Always `0` (converged).
     #[getter]
     fn status(&self) -> i64 {
         0
     }
-    /// Why the solve stopped, in words.
+    /// Why the solve stopped, in words (`str`).
     #[getter]
     fn message(&self) -> String {
         format!("converged: contact force {:.6e} N after {} iterations", self.force, self.iterations)

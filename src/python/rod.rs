@@ -674,17 +674,17 @@ impl PyActuator {
     fn kind(&self) -> &'static str {
         self.inner.law.kind()
     }
-    /// Name and unit of the input.
+    /// Name and unit of the input, e.g. `"temperature [C]"`.
     #[getter]
     fn input_name(&self) -> &'static str {
         self.inner.law.input_name()
     }
-    /// `(lowest, highest)` valid input.
+    /// `(lowest, highest)` valid input (temperature [C] for TCAs, tension [N], pull [m]).
     #[getter]
     fn input_bounds(&self) -> (f64, f64) {
         self.inner.law.input_bounds()
     }
-    /// Input of the passive (reference) state.
+    /// Input of the passive (reference) state (ambient temperature [C] for TCAs).
     #[getter]
     fn reference_input(&self) -> f64 {
         self.inner.law.reference_input()
@@ -709,7 +709,7 @@ impl PyActuator {
     fn length_ratio(&self) -> Option<f64> {
         self.inner.length_ratio
     }
-    /// The TCA, for TCA actuators.
+    /// The TCA (`Tca`) of a TCA actuator, else `None`.
     #[getter]
     fn tca_model(&self) -> Option<PyTca> {
         self.tca.clone()
@@ -882,15 +882,17 @@ impl PyRobot {
             actuators,
         })
     }
+    /// The soft body (`Body`).
     #[getter]
     fn body(&self) -> PyBody {
         self.body.clone()
     }
+    /// The actuators (list of `Actuator`), in input order.
     #[getter]
     fn actuators(&self) -> Vec<PyActuator> {
         self.actuators.clone()
     }
-    /// Passive inputs (ambient temperature for TCAs, zero for tendons).
+    /// Passive inputs: ambient temperature [C] for TCAs, zero tension [N] / pull [m] for tendons.
     #[getter]
     fn reference_inputs(&self) -> Vec<f64> {
         self.inner.reference_inputs()
@@ -1006,6 +1008,11 @@ fn actuator_list(seq: &Bound<'_, PyAny>) -> PyResult<Vec<PyActuator>> {
 
 /// A converged forward solution. Arrays are NumPy, SI units, world frame
 /// unless noted; `n` nodes along the body.
+///
+/// SciPy-style fields: `success` (always `True`: a failed solve raises
+/// `ConvergenceError`), `status` 0, `message`, `nit` (Newton iterations),
+/// `nfev` (IVPs). Naming: `tip_position` [m] per solve, `tip_positions` per
+/// batch (`tcarod.batch.BatchResult`). Picklable (with its robot) and `==`.
 #[pyclass(name = "Solution", module = "tcarod._core", frozen)]
 pub struct PySolution {
     pub(crate) inner: Solution,
@@ -1019,7 +1026,7 @@ fn stack3<'py>(py: Python<'py>, v: &[Vector3<f64>]) -> Bound<'py, PyArray2<f64>>
 
 #[pymethods]
 impl PySolution {
-    /// The robot solved.
+    /// The `Robot` solved.
     #[getter]
     fn robot(&self, py: Python<'_>) -> Py<PyRobot> {
         self.robot.clone_ref(py)
@@ -1112,17 +1119,17 @@ impl PySolution {
     fn tip_rotation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         mat3(py, &self.inner.tip_rotation())
     }
-    /// Newton iterations used.
+    /// Newton iterations used (`nit`).
     #[getter]
     fn iterations(&self) -> usize {
         self.inner.iterations
     }
-    /// IVPs integrated.
+    /// IVPs integrated (`nfev`).
     #[getter]
     fn evaluations(&self) -> usize {
         self.inner.evaluations
     }
-    /// Final residual (max-norm, dimensionless strain units).
+    /// Final residual: max-norm of the dimensionless shooting residual [-].
     #[getter]
     fn residual(&self) -> f64 {
         self.inner.residual
@@ -1160,7 +1167,7 @@ impl PySolution {
     fn status(&self) -> i64 {
         0
     }
-    /// Why the solve stopped, in words.
+    /// Why the solve stopped, in words (`str`).
     #[getter]
     fn message(&self) -> String {
         format!("converged: residual {:.3e} after {} Newton iterations", self.inner.residual, self.inner.iterations)
@@ -1175,7 +1182,7 @@ impl PySolution {
     fn nfev(&self) -> usize {
         self.inner.evaluations
     }
-    /// RK4 steps over the body used by the solve.
+    /// RK4 steps over the body used by the solve (`steps` argument).
     #[getter]
     fn steps(&self) -> usize {
         self.inner.steps

@@ -20,6 +20,15 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 }
 
 /// Temperature-dependent properties of a TCA's twisted fibre.
+///
+/// `Material(*, youngs_modulus, shear_modulus, expansion, youngs_modulus_slope=0.0,
+/// shear_modulus_slope=None, expansion_slope=0.0, t_ref=25.0, t_min=25.0,
+/// t_max=160.0, name='custom')`: moduli E [Pa] and G [Pa] at `t_ref` [C] with
+/// slopes [Pa/C] (G's default keeps G/E constant), radial expansion `rho` [1/C]
+/// at `t_ref` with slope [1/C^2], valid range `t_min..t_max` [C].
+/// `Material.silver_coated_nylon()` is the paper's thread (valid 25-160 C,
+/// not extrapolated): for a colder ambient build a `Material` with `t_ref` and
+/// `t_min` at that ambient. Value object: `==`, hashable, picklable.
 #[pyclass(name = "Material", module = "tcarod._core", frozen)]
 #[derive(Clone)]
 pub struct PyMaterial {
@@ -79,7 +88,7 @@ impl PyMaterial {
         }
     }
 
-    /// Name of the material (free text).
+    /// Name of the material (free text, e.g. `"my nylon"`).
     #[getter]
     fn name(&self) -> String {
         self.inner.name().to_string()
@@ -246,7 +255,10 @@ fn map2(
     Ok(PyArray1::from_vec(py, out?).unbind())
 }
 
-/// A twisted-and-coiled actuator (paper Section II).
+/// A twisted-and-coiled actuator (paper Section II):
+/// `Tca(fibre_length [m], coiled_length [m], coil_diameter [m], turns,
+/// chirality='extension', material=None)`. See `tcarod.Tca` for the
+/// NumPy-vectorised law. Value object: `==`, hashable, picklable.
 #[pyclass(name = "Tca", module = "tcarod._core", subclass, frozen)]
 #[derive(Clone)]
 pub struct PyTca {
