@@ -96,6 +96,25 @@ impl PySection {
         let theta = crate::error::finite("theta [rad]", theta.0)?;
         Ok(finite_output("edge_distance [m]", self.inner.edge_distance(theta))?)
     }
+    /// Constructor keywords, exactly as given: `{"diameter": ..}` [m],
+    /// `{"width": .., "height": ..}` [m] or `{"area": .. [m^2], "ix", "iy", "j": .. [m^4]}`.
+    #[getter]
+    fn parameters<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        match self.inner {
+            Section::Circle { diameter } => d.set_item("diameter", diameter)?,
+            Section::Rectangle { width, height } => {
+                d.set_item("width", width)?;
+                d.set_item("height", height)?;
+            }
+            Section::Custom { area, ix, iy, j } => {
+                for (k, v) in [("area", area), ("ix", ix), ("iy", iy), ("j", j)] {
+                    d.set_item(k, v)?;
+                }
+            }
+        }
+        Ok(d)
+    }
     /// `"circle"`, `"rectangle"` or `"custom"`.
     #[getter]
     fn kind(&self) -> &'static str {
@@ -201,6 +220,24 @@ impl PyRouting {
             Routing::Straight { x, y } => format!("Routing.straight(x={}, y={})", pf(x), pf(y)),
             Routing::Helix { radius, rate, phase } => format!("Routing.helix(radius={}, rate={}, phase={})", pf(radius), pf(rate), pf(phase)),
         }
+    }
+    /// Constructor keywords, exactly as given: `{"x": .., "y": ..}` [m] or
+    /// `{"radius": .. [m], "rate": .. [rad/m], "phase": .. [rad]}`.
+    #[getter]
+    fn parameters<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        match self.inner {
+            Routing::Straight { x, y } => {
+                d.set_item("x", x)?;
+                d.set_item("y", y)?;
+            }
+            Routing::Helix { radius, rate, phase } => {
+                d.set_item("radius", radius)?;
+                d.set_item("rate", rate)?;
+                d.set_item("phase", phase)?;
+            }
+        }
+        Ok(d)
     }
     /// `"straight"` or `"helix"`.
     #[getter]
