@@ -19,6 +19,7 @@ Contract (tcarod.tca module docstring):
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Any, Callable
 
 import numpy as np
@@ -26,6 +27,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import tcarod
 from tcarod import Material, Tca
 
 NAN, INF = math.nan, math.inf
@@ -264,7 +266,10 @@ def test_fuzz_only_value_or_type_errors_and_never_nan(entry: str, data: st.DataO
     for i in positions:
         args[i] = data.draw(st.one_of(real_scalars, real_arrays, wrong_types), label=f"arg{i}")
     try:
-        out = fn(*args)
+        with warnings.catch_warnings():
+            # valid sizes that look like mm warn (tcarod.UnitsWarning): not an error
+            warnings.simplefilter("ignore", tcarod.UnitsWarning)
+            out = fn(*args)
     except TypeError as exc:
         # Allowed only if some replaced argument is not a real number of the
         # kind that position takes (a scalar for "s", scalar or array for "a").
@@ -298,7 +303,6 @@ def test_tiny_and_huge_but_valid_geometry_never_returns_nan() -> None:
 # None and objects of the wrong class; never PanicException, OverflowError,
 # MemoryError or a hang.
 
-import warnings  # noqa: E402
 
 from tcarod import (  # noqa: E402
     Actuator,
@@ -449,8 +453,11 @@ def test_a_tca_longer_than_its_span_is_a_value_error() -> None:
 
 
 def test_sizes_that_look_like_millimetres_warn() -> None:
-    with pytest.warns(UserWarning, match="millimetres"):
+    with pytest.warns(tcarod.UnitsWarning, match="millimetres"):
         Body(40.0, Section.rectangle(10.0, 10.0), 37.8e3)
+    with pytest.warns(tcarod.UnitsWarning, match="coil_diameter"):
+        Tca(0.497, 0.110, 1.7, 300.0)
+    assert issubclass(tcarod.UnitsWarning, UserWarning)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         Body(0.04, Section.rectangle(0.01, 0.01), 37.8e3)  # metres: silent

@@ -27,6 +27,9 @@ class ConvergenceError(RuntimeError):
     #: Iterations performed.
     iterations: int
 
+class UnitsWarning(UserWarning):
+    """Sizes that are valid SI numbers but look like millimetres."""
+
 @final
 class Material:
     """Temperature-dependent properties of a TCA's twisted fibre (linear in T).

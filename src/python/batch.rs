@@ -122,8 +122,13 @@ fn bench_rows() -> Vec<(&'static str, &'static str, f64)> {
 /// `min_time` [s]; returns seconds per operation of each run. The GIL is
 /// released while timing.
 #[pyfunction]
-#[pyo3(signature = (name, repeats=7, min_time=0.05))]
-fn bench_time(py: Python<'_>, name: &str, repeats: usize, min_time: f64) -> PyResult<Vec<f64>> {
+#[pyo3(signature = (name, repeats=None, min_time=Real(0.05)), text_signature = "(name, repeats=7, min_time=0.05)")]
+fn bench_time(py: Python<'_>, name: &str, repeats: Option<Bound<'_, PyAny>>, min_time: Real) -> PyResult<Vec<f64>> {
+    let repeats = count_or("repeats", repeats.as_ref(), 7, 1, 1000)?;
+    let min_time = crate::error::non_negative("min_time [s]", min_time.0)?;
+    if min_time > 60.0 {
+        return Err(Error::param("min_time [s]", min_time, "0 <= min_time <= 60 s").into());
+    }
     let name = name.to_owned();
-    Ok(py.detach(move || crate::bench::time_row(&name, repeats.max(1), min_time))?)
+    Ok(py.detach(move || crate::bench::time_row(&name, repeats, min_time))?)
 }

@@ -13,10 +13,24 @@ use pyo3::prelude::*;
 
 pub use errors::ConvergenceError;
 
+pyo3::create_exception!(
+    tcarod._core,
+    UnitsWarning,
+    pyo3::exceptions::PyUserWarning,
+    "Sizes that are valid SI numbers but look like millimetres (a body longer \
+     than 10 m, a section wider than 1 m, a TCA coil diameter above 0.1 m)."
+);
+
+/// Warn with [`UnitsWarning`].
+pub(crate) fn warn_units(py: Python<'_>, msg: String) -> PyResult<()> {
+    PyErr::warn(py, &py.get_type::<UnitsWarning>(), &std::ffi::CString::new(msg)?, 1)
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
+    m.add("UnitsWarning", m.py().get_type::<UnitsWarning>())?;
     tca::register(m)?;
     rod::register(m)?;
     inverse::register(m)?;

@@ -316,7 +316,7 @@ fn check_derived(b: &Body) -> Result<()> {
 ///   sequences (default zero).
 ///
 /// SI units: a body whose length or section looks like millimetres (length
-/// > 10 m, section size > 1 m) raises a `UserWarning`. Value object:
+/// > 10 m, section size > 1 m) warns with `tcarod.UnitsWarning`. Value object:
 /// immutable, `==`, hashable, picklable; `repr` is a constructor call.
 #[pyclass(name = "Body", module = "tcarod._core", frozen)]
 #[derive(Clone)]
@@ -377,7 +377,7 @@ impl PyBody {
         b.validate()?;
         check_derived(&b)?;
         if let Some(msg) = crate::validate::body_looks_like_mm(&b) {
-            PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &std::ffi::CString::new(msg)?, 1)?;
+            super::warn_units(py, msg)?;
         }
         Ok(PyBody { inner: b })
     }

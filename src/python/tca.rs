@@ -8,7 +8,8 @@ use super::{hash_text, pf, ps};
 
 use std::f64::consts::FRAC_PI_2;
 
-use super::errors::{finite_output, Real};
+use super::errors::finite_output;
+use super::Real;
 use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::tca::{Chirality, Tca};
@@ -279,7 +280,7 @@ impl PyTca {
         material: Option<PyMaterial>,
     ) -> PyResult<Self> {
         let material = material.map_or_else(Material::silver_coated_nylon, |m| m.inner);
-        Ok(PyTca {
+        let tca = PyTca {
             inner: Tca::new(
                 fibre_length.0,
                 coiled_length.0,
@@ -288,7 +289,12 @@ impl PyTca {
                 parse_chirality(chirality)?,
                 material,
             )?,
-        })
+        };
+        // valid, but perhaps in mm: warn (after validation, so bad values raise first)
+        if let Some(msg) = crate::validate::coil_diameter_looks_like_mm(tca.inner.coil_diameter()) {
+            Python::attach(|py| super::warn_units(py, msg))?;
+        }
+        Ok(tca)
     }
 
     /// Build from coiled length `L` [m] and pitch angle `alpha0` [rad]: `l = L / sin(alpha0)`.
