@@ -7,9 +7,9 @@
 //!   offset in a 14 mm body is an error);
 //! * a TCA must not be longer than the span it is anchored over (a 70 mm
 //!   TCA on a 30 mm body): `coiled_length <= 1.1 x span`;
-//! * sizes that look like millimetres (body length > 10 m, section size
-//!   > 1 m, TCA coil diameter > 0.1 m) are reported as a warning text, not an
-//!   error, because they are valid SI numbers.
+//! * sizes that look like millimetres (body length above 10 m, section
+//!   size above 1 m, TCA coil diameter above 0.1 m) are reported as a
+//!   warning text, not an error, because they are valid SI numbers.
 
 use crate::error::{Error, Result};
 use crate::rod::{Actuator, Body, Routing, Section};

@@ -69,6 +69,7 @@ fn same_robot(py: Python<'_>, robot: &PyRobot, solution: &PySolution, name: &str
 /// `[F (N); M (N m)]`), world frame. `groups[i]` is the variable driving actuator `i`.
 #[pyfunction]
 #[pyo3(signature = (solution, groups=None, scheme="forward"))]
+#[allow(clippy::type_complexity)]
 fn sensitivities<'py>(py: Python<'py>, solution: PyRef<'py, PySolution>, groups: Option<Bound<'py, PyAny>>, scheme: &str) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>)> {
     let robot = solution.robot.bind(py).get().clone();
     let g = groups_for(&robot, groups.as_ref())?;

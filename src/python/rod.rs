@@ -14,6 +14,9 @@ use crate::error::{Error, Result};
 use crate::rod::{Actuator, Body, ConstantTension, ForceLaw, LinearTendon, Robot, Routing, Section, TcaLaw};
 use crate::shooting::{solve, SolveOptions, Solution};
 
+/// What `__reduce__` returns: a rebuilding callable and its arguments.
+type Reduce<'py, A> = PyResult<(Bound<'py, PyAny>, A)>;
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySection>()?;
     m.add_class::<PyRouting>()?;
@@ -132,7 +135,7 @@ impl PySection {
         }
     }
     /// Pickle support: rebuilt by the same static constructor.
-    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (&'static str, Vec<f64>))> {
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py, (&'static str, Vec<f64>)> {
         let f = py.import("tcarod._core")?.getattr("_restore_section")?;
         let v = match self.inner {
             Section::Circle { diameter } => vec![diameter],
@@ -248,7 +251,7 @@ impl PyRouting {
         }
     }
     /// Pickle support: rebuilt by the same static constructor.
-    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (&'static str, Vec<f64>))> {
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py, (&'static str, Vec<f64>)> {
         let f = py.import("tcarod._core")?.getattr("_restore_routing")?;
         let v = match self.inner {
             Routing::Straight { x, y } => vec![x, y],
