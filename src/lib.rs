@@ -30,6 +30,7 @@ pub mod rod;
 pub mod shooting;
 pub mod solve;
 pub mod tca;
+pub mod validate;
 
 #[cfg(feature = "python")]
 mod python;

@@ -123,3 +123,36 @@ def test_bench_rows_and_cli_json(capsys: pytest.CaptureFixture[str]) -> None:
     assert set(doc["batch_throughput"]) == {"threads_1", "threads_2"}
     assert doc["python_overhead"]["python_warm_solve_s"] > 0
     assert doc["numpy_baseline"] is None
+
+
+def test_batch_result_carries_inputs_status_and_a_table() -> None:
+    robot = fig6_square_robot()
+    q = _sweep(5)
+    w = np.zeros((5, 6))
+    w[:, 0] = 1e-3  # 1 mN along +x on every row
+    res = solve_batch(robot, q, w, chunk_size=2)
+    assert res.inputs is not None and res.wrenches is not None
+    np.testing.assert_array_equal(res.inputs, q)
+    np.testing.assert_array_equal(res.wrenches, w)
+    assert res.success and res.status.tolist() == [0] * 5 and "all 5" in res.message
+    np.testing.assert_array_equal(res.nit, res.iterations)
+    np.testing.assert_array_equal(res.nfev, res.evaluations)
+    pd = pytest.importorskip("pandas", reason="pandas is in the test extra; the table export needs it")
+    df = res.to_pandas()
+    assert isinstance(df, pd.DataFrame) and len(df) == 5
+    assert list(df.columns[:2]) == ["input_0", "input_1"]
+    np.testing.assert_array_equal(df[["tip_x_m", "tip_y_m", "tip_z_m"]].to_numpy(), res.tip_positions)
+    assert df["force_x_n"].tolist() == [1e-3] * 5 and df["status"].tolist() == [0] * 5
+    # a sweep streamed in blocks stacks to the same result, inputs included
+    blocks = BatchResult.concatenate(iter_batches(robot, q, w, chunk_size=2, block_chunks=1))
+    assert blocks == res
+
+
+def test_failed_rows_have_status_one_and_nan_pose() -> None:
+    robot = fig6_square_robot()
+    # max_iter=1 from cold starts: some rows cannot converge in one iteration
+    res = solve_batch(robot, _sweep(6), max_iter=1, chunk_size=1)
+    bad = ~res.converged
+    assert bad.any()
+    assert (res.status[bad] == 1).all() and np.isnan(res.tip_positions[bad]).all()
+    assert not res.success and "did not converge" in res.message

@@ -21,6 +21,7 @@ from tcarod.inverse import (
     jacobian_and_compliance,
     tip_position,
 )
+from tcarod.batch import fig6_square_robot
 from tcarod.manipulators import square_manipulator
 
 MINUS_X = (-1.0, 0.0, 0.0)
@@ -212,3 +213,50 @@ def test_brute_force_tip_position_agrees_with_finite_differences(square40) -> No
     # turns that into up to ~1e-3 C, so 5e-3 C
     assert bf.variables == pytest.approx(tuple(fd.variables), abs=5e-3)
     assert bf.forward_solves > 3 * fd.iterations
+
+
+# ------------------------------------------------ SciPy-style results (issue 14)
+
+FIG6 = fig6_square_robot()
+
+
+@pytest.mark.parametrize("temps", [(40.0, 40.0), (90.0, 90.0), (130.0, 130.0), (40.0, 90.0), (130.0, 90.0), (40.0, 130.0)])
+def test_reachable_fig6_targets_are_reached_with_the_default_budget(temps: tuple[float, float]) -> None:
+    target = FIG6.solve(list(temps)).tip_position
+    res = tip_position(FIG6, target)  # defaults: tol 1e-7 m, max_iter 50
+    assert res.success and res.reached and res.status == 0, res
+    assert res.error <= 1e-7 and res.nit < res.max_iter
+    assert "reached" in res.message
+    # the temperatures that made the target come back (the map is 1:1 here);
+    # 1e-3 C: a 1e-7 m tip tolerance over ~1e-4 m/C sensitivity
+    np.testing.assert_allclose(res.variables, temps, rtol=0, atol=1e-3)
+    np.testing.assert_array_equal(res.tip_position, res.solution.tip_position)
+    assert res.nfev == res.evaluations > 0
+
+
+def test_unreachable_is_told_from_out_of_budget() -> None:
+    # toward +x: heating an extension TCA at +x bends the tip toward -x, so
+    # the closest point is the unheated body, both legs at 25 C (a bound)
+    far = tip_position(FIG6, [0.01, 0.0, 0.04], groups=[0, 0])
+    assert not far.success and far.status == 1 and "unreachable" in far.message
+    assert far.at_bound == [True] and far.variables == [25.0]
+    # a reachable target with a budget of one iteration: out of budget
+    target = FIG6.solve([120.0, 120.0]).tip_position
+    short = tip_position(FIG6, target, groups=[0, 0], max_iter=1)
+    assert not short.success and short.status == 2 and "budget" in short.message
+    assert short.nit == 1  # (the first step may overshoot to a bound: budget, not reachability, stopped it)
+    # ...and continuing from where it stopped reaches it
+    more = tip_position(FIG6, target, groups=[0, 0], start=short.variables)
+    assert more.status == 0
+
+
+def test_solution_and_blocked_results_read_like_scipy() -> None:
+    sol = FIG6.solve([90.0, 90.0])
+    assert (sol.success, sol.status, sol.nit, sol.nfev) == (True, 0, sol.iterations, sol.evaluations)
+    assert "converged" in sol.message
+    tip = FIG6.solve([25.0, 25.0]).tip_position
+    b = blocked_force(FIG6, tip, [-1.0, 0.0, 0.0], [60.0], groups=[0, 0])
+    assert (b.success, b.status, b.nit, b.nfev) == (True, 0, b.iterations, b.evaluations)
+    # the tip is held on the plane x = tip_x: its x is unchanged (1e-9 m:
+    # the mixed BVP's residual tolerance on the plane condition)
+    assert abs(b.tip_position[0] - tip[0]) < 1e-9

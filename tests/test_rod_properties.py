@@ -42,6 +42,13 @@ SETTINGS = settings(max_examples=25, deadline=None, suppress_health_check=[Healt
 # ------------------------------------------------------------ random designs
 
 
+
+def span_tca(s_start: float, s_end: float | None, length: float) -> Tca:
+    """The paper's manipulator TCA cut to the span it is anchored over (a TCA
+    may not be longer than its span: src/validate.rs), twist per length kept."""
+    span = (length if s_end is None else s_end) - s_start
+    return Tca.from_pitch_angle(span, math.radians(15.0), 1.7e-3, 76.4 * span / 0.04)
+
 @dataclass(frozen=True)
 class ActuatorSpec:
     kind: str  # "tca" or "tendon"
@@ -86,8 +93,7 @@ class Design:
             s0 = a.s_start_frac * self.length
             s1 = None if a.s_end_frac is None else a.s_end_frac * self.length
             if a.kind == "tca":
-                tca = Tca.from_pitch_angle(self.length, math.radians(15.0), 1.7e-3, 76.4 * self.length / 0.04)
-                acts.append(Actuator.tca(tca, routing, s0, s1))
+                acts.append(Actuator.tca(span_tca(s0, s1, self.length), routing, s0, s1))
             else:
                 acts.append(Actuator.tendon(routing, s0, s1))
         return Robot(self.body(), acts)
@@ -246,12 +252,11 @@ def test_reference_temperature_keeps_reference_shape(design: Design, precurvatur
     omega_star = (precurvature[0], precurvature[1], 0.0)  # [1/m]
     body = Body(design.length, design.section, design.youngs_modulus, poisson=0.5, density=design.density,
                 omega_star=omega_star)
-    tca = Tca.from_pitch_angle(design.length, math.radians(15.0), 1.7e-3, 76.4 * design.length / 0.04)
-    acts = [
-        Actuator.tca(tca, Routing.straight(a.x, a.y), a.s_start_frac * design.length,
-                     None if a.s_end_frac is None else a.s_end_frac * design.length)
-        for a in design.actuators
-    ]
+    acts = []
+    for a in design.actuators:
+        s0 = a.s_start_frac * design.length
+        s1 = None if a.s_end_frac is None else a.s_end_frac * design.length
+        acts.append(Actuator.tca(span_tca(s0, s1, design.length), Routing.straight(a.x, a.y), s0, s1))
     robot = Robot(body, acts)
     sol = robot.solve(robot.reference_inputs)
     assert robot.reference_inputs == [25.0] * len(acts)

@@ -7,7 +7,7 @@ SI units throughout (m, N, Pa, kg, s) except temperatures, in degrees C.
 
 from __future__ import annotations
 
-from ._core import ConvergenceError, __version__
+from ._core import ConvergenceError, UnitsWarning, __version__
 from .rod import Actuator, Body, Robot, Routing, Section, Solution, circle_radius, inner_edge_radius
 from .tca import Material, Tca
 from .grasp import grasp_temperature
@@ -31,6 +31,7 @@ __all__ = [
     "circle_radius",
     "inner_edge_radius",
     "ConvergenceError",
+    "UnitsWarning",
     "Material",
     "Tca",
     "__version__",

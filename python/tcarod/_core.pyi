@@ -32,6 +32,9 @@ class ConvergenceError(RuntimeError):
     #: "non_finite", "integration" or "other".
     reason: str
 
+class UnitsWarning(UserWarning):
+    """Sizes that are valid SI numbers but look like millimetres."""
+
 @final
 class Material:
     """Temperature-dependent properties of a TCA's twisted fibre (linear in T).
@@ -73,6 +76,9 @@ class Material:
         """This material with ``rho(T)`` scaled by ``factor`` [-]."""
     def instantaneous_expansion(self, temperature: float) -> float:
         """Instantaneous expansion coefficient ``d'(T)/d(T)`` [1/C] at ``temperature`` [C]."""
+    def __getnewargs_ex__(self) -> tuple[tuple[Any, ...], dict[str, Any]]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
     @property
     def name(self) -> str: ...
     @property
@@ -109,6 +115,9 @@ class Tca:
         chirality: _Chirality = "extension",
         material: Material | None = None,
     ) -> Self: ...
+    def __getnewargs_ex__(self) -> tuple[tuple[Any, ...], dict[str, Any]]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
     @classmethod
     def from_pitch_angle(
         cls,
@@ -199,6 +208,12 @@ class Section:
         (a custom section is treated as the circle of its area)."""
     @property
     def kind(self) -> Literal["circle", "rectangle", "custom"]: ...
+    @property
+    def parameters(self) -> dict[str, float]:
+        """Constructor keywords exactly as given (sizes [m], area [m^2], moments [m^4])."""
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
 
 @final
 class Routing:
@@ -213,6 +228,14 @@ class Routing:
         ``rate`` [rad/m] (positive: right-handed about +z), ``phase`` [rad]."""
     def evaluate(self, s: float) -> tuple[_FloatArray, _FloatArray, _FloatArray]:
         """``(r [m], r' [-], r'' [1/m])`` at arc length ``s`` [m], body frame, length 3 each."""
+    @property
+    def kind(self) -> Literal["straight", "helix"]: ...
+    @property
+    def parameters(self) -> dict[str, float]:
+        """Constructor keywords exactly as given (``x``, ``y`` [m] or ``radius`` [m], ``rate`` [rad/m], ``phase`` [rad])."""
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
 
 @final
 class Body:
@@ -244,6 +267,15 @@ class Body:
         tip_force: _Vec3 | None = None,
         tip_moment: _Vec3 | None = None,
     ) -> Self: ...
+    def __getnewargs_ex__(self) -> tuple[tuple[Any, ...], dict[str, Any]]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
+    @property
+    def shear_coefficient(self) -> float:
+        """Shear coefficient [-] (Timoshenko)."""
+    @property
+    def distributed_force(self) -> _FloatArray:
+        """Distributed force [N/m] besides gravity (world frame), shape ``(3,)``."""
     def replace(self, **changes: Any) -> Body:
         """A copy with some fields replaced (same keywords as the constructor)."""
     def kwargs(self) -> dict[str, Any]:
@@ -301,7 +333,11 @@ class Actuator:
         s_start: float = 0.0,
         s_end: float | None = None,
         length_ratio: float | None = None,
-    ) -> Actuator: ...
+        *,
+        pretension_n: float | None = None,
+    ) -> Actuator:
+        """``pretension_n`` [N]: tension at the reference temperature in the
+        undeformed body (makes contraction TCAs act); sets ``length_ratio``."""
     @staticmethod
     def tendon(
         routing: Routing,
@@ -344,12 +380,24 @@ class Actuator:
         """The TCA, for TCA actuators."""
     def tension(self, elongation: float, input: float) -> float:
         """Tension [N] at total elongation ``elongation`` [m] and ``input``."""
+    @property
+    def pretension_n(self) -> float | None:
+        """Pre-tension [N] at the reference temperature, or ``None``."""
+    @property
+    def stiffness(self) -> float | None:
+        """Tendon stiffness [N/m] of a linear tendon, else ``None``."""
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
 
 @disjoint_base
 class Robot:
     """A body with its embedded actuators (see ``tcarod.Robot``)."""
 
-    def __new__(cls, body: Body, actuators: Sequence[Actuator] = ...) -> Self: ...
+    def __new__(cls, body: Body, actuators: Sequence[Actuator] = ()) -> Self: ...
+    def __getnewargs_ex__(self) -> tuple[tuple[Any, ...], dict[str, Any]]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
     @property
     def body(self) -> Body: ...
     @property
@@ -448,7 +496,62 @@ class Solution:
         """Scaled shooting unknowns ``[nu(0), L omega(0), delta_i / L]``."""
     def plot(self, **kwargs: Any) -> Figure:
         """3-D plot of the shape with the actuators; see ``tcarod.plotting.plot_solution``."""
+    @property
+    def success(self) -> bool:
+        """Always ``True`` (a failed solve raises ``ConvergenceError``)."""
+    @property
+    def status(self) -> int:
+        """``0`` (converged)."""
+    @property
+    def message(self) -> str: ...
+    @property
+    def nit(self) -> int:
+        """Newton iterations (``iterations``)."""
+    @property
+    def nfev(self) -> int:
+        """IVPs integrated (``evaluations``)."""
+    @property
+    def steps(self) -> int:
+        """RK4 steps over the body."""
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
 
+def _restore_section(kind: str, values: Sequence[float]) -> Section: ...
+def _restore_routing(kind: str, values: Sequence[float]) -> Routing: ...
+def _restore_actuator(
+    kind: str,
+    tca: Tca | None,
+    stiffness: float | None,
+    routing: Routing,
+    s_start: float,
+    s_end: float | None,
+    length_ratio: float | None,
+    pretension_n: float | None,
+) -> Actuator: ...
+def _restore_solution(
+    robot: Robot,
+    inputs: Sequence[float],
+    unknowns: Sequence[float],
+    tip_force: Sequence[float],
+    tip_moment: Sequence[float],
+    steps: int,
+    iterations: int,
+    evaluations: int,
+    jacobian: tuple[int, int, Sequence[float]] | None,
+) -> Solution: ...
+def _restore_inverse_result(
+    solution: Solution,
+    variables: Sequence[float],
+    error: float,
+    iterations: int,
+    reached: bool,
+    at_bound: Sequence[bool],
+    evaluations: int,
+    max_iter: int,
+) -> InverseResult: ...
+def _restore_blocked_result(
+    solution: Solution, force: float, variables: Sequence[float], iterations: int, evaluations: int
+) -> BlockedResult: ...
 def _experiment_robot(name: Literal["fig6_circle", "fig6_square"], gravity: bool) -> Robot:
     """The Rust fixture ``name`` of ``src/experiments.rs`` (for tests; not public API)."""
 
@@ -486,6 +589,25 @@ class InverseResult:
     @property
     def evaluations(self) -> int:
         """IVPs integrated in total."""
+    @property
+    def max_iter(self) -> int:
+        """The iteration budget of the solve."""
+    @property
+    def success(self) -> bool: ...
+    @property
+    def status(self) -> int:
+        """0 reached, 1 unreachable (at the bounds), 2 out of budget, 3 stalled."""
+    @property
+    def message(self) -> str: ...
+    @property
+    def nit(self) -> int: ...
+    @property
+    def nfev(self) -> int: ...
+    @property
+    def tip_position(self) -> _FloatArray:
+        """Tip position [m] of ``solution``, shape ``(3,)``."""
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
 
 @final
 class BlockedResult:
@@ -506,6 +628,21 @@ class BlockedResult:
     @property
     def evaluations(self) -> int:
         """IVPs integrated."""
+    @property
+    def success(self) -> bool: ...
+    @property
+    def status(self) -> int: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def nit(self) -> int: ...
+    @property
+    def nfev(self) -> int: ...
+    @property
+    def tip_position(self) -> _FloatArray:
+        """Tip position [m] of ``solution``, shape ``(3,)``."""
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
 
 def sensitivities(
     solution: Solution,

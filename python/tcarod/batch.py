@@ -25,13 +25,15 @@ from __future__ import annotations
 
 import importlib
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any, Callable, Iterable, Iterator, Union
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _core
+from ._optional import require
+from .tca import _as_float_array
 
 __all__ = ["BatchResult", "fig6_square_robot", "iter_batches", "solve_batch"]
 
@@ -46,13 +48,24 @@ RobotLike = Union[Robot, Callable[[], Robot]]
 DEFAULT_CHUNK_SIZE = 256
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class BatchResult:
     """Stacked results of ``n`` forward solves (row ``k`` for input row ``k``).
 
-    ``tip_positions`` ``(n, 3)`` [m] and ``tip_rotations`` ``(n, 3, 3)`` (body
-    to world) in the world frame, NaN where a solve did not converge;
-    ``iterations`` and ``evaluations`` (IVPs) ``(n,)``; ``converged`` ``(n,)``.
+    Naming follows the per-solve results in the plural: ``tip_positions``
+    ``(n, 3)`` [m] (``Solution.tip_position`` per solve) and ``tip_rotations``
+    ``(n, 3, 3)`` (body to world), world frame, NaN where a solve did not
+    converge; ``iterations`` and ``evaluations`` (IVPs) ``(n,)``;
+    ``converged`` ``(n,)``; ``inputs`` ``(n, n_actuators)`` (temperature [C]
+    for TCAs) and ``wrenches`` ``(n, 6)`` (tip force [N], moment [N m]) or
+    ``None``: what was solved. ``tensions`` ``(n, n_actuators)`` [N] when the
+    core reports them, else ``None``.
+
+    SciPy-style summary: ``success`` (every row converged), ``status`` per row
+    (0 converged, 1 not), ``message``, ``nit`` / ``nfev`` per row (aliases of
+    ``iterations`` / ``evaluations``). ``to_pandas()`` gives one row per solve
+    (needs the ``pandas`` extra). ``==`` compares every array exactly (NaN
+    equal to NaN); results pickle, so they come back from process pools.
     """
 
     tip_positions: FloatArray
@@ -60,9 +73,78 @@ class BatchResult:
     iterations: IntArray
     evaluations: IntArray
     converged: BoolArray
+    inputs: FloatArray | None = None
+    wrenches: FloatArray | None = None
+    tensions: FloatArray | None = None
 
     def __len__(self) -> int:
         return int(self.tip_positions.shape[0])
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, BatchResult):
+            return NotImplemented
+        for f in fields(self):
+            a, b = getattr(self, f.name), getattr(other, f.name)
+            if (a is None) != (b is None):
+                return False
+            if a is not None and not np.array_equal(a, b, equal_nan=a.dtype.kind == "f"):
+                return False
+        return True
+
+    __hash__ = None  # type: ignore[assignment]  # mutable arrays inside
+
+    @property
+    def success(self) -> bool:
+        """``True`` if every row converged."""
+        return bool(np.all(self.converged))
+
+    @property
+    def status(self) -> IntArray:
+        """Per row: 0 converged, 1 not converged (NaN pose), shape ``(n,)``."""
+        return np.where(self.converged, 0, 1).astype(np.int64)
+
+    @property
+    def message(self) -> str:
+        """Summary in words."""
+        failed = int(np.count_nonzero(~self.converged))
+        if failed == 0:
+            return f"all {len(self)} solves converged"
+        first = int(np.flatnonzero(~self.converged)[0])
+        return f"{failed} of {len(self)} solves did not converge (first: row {first}); their poses are NaN"
+
+    @property
+    def nit(self) -> IntArray:
+        """Newton iterations per row (alias of ``iterations``)."""
+        return self.iterations
+
+    @property
+    def nfev(self) -> IntArray:
+        """IVPs integrated per row (alias of ``evaluations``)."""
+        return self.evaluations
+
+    def to_pandas(self) -> Any:
+        """One row per solve: ``input_<i>`` (one per actuator), ``force_x``
+        ... ``moment_z`` if wrenches were given, ``tip_x_m``, ``tip_y_m``,
+        ``tip_z_m``, ``tension_<i>_n`` if known, ``converged``, ``status``,
+        ``nit``, ``nfev``. Needs pandas (``pip install 'tcarod[pandas]'``)."""
+        pd: Any = require("pandas")
+        cols: dict[str, Any] = {}
+        if self.inputs is not None:
+            for i in range(self.inputs.shape[1]):
+                cols[f"input_{i}"] = self.inputs[:, i]
+        if self.wrenches is not None:
+            for i, name in enumerate(("force_x_n", "force_y_n", "force_z_n", "moment_x_nm", "moment_y_nm", "moment_z_nm")):
+                cols[name] = self.wrenches[:, i]
+        for i, axis in enumerate("xyz"):
+            cols[f"tip_{axis}_m"] = self.tip_positions[:, i]
+        if self.tensions is not None:
+            for i in range(self.tensions.shape[1]):
+                cols[f"tension_{i}_n"] = self.tensions[:, i]
+        cols["converged"] = self.converged
+        cols["status"] = self.status
+        cols["nit"] = self.iterations
+        cols["nfev"] = self.evaluations
+        return pd.DataFrame(cols)
 
     @staticmethod
     def concatenate(parts: Iterable[BatchResult]) -> BatchResult:
@@ -72,12 +154,20 @@ class BatchResult:
             return BatchResult(
                 np.empty((0, 3)), np.empty((0, 3, 3)), np.empty(0, np.int64), np.empty(0, np.int64), np.empty(0, bool)
             )
+
+        def cat(name: str) -> Any:
+            xs = [getattr(p, name) for p in ps]
+            return None if any(x is None for x in xs) else np.concatenate(xs)
+
         return BatchResult(
             np.concatenate([p.tip_positions for p in ps]),
             np.concatenate([p.tip_rotations for p in ps]),
             np.concatenate([p.iterations for p in ps]),
             np.concatenate([p.evaluations for p in ps]),
             np.concatenate([p.converged for p in ps]),
+            inputs=cat("inputs"),
+            wrenches=cat("wrenches"),
+            tensions=cat("tensions"),
         )
 
 
@@ -86,7 +176,8 @@ def _robot(robot: RobotLike) -> Robot:
 
 
 def _as_rows(x: Any, width: int, name: str) -> FloatArray:
-    a = np.ascontiguousarray(x, dtype=np.float64)
+    # TypeError for str, bytes, complex (incl. NumPy complex), None; ValueError for ragged rows
+    a = np.ascontiguousarray(_as_float_array(name, x))
     if a.ndim == 1 and width == 1:
         a = a[:, None]
     if a.ndim != 2 or a.shape[1] != width:
@@ -114,7 +205,7 @@ def _solve_block(
         chunk_size=chunk_size,
         threads=threads,
     )
-    return BatchResult(pos, rot, it, ev, ok)
+    return BatchResult(pos, rot, it, ev, ok, inputs=inputs, wrenches=wrenches)
 
 
 def _blocks(n: int, block: int) -> list[tuple[int, int]]:

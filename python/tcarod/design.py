@@ -415,7 +415,7 @@ def _material_doc(m: Any) -> Any:
 
 def _routing_doc(rt: Any) -> dict[str, Any]:
     r0, rp, _ = (list(map(float, v)) for v in rt.evaluate(0.0))
-    if "Helix" in repr(rt):
+    if rt.kind == "helix":
         radius = math.hypot(r0[0], r0[1])
         phase = math.atan2(r0[1], r0[0])
         rate = (-rp[0] * math.sin(phase) + rp[1] * math.cos(phase)) / radius if radius > 0 else 0.0

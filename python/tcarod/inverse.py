@@ -34,6 +34,7 @@ import numpy.typing as npt
 from . import _core
 from ._core import BlockedResult, InverseResult
 from .rod import Robot, Solution
+from .tca import _as_float_array
 
 __all__ = [
     "BlockedResult",
@@ -50,23 +51,32 @@ Vector = Union[Sequence[float], FloatArray]
 
 
 def _vector(name: str, value: Vector | float, size: int | None = None) -> list[float]:
-    """``value`` as a list of floats (``size`` of them if given); ``ValueError`` otherwise."""
-    arr = np.asarray(value, dtype=np.float64)
+    """``value`` as a list of floats (``size`` of them if given).
+
+    ``TypeError`` for str, bytes, complex (incl. NumPy complex) or None;
+    ``ValueError`` naming ``name`` for a wrong shape."""
+    arr = _as_float_array(name, value)
     if arr.ndim == 0:
         arr = arr.reshape(1)
     if arr.ndim != 1 or (size is not None and arr.shape[0] != size):
-        want = f"{size} numbers" if size is not None else "a 1-D sequence of numbers"
-        raise ValueError(f"{name} must be {want}, got shape {arr.shape}")
+        want = f"{size} values" if size is not None else "a 1-D sequence of numbers"
+        raise ValueError(f"{name}: expected {want}, got shape {arr.shape}")
     return [float(x) for x in arr]
 
 
 def _groups(groups: Sequence[int] | None) -> Optional[list[int]]:
+    """``groups`` as a list of ints: ``TypeError`` for non-integers (bool,
+    float, str), ``ValueError`` for negative ones (the core checks the rest)."""
     if groups is None:
         return None
+    if isinstance(groups, (str, bytes, bytearray)):
+        raise TypeError(f"groups: expected a sequence of integers, not {type(groups).__name__}")
     out = []
     for g in groups:
-        if isinstance(g, bool) or not isinstance(g, (int, np.integer)) or g < 0:
-            raise ValueError(f"groups must be non-negative integers, got {g!r}")
+        if isinstance(g, (bool, np.bool_)) or not isinstance(g, (int, np.integer)):
+            raise TypeError(f"groups: expected integers, got {g!r}")
+        if g < 0:
+            raise ValueError(f"groups: invalid groups entry {g}: allowed 0 <= groups[i] < number of actuators")
         out.append(int(g))
     return out
 
@@ -115,13 +125,20 @@ def tip_position(
     matrix) the orientation is matched too, angles weighted by
     ``orientation_weight`` [m/rad].
 
-    An unreachable target is not an error: the result has ``reached=False``,
-    the closest configuration found, its ``error`` [m] and which variables rest
-    on a bound (``at_bound``).
+    An unreachable target is not an error: the result has ``reached=False``
+    (``success=False``), the closest configuration found, its ``error`` [m]
+    and which variables rest on a bound (``at_bound``). ``status`` tells why it
+    stopped, as in SciPy: 0 reached; 1 unreachable (no descent left with a
+    variable on its temperature bound: the closest point within the range);
+    2 out of budget (``max_iter`` used up: continue with
+    ``start=result.variables``); 3 stalled (no descent, no bound active).
+    ``message`` says the same in words; ``nit`` / ``nfev`` count iterations
+    and IVPs. The default budget reaches reachable targets on the paper's
+    manipulators in 4-7 iterations.
     """
     rot = None
     if target_rotation is not None:
-        m = np.asarray(target_rotation, dtype=np.float64)
+        m = _as_float_array("target_rotation", target_rotation)
         if m.shape != (3, 3):
             raise ValueError(f"target_rotation must be a 3x3 rotation matrix, got shape {m.shape}")
         rot = [[float(x) for x in row] for row in m]
@@ -205,7 +222,7 @@ def blocked_temperature(
         robot,
         _vector("point [m]", point, 3),
         _vector("normal", normal, 3),
-        float(force),
+        force,
         start,
         groups=_groups(groups),
         increments=increments,
@@ -242,8 +259,8 @@ def blocked_temperature_direct(
         robot,
         _vector("point [m]", point, 3),
         _vector("normal", normal, 3),
-        float(force),
-        float(guess),
+        force,
+        guess,
         groups=_groups(groups),
         steps=steps,
         tol=tol,

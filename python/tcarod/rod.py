@@ -3,8 +3,32 @@ string-like actuators, solved by Newton shooting in the Rust core.
 
 Frames: the base is at the origin with the reference tangent along world
 ``+z``; body-frame ``x`` and ``y`` span the cross-section. Actuator forces
-are tensions (N, negative when the actuator pushes). SI units; temperatures
-in degrees C.
+are tensions (N, negative when the actuator pushes); elongations (m) are an
+actuator's length minus its relaxed length (0 with the coils touching,
+positive when stretched or pre-tensioned, slightly negative when pressed
+into coil contact inside a body). SI units; temperatures in degrees C.
+
+Pre-tension: ``Actuator.tca(tca, routing, pretension_n=F)`` installs a TCA
+stretched so that it carries ``F`` [N] at the reference temperature in the
+undeformed body -- what a contraction TCA needs to act at all.
+
+Value objects: ``Section``, ``Routing``, ``Body``, ``Actuator``, ``Robot``
+(and ``Tca``, ``Material``) are immutable, compare with ``==`` (two robots
+built alike are equal), hash, pickle and deep-copy; their ``repr`` is the
+constructor call. A ``Solution`` pickles with its robot and compares equal
+bit for bit after the round trip.
+
+Contract at the boundary: a bad value raises ``ValueError`` naming the
+argument and its allowed range; a wrong type (``str``, ``bytes``,
+``complex``, ``None``, another class) raises ``TypeError``. Caps per call:
+``steps`` <= 100,000 RK4 steps, ``max_iter`` <= 100,000, eq-43
+``increments`` <= 10,000, batch rows <= 10,000,000 (stream more with
+``tcarod.batch.iter_batches``), sequences <= 10,000 values. Geometry is
+checked when a ``Robot`` is built: routings inside the section, TCAs no
+longer than 1.1x their anchored span; sizes that look like millimetres warn
+with ``tcarod.UnitsWarning``. An ambient below a material's ``t_min`` (the
+preset starts at 25 C and is not extrapolated) is a ``ValueError`` pointing
+to a custom ``Material(..., t_ref=..., t_min=...)``.
 """
 
 from __future__ import annotations

@@ -6,7 +6,8 @@ use numpy::{
 };
 use pyo3::prelude::*;
 
-use super::rod::{options, PyRobot};
+use super::rod::{solve_options, PyRobot};
+use super::{count_or, Real};
 use crate::batch::{solve_batch as core_solve_batch, thread_count, BatchOptions};
 use crate::error::Error;
 
@@ -27,27 +28,35 @@ type BatchArrays<'py> = (
 );
 
 /// Solve the forward problem for every row of `inputs` (shape
-/// `(n, n_actuators)`, C for TCAs) and optional tip `wrenches` (shape `(n, 6)`:
-/// force [N] and moment [N m], world frame), with the GIL released, on
-/// `threads` threads (0: all cores). Rows are cut into chunks of `chunk_size`,
-/// each solved in order with warm starts. Returns `(tip_positions (n, 3),
-/// tip_rotations (n, 3, 3), iterations (n,), evaluations (n,), converged (n,))`;
-/// a row that does not converge has NaN pose and `converged = False`.
+/// `(n, n_actuators)`, C for TCAs; at most 10,000,000 rows per call) and
+/// optional tip `wrenches` (shape `(n, 6)`: force [N] and moment [N m], world
+/// frame), with the GIL released, on `threads` threads (0: all cores; at most
+/// 1024). Rows are cut into chunks of `chunk_size` (1 to 10,000,000), each
+/// solved in order with warm starts. `steps` (1 to 100,000), `tol`,
+/// `max_iter` (1 to 100,000) as for `Robot.solve`. Returns `(tip_positions
+/// (n, 3), tip_rotations (n, 3, 3), iterations (n,), evaluations (n,),
+/// converged (n,))`; a row that does not converge has NaN pose and
+/// `converged = False`.
 #[pyfunction]
-#[pyo3(signature = (robot, inputs, wrenches=None, *, steps=100, tol=1e-10, max_iter=50, chunk_size=256, threads=0, warm=true))]
+#[pyo3(signature = (robot, inputs, wrenches=None, *, steps=None, tol=Real(1e-10), max_iter=None, chunk_size=None, threads=None, warm=true),
+    text_signature = "(robot, inputs, wrenches=None, *, steps=100, tol=1e-10, max_iter=50, chunk_size=256, threads=0, warm=True)")]
 #[allow(clippy::too_many_arguments)]
 fn solve_batch<'py>(
     py: Python<'py>,
     robot: &Bound<'py, PyRobot>,
     inputs: PyReadonlyArray2<'py, f64>,
     wrenches: Option<PyReadonlyArray2<'py, f64>>,
-    steps: usize,
-    tol: f64,
-    max_iter: usize,
-    chunk_size: usize,
-    threads: usize,
+    steps: Option<Bound<'py, PyAny>>,
+    tol: Real,
+    max_iter: Option<Bound<'py, PyAny>>,
+    chunk_size: Option<Bound<'py, PyAny>>,
+    threads: Option<Bound<'py, PyAny>>,
     warm: bool,
 ) -> PyResult<BatchArrays<'py>> {
+    use crate::validate::{MAX_BATCH_ROWS, MAX_CHUNK, MAX_THREADS};
+    let solve = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+    let chunk_size = count_or("chunk_size", chunk_size.as_ref(), 256, 1, MAX_CHUNK)?;
+    let threads = count_or("threads", threads.as_ref(), 0, 0, MAX_THREADS)?;
     let r = robot.get().inner.clone();
     let na = r.actuators.len();
     let shape = inputs.shape();
@@ -59,6 +68,9 @@ fn solve_batch<'py>(
         .into());
     }
     let n = shape[0];
+    if n > MAX_BATCH_ROWS {
+        return Err(Error::input("inputs", format!("{n} rows: at most {MAX_BATCH_ROWS} rows per call (use tcarod.batch.iter_batches)")).into());
+    }
     let q: Vec<f64> = inputs.as_array().iter().copied().collect(); // row-major
     let w: Option<Vec<f64>> = match wrenches {
         Some(w) => {
@@ -75,7 +87,7 @@ fn solve_batch<'py>(
         None => None,
     };
     let opts = BatchOptions {
-        solve: options(steps, tol, max_iter)?,
+        solve,
         chunk_size,
         threads,
         warm,
@@ -110,8 +122,13 @@ fn bench_rows() -> Vec<(&'static str, &'static str, f64)> {
 /// `min_time` [s]; returns seconds per operation of each run. The GIL is
 /// released while timing.
 #[pyfunction]
-#[pyo3(signature = (name, repeats=7, min_time=0.05))]
-fn bench_time(py: Python<'_>, name: &str, repeats: usize, min_time: f64) -> PyResult<Vec<f64>> {
+#[pyo3(signature = (name, repeats=None, min_time=Real(0.05)), text_signature = "(name, repeats=7, min_time=0.05)")]
+fn bench_time(py: Python<'_>, name: &str, repeats: Option<Bound<'_, PyAny>>, min_time: Real) -> PyResult<Vec<f64>> {
+    let repeats = count_or("repeats", repeats.as_ref(), 7, 1, 1000)?;
+    let min_time = crate::error::non_negative("min_time [s]", min_time.0)?;
+    if min_time > 60.0 {
+        return Err(Error::param("min_time [s]", min_time, "0 <= min_time <= 60 s").into());
+    }
     let name = name.to_owned();
-    Ok(py.detach(move || crate::bench::time_row(&name, repeats.max(1), min_time))?)
+    Ok(py.detach(move || crate::bench::time_row(&name, repeats, min_time))?)
 }

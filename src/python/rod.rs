@@ -7,11 +7,15 @@ use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use super::errors::{finite_output, Real};
+use super::errors::finite_output;
+use super::{count_or, hash_text, pf, ps, pv, reals, vec3_arg, Real};
 use super::tca::PyTca;
 use crate::error::{Error, Result};
 use crate::rod::{Actuator, Body, ConstantTension, ForceLaw, LinearTendon, Robot, Routing, Section, TcaLaw};
 use crate::shooting::{solve, SolveOptions, Solution};
+
+/// What `__reduce__` returns: a rebuilding callable and its arguments.
+type Reduce<'py, A> = PyResult<(Bound<'py, PyAny>, A)>;
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySection>()?;
@@ -21,6 +25,10 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyRobot>()?;
     m.add_class::<PySolution>()?;
     m.add_function(wrap_pyfunction!(experiment_robot, m)?)?;
+    m.add_function(wrap_pyfunction!(restore_section, m)?)?;
+    m.add_function(wrap_pyfunction!(restore_routing, m)?)?;
+    m.add_function(wrap_pyfunction!(restore_actuator, m)?)?;
+    m.add_function(wrap_pyfunction!(restore_solution, m)?)?;
     Ok(())
 }
 
@@ -40,10 +48,7 @@ fn experiment_robot(name: &str, gravity: bool) -> PyResult<PyRobot> {
     let actuators = robot
         .actuators
         .iter()
-        .map(|a| PyActuator {
-            inner: a.clone(),
-            tca: None,
-        })
+        .map(|a| PyActuator::plain(a.clone(), true))
         .collect();
     Ok(PyRobot {
         inner: Arc::new(robot),
@@ -94,6 +99,25 @@ impl PySection {
         let theta = crate::error::finite("theta [rad]", theta.0)?;
         Ok(finite_output("edge_distance [m]", self.inner.edge_distance(theta))?)
     }
+    /// Constructor keywords, exactly as given: `{"diameter": ..}` [m],
+    /// `{"width": .., "height": ..}` [m] or `{"area": .. [m^2], "ix", "iy", "j": .. [m^4]}`.
+    #[getter]
+    fn parameters<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        match self.inner {
+            Section::Circle { diameter } => d.set_item("diameter", diameter)?,
+            Section::Rectangle { width, height } => {
+                d.set_item("width", width)?;
+                d.set_item("height", height)?;
+            }
+            Section::Custom { area, ix, iy, j } => {
+                for (k, v) in [("area", area), ("ix", ix), ("iy", iy), ("j", j)] {
+                    d.set_item(k, v)?;
+                }
+            }
+        }
+        Ok(d)
+    }
     /// `"circle"`, `"rectangle"` or `"custom"`.
     #[getter]
     fn kind(&self) -> &'static str {
@@ -104,7 +128,40 @@ impl PySection {
         }
     }
     fn __repr__(&self) -> String {
-        format!("Section({:?})", self.inner)
+        match self.inner {
+            Section::Circle { diameter } => format!("Section.circle(diameter={})", pf(diameter)),
+            Section::Rectangle { width, height } => format!("Section.rectangle(width={}, height={})", pf(width), pf(height)),
+            Section::Custom { area, ix, iy, j } => format!("Section.custom(area={}, ix={}, iy={}, j={})", pf(area), pf(ix), pf(iy), pf(j)),
+        }
+    }
+    /// Pickle support: rebuilt by the same static constructor.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py, (&'static str, Vec<f64>)> {
+        let f = py.import("tcarod._core")?.getattr("_restore_section")?;
+        let v = match self.inner {
+            Section::Circle { diameter } => vec![diameter],
+            Section::Rectangle { width, height } => vec![width, height],
+            Section::Custom { area, ix, iy, j } => vec![area, ix, iy, j],
+        };
+        Ok((f, (self.kind(), v)))
+    }
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
+        other.cast::<PySection>().ok().map(|o| o.get().inner == self.inner)
+    }
+    fn __hash__(&self) -> u64 {
+        hash_text(&self.__repr__())
+    }
+}
+
+/// Rebuild a `Section` from `(kind, values)` (pickle support; not public API).
+#[pyfunction]
+#[pyo3(name = "_restore_section")]
+fn restore_section(kind: &str, values: Vec<Real>) -> PyResult<PySection> {
+    let v: Vec<Real> = values;
+    match (kind, v.as_slice()) {
+        ("circle", [d]) => PySection::circle(*d),
+        ("rectangle", [w, h]) => PySection::rectangle(*w, *h),
+        ("custom", [a, ix, iy, j]) => PySection::custom(*a, *ix, *iy, *j),
+        _ => Err(Error::input("kind", format!("{kind:?} with {} values is not a section", v.len())).into()),
     }
 }
 
@@ -162,7 +219,62 @@ impl PyRouting {
         Ok((vec3(py, &r), vec3(py, &rp), vec3(py, &rpp)))
     }
     fn __repr__(&self) -> String {
-        format!("Routing({:?})", self.inner)
+        match self.inner {
+            Routing::Straight { x, y } => format!("Routing.straight(x={}, y={})", pf(x), pf(y)),
+            Routing::Helix { radius, rate, phase } => format!("Routing.helix(radius={}, rate={}, phase={})", pf(radius), pf(rate), pf(phase)),
+        }
+    }
+    /// Constructor keywords, exactly as given: `{"x": .., "y": ..}` [m] or
+    /// `{"radius": .. [m], "rate": .. [rad/m], "phase": .. [rad]}`.
+    #[getter]
+    fn parameters<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        match self.inner {
+            Routing::Straight { x, y } => {
+                d.set_item("x", x)?;
+                d.set_item("y", y)?;
+            }
+            Routing::Helix { radius, rate, phase } => {
+                d.set_item("radius", radius)?;
+                d.set_item("rate", rate)?;
+                d.set_item("phase", phase)?;
+            }
+        }
+        Ok(d)
+    }
+    /// `"straight"` or `"helix"`.
+    #[getter]
+    fn kind(&self) -> &'static str {
+        match self.inner {
+            Routing::Straight { .. } => "straight",
+            Routing::Helix { .. } => "helix",
+        }
+    }
+    /// Pickle support: rebuilt by the same static constructor.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py, (&'static str, Vec<f64>)> {
+        let f = py.import("tcarod._core")?.getattr("_restore_routing")?;
+        let v = match self.inner {
+            Routing::Straight { x, y } => vec![x, y],
+            Routing::Helix { radius, rate, phase } => vec![radius, rate, phase],
+        };
+        Ok((f, (self.kind(), v)))
+    }
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
+        other.cast::<PyRouting>().ok().map(|o| o.get().inner == self.inner)
+    }
+    fn __hash__(&self) -> u64 {
+        hash_text(&self.__repr__())
+    }
+}
+
+/// Rebuild a `Routing` from `(kind, values)` (pickle support; not public API).
+#[pyfunction]
+#[pyo3(name = "_restore_routing")]
+fn restore_routing(kind: &str, values: Vec<Real>) -> PyResult<PyRouting> {
+    match (kind, values.as_slice()) {
+        ("straight", [x, y]) => PyRouting::straight(*x, *y),
+        ("helix", [r, k, p]) => PyRouting::helix(*r, *k, *p),
+        _ => Err(Error::input("kind", format!("{kind:?} with {} values is not a routing", values.len())).into()),
     }
 }
 
@@ -170,17 +282,6 @@ fn vec3<'py>(py: Python<'py>, v: &Vector3<f64>) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, v.as_slice())
 }
 
-fn v3(name: &str, v: Option<[Real; 3]>, default: Vector3<f64>) -> PyResult<Vector3<f64>> {
-    match v {
-        None => Ok(default),
-        Some(a) => {
-            for (k, x) in a.iter().enumerate() {
-                crate::error::finite(&format!("{name}[{k}]"), x.0)?;
-            }
-            Ok(Vector3::new(a[0].0, a[1].0, a[2].0))
-        }
-    }
-}
 
 /// Error unless the body's derived quantities (stiffnesses, weight per
 /// length) are finite and the stiffnesses positive, so that no getter can
@@ -202,7 +303,24 @@ fn check_derived(b: &Body) -> Result<()> {
 
 /// The soft body (Cosserat rod): geometry, material, reference strains, loads.
 ///
-/// All vectors are length-3 in the world frame unless noted; SI units.
+/// `Body(length, section, youngs_modulus, *, poisson=None, shear_modulus=None,
+/// density=0.0, shear_coefficient=1.0, nu_star=None, omega_star=None,
+/// gravity=None, distributed_force=None, distributed_moment=None,
+/// tip_force=None, tip_moment=None)`
+///
+/// * `length` [m] of the centre line; `section` a `Section` (sizes in m);
+///   `youngs_modulus` E_B [Pa]; `poisson` [-] (default 0.5, incompressible
+///   silicone) or `shear_modulus` G_B [Pa], not both; `density` [kg/m^3];
+///   `shear_coefficient` [-] (Timoshenko; 1 as in the paper).
+/// * `nu_star` [-] and `omega_star` [1/m]: reference linear and angular
+///   strains, body frame (default `(0, 0, 1)` and zero: straight).
+/// * `gravity` [m/s^2], `distributed_force` [N/m], `distributed_moment`
+///   [N m/m], `tip_force` [N], `tip_moment` [N m]: world frame, length-3
+///   sequences (default zero).
+///
+/// SI units: a body whose length or section looks like millimetres (length
+/// > 10 m, section size > 1 m) warns with `tcarod.UnitsWarning`. Value object:
+/// immutable, `==`, hashable, picklable; `repr` is a constructor call.
 #[pyclass(name = "Body", module = "tcarod._core", frozen)]
 #[derive(Clone)]
 pub struct PyBody {
@@ -220,6 +338,7 @@ impl PyBody {
             distributed_moment=None, tip_force=None, tip_moment=None)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
+        py: Python<'_>,
         length: Real,
         section: PySection,
         youngs_modulus: Real,
@@ -227,13 +346,13 @@ impl PyBody {
         shear_modulus: Option<Real>,
         density: Real,
         shear_coefficient: Real,
-        nu_star: Option<[Real; 3]>,
-        omega_star: Option<[Real; 3]>,
-        gravity: Option<[Real; 3]>,
-        distributed_force: Option<[Real; 3]>,
-        distributed_moment: Option<[Real; 3]>,
-        tip_force: Option<[Real; 3]>,
-        tip_moment: Option<[Real; 3]>,
+        nu_star: Option<Bound<'_, PyAny>>,
+        omega_star: Option<Bound<'_, PyAny>>,
+        gravity: Option<Bound<'_, PyAny>>,
+        distributed_force: Option<Bound<'_, PyAny>>,
+        distributed_moment: Option<Bound<'_, PyAny>>,
+        tip_force: Option<Bound<'_, PyAny>>,
+        tip_moment: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let (length, youngs_modulus, density, shear_coefficient) = (length.0, youngs_modulus.0, density.0, shear_coefficient.0);
         let (poisson, shear_modulus) = (poisson.map(|r| r.0), shear_modulus.map(|r| r.0));
@@ -249,16 +368,20 @@ impl PyBody {
                 b
             }
         };
+        let v = |name: &str, o: &Option<Bound<'_, PyAny>>, d: [f64; 3]| vec3_arg(name, o.as_ref(), d).map(Vector3::from);
         b.shear_coefficient = shear_coefficient;
-        b.nu_star = v3("nu_star", nu_star, Vector3::z())?;
-        b.omega_star = v3("omega_star", omega_star, Vector3::zeros())?;
-        b.gravity = v3("gravity", gravity, Vector3::zeros())?;
-        b.distributed_force = v3("distributed_force", distributed_force, Vector3::zeros())?;
-        b.distributed_moment = v3("distributed_moment", distributed_moment, Vector3::zeros())?;
-        b.tip_force = v3("tip_force", tip_force, Vector3::zeros())?;
-        b.tip_moment = v3("tip_moment", tip_moment, Vector3::zeros())?;
+        b.nu_star = v("nu_star", &nu_star, [0.0, 0.0, 1.0])?;
+        b.omega_star = v("omega_star", &omega_star, [0.0; 3])?;
+        b.gravity = v("gravity", &gravity, [0.0; 3])?;
+        b.distributed_force = v("distributed_force", &distributed_force, [0.0; 3])?;
+        b.distributed_moment = v("distributed_moment", &distributed_moment, [0.0; 3])?;
+        b.tip_force = v("tip_force", &tip_force, [0.0; 3])?;
+        b.tip_moment = v("tip_moment", &tip_moment, [0.0; 3])?;
         b.validate()?;
         check_derived(&b)?;
+        if let Some(msg) = crate::validate::body_looks_like_mm(&b) {
+            super::warn_units(py, msg)?;
+        }
         Ok(PyBody { inner: b })
     }
 
@@ -305,42 +428,52 @@ impl PyBody {
         Ok(d)
     }
 
+    /// Length of the centre line [m].
     #[getter]
     fn length(&self) -> f64 {
         self.inner.length
     }
+    /// The cross-section (`Section`).
     #[getter]
     fn section(&self) -> PySection {
         PySection { inner: self.inner.section }
     }
+    /// Young's modulus E_B [Pa].
     #[getter]
     fn youngs_modulus(&self) -> f64 {
         self.inner.youngs_modulus
     }
+    /// Shear modulus G_B [Pa].
     #[getter]
     fn shear_modulus(&self) -> f64 {
         self.inner.shear_modulus
     }
+    /// Density [kg/m^3].
     #[getter]
     fn density(&self) -> f64 {
         self.inner.density
     }
+    /// Reference linear strain `nu*` [-] (body frame), shape `(3,)`.
     #[getter]
     fn nu_star<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.nu_star)
     }
+    /// Reference angular strain `omega*` [1/m] (body frame), shape `(3,)`.
     #[getter]
     fn omega_star<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.omega_star)
     }
+    /// Gravitational acceleration [m/s^2] (world frame), shape `(3,)`.
     #[getter]
     fn gravity<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.gravity)
     }
+    /// Force applied to the tip [N] (world frame), shape `(3,)`.
     #[getter]
     fn tip_force<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.tip_force)
     }
+    /// Moment applied to the tip [N m] (world frame), shape `(3,)`.
     #[getter]
     fn tip_moment<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.tip_moment)
@@ -350,6 +483,7 @@ impl PyBody {
     fn distributed_load<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.distributed_load())
     }
+    /// Distributed moment [N m/m] (world frame), shape `(3,)`.
     #[getter]
     fn distributed_moment<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.distributed_moment)
@@ -359,9 +493,60 @@ impl PyBody {
         let (a, b) = self.inner.stiffness();
         (mat3(py, &a), mat3(py, &b))
     }
-    fn __repr__(&self) -> String {
-        format!("Body({:?})", self.inner)
+    /// Shear coefficient [-] (Timoshenko).
+    #[getter]
+    fn shear_coefficient(&self) -> f64 {
+        self.inner.shear_coefficient
     }
+    /// Distributed force [N/m] besides gravity (world frame), shape `(3,)`.
+    #[getter]
+    fn distributed_force<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        vec3(py, &self.inner.distributed_force)
+    }
+    fn __repr__(&self) -> String {
+        body_repr(&self.inner)
+    }
+    /// Constructor arguments, for pickle and copy.
+    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, PyDict>)> {
+        Ok((pyo3::types::PyTuple::empty(py), self.kwargs(py)?))
+    }
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
+        other.cast::<PyBody>().ok().map(|o| o.get().inner == self.inner)
+    }
+    fn __hash__(&self) -> u64 {
+        hash_text(&body_repr(&self.inner))
+    }
+}
+
+/// Constructor call of a body, defaults left out (round-trips with `eval`).
+fn body_repr(b: &Body) -> String {
+    let section = PySection { inner: b.section }.__repr__();
+    let mut out = format!(
+        "Body(length={}, section={section}, youngs_modulus={}, shear_modulus={}",
+        pf(b.length),
+        pf(b.youngs_modulus),
+        pf(b.shear_modulus)
+    );
+    if b.density != 0.0 {
+        out += &format!(", density={}", pf(b.density));
+    }
+    if b.shear_coefficient != 1.0 {
+        out += &format!(", shear_coefficient={}", pf(b.shear_coefficient));
+    }
+    for (k, v, d) in [
+        ("nu_star", b.nu_star, Vector3::z()),
+        ("omega_star", b.omega_star, Vector3::zeros()),
+        ("gravity", b.gravity, Vector3::zeros()),
+        ("distributed_force", b.distributed_force, Vector3::zeros()),
+        ("distributed_moment", b.distributed_moment, Vector3::zeros()),
+        ("tip_force", b.tip_force, Vector3::zeros()),
+        ("tip_moment", b.tip_moment, Vector3::zeros()),
+    ] {
+        if v != d {
+            out += &format!(", {k}={}", pv(v.as_slice()));
+        }
+    }
+    out + ")"
 }
 
 fn mat3<'py>(py: Python<'py>, m: &Matrix3<f64>) -> Bound<'py, PyArray2<f64>> {
@@ -371,11 +556,33 @@ fn mat3<'py>(py: Python<'py>, m: &Matrix3<f64>) -> Bound<'py, PyArray2<f64>> {
 
 /// A string-like actuator embedded in the body. Build with `Actuator.tca`,
 /// `Actuator.tendon` (constant tension) or `Actuator.linear_tendon`.
+///
+/// Sign conventions: tensions [N] are positive when the actuator pulls its
+/// anchors together (negative: it pushes); elongations [m] are the
+/// actuator's current length minus its relaxed length, so a TCA with its
+/// coils touching has elongation 0, a stretched (pre-tensioned) one a
+/// positive elongation, and inside a body a pressed one a small negative
+/// elongation (the stiff coil-contact column).
+///
+/// Pre-tension: a contraction TCA does nothing when heated with its coils
+/// touching (it cannot get shorter); install it stretched with
+/// `Actuator.tca(..., pretension_n=F)`: the TCA carries tension `F` [N] at
+/// the reference temperature in the body's undeformed reference shape (the
+/// body then deforms under it, so the equilibrium tension is lower). This is
+/// the paper's constant length ratio `L_i` (eq 18), which `length_ratio` sets
+/// directly. Value object: immutable, `==`, picklable.
 #[pyclass(name = "Actuator", module = "tcarod._core", frozen)]
 #[derive(Clone)]
 pub struct PyActuator {
     pub(crate) inner: Actuator,
     tca: Option<PyTca>,
+    /// Pre-tension [N] at the reference temperature (TCAs), resolved to a
+    /// length ratio when the robot is assembled.
+    pub(crate) pretension: Option<f64>,
+    /// Stiffness [N/m] of a linear tendon.
+    stiffness: Option<f64>,
+    /// Whether `s_end` was given (otherwise: anchored at the tip).
+    s_end_given: bool,
 }
 
 fn make_actuator(routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>, law: Arc<dyn ForceLaw>) -> PyResult<Actuator> {
@@ -392,64 +599,142 @@ fn make_actuator(routing: PyRouting, s_start: Real, s_end: Option<Real>, length_
     Ok(a)
 }
 
+impl PyActuator {
+    fn plain(inner: Actuator, s_end_given: bool) -> Self {
+        PyActuator {
+            inner,
+            tca: None,
+            pretension: None,
+            stiffness: None,
+            s_end_given,
+        }
+    }
+    /// Everything that defines the actuator, as text (for `==` and hash).
+    fn identity(&self) -> String {
+        format!("{:?} {:?} {:?} {}", self.inner, self.pretension, self.stiffness, self.s_end_given)
+    }
+    fn s_end_arg(&self) -> Option<f64> {
+        self.s_end_given.then_some(self.inner.s_end)
+    }
+}
+
 #[pymethods]
 impl PyActuator {
-    /// A TCA whose input is its temperature [C]. `s_end=None` anchors it at the tip.
+    /// A TCA whose input is its temperature [C], anchored from `s_start` [m]
+    /// to `s_end` [m] (`None`: the tip). `length_ratio`: the paper's constant
+    /// `L_i` [-] (eq 18; default: computed pointwise so that the reference
+    /// shape is unstrained). `pretension_n`: tension [N] the TCA carries at the
+    /// reference temperature in the undeformed body (needed for contraction
+    /// TCAs to act; sets `L_i`, so not together with `length_ratio`).
     #[staticmethod]
-    #[pyo3(signature = (tca, routing, s_start=Real(0.0), s_end=None, length_ratio=None),
-        text_signature = "(tca, routing, s_start=0.0, s_end=None, length_ratio=None)")]
-    fn tca(tca: PyTca, routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>) -> PyResult<Self> {
+    #[pyo3(signature = (tca, routing, s_start=Real(0.0), s_end=None, length_ratio=None, *, pretension_n=None),
+        text_signature = "(tca, routing, s_start=0.0, s_end=None, length_ratio=None, *, pretension_n=None)")]
+    fn tca(tca: PyTca, routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>, pretension_n: Option<Real>) -> PyResult<Self> {
+        let given = s_end.is_some();
         let law = Arc::new(TcaLaw(tca.inner.clone()));
+        let pretension = match pretension_n {
+            None => None,
+            Some(f) => {
+                if length_ratio.is_some() {
+                    return Err(Error::input("pretension_n / length_ratio", "give one of them, not both").into());
+                }
+                let f = crate::error::non_negative("pretension_n [N]", f.0)?;
+                // the pre-stretch it implies must exist (below the straight-fibre limit)
+                tca.inner.displacement(f, tca.inner.material().t_ref()).map_err(|e| e.renamed(|n| format!("pretension_n ({n})")))?;
+                Some(f)
+            }
+        };
         Ok(PyActuator {
             inner: make_actuator(routing, s_start, s_end, length_ratio, law)?,
             tca: Some(tca),
+            pretension,
+            stiffness: None,
+            s_end_given: given,
         })
     }
-    /// A tendon whose input is its tension [N] (>= 0).
+    /// A tendon whose input is its tension [N] (>= 0), anchored from
+    /// `s_start` [m] to `s_end` [m] (`None`: the tip); `length_ratio` [-] as
+    /// for `Actuator.tca` (irrelevant to the force of a constant-tension tendon).
     #[staticmethod]
     #[pyo3(signature = (routing, s_start=Real(0.0), s_end=None, length_ratio=None),
         text_signature = "(routing, s_start=0.0, s_end=None, length_ratio=None)")]
     fn tendon(routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>) -> PyResult<Self> {
-        Ok(PyActuator {
-            inner: make_actuator(routing, s_start, s_end, length_ratio, Arc::new(ConstantTension))?,
-            tca: None,
-        })
+        Ok(PyActuator::plain(make_actuator(routing, s_start, s_end, length_ratio, Arc::new(ConstantTension))?, s_end.is_some()))
     }
-    /// An elastic tendon of `stiffness` [N/m] whose input is the length pulled in at the base [m].
+    /// An elastic tendon of `stiffness` [N/m] whose input is the length [m]
+    /// pulled in at the base; anchors and `length_ratio` as for `Actuator.tca`.
     #[staticmethod]
     #[pyo3(signature = (stiffness, routing, s_start=Real(0.0), s_end=None, length_ratio=None),
         text_signature = "(stiffness, routing, s_start=0.0, s_end=None, length_ratio=None)")]
     fn linear_tendon(stiffness: Real, routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>) -> PyResult<Self> {
         let stiffness = crate::error::positive("stiffness [N/m]", stiffness.0)?;
-        Ok(PyActuator {
-            inner: make_actuator(routing, s_start, s_end, length_ratio, Arc::new(LinearTendon { stiffness }))?,
-            tca: None,
-        })
+        let mut a = PyActuator::plain(make_actuator(routing, s_start, s_end, length_ratio, Arc::new(LinearTendon { stiffness }))?, s_end.is_some());
+        a.stiffness = Some(stiffness);
+        Ok(a)
+    }
+    /// Pre-tension [N] at the reference temperature (`Actuator.tca(..., pretension_n=...)`), or `None`.
+    #[getter]
+    fn pretension_n(&self) -> Option<f64> {
+        self.pretension
+    }
+    /// Tendon stiffness [N/m] of a linear tendon, else `None`.
+    #[getter]
+    fn stiffness(&self) -> Option<f64> {
+        self.stiffness
+    }
+    /// Pickle support: rebuilt by the same static constructor.
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (&'static str, Option<PyTca>, Option<f64>, PyRouting, f64, Option<f64>, Option<f64>, Option<f64>))> {
+        if self.kind() == "tca" && self.tca.is_none() {
+            return Err(pyo3::exceptions::PyTypeError::new_err("cannot pickle an Actuator built in Rust without its Tca"));
+        }
+        let f = py.import("tcarod._core")?.getattr("_restore_actuator")?;
+        Ok((
+            f,
+            (
+                self.kind(),
+                self.tca.clone(),
+                self.stiffness,
+                PyRouting { inner: self.inner.routing },
+                self.inner.s_start,
+                self.s_end_arg(),
+                self.inner.length_ratio,
+                self.pretension,
+            ),
+        ))
+    }
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
+        other.cast::<PyActuator>().ok().map(|o| o.get().identity() == self.identity())
+    }
+    fn __hash__(&self) -> u64 {
+        hash_text(&self.identity())
     }
     /// `"tca"`, `"tension"` or `"linear_tendon"`.
     #[getter]
     fn kind(&self) -> &'static str {
         self.inner.law.kind()
     }
-    /// Name and unit of the input.
+    /// Name and unit of the input, e.g. `"temperature [C]"`.
     #[getter]
     fn input_name(&self) -> &'static str {
         self.inner.law.input_name()
     }
-    /// `(lowest, highest)` valid input.
+    /// `(lowest, highest)` valid input (temperature [C] for TCAs, tension [N], pull [m]).
     #[getter]
     fn input_bounds(&self) -> (f64, f64) {
         self.inner.law.input_bounds()
     }
-    /// Input of the passive (reference) state.
+    /// Input of the passive (reference) state (ambient temperature [C] for TCAs).
     #[getter]
     fn reference_input(&self) -> f64 {
         self.inner.law.reference_input()
     }
+    /// Body-frame path (`Routing`).
     #[getter]
     fn routing(&self) -> PyRouting {
         PyRouting { inner: self.inner.routing }
     }
+    /// Proximal anchor [m] (0: the base).
     #[getter]
     fn s_start(&self) -> f64 {
         self.inner.s_start
@@ -459,11 +744,12 @@ impl PyActuator {
     fn s_end(&self) -> f64 {
         self.inner.s_end
     }
+    /// The paper's constant length ratio `L_i` [-] (eq 18), or `None` (pointwise from the reference shape; `pretension_n` sets it when the robot is built).
     #[getter]
     fn length_ratio(&self) -> Option<f64> {
         self.inner.length_ratio
     }
-    /// The TCA, for TCA actuators.
+    /// The TCA (`Tca`) of a TCA actuator, else `None`.
     #[getter]
     fn tca_model(&self) -> Option<PyTca> {
         self.tca.clone()
@@ -475,23 +761,86 @@ impl PyActuator {
         Ok(finite_output("tension [N]", self.inner.law.tension(elongation, input.0)?)?)
     }
     fn __repr__(&self) -> String {
-        format!(
-            "Actuator(kind={:?}, routing={:?}, s_start={}, s_end={})",
-            self.kind(),
-            self.inner.routing,
-            self.inner.s_start,
-            self.inner.s_end
-        )
+        let routing = PyRouting { inner: self.inner.routing }.__repr__();
+        let mut tail = format!("routing={routing}, s_start={}", pf(self.inner.s_start));
+        if let Some(e) = self.s_end_arg() {
+            tail += &format!(", s_end={}", pf(e));
+        }
+        if let Some(l) = self.inner.length_ratio {
+            tail += &format!(", length_ratio={}", pf(l));
+        }
+        match (self.kind(), &self.tca, self.stiffness) {
+            ("tca", Some(t), _) => {
+                let tca = Python::attach(|py| Bound::new(py, t.clone()).and_then(|b| PyTca::__repr__(&b))).unwrap_or_else(|_| "Tca(...)".into());
+                let pre = self.pretension.map(|f| format!(", pretension_n={}", pf(f))).unwrap_or_default();
+                format!("Actuator.tca(tca={tca}, {tail}{pre})")
+            }
+            ("linear_tendon", _, Some(k)) => format!("Actuator.linear_tendon(stiffness={}, {tail})", pf(k)),
+            ("tension", _, _) => format!("Actuator.tendon({tail})"),
+            (kind, _, _) => format!("<Actuator kind={} {tail}>", ps(kind)),
+        }
     }
 }
 
-/// A body with its embedded actuators.
+/// Rebuild an `Actuator` (pickle support; not public API).
+#[pyfunction]
+#[pyo3(name = "_restore_actuator")]
+#[allow(clippy::too_many_arguments)]
+fn restore_actuator(
+    kind: &str,
+    tca: Option<PyTca>,
+    stiffness: Option<Real>,
+    routing: PyRouting,
+    s_start: Real,
+    s_end: Option<Real>,
+    length_ratio: Option<Real>,
+    pretension_n: Option<Real>,
+) -> PyResult<PyActuator> {
+    match (kind, tca, stiffness) {
+        ("tca", Some(t), _) => PyActuator::tca(t, routing, s_start, s_end, length_ratio, pretension_n),
+        ("tension", _, _) => PyActuator::tendon(routing, s_start, s_end, length_ratio),
+        ("linear_tendon", _, Some(k)) => PyActuator::linear_tendon(k, routing, s_start, s_end, length_ratio),
+        _ => Err(Error::input("kind", format!("{kind:?} with these parameters is not an actuator")).into()),
+    }
+}
+
+/// A body with its embedded actuators: `Robot(body, actuators=())`.
+///
+/// `body` is a `Body`; `actuators` a sequence of `Actuator` (inputs are given
+/// in this order to `solve`: temperature [C] for TCAs, tension [N] for
+/// tendons, pull [m] for linear tendons). Building checks the layout: anchors
+/// inside the body, routings inside the section, TCAs no longer than their
+/// span (ValueError naming `actuators[i]`). Value object: immutable, `==`
+/// (two identically built robots are equal), picklable, so it travels to
+/// process pools and Dask workers.
 #[pyclass(name = "Robot", module = "tcarod._core", frozen, subclass)]
 #[derive(Clone)]
 pub struct PyRobot {
     pub(crate) inner: Arc<Robot>,
     pub(crate) body: PyBody,
     pub(crate) actuators: Vec<PyActuator>,
+}
+
+/// Solver options from Python arguments: `steps` in `1..=MAX_STEPS`,
+/// `max_iter` in `1..=MAX_ITER` (ValueError naming the argument and range
+/// beyond; TypeError for non-integers), `tol` finite and > 0.
+pub(crate) fn solve_options(steps: Option<&Bound<'_, PyAny>>, tol: Real, max_iter: Option<&Bound<'_, PyAny>>) -> PyResult<SolveOptions> {
+    use crate::validate::{MAX_ITER, MAX_STEPS};
+    let steps = count_or("steps", steps, 100, 1, MAX_STEPS)?;
+    let max_iter = count_or("max_iter", max_iter, 50, 1, MAX_ITER)?;
+    options(steps, tol.0, max_iter)
+}
+
+/// Error naming `inputs[i]` if a TCA input lies below its material's range,
+/// with the way to a colder ambient (a custom `Material`).
+pub(crate) fn check_ambient(robot: &Robot, inputs: &[f64]) -> PyResult<()> {
+    for (i, (a, &x)) in robot.actuators.iter().zip(inputs).enumerate() {
+        if a.law.kind() == "tca" {
+            let (lo, hi) = a.law.input_bounds();
+            crate::validate::ambient_hint(x, lo, hi, &format!("inputs[{i}] (temperature [C])"))?;
+        }
+    }
+    Ok(())
 }
 
 pub(crate) fn options(steps: usize, tol: f64, max_iter: usize) -> PyResult<SolveOptions> {
@@ -503,42 +852,6 @@ pub(crate) fn options(steps: usize, tol: f64, max_iter: usize) -> PyResult<Solve
     };
     o.validate()?;
     Ok(o)
-}
-
-#[derive(FromPyObject)]
-pub(crate) enum Inputs {
-    One(Real),
-    Many(Vec<Real>),
-}
-
-impl Inputs {
-    pub(crate) fn into_vec(self) -> Vec<f64> {
-        match self {
-            Inputs::One(x) => vec![x.0],
-            Inputs::Many(v) => v.into_iter().map(|x| x.0).collect(),
-        }
-    }
-}
-
-/// A non-negative integer argument (a count): saturates instead of raising
-/// `OverflowError`, so that out-of-range values reach validation and fail
-/// with a `ValueError` naming the argument (negative -> 0, beyond `usize`
-/// -> `usize::MAX`).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Count(pub usize);
-
-impl<'py> FromPyObject<'_, 'py> for Count {
-    type Error = PyErr;
-
-    fn extract(obj: Borrowed<'_, 'py, PyAny>) -> PyResult<Self> {
-        match obj.extract::<usize>() {
-            Ok(v) => Ok(Count(v)),
-            Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(obj.py()) => {
-                Ok(Count(if obj.gt(0)? { usize::MAX } else { 0 }))
-            }
-            Err(e) => Err(e),
-        }
-    }
 }
 
 /// Every number of a solution is finite (the IVP rejects non-finite
@@ -572,10 +885,14 @@ fn checked_solution(sol: Solution) -> Result<Solution> {
 #[pymethods]
 impl PyRobot {
     #[new]
-    #[pyo3(signature = (body, actuators=Vec::new()))]
-    fn new(body: PyBody, actuators: Vec<PyActuator>) -> PyResult<Self> {
+    #[pyo3(signature = (body, actuators=None), text_signature = "(body, actuators=())")]
+    fn new(body: PyBody, actuators: Option<Bound<'_, PyAny>>) -> PyResult<Self> {
+        let actuators = match actuators {
+            None => Vec::new(),
+            Some(seq) => actuator_list(&seq)?,
+        };
         let len = body.inner.length;
-        let acts: Vec<Actuator> = actuators
+        let mut acts: Vec<Actuator> = actuators
             .iter()
             .map(|a| {
                 let mut x = a.inner.clone();
@@ -585,6 +902,19 @@ impl PyRobot {
                 x
             })
             .collect();
+        // anchors first (the core's rules), then geometry and pre-tension
+        Robot::new(body.inner.clone(), acts.clone())?;
+        for (i, (a, x)) in actuators.iter().zip(acts.iter_mut()).enumerate() {
+            let name = format!("actuators[{i}]");
+            crate::validate::routing_in_section(&body.inner.section, &x.routing, &format!("{name}.routing"))?;
+            if let Some(t) = &a.tca {
+                crate::validate::tca_fits_span(t.inner.coiled_length(), x, &format!("{name}.tca"))?;
+                if let Some(f) = a.pretension {
+                    let stretch = t.inner.displacement(f, t.inner.material().t_ref())?;
+                    x.length_ratio = Some(crate::validate::pretension_length_ratio(&body.inner, x, stretch, &format!("{name}.pretension_n"))?);
+                }
+            }
+        }
         let robot = Robot::new(body.inner.clone(), acts)?;
         Ok(PyRobot {
             inner: Arc::new(robot),
@@ -592,37 +922,45 @@ impl PyRobot {
             actuators,
         })
     }
+    /// The soft body (`Body`).
     #[getter]
     fn body(&self) -> PyBody {
         self.body.clone()
     }
+    /// The actuators (list of `Actuator`), in input order.
     #[getter]
     fn actuators(&self) -> Vec<PyActuator> {
         self.actuators.clone()
     }
-    /// Passive inputs (ambient temperature for TCAs, zero for tendons).
+    /// Passive inputs: ambient temperature [C] for TCAs, zero tension [N] / pull [m] for tendons.
     #[getter]
     fn reference_inputs(&self) -> Vec<f64> {
         self.inner.reference_inputs()
     }
 
-    /// Solve the forward kinetostatics for one input per actuator (temperature
-    /// [C] for TCAs). `warm_start`: a nearby `Solution` of this robot.
-    /// Raises `ValueError` on bad input and `ConvergenceError` if Newton fails.
-    #[pyo3(signature = (inputs, *, steps=Count(100), tol=Real(1e-10), max_iter=Count(50), warm_start=None),
+    /// Solve the forward kinetostatics for one input per actuator
+    /// (temperature [C] for TCAs, tension [N] for tendons, pull [m] for linear
+    /// tendons). `steps`: RK4 steps over the body (1 to 100,000); `tol`:
+    /// Newton tolerance on the dimensionless residual; `max_iter`: Newton
+    /// iterations (1 to 100,000); `warm_start`: a nearby `Solution` of this
+    /// robot, or of a robot with the same actuators under other loads (load
+    /// continuation). Raises `ValueError` on bad input, `TypeError` on wrong types and
+    /// `ConvergenceError` if Newton fails.
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None),
         text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None)")]
     fn solve(
         slf: &Bound<'_, Self>,
         py: Python<'_>,
-        inputs: Inputs,
-        steps: Count,
+        inputs: Bound<'_, PyAny>,
+        steps: Option<Bound<'_, PyAny>>,
         tol: Real,
-        max_iter: Count,
+        max_iter: Option<Bound<'_, PyAny>>,
         warm_start: Option<PyRef<'_, PySolution>>,
     ) -> PyResult<PySolution> {
         let this = slf.get();
-        let opts = options(steps.0, tol.0, max_iter.0)?;
-        let q = inputs.into_vec();
+        let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+        let q = reals("inputs", &inputs, None)?;
+        check_ambient(&this.inner, &q)?;
         let robot = this.inner.clone();
         let warm = warm_start.map(|w| w.inner.clone());
         let sol = super::errors::detach_interruptible(py, || solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution))?;
@@ -632,16 +970,26 @@ impl PyRobot {
         })
     }
 
-    /// Solve along rows of `inputs` (shape `(k, n_actuators)`), each warm-started
-    /// from the previous one. Returns a list of `Solution`.
-    #[pyo3(signature = (inputs, *, steps=Count(100), tol=Real(1e-10), max_iter=Count(50)),
+    /// Solve along rows of `inputs` (shape `(k, n_actuators)`, at most
+    /// 10,000,000 rows), each warm-started from the previous one. Returns a
+    /// list of `Solution`. Options as for `solve`.
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None),
         text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50)")]
-    fn sweep(slf: &Bound<'_, Self>, py: Python<'_>, inputs: Vec<Vec<Real>>, steps: Count, tol: Real, max_iter: Count) -> PyResult<Vec<PySolution>> {
-        let opts = options(steps.0, tol.0, max_iter.0)?;
-        let inputs: Vec<Vec<f64>> = inputs.into_iter().map(|row| row.into_iter().map(|x| x.0).collect()).collect();
+    fn sweep(slf: &Bound<'_, Self>, py: Python<'_>, inputs: Bound<'_, PyAny>, steps: Option<Bound<'_, PyAny>>, tol: Real, max_iter: Option<Bound<'_, PyAny>>) -> PyResult<Vec<PySolution>> {
+        let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+        let rows_iter = inputs.try_iter().map_err(|_| pyo3::exceptions::PyTypeError::new_err("inputs: expected a sequence of rows"))?;
+        let mut rows: Vec<Vec<f64>> = Vec::new();
+        for (k, row) in rows_iter.enumerate() {
+            if k >= crate::validate::MAX_BATCH_ROWS {
+                return Err(Error::input("inputs", format!("more than {} rows per call", crate::validate::MAX_BATCH_ROWS)).into());
+            }
+            let row = reals(&format!("inputs[{k}]"), &row?, None)?;
+            check_ambient(&slf.get().inner, &row)?;
+            rows.push(row);
+        }
         let robot = slf.get().inner.clone();
         let sols = super::errors::detach_interruptible(py, || {
-            crate::shooting::sweep(&robot, &inputs, &opts)?.into_iter().map(checked_solution).collect::<Result<Vec<_>>>()
+            crate::shooting::sweep(&robot, &rows, &opts)?.into_iter().map(checked_solution).collect::<Result<Vec<_>>>()
         })?;
         Ok(sols
             .into_iter()
@@ -653,12 +1001,58 @@ impl PyRobot {
     }
 
     fn __repr__(&self) -> String {
-        format!("Robot(body length={} m, actuators={})", self.inner.body.length, self.inner.actuators.len())
+        let acts: Vec<String> = self.actuators.iter().map(|a| a.__repr__()).collect();
+        format!("Robot(body={}, actuators=[{}])", body_repr(&self.body.inner), acts.join(", "))
+    }
+    /// Constructor arguments, for pickle and copy.
+    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, PyDict>)> {
+        let args = (self.body.clone(), self.actuators.clone()).into_pyobject(py)?;
+        Ok((args, PyDict::new(py)))
+    }
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
+        other.cast::<PyRobot>().ok().map(|o| o.get().same_as(self))
+    }
+    fn __hash__(&self) -> u64 {
+        hash_text(&self.__repr__())
     }
 }
 
+impl PyRobot {
+    /// Built from equal bodies and equal actuators.
+    pub(crate) fn same_as(&self, other: &PyRobot) -> bool {
+        Arc::ptr_eq(&self.inner, &other.inner)
+            || (self.body.inner == other.body.inner
+                && self.actuators.len() == other.actuators.len()
+                && self.actuators.iter().zip(&other.actuators).all(|(a, b)| a.identity() == b.identity()))
+    }
+}
+
+/// `seq` as a list of actuators, at most [`super::MAX_SEQUENCE`] (never
+/// trusting `__len__`): `TypeError` for anything else.
+fn actuator_list(seq: &Bound<'_, PyAny>) -> PyResult<Vec<PyActuator>> {
+    let iter = seq.try_iter().map_err(|_| pyo3::exceptions::PyTypeError::new_err("actuators: expected a sequence of Actuator"))?;
+    let mut out = Vec::new();
+    for (k, item) in iter.enumerate() {
+        if k >= super::MAX_SEQUENCE {
+            return Err(Error::input("actuators", format!("more than {} actuators", super::MAX_SEQUENCE)).into());
+        }
+        let item = item?;
+        let a = item.cast::<PyActuator>().map_err(|_| {
+            pyo3::exceptions::PyTypeError::new_err(format!("actuators[{k}]: expected an Actuator, not {}", item.get_type().name().map(|n| n.to_string()).unwrap_or_default()))
+        })?;
+        out.push(a.get().clone());
+    }
+    Ok(out)
+}
+
+
 /// A converged forward solution. Arrays are NumPy, SI units, world frame
 /// unless noted; `n` nodes along the body.
+///
+/// SciPy-style fields: `success` (always `True`: a failed solve raises
+/// `ConvergenceError`), `status` 0, `message`, `nit` (Newton iterations),
+/// `nfev` (IVPs). Naming: `tip_position` [m] per solve, `tip_positions` per
+/// batch (`tcarod.batch.BatchResult`). Picklable (with its robot) and `==`.
 #[pyclass(name = "Solution", module = "tcarod._core", frozen)]
 pub struct PySolution {
     pub(crate) inner: Solution,
@@ -672,7 +1066,7 @@ fn stack3<'py>(py: Python<'py>, v: &[Vector3<f64>]) -> Bound<'py, PyArray2<f64>>
 
 #[pymethods]
 impl PySolution {
-    /// The robot solved.
+    /// The `Robot` solved.
     #[getter]
     fn robot(&self, py: Python<'_>) -> Py<PyRobot> {
         self.robot.clone_ref(py)
@@ -765,17 +1159,17 @@ impl PySolution {
     fn tip_rotation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         mat3(py, &self.inner.tip_rotation())
     }
-    /// Newton iterations used.
+    /// Newton iterations used (`nit`).
     #[getter]
     fn iterations(&self) -> usize {
         self.inner.iterations
     }
-    /// IVPs integrated.
+    /// IVPs integrated (`nfev`).
     #[getter]
     fn evaluations(&self) -> usize {
         self.inner.evaluations
     }
-    /// Final residual (max-norm, dimensionless strain units).
+    /// Final residual: max-norm of the dimensionless shooting residual [-].
     #[getter]
     fn residual(&self) -> f64 {
         self.inner.residual
@@ -794,8 +1188,131 @@ impl PySolution {
     fn __repr__(&self) -> String {
         let p = self.inner.tip_position();
         format!(
-            "Solution(tip=[{:.6e}, {:.6e}, {:.6e}] m, iterations={}, residual={:.2e})",
-            p.x, p.y, p.z, self.inner.iterations, self.inner.residual
+            "<Solution success=True nit={} nfev={} residual={:.2e} inputs={} tip_position={}>",
+            self.inner.iterations,
+            self.inner.evaluations,
+            self.inner.residual,
+            pv(&self.inner.inputs),
+            pv(p.as_slice())
         )
     }
+    /// Always `True`: a `Solution` is returned only when Newton converged
+    /// (otherwise `ConvergenceError` is raised). SciPy `OptimizeResult` naming.
+    #[getter]
+    fn success(&self) -> bool {
+        true
+    }
+    /// `0` (converged), SciPy naming.
+    #[getter]
+    fn status(&self) -> i64 {
+        0
+    }
+    /// Why the solve stopped, in words (`str`).
+    #[getter]
+    fn message(&self) -> String {
+        format!("converged: residual {:.3e} after {} Newton iterations", self.inner.residual, self.inner.iterations)
+    }
+    /// Newton iterations (same as `iterations`), SciPy naming.
+    #[getter]
+    fn nit(&self) -> usize {
+        self.inner.iterations
+    }
+    /// IVPs integrated, i.e. function evaluations (same as `evaluations`), SciPy naming.
+    #[getter]
+    fn nfev(&self) -> usize {
+        self.inner.evaluations
+    }
+    /// RK4 steps over the body used by the solve (`steps` argument).
+    #[getter]
+    fn steps(&self) -> usize {
+        self.inner.steps
+    }
+    /// Pickle support: the robot and the converged shooting unknowns; the
+    /// profile is rebuilt by one IVP from them (bit-identical: the IVP is
+    /// deterministic), the Newton Jacobian kept for warm starts.
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let f = py.import("tcarod._core")?.getattr("_restore_solution")?;
+        let s = &self.inner;
+        let jac = s.newton_jacobian.as_ref().map(|j| (j.nrows(), j.ncols(), j.as_slice().to_vec()));
+        let args = (
+            self.robot.clone_ref(py),
+            s.inputs.clone(),
+            s.unknowns.clone(),
+            s.loads.tip_force.as_slice().to_vec(),
+            s.loads.tip_moment.as_slice().to_vec(),
+            s.steps,
+            s.iterations,
+            s.evaluations,
+            jac,
+        )
+            .into_pyobject(py)?;
+        Ok((f, args))
+    }
+    fn __eq__(&self, py: Python<'_>, other: &Bound<'_, PyAny>) -> Option<bool> {
+        let o = other.cast::<PySolution>().ok()?;
+        let o = o.get();
+        let (a, b) = (&self.inner, &o.inner);
+        Some(
+            self.robot.bind(py).get().same_as(o.robot.bind(py).get())
+                && a.inputs == b.inputs
+                && a.unknowns == b.unknowns
+                && a.loads == b.loads
+                && a.steps == b.steps
+                && a.iterations == b.iterations
+                && a.evaluations == b.evaluations
+                && a.residual.to_bits() == b.residual.to_bits()
+                && a.s == b.s
+                && a.positions == b.positions
+                && a.rotations == b.rotations
+                && a.nu == b.nu
+                && a.omega == b.omega
+                && a.internal_force == b.internal_force
+                && a.internal_moment == b.internal_moment
+                && a.tensions == b.tensions
+                && a.elongations == b.elongations
+                && a.elongation_profile == b.elongation_profile
+                && a.actuator_paths == b.actuator_paths
+                && a.base_force == b.base_force
+                && a.base_moment == b.base_moment
+                && a.newton_jacobian == b.newton_jacobian,
+        )
+    }
+}
+
+/// Rebuild a `Solution` from its robot and converged unknowns (pickle
+/// support; not public API).
+#[pyfunction]
+#[pyo3(name = "_restore_solution")]
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+fn restore_solution(
+    py: Python<'_>,
+    robot: Bound<'_, PyRobot>,
+    inputs: Vec<f64>,
+    unknowns: Vec<f64>,
+    tip_force: [f64; 3],
+    tip_moment: [f64; 3],
+    steps: usize,
+    iterations: usize,
+    evaluations: usize,
+    jacobian: Option<(usize, usize, Vec<f64>)>,
+) -> PyResult<PySolution> {
+    let r = robot.get().inner.clone();
+    let na = r.actuators.len();
+    if inputs.len() != na || unknowns.len() != 6 + na || steps == 0 || steps > crate::validate::MAX_STEPS {
+        return Err(Error::input("state", "does not belong to this robot").into());
+    }
+    r.check_inputs(&inputs)?;
+    let loads = crate::shooting::Loads {
+        tip_force: Vector3::from(tip_force),
+        tip_moment: Vector3::from(tip_moment),
+    };
+    let jac = match jacobian {
+        Some((m, n, v)) if m * n == v.len() && m == unknowns.len() && n == unknowns.len() => Some(nalgebra::DMatrix::from_vec(m, n, v)),
+        Some(_) => return Err(Error::input("state", "Jacobian of the wrong size").into()),
+        None => None,
+    };
+    let mut sol = py.detach(|| crate::shooting::assemble(&r, &inputs, &loads, &unknowns, steps, iterations, evaluations).and_then(checked_solution))?;
+    sol.newton_jacobian = jac;
+    Ok(PySolution { inner: sol, robot: robot.unbind() })
 }

@@ -2,10 +2,14 @@
 
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+
+use super::{hash_text, pf, ps};
 
 use std::f64::consts::FRAC_PI_2;
 
-use super::errors::{finite_output, Real};
+use super::errors::finite_output;
+use super::Real;
 use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::tca::{Chirality, Tca};
@@ -17,6 +21,15 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 }
 
 /// Temperature-dependent properties of a TCA's twisted fibre.
+///
+/// `Material(*, youngs_modulus, shear_modulus, expansion, youngs_modulus_slope=0.0,
+/// shear_modulus_slope=None, expansion_slope=0.0, t_ref=25.0, t_min=25.0,
+/// t_max=160.0, name='custom')`: moduli E [Pa] and G [Pa] at `t_ref` [C] with
+/// slopes [Pa/C] (G's default keeps G/E constant), radial expansion `rho` [1/C]
+/// at `t_ref` with slope [1/C^2], valid range `t_min..t_max` [C].
+/// `Material.silver_coated_nylon()` is the paper's thread (valid 25-160 C,
+/// not extrapolated): for a colder ambient build a `Material` with `t_ref` and
+/// `t_min` at that ambient. Value object: `==`, hashable, picklable.
 #[pyclass(name = "Material", module = "tcarod._core", frozen)]
 #[derive(Clone)]
 pub struct PyMaterial {
@@ -109,18 +122,23 @@ impl PyMaterial {
         )?)
     }
 
+    /// Name of the material (free text, e.g. `"my nylon"`).
     #[getter]
     fn name(&self) -> String {
         self.inner.name().to_string()
     }
+    /// Reference (ambient, passive) temperature `t_ref` [C]: the coefficients are given there.
     #[getter]
     fn t_ref(&self) -> f64 {
         self.inner.t_ref()
     }
+    /// Lowest valid temperature `t_min` [C]. For an ambient below the preset's
+    /// 25 C build `Material(..., t_ref=..., t_min=...)` with coefficients valid there.
     #[getter]
     fn t_min(&self) -> f64 {
         self.inner.t_min()
     }
+    /// Highest valid temperature `t_max` [C].
     #[getter]
     fn t_max(&self) -> f64 {
         self.inner.t_max()
@@ -130,24 +148,28 @@ impl PyMaterial {
     fn coefficients(&self) -> (f64, f64, f64, f64, f64, f64) {
         self.inner.coefficients()
     }
+    /// Young's modulus `E(T)` [Pa] of the fibre at `temperature` [C].
     fn youngs_modulus(&self, temperature: Real) -> PyResult<f64> {
         Ok(finite_output(
             "youngs_modulus [Pa]",
             self.inner.youngs_modulus(temperature.0)?,
         )?)
     }
+    /// Shear modulus `G(T)` [Pa] of the fibre at `temperature` [C].
     fn shear_modulus(&self, temperature: Real) -> PyResult<f64> {
         Ok(finite_output(
             "shear_modulus [Pa]",
             self.inner.shear_modulus(temperature.0)?,
         )?)
     }
+    /// Radial expansion coefficient `rho(T)` [1/C] at `temperature` [C].
     fn expansion(&self, temperature: Real) -> PyResult<f64> {
         Ok(finite_output(
             "expansion [1/C]",
             self.inner.expansion(temperature.0)?,
         )?)
     }
+    /// Fibre diameter ratio `d(T)/d(t_ref) = 1 + rho(T) (T - t_ref)` [-] at `temperature` [C].
     fn diameter_ratio(&self, temperature: Real) -> PyResult<f64> {
         Ok(finite_output(
             "diameter_ratio [-]",
@@ -155,16 +177,58 @@ impl PyMaterial {
         )?)
     }
     fn __repr__(&self) -> String {
-        let (e, es, g, gs, r, rs) = self.inner.coefficients();
-        format!(
-            "Material(name={:?}, youngs_modulus={e:e}, youngs_modulus_slope={es:e}, shear_modulus={g:e}, \
-             shear_modulus_slope={gs:e}, expansion={r:e}, expansion_slope={rs:e}, t_ref={}, t_min={}, t_max={})",
-            self.inner.name(),
-            self.inner.t_ref(),
-            self.inner.t_min(),
-            self.inner.t_max()
-        )
+        material_repr(&self.inner)
     }
+    /// Constructor arguments, for pickle and copy.
+    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+        let m = &self.inner;
+        let (e, es, g, gs, r, rs) = m.coefficients();
+        let d = PyDict::new(py);
+        for (k, v) in [
+            ("youngs_modulus", e),
+            ("shear_modulus", g),
+            ("expansion", r),
+            ("youngs_modulus_slope", es),
+            ("shear_modulus_slope", gs),
+            ("expansion_slope", rs),
+            ("t_ref", m.t_ref()),
+            ("t_min", m.t_min()),
+            ("t_max", m.t_max()),
+        ] {
+            d.set_item(k, v)?;
+        }
+        d.set_item("name", m.name())?;
+        Ok((PyTuple::empty(py), d))
+    }
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
+        other.cast::<PyMaterial>().ok().map(|o| o.get().inner == self.inner)
+    }
+    fn __hash__(&self) -> u64 {
+        hash_text(&material_repr(&self.inner))
+    }
+}
+
+/// Python-syntax repr of a material: the preset's constructor call if it is
+/// the preset, the full keyword call otherwise (round-trips with `eval`).
+pub(crate) fn material_repr(m: &Material) -> String {
+    if *m == Material::silver_coated_nylon() {
+        return "Material.silver_coated_nylon()".into();
+    }
+    let (e, es, g, gs, r, rs) = m.coefficients();
+    format!(
+        "Material(youngs_modulus={}, shear_modulus={}, expansion={}, youngs_modulus_slope={}, \
+         shear_modulus_slope={}, expansion_slope={}, t_ref={}, t_min={}, t_max={}, name={})",
+        pf(e),
+        pf(g),
+        pf(r),
+        pf(es),
+        pf(gs),
+        pf(rs),
+        pf(m.t_ref()),
+        pf(m.t_min()),
+        pf(m.t_max()),
+        ps(m.name())
+    )
 }
 
 /// Error unless `alpha` is a pitch angle strictly between 0 and 90 degrees.
@@ -225,7 +289,10 @@ fn map2(
     Ok(PyArray1::from_vec(py, out?).unbind())
 }
 
-/// A twisted-and-coiled actuator (paper Section II).
+/// A twisted-and-coiled actuator (paper Section II):
+/// `Tca(fibre_length [m], coiled_length [m], coil_diameter [m], turns,
+/// chirality='extension', material=None)`. See `tcarod.Tca` for the
+/// NumPy-vectorised law. Value object: `==`, hashable, picklable.
 #[pyclass(name = "Tca", module = "tcarod._core", subclass, frozen)]
 #[derive(Clone)]
 pub struct PyTca {
@@ -235,7 +302,8 @@ pub struct PyTca {
 #[pymethods]
 impl PyTca {
     #[new]
-    #[pyo3(signature = (fibre_length, coiled_length, coil_diameter, turns, chirality="extension", material=None))]
+    #[pyo3(signature = (fibre_length, coiled_length, coil_diameter, turns, chirality="extension", material=None),
+        text_signature = "(fibre_length, coiled_length, coil_diameter, turns, chirality='extension', material=None)")]
     fn new(
         fibre_length: Real,
         coiled_length: Real,
@@ -245,7 +313,7 @@ impl PyTca {
         material: Option<PyMaterial>,
     ) -> PyResult<Self> {
         let material = material.map_or_else(Material::silver_coated_nylon, |m| m.inner);
-        Ok(PyTca {
+        let tca = PyTca {
             inner: Tca::new(
                 fibre_length.0,
                 coiled_length.0,
@@ -254,12 +322,18 @@ impl PyTca {
                 parse_chirality(chirality)?,
                 material,
             )?,
-        })
+        };
+        // valid, but perhaps in mm: warn (after validation, so bad values raise first)
+        if let Some(msg) = crate::validate::coil_diameter_looks_like_mm(tca.inner.coil_diameter()) {
+            Python::attach(|py| super::warn_units(py, msg))?;
+        }
+        Ok(tca)
     }
 
     /// Build from coiled length `L` [m] and pitch angle `alpha0` [rad]: `l = L / sin(alpha0)`.
     #[classmethod]
-    #[pyo3(signature = (coiled_length, alpha0, coil_diameter, turns, chirality="extension", material=None))]
+    #[pyo3(signature = (coiled_length, alpha0, coil_diameter, turns, chirality="extension", material=None),
+        text_signature = "($cls, coiled_length, alpha0, coil_diameter, turns, chirality='extension', material=None)")]
     fn from_pitch_angle(
         cls: &Bound<'_, pyo3::types::PyType>,
         coiled_length: Real,
@@ -313,22 +387,27 @@ impl PyTca {
             .unbind())
     }
 
+    /// Twisted-fibre length `l` [m] (before coiling).
     #[getter]
     fn fibre_length(&self) -> f64 {
         self.inner.fibre_length()
     }
+    /// Coiled length `L` [m] with the coils touching (`0 < L < l/2`).
     #[getter]
     fn coiled_length(&self) -> f64 {
         self.inner.coiled_length()
     }
+    /// Outer coil diameter `D` [m].
     #[getter]
     fn coil_diameter(&self) -> f64 {
         self.inner.coil_diameter()
     }
+    /// Inserted twist `N` [turns].
     #[getter]
     fn turns(&self) -> f64 {
         self.inner.turns()
     }
+    /// `"extension"` (lengthens when heated) or `"contraction"` (shortens when heated).
     #[getter]
     fn chirality(&self) -> &'static str {
         match self.inner.chirality() {
@@ -336,28 +415,34 @@ impl PyTca {
             Chirality::Contraction => "contraction",
         }
     }
+    /// The fibre material (`Material`).
     #[getter]
     fn material(&self) -> PyMaterial {
         PyMaterial {
             inner: self.inner.material().clone(),
         }
     }
+    /// Initial pitch angle `alpha0 = asin(L/l)` [rad].
     #[getter]
     fn alpha0(&self) -> f64 {
         self.inner.alpha0()
     }
+    /// Number of coils `n = 2 cos(alpha0) l / (pi D)` [-].
     #[getter]
     fn n_coils(&self) -> f64 {
         self.inner.n_coils()
     }
+    /// Inserted twist angle `phi0 = 2 pi N` [rad].
     #[getter]
     fn phi0(&self) -> f64 {
         self.inner.phi0()
     }
+    /// Fibre diameter at the reference temperature `d0 = 2 D L / l` [m].
     #[getter]
     fn d0(&self) -> f64 {
         self.inner.d0()
     }
+    /// Elongation [m] at which the fibre would be straight (`l - L`): the upper bound of the law.
     #[getter]
     fn max_displacement(&self) -> f64 {
         self.inner.max_displacement()
@@ -426,16 +511,41 @@ impl PyTca {
             self.inner.temperature(f, d)
         })
     }
-    fn __repr__(&self) -> String {
+    pub(crate) fn __repr__(slf: &Bound<'_, Self>) -> PyResult<String> {
+        let t = &slf.get().inner;
+        let mat = if *t.material() == Material::silver_coated_nylon() {
+            String::new()
+        } else {
+            format!(", material={}", material_repr(t.material()))
+        };
+        Ok(format!(
+            "{}(fibre_length={}, coiled_length={}, coil_diameter={}, turns={}, chirality={}{mat})",
+            slf.get_type().name()?,
+            pf(t.fibre_length()),
+            pf(t.coiled_length()),
+            pf(t.coil_diameter()),
+            pf(t.turns()),
+            ps(slf.get().chirality()),
+        ))
+    }
+    /// Constructor arguments, for pickle and copy.
+    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
         let t = &self.inner;
-        format!(
-            "Tca(fibre_length={}, coiled_length={}, coil_diameter={}, turns={}, chirality={:?}, material={:?})",
+        let args = (
             t.fibre_length(),
             t.coiled_length(),
             t.coil_diameter(),
             t.turns(),
             self.chirality(),
-            t.material().name()
+            PyMaterial { inner: t.material().clone() },
         )
+            .into_pyobject(py)?;
+        Ok((args, PyDict::new(py)))
+    }
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
+        other.cast::<PyTca>().ok().map(|o| o.get().inner == self.inner)
+    }
+    fn __hash__(&self) -> u64 {
+        hash_text(&format!("{:?}", self.inner))
     }
 }

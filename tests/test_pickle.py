@@ -1,0 +1,181 @@
+"""Every public object of tcarod._core pickles, copies and compares (issue 14).
+
+State comes from the constructor arguments (a Solution from its robot and
+converged shooting unknowns, rebuilt by one deterministic IVP), so a
+round trip is exact: ``==`` compares every field bit for bit. Robots and
+solutions travel to process pools (spawn) and Dask process workers and solve
+there exactly as here.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import copy
+import math
+import multiprocessing
+import pickle
+from typing import Any, Callable
+
+import numpy as np
+import pytest
+
+from tcarod import (
+    Actuator,
+    Body,
+    Material,
+    Robot,
+    Routing,
+    Section,
+    Tca,
+    blocked_force,
+    tip_position,
+)
+from tcarod import _core
+from tcarod.batch import BatchResult, fig6_square_robot, solve_batch
+
+CUSTOM_MATERIAL = Material(
+    youngs_modulus=1.2e9,
+    shear_modulus=2.2e8,
+    expansion=1e-4,
+    youngs_modulus_slope=-1.3e6,
+    expansion_slope=3.5e-6,
+    t_ref=20.0,
+    t_min=20.0,
+    t_max=150.0,
+    name="my nylon",
+)
+TCA = Tca(0.497, 0.110, 2e-3, 300.0)
+SQUARE = fig6_square_robot()
+
+
+def _body() -> Any:
+    return Body(
+        0.05,
+        Section.circle(0.014),
+        60e3,
+        density=1100.0,
+        shear_coefficient=0.9,
+        omega_star=[0.0, 2.0, 0.0],
+        gravity=[0.0, 0.0, -9.81],
+        distributed_force=[0.01, 0.0, 0.0],
+        distributed_moment=[0.0, 0.001, 0.0],
+        tip_force=[0.0, 0.001, 0.0],
+        tip_moment=[1e-5, 0.0, 0.0],
+    )
+
+
+def _objects() -> dict[str, Callable[[], Any]]:
+    """Builders of one instance of every public class (fresh each call)."""
+    return {
+        "material_preset": Material.silver_coated_nylon,
+        "material_custom": lambda: CUSTOM_MATERIAL,
+        "tca": lambda: Tca(0.497, 0.110, 2e-3, 300.0, "contraction", CUSTOM_MATERIAL),
+        "tca_core": lambda: _core.Tca(0.497, 0.110, 2e-3, 300.0),
+        "section_circle": lambda: Section.circle(0.01),
+        "section_rectangle": lambda: Section.rectangle(0.01, 0.02),
+        "section_custom": lambda: Section.custom(1e-4, 1e-9, 2e-9, 3e-9),
+        "routing_straight": lambda: Routing.straight(0.003, -0.001),
+        "routing_helix": lambda: Routing.helix(0.003, 50.0, 0.5),
+        "body": _body,
+        "actuator_tca": lambda: Actuator.tca(TCA, Routing.straight(0.003, 0.0), 0.0, 0.04, 0.99),
+        "actuator_pretension": lambda: Actuator.tca(TCA, Routing.straight(0.003, 0.0), pretension_n=0.01),
+        "actuator_tendon": lambda: Actuator.tendon(Routing.straight(0.0, 0.003), 0.01),
+        "actuator_linear": lambda: Actuator.linear_tendon(500.0, Routing.helix(0.003, 20.0), 0.0, 0.03),
+        "robot": fig6_square_robot,
+        "robot_tendons": lambda: Robot(_body(), [Actuator.tendon(Routing.straight(0.003, 0.0))]),
+        "solution": lambda: SQUARE.solve([90.0, 90.0]),
+        "solution_loaded": lambda: Robot(_body(), [Actuator.tendon(Routing.straight(0.003, 0.0))]).solve([0.02]),
+        "inverse_result": lambda: tip_position(SQUARE, SQUARE.solve([60.0, 60.0]).tip_position, groups=[0, 0]),
+        "blocked_result": lambda: blocked_force(SQUARE, SQUARE.solve([25.0, 25.0]).tip_position, [-1.0, 0.0, 0.0], 60.0, groups=[0, 0]),
+        "batch_result": lambda: solve_batch(SQUARE, [[40.0, 40.0], [90.0, 95.0], [130.0, 120.0]], chunk_size=2),
+    }
+
+
+OBJECTS = _objects()
+
+
+@pytest.mark.parametrize("name", sorted(OBJECTS))
+def test_round_trips_through_pickle_copy_and_deepcopy(name: str) -> None:
+    obj = OBJECTS[name]()
+    for protocol in (2, pickle.HIGHEST_PROTOCOL):
+        back = pickle.loads(pickle.dumps(obj, protocol=protocol))
+        assert type(back) is type(obj)
+        assert back == obj
+    assert copy.copy(obj) == obj
+    assert copy.deepcopy(obj) == obj
+
+
+@pytest.mark.parametrize("name", sorted(OBJECTS))
+def test_identically_built_objects_are_equal(name: str) -> None:
+    a, b = OBJECTS[name](), OBJECTS[name]()
+    assert a == b
+    assert not (a != b)
+    assert a != "something else"
+    if type(a).__hash__ is not None:
+        assert hash(a) == hash(b)
+
+
+def test_different_objects_are_unequal() -> None:
+    assert fig6_square_robot(True) != fig6_square_robot(False)
+    assert Section.circle(0.01) != Section.circle(0.0100001)
+    assert Routing.straight(0.003, 0.0) != Routing.helix(0.003, 0.0)
+    assert SQUARE.solve([90.0, 90.0]) != SQUARE.solve([91.0, 90.0])
+    a = Actuator.tca(TCA, Routing.straight(0.003, 0.0))
+    assert a != Actuator.tca(TCA, Routing.straight(0.003, 0.0), pretension_n=0.01)
+    assert a != Actuator.tca(TCA, Routing.straight(0.003, 0.0), s_end=0.04)
+
+
+def test_a_pickled_solution_keeps_every_array_and_warm_starts_the_same() -> None:
+    sol = SQUARE.solve([90.0, 90.0])
+    back = pickle.loads(pickle.dumps(sol))
+    for field in ("s", "positions", "rotations", "nu", "omega", "internal_force", "internal_moment", "tensions",
+                  "elongations", "elongation_profile", "inputs", "base_force", "base_moment", "unknowns"):
+        np.testing.assert_array_equal(getattr(back, field), getattr(sol, field))
+    assert (back.iterations, back.evaluations, back.residual) == (sol.iterations, sol.evaluations, sol.residual)
+    assert back.robot == SQUARE
+    # the Newton Jacobian travels too: a warm start from the copy is the same solve
+    assert SQUARE.solve([95.0, 95.0], warm_start=back) == SQUARE.solve([95.0, 95.0], warm_start=sol)
+
+
+def test_convergence_error_keeps_its_fields_through_pickle() -> None:
+    # a real one: one Newton iteration cannot reach 160 C from the straight guess
+    with pytest.raises(_core.ConvergenceError) as info:
+        SQUARE.solve([160.0, 160.0], max_iter=1)
+    err = info.value
+    back = pickle.loads(pickle.dumps(err))
+    assert str(back) == str(err)
+    assert back.residual == err.residual > 0 and back.iterations == err.iterations > 0
+
+
+def test_robot_and_solution_travel_to_a_spawned_process_pool() -> None:
+    q, q2 = [90.0, 95.0], [100.0, 100.0]
+    here = SQUARE.solve(q)
+    warm_here = SQUARE.solve(q2, warm_start=here)
+    ctx = multiprocessing.get_context("spawn")
+    with cf.ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool:
+        # bound methods pickle as getattr(robot, "solve"): the robot travels
+        there = pool.submit(SQUARE.solve, q).result()
+        warm_there = pool.submit(SQUARE.solve, q2, warm_start=here).result()
+    assert there == here
+    assert warm_there == warm_here
+
+
+def test_batch_on_dask_process_workers_equals_serial_bit_for_bit() -> None:
+    distributed = pytest.importorskip("distributed")
+    # 1,000 rows here (about 10 s with worker start-up on a shared 2-core
+    # machine); benches/dask_batch.py runs the 10,000-row sweep of issue 14.
+    t = np.linspace(25.0, 160.0, 1000)
+    q = np.column_stack([t, t[::-1]])
+    serial = solve_batch(SQUARE, q, chunk_size=100, threads=1)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            remote = solve_batch(SQUARE, q, chunk_size=100, client=client)
+    assert serial.success and len(serial) == 1000
+    assert remote == serial  # every array, exactly
+
+
+def test_batch_result_pickles_with_nan_rows() -> None:
+    nan = np.full((1, 3), math.nan)
+    r = BatchResult(nan, np.full((1, 3, 3), math.nan), np.zeros(1, np.int64), np.zeros(1, np.int64), np.zeros(1, bool))
+    assert pickle.loads(pickle.dumps(r)) == r
+    assert not r.success and r.status.tolist() == [1]
