@@ -42,7 +42,8 @@ def test_lumped_parameters_and_time_constant() -> None:
 def test_resistance_is_required_and_checked() -> None:
     with pytest.raises(TypeError):
         ThermalModel(fibre_length_m=0.2, threads=3)  # type: ignore[call-arg]
-    with pytest.raises(ValueError, match="resistance"):
+    # None is a wrong type (issue 12: None -> TypeError), naming the argument
+    with pytest.raises(TypeError, match="resistance"):
         ThermalModel(fibre_length_m=0.2, threads=3, resistance=None)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="resistance"):
         ThermalModel(fibre_length_m=0.2, threads=3, resistance=-1.0)
