@@ -102,7 +102,7 @@ def num(lo: float, hi: float) -> st.SearchStrategy[float]:
 def fnum(lo: float, hi: float) -> st.SearchStrategy[Any]:
     """Mostly ``num(lo, hi)``; sometimes an edge value, a huge int, any float or a wrong type."""
     return st.one_of(
-        num(lo, hi), num(lo, hi), num(lo, hi), num(lo, hi), num(lo, hi), num(lo, hi),
+        *[num(lo, hi)] * 18,
         special_float, huge_int, st.floats(), bad_type,
         st.builds(np.float64, num(lo, hi)), st.integers(-3, 300),
     )
@@ -111,7 +111,7 @@ def fnum(lo: float, hi: float) -> st.SearchStrategy[Any]:
 def fint(lo: int, hi: int) -> st.SearchStrategy[Any]:
     """Mostly an int in ``[lo, hi]``; sometimes negative, huge, a float or a wrong type."""
     return st.one_of(
-        st.integers(lo, hi), st.integers(lo, hi), st.integers(lo, hi), st.integers(lo, hi),
+        *[st.integers(lo, hi)] * 16,
         st.integers(-(2**70), 2**70), huge_int, st.sampled_from([-1, 0, 1, 1.5, 2.0, math.nan]), bad_type,
         st.builds(np.int64, st.integers(lo, hi)),
     )
@@ -121,7 +121,7 @@ def fvec(n: int, lo: float, hi: float) -> st.SearchStrategy[Any]:
     """Mostly ``n`` numbers in range (list or array); sometimes the wrong length, edge values or a wrong type."""
     good = st.lists(num(lo, hi), min_size=n, max_size=n)
     return st.one_of(
-        good, good, good, good,
+        *[good] * 12,
         good.map(lambda v: np.asarray(v, dtype=np.float64)),
         st.lists(fnum(lo, hi), min_size=n, max_size=n),
         st.lists(fnum(lo, hi), min_size=0, max_size=n + 2),
@@ -353,10 +353,7 @@ def any_call(weights: Callable[[str, float], float] | None = None) -> st.SearchS
     """A call of any entry point; entry ``e`` of cost ``c`` drawn with weight
     ``weights(e, c)`` (default: every entry point equally often)."""
     names = sorted(ENTRIES)
-    w = [1.0 if weights is None else max(weights(n, ENTRIES[n][1]), 1e-6) for n in names]
-    cum = np.cumsum(w) / sum(w)
-
-    def pick(u: float) -> st.SearchStrategy[Call]:
-        return ENTRIES[names[min(int(np.searchsorted(cum, u, side="right")), len(names) - 1)]][0]
-
-    return st.floats(0.0, 1.0, exclude_max=True).flatmap(pick)
+    w = np.array([1.0 if weights is None else max(weights(n, ENTRIES[n][1]), 1e-6) for n in names])
+    slots = np.maximum(1, np.round(1000.0 * w / w.sum())).astype(int)  # ~1000 slots, each entry at least one
+    table = [n for n, k in zip(names, slots) for _ in range(k)]
+    return st.sampled_from(table).flatmap(lambda n: ENTRIES[n][0])
