@@ -29,6 +29,10 @@ MAX_GRID_POINTS: Final[int] = 100_000
 MAX_PROFILE_KNOTS: Final[int] = 100_000
 
 
+def _any(value: object) -> Any:
+    return value
+
+
 def _type_name(value: object) -> str:
     return type(value).__name__
 
@@ -48,20 +52,21 @@ def real(
     ``TypeError`` if it is not a real number (bool counts as a number, as in
     Python); ``ValueError`` naming ``name`` if not finite or out of range.
     """
+    value = _any(value)
     if isinstance(value, (str, bytes, bytearray, complex, np.complexfloating)) or value is None:
         raise TypeError(f"{name} must be a real number{_u(unit)}, not {_type_name(value)}")
     if isinstance(value, np.ndarray):
         if value.ndim != 0:
             raise TypeError(f"{name} must be a real number{_u(unit)}, not an array of shape {value.shape}")
-        value = value[()]
+        value = _any(value[()])
         if isinstance(value, np.complexfloating):
             raise TypeError(f"{name} must be a real number{_u(unit)}, not complex")
     if not isinstance(value, (numbers.Real, np.number)):
         raise TypeError(f"{name} must be a real number{_u(unit)}, not {_type_name(value)}")
     try:
-        x = float(value)  # type: ignore[arg-type]
+        x = float(value)
     except OverflowError:  # an int beyond the double range: a real number, +-inf
-        x = math.inf if value > 0 else -math.inf  # type: ignore[operator]
+        x = math.inf if _any(value) > 0 else -math.inf
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be a real number{_u(unit)}, not {_type_name(value)}") from exc
     if not math.isfinite(x):

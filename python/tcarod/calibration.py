@@ -201,10 +201,10 @@ def calibrate(
     }
     if initial is not None and not isinstance(initial, dict):
         raise TypeError(f"initial must be a dict of parameter values, not {type(initial).__name__}")
-    for k, v in (initial or {}).items():
-        if k not in PARAMETERS:
-            raise ValueError(f"initial: unknown parameter {k!r}; choose from {list(PARAMETERS)}")
-        values[k] = V.real(f"initial[{k!r}]", v)
+    for key, v in (initial or {}).items():
+        if key not in PARAMETERS:
+            raise ValueError(f"initial: unknown parameter {key!r}; choose from {list(PARAMETERS)}")
+        values[key] = V.real(f"initial[{key!r}]", v)
     scale = np.array([PARAMETERS[n] for n in names])
     x0 = np.array([values[n] for n in names]) / scale
 

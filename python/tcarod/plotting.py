@@ -249,7 +249,7 @@ def plot_solution(
     previous = getattr(ax, "_tcarod_bounds", None)
     if previous is not None:
         lo, hi = np.minimum(lo, previous[0]), np.maximum(hi, previous[1])
-    ax._tcarod_bounds = (lo, hi)  # type: ignore[union-attr]
+    ax._tcarod_bounds = (lo, hi)
     centre, half = 0.5 * (lo + hi), 0.5 * float(np.max(hi - lo)) * 1.05
     ax.set_xlim(centre[0] - half, centre[0] + half)
     ax.set_ylim(centre[1] - half, centre[1] + half)

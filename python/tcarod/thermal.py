@@ -203,10 +203,12 @@ class ThermalModel:
                     "(fibre_length_m, thread_radius_m, density_kg_per_m3, specific_heat_j_per_kgk, "
                     "heat_transfer_w_per_m2k out of any physical range)"
                 )
-        r = self.resistance
+        r: Any = self.resistance
         if r is None:
             raise TypeError("resistance [ohm] is required: give an ohm value, a LinearResistance or a callable R(T, strain)")
-        if isinstance(r, (numbers.Real, np.number)) and not isinstance(r, bool):
+        if isinstance(r, bool):
+            raise TypeError("resistance must be a number [ohm], a LinearResistance or a callable, not bool")
+        if isinstance(r, (numbers.Real, np.number)):
             const = V.positive("resistance", r, "ohm")
             fn: Callable[[float, float], float] = lambda t, e: const  # noqa: E731
         elif callable(r):
@@ -245,7 +247,7 @@ class ThermalModel:
     @property
     def constant_resistance(self) -> bool:
         """True if the resistance depends on neither temperature nor strain."""
-        r = self.resistance
+        r: Any = self.resistance
         return (isinstance(r, (numbers.Real, np.number)) and not callable(r)) or (
             isinstance(r, LinearResistance) and r.is_constant
         )
