@@ -16,10 +16,10 @@ from __future__ import annotations
 import os
 
 import pytest
-from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import HealthCheck, Phase, example, given, settings
 
 from fuzz.harness import ALLOWED, classify
-from fuzz.strategies import ENTRIES, Call
+from fuzz.strategies import ENTRIES, Call, EvilLen, Fix, Opaque
 
 #: In-process time limit per call [s]: far above any valid call here (the
 #: slowest, a calibration or a 3x3 workspace map, takes well under 1 s).
@@ -32,11 +32,23 @@ _API = "binding / thin API module (api helper's files)"
 #: own; strict, so a fix shows up as XPASS and the mark must go.
 KNOWN = {
     "Robot": f"{_API}: Robot(body, EvilLen()) -> PanicException 'capacity overflow'",
-    "blocked_force": f"{_API} inverse.py: force=-10**400 -> OverflowError",
+    "blocked_force": f"{_API} inverse.py: force=-10**400 -> OverflowError (an int beyond the double range is inf: ValueError)",
     "blocked_temperature": f"{_API} inverse.py: robot=Opaque() -> AttributeError",
     "circle_radius": f"{_API} rod.py: circle_radius(None, ...) -> NaN (None is not a point: TypeError)",
     "inner_edge_radius": f"{_API} rod.py: inner_edge_radius(None) -> AttributeError",
-    "solve_batch": f"{_API} batch.py: chunk_size=-2**63, steps=-2**31-1 -> OverflowError",
+    "solve_batch": f"{_API} batch.py: chunk_size=-1 -> OverflowError (should be ValueError naming chunk_size)",
+}
+
+
+#: One reproducer per known violation, run first as an explicit example, so
+#: that a strict xfail fails every time whatever the random draws.
+EXAMPLES = {
+    "Robot": Call("Robot", (Fix("BODY"), EvilLen())),
+    "blocked_force": Call("blocked_force", (Fix("RNG"), [0.0, 0.0, 0.04], [-1.0, 0.0, 0.0], -(10**400))),
+    "blocked_temperature": Call("blocked_temperature", (Opaque(), Fix("TIP"), [-1.0, 0.0, 0.0], 1e-3)),
+    "circle_radius": Call("circle_radius", (None, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0])),
+    "inner_edge_radius": Call("inner_edge_radius", (None,)),
+    "solve_batch": Call("solve_batch", (Fix("R"), [[60.0, 60.0]]), {"chunk_size": -1}),
 }
 
 
@@ -50,20 +62,21 @@ def _param(name: str) -> object:
 def test_fuzz_entry_point_keeps_the_contract(entry: str) -> None:
     strategy, _ = ENTRIES[entry]
 
-    @settings(
-        max_examples=BUDGET[entry],
-        deadline=None,
-        database=None,
-        derandomize=True,  # the same calls every run: a strict xfail must fail every time
-        phases=[Phase.explicit, Phase.generate],  # no shrinking: report the call as drawn
-        suppress_health_check=list(HealthCheck),
-    )
-    @given(strategy)
-    def run(call: Call) -> None:
+    def body(call: Call) -> None:
         outcome, detail = classify(call, timeout=TIME_LIMIT_S)
         assert outcome in ALLOWED, f"contract violation {outcome}: {call!r} -> {detail}"
 
-    run()
+    run = given(strategy)(body)
+    if entry in EXAMPLES:
+        run = example(EXAMPLES[entry])(run)
+    settings(
+        max_examples=BUDGET[entry],
+        deadline=None,
+        database=None,
+        derandomize=True,
+        phases=[Phase.explicit, Phase.generate],  # no shrinking: report the call as drawn
+        suppress_health_check=list(HealthCheck),
+    )(run)()
 
 
 def test_classifier_flags_violations() -> None:

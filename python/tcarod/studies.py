@@ -35,6 +35,8 @@ from ._core import ConvergenceError
 from .manipulators import TCA_COIL_DIAMETER_M, TCA_OFFSET_M, ECOFLEX10_YOUNGS_MODULUS_PA
 from .grasp import grasp_temperature, table1_finger
 from .rod import Robot
+from . import _validate as V
+from ._optional import require
 from .tca import Material
 
 __all__ = [
@@ -94,13 +96,15 @@ def perturbed_finger(scales: dict[str, float] | None = None) -> Robot:
     (``{"rho": 0.5}`` halves ``rho(25 C)``); keys from :data:`PARAMETERS`.
     Material coefficients not scaled keep their default values (``dG_T/dT``
     included)."""
+    if scales is not None and not isinstance(scales, dict):
+        raise TypeError(f"scales must be a dict {{parameter: factor}}, not {type(scales).__name__}")
     s = dict(scales or {})
     unknown = set(s) - set(_KEYS)
     if unknown:
-        raise ValueError(f"unknown parameter(s) {sorted(unknown)}; choose from {list(_KEYS)}")
-    for k, v in s.items():
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"invalid scale for {k} = {v!r}: must be finite and > 0")
+        raise ValueError(f"unknown parameter(s) {sorted(map(repr, unknown))}; choose from {list(_KEYS)}")
+    for k in list(s):
+        # scale factors within 1e-3..1e3: beyond that the finger is no longer a finger
+        s[k] = V.real(f"scales[{k!r}]", s[k], lo=1e-3, hi=1e3)
     e, de, g, dg, rho, drho = _C0
     base = Material.silver_coated_nylon()
     material = Material(
@@ -137,7 +141,8 @@ def table1_grip_temperatures(
     finger with ``scales`` applied (see :func:`perturbed_finger`). Raises
     ``ValueError`` if a mass needs a temperature above the material's range."""
     finger = perturbed_finger(scales)
-    return tuple(_grip(finger, m) for m in masses_kg)
+    masses = V.real_array("masses_kg", masses_kg, ndim=1, max_size=100, unit="kg")
+    return tuple(_grip(finger, float(m)) for m in masses)
 
 
 @dataclass(frozen=True)
@@ -188,8 +193,7 @@ def table1_sensitivity(
 ) -> tuple[Sensitivity, ...]:
     """Every parameter of :data:`PARAMETERS` scaled by ``1 -+ step``; sorted
     by :attr:`Sensitivity.mean_abs_elasticity`, largest first."""
-    if not (0.0 < step < 0.5):
-        raise ValueError(f"invalid step = {step!r}: must be in (0, 0.5)")
+    step = V.real("step", step, lo=0.0, hi=0.5, lo_open=True, hi_open=True)
     base = table1_grip_temperatures(None, masses_kg)
     out = []
     for p in PARAMETERS:
@@ -256,15 +260,21 @@ def identify_table1(
 
     ``start``: initial scale factors (default 1).
     """
-    from scipy.optimize import least_squares  # test dependency; imported only here
+    least_squares = require("scipy.optimize").least_squares
 
-    ks = tuple(keys)
+    ks = tuple(V.sequence("keys", keys, 3))
+    if not all(isinstance(k, str) for k in ks):
+        raise TypeError(f"keys must be parameter names (str), got {list(ks)}")
     if not 1 <= len(ks) <= 2 or any(k not in _KEYS for k in ks):
         raise ValueError(f"keys must be one or two of {list(_KEYS)}, got {list(ks)}")
-    tgt = np.asarray(target_c, dtype=np.float64)
+    masses_kg = tuple(float(m) for m in V.real_array("masses_kg", masses_kg, ndim=1, max_size=100, unit="kg"))
+    tgt = V.real_array("target_c", target_c, ndim=1, max_size=100, unit="C")
     if tgt.shape != (len(masses_kg),):
         raise ValueError("target_c needs one temperature [C] per mass")
-    x0 = np.log(np.asarray(start if start is not None else [1.0] * len(ks), dtype=np.float64))
+    start_v = np.asarray(V.vector("start", start, len(ks)) if start is not None else [1.0] * len(ks), dtype=np.float64)
+    if not np.all(start_v > 0.0):
+        raise ValueError(f"invalid start = {start_v.tolist()}: scale factors must be > 0")
+    x0 = np.log(start_v)
     count = [0]
     cache: dict[tuple[float, ...], np.ndarray] = {}
 

@@ -55,7 +55,7 @@ class Hang(BaseException):
 @lru_cache(maxsize=1)
 def targets() -> dict[str, Callable[..., Any]]:
     import tcarod as t
-    from tcarod import batch, calibration, cli, design, segmented, thermal, workspace
+    from tcarod import batch, bruteforce, calibration, cli, design, segmented, studies, thermal, workspace
 
     return {
         "Tca": t.Tca,
@@ -118,6 +118,11 @@ def targets() -> dict[str, Callable[..., Any]]:
         "load_design": design.load_design,
         "dumps_design": design.dumps_design,
         "cli.main": cli.main,
+        "perturbed_finger": studies.perturbed_finger,
+        "table1_grip_temperatures": studies.table1_grip_temperatures,
+        "identify_table1": studies.identify_table1,
+        "brute_force_blocked_temperature": bruteforce.brute_force_blocked_temperature,
+        "brute_force_tip_position": bruteforce.brute_force_tip_position,
     }
 
 
@@ -285,6 +290,8 @@ def nonfinite(obj: Any, depth: int = 0) -> str | None:  # noqa: C901 - one table
         attrs = ("length", "youngs_modulus", "shear_modulus", "density", "nu_star", "omega_star", "gravity", "tip_force")
     elif name == "Actuator":
         attrs = ("s_start", "reference_input")
+    elif name in ("BruteForceResult", "Identification"):
+        attrs = tuple(f.name for f in dataclasses.fields(obj))
     elif name == "Design":
         attrs = ("temperatures_c",)
     elif dataclasses.is_dataclass(obj):
