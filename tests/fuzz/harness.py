@@ -9,7 +9,9 @@ Outcome classes (issue 12's contract):
   ``exit`` (the CLI returned or exited with a status);
 * CONTRACT VIOLATIONS: ``panic`` (pyo3 ``PanicException``), ``nonfinite``
   (NaN or inf in a result), ``hang`` (time limit), ``crash`` (the worker
-  process died), ``other:<ExceptionType>`` (any other exception type).
+  process died), ``other:<ExceptionType>`` (any other exception type),
+  ``accepted-wrong-type`` (a call with a ``bytes`` or complex argument, which
+  no tcarod argument accepts, returned a result instead of ``TypeError``).
 
 ``python -m fuzz.harness`` (with ``tests`` on ``sys.path``) is the worker of
 the long profile: it reads length-prefixed pickled calls on stdin and writes
@@ -375,7 +377,26 @@ def classify(call: Call, timeout: float | None = None) -> tuple[str, str]:
         return ("exit" if result in (0, 1, 2) else f"other:return {result!r}"), f"returned {result!r}"
     if bad:
         return "nonfinite", bad
+    wrong = _wrong_type(call.args) or _wrong_type(call.kwargs)
+    if wrong:
+        return "accepted-wrong-type", f"returned {type(result).__name__} for an argument of type {wrong}"
     return "ok", type(result).__name__
+
+
+def _wrong_type(x: Any, depth: int = 0) -> str | None:
+    """The name of a type no tcarod argument accepts (bytes, complex), if
+    ``x`` holds one: a call that succeeds with it ignored a wrong type."""
+    if depth > 3:
+        return None
+    if isinstance(x, (bytes, bytearray, complex, np.complexfloating)):
+        return type(x).__name__
+    if isinstance(x, np.ndarray):
+        return str(x.dtype) if x.dtype.kind == "c" else None
+    if isinstance(x, (list, tuple)):
+        return next((w for w in (_wrong_type(v, depth + 1) for v in x[:100]) if w), None)
+    if isinstance(x, dict):
+        return next((w for w in (_wrong_type(v, depth + 1) for v in x.values()) if w), None)
+    return None
 
 
 def _close_figures() -> None:
