@@ -135,7 +135,10 @@ def allocation(calls: int) -> dict[str, int]:
     """Calls per entry point, proportional to ``1/sqrt(relative cost)``, at least one each."""
     w = {e: 1.0 / math.sqrt(cost) for e, (_, cost) in ENTRIES.items()}
     total = sum(w.values())
-    return {e: max(1, round(calls * x / total)) for e, x in w.items()}
+    out = {e: max(1, round(calls * x / total)) for e, x in w.items()}
+    cheapest = max(w, key=lambda e: w[e])
+    out[cheapest] += max(0, calls - sum(out.values()))  # rounding: at least ``calls`` in all
+    return out
 
 
 def run(calls: int, timeout: float, seed_value: int, workers: int) -> tuple[Pool, float]:

@@ -366,18 +366,18 @@ def _more_entries() -> None:
     scales = st.one_of(st.none(), st.dictionaries(keys, fnum(0.5, 2.0), max_size=2), bad_type)
     ENTRIES["perturbed_finger"] = (call("perturbed_finger", scales), 2)
     ENTRIES["table1_grip_temperatures"] = (
-        call("table1_grip_temperatures", scales, st.one_of(st.lists(fnum(1e-4, 3e-3), max_size=2), bad_type)), 60)
+        call("table1_grip_temperatures", scales, st.one_of(st.lists(fnum(1e-4, 3e-3), max_size=2), bad_type)), 1000)
     ENTRIES["identify_table1"] = (call("identify_table1", st.one_of(st.lists(keys, max_size=3), bad_type),
                                        st.one_of(st.lists(fnum(30.0, 150.0), max_size=1), bad_type),
                                        st.one_of(st.lists(fnum(1e-4, 3e-3), max_size=1), bad_type),
-                                       maybe(st.lists(fnum(0.01, 100.0), max_size=2))), 200)
+                                       maybe(st.lists(fnum(0.01, 100.0), max_size=2))), 5000)
     ENTRIES["brute_force_blocked_temperature"] = (call(
         "brute_force_blocked_temperature", fix("RNG"), st.one_of(st.just(Fix("TIP")), fvec(3, -0.03, 0.05)),
-        VEC3_NORMAL, fnum(1e-4, 0.05), groups=GROUPS, xatol=fnum(1e-3, 1.0), steps=fint(2, 60)), 100)
+        VEC3_NORMAL, fnum(1e-4, 0.05), groups=GROUPS, xatol=fnum(1e-3, 1.0), steps=fint(2, 60)), 1000)
     ENTRIES["brute_force_tip_position"] = (call(
         "brute_force_tip_position", fix("RNG"), st.one_of(st.just(Fix("TIP")), fvec(3, -0.03, 0.05)),
         start=maybe(TEMPS2), groups=GROUPS, xatol=fnum(1e-2, 1.0), max_solves=fint(1, 40), steps=fint(2, 60),
-        simplex_size_c=fnum(0.1, 20.0)), 100)
+        simplex_size_c=fnum(0.1, 20.0)), 1000)
 
 
 _more_entries()
