@@ -166,8 +166,16 @@ def run(calls: int, timeout: float, seed_value: int, workers: int) -> tuple[Pool
                     submitted[0] += 1
 
                 chunk()
-                # hypothesis may stop early when it has exhausted a small space
-                left[entry] = 0 if submitted[0] < n else left[entry] - n
+                if submitted[0] < n:
+                    # hypothesis stopped early: it has exhausted this entry's (small) space;
+                    # hand the rest of its share to the other entry points
+                    spare = left[entry] - submitted[0]
+                    left[entry] = 0
+                    others = [e for e in left if left[e] > 0]
+                    for j, e in enumerate(others):
+                        left[e] += spare // len(others) + (1 if j < spare % len(others) else 0)
+                else:
+                    left[entry] -= n
             pool.drain()
             round_no += 1
             print(f"  {len(pool.results)} calls, {time.perf_counter() - t0:.0f} s, "

@@ -382,8 +382,9 @@ class ThermalModel:
             method = "numeric (RK4)"
             h_max = tau / 200.0 if max_step_s is None else float(max_step_s)
             events = sorted({t0, *switches, *map(float, t_out)})
-            total = sum(max(1.0, math.ceil((b - a) / h_max)) for a, b in zip(events[:-1], events[1:]))
-            if total > V.MAX_RK4_STEPS:
+            # counted in floating point: (b - a) / h_max may overflow to inf
+            total = sum(max(1.0, (b - a) / h_max) for a, b in zip(events[:-1], events[1:]))
+            if not total <= V.MAX_RK4_STEPS:
                 raise ValueError(
                     f"times_s / max_step_s: {total:.3g} RK4 steps needed, at most {V.MAX_RK4_STEPS} allowed "
                     "(shorten the time span or raise max_step_s)"

@@ -218,7 +218,8 @@ def _design_text() -> st.SearchStrategy[str]:
 
 def _argv() -> st.SearchStrategy[list[Any]]:
     token = st.one_of(
-        st.sampled_from(["solve", "reproduce", "bench", "--json", "--out", "-T", "--temperature", "--version", "--help",
+        # no bare "reproduce" / "bench": running every experiment or benchmark is valid, long work
+        st.sampled_from(["solve", "--json", "--out", "-T", "--temperature", "--version", "--help",
                          "nope", "-", "--", "--repeats", "--min-time", "--batch", "fig99"]),
         st.just(Fix("DESIGN_PATH")), st.just(Fix("BAD_DESIGN_PATH")), st.just(Fix("OUT_DIR")),
         st.floats().map(str), st.text(max_size=12),
@@ -231,7 +232,11 @@ def _argv() -> st.SearchStrategy[list[Any]]:
         st.booleans(),
     )
     garbage = st.lists(token, max_size=6)
-    return st.one_of(garbage, garbage, garbage, solve)
+    fast_errors = st.sampled_from([
+        ["reproduce", "nope"], ["reproduce", "fig5", "fig99"], ["reproduce", "--help"], ["bench", "--repeats", "-1"],
+        ["bench", "--min-time", "nan"], ["bench", "--min-time", "1e300"], ["bench", "--batch", "-5"], ["bench", "--help"],
+    ])
+    return st.one_of(garbage, garbage, garbage, solve, fast_errors)
 
 
 def _entries() -> dict[str, tuple[st.SearchStrategy[Call], float]]:
