@@ -172,7 +172,7 @@ def run(calls: int, timeout: float, seed_value: int, workers: int) -> tuple[Pool
                     spare = left[entry] - submitted[0]
                     left[entry] = 0
                     others = [e for e in left if left[e] > 0]
-                    for j, e in enumerate(others):
+                    for j, e in enumerate(others if spare > 0 else []):
                         left[e] += spare // len(others) + (1 if j < spare % len(others) else 0)
                 else:
                     left[entry] -= n
