@@ -435,6 +435,14 @@ def worker_main() -> None:
     import matplotlib
 
     matplotlib.use("Agg")
+    # import the optional packages now, not inside the first timed call (a
+    # first scipy import on a loaded machine can take longer than the limit)
+    import matplotlib.figure  # noqa: F401
+    import scipy.optimize  # noqa: F401
+    import scipy.stats  # noqa: F401
+
+    import tcarod.plotting  # noqa: F401
+
     targets()
     for name in ("R", "RNG", "SOL", "SOL0", "TIP", "SOL_OTHER", "FINGER", "MODEL", "MODEL_T", "EXP"):
         _static(name)  # build the fixtures before the first timed call
