@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -77,3 +79,16 @@ def test_two_loads_fit_modulus_slope_expansion_and_friction_ratio() -> None:
     # about +-1 MPa/C: the modulus enters only through f11 F, F is small
     assert r.ci_high[1] - r.ci_low[1] < 0.02
     assert r.ci_high[0] - r.ci_low[0] > 0.5e6
+
+
+def test_wrong_types_are_type_errors_naming_the_argument() -> None:
+    with pytest.raises(TypeError, match="temperatures_c"):
+        calibrate(EXP, ["30", "60", "90"], [0.0, 1e-3, 2e-3])
+    with pytest.raises(TypeError, match="fit"):
+        calibrate(EXP, [30.0, 60.0, 90.0], [0.0, 1e-3, 2e-3], fit=None)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="displacements_m"):
+        calibrate(EXP, [30.0, 60.0, 90.0], [0.0, float("nan"), 2e-3])
+    with pytest.raises(ValueError, match="confidence"):
+        calibrate(EXP, [30.0, 60.0, 90.0], [0.0, 1e-3, 2e-3], confidence=1.5)
+    with pytest.raises(TypeError, match="mass_kg"):
+        replace(EXP, mass_kg="5 g")

@@ -132,3 +132,41 @@ def test_model_errors_exit_2_with_one_line(
     lines = captured.err.strip().splitlines()
     assert len(lines) == 1 and type(exc).__name__ in lines[0]
     assert captured.out == ""
+
+
+# ---------------------------------------------------------------- issue 14
+
+DESIGNS = Path(__file__).resolve().parent.parent / "examples" / "designs"
+TWO = [str(DESIGNS / "fig6_square.toml"), str(DESIGNS / "fig1b_three_tca.toml")]
+
+
+def test_solve_accepts_several_designs(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert cli.main(["solve", *TWO, "--out", str(tmp_path), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert [Path(d["design"]).name for d in doc["designs"]] == ["fig6_square.toml", "fig1b_three_tca.toml"]
+    assert len(doc["designs"][1]["tensions_n"]) == 3  # the 3-TCA design has three actuators
+    assert (tmp_path / "fig6_square.png").read_bytes()[:8] == PNG_MAGIC
+    assert (tmp_path / "fig1b_three_tca.png").read_bytes()[:8] == PNG_MAGIC
+
+
+def test_missing_optional_package_is_one_line_naming_the_extra(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setitem(sys.modules, "matplotlib", None)  # import matplotlib -> ImportError
+    assert cli.main(["solve", TWO[0], "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "tcarod[plot]" in err and "Traceback" not in err
+
+
+def test_closed_pipe_ends_quietly(tmp_path: Path) -> None:
+    # `tcarod ... --json | head`: the reader goes away before the output is written
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "tcarod.cli", "solve", *TWO, *TWO, "--out", str(tmp_path), "--json"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=tmp_path,
+    )
+    assert proc.stdout is not None and proc.stderr is not None
+    proc.stdout.close()
+    err = proc.stderr.read().decode()
+    proc.stderr.close()
+    assert proc.wait(timeout=120) == 1
+    assert "BrokenPipeError" not in err and "Traceback" not in err

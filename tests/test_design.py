@@ -132,3 +132,107 @@ def test_cli_solve_reports_bad_files(tmp_path: Path, capsys: pytest.CaptureFixtu
     err = capsys.readouterr().err
     assert "actuators[0].tca.turns" in err and "bad.toml:" in err
     assert main(["solve", str(DESIGNS / "fig6_square.toml"), "-T", "100", "90", "80"]) == 2
+
+
+# ------------------------------------------------------------- limits (issue 12)
+
+FIG6_TEXT = (DESIGNS / "fig6_square.toml").read_text(encoding="utf-8")
+
+
+def test_design_error_is_a_value_error() -> None:
+    assert issubclass(DesignError, ValueError)
+
+
+@pytest.mark.parametrize("text", [
+    "[body]\nlength_m = " + "[" * 1000 + "]" * 1000,  # was RecursionError inside tomllib
+    "[body]\nlength_m = " + "{a=" * 1000 + "1" + "}" * 1000,
+])
+def test_deep_nesting_is_a_design_error_naming_the_line(text: str) -> None:
+    with pytest.raises(DesignError, match="nested deeper") as err:
+        loads_design(text, "deep.toml")
+    assert err.value.line == 2 and err.value.source == "deep.toml"
+
+
+def test_long_dotted_header_is_a_design_error() -> None:
+    # a 100k-part dotted header took tens of seconds to locate before
+    with pytest.raises(DesignError, match="dotted key") as err:
+        loads_design("[" + ".".join(["a"] * 100_000) + "]\nx = 1\n")
+    assert err.value.line == 1
+
+
+def test_long_blank_run_error_names_its_line() -> None:
+    # a 100k-character blank run made the line lookup quadratic before
+    with pytest.raises(DesignError) as err:
+        loads_design(FIG6_TEXT.replace("youngs_modulus_pa = 37.8e3", "youngs_modulus_pa =" + " " * 100_000 + "x"))
+    assert err.value.line == 10
+
+
+def test_too_large_file_is_a_design_error(tmp_path: Path) -> None:
+    from tcarod.design import MAX_DESIGN_CHARS
+
+    with pytest.raises(DesignError, match="too large"):
+        loads_design("#" * (MAX_DESIGN_CHARS + 1))
+    big = tmp_path / "big.toml"
+    big.write_bytes(b"#" * (4 * MAX_DESIGN_CHARS + 1))
+    with pytest.raises(DesignError, match="too large"):
+        load_design(big)
+
+
+def test_huge_integer_and_binary_file_are_design_errors(tmp_path: Path) -> None:
+    with pytest.raises(DesignError, match="length_m: must be finite"):
+        loads_design(FIG6_TEXT.replace("length_m = 0.040", "length_m = " + "9" * 400))
+    raw = tmp_path / "raw.toml"
+    raw.write_bytes(b"\xff\xfe[body]")
+    with pytest.raises(DesignError, match="not UTF-8"):
+        load_design(raw)
+
+
+def test_wrong_argument_types_are_type_errors() -> None:
+    with pytest.raises(TypeError, match="text"):
+        loads_design(b"[body]")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="path"):
+        load_design(None)  # type: ignore[arg-type]
+
+
+# ------------------------------------------------------- round trip (issue 14)
+
+
+def test_saved_file_is_written_the_way_it_was_written() -> None:
+    text = dumps_design(load_design(DESIGNS / "fig6_square.toml").robot)
+    # pitch-angle TCAs stay pitch-angle TCAs, poisson stays poisson, no rounding noise
+    assert "alpha0_deg = 15.0" in text and "fibre_length_m" not in text
+    assert "poisson = 0.5" in text and "shear_modulus_pa" not in text
+    assert "y_m = -0.0025\n" in text and "width_m = 0.01\n" in text
+    assert "99999" not in text and "00000000" not in text
+
+
+def test_tendon_designs_round_trip() -> None:
+    from tcarod import Actuator, Routing
+
+    base = load_design(DESIGNS / "fig6_square.toml").robot
+    robot = type(base)(base.body, [
+        base.actuators[0],
+        Actuator.tendon(Routing.helix(0.004, 10.0, 0.3), 0.0, 0.03),
+        Actuator.linear_tendon(120.0, Routing.straight(-0.003, 0.0)),
+    ])
+    text = dumps_design(robot)
+    again = loads_design(text).robot
+    assert [a.kind for a in again.actuators] == ["tca", "tension", "linear_tendon"]
+    assert dumps_design(again) == text  # a fixed point: nothing drifts
+    inputs = [80.0, 0.02, 0.001]  # C, N, m
+    a, b = robot.solve(inputs), again.solve(inputs)
+    # same design, same solver: identical to rounding of the saved decimals
+    assert np.allclose(a.tip_position, b.tip_position, rtol=0.0, atol=1e-12)
+
+
+def test_fibre_length_tca_is_saved_by_fibre_length() -> None:
+    from tcarod import Robot, Tca
+
+    base = load_design(DESIGNS / "fig6_square.toml").robot
+    act = base.actuators[0]
+    tca = Tca(0.497, 0.110, 2e-3, 300.0)  # alpha0 not a round number of degrees
+    from tcarod import Actuator
+
+    robot = Robot(base.body, [Actuator.tca(tca, act.routing)])
+    text = dumps_design(robot)
+    assert "fibre_length_m = 0.497" in text and "alpha0_deg" not in text

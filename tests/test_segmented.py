@@ -156,3 +156,27 @@ def test_segmented_horizontal_cold_converges_and_balances() -> None:
     # solver tolerance 1e-10 in scaled strain times EA bounds the force error; x100 margin
     np.testing.assert_allclose(sol.base_force, want, rtol=0.0, atol=100 * 1e-10 * body.stiffness()[0][2, 2])
     assert sol.tip_position[0] > 0.0  # sags along gravity (+x here)
+
+
+# ------------------------------------------------------------------ bad input (issue 12)
+
+
+@pytest.mark.parametrize(("args", "exc", "name"), [
+    ((3, 0.0, 1e30), None, ""),  # a huge span is fine: finite, increasing bounds
+    ((10**7, 0.0, 0.04), ValueError, "segments"),  # beyond MAX_SEGMENTS: bounded work
+    ((-1, 0.0, 0.04), ValueError, "segments"),
+    ((2.0, 0.0, 0.04), TypeError, "segments"),
+    (("3", 0.0, 0.04), TypeError, "segments"),
+    ((3, "0", 0.04), TypeError, "s_start"),
+    ((3, 0.0, float("nan")), ValueError, "s_end"),
+    ((3, 0.0, 5e-324), ValueError, "span"),  # segments of zero length in floating point
+    (([0.5, float("inf")], 0.0, 0.04), ValueError, "segments"),
+])
+def test_segment_bounds_contract(args: tuple[object, ...], exc: type | None, name: str) -> None:
+    if exc is None:
+        bounds = segment_bounds(*args)  # type: ignore[arg-type]
+        edges = np.array([b for b in bounds]).ravel()
+        assert np.all(np.isfinite(edges)) and all(a < b for a, b in bounds)
+        return
+    with pytest.raises(exc, match=name):
+        segment_bounds(*args)  # type: ignore[arg-type]

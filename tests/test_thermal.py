@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -42,7 +43,8 @@ def test_lumped_parameters_and_time_constant() -> None:
 def test_resistance_is_required_and_checked() -> None:
     with pytest.raises(TypeError):
         ThermalModel(fibre_length_m=0.2, threads=3)  # type: ignore[call-arg]
-    with pytest.raises(ValueError, match="resistance"):
+    # None is a wrong type (issue 12: None -> TypeError), naming the argument
+    with pytest.raises(TypeError, match="resistance"):
         ThermalModel(fibre_length_m=0.2, threads=3, resistance=None)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="resistance"):
         ThermalModel(fibre_length_m=0.2, threads=3, resistance=-1.0)
@@ -164,3 +166,65 @@ def test_strain_dependent_resistance_couples_heating_and_shape() -> None:
     # the heated TCA lengthens, its resistance rises, it draws less power:
     # cooler than with constant resistance (a visible difference, > 0.1 C)
     assert b.temperatures_c[-1, 0] < a.temperatures_c[-1, 0] - 0.1
+
+
+# ------------------------------------------------------------------ bad input (issue 12)
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_power_rejects_non_finite_voltage_and_temperature(bad: float) -> None:
+    with pytest.raises(ValueError, match="voltage_v"):
+        MODEL.power_w(bad, 60.0)
+    with pytest.raises(ValueError, match="temperature_c"):
+        MODEL.power_w(1.0, bad)
+
+
+def test_power_overflow_is_a_value_error_not_inf() -> None:
+    with pytest.raises(ValueError, match="voltage_v"):
+        MODEL.power_w(1e200, 60.0)  # V^2 overflows the double range
+
+
+@pytest.mark.parametrize("bad", [math.inf, -math.inf, math.nan, 1e300])
+def test_transient_rejects_unphysical_initial_temperature(bad: float) -> None:
+    with pytest.raises(ValueError, match="initial_c"):
+        MODEL.transient(VoltageProfile.step(1.0), [0.0, 1.0], initial_c=bad)
+
+
+def test_profile_starting_at_minus_1e300_returns_promptly() -> None:
+    # used to loop for ever (1e300 s of RK4 steps); now a capped, documented ValueError
+    profile = VoltageProfile((-1e300, 0.0), (0.0, 1.0))
+    model_t = ThermalModel(0.3, 3, LinearResistance(60.0, 0.002))
+    with pytest.raises(ValueError, match="RK4 steps"):
+        model_t.transient(profile, [0.0, 1.0])
+    # constant resistance: exact exponentials, no steps to count; the result is finite
+    out = MODEL.transient(profile, [0.0, 1.0])
+    assert np.all(np.isfinite(out.temperature_c))
+
+
+def test_tiny_heat_transfer_is_a_value_error_not_zero_division() -> None:
+    with pytest.raises(ValueError, match="conductance_w_per_k"):
+        ThermalModel(0.3, 3, 60.0, heat_transfer_w_per_m2k=5e-324)
+
+
+@pytest.mark.parametrize(("kwargs", "exc", "name"), [
+    ({"fibre_length_m": "0.3"}, TypeError, "fibre_length_m"),
+    ({"fibre_length_m": None}, TypeError, "fibre_length_m"),
+    ({"threads": 2.5}, TypeError, "threads"),
+    ({"threads": 10**400}, ValueError, "threads"),
+    ({"threads": -1}, ValueError, "threads"),
+    ({"ambient_c": 1j}, TypeError, "ambient_c"),
+    ({"resistance": "60"}, TypeError, "resistance"),
+])
+def test_model_arguments_wrong_type_or_range_name_the_argument(kwargs: dict[str, Any], exc: type, name: str) -> None:
+    args: dict[str, Any] = {"fibre_length_m": 0.3, "threads": 3, "resistance": 60.0, **kwargs}
+    with pytest.raises(exc, match=name):
+        ThermalModel(**args)
+
+
+def test_transient_wrong_types_are_type_errors() -> None:
+    with pytest.raises(TypeError, match="profile"):
+        MODEL.transient(None, [0.0, 1.0])  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="times_s"):
+        MODEL.transient(VoltageProfile.step(1.0), "0 1")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="voltage_v"):
+        VoltageProfile.step("3")  # type: ignore[arg-type]

@@ -157,8 +157,15 @@ def _table(doc: dict[str, Any]) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tcarod bench`` with parsed arguments; returns the exit status."""
-    if args.repeats < 1 or args.min_time < 0 or args.batch < 0:
-        raise ValueError("--repeats must be >= 1, --min-time and --batch >= 0")
+    import math
+
+    from ._optional import require
+
+    if not (1 <= args.repeats <= 10_000 and math.isfinite(args.min_time) and 0 <= args.min_time <= 60
+            and 0 <= args.batch <= 1_000_000):
+        raise ValueError("--repeats must be in 1..10000, --min-time in [0, 60] s, --batch in 0..1000000")
+    if args.progress:
+        require("tqdm")  # one line naming the extra, before any work
     doc = measure(args.repeats, args.min_time, args.batch, not args.no_baseline, args.progress)
     print(json.dumps(doc, indent=2, allow_nan=False) if args.json else _table(doc))
     return 0

@@ -21,12 +21,15 @@ scipy is needed (``pip install 'tcarod[test]'``).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
 import numpy.typing as npt
 
+from . import _validate as V
+from ._optional import require
 from .rod import Robot, Solution
 
 __all__ = ["BruteForceResult", "brute_force_blocked_temperature", "brute_force_tip_position"]
@@ -61,6 +64,21 @@ class _Forward:
         return sol
 
 
+def _groups(robot: Robot, groups: Sequence[int] | None, default: list[int]) -> list[int]:
+    """Validated ``groups``: one non-negative int per actuator, variables numbered 0..k-1 without gaps."""
+    n = len(robot.actuators)
+    if n == 0:
+        raise ValueError("robot: has no actuators to invert for")
+    if groups is None:
+        return default
+    grp = [V.integer(f"groups[{i}]", g, 0, n - 1) for i, g in enumerate(V.sequence("groups", groups, n))]
+    if len(grp) != n:
+        raise ValueError(f"invalid groups: expected {n} values (one per actuator), got {len(grp)}")
+    if sorted(set(grp)) != list(range(max(grp) + 1)):
+        raise ValueError(f"invalid groups = {grp}: variables must be numbered 0..k-1 without gaps")
+    return grp
+
+
 def _inputs(groups: Sequence[int], z: Sequence[float]) -> list[float]:
     return [float(z[g]) for g in groups]
 
@@ -79,14 +97,23 @@ def brute_force_blocked_temperature(
     ``-force * normal`` [N], lies on the plane through ``point`` [m] with unit
     ``normal``: bounded Brent minimisation of the gap [m] over the
     temperature range, to ``xatol`` [C]."""
-    from scipy.optimize import minimize_scalar
+    minimize_scalar = require("scipy.optimize").minimize_scalar
 
-    grp = list(groups) if groups is not None else [0] * len(robot.actuators)
-    n = np.asarray(normal, dtype=np.float64)
-    n = n / np.linalg.norm(n)
-    p0 = np.asarray(point, dtype=np.float64)
+    V.instance("robot", robot, Robot, "a tcarod.Robot")
+    grp = _groups(robot, groups, [0] * len(robot.actuators))
+    if max(grp) != 0:
+        raise ValueError(f"invalid groups = {grp}: the blocked temperature has one variable (all groups 0)")
+    n = np.asarray(V.vector("normal", normal, 3), dtype=np.float64)
+    norm = float(np.linalg.norm(n))
+    if not (math.isfinite(norm) and norm > 0.0):
+        raise ValueError(f"invalid normal = {n.tolist()}: need a non-zero, finite vector")
+    n = n / norm
+    p0 = np.asarray(V.vector("point", point, 3, "m"), dtype=np.float64)
+    force = V.real("force", force, unit="N")
+    xatol = V.positive("xatol", xatol, "C")
+    steps = V.integer("steps", steps, 1, 100_000)
     body = robot.body
-    tip = np.asarray(body.tip_force, dtype=np.float64) - float(force) * n
+    tip = np.asarray(body.tip_force, dtype=np.float64) - force * n
     loaded = Robot(body.replace(tip_force=[float(x) for x in tip]), robot.actuators)
     lo, hi = robot.actuators[0].input_bounds
     fwd = _Forward(loaded, steps)
@@ -127,12 +154,20 @@ def brute_force_tip_position(
     range, plus a penalty of 1 mm per C outside it (scipy's bounded
     Nelder-Mead clips the simplex itself, which collapses it on a bound and
     stalls, e.g. when starting at ambient temperature)."""
-    from scipy.optimize import minimize
+    minimize = require("scipy.optimize").minimize
 
-    grp = list(groups) if groups is not None else list(range(len(robot.actuators)))
+    V.instance("robot", robot, Robot, "a tcarod.Robot")
+    grp = _groups(robot, groups, list(range(len(robot.actuators))))
     nz = max(grp) + 1
     refs = robot.reference_inputs
-    x0 = np.asarray(start if start is not None else [refs[grp.index(k)] for k in range(nz)], dtype=np.float64)
+    x0 = np.asarray(V.vector("start", start, nz) if start is not None else [refs[grp.index(k)] for k in range(nz)],
+                    dtype=np.float64)
+    target = V.vector("target", target, 3, "m")
+    xatol = V.positive("xatol", xatol, "C")
+    fatol = V.positive("fatol", fatol, "m")
+    simplex_size_c = V.positive("simplex_size_c", simplex_size_c, "C")
+    max_solves = V.integer("max_solves", max_solves, 1, 100_000)
+    steps = V.integer("steps", steps, 1, 100_000)
     bounds = [robot.actuators[grp.index(k)].input_bounds for k in range(nz)]
     lo = np.array([b[0] for b in bounds])
     hi = np.array([b[1] for b in bounds])

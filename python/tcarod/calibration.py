@@ -43,6 +43,8 @@ from typing import Any, Final, Sequence
 import numpy as np
 import numpy.typing as npt
 
+from . import _validate as V
+from ._optional import require
 from .tca import Material, Tca
 
 __all__ = ["PARAMETERS", "CalibrationResult", "TcaExperiment", "calibrate"]
@@ -72,6 +74,16 @@ class TcaExperiment:
     load_share: float = 1.0
     gravity_m_per_s2: float = 9.81
     chirality: str = "extension"
+
+    def __post_init__(self) -> None:
+        for name, unit in (("fibre_length_m", "m"), ("coiled_length_m", "m"), ("coil_diameter_m", "m"),
+                           ("turns", ""), ("load_share", ""), ("gravity_m_per_s2", "m/s^2")):
+            object.__setattr__(self, name, V.positive(name, getattr(self, name), unit))
+        object.__setattr__(self, "mass_kg", V.real("mass_kg", self.mass_kg, lo=0.0, unit="kg"))
+        if not isinstance(self.chirality, str):
+            raise TypeError(f"chirality must be a str, not {type(self.chirality).__name__}")
+        if self.chirality not in ("extension", "contraction"):
+            raise ValueError(f"invalid chirality = {self.chirality!r}: need 'extension' or 'contraction'")
 
     def material(self, base: Material, youngs_modulus_slope_pa_per_c: float, expansion_scale: float) -> Material:
         """``base`` with its modulus slope replaced and its expansion scaled."""
@@ -146,17 +158,22 @@ def calibrate(
     Needs scipy (``pip install scipy``). Raises ``ValueError`` on unknown
     names, mismatched data or fewer points than parameters + 1.
     """
-    from scipy import optimize, stats  # optional dependency: only calibration needs it
+    optimize = require("scipy.optimize")  # optional dependency: only calibration needs it
+    stats = require("scipy.stats")
 
-    mat = Material.silver_coated_nylon() if base is None else base
+    mat = Material.silver_coated_nylon() if base is None else V.instance("base", base, Material, "a tcarod.Material")
+    confidence = V.real("confidence", confidence, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
     if isinstance(experiment, TcaExperiment):
         exps: list[TcaExperiment] = [experiment]
-        ts = [np.asarray(temperatures_c, dtype=np.float64)]
-        ys = [np.asarray(displacements_m, dtype=np.float64)]
+        ts = [V.real_array("temperatures_c", temperatures_c, max_size=100_000, unit="C")]
+        ys = [V.real_array("displacements_m", displacements_m, max_size=100_000, unit="m")]
     else:
-        exps = list(experiment)
-        ts = [np.asarray(x, dtype=np.float64) for x in temperatures_c]
-        ys = [np.asarray(x, dtype=np.float64) for x in displacements_m]
+        exps = [V.instance("experiment", e, TcaExperiment, "a TcaExperiment or a sequence of them")
+                for e in V.sequence("experiment", experiment, 1000)]
+        ts = [V.real_array(f"temperatures_c[{k}]", x, max_size=100_000, unit="C")
+              for k, x in enumerate(V.sequence("temperatures_c", temperatures_c, 1000))]
+        ys = [V.real_array(f"displacements_m[{k}]", x, max_size=100_000, unit="m")
+              for k, x in enumerate(V.sequence("displacements_m", displacements_m, 1000))]
         if not (len(exps) == len(ts) == len(ys)) or not exps:
             raise ValueError(f"give one temperature and one displacement array per experiment ({len(exps)})")
     for k, (tk, yk) in enumerate(zip(ts, ys)):
@@ -164,7 +181,12 @@ def calibrate(
             raise ValueError(f"experiment {k}: temperatures_c {tk.shape} and displacements_m {yk.shape} must be 1-D of one length")
     t = np.concatenate(ts)
     y = np.concatenate(ys)
-    names = tuple(fit)
+    names = tuple(V.sequence("fit", fit, len(PARAMETERS) + 1))
+    for n in names:
+        if not isinstance(n, str):
+            raise TypeError(f"fit must name parameters (str), not {type(n).__name__}")
+    if len(set(names)) != len(names):
+        raise ValueError(f"fit: repeated parameter names in {list(names)}")
     unknown = [n for n in names if n not in PARAMETERS]
     if unknown or not names:
         raise ValueError(f"fit: unknown parameter(s) {unknown}; choose from {list(PARAMETERS)}")
@@ -177,7 +199,12 @@ def calibrate(
         "friction_mass_kg": 0.0,
         "friction_ratio": 0.0,
     }
-    values.update(initial or {})
+    if initial is not None and not isinstance(initial, dict):
+        raise TypeError(f"initial must be a dict of parameter values, not {type(initial).__name__}")
+    for key, v in (initial or {}).items():
+        if key not in PARAMETERS:
+            raise ValueError(f"initial: unknown parameter {key!r}; choose from {list(PARAMETERS)}")
+        values[key] = V.real(f"initial[{key!r}]", v)
     scale = np.array([PARAMETERS[n] for n in names])
     x0 = np.array([values[n] for n in names]) / scale
 
@@ -206,6 +233,11 @@ def calibrate(
     se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     est = np.asarray(sol.x, dtype=np.float64) * scale
     q = float(stats.t.ppf(0.5 + 0.5 * confidence, dof))
+    if not (np.all(np.isfinite(est)) and np.all(np.isfinite(cov)) and math.isfinite(s2) and math.isfinite(q)):
+        raise ValueError(
+            "calibrate: the data do not determine the parameters (non-finite estimate or covariance); "
+            "check temperatures_c [C] and displacements_m [m], or fit fewer parameters"
+        )
     return CalibrationResult(
         names=names,
         estimate=est,

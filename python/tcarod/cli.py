@@ -1,5 +1,5 @@
 """Command line: ``tcarod reproduce [NAME ...] [--out DIR] [--json]`` and
-``tcarod solve DESIGN.toml [--temperature T [T ...]] [--out DIR] [--json]``.
+``tcarod solve DESIGN.toml [DESIGN.toml ...] [--temperature T [T ...]] [--out DIR] [--json]``.
 
 ``tcarod reproduce fig5`` prints the predicted table of the paper's Fig. 5 and
 writes ``DIR/fig5.png`` (default ``DIR`` = ``tcarod-output``). Without a name,
@@ -15,21 +15,29 @@ whose keys carry their units (``temperature_c`` in C, ``displacement_m`` in m,
 exist (e.g. ``onset_temperature_c`` with no onset in range, ``published_data``
 when the paper prints none).
 
+``tcarod solve`` with several designs solves each in turn; with ``--json``
+it prints ``{"tcarod_version": ..., "designs": [<one document per design>]}``
+(one design: that design's document, as before).
+
 Exit status: 0 on success; 2 on bad arguments, on a ``ValueError`` or
-``tcarod.ConvergenceError`` from the model, or if an output cannot be written
-(one line on stderr, no traceback).
+``tcarod.ConvergenceError`` from the model, if an output cannot be written, or
+if an optional package is missing (one line on stderr naming the extra to
+install, no traceback). A closed output pipe (``tcarod ... --json | head``)
+ends the command quietly with status 1, as other Unix tools do.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from pathlib import Path
 from typing import Any, Sequence
 
 from . import __version__
 from ._core import ConvergenceError
+from ._optional import MissingDependencyError, require
 from .experiments import REGISTRY, ExperimentResult
 
 __all__ = ["main"]
@@ -85,7 +93,7 @@ def _add_solve_parser(sub: Any) -> None:
         "given temperatures [C] (one per actuator, or one for all; default: the file's "
         "temperatures_c), print the tip pose and write DIR/<design name>.png.",
     )
-    sol.add_argument("design", metavar="DESIGN.toml", help="robot design file")
+    sol.add_argument("designs", nargs="+", metavar="DESIGN.toml", help="robot design file(s)")
     sol.add_argument("--temperature", "-T", nargs="+", type=float, metavar="T",
                      help="temperature [C] of each actuator, or one for all")
     sol.add_argument("--out", metavar="DIR", default=DEFAULT_OUT_DIR,
@@ -94,7 +102,17 @@ def _add_solve_parser(sub: Any) -> None:
                      help="print one JSON document (tip position in m, rotation, tensions in N)")
 
 
-def _solve_design(design_path: str, temperatures: Sequence[float] | None, out_dir: Path, as_json: bool) -> int:
+def _solve_designs(paths: Sequence[str], temperatures: Sequence[float] | None, out_dir: Path, as_json: bool) -> int:
+    """Solve each design in turn; one JSON document (a list if several)."""
+    require("matplotlib")  # the PNG needs the plot extra: say so before any work
+    docs = [_solve_design(p, temperatures, out_dir, as_json, emit=not as_json or len(paths) == 1) for p in paths]
+    if as_json and len(paths) > 1:
+        print(json.dumps({"tcarod_version": __version__, "designs": docs}, indent=2, allow_nan=False))
+    return 0
+
+
+def _solve_design(design_path: str, temperatures: Sequence[float] | None, out_dir: Path, as_json: bool,
+                  emit: bool = True) -> dict[str, Any]:
     from .design import load_design
 
     design = load_design(design_path)
@@ -108,6 +126,8 @@ def _solve_design(design_path: str, temperatures: Sequence[float] | None, out_di
         temps = [float(temperatures[0])] * n
     elif len(temperatures) == n:
         temps = [float(t) for t in temperatures]
+    elif n == 0:
+        raise ValueError(f"--temperature: {design_path} has no actuators; give no temperatures")
     else:
         raise ValueError(f"--temperature: expected 1 or {n} values (one per actuator), got {len(temperatures)}")
     solution = design.solve(temps)
@@ -122,8 +142,7 @@ def _solve_design(design_path: str, temperatures: Sequence[float] | None, out_di
     plotting.save_png(fig, png)
     tip = [float(x) for x in solution.tip_position]
     rot = [[float(x) for x in row] for row in solution.tip_rotation]
-    if as_json:
-        doc = {
+    doc: dict[str, Any] = {
             "tcarod_version": __version__,
             "design": str(design_path),
             "temperature_c": temps,
@@ -133,7 +152,9 @@ def _solve_design(design_path: str, temperatures: Sequence[float] | None, out_di
             "iterations": int(solution.iterations),
             "png_path": str(png),
         }
-        print(json.dumps(doc, indent=2, allow_nan=False))
+    if as_json:
+        if emit:
+            print(json.dumps(doc, indent=2, allow_nan=False))
     else:
         print(f"design: {design_path} ({n} actuators)")
         print("temperatures [C]: " + ", ".join(f"{t:g}" for t in temps))
@@ -141,10 +162,11 @@ def _solve_design(design_path: str, temperatures: Sequence[float] | None, out_di
         print("tip tangent [-]:   " + ", ".join(f"{row[2]:.6f}" for row in rot))
         print("tensions [mN]:     " + ", ".join(f"{float(x) * 1e3:.3f}" for x in solution.tensions))
         print(f"wrote {png}")
-    return 0
+    return doc
 
 
 def _reproduce(names: Sequence[str], out_dir: Path, as_json: bool) -> int:
+    require("matplotlib")  # every experiment writes a PNG
     results: dict[str, tuple[ExperimentResult, Path]] = {}
     for name in names or sorted(REGISTRY):
         result = REGISTRY[name]()
@@ -168,7 +190,28 @@ def _reproduce(names: Sequence[str], out_dir: Path, as_json: bool) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; return the exit status (0 ok, 2 error)."""
+    """Run the command line; return the exit status (0 ok, 2 error, 1 closed pipe)."""
+    try:
+        status = _main(argv)
+        sys.stdout.flush()  # a closed pipe shows here, inside the handler
+        return status
+    except BrokenPipeError:
+        _silence_stdout()
+        return 1
+
+
+def _silence_stdout() -> None:
+    """After a closed pipe: point stdout at /dev/null so the interpreter's
+    final flush does not print a BrokenPipeError (Python docs, signal notes)."""
+    try:
+        if sys.stdout is sys.__stdout__ and sys.stdout is not None:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):  # no real file descriptor: nothing to silence
+        pass
+
+
+def _main(argv: Sequence[str] | None) -> int:
     parser = _parser()
     args = parser.parse_args(argv)  # exits 2 on bad arguments
     if args.command == "reproduce":
@@ -182,11 +225,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command == "reproduce":
             return _reproduce(args.names, Path(args.out), args.json)
         if args.command == "solve":
-            return _solve_design(args.design, args.temperature, Path(args.out), args.json)
+            return _solve_designs(args.designs, args.temperature, Path(args.out), args.json)
         if args.command == "bench":
             from .bench import run as _run_bench
 
             return _run_bench(args)
+    except MissingDependencyError as exc:
+        print(f"tcarod: error: {exc}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:
+        raise
     except (ValueError, ConvergenceError, OSError) as exc:
         message = " ".join(str(exc).split())  # one line
         print(f"tcarod: error: {type(exc).__name__}: {message}", file=sys.stderr)

@@ -162,12 +162,15 @@ def _outline_angles(section: Section) -> list[float]:
     return [k * math.pi / 4.0 for k in range(8)]
 
 
+_DEFAULT_VIEW = (15.0, -60.0)
+
+
 def plot_solution(
     solution: Solution,
     ax: Axes3D | None = None,
     *,
     rings: int = 5,
-    view: tuple[float, float] = (15.0, -60.0),
+    view: tuple[float, float] = _DEFAULT_VIEW,
     title: str | None = None,
 ) -> Figure:
     """3-D plot of a forward solution (axes in mm): the centre line (dashed),
@@ -179,14 +182,36 @@ def plot_solution(
     ``ax``: an existing 3-D axes (``projection="3d"``) to draw into; by
     default a new Agg ``Figure`` is made. ``view`` is ``(elevation, azimuth)``
     [deg]. Returns the ``Figure`` (``ax.figure`` if ``ax`` was given).
+
+    Overlays: calling it again with the same ``ax`` adds the shape and keeps
+    what is there: the limits grow to hold every shape drawn by this function
+    on that axes (a cube, equal aspect), the legend lists each label once
+    ("centre line", "body outline" and each actuator), an existing title is
+    kept unless ``title`` is given, and the view is set only on the first call
+    (or when ``view`` is given explicitly).
     """
+    from . import _validate as V
+    from .rod import Solution as _Solution
+
+    V.instance("solution", solution, _Solution, "a tcarod.Solution")
+    rings = V.integer("rings", rings, 0, 1000)
+    if title is not None and not isinstance(title, str):
+        raise TypeError(f"title must be a str, not {type(title).__name__}")
+    view_given = view is not _DEFAULT_VIEW
+    view = (V.real("view[0] (elevation)", view[0], unit="deg"), V.real("view[1] (azimuth)", view[1], unit="deg"))
+    first = True
     if ax is None:
         fig = Figure(figsize=(5.0, 5.0), layout="constrained")
         FigureCanvasAgg(fig)
         ax = fig.add_subplot(projection="3d")
+    else:
+        if not hasattr(ax, "set_zlim"):
+            raise TypeError(f"ax must be a 3-D matplotlib axes (projection='3d'), not {type(ax).__name__}")
+        first = getattr(ax, "_tcarod_bounds", None) is None
     figure = ax.get_figure()
     if not isinstance(figure, Figure):
         raise ValueError("ax: must belong to a matplotlib Figure")
+    had_title = bool(ax.get_title())
     mm = 1e3
     pos = solution.positions
     rot = solution.rotations
@@ -218,9 +243,13 @@ def plot_solution(
         points.append(p)
         ax.plot(p[:, 0], p[:, 1], p[:, 2], color=colours[k % len(colours)], linewidth=2.0,
                 label=f"actuator {k}: {tension * 1e3:.1f} mN", gid=f"actuator-{k}")
-    # equal aspect: a cube around the drawn points
+    # equal aspect: a cube around the drawn points (of every overlaid shape)
     allp = np.concatenate(points)
     lo, hi = allp.min(axis=0), allp.max(axis=0)
+    previous = getattr(ax, "_tcarod_bounds", None)
+    if previous is not None:
+        lo, hi = np.minimum(lo, previous[0]), np.maximum(hi, previous[1])
+    ax._tcarod_bounds = (lo, hi)
     centre, half = 0.5 * (lo + hi), 0.5 * float(np.max(hi - lo)) * 1.05
     ax.set_xlim(centre[0] - half, centre[0] + half)
     ax.set_ylim(centre[1] - half, centre[1] + half)
@@ -229,9 +258,18 @@ def plot_solution(
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     ax.set_zlabel("z [mm]")
-    ax.view_init(elev=view[0], azim=view[1])
+    if first or view_given:
+        ax.view_init(elev=view[0], azim=view[1])
     names = [a.input_name for a in solution.robot.actuators]
     inputs = ", ".join(f"{name} {x:g}" for name, x in zip(names, solution.inputs))
-    ax.set_title(title if title is not None else (inputs or "no actuators"), fontsize="small")
-    ax.legend(fontsize="x-small", loc="upper left")
+    if title is not None:
+        ax.set_title(title, fontsize="small")
+    elif not had_title:
+        ax.set_title(inputs or "no actuators", fontsize="small")
+    # one legend entry per label, however many shapes share the axes
+    handles, labels = ax.get_legend_handles_labels()
+    unique: dict[str, object] = {}
+    for h, lab in zip(handles, labels):
+        unique.setdefault(lab, h)
+    ax.legend(list(unique.values()), list(unique.keys()), fontsize="x-small", loc="upper left")
     return figure

@@ -17,7 +17,9 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from .rod import Actuator
+from . import _core
+from . import _validate as V
+from .rod import Actuator, Routing
 from .tca import Tca
 
 __all__ = ["segment_bounds", "segmented_actuators"]
@@ -27,22 +29,29 @@ def segment_bounds(segments: int | Sequence[float], s_start: float, s_end: float
     """Consecutive ``(s_start, s_end)`` [m] of the segments over ``[s_start, s_end]``.
 
     ``segments``: a number of equal segments, or the fractions of the span
-    (positive, summing to 1), proximal first.
+    (positive, summing to 1), proximal first; at most
+    ``tcarod._validate.MAX_SEGMENTS`` (1000) segments (``ValueError`` beyond).
+    Every segment must have a positive length in floating point.
     """
-    if not (np.isfinite(s_start) and np.isfinite(s_end) and 0.0 <= s_start < s_end):
-        raise ValueError(f"invalid span [m]: need 0 <= s_start < s_end, got s_start={s_start}, s_end={s_end}")
+    s_start = V.real("s_start", s_start, lo=0.0, unit="m")
+    s_end = V.real("s_end", s_end, lo=s_start, lo_open=True, unit="m")
+    if isinstance(segments, (bool, float, np.floating)):
+        raise TypeError(f"segments must be an integer count or a sequence of fractions, not {type(segments).__name__}")
     if isinstance(segments, (int, np.integer)):
-        if segments < 1:
-            raise ValueError(f"invalid segments = {segments}: need at least 1")
-        fractions = np.full(int(segments), 1.0 / int(segments))
+        count = V.integer("segments", segments, 1, V.MAX_SEGMENTS)
+        fractions = np.full(count, 1.0 / count)
     else:
-        fractions = np.asarray(segments, dtype=np.float64)
-        if fractions.ndim != 1 or fractions.size == 0 or not np.all(np.isfinite(fractions)) or np.any(fractions <= 0.0):
-            raise ValueError(f"invalid segments = {list(segments)}: need positive fractions of the span")
+        fractions = V.real_array("segments", segments, max_size=V.MAX_SEGMENTS)
+        if fractions.ndim != 1 or fractions.size == 0 or np.any(fractions <= 0.0):
+            raise ValueError(f"invalid segments = {fractions.tolist()}: need positive fractions of the span")
         if abs(float(fractions.sum()) - 1.0) > 1e-9:
             raise ValueError(f"invalid segments = {list(segments)}: fractions sum to {fractions.sum()}, not 1")
     edges = s_start + (s_end - s_start) * np.concatenate(([0.0], np.cumsum(fractions)))
     edges[-1] = s_end  # exact distal anchor despite rounding
+    if not (np.all(np.isfinite(edges)) and np.all(np.diff(edges) > 0.0)):
+        raise ValueError(
+            f"invalid span [s_start, s_end] = [{s_start:g}, {s_end:g}] m: a segment would have zero or non-finite length"
+        )
     return [(float(a), float(b)) for a, b in zip(edges[:-1], edges[1:])]
 
 
@@ -61,6 +70,8 @@ def segmented_actuators(
     give it one temperature [C] per segment when solving. With one segment
     this is the whole TCA between the same anchors.
     """
+    V.instance("tca", tca, _core.Tca, "a tcarod.Tca")
+    V.instance("routing", routing, Routing, "a tcarod.Routing")
     bounds = segment_bounds(segments, s_start, s_end)
-    span = s_end - s_start
+    span = bounds[-1][1] - bounds[0][0]
     return [Actuator.tca(tca.segment((b - a) / span) if len(bounds) > 1 else tca, routing, a, b) for a, b in bounds]

@@ -42,6 +42,7 @@ from .grasp import (
     table1_finger,
 )
 from .rod import Robot
+from . import _validate as V
 from .tca import Material
 
 __all__ = [
@@ -96,13 +97,15 @@ def perturbed_finger(scales: dict[str, float] | None = None) -> Robot:
     (``{"rho": 0.5}`` halves ``rho(25 C)``); keys from :data:`PARAMETERS`.
     Material coefficients not scaled keep their default values (``dG_T/dT``
     included)."""
+    if scales is not None and not isinstance(scales, dict):
+        raise TypeError(f"scales must be a dict {{parameter: factor}}, not {type(scales).__name__}")
     s = dict(scales or {})
     unknown = set(s) - set(_KEYS)
     if unknown:
-        raise ValueError(f"unknown parameter(s) {sorted(unknown)}; choose from {list(_KEYS)}")
-    for k, v in s.items():
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"invalid scale for {k} = {v!r}: must be finite and > 0")
+        raise ValueError(f"unknown parameter(s) {sorted(map(repr, unknown))}; choose from {list(_KEYS)}")
+    for k in list(s):
+        # scale factors within 1e-3..1e3: beyond that the finger is no longer a finger
+        s[k] = V.real(f"scales[{k!r}]", s[k], lo=1e-3, hi=1e3)
     e, de, g, dg, rho, drho = _C0
     base = Material.silver_coated_nylon()
     material = Material(
@@ -140,7 +143,8 @@ def table1_grip_temperatures(
     finger with ``scales`` applied (see :func:`perturbed_finger`). Raises
     ``ValueError`` if a mass needs a temperature above the material's range."""
     finger = perturbed_finger(scales)
-    return tuple(_grip(finger, m) for m in masses_kg)
+    masses = V.real_array("masses_kg", masses_kg, ndim=1, max_size=100, unit="kg")
+    return tuple(_grip(finger, float(m)) for m in masses)
 
 
 @dataclass(frozen=True)
@@ -191,8 +195,7 @@ def table1_sensitivity(
 ) -> tuple[Sensitivity, ...]:
     """Every parameter of :data:`PARAMETERS` scaled by ``1 -+ step``; sorted
     by :attr:`Sensitivity.mean_abs_elasticity`, largest first."""
-    if not (0.0 < step < 0.5):
-        raise ValueError(f"invalid step = {step!r}: must be in (0, 0.5)")
+    step = V.real("step", step, lo=0.0, hi=0.5, lo_open=True, hi_open=True)
     base = table1_grip_temperatures(None, masses_kg)
     out = []
     for p in PARAMETERS:

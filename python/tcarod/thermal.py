@@ -38,6 +38,7 @@ raises ``ValueError``; a transient that exceeds it is reported
 from __future__ import annotations
 
 import math
+import numbers
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,6 +46,8 @@ from typing import Any, Callable, Final, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
+
+from . import _validate as V
 
 __all__ = [
     "DENSITY_KG_PER_M3",
@@ -91,14 +94,14 @@ class LinearResistance:
     strain_coefficient: float = 0.0
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.r0_ohm) and self.r0_ohm > 0.0):
-            raise ValueError(f"invalid r0_ohm = {self.r0_ohm}: need a finite resistance > 0 ohm")
+        object.__setattr__(self, "r0_ohm", V.positive("r0_ohm", self.r0_ohm, "ohm"))
         for name in ("alpha_per_c", "t_ref_c", "strain_coefficient"):
-            if not math.isfinite(getattr(self, name)):
-                raise ValueError(f"invalid {name} = {getattr(self, name)}: need a finite number")
+            object.__setattr__(self, name, V.real(name, getattr(self, name)))
 
     def __call__(self, temperature_c: float, strain: float = 0.0) -> float:
-        return self.r0_ohm * (1.0 + self.alpha_per_c * (temperature_c - self.t_ref_c) + self.strain_coefficient * strain)
+        t = V.real("temperature_c", temperature_c, unit="C")
+        e = V.real("strain", strain)
+        return self.r0_ohm * (1.0 + self.alpha_per_c * (t - self.t_ref_c) + self.strain_coefficient * e)
 
     @property
     def is_constant(self) -> bool:
@@ -118,24 +121,29 @@ class VoltageProfile:
     voltages_v: tuple[float, ...]
 
     def __post_init__(self) -> None:
-        t = np.asarray(self.times_s, dtype=np.float64)
-        v = np.asarray(self.voltages_v, dtype=np.float64)
-        if t.ndim != 1 or t.size == 0 or t.shape != v.shape:
-            raise ValueError("times_s and voltages_v must be non-empty sequences of the same length")
-        if not (np.all(np.isfinite(t)) and np.all(np.isfinite(v))):
-            raise ValueError("times_s [s] and voltages_v [V] must be finite")
+        t = V.real_array("times_s", self.times_s, ndim=1, max_size=V.MAX_PROFILE_KNOTS, unit="s")
+        v = V.real_array("voltages_v", self.voltages_v, ndim=1, max_size=V.MAX_PROFILE_KNOTS, unit="V")
+        if t.size == 0 or t.shape != v.shape:
+            raise ValueError(
+                f"times_s and voltages_v must be non-empty sequences of the same length, got {t.size} and {v.size}"
+            )
         if np.any(np.diff(t) <= 0.0):
-            raise ValueError(f"times_s [s] must increase strictly, got {list(self.times_s)}")
+            raise ValueError(f"times_s [s] must increase strictly, got {list(self.times_s)[:10]}")
+        object.__setattr__(self, "times_s", tuple(float(x) for x in t))
+        object.__setattr__(self, "voltages_v", tuple(float(x) for x in v))
 
     @classmethod
     def step(cls, voltage_v: float, at_s: float = 0.0) -> VoltageProfile:
         """0 V until ``at_s`` [s], then ``voltage_v`` [V] (from t = 0 if ``at_s`` = 0)."""
-        if at_s == 0.0:
-            return cls((0.0,), (float(voltage_v),))
-        return cls((0.0, float(at_s)), (0.0, float(voltage_v)))
+        v = V.real("voltage_v", voltage_v, unit="V")
+        at = V.real("at_s", at_s, lo=0.0, unit="s")
+        if at == 0.0:
+            return cls((0.0,), (v,))
+        return cls((0.0, at), (0.0, v))
 
     def __call__(self, t_s: float) -> float:
-        k = int(np.searchsorted(np.asarray(self.times_s), t_s, side="right")) - 1
+        t = V.real("t_s", t_s, unit="s")
+        k = int(np.searchsorted(np.asarray(self.times_s), t, side="right")) - 1
         return float(self.voltages_v[max(k, 0)])
 
 
@@ -180,20 +188,28 @@ class ThermalModel:
 
     def __post_init__(self) -> None:
         for name in ("fibre_length_m", "thread_radius_m", "density_kg_per_m3", "specific_heat_j_per_kgk", "heat_transfer_w_per_m2k"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0.0):
-                raise ValueError(f"invalid {name} = {v!r}: need a finite number > 0")
-        if not (isinstance(self.threads, int) and self.threads >= 1):
-            raise ValueError(f"invalid threads = {self.threads!r}: need an integer >= 1")
-        if not (math.isfinite(self.ambient_c) and math.isfinite(self.t_max_c) and self.t_max_c > self.ambient_c):
-            raise ValueError(f"invalid ambient_c = {self.ambient_c}, t_max_c = {self.t_max_c}: need ambient < t_max")
-        r = self.resistance
+            object.__setattr__(self, name, V.positive(name, getattr(self, name)))
+        object.__setattr__(self, "threads", V.integer("threads", self.threads, 1, 10_000))
+        amb = V.real("ambient_c", self.ambient_c, lo=-273.15, unit="C")
+        tmax = V.real("t_max_c", self.t_max_c, lo=amb, lo_open=True, unit="C")
+        object.__setattr__(self, "ambient_c", amb)
+        object.__setattr__(self, "t_max_c", tmax)
+        # derived quantities must be usable numbers (tiny or huge coefficients underflow/overflow)
+        for name in ("heat_capacity_j_per_k", "conductance_w_per_k", "time_constant_s"):
+            x = getattr(self, name)
+            if not (math.isfinite(x) and x > 0.0):
+                raise ValueError(
+                    f"invalid thermal coefficients: {name} = {x:g} is not a finite number > 0 "
+                    "(fibre_length_m, thread_radius_m, density_kg_per_m3, specific_heat_j_per_kgk, "
+                    "heat_transfer_w_per_m2k out of any physical range)"
+                )
+        r: Any = self.resistance
         if r is None:
-            raise ValueError("resistance [ohm] is required: give an ohm value, a LinearResistance or a callable R(T, strain)")
-        if isinstance(r, (int, float)):
-            if not (math.isfinite(r) and r > 0.0):
-                raise ValueError(f"invalid resistance = {r} ohm: need a finite value > 0")
-            const = float(r)
+            raise TypeError("resistance [ohm] is required: give an ohm value, a LinearResistance or a callable R(T, strain)")
+        if isinstance(r, bool):
+            raise TypeError("resistance must be a number [ohm], a LinearResistance or a callable, not bool")
+        if isinstance(r, (numbers.Real, np.number)):
+            const = V.positive("resistance", r, "ohm")
             fn: Callable[[float, float], float] = lambda t, e: const  # noqa: E731
         elif callable(r):
             fn = r
@@ -225,37 +241,53 @@ class ThermalModel:
     @property
     def time_constant_s(self) -> float:
         """``m c_p / (h A)`` [s] (with constant resistance the response is ``1 - exp(-t/tau)``)."""
-        return self.heat_capacity_j_per_k / self.conductance_w_per_k
+        ha = self.conductance_w_per_k
+        return self.heat_capacity_j_per_k / ha if ha > 0.0 else math.inf
 
     @property
     def constant_resistance(self) -> bool:
         """True if the resistance depends on neither temperature nor strain."""
-        r = self.resistance
-        return isinstance(r, (int, float)) or (isinstance(r, LinearResistance) and r.is_constant)
+        r: Any = self.resistance
+        return (isinstance(r, (numbers.Real, np.number)) and not callable(r)) or (
+            isinstance(r, LinearResistance) and r.is_constant
+        )
 
     def resistance_ohm(self, temperature_c: float, strain: float = 0.0) -> float:
         """Resistance [ohm] at ``temperature_c`` [C] and ``strain`` [-]; ``ValueError`` if not > 0."""
-        r = float(self._r(temperature_c, strain))
+        t = V.real("temperature_c", temperature_c, unit="C")
+        e = V.real("strain", strain)
+        value = self._r(t, e)
+        try:
+            r = V.real("resistance", value, unit="ohm")
+        except ValueError:
+            r = math.nan
         if not (math.isfinite(r) and r > 0.0):
-            raise ValueError(f"resistance = {r} ohm at {temperature_c} C, strain {strain}: need a finite value > 0")
+            raise ValueError(f"resistance = {value!r} ohm at {t} C, strain {e}: need a finite value > 0")
         return r
 
     def power_w(self, voltage_v: float, temperature_c: float, strain: float = 0.0) -> float:
-        """Joule power ``V^2 / R`` [W]."""
-        return voltage_v * voltage_v / self.resistance_ohm(temperature_c, strain)
+        """Joule power ``V^2 / R`` [W]; ``ValueError`` if it overflows."""
+        v = V.real("voltage_v", voltage_v, unit="V")
+        p = v * v / self.resistance_ohm(temperature_c, strain)
+        if not math.isfinite(p):
+            raise ValueError(f"invalid voltage_v = {v:g} V: the Joule power V^2/R overflows")
+        return p
 
     def rate_c_per_s(self, voltage_v: float, temperature_c: float, strain: float = 0.0) -> float:
         """``dT/dt`` [C/s] of the model."""
-        q = self.power_w(voltage_v, temperature_c, strain) - self.conductance_w_per_k * (temperature_c - self.ambient_c)
-        return q / self.heat_capacity_j_per_k
+        t = V.real("temperature_c", temperature_c, unit="C")
+        q = self.power_w(voltage_v, t, strain) - self.conductance_w_per_k * (t - self.ambient_c)
+        rate = q / self.heat_capacity_j_per_k
+        if not math.isfinite(rate):
+            raise ValueError(f"dT/dt overflows at voltage_v = {voltage_v} V, temperature_c = {t:g} C")
+        return rate
 
     # -- steady state ----------------------------------------------------------
     def steady_temperature(self, voltage_v: float, strain: float = 0.0) -> float:
         """Steady temperature [C] under ``voltage_v`` [V]: ``T_amb + V^2 / (R h A)``
         (solved for ``T`` if ``R`` depends on it). ``ValueError`` above ``t_max_c``."""
-        v = float(voltage_v)
-        if not math.isfinite(v):
-            raise ValueError(f"invalid voltage = {voltage_v} V")
+        v = V.real("voltage_v", voltage_v, unit="V")
+        strain = V.real("strain", strain)
         ha = self.conductance_w_per_k
 
         def g(t: float) -> float:
@@ -276,7 +308,7 @@ class ThermalModel:
                     else:
                         hi = mid
                 t = 0.5 * (lo + hi)
-        if t > self.t_max_c:
+        if not t <= self.t_max_c:  # also NaN / inf from an overflowing V^2
             raise ValueError(
                 f"voltage {v:g} V gives a steady temperature above t_max = {self.t_max_c:g} C"
                 + ("" if math.isinf(t) else f" ({t:.1f} C)")
@@ -286,13 +318,16 @@ class ThermalModel:
     def steady_voltage(self, temperature_c: float, strain: float = 0.0) -> float:
         """Voltage [V] that holds ``temperature_c`` [C] in steady state:
         ``sqrt((T - T_amb) h A R(T))``. ``ValueError`` outside ``[T_amb, t_max]``."""
-        t = float(temperature_c)
-        if not (math.isfinite(t) and self.ambient_c <= t <= self.t_max_c):
+        t = V.real("temperature_c", temperature_c, unit="C")
+        if not self.ambient_c <= t <= self.t_max_c:
             raise ValueError(
-                f"invalid temperature = {temperature_c} C: a steady state needs "
+                f"invalid temperature_c = {t:g} C: a steady state needs "
                 f"ambient {self.ambient_c:g} <= T <= t_max {self.t_max_c:g} C"
             )
-        return math.sqrt((t - self.ambient_c) * self.conductance_w_per_k * self.resistance_ohm(t, strain))
+        v = math.sqrt((t - self.ambient_c) * self.conductance_w_per_k * self.resistance_ohm(t, strain))
+        if not math.isfinite(v):
+            raise ValueError(f"the steady voltage for temperature_c = {t:g} C overflows")
+        return v
 
     # -- transient ---------------------------------------------------------------
     def transient(
@@ -306,13 +341,24 @@ class ThermalModel:
         """Temperature [C] at ``times_s`` [s] (increasing, from ``profile.times_s[0]``)
         starting from ``initial_c`` (default ambient). Exact exponentials for a
         constant resistance; otherwise RK4 with steps of at most ``max_step_s``
-        (default ``tau / 200``), restarted at every voltage switch."""
-        t_out = np.asarray(times_s, dtype=np.float64)
-        if t_out.ndim != 1 or t_out.size == 0 or np.any(np.diff(t_out) < 0.0) or t_out[0] < profile.times_s[0]:
+        (default ``tau / 200``), restarted at every voltage switch.
+
+        Bounded work: at most ``MAX_OUTPUT_POINTS`` output times and
+        ``MAX_RK4_STEPS`` RK4 steps (``ValueError`` beyond, naming the
+        limit); ``initial_c`` within [-273.15, 1e6] C."""
+        V.instance("profile", profile, VoltageProfile, "a VoltageProfile")
+        t_out = V.real_array("times_s", times_s, ndim=1, unit="s")
+        if t_out.size == 0 or np.any(np.diff(t_out) < 0.0) or t_out[0] < profile.times_s[0]:
             raise ValueError("times_s [s] must be a non-empty increasing sequence starting at or after the profile's start")
         t0 = float(profile.times_s[0])
-        temp0 = self.ambient_c if initial_c is None else float(initial_c)
+        temp0 = self.ambient_c if initial_c is None else V.real("initial_c", initial_c, lo=-273.15, hi=1e6, unit="C")
+        strain = V.real("strain", strain)
+        if max_step_s is not None:
+            max_step_s = V.positive("max_step_s", max_step_s, "s")
         tau = self.time_constant_s
+        # span of the integration: ranges beyond the double's resolution are refused, not looped over
+        if not math.isfinite(float(t_out[-1]) - t0):
+            raise ValueError("times_s [s]: the span from the profile's start overflows")
         # integration knots: voltage switches, plus the output times
         switches = [s for s in profile.times_s if t0 < s < t_out[-1]]
         out = np.empty_like(t_out)
@@ -336,6 +382,13 @@ class ThermalModel:
             method = "numeric (RK4)"
             h_max = tau / 200.0 if max_step_s is None else float(max_step_s)
             events = sorted({t0, *switches, *map(float, t_out)})
+            # counted in floating point: (b - a) / h_max may overflow to inf
+            total = sum(max(1.0, (b - a) / h_max) for a, b in zip(events[:-1], events[1:]))
+            if not total <= V.MAX_RK4_STEPS:
+                raise ValueError(
+                    f"times_s / max_step_s: {total:.3g} RK4 steps needed, at most {V.MAX_RK4_STEPS} allowed "
+                    "(shorten the time span or raise max_step_s)"
+                )
             state = temp0
             values = {t0: temp0}
             for a, b in zip(events[:-1], events[1:]):
@@ -350,6 +403,8 @@ class ThermalModel:
                     state += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
                 values[b] = state
             out = np.array([values[float(t)] for t in t_out])
+        if not np.all(np.isfinite(out)):
+            raise ValueError("the temperature overflows: voltages_v or initial_c far outside any physical range")
         volts = np.array([profile(float(t)) for t in t_out])
         power = np.array([self.power_w(v, float(tc), strain) for v, tc in zip(volts, out)])
         return TemperatureTrajectory(t_out, out, volts, power, self.t_max_c, method)
@@ -362,6 +417,8 @@ class ThermalModel:
 
 def steady_temperatures(models: Sequence[ThermalModel], voltages_v: Sequence[float]) -> list[float]:
     """Steady temperature [C] of each actuator under its voltage [V]."""
+    models = _models(models)
+    voltages_v = V.sequence("voltages_v", voltages_v, V.MAX_SEGMENTS)
     if len(models) != len(voltages_v):
         raise ValueError(f"voltages_v: expected {len(models)} values (one per thermal model), got {len(voltages_v)}")
     return [m.steady_temperature(v) for m, v in zip(models, voltages_v)]
@@ -370,6 +427,8 @@ def steady_temperatures(models: Sequence[ThermalModel], voltages_v: Sequence[flo
 def solve_with_voltages(robot: Any, models: Sequence[ThermalModel], voltages_v: Sequence[float], **solve_kwargs: Any) -> Any:
     """Forward solution of ``robot`` with each actuator at the steady
     temperature of its voltage [V] (one :class:`ThermalModel` per actuator)."""
+    _robot(robot)
+    models = _models(models)
     if len(models) != len(robot.actuators):
         raise ValueError(f"models: expected {len(robot.actuators)} (one per actuator), got {len(models)}")
     return robot.solve(steady_temperatures(models, voltages_v), **solve_kwargs)
@@ -407,10 +466,15 @@ def quasi_static_trajectory(
     Raises ``ValueError`` naming the time [s] at which a temperature first
     exceeds ``t_max`` (the mechanics is not defined there).
     """
+    _robot(robot)
+    models = _models(models)
+    profiles = [V.instance("profiles", p, VoltageProfile, "a sequence of VoltageProfile")
+                for p in V.sequence("profiles", profiles, V.MAX_SEGMENTS)]
+    steps = V.integer("steps", steps, 1, 100_000)
     n = len(robot.actuators)
     if len(models) != n or len(profiles) != n:
         raise ValueError(f"models and profiles: expected {n} each (one per actuator), got {len(models)} and {len(profiles)}")
-    t = np.asarray(times_s, dtype=np.float64)
+    t = V.real_array("times_s", times_s, ndim=1, max_size=10_000, unit="s")
     coupled = any(not _temperature_only(m) for m in models)
     temps = np.empty((t.size, n))
     if not coupled:
@@ -443,6 +507,17 @@ def quasi_static_trajectory(
     return ShapeTrajectory(t, temps, tips, sols)
 
 
+def _robot(robot: Any) -> Any:
+    from .rod import Robot
+
+    return V.instance("robot", robot, Robot, "a tcarod.Robot")
+
+
+def _models(models: Any) -> list[ThermalModel]:
+    return [V.instance("models", m, ThermalModel, "a sequence of ThermalModel")
+            for m in V.sequence("models", models, V.MAX_SEGMENTS)]
+
+
 def _temperature_only(m: ThermalModel) -> bool:
     r = m.resistance
     return isinstance(r, (int, float)) or (isinstance(r, LinearResistance) and r.strain_coefficient == 0.0)
@@ -470,8 +545,10 @@ def plot_step_response(model: ThermalModel, voltage_v: float, duration_s: float 
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
+    V.instance("model", model, ThermalModel, "a ThermalModel")
+    voltage_v = V.real("voltage_v", voltage_v, unit="V")
     tau = model.time_constant_s
-    dur = 5.0 * tau if duration_s is None else float(duration_s)
+    dur = 5.0 * tau if duration_s is None else V.positive("duration_s", duration_s, "s")
     t = np.linspace(0.0, dur, 400)
     traj = model.transient(VoltageProfile.step(voltage_v), t)
     fig = Figure(figsize=(5.0, 3.4), layout="constrained")
@@ -498,6 +575,7 @@ def plot_shape_trajectory(traj: ShapeTrajectory) -> Any:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
+    V.instance("traj", traj, ShapeTrajectory, "a ShapeTrajectory")
     fig = Figure(figsize=(6.0, 5.0), layout="constrained")
     FigureCanvasAgg(fig)
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
@@ -521,8 +599,8 @@ def save_trajectory_frames(traj: ShapeTrajectory, directory: str | os.PathLike[s
     temperatures [C]. Returns the paths written (``frame_0000.png``, ...)."""
     from .plotting import plot_solution, save_png
 
-    if every < 1:
-        raise ValueError(f"invalid every = {every}: need >= 1")
+    V.instance("traj", traj, ShapeTrajectory, "a ShapeTrajectory")
+    every = V.integer("every", every, 1, 2**31)
     out = Path(directory)
     tips = traj.tip_positions_m * 1e3
     lo = np.minimum(tips.min(axis=0), 0.0)

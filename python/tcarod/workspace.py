@@ -17,6 +17,7 @@ from typing import Any, Sequence
 import numpy as np
 import numpy.typing as npt
 
+from . import _validate as V
 from ._core import ConvergenceError
 
 __all__ = ["Workspace", "plot_workspace", "snake_grid", "solve_rows", "workspace_map"]
@@ -27,9 +28,17 @@ FloatArray = npt.NDArray[np.float64]
 def snake_grid(levels: Sequence[Sequence[float]]) -> FloatArray:
     """All combinations of ``levels[i]`` (one list per input), ordered so that
     consecutive rows differ in one input by one level (a boustrophedon), which
-    keeps warm starts close. Shape ``(prod(len), len(levels))``."""
+    keeps warm starts close. Shape ``(prod(len), len(levels))``; at most
+    ``MAX_GRID_POINTS`` (100,000) rows (``ValueError`` beyond)."""
+    lists = [V.real_array(f"levels[{i}]", lv, ndim=1).tolist()
+             for i, lv in enumerate(V.sequence("levels", levels, 64))]
+    total = 1
+    for lv in lists:
+        total *= len(lv)
+        if total > V.MAX_GRID_POINTS:
+            raise ValueError(f"invalid levels: more than {V.MAX_GRID_POINTS} grid points")
     rows: list[list[float]] = [[]]
-    for lv in levels:
+    for lv in lists:
         new: list[list[float]] = []
         for k, r in enumerate(rows):
             seq = list(lv) if k % 2 == 0 else list(lv)[::-1]
@@ -45,7 +54,12 @@ def solve_rows(robot: Any, inputs: FloatArray, steps: int = 100) -> list[Any | N
     :meth:`Robot.sweep` over all rows; if it raises, the rows are solved one
     at a time, warm-started from the last success.
     """
-    rows = [list(map(float, r)) for r in inputs]
+    _check_robot(robot)
+    steps = V.integer("steps", steps, 1, 100_000)
+    arr = V.real_array("inputs", inputs, ndim=2, max_size=V.MAX_GRID_POINTS * 64)
+    if arr.shape[0] > V.MAX_GRID_POINTS:
+        raise ValueError(f"invalid inputs: {arr.shape[0]} rows, at most {V.MAX_GRID_POINTS} allowed")
+    rows = [list(map(float, r)) for r in arr]
     try:
         return list(robot.sweep(rows, steps=steps))
     except (ValueError, ConvergenceError):
@@ -98,9 +112,18 @@ class Workspace:
 def workspace_map(robot: Any, grid_c: Sequence[float] | FloatArray, steps: int = 100) -> Workspace:
     """Tip positions of ``robot`` over the ``k^n`` grid of inputs, each input
     taking every value of ``grid_c`` [C for TCAs] (``n`` = number of actuators).
+
+    At most ``MAX_GRID_POINTS`` (100,000) points (``ValueError`` beyond).
     """
-    grid = np.asarray(grid_c, dtype=np.float64)
+    _check_robot(robot)
+    grid = V.real_array("grid_c", grid_c, ndim=1, unit="C")
+    if grid.size == 0:
+        raise ValueError("invalid grid_c: need at least one value [C]")
     n = len(robot.actuators)
+    if float(grid.size) ** n > V.MAX_GRID_POINTS:
+        raise ValueError(
+            f"invalid grid_c: {grid.size}^{n} grid points, at most {V.MAX_GRID_POINTS} allowed"
+        )
     inputs = snake_grid([[float(x) for x in grid]] * n)
     t0 = time.perf_counter()
     sols = solve_rows(robot, inputs, steps=steps)
@@ -114,6 +137,12 @@ def workspace_map(robot: Any, grid_c: Sequence[float] | FloatArray, steps: int =
     return Workspace(grid, inputs, tips, tangents, elapsed)
 
 
+def _check_robot(robot: Any) -> None:
+    from .rod import Robot
+
+    V.instance("robot", robot, Robot, "a tcarod.Robot")
+
+
 def plot_workspace(ws: Workspace, colour_by: str = "bending") -> Any:
     """3-D scatter of the reachable tip positions [mm], coloured by the
     bending angle [deg] (``colour_by="bending"``) or by the hottest input [C]
@@ -121,6 +150,9 @@ def plot_workspace(ws: Workspace, colour_by: str = "bending") -> Any:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
+    V.instance("ws", ws, Workspace, "a Workspace")
+    if not isinstance(colour_by, str):
+        raise TypeError(f"colour_by must be a str, not {type(colour_by).__name__}")
     ok = np.all(np.isfinite(ws.tip_positions_m), axis=1)
     p = ws.tip_positions_m[ok] * 1e3
     if colour_by == "bending":
