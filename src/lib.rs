@@ -25,6 +25,7 @@ pub mod material;
 pub mod roots;
 pub mod rod;
 pub mod shooting;
+pub mod stability;
 pub mod tca;
 
 #[cfg(feature = "python")]

@@ -1,0 +1,362 @@
+//! Elastic stability of a shooting equilibrium (beyond the paper; issue 16).
+//!
+//! # Criterion
+//!
+//! Till and Rucker ("Elastic Stability of Cosserat Rods and Parallel
+//! Continuum Robots", IEEE T-RO 2017) test an equilibrium of a rod with a
+//! fixed base and a free (natural) tip under conservative loads by Jacobi's
+//! conjugate-point condition: it is stable iff the tangent map from the base
+//! unknowns to the wrench at `s`,
+//!
+//! `Y(s) = d(n, m)(s) / d(n(0), m(0))`                                  (S1)
+//!
+//! is non-singular for every `s` in `(0, L]`: at a zero of `det Y(s)` the
+//! truncated rod `[0, s]` under the same dead loads admits a neutral
+//! perturbation. We carry the positions and rotations along too,
+//! `H(s) = d(p, theta)(s) / d(n(0), m(0))` (`delta R R^T = [theta]x`), and use
+//! the tip stiffness of the truncated rod
+//!
+//! `K(s) = Y(s) H(s)^-1`                                                (S2)
+//!
+//! (dimensionless: forces by `L^2/EI`, moments by `L/EI`, displacements by
+//! `L`). `K(0+)` is positive definite (it grows like `1/s`); an eigenvalue
+//! of `K` passes through zero exactly where `det Y` does. Testing the smallest
+//! eigenvalue of the symmetric part of `K(s)` on the nodes, instead of the
+//! sign of `det Y`, also catches the double roots of symmetric sections
+//! (a round column buckles in two planes at once and `det Y` touches zero
+//! without changing sign).
+//!
+//! # Extensions
+//!
+//! * Strings with a fixed tension (constant-tension tendons) add the
+//!   string-length integrand `tau |p_i'|` to a local Lagrangian: (S1)-(S2)
+//!   hold with the total wrench (body plus the strings crossing `s`). The
+//!   tangent is taken with the tensions frozen.
+//! * Tensions that depend on strain (TCA law, coil contact, linear tendon)
+//!   add `sum_i k_i (d Lambda_i)^2 >= 0` to the second variation, with
+//!   `k_i = d tau_i / d delta_i` and `Lambda_i` the actuator length, a
+//!   non-local term. The Morse index of the second variation is then the
+//!   number of Dirichlet conjugate points of the frozen-tension problem
+//!   (zeros of `det H(s)` in `(0, L)`; none for a stable rod) plus the number
+//!   of negative eigenvalues of the full tip stiffness
+//!
+//!   `K_full = Y_z Z (H_z Z)^-1`                                        (S3)
+//!
+//!   where `z = (v(0), u(0), delta_i)` are all shooting unknowns and the
+//!   columns of `Z` span the `z` that keep every actuator consistent
+//!   (`d(delta_i(L) - delta_i) = 0`): the tip stiffness with the actuator
+//!   springs in. With constant tensions (S3) is `K(L)`.
+//! * Dead loads (gravity, distributed and tip force) enter the wrench
+//!   balance only; a world-fixed tip moment is not conservative in 3-D and
+//!   is treated like a dead load (its non-symmetric part is dropped with the
+//!   antisymmetric part of `K`).
+//! * A blocked tip (mixed boundary condition: tip translation along some
+//!   world directions held, contact force a Lagrange multiplier) restricts
+//!   the tip variations: the index is that of (S3) restricted to the
+//!   complement of the blocked directions.
+//!
+//! # Margin
+//!
+//! The smallest eigenvalue of the symmetric part of the dimensionless tip
+//! stiffness: the minimum over the nodes of (S2) (free tip, no strain-
+//! dependent actuator), or of (S3) restricted to the free directions.
+//! Positive iff stable; it passes through zero at a buckling load or a fold.
+//! If a conjugate point lies inside the body it is at most `-(L - s_c)/L`.
+//!
+//! # Cost
+//!
+//! The tangents come from forward differences of `6 + N` recorded IVPs around
+//! the solution (`N` actuators): see [`Stability::evaluations`].
+
+use nalgebra::{DMatrix, Matrix3, SymmetricEigen, Vector3};
+
+use crate::error::{Error, Result};
+use crate::rod::{Robot, RodState};
+use crate::shooting::{residual_scales, shoot, Loads, Solution};
+
+/// Stability verdict of one equilibrium.
+#[derive(Debug, Clone)]
+pub struct Stability {
+    /// True if the equilibrium is a strict local minimum of the energy.
+    pub stable: bool,
+    /// Smallest eigenvalue of the symmetric dimensionless tip stiffness
+    /// (see the module docs); > 0 iff stable.
+    pub margin: f64,
+    /// Arc length [m] of the first conjugate point of the frozen-tension
+    /// problem (first node where (S2) is no longer positive definite), if any.
+    pub conjugate_point: Option<f64>,
+    /// Arc length [m] of the nodes.
+    pub s: Vec<f64>,
+    /// Till and Rucker's determinant (S1) normalised to 1 at the base,
+    /// `det(Y(s) Y(0)^-1)`, at each node (frozen tensions).
+    pub determinant: Vec<f64>,
+    /// Smallest eigenvalue of the symmetric part of (S2) at each node (the
+    /// base node, where `K` is infinite, carries `+inf`).
+    pub min_stiffness: Vec<f64>,
+    /// IVPs integrated for the verdict.
+    pub evaluations: usize,
+}
+
+/// Data of one recorded IVP at each node: position, rotation, total wrench.
+struct Profile {
+    p: Vec<Vector3<f64>>,
+    r: Vec<Matrix3<f64>>,
+    n: Vec<Vector3<f64>>,
+    m: Vec<Vector3<f64>>,
+    resid: Vec<f64>,
+}
+
+/// Total wrench (world frame) across the section at node `s`: body stress
+/// plus every string crossing `s` (at an interior anchor the recorded state
+/// is the one after the anchor loads; at the tip the one before).
+fn wrench(robot: &Robot, tau: &[f64], s: f64, st: &RodState) -> (Vector3<f64>, Vector3<f64>) {
+    let b = &robot.body;
+    let (kse, kbt) = b.stiffness();
+    let len = b.length;
+    let tol = 1e-12 * len;
+    let rm = st.rotation();
+    let mut n = kse * (st.v - b.nu_star);
+    let mut m = kbt * (st.u - b.omega_star);
+    let at_tip = s >= len - tol;
+    for (i, a) in robot.actuators.iter().enumerate() {
+        let crosses = a.s_start <= s + tol && (a.s_end > s + tol || (at_tip && a.s_end >= len - tol));
+        if crosses {
+            let (r, rp, _) = a.routing.eval(s);
+            let pb = st.v + st.u.cross(&r) + rp;
+            let t = pb / pb.norm() * tau[i];
+            n += t;
+            m += r.cross(&t);
+        }
+    }
+    (rm * n, rm * m)
+}
+
+fn profile(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize) -> Result<Profile> {
+    let (resid, ivp, tau) = shoot(robot, inputs, loads, x, steps, true)?;
+    let k = ivp.nodes.len();
+    let mut pr = Profile {
+        p: Vec::with_capacity(k),
+        r: Vec::with_capacity(k),
+        n: Vec::with_capacity(k),
+        m: Vec::with_capacity(k),
+        resid,
+    };
+    for (s, st) in &ivp.nodes {
+        let (n, m) = wrench(robot, &tau, *s, st);
+        pr.p.push(st.p);
+        pr.r.push(st.rotation());
+        pr.n.push(n);
+        pr.m.push(m);
+    }
+    Ok(pr)
+}
+
+/// Axial vector of the skew part of `a`.
+fn vee_skew(a: &Matrix3<f64>) -> Vector3<f64> {
+    Vector3::new(a[(2, 1)] - a[(1, 2)], a[(0, 2)] - a[(2, 0)], a[(1, 0)] - a[(0, 1)]) * 0.5
+}
+
+/// Smallest eigenvalue of the symmetric part of a square matrix.
+fn min_sym_eig(k: &DMatrix<f64>) -> f64 {
+    let sym = (k + k.transpose()) * 0.5;
+    SymmetricEigen::new(sym).eigenvalues.iter().fold(f64::INFINITY, |a, &b| a.min(b))
+}
+
+/// Stiffness of each actuator's law, `d tau / d delta` [N/m], at the solution.
+fn actuator_stiffness(robot: &Robot, sol: &Solution) -> Result<Vec<f64>> {
+    let len = robot.body.length;
+    robot
+        .actuators
+        .iter()
+        .enumerate()
+        .map(|(i, a)| {
+            let d = sol.elongations[i];
+            let h = 1e-9 * len;
+            let tp = a.law.tension(d + h, sol.inputs[i])?;
+            let tm = a.law.tension(d - h, sol.inputs[i])?;
+            Ok((tp - tm) / (2.0 * h))
+        })
+        .collect()
+}
+
+/// Stability of the equilibrium `sol` of `robot` (see the module docs).
+/// `blocked`: world directions along which the tip translation is held (a
+/// blocked-tip solution's block normal); empty for a free tip.
+pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<Stability> {
+    robot.validate()?;
+    let na = robot.actuators.len();
+    let nz = 6 + na;
+    if sol.unknowns.len() != nz || sol.inputs.len() != na {
+        return Err(Error::input("solution", format!("solution of a robot with {} actuators, this one has {na}", sol.inputs.len())));
+    }
+    for (j, b) in blocked.iter().enumerate() {
+        if !(b.iter().all(|v| v.is_finite()) && b.norm() > 0.0) {
+            return Err(Error::input(&format!("blocked[{j}]"), "must be a finite non-zero vector"));
+        }
+    }
+    let len = robot.body.length;
+    let (fs, ms) = residual_scales(robot);
+    let x = &sol.unknowns;
+    let base = profile(robot, &sol.inputs, &sol.loads, x, sol.steps)?;
+    let nodes = base.p.len();
+    let s_nodes = sol.s.clone();
+    if s_nodes.len() != nodes {
+        return Err(Error::input("solution", "profile does not match its own step count"));
+    }
+    // forward-difference tangents: column j of Y(s), H(s) for each node
+    let mut ycols: Vec<Vec<[f64; 6]>> = Vec::with_capacity(nz);
+    let mut hcols: Vec<Vec<[f64; 6]>> = Vec::with_capacity(nz);
+    let mut ecols: Vec<Vec<f64>> = Vec::with_capacity(nz);
+    let h0 = f64::EPSILON.sqrt();
+    for j in 0..nz {
+        let mut xp = x.clone();
+        let h = h0 * x[j].abs().max(1.0);
+        xp[j] += h;
+        let h = xp[j] - x[j];
+        let pp = profile(robot, &sol.inputs, &sol.loads, &xp, sol.steps)?;
+        let mut yc = Vec::with_capacity(nodes);
+        let mut hc = Vec::with_capacity(nodes);
+        for k in 0..nodes {
+            let dn = (pp.n[k] - base.n[k]) * (fs / h);
+            let dm = (pp.m[k] - base.m[k]) * (ms / h);
+            let dp = (pp.p[k] - base.p[k]) / (len * h);
+            let th = vee_skew(&(pp.r[k] * base.r[k].transpose())) / h;
+            yc.push([dn.x, dn.y, dn.z, dm.x, dm.y, dm.z]);
+            hc.push([dp.x, dp.y, dp.z, th.x, th.y, th.z]);
+        }
+        ycols.push(yc);
+        hcols.push(hc);
+        ecols.push(pp.resid[6..].iter().zip(&base.resid[6..]).map(|(a, b)| (a - b) / h).collect());
+    }
+    let mat = |cols: &Vec<Vec<[f64; 6]>>, k: usize, ncol: usize| DMatrix::from_fn(6, ncol, |i, j| cols[j][k][i]);
+    // frozen-tension scan along s
+    let y0 = mat(&ycols, 0, 6);
+    let y0inv = y0.clone().try_inverse();
+    let mut determinant = Vec::with_capacity(nodes);
+    let mut min_stiffness = Vec::with_capacity(nodes);
+    let mut conjugate: Option<f64> = None;
+    let mut dirichlet: Option<f64> = None;
+    let mut hdet_sign = 0.0;
+    for k in 0..nodes {
+        let y = mat(&ycols, k, 6);
+        determinant.push(match &y0inv {
+            Some(yi) => (&y * yi).determinant(),
+            None => f64::NAN,
+        });
+        if k == 0 {
+            min_stiffness.push(f64::INFINITY);
+            continue;
+        }
+        let h = mat(&hcols, k, 6);
+        let hd = h.determinant();
+        if hdet_sign == 0.0 {
+            hdet_sign = hd.signum();
+        } else if dirichlet.is_none() && hd * hdet_sign <= 0.0 {
+            dirichlet = Some(s_nodes[k]);
+        }
+        let lam = match h.try_inverse() {
+            Some(hi) => min_sym_eig(&(&y * hi)),
+            None => f64::NEG_INFINITY,
+        };
+        if conjugate.is_none() && !(lam > 0.0) {
+            conjugate = Some(s_nodes[k]);
+        }
+        min_stiffness.push(lam);
+    }
+    let kk = actuator_stiffness(robot, sol)?;
+    let springy = kk.iter().any(|k| k.abs() > 0.0);
+    let evaluations = 1 + nz;
+    let (stable, margin) = if !springy && blocked.is_empty() {
+        let m = min_stiffness[1..].iter().fold(f64::INFINITY, |a, &b| a.min(b));
+        (conjugate.is_none(), m)
+    } else {
+        let last = nodes - 1;
+        let yz = mat(&ycols, last, nz);
+        let hz = mat(&hcols, last, nz);
+        // basis of the consistent z: d delta = -E_d^-1 E_x dx
+        let z = if na == 0 {
+            DMatrix::identity(6, 6)
+        } else {
+            let e = DMatrix::from_fn(na, nz, |i, j| ecols[j][i]);
+            let ex = e.columns(0, 6).into_owned();
+            let ed = e.columns(6, na).into_owned();
+            let edi = ed.try_inverse().ok_or_else(|| Error::NoSolution {
+                reason: "stability: singular actuator-consistency Jacobian".into(),
+            })?;
+            let mut z = DMatrix::zeros(nz, 6);
+            z.view_mut((0, 0), (6, 6)).copy_from(&DMatrix::identity(6, 6));
+            z.view_mut((6, 0), (na, 6)).copy_from(&(-edi * ex));
+            z
+        };
+        let kfull = match (&hz * &z).try_inverse() {
+            Some(hi) => &yz * &z * hi,
+            None => {
+                return Ok(Stability {
+                    stable: false,
+                    margin: f64::NEG_INFINITY,
+                    conjugate_point: conjugate,
+                    s: s_nodes,
+                    determinant,
+                    min_stiffness,
+                    evaluations,
+                })
+            }
+        };
+        // restrict to tip variations orthogonal to the blocked directions
+        let mut basis: Vec<nalgebra::DVector<f64>> = Vec::new();
+        for b in blocked {
+            let mut v = nalgebra::DVector::zeros(6);
+            v.rows_mut(0, 3).copy_from(&(b / b.norm()));
+            basis.push(v);
+        }
+        let q = complement(&basis);
+        let kr = q.transpose() * kfull * &q;
+        let mut m = min_sym_eig(&kr);
+        if let Some(sd) = dirichlet {
+            m = m.min(-(len - sd) / len);
+        }
+        (dirichlet.is_none() && m > 0.0, m)
+    };
+    let margin = if let (Some(sc), true) = (conjugate, !springy && blocked.is_empty()) { margin.min(-(len - sc) / len) } else { margin };
+    Ok(Stability {
+        stable,
+        margin,
+        conjugate_point: conjugate,
+        s: s_nodes,
+        determinant,
+        min_stiffness,
+        evaluations,
+    })
+}
+
+/// Orthonormal basis (columns) of the complement in R^6 of the span of `vs`.
+fn complement(vs: &[nalgebra::DVector<f64>]) -> DMatrix<f64> {
+    if vs.is_empty() {
+        return DMatrix::identity(6, 6);
+    }
+    let a = DMatrix::from_columns(vs);
+    let svd = a.clone().svd(true, false);
+    let u = svd.u.expect("requested");
+    let rank = svd.singular_values.iter().filter(|&&x| x > 1e-12).count();
+    // full U: complete the basis by Gram-Schmidt on the unit vectors
+    let mut cols: Vec<nalgebra::DVector<f64>> = (0..rank).map(|j| u.column(j).into_owned()).collect();
+    let mut out = Vec::new();
+    for e in 0..6 {
+        let mut v = nalgebra::DVector::zeros(6);
+        v[e] = 1.0;
+        for c in &cols {
+            let d = c.dot(&v);
+            v -= c * d;
+        }
+        let n = v.norm();
+        if n > 1e-8 {
+            v /= n;
+            cols.push(v.clone());
+            out.push(v);
+        }
+        if cols.len() == 6 {
+            break;
+        }
+    }
+    DMatrix::from_columns(&out)
+}
