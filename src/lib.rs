@@ -18,6 +18,7 @@
 
 pub mod error;
 pub mod batch;
+pub mod branch;
 pub mod bench;
 pub mod experiments;
 pub mod inverse;

@@ -60,7 +60,8 @@
 //! The smallest eigenvalue of the symmetric part of the dimensionless tip
 //! stiffness: the minimum over the nodes of (S2) (free tip, no strain-
 //! dependent actuator), or of (S3) restricted to the free directions.
-//! Positive iff stable; it passes through zero at a buckling load or a fold.
+//! Positive iff stable (above `-NEUTRAL`: neutral symmetry modes count as
+//! stable); it passes through zero at a buckling load or a fold.
 //! If a conjugate point lies inside the body it is at most `-(L - s_c)/L`.
 //!
 //! # Cost
@@ -73,6 +74,12 @@ use nalgebra::{DMatrix, Matrix3, SymmetricEigen, Vector3};
 use crate::error::{Error, Result};
 use crate::rod::{Robot, RodState};
 use crate::shooting::{residual_scales, shoot, Loads, Solution};
+
+/// Margins above `-NEUTRAL` count as stable: a symmetry leaves a neutral
+/// mode (a buckled round column can turn about the vertical at no cost, so
+/// its smallest tip stiffness is zero up to the ~1e-10 noise of the
+/// finite-difference tangents).
+pub const NEUTRAL: f64 = 1e-6;
 
 /// Stability verdict of one equilibrium.
 #[derive(Debug, Clone)]
@@ -95,6 +102,10 @@ pub struct Stability {
     pub min_stiffness: Vec<f64>,
     /// IVPs integrated for the verdict.
     pub evaluations: usize,
+    /// Softest tip mode: unit eigenvector `(p / L, theta)` (world frame) of
+    /// the smallest eigenvalue of the symmetric tip stiffness at `s = L`
+    /// (zeros if the stiffness is undefined).
+    pub mode: [f64; 6],
 }
 
 /// Data of one recorded IVP at each node: position, rotation, total wrench.
@@ -158,8 +169,15 @@ fn vee_skew(a: &Matrix3<f64>) -> Vector3<f64> {
 
 /// Smallest eigenvalue of the symmetric part of a square matrix.
 fn min_sym_eig(k: &DMatrix<f64>) -> f64 {
+    min_sym_pair(k).0
+}
+
+/// Smallest eigenvalue of the symmetric part and its unit eigenvector.
+fn min_sym_pair(k: &DMatrix<f64>) -> (f64, nalgebra::DVector<f64>) {
     let sym = (k + k.transpose()) * 0.5;
-    SymmetricEigen::new(sym).eigenvalues.iter().fold(f64::INFINITY, |a, &b| a.min(b))
+    let e = SymmetricEigen::new(sym);
+    let (i, _) = e.eigenvalues.iter().enumerate().fold((0, f64::INFINITY), |a, (i, &v)| if v < a.1 { (i, v) } else { a });
+    (e.eigenvalues[i], e.eigenvectors.column(i).into_owned())
 }
 
 /// Stiffness of each actuator's law, `d tau / d delta` [N/m], at the solution.
@@ -258,7 +276,7 @@ pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Res
             Some(hi) => min_sym_eig(&(&y * hi)),
             None => f64::NEG_INFINITY,
         };
-        if conjugate.is_none() && !(lam > 0.0) {
+        if conjugate.is_none() && !(lam > -NEUTRAL) {
             conjugate = Some(s_nodes[k]);
         }
         min_stiffness.push(lam);
@@ -266,8 +284,13 @@ pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Res
     let kk = actuator_stiffness(robot, sol)?;
     let springy = kk.iter().any(|k| k.abs() > 0.0);
     let evaluations = 1 + nz;
+    let mut mode = [0.0; 6];
     let (stable, margin) = if !springy && blocked.is_empty() {
         let m = min_stiffness[1..].iter().fold(f64::INFINITY, |a, &b| a.min(b));
+        if let Some(hi) = mat(&hcols, nodes - 1, 6).try_inverse() {
+            let (_, v) = min_sym_pair(&(mat(&ycols, nodes - 1, 6) * hi));
+            mode.copy_from_slice(v.as_slice());
+        }
         (conjugate.is_none(), m)
     } else {
         let last = nodes - 1;
@@ -299,6 +322,7 @@ pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Res
                     determinant,
                     min_stiffness,
                     evaluations,
+                    mode,
                 })
             }
         };
@@ -311,11 +335,12 @@ pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Res
         }
         let q = complement(&basis);
         let kr = q.transpose() * kfull * &q;
-        let mut m = min_sym_eig(&kr);
+        let (mut m, v) = min_sym_pair(&kr);
+        mode.copy_from_slice((&q * v).as_slice());
         if let Some(sd) = dirichlet {
             m = m.min(-(len - sd) / len);
         }
-        (dirichlet.is_none() && m > 0.0, m)
+        (dirichlet.is_none() && m > -NEUTRAL, m)
     };
     let margin = if let (Some(sc), true) = (conjugate, !springy && blocked.is_empty()) { margin.min(-(len - sc) / len) } else { margin };
     Ok(Stability {
@@ -326,6 +351,7 @@ pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Res
         determinant,
         min_stiffness,
         evaluations,
+        mode,
     })
 }
 
