@@ -12,7 +12,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use crate::error::{Error, Result};
-use crate::rod::{integrate, IvpResult, IvpSpec, Robot};
+use crate::rod::{integrate, integrate_tangent, IvpResult, IvpSpec, Robot, TangentIvp, TangentSeeds};
 
 /// Options of the Newton shooting solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -323,6 +323,56 @@ pub fn shoot(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usi
         r.push((ivp.elongation[i] - delta[i]) / len);
     }
     Ok((r, ivp, tau))
+}
+
+/// One tangent IVP from scaled unknowns `x`: the scaled residual (as
+/// [`shoot`]) and its EXACT Jacobian with respect to `x` (the derivative of
+/// the discrete RK4 map, from the variational equations and the force laws'
+/// derivatives), `(6 + N) x (6 + N)`. With `record`, the IVP's nodes carry
+/// `d y(s) / d x` (see [`crate::rod::TangentNode`]).
+pub fn shoot_jacobian(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize, record: bool) -> Result<(Vec<f64>, DMatrix<f64>, TangentIvp, Vec<f64>)> {
+    let len = robot.body.length;
+    let na = robot.actuators.len();
+    let nx = 6 + na;
+    let v0 = Vector3::new(x[0], x[1], x[2]);
+    let u0 = Vector3::new(x[3], x[4], x[5]) / len;
+    let mut tau = Vec::with_capacity(na);
+    let mut seeds = TangentSeeds::zeros(na, nx);
+    for k in 0..3 {
+        seeds.nu0[(k, k)] = 1.0;
+        seeds.omega0[(k, 3 + k)] = 1.0 / len;
+    }
+    for (i, a) in robot.actuators.iter().enumerate() {
+        let (t, dt_de, _) = a.law.tension_derivatives(x[6 + i] * len, inputs[i])?;
+        tau.push(t);
+        seeds.tensions[(i, 6 + i)] = dt_de * len;
+    }
+    let spec = IvpSpec {
+        robot,
+        tensions: &tau,
+        tip_force: loads.tip_force,
+        tip_moment: loads.tip_moment,
+        steps,
+    };
+    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
+    let (fs, ms) = residual_scales(robot);
+    let ivp = &tan.ivp;
+    let mut r = Vec::with_capacity(nx);
+    r.extend((ivp.tip_force_residual * fs).iter());
+    r.extend((ivp.tip_moment_residual * ms).iter());
+    for i in 0..na {
+        r.push((ivp.elongation[i] - x[6 + i] * len) / len);
+    }
+    let mut jac = DMatrix::zeros(nx, nx);
+    jac.rows_mut(0, 3).copy_from(&(&tan.tip_force_residual * fs));
+    jac.rows_mut(3, 3).copy_from(&(&tan.tip_moment_residual * ms));
+    for i in 0..na {
+        for j in 0..nx {
+            jac[(6 + i, j)] = tan.elongation[(i, j)] / len;
+        }
+        jac[(6 + i, 6 + i)] -= 1.0;
+    }
+    Ok((r, jac, tan, tau))
 }
 
 /// Factors that make the tip balance dimensionless: force residuals [N] are
