@@ -16,7 +16,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::error::{Error, Result};
 use crate::rod::Robot;
-use crate::shooting::{assemble, initial_guess, newton_with_jacobian, reference_guess, shoot, solve_loaded, Loads, SolveOptions, Solution};
+use crate::shooting::{assemble, initial_guess, newton_with_jacobian, reference_guess, shoot, shoot_jacobian, solve_loaded, Loads, SolveOptions, Solution};
 use crate::stability::{stability, Stability};
 
 /// The continuation parameter.
@@ -173,8 +173,9 @@ pub struct BranchPoint {
     pub stability: Stability,
     /// `d lambda / d sigma` (scaled) of the path tangent.
     pub dparameter: f64,
-    /// Sign of `det F_x` (the shooting Jacobian at fixed parameter).
-    pub det_sign: f64,
+    /// `det F_x`, the determinant of the (scaled) shooting Jacobian at fixed
+    /// parameter (exact, from the tangent IVP).
+    pub jacobian_det: f64,
 }
 
 /// Kind of a located event.
@@ -210,23 +211,30 @@ pub struct Branch {
     pub evaluations: usize,
 }
 
-/// Forward-difference Jacobian `[F_x, F_lambda~]` (`m x (m+1)`), scaled lambda.
-fn jacobian(pb: &Problem<'_>, y: &[f64], r: &[f64], scale: f64, steps: usize, evals: &mut usize) -> Result<DMatrix<f64>> {
-    let m = r.len();
+/// Jacobian `[F_x, F_lambda~]` (`m x (m+1)`, scaled lambda) and the
+/// residual: `F_x` exact from one tangent IVP, `F_lambda` by a forward
+/// difference (one IVP).
+fn jacobian(pb: &Problem<'_>, y: &[f64], scale: f64, steps: usize, evals: &mut usize) -> Result<(Vec<f64>, DMatrix<f64>)> {
+    let m = y.len() - 1;
+    let (robot, inputs, loads) = pb.at(y[m] * scale)?;
+    let (r, jx, _, _) = shoot_jacobian(&robot, &inputs, &loads, &y[..m], steps, false)?;
     let mut j = DMatrix::zeros(m, m + 1);
-    let h0 = f64::EPSILON.sqrt();
-    for c in 0..=m {
-        let mut yp = y.to_vec();
-        let h = h0 * y[c].abs().max(1.0);
-        yp[c] += h;
-        let h = yp[c] - y[c];
-        let rp = pb.residual(&yp[..m], yp[m] * scale, steps)?;
-        *evals += 1;
-        for i in 0..m {
-            j[(i, c)] = (rp[i] - r[i]) / h;
+    j.columns_mut(0, m).copy_from(&jx);
+    let h = f64::EPSILON.sqrt() * y[m].abs().max(1.0);
+    let mut lp = y[m] + h;
+    let rp = match pb.residual(&y[..m], lp * scale, steps) {
+        Ok(rp) => rp,
+        Err(_) => {
+            // at the end of an input range: step the other way
+            lp = y[m] - h;
+            pb.residual(&y[..m], lp * scale, steps)?
         }
+    };
+    *evals += 2;
+    for i in 0..m {
+        j[(i, m)] = (rp[i] - r[i]) / (lp - y[m]);
     }
-    Ok(j)
+    Ok((r, j))
 }
 
 /// Unit tangent: null vector of `j` with `t . prev > 0`.
@@ -263,16 +271,14 @@ impl Tracer<'_, '_> {
         let m = y.len() - 1;
         let steps = self.opts.solve.steps;
         let lambda = y[m] * self.scale;
-        let r = self.pb.residual(&y[..m], lambda, steps)?;
-        self.evals += 1;
-        let j = jacobian(self.pb, &y, &r, self.scale, steps, &mut self.evals)?;
+        let (r, j) = jacobian(self.pb, &y, self.scale, steps, &mut self.evals)?;
         let t = tangent(&j, prev).ok_or_else(|| Error::NotConverged {
             solver: "branch following",
             iterations: 0,
             residual: r.iter().fold(0.0, |a: f64, b| a.max(b.abs())),
             reason: "singular augmented Jacobian (tangent undefined)".into(),
         })?;
-        let det_sign = j.columns(0, m).into_owned().determinant().signum();
+        let jacobian_det = j.columns(0, m).into_owned().determinant();
         let solution = self.pb.assemble(&y[..m], lambda, steps)?;
         self.evals += 1;
         let stability = self.pb.stability(&solution, lambda)?;
@@ -281,7 +287,7 @@ impl Tracer<'_, '_> {
         Ok(Pt {
             y,
             t,
-            bp: BranchPoint { parameter: lambda, solution, stability, dparameter, det_sign },
+            bp: BranchPoint { parameter: lambda, solution, stability, dparameter, jacobian_det },
         })
     }
 
@@ -351,7 +357,7 @@ pub fn follow_branch(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solu
             continue;
         }
         let fold = next.bp.dparameter * cur.bp.dparameter < 0.0;
-        let det_flip = next.bp.det_sign * cur.bp.det_sign < 0.0;
+        let det_flip = next.bp.jacobian_det * cur.bp.jacobian_det < 0.0;
         let stab_flip = next.bp.stability.stable != cur.bp.stability.stable;
         let idx = pts.len();
         if fold {
@@ -379,10 +385,14 @@ impl Tracer<'_, '_> {
     /// Locate an event between `a` and `b` (arclength `ds` apart) by regula
     /// falsi on the event's test function along the arclength from `a`.
     fn locate(&mut self, a: &Pt, b: &Pt, ds: f64, kind: EventKind, idx: usize) -> Result<Event> {
+        // a bifurcation where the verdict changes is located on the margin,
+        // otherwise on det F_x
+        let on_margin = a.bp.stability.margin * b.bp.stability.margin < 0.0;
         let test = |p: &Pt| -> f64 {
             match kind {
                 EventKind::Fold => p.bp.dparameter,
-                EventKind::Bifurcation => p.bp.stability.margin,
+                EventKind::Bifurcation if on_margin => p.bp.stability.margin,
+                EventKind::Bifurcation => p.bp.jacobian_det,
             }
         };
         let (mut s0, mut f0) = (0.0, test(a));
@@ -422,12 +432,6 @@ impl Tracer<'_, '_> {
             if (s1 - s0).abs() < 1e-7 * ds {
                 break;
             }
-        }
-        // without a margin sign change (det flip only) keep the linear estimate
-        if kind == EventKind::Bifurcation && !(test(a) * test(b) < 0.0) {
-            let w = 0.5;
-            best.1 = a.bp.parameter + w * (b.bp.parameter - a.bp.parameter);
-            best.2 = a.bp.solution.tip_position() * (1.0 - w) + b.bp.solution.tip_position() * w;
         }
         let _ = best.0;
         Ok(Event { kind, parameter: best.1, tip_position: best.2, after_point: idx })

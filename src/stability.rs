@@ -66,14 +66,16 @@
 //!
 //! # Cost
 //!
-//! The tangents come from forward differences of `6 + N` recorded IVPs around
-//! the solution (`N` actuators): see [`Stability::evaluations`].
+//! One tangent integration (the IVP with its exact variational equations
+//! along the `6 + N` shooting unknowns, `shooting::shoot_jacobian`) gives
+//! every node's `Y`, `H` and the actuator rows; [`stability_fd`] does the
+//! same from `7 + N` recorded IVPs by forward differences (a cross-check).
 
-use nalgebra::{DMatrix, Matrix3, SymmetricEigen, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Quaternion, SymmetricEigen, Vector3};
 
 use crate::error::{Error, Result};
-use crate::rod::{Robot, RodState};
-use crate::shooting::{residual_scales, shoot, Loads, Solution};
+use crate::rod::{rot, Robot, RodState};
+use crate::shooting::{residual_scales, shoot, shoot_jacobian, Loads, Solution};
 
 /// Margins above `-NEUTRAL` count as stable: a symmetry leaves a neutral
 /// mode (a buckled round column can turn about the vertical at no cost, so
@@ -100,7 +102,8 @@ pub struct Stability {
     /// Smallest eigenvalue of the symmetric part of (S2) at each node (the
     /// base node, where `K` is infinite, carries `+inf`).
     pub min_stiffness: Vec<f64>,
-    /// IVPs integrated for the verdict.
+    /// Integrations for the verdict: 1 tangent IVP ([`stability`]) or
+    /// `7 + N` IVPs ([`stability_fd`]).
     pub evaluations: usize,
     /// Softest tip mode: unit eigenvector `(p / L, theta)` (world frame) of
     /// the smallest eigenvalue of the symmetric tip stiffness at `s = L`
@@ -173,7 +176,7 @@ fn min_sym_eig(k: &DMatrix<f64>) -> f64 {
 }
 
 /// Smallest eigenvalue of the symmetric part and its unit eigenvector.
-fn min_sym_pair(k: &DMatrix<f64>) -> (f64, nalgebra::DVector<f64>) {
+fn min_sym_pair(k: &DMatrix<f64>) -> (f64, DVector<f64>) {
     let sym = (k + k.transpose()) * 0.5;
     let e = SymmetricEigen::new(sym);
     let (i, _) = e.eigenvalues.iter().enumerate().fold((0, f64::INFINITY), |a, (i, &v)| if v < a.1 { (i, v) } else { a });
@@ -197,34 +200,107 @@ fn actuator_stiffness(robot: &Robot, sol: &Solution) -> Result<Vec<f64>> {
         .collect()
 }
 
-/// Stability of the equilibrium `sol` of `robot` (see the module docs).
-/// `blocked`: world directions along which the tip translation is held (a
-/// blocked-tip solution's block normal); empty for a free tip.
-pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<Stability> {
-    robot.validate()?;
+/// Tangents of one equilibrium at every node: `Y~_k = d w~(s_k)/d z`,
+/// `H~_k = d (p/L, theta)(s_k)/d z` (`6 x nz` each), and the actuator
+/// consistency rows `E = d (delta_i(L) - delta_i)/L / d z` (`na x nz`).
+struct Tangents {
+    s: Vec<f64>,
+    y: Vec<DMatrix<f64>>,
+    h: Vec<DMatrix<f64>>,
+    e: DMatrix<f64>,
+}
+
+/// Exact tangents from one tangent IVP (`shoot_jacobian` with recorded nodes).
+fn exact_tangents(robot: &Robot, sol: &Solution) -> Result<Tangents> {
     let na = robot.actuators.len();
     let nz = 6 + na;
-    if sol.unknowns.len() != nz || sol.inputs.len() != na {
-        return Err(Error::input("solution", format!("solution of a robot with {} actuators, this one has {na}", sol.inputs.len())));
+    let b = &robot.body;
+    let len = b.length;
+    let tol = 1e-12 * len;
+    let (kse, kbt) = b.stiffness();
+    let (fs, ms) = residual_scales(robot);
+    let (_, jac, tan, tau) = shoot_jacobian(robot, &sol.inputs, &sol.loads, &sol.unknowns, sol.steps, true)?;
+    // d tau / d z: only through the actuator's own elongation guess
+    let mut dtau = DMatrix::zeros(na, nz);
+    for (i, a) in robot.actuators.iter().enumerate() {
+        let (_, dt_de, _) = a.law.tension_derivatives(sol.unknowns[6 + i] * len, sol.inputs[i])?;
+        dtau[(i, 6 + i)] = dt_de * len;
     }
-    for (j, b) in blocked.iter().enumerate() {
-        if !(b.iter().all(|v| v.is_finite()) && b.norm() > 0.0) {
-            return Err(Error::input(&format!("blocked[{j}]"), "must be a finite non-zero vector"));
+    let mut out = Tangents { s: vec![], y: vec![], h: vec![], e: jac.rows(6, na).into_owned() };
+    for node in &tan.nodes {
+        let sk = node.s;
+        let y = &node.state;
+        let t = &node.tangent;
+        let q = Quaternion::new(y[3], y[4], y[5], y[6]);
+        let rm = rot(&q);
+        let v = Vector3::new(y[7], y[8], y[9]);
+        let u = Vector3::new(y[10], y[11], y[12]);
+        // body-frame wrench and its tangent
+        let mut nb = kse * (v - b.nu_star);
+        let mut mb = kbt * (u - b.omega_star);
+        let mut dnb = kse * t.rows(7, 3);
+        let mut dmb = kbt * t.rows(10, 3);
+        let at_tip = sk >= len - tol;
+        for (i, a) in robot.actuators.iter().enumerate() {
+            if !(a.s_start <= sk + tol && (a.s_end > sk + tol || (at_tip && a.s_end >= len - tol))) {
+                continue;
+            }
+            let (r, rp, _) = a.routing.eval(sk);
+            let pb = v + u.cross(&r) + rp;
+            let nrm = pb.norm();
+            let tt = pb / nrm;
+            // d pb = d v + d u x r = d v - [r]x d u
+            let dpb = t.rows(7, 3) - r.cross_matrix() * t.rows(10, 3);
+            let dt = (Matrix3::identity() - tt * tt.transpose()) / nrm * dpb;
+            let df = dt * tau[i] + tt * dtau.row(i);
+            nb += tt * tau[i];
+            mb += r.cross(&tt) * tau[i];
+            dnb += &df;
+            dmb += r.cross_matrix() * df;
         }
+        // rotation tangent: d q = (theta/2) (x) q  =>  theta = 2 vec(d q (x) q*)
+        let mut th = DMatrix::zeros(3, nz);
+        for j in 0..nz {
+            let dq = Quaternion::new(t[(3, j)], t[(4, j)], t[(5, j)], t[(6, j)]);
+            let w = dq * q.conjugate() * 2.0;
+            th[(0, j)] = w.i;
+            th[(1, j)] = w.j;
+            th[(2, j)] = w.k;
+        }
+        // world wrench w = R (nb, mb): d w = [theta]x R nb + R d nb
+        let rn = rm * nb;
+        let rmm = rm * mb;
+        let dn = (rm * dnb - rn.cross_matrix() * &th) * fs;
+        let dm = (rm * dmb - rmm.cross_matrix() * &th) * ms;
+        let mut yk = DMatrix::zeros(6, nz);
+        yk.rows_mut(0, 3).copy_from(&dn);
+        yk.rows_mut(3, 3).copy_from(&dm);
+        let mut hk = DMatrix::zeros(6, nz);
+        hk.rows_mut(0, 3).copy_from(&(t.rows(0, 3) / len));
+        hk.rows_mut(3, 3).copy_from(&th);
+        out.s.push(sk);
+        out.y.push(yk);
+        out.h.push(hk);
     }
+    Ok(out)
+}
+
+/// Forward-difference tangents from `1 + nz` recorded IVPs (a cross-check
+/// of [`exact_tangents`]).
+fn fd_tangents(robot: &Robot, sol: &Solution) -> Result<Tangents> {
+    let na = robot.actuators.len();
+    let nz = 6 + na;
     let len = robot.body.length;
     let (fs, ms) = residual_scales(robot);
     let x = &sol.unknowns;
     let base = profile(robot, &sol.inputs, &sol.loads, x, sol.steps)?;
     let nodes = base.p.len();
-    let s_nodes = sol.s.clone();
-    if s_nodes.len() != nodes {
-        return Err(Error::input("solution", "profile does not match its own step count"));
-    }
-    // forward-difference tangents: column j of Y(s), H(s) for each node
-    let mut ycols: Vec<Vec<[f64; 6]>> = Vec::with_capacity(nz);
-    let mut hcols: Vec<Vec<[f64; 6]>> = Vec::with_capacity(nz);
-    let mut ecols: Vec<Vec<f64>> = Vec::with_capacity(nz);
+    let mut out = Tangents {
+        s: sol.s.clone(),
+        y: vec![DMatrix::zeros(6, nz); nodes],
+        h: vec![DMatrix::zeros(6, nz); nodes],
+        e: DMatrix::zeros(na, nz),
+    };
     let h0 = f64::EPSILON.sqrt();
     for j in 0..nz {
         let mut xp = x.clone();
@@ -232,40 +308,80 @@ pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Res
         xp[j] += h;
         let h = xp[j] - x[j];
         let pp = profile(robot, &sol.inputs, &sol.loads, &xp, sol.steps)?;
-        let mut yc = Vec::with_capacity(nodes);
-        let mut hc = Vec::with_capacity(nodes);
         for k in 0..nodes {
             let dn = (pp.n[k] - base.n[k]) * (fs / h);
             let dm = (pp.m[k] - base.m[k]) * (ms / h);
             let dp = (pp.p[k] - base.p[k]) / (len * h);
             let th = vee_skew(&(pp.r[k] * base.r[k].transpose())) / h;
-            yc.push([dn.x, dn.y, dn.z, dm.x, dm.y, dm.z]);
-            hc.push([dp.x, dp.y, dp.z, th.x, th.y, th.z]);
+            for i in 0..3 {
+                out.y[k][(i, j)] = dn[i];
+                out.y[k][(3 + i, j)] = dm[i];
+                out.h[k][(i, j)] = dp[i];
+                out.h[k][(3 + i, j)] = th[i];
+            }
         }
-        ycols.push(yc);
-        hcols.push(hc);
-        ecols.push(pp.resid[6..].iter().zip(&base.resid[6..]).map(|(a, b)| (a - b) / h).collect());
+        for i in 0..na {
+            out.e[(i, j)] = (pp.resid[6 + i] - base.resid[6 + i]) / h;
+        }
     }
-    let mat = |cols: &Vec<Vec<[f64; 6]>>, k: usize, ncol: usize| DMatrix::from_fn(6, ncol, |i, j| cols[j][k][i]);
-    // frozen-tension scan along s
-    let y0 = mat(&ycols, 0, 6);
-    let y0inv = y0.clone().try_inverse();
+    Ok(out)
+}
+
+fn check(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<()> {
+    robot.validate()?;
+    let na = robot.actuators.len();
+    if sol.unknowns.len() != 6 + na || sol.inputs.len() != na {
+        return Err(Error::input("solution", format!("solution of a robot with {} actuators, this one has {na}", sol.inputs.len())));
+    }
+    for (j, b) in blocked.iter().enumerate() {
+        if !(b.iter().all(|v| v.is_finite()) && b.norm() > 0.0) {
+            return Err(Error::input(&format!("blocked[{j}]"), "must be a finite non-zero vector"));
+        }
+    }
+    Ok(())
+}
+
+/// Stability of the equilibrium `sol` of `robot` (see the module docs), from
+/// one tangent integration (`6 + N` directions).
+/// `blocked`: world directions along which the tip translation is held (a
+/// blocked-tip solution's block normal); empty for a free tip.
+pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<Stability> {
+    check(robot, sol, blocked)?;
+    let t = exact_tangents(robot, sol)?;
+    verdict(robot, sol, blocked, t, 1)
+}
+
+/// [`stability`] from forward-difference tangents (`7 + N` IVPs); for
+/// cross-checks.
+pub fn stability_fd(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<Stability> {
+    check(robot, sol, blocked)?;
+    let t = fd_tangents(robot, sol)?;
+    verdict(robot, sol, blocked, t, 7 + robot.actuators.len())
+}
+
+fn verdict(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>], t: Tangents, evaluations: usize) -> Result<Stability> {
+    let na = robot.actuators.len();
+    let nz = 6 + na;
+    let len = robot.body.length;
+    let nodes = t.s.len();
+    let s_nodes = t.s.clone();
+    let y0inv = t.y[0].columns(0, 6).into_owned().try_inverse();
     let mut determinant = Vec::with_capacity(nodes);
     let mut min_stiffness = Vec::with_capacity(nodes);
     let mut conjugate: Option<f64> = None;
     let mut dirichlet: Option<f64> = None;
     let mut hdet_sign = 0.0;
     for k in 0..nodes {
-        let y = mat(&ycols, k, 6);
+        let y = t.y[k].columns(0, 6).into_owned();
         determinant.push(match &y0inv {
             Some(yi) => (&y * yi).determinant(),
             None => f64::NAN,
         });
-        if k == 0 {
+        if k == 0 || s_nodes[k] <= 0.0 {
             min_stiffness.push(f64::INFINITY);
             continue;
         }
-        let h = mat(&hcols, k, 6);
+        let h = t.h[k].columns(0, 6).into_owned();
         let hd = h.determinant();
         if hdet_sign == 0.0 {
             hdet_sign = hd.signum();
@@ -283,80 +399,71 @@ pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Res
     }
     let kk = actuator_stiffness(robot, sol)?;
     let springy = kk.iter().any(|k| k.abs() > 0.0);
-    let evaluations = 1 + nz;
+    let frozen = !springy && blocked.is_empty();
+    let last = nodes - 1;
     let mut mode = [0.0; 6];
-    let (stable, margin) = if !springy && blocked.is_empty() {
-        let m = min_stiffness[1..].iter().fold(f64::INFINITY, |a, &b| a.min(b));
-        if let Some(hi) = mat(&hcols, nodes - 1, 6).try_inverse() {
-            let (_, v) = min_sym_pair(&(mat(&ycols, nodes - 1, 6) * hi));
-            mode.copy_from_slice(v.as_slice());
-        }
-        (conjugate.is_none(), m)
-    } else {
-        let last = nodes - 1;
-        let yz = mat(&ycols, last, nz);
-        let hz = mat(&hcols, last, nz);
-        // basis of the consistent z: d delta = -E_d^-1 E_x dx
-        let z = if na == 0 {
-            DMatrix::identity(6, 6)
-        } else {
-            let e = DMatrix::from_fn(na, nz, |i, j| ecols[j][i]);
-            let ex = e.columns(0, 6).into_owned();
-            let ed = e.columns(6, na).into_owned();
-            let edi = ed.try_inverse().ok_or_else(|| Error::NoSolution {
-                reason: "stability: singular actuator-consistency Jacobian".into(),
-            })?;
-            let mut z = DMatrix::zeros(nz, 6);
-            z.view_mut((0, 0), (6, 6)).copy_from(&DMatrix::identity(6, 6));
-            z.view_mut((6, 0), (na, 6)).copy_from(&(-edi * ex));
-            z
-        };
-        let kfull = match (&hz * &z).try_inverse() {
-            Some(hi) => &yz * &z * hi,
-            None => {
-                return Ok(Stability {
-                    stable: false,
-                    margin: f64::NEG_INFINITY,
-                    conjugate_point: conjugate,
-                    s: s_nodes,
-                    determinant,
-                    min_stiffness,
-                    evaluations,
-                    mode,
-                })
-            }
-        };
-        // restrict to tip variations orthogonal to the blocked directions
-        let mut basis: Vec<nalgebra::DVector<f64>> = Vec::new();
-        for b in blocked {
-            let mut v = nalgebra::DVector::zeros(6);
-            v.rows_mut(0, 3).copy_from(&(b / b.norm()));
-            basis.push(v);
-        }
-        let q = complement(&basis);
-        let kr = q.transpose() * kfull * &q;
-        let (mut m, v) = min_sym_pair(&kr);
-        mode.copy_from_slice((&q * v).as_slice());
-        if let Some(sd) = dirichlet {
-            m = m.min(-(len - sd) / len);
-        }
-        (dirichlet.is_none() && m > -NEUTRAL, m)
-    };
-    let margin = if let (Some(sc), true) = (conjugate, !springy && blocked.is_empty()) { margin.min(-(len - sc) / len) } else { margin };
-    Ok(Stability {
-        stable,
-        margin,
+    let mut out = Stability {
+        stable: false,
+        margin: f64::NEG_INFINITY,
         conjugate_point: conjugate,
         s: s_nodes,
         determinant,
         min_stiffness,
         evaluations,
         mode,
-    })
+    };
+    if frozen {
+        let m = out.min_stiffness.iter().skip(1).fold(f64::INFINITY, |a, &b| a.min(b));
+        if let Some(hi) = t.h[last].columns(0, 6).into_owned().try_inverse() {
+            let (_, v) = min_sym_pair(&(t.y[last].columns(0, 6).into_owned() * hi));
+            mode.copy_from_slice(v.as_slice());
+        }
+        out.stable = conjugate.is_none();
+        out.margin = match conjugate {
+            Some(sc) => m.min(-(len - sc) / len),
+            None => m,
+        };
+        out.mode = mode;
+        return Ok(out);
+    }
+    // basis of the consistent z: d delta = -E_d^-1 E_x dx
+    let z = if na == 0 {
+        DMatrix::identity(6, 6)
+    } else {
+        let ex = t.e.columns(0, 6).into_owned();
+        let ed = t.e.columns(6, na).into_owned();
+        let Some(edi) = ed.try_inverse() else { return Ok(out) };
+        let mut z = DMatrix::zeros(nz, 6);
+        z.view_mut((0, 0), (6, 6)).copy_from(&DMatrix::identity(6, 6));
+        z.view_mut((6, 0), (na, 6)).copy_from(&(-edi * ex));
+        z
+    };
+    let Some(hi) = (&t.h[last] * &z).try_inverse() else { return Ok(out) };
+    let kfull = &t.y[last] * &z * hi;
+    // restrict to tip variations orthogonal to the blocked directions
+    let basis: Vec<DVector<f64>> = blocked
+        .iter()
+        .map(|b| {
+            let mut v = DVector::zeros(6);
+            v.rows_mut(0, 3).copy_from(&(b / b.norm()));
+            v
+        })
+        .collect();
+    let q = complement(&basis);
+    let kr = q.transpose() * kfull * &q;
+    let (mut m, v) = min_sym_pair(&kr);
+    mode.copy_from_slice((&q * v).as_slice());
+    if let Some(sd) = dirichlet {
+        m = m.min(-(len - sd) / len);
+    }
+    out.stable = dirichlet.is_none() && m > -NEUTRAL;
+    out.margin = m;
+    out.mode = mode;
+    Ok(out)
 }
 
 /// Orthonormal basis (columns) of the complement in R^6 of the span of `vs`.
-fn complement(vs: &[nalgebra::DVector<f64>]) -> DMatrix<f64> {
+fn complement(vs: &[DVector<f64>]) -> DMatrix<f64> {
     if vs.is_empty() {
         return DMatrix::identity(6, 6);
     }
@@ -365,10 +472,10 @@ fn complement(vs: &[nalgebra::DVector<f64>]) -> DMatrix<f64> {
     let u = svd.u.expect("requested");
     let rank = svd.singular_values.iter().filter(|&&x| x > 1e-12).count();
     // full U: complete the basis by Gram-Schmidt on the unit vectors
-    let mut cols: Vec<nalgebra::DVector<f64>> = (0..rank).map(|j| u.column(j).into_owned()).collect();
+    let mut cols: Vec<DVector<f64>> = (0..rank).map(|j| u.column(j).into_owned()).collect();
     let mut out = Vec::new();
     for e in 0..6 {
-        let mut v = nalgebra::DVector::zeros(6);
+        let mut v = DVector::zeros(6);
         v[e] = 1.0;
         for c in &cols {
             let d = c.dot(&v);

@@ -84,12 +84,15 @@ fn self_weight_buckling_located() {
     let pb = Problem::new(&r, Parameter::GravityScale, &[]).unwrap();
     let opts = BranchOptions { start: 1.0, end: 10.0, step: 0.05, max_step: 0.2, ..Default::default() };
     let br = follow_branch(&pb, &opts, None).unwrap();
-    // the perfect column stays straight: one bifurcation, no fold
-    assert_eq!(br.events.len(), 1);
-    assert_eq!(br.events[0].kind, EventKind::Bifurcation);
+    // the perfect column stays straight: no fold, two bifurcations, about
+    // the weak axis at Greenhill's load and the strong one at (10/9)^2 times it
+    assert_eq!(br.events.len(), 2);
+    assert!(br.events.iter().all(|e| e.kind == EventKind::Bifurcation));
     let q = br.events[0].parameter;
-    println!("self-weight buckling at rho A g L^3 / EI = {q:.5} (Greenhill 7.837), {} IVPs", br.evaluations);
+    let q2 = br.events[1].parameter / (10.0f64 / 9.0).powi(2);
+    println!("self-weight buckling at rho A g L^3 / EI = {q:.5}, second mode {q2:.5} (Greenhill 7.837), {} IVP-equivalents", br.evaluations);
     assert!((q / GREENHILL - 1.0).abs() < 5e-3, "located at {q}");
+    assert!((q2 / GREENHILL - 1.0).abs() < 5e-3, "second located at {q2}");
     for p in &br.points {
         assert_eq!(p.stability.stable, p.parameter < GREENHILL, "at {}", p.parameter);
     }
@@ -169,4 +172,29 @@ fn post_buckled_branch_matches_elastica() {
         checked += 1;
     }
     assert!(checked >= 5);
+}
+
+#[test]
+fn exact_tangents_match_finite_differences() {
+    use tcarod::experiments::{fig6_circle, fig6_square};
+    use tcarod::stability::stability_fd;
+    let mut cases: Vec<(Robot, Vec<f64>)> = vec![(heavy_column(), vec![])];
+    for t in [25.0, 100.0, 160.0] {
+        let sq = fig6_square(true);
+        let n = sq.actuators.len();
+        cases.push((sq, vec![t; n]));
+        let ci = fig6_circle(true);
+        let n = ci.actuators.len();
+        cases.push((ci, vec![t; n]));
+    }
+    for (r, q) in cases {
+        let sol = solve(&r, &q, &SolveOptions::default(), None).unwrap();
+        let a = stability(&r, &sol, &[]).unwrap();
+        let b = stability_fd(&r, &sol, &[]).unwrap();
+        println!("inputs {:?}: exact margin {:.6e} stable {}, FD {:.6e} {}", q, a.margin, a.stable, b.margin, b.stable);
+        assert_eq!(a.stable, b.stable);
+        // forward differences with step sqrt(eps): ~1e-6 relative error
+        assert!((a.margin - b.margin).abs() < 1e-4 * (1.0 + a.margin.abs()), "{} vs {}", a.margin, b.margin);
+        assert_eq!(a.evaluations, 1);
+    }
 }
