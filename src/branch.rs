@@ -123,7 +123,7 @@ pub struct BranchOptions {
     pub min_step: f64,
     /// Largest number of points.
     pub max_points: usize,
-    /// Stop at the first point that is not stable (sweep mode).
+    /// Stop at the first point that is not stable or lies past a fold (sweep mode).
     pub stop_when_unstable: bool,
     /// Shooting options (grid, tolerance, iterations of each corrector).
     pub solve: SolveOptions,
@@ -368,7 +368,7 @@ pub fn follow_branch(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solu
         let lam = next.bp.parameter;
         let unstable = !next.bp.stability.stable;
         pts.push(std::mem::replace(&mut cur, next));
-        if lam < lo - 1e-12 * scale || lam > hi + 1e-12 * scale || (opts.stop_when_unstable && unstable) {
+        if lam < lo - 1e-12 * scale || lam > hi + 1e-12 * scale || (opts.stop_when_unstable && (unstable || fold)) {
             break;
         }
         ds = (ds * 1.5).min(opts.max_step);
@@ -462,7 +462,7 @@ pub struct StableSweep {
 
 /// Sweep the parameter from `opts.start` to `opts.end` staying on stable
 /// equilibria: follow the branch until it loses stability (fold or
-/// bifurcation), then land on a stable equilibrium just beyond (the nearest
+/// bifurcation) or turns back in the parameter (a fold), then land on a stable equilibrium just beyond (the nearest
 /// one, by tip position, among those reached from a few perturbed starts)
 /// and go on. Equilibria that are unstable from the start are refused.
 pub fn sweep_stable(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solution>) -> Result<StableSweep> {
@@ -478,17 +478,21 @@ pub fn sweep_stable(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solut
         let br = follow_branch(pb, &o, from.as_ref())?;
         evals += br.evaluations;
         let n0 = points.len();
-        let last_is_unstable = br.points.last().map_or(false, |p| !p.stability.stable);
+        // the sweep ends early at a loss of stability or at a fold (the
+        // parameter cannot run back)
+        let folded = br.events.iter().any(|e| e.kind == EventKind::Fold);
+        let ended_early = folded || br.points.last().map_or(false, |p| !p.stability.stable);
         let within = |l: f64| (l - opts.end) * dir <= 0.0;
         for p in br.points.into_iter() {
-            if p.stability.stable && within(p.parameter) {
+            let ahead = points.last().map_or(true, |q: &BranchPoint| (p.parameter - q.parameter) * dir > 0.0);
+            if p.stability.stable && within(p.parameter) && ahead {
                 points.push(p);
             }
         }
         if points.len() == n0 {
             return Err(Error::input("start", "the equilibrium at the start of the sweep is not stable"));
         }
-        if !last_is_unstable {
+        if !ended_early {
             break;
         }
         let before = points.last().expect("non-empty").solution.clone();
