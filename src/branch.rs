@@ -16,7 +16,8 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::error::{Error, Result};
 use crate::rod::Robot;
-use crate::shooting::{assemble, initial_guess, newton_with_jacobian, reference_guess, shoot, shoot_jacobian, solve_loaded, Loads, SolveOptions, Solution};
+use crate::shooting::{assemble, initial_guess, reference_guess, shoot, shoot_jacobian, solve_loaded, Loads, SolveOptions, Solution};
+use crate::solve::newton::{newton, System};
 use crate::stability::{stability, Stability};
 
 /// The continuation parameter.
@@ -272,9 +273,12 @@ impl Tracer<'_, '_> {
         let steps = self.opts.solve.steps;
         let lambda = y[m] * self.scale;
         let (r, j) = jacobian(self.pb, &y, self.scale, steps, &mut self.evals)?;
+        let evaluations = self.evals;
         let t = tangent(&j, prev).ok_or_else(|| Error::NotConverged {
             solver: "branch following",
             iterations: 0,
+            evaluations,
+            stop: crate::error::StopReason::SingularJacobian,
             residual: r.iter().fold(0.0, |a: f64, b| a.max(b.abs())),
             reason: "singular augmented Jacobian (tangent undefined)".into(),
         })?;
@@ -291,25 +295,48 @@ impl Tracer<'_, '_> {
         })
     }
 
-    /// Corrector from `from` along its tangent by arclength `ds`.
+    /// Corrector from `from` along its tangent by arclength `ds`: Newton on
+    /// `[F(y); t . (y - y_pred)] = 0` with the exact `F_x`.
     fn step(&mut self, from: &Pt, ds: f64) -> Result<Pt> {
-        let m = from.y.len() - 1;
-        let steps = self.opts.solve.steps;
+        crate::solve::cancel::check()?;
         let yp: Vec<f64> = from.y.iter().zip(from.t.iter()).map(|(a, b)| a + ds * b).collect();
-        let t = from.t.clone();
-        let pb = self.pb;
-        let scale = self.scale;
-        let mut count = 0usize;
-        let f = |y: &[f64]| -> Result<Vec<f64>> {
-            count += 1;
-            let mut r = pb.residual(&y[..m], y[m] * scale, steps)?;
-            r.push(y.iter().zip(&yp).zip(t.iter()).map(|((a, b), c)| (a - b) * c).sum());
-            Ok(r)
-        };
-        let res = newton_with_jacobian(&yp, f, &self.opts.solve, "branch following", None);
-        self.evals += count;
-        let (nr, _) = res?;
+        let mut sys = Corrector { pb: self.pb, scale: self.scale, steps: self.opts.solve.steps, t: &from.t, yp: &yp, evaluations: 0 };
+        let res = newton(&mut sys, &yp, &self.opts.solve.newton(), "branch following");
+        self.evals += sys.evaluations;
+        let nr = res?;
         self.point(nr.x, &from.t)
+    }
+}
+
+/// The pseudo-arclength corrector as a Newton system.
+struct Corrector<'a, 'b> {
+    pb: &'b Problem<'a>,
+    scale: f64,
+    steps: usize,
+    t: &'b DVector<f64>,
+    yp: &'b [f64],
+    evaluations: usize,
+}
+
+impl System for Corrector<'_, '_> {
+    fn residual(&mut self, y: &[f64]) -> Result<Vec<f64>> {
+        let m = y.len() - 1;
+        self.evaluations += 1;
+        let mut r = self.pb.residual(&y[..m], y[m] * self.scale, self.steps)?;
+        r.push(y.iter().zip(self.yp).zip(self.t.iter()).map(|((a, b), c)| (a - b) * c).sum());
+        Ok(r)
+    }
+    fn residual_and_jacobian(&mut self, y: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
+        let m = y.len() - 1;
+        let (mut r, j) = jacobian(self.pb, y, self.scale, self.steps, &mut self.evaluations)?;
+        r.push(y.iter().zip(self.yp).zip(self.t.iter()).map(|((a, b), c)| (a - b) * c).sum());
+        let mut a = DMatrix::zeros(m + 1, m + 1);
+        a.view_mut((0, 0), (m, m + 1)).copy_from(&j);
+        a.row_mut(m).copy_from(&self.t.transpose());
+        Ok((r, a))
+    }
+    fn evaluations(&self) -> usize {
+        self.evaluations
     }
 }
 
@@ -338,6 +365,7 @@ pub fn follow_branch(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solu
     while pts.len() + 1 < opts.max_points {
         let next = match tr.step(&cur, ds) {
             Ok(p) => p,
+            Err(Error::Interrupted) => return Err(Error::Interrupted),
             Err(e) if matches!(e, Error::InvalidParameter { .. } | Error::InvalidInput { .. }) => break,
             Err(e) => {
                 ds *= 0.5;
@@ -576,6 +604,7 @@ fn land(pb: &Problem<'_>, lambda: f64, before: &Solution, opts: &SolveOptions, e
             consider(s, evals);
         }
     }
+    crate::solve::cancel::check()?;
     found
         .into_iter()
         .min_by(|a, b| (a.tip_position() - tip).norm().total_cmp(&(b.tip_position() - tip).norm()))

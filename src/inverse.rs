@@ -11,7 +11,9 @@ use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, Vector3};
 
 use crate::error::{Error, Result};
 use crate::rod::Robot;
-use crate::shooting::{assemble, initial_guess, newton, shoot, solve_loaded, Loads, SolveOptions, Solution};
+use crate::error::StopReason;
+use crate::shooting::{assemble, initial_guess, shoot, solve_loaded, Loads, SolveOptions, Solution};
+use crate::solve::{newton, FnSystem};
 
 /// Finite-difference scheme for [`sensitivities`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -273,7 +275,9 @@ fn sensitivities_impl(
         lu.solve(&rhs).ok_or_else(|| Error::NotConverged {
             solver: "sensitivities",
             iterations: 0,
+            evaluations: 0,
             residual: f64::INFINITY,
+            stop: StopReason::SingularJacobian,
             reason: "B_u is singular".into(),
         })
     };
@@ -517,7 +521,8 @@ pub fn blocked_force(robot: &Robot, groups: &Groups, block: &Block, z: &[f64], o
         r.push(block.normal.dot(&(ivp.tip.p - block.point)) / len);
         Ok(r)
     };
-    let nr = newton(&x0, f, opts, "blocked-tip shooting")?;
+    let mut sys = FnSystem::new(f);
+    let nr = newton(&mut sys, &x0, &opts.newton(), "blocked-tip shooting")?;
     let force = nr.x[nx] * fc;
     let l = block.loads(robot, force);
     let sol = assemble(robot, &inputs, &l, &nr.x[..nx], opts.steps, nr.iterations, nr.evaluations)?;
@@ -554,7 +559,8 @@ pub fn blocked_variable_direct(robot: &Robot, groups: &Groups, block: &Block, fo
         r.push(block.normal.dot(&(ivp.tip.p - block.point)) / len);
         Ok(r)
     };
-    let nr = newton(&x0, f, opts, "blocked-tip temperature shooting")?;
+    let mut sys = FnSystem::new(f);
+    let nr = newton(&mut sys, &x0, &opts.newton(), "blocked-tip temperature shooting")?;
     let z = nr.x[nx] * zs;
     let sol = assemble(robot, &groups.inputs(&[z]), &l, &nr.x[..nx], opts.steps, nr.iterations, nr.evaluations)?;
     Ok(BlockedResult {
@@ -601,7 +607,9 @@ pub fn blocked_temperature(robot: &Robot, groups: &Groups, block: &Block, start:
             return Err(Error::NotConverged {
                 solver: "blocked-tip increments",
                 iterations: k,
+                evaluations: evals,
                 residual: f64::INFINITY,
+                stop: StopReason::SingularJacobian,
                 reason: "the actuator cannot move the tip along the block normal (n^T J = 0)".into(),
             });
         }
@@ -645,6 +653,8 @@ pub fn blocked_temperature(robot: &Robot, groups: &Groups, block: &Block, start:
     Err(Error::NotConverged {
         solver: "blocked-tip increments",
         iterations: increments + 3,
+        evaluations: evals,
+        stop: StopReason::IterationLimit,
         residual: n.dot(&(block.point - sol.tip_position())).abs() / robot.body.length,
         reason: "tip did not settle on the block".into(),
     })

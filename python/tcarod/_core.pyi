@@ -22,10 +22,15 @@ __version__: Final[str]
 class ConvergenceError(RuntimeError):
     """A solve stopped without meeting its tolerance."""
 
-    #: Final residual norm (dimensionless unless the solver says otherwise).
+    #: Best residual norm reached (dimensionless unless the solver says otherwise).
     residual: float
     #: Iterations performed.
     iterations: int
+    #: IVPs integrated, failed attempts included.
+    evaluations: int
+    #: Why it stopped: "iteration_limit", "line_search", "singular_jacobian",
+    #: "non_finite", "integration" or "other".
+    reason: str
 
 @final
 class Material:

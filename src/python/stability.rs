@@ -257,14 +257,14 @@ fn follow_branch(
         }
     }
     if stable_only {
-        let sw = py.detach(|| sweep_stable(&pb, &opts, warm.as_ref()))?;
+        let sw = super::errors::detach_interruptible(py, || sweep_stable(&pb, &opts, warm.as_ref()))?;
         let mut out = collect(py, &pb, &acts, sw.points, vec![], sw.evaluations)?;
         for j in sw.jumps {
             out.jumps.push((j.parameter, wrap(py, &pb, &acts, j.parameter, j.before)?, wrap(py, &pb, &acts, j.parameter, j.after)?));
         }
         Ok(out)
     } else {
-        let br = py.detach(|| follow_core(&pb, &opts, warm.as_ref()))?;
+        let br = super::errors::detach_interruptible(py, || follow_core(&pb, &opts, warm.as_ref()))?;
         let events = br
             .events
             .iter()
