@@ -7,10 +7,10 @@
 //! variable `groups[i]`): the two legs of a U-shaped TCA share one
 //! temperature. Tip wrenches `W = [F; M]` are in the world frame.
 
-use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Quaternion, Rotation3, Vector3};
 
 use crate::error::{Error, Result};
-use crate::rod::Robot;
+use crate::rod::{integrate_tangent, IvpSpec, Robot, TangentSeeds};
 use crate::error::StopReason;
 use crate::shooting::{assemble, initial_guess, shoot, solve_loaded, Loads, SolveOptions, Solution};
 use crate::solve::{newton, FnSystem};
@@ -22,6 +22,12 @@ pub enum Scheme {
     Forward,
     /// Central differences, step `cbrt(eps) max(1, |z|/z_c) z_c`: twice the IVPs, `O(h^2)` error.
     Central,
+    /// Exact: one tangent IVP ([`crate::rod::integrate_tangent`]) along the
+    /// unknowns and the actuation variables, the wrench columns in closed
+    /// form; no step size, no truncation error (the TCA law's temperature
+    /// slope is differenced inside the law, see
+    /// [`crate::rod::ForceLaw::tension_derivatives`]).
+    Exact,
 }
 
 /// Actuation Jacobian and compliance at a solution.
@@ -132,6 +138,7 @@ pub fn sensitivities(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Grou
     let rel = match scheme {
         Scheme::Forward => f64::EPSILON.sqrt(),
         Scheme::Central => f64::EPSILON.cbrt(),
+        Scheme::Exact => return sensitivities_exact(robot, sol, loads, groups, steps),
     };
     sensitivities_with_step(robot, sol, loads, groups, steps, scheme, rel)
 }
@@ -145,8 +152,84 @@ pub fn sensitivities_fast(robot: &Robot, sol: &Solution, loads: &Loads, groups: 
     let rel = match scheme {
         Scheme::Forward => f64::EPSILON.sqrt(),
         Scheme::Central => f64::EPSILON.cbrt(),
+        Scheme::Exact => return sensitivities_exact(robot, sol, loads, groups, steps),
     };
     sensitivities_impl(robot, sol, loads, groups, steps, scheme, rel, true)
+}
+
+/// `J` and `C` (eqs 39-42) exactly, from one tangent IVP at the solution
+/// along the `6 + N` shooting unknowns and the `n_vars` actuation variables:
+/// `E_u, E_q` are the tangents of the tip pose (`dtheta = 2 vec(dq q^-1)`,
+/// world frame), `B_u, B_q` those of the scaled residual, `E_W = 0` and
+/// `B_W` in closed form (see [`sensitivities_fast`]).
+pub fn sensitivities_exact(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Groups, steps: usize) -> Result<Sensitivities> {
+    groups.validate(robot)?;
+    let len = robot.body.length;
+    let na = robot.actuators.len();
+    let nx = 6 + na;
+    let nz = groups.n_vars();
+    let x = &sol.unknowns;
+    let mut tau = Vec::with_capacity(na);
+    let mut seeds = TangentSeeds::zeros(na, nx + nz);
+    for k in 0..3 {
+        seeds.nu0[(k, k)] = 1.0;
+        seeds.omega0[(k, 3 + k)] = 1.0 / len;
+    }
+    for (i, a) in robot.actuators.iter().enumerate() {
+        let (t, dt_de, dt_dq) = a.law.tension_derivatives(x[6 + i] * len, sol.inputs[i])?;
+        tau.push(t);
+        seeds.tensions[(i, 6 + i)] = dt_de * len;
+        seeds.tensions[(i, nx + groups.0[i])] = dt_dq;
+    }
+    let spec = IvpSpec { robot, tensions: &tau, tip_force: loads.tip_force, tip_moment: loads.tip_moment, steps };
+    let v0 = Vector3::new(x[0], x[1], x[2]);
+    let u0 = Vector3::new(x[3], x[4], x[5]) / len;
+    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, false)?;
+    let ncol = nx + nz;
+    // pose tangents: dp, and dtheta = 2 vec(dq conj(q)) for a unit q
+    let q = tan.ivp.tip.q;
+    let mut e = DMatrix::<f64>::zeros(6, ncol + 6);
+    for c in 0..ncol {
+        for k in 0..3 {
+            e[(k, c)] = tan.tip[(k, c)];
+        }
+        let dq = Quaternion::new(tan.tip[(3, c)], tan.tip[(4, c)], tan.tip[(5, c)], tan.tip[(6, c)]);
+        let w = dq * q.conjugate() * 2.0;
+        e[(3, c)] = w.i;
+        e[(4, c)] = w.j;
+        e[(5, c)] = w.k;
+    }
+    let (fs, ms) = crate::shooting::residual_scales(robot);
+    let mut bm = DMatrix::<f64>::zeros(nx, ncol + 6);
+    for c in 0..ncol {
+        for k in 0..3 {
+            bm[(k, c)] = tan.tip_force_residual[(k, c)] * fs;
+            bm[(3 + k, c)] = tan.tip_moment_residual[(k, c)] * ms;
+        }
+        for i in 0..na {
+            bm[(6 + i, c)] = tan.elongation[(i, c)] / len - if c == 6 + i { 1.0 } else { 0.0 };
+        }
+    }
+    let r0 = tan.ivp.tip.rotation();
+    for k in 0..6 {
+        for i in 0..3 {
+            let (row, val) = if k < 3 { (i, -r0[(k, i)] * fs) } else { (3 + i, -r0[(k - 3, i)] * ms) };
+            bm[(row, ncol + k)] = val;
+        }
+    }
+    let lu = bm.columns(0, nx).into_owned().lu();
+    let singular = || Error::NotConverged {
+        solver: "sensitivities",
+        iterations: 0,
+        evaluations: 1,
+        residual: f64::INFINITY,
+        stop: StopReason::SingularJacobian,
+        reason: "B_u is singular".into(),
+    };
+    let eu = e.columns(0, nx).into_owned();
+    let jac = e.columns(nx, nz).into_owned() - &eu * lu.solve(&bm.columns(nx, nz).into_owned()).ok_or_else(singular)?; // (41)
+    let comp = -(&eu * lu.solve(&bm.columns(ncol, 6).into_owned()).ok_or_else(singular)?); // (42), E_W = 0
+    Ok(Sensitivities { jacobian: jac, compliance: comp, evaluations: 1 })
 }
 
 /// [`sensitivities`] with a chosen relative step (for studies of step-size error).

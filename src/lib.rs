@@ -25,6 +25,7 @@ pub mod bench;
 pub mod experiments;
 pub mod inverse;
 pub mod material;
+pub mod problems;
 pub mod roots;
 pub mod rod;
 pub mod shooting;

@@ -497,7 +497,7 @@ class BlockedResult:
 def sensitivities(
     solution: Solution,
     groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
-    scheme: Literal["forward", "central"] = "forward",
+    scheme: Literal["forward", "central", "exact"] = "forward",
 ) -> tuple[_FloatArray, _FloatArray]:
     """``(J, C)`` at ``solution`` (eqs 41-42): ``J`` is ``6 x n_vars`` [m or rad per C],
     ``C`` is ``6 x 6`` [m or rad per N or N m]."""

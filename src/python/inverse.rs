@@ -55,7 +55,8 @@ fn sensitivities<'py>(py: Python<'py>, solution: PyRef<'py, PySolution>, groups:
     let sch = match scheme {
         "forward" => Scheme::Forward,
         "central" => Scheme::Central,
-        _ => return Err(Error::input("scheme", format!("{scheme:?} is not 'forward' or 'central'")).into()),
+        "exact" => Scheme::Exact,
+        _ => return Err(Error::input("scheme", format!("{scheme:?} is not 'forward', 'central' or 'exact'")).into()),
     };
     let sol = solution.inner.clone();
     let s = py.detach(|| inverse::sensitivities(&robot.inner, &sol, &sol.loads, &g, sol.steps, sch))?;

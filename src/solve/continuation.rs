@@ -58,6 +58,7 @@ pub(crate) fn continuation(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &
         Some(w) => w.tensions.clone(),
         None => vec![0.0; robot.actuators.len()],
     };
+    let mut jac = warm.and_then(|w| w.newton_jacobian.clone());
     let mut lam = 0.0;
     let mut step: f64 = if cold { 0.25 } else { 0.5 };
     let mut path = Vec::new();
@@ -75,7 +76,7 @@ pub(crate) fn continuation(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &
                 }
             }
         }
-        match newton_shooting(&r, &inp, &l, opts, &x0, lt >= 1.0, work) {
+        match newton_shooting(&r, &inp, &l, opts, &x0, jac.as_ref(), lt >= 1.0, work) {
             Ok((nr, last)) => {
                 lam = lt;
                 path.push(lt);
@@ -95,6 +96,9 @@ pub(crate) fn continuation(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &
                     }
                 };
                 x = nr.x;
+                if nr.jacobian.is_some() {
+                    jac = nr.jacobian;
+                }
             }
             Err(e) if is_input_error(&e) => return Err(e),
             Err(e) => {

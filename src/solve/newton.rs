@@ -123,11 +123,25 @@ fn merit(r: &[f64]) -> f64 {
 /// cancel check (see [`crate::solve::cancel`]) fires. An error of the first
 /// evaluation is returned as it is (e.g. an invalid input).
 pub fn newton<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, solver: &'static str) -> Result<NewtonResult> {
+    newton_from(sys, x0, opts, solver, None)
+}
+
+/// [`newton`] with an initial Jacobian `jac0` (e.g. that of a neighbouring
+/// solution, for warm starts).
+///
+/// Jacobian reuse: a Jacobian is kept for the next iteration while it
+/// contracts the residual, and a step taken with a kept (not freshly
+/// computed) Jacobian must at least halve `max |f|` at full length; otherwise
+/// the Jacobian is recomputed at the current point and the iteration redone
+/// with the full line search. A kept Jacobian costs no tangent IVP, so warm
+/// starts and the last iterations of a cold solve cost one plain IVP each.
+pub fn newton_from<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, solver: &'static str, jac0: Option<&DMatrix<f64>>) -> Result<NewtonResult> {
     let mut x = x0.to_vec();
     let mut r = sys.residual(&x)?;
     let mut iterations = 0;
     let mut best = inf_norm(&r);
-    let mut jacobian = None;
+    let mut jacobian: Option<DMatrix<f64>> = jac0.filter(|j| j.nrows() == r.len() && j.ncols() == x.len() && j.iter().all(|v| v.is_finite())).cloned();
+    let mut fresh = false;
     let fail = |sys: &S, iterations, best: f64, reason: StopReason, detail: String| Error::NotConverged {
         solver,
         iterations,
@@ -153,21 +167,35 @@ pub fn newton<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, solver: 
         }
         cancel::check()?;
         iterations += 1;
-        let (r_j, jac) = sys.residual_and_jacobian(&x)?;
-        // keep the plain residual (the Jacobian's is equal to rounding)
-        let _ = r_j;
+        let jac = match jacobian.take() {
+            Some(j) => j,
+            None => {
+                fresh = true;
+                // keep the plain residual (the Jacobian's is equal to rounding)
+                sys.residual_and_jacobian(&x)?.1
+            }
+        };
         let rv = DVector::from_column_slice(&r);
         let (m, n) = jac.shape();
         let dx = if m == n { jac.clone().lu().solve(&(-&rv)) } else { jac.clone().svd(true, true).solve(&(-&rv), 1e-14).ok() };
         let grad = jac.tr_mul(&rv); // grad phi = J^T f
         let mut dx = match dx {
             Some(d) if d.iter().all(|v| v.is_finite()) => d,
+            _ if !fresh => {
+                // a kept Jacobian gone singular: recompute it
+                iterations -= 1;
+                continue;
+            }
             _ => {
                 return Err(fail(sys, iterations, best, StopReason::SingularJacobian, "singular Jacobian".into()));
             }
         };
         let mut slope = grad.dot(&dx);
         if !(slope < 0.0) {
+            if !fresh {
+                iterations -= 1;
+                continue;
+            }
             // not a descent direction (inaccurate Jacobian): steepest descent,
             // scaled to the Gauss-Newton step length
             let g2 = grad.norm_squared();
@@ -181,9 +209,23 @@ pub fn newton<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, solver: 
         jacobian = Some(jac);
         let phi0 = merit(&r);
         let mut t = 1.0;
-        if std::env::var("TCAROD_DEBUG").is_ok() {
-            eprintln!("it {iterations} res {res:.3e} |dx| {:.3e} x {:?}", dx.amax(), &x);
+        if !fresh {
+            // a kept Jacobian: full step only, and it must halve max |f|
+            let xt: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
+            match sys.residual(&xt) {
+                Ok(rt) if inf_norm(&rt) <= 0.5 * res => {
+                    x = xt;
+                    r = rt;
+                }
+                Err(Error::Interrupted) => return Err(Error::Interrupted),
+                _ => {
+                    jacobian = None;
+                    iterations -= 1;
+                }
+            }
+            continue;
         }
+        fresh = false;
         loop {
             let xt: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + t * b).collect();
             let phi = match sys.residual(&xt) {
@@ -210,6 +252,10 @@ pub fn newton<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, solver: 
                 }
                 return Err(fail(sys, iterations, best, StopReason::LineSearch, "line search failed to reduce the residual".into()));
             }
+        }
+        if t < 1.0 {
+            // a damped step: the Jacobian is recomputed at the new point
+            jacobian = None;
         }
     }
 }

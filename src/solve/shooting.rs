@@ -18,7 +18,7 @@ use nalgebra::{DMatrix, Matrix3, Vector3};
 
 use super::cancel;
 use super::continuation::continuation;
-use super::newton::{newton, NewtonOptions, NewtonResult, Status, System};
+use super::newton::{newton_from, NewtonOptions, NewtonResult, Status, System};
 use crate::error::{Error, Result};
 use crate::rod::{integrate, integrate_tangent, IvpResult, IvpSpec, Robot, TangentIvp, TangentSeeds};
 
@@ -562,11 +562,12 @@ pub(crate) fn newton_shooting(
     loads: &Loads,
     opts: &SolveOptions,
     x0: &[f64],
+    jac0: Option<&DMatrix<f64>>,
     record: bool,
     work: &mut Work,
 ) -> Result<(NewtonResult, Option<(Vec<f64>, IvpResult, Vec<f64>)>)> {
     let mut sys = Shooting::new(robot, inputs, loads, opts.steps, record);
-    let out = newton(&mut sys, x0, &opts.newton(), "forward shooting");
+    let out = newton_from(&mut sys, x0, &opts.newton(), "forward shooting", jac0);
     match out {
         Ok(nr) => {
             work.add(&sys, nr.iterations);
@@ -659,7 +660,8 @@ pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOp
     if warm.is_none() {
         linear_guess(robot, inputs, loads, &mut x0);
     }
-    match newton_shooting(robot, inputs, loads, opts, &x0, true, &mut work) {
+    let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
+    match newton_shooting(robot, inputs, loads, opts, &x0, jac0, true, &mut work) {
         Ok((nr, last)) => solution_from(robot, inputs, loads, opts, nr, last, &mut work),
         Err(e) if is_input_error(&e) => Err(e),
         Err(first) => continuation(robot, inputs, loads, opts, warm, &mut work).map_err(|e| match e {
@@ -698,7 +700,8 @@ pub fn solve_tip(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptio
         linear_guess(robot, inputs, loads, &mut x0);
     }
     let mut work = Work::default();
-    match newton_shooting(robot, inputs, loads, opts, &x0, false, &mut work) {
+    let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
+    match newton_shooting(robot, inputs, loads, opts, &x0, jac0, false, &mut work) {
         Ok((nr, last)) => {
             let (ivp, tau) = match last {
                 Some((_, ivp, tau)) => (ivp, tau),

@@ -1,0 +1,257 @@
+//! Issue-10 benchmark: cold solves of the seeded random designs of
+//! `tcarod::problems` (`cargo bench --bench designs`).
+//!
+//! Environment: `TCAROD_DESIGNS` (default 1000) designs, `TCAROD_SEED`
+//! (default `problems::DEFAULT_SEED`), `TCAROD_VERBOSE=1` lists each failure
+//! and each equilibrium residual above the target; diagnostics:
+//! `TCAROD_ONLY=3,17` solves only these designs, `TCAROD_STEPS` sets the RK4 steps.
+//!
+//! Each design is solved once from the reference (straight) guess with the
+//! default `SolveOptions` (100 RK4 steps, tol 1e-10, max_iter 50 per Newton
+//! run), the solver's own fallback (homotopy continuation) included; the
+//! count of converged solves that needed it is printed. IVPs are
+//! `Solution.evaluations` (a tangent IVP, which carries the Jacobian, counts
+//! as one); IVP-equivalents are the solve's CPU time over the CPU time of one
+//! plain IVP of the same design at its solution (mean of 5). Times are thread-CPU
+//! times from `clock_gettime(CLOCK_THREAD_CPUTIME_ID)` (declared here: no
+//! `libc` dependency), or wall time from `Instant` where that is unavailable. Prints a table and one `JSON ` line.
+use std::time::Instant;
+
+use tcarod::problems::{equilibrium, random_design, DEFAULT_SEED, EQUILIBRIUM_TOL};
+use tcarod::shooting::{shoot, solve, Loads, SolveOptions};
+use tcarod::Error;
+
+#[repr(C)]
+struct Timespec {
+    tv_sec: i64,
+    tv_nsec: i64,
+}
+
+extern "C" {
+    // POSIX, in the C library every Rust program on Linux links already
+    fn clock_gettime(clock: i32, ts: *mut Timespec) -> i32;
+}
+
+/// `CLOCK_THREAD_CPUTIME_ID` on Linux.
+const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
+
+/// Thread CPU time [s] from `clock_gettime(CLOCK_THREAD_CPUTIME_ID)`, or
+/// `None` where it fails. (`/proc/thread-self/schedstat` is no substitute:
+/// it is updated at scheduler ticks, 4 ms apart here.)
+fn thread_cpu() -> Option<f64> {
+    if !cfg!(target_os = "linux") || !cfg!(target_pointer_width = "64") {
+        return None;
+    }
+    let mut ts = Timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: `ts` is a valid, writable timespec (64-bit Linux layout).
+    let rc = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    (rc == 0).then(|| ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
+}
+
+/// Quantile `q` of sorted data (nearest rank).
+fn quantile(sorted: &[f64], q: f64) -> f64 {
+    if sorted.is_empty() {
+        return f64::NAN;
+    }
+    let k = ((q * sorted.len() as f64).ceil() as usize).clamp(1, sorted.len());
+    sorted[k - 1]
+}
+
+fn sorted(mut v: Vec<f64>) -> Vec<f64> {
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    v
+}
+
+fn reason(e: &Error) -> String {
+    match e {
+        Error::NotConverged { reason, .. } => reason.clone(),
+        Error::Integration { reason, .. } => format!("integration: {}", reason.split(':').next().unwrap_or(reason)),
+        other => format!("{other}"),
+    }
+}
+
+/// A converged solve: IVPs (`Solution.evaluations`), iterations, equilibrium
+/// residual, IVP-equivalents (CPU time / CPU time of one plain IVP at the
+/// solution), whether continuation was needed.
+struct Converged {
+    ivps: usize,
+    iterations: usize,
+    equilibrium: f64,
+    ivp_equivalents: f64,
+    continuation: bool,
+}
+
+struct Outcome {
+    past: bool,
+    cpu: f64,
+    result: Result<Converged, String>,
+    /// Equilibrium residual re-solved on 4x the steps, for converged designs
+    /// above the target (`None`: below it, or the fine solve failed).
+    fine: Option<f64>,
+}
+
+fn main() {
+    let n: usize = std::env::var("TCAROD_DESIGNS").ok().and_then(|v| v.parse().ok()).unwrap_or(1000);
+    let seed: u64 = std::env::var("TCAROD_SEED").ok().and_then(|v| v.parse().ok()).unwrap_or(DEFAULT_SEED);
+    let verbose = std::env::var("TCAROD_VERBOSE").is_ok_and(|v| v == "1");
+    let mut opts = SolveOptions::default();
+    if let Some(steps) = std::env::var("TCAROD_STEPS").ok().and_then(|v| v.parse().ok()) {
+        opts.steps = steps;
+    }
+    // TCAROD_ONLY=i,j,...: just these designs (diagnostics)
+    let only: Option<Vec<usize>> = std::env::var("TCAROD_ONLY").ok().map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect());
+    let clock = if thread_cpu().is_some() { "thread-cpu (clock_gettime)" } else { "wall (Instant)" };
+    let wall = Instant::now();
+    let now = || thread_cpu().unwrap_or_else(|| wall.elapsed().as_secs_f64());
+    let mut out = Vec::with_capacity(n);
+    let indices: Vec<usize> = only.clone().unwrap_or_else(|| (0..n).collect());
+    let n = indices.len();
+    for &i in &indices {
+        let d = random_design(seed, i);
+        let t0 = now();
+        let r = solve(&d.robot, &d.inputs, &opts, None);
+        let cpu = now() - t0;
+        let result = match r {
+            Ok(sol) => {
+                let eq = equilibrium(&d.robot, &sol);
+                if only.is_some() {
+                    eprintln!("#{i} steps {} residual {:.2e}: {eq:?}", opts.steps, sol.residual);
+                }
+                // one plain IVP at the solution, 5 times
+                let loads = Loads::of(&d.robot);
+                let t1 = now();
+                for _ in 0..5 {
+                    let _ = std::hint::black_box(shoot(&d.robot, &d.inputs, &loads, &sol.unknowns, opts.steps, false));
+                }
+                let ivp = (now() - t1) / 5.0;
+                Ok(Converged {
+                    ivps: sol.evaluations,
+                    iterations: sol.iterations,
+                    equilibrium: eq.relative,
+                    ivp_equivalents: cpu / ivp,
+                    continuation: !sol.continuation_steps.is_empty(),
+                })
+            }
+            Err(e) => {
+                if verbose {
+                    eprintln!("FAIL {}: {e}", d.summary());
+                }
+                Err(reason(&e))
+            }
+        };
+        if verbose {
+            if let Ok(c) = &result {
+                if c.equilibrium > EQUILIBRIUM_TOL {
+                    eprintln!("EQUILIBRIUM {:.2e} {}", c.equilibrium, d.summary());
+                }
+            }
+        }
+        // above the target: is it RK4's truncation error? (4x steps: 1/256 of it)
+        let fine = match &result {
+            Ok(c) if c.equilibrium > EQUILIBRIUM_TOL => {
+                let fo = SolveOptions { steps: 4 * opts.steps, ..opts };
+                solve(&d.robot, &d.inputs, &fo, None).ok().map(|s| equilibrium(&d.robot, &s).relative)
+            }
+            _ => None,
+        };
+        out.push(Outcome { past: d.past_buckling(), cpu, result, fine });
+    }
+    let wall = wall.elapsed().as_secs_f64();
+    report(&out, n, seed, clock, wall);
+}
+
+fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
+    let ok: Vec<&Converged> = out.iter().filter_map(|o| o.result.as_ref().ok()).collect();
+    let via_cont = ok.iter().filter(|c| c.continuation).count();
+    let not_past = out.iter().filter(|o| !o.past).count();
+    let ok_not_past = out.iter().filter(|o| !o.past && o.result.is_ok()).count();
+    let ivp = sorted(ok.iter().map(|r| r.ivps as f64).collect());
+    let it = sorted(ok.iter().map(|r| r.iterations as f64).collect());
+    let eq = sorted(ok.iter().map(|r| r.equilibrium).collect());
+    let ive = sorted(ok.iter().map(|r| r.ivp_equivalents).collect());
+    let cpu = sorted(out.iter().map(|o| o.cpu).collect());
+    let cpu_ok = sorted(out.iter().filter(|o| o.result.is_ok()).map(|o| o.cpu).collect());
+    let mut fails: Vec<(String, usize, usize)> = Vec::new();
+    for o in out {
+        if let Err(r) = &o.result {
+            match fails.iter_mut().find(|f| &f.0 == r) {
+                Some(f) => {
+                    f.1 += 1;
+                    f.2 += usize::from(o.past);
+                }
+                None => fails.push((r.clone(), 1, usize::from(o.past))),
+            }
+        }
+    }
+    fails.sort_by(|a, b| b.1.cmp(&a.1));
+    let eq_bad = eq.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
+    println!("designs: {n} (seed {seed:#x}), {} past self-weight buckling; clock: {clock}; wall {wall:.1} s", n - not_past);
+    println!("converged cold: {} / {n} all, {ok_not_past} / {not_past} not past buckling; {via_cont} of them via continuation", ok.len());
+    println!(
+        "IVPs per converged solve: median {} p90 {} p99 {} max {}",
+        quantile(&ivp, 0.5),
+        quantile(&ivp, 0.9),
+        quantile(&ivp, 0.99),
+        quantile(&ivp, 1.0)
+    );
+    println!(
+        "IVP-equivalents (CPU of the solve / CPU of one plain IVP at its solution): median {:.1} p90 {:.1} p99 {:.1} max {:.1}",
+        quantile(&ive, 0.5),
+        quantile(&ive, 0.9),
+        quantile(&ive, 0.99),
+        quantile(&ive, 1.0)
+    );
+    println!("iterations: median {} p90 {} p99 {} max {}", quantile(&it, 0.5), quantile(&it, 0.9), quantile(&it, 0.99), quantile(&it, 1.0));
+    println!(
+        "CPU per solve (all) [ms]: median {:.3} p99 {:.1} max {:.1}; converged only: median {:.3} p99 {:.1} max {:.1}; total {:.1} s",
+        quantile(&cpu, 0.5) * 1e3,
+        quantile(&cpu, 0.99) * 1e3,
+        quantile(&cpu, 1.0) * 1e3,
+        quantile(&cpu_ok, 0.5) * 1e3,
+        quantile(&cpu_ok, 0.99) * 1e3,
+        quantile(&cpu_ok, 1.0) * 1e3,
+        cpu.iter().sum::<f64>()
+    );
+    println!(
+        "equilibrium (relative) of converged: median {:.1e} p99 {:.1e} max {:.1e}; {eq_bad} above {EQUILIBRIUM_TOL:.0e}",
+        quantile(&eq, 0.5),
+        quantile(&eq, 0.99),
+        quantile(&eq, 1.0)
+    );
+    let fine = sorted(out.iter().filter_map(|o| o.fine).collect());
+    let fine_bad = fine.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
+    println!(
+        "  of the {eq_bad} above: re-solved on 4x steps {} (max {:.1e}), {fine_bad} still above {EQUILIBRIUM_TOL:.0e}",
+        fine.len(),
+        quantile(&fine, 1.0)
+    );
+    for (r, k, p) in &fails {
+        println!("  failed: {k:4} ({p} past buckling)  {r}");
+    }
+    let fails_json: Vec<String> = fails.iter().map(|(r, k, p)| format!("{{\"reason\":{:?},\"count\":{k},\"past_buckling\":{p}}}", r)).collect();
+    println!(
+        "JSON {{\"bench\":\"designs\",\"n\":{n},\"seed\":{seed},\"past_buckling\":{},\"converged\":{},\"converged_not_past\":{ok_not_past},\"not_past\":{not_past},\
+\"via_continuation\":{via_cont},\"ivp\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"ivp_equivalents\":{{\"median\":{:.2},\"p90\":{:.2},\"p99\":{:.2},\"max\":{:.2}}},\"iterations\":{{\"median\":{},\"max\":{}}},\
+\"cpu_s\":{{\"median\":{:.6e},\"p99\":{:.6e},\"max\":{:.6e},\"total\":{:.3}}},\"equilibrium\":{{\"max\":{:.3e},\"above_tol\":{eq_bad},\"fine_resolved\":{},\"fine_above_tol\":{fine_bad},\"fine_max\":{:.3e}}},\"failures\":[{}]}}",
+        n - not_past,
+        ok.len(),
+        quantile(&ivp, 0.5),
+        quantile(&ivp, 0.9),
+        quantile(&ivp, 0.99),
+        quantile(&ivp, 1.0),
+        quantile(&ive, 0.5),
+        quantile(&ive, 0.9),
+        quantile(&ive, 0.99),
+        quantile(&ive, 1.0),
+        quantile(&it, 0.5),
+        quantile(&it, 1.0),
+        quantile(&cpu, 0.5),
+        quantile(&cpu, 0.99),
+        quantile(&cpu, 1.0),
+        cpu.iter().sum::<f64>(),
+        quantile(&eq, 1.0),
+        fine.len(),
+        quantile(&fine, 1.0),
+        fails_json.join(",")
+    );
+}

@@ -1,0 +1,235 @@
+//! The random-design generator, the self-weight classifier and the global
+//! equilibrium check of `tcarod::problems`, and a small seeded subset of the
+//! issue-10 benchmark (`benches/designs.rs` runs the 1,000).
+use std::sync::Arc;
+
+use nalgebra::Vector3;
+use tcarod::problems::{
+    column_ratio, equilibrium, past_self_weight_buckling, random_design, random_designs, ActuatorKind, SplitMix64,
+    DEFAULT_SEED, EQUILIBRIUM_TOL, MAX_WEIGHT_RATIO,
+};
+use tcarod::rod::{Actuator, Body, ConstantTension, Robot, Routing, Section};
+use tcarod::shooting::{assemble, solve, Loads, SolveOptions};
+
+#[test]
+fn splitmix64_matches_reference_values() {
+    // first outputs of SplitMix64 seeded with 1234567 (reference C
+    // implementation, Vigna, prng.di.unimi.it/splitmix64.c)
+    let mut r = SplitMix64::new(1234567);
+    let want = [6457827717110365317u64, 3203168211198807973, 9817491932198370423];
+    for w in want {
+        assert_eq!(r.next_u64(), w);
+    }
+}
+
+#[test]
+fn generator_is_deterministic_and_prefix_stable() {
+    let a = random_designs(DEFAULT_SEED, 30);
+    let b = random_designs(DEFAULT_SEED, 60);
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(x.summary(), y.summary());
+        assert_eq!(x.inputs, y.inputs);
+    }
+    // another seed gives other designs
+    let c = random_design(DEFAULT_SEED + 1, 0);
+    assert_ne!(c.summary(), a[0].summary());
+}
+
+#[test]
+fn generator_makes_valid_varied_designs() {
+    let ds = random_designs(DEFAULT_SEED, 300);
+    let (mut helix, mut interior, mut gravity, mut tip, mut rect) = (0, 0, 0, 0, 0);
+    let mut kinds = [0usize; 3];
+    for d in &ds {
+        let r = &d.robot;
+        r.validate().unwrap();
+        r.check_inputs(&d.inputs).unwrap();
+        let b = &r.body;
+        assert!((0.010..=0.300).contains(&b.length), "{}", d.summary());
+        assert!((10e3..=10e6).contains(&b.youngs_modulus), "{}", d.summary());
+        assert!((1..=4).contains(&r.actuators.len()));
+        let (a, ix, iy, _) = b.section.properties();
+        let ratio = b.density * a * b.gravity.norm() * b.length.powi(3) / (b.youngs_modulus * ix.min(iy));
+        assert!(ratio <= MAX_WEIGHT_RATIO);
+        if matches!(b.section, Section::Rectangle { .. }) {
+            rect += 1;
+        }
+        gravity += usize::from(b.gravity != Vector3::zeros());
+        tip += usize::from(b.tip_force != Vector3::zeros() || b.tip_moment != Vector3::zeros());
+        for (act, k) in r.actuators.iter().zip(&d.kinds) {
+            // inside the section
+            let (off, theta) = match act.routing {
+                Routing::Straight { x, y } => (x.hypot(y), y.atan2(x)),
+                Routing::Helix { radius, .. } => {
+                    helix += 1;
+                    (radius, 0.0)
+                }
+            };
+            let edge = match act.routing {
+                Routing::Straight { .. } => b.section.edge_distance(theta),
+                Routing::Helix { .. } => (0..64).map(|i| b.section.edge_distance(i as f64 * 0.1)).fold(f64::MAX, f64::min),
+            };
+            assert!(off < edge, "{}", d.summary());
+            interior += usize::from(act.s_start > 0.0 || act.s_end < b.length);
+            kinds[*k as usize] += 1;
+        }
+    }
+    // every feature the issue lists is present in a fair share of the set
+    for (name, n) in [("helix", helix), ("interior anchor", interior), ("gravity", gravity), ("tip load", tip), ("rectangle", rect)] {
+        assert!(n >= 30, "{name}: {n}");
+    }
+    assert!(kinds.iter().all(|&n| n >= 100), "{kinds:?}");
+    let past = ds.iter().filter(|d| d.past_buckling()).count();
+    assert!(past > 0 && past < 60, "{past} of 300 past buckling");
+    let _ = ActuatorKind::Tca;
+}
+
+fn rod(len: f64, e: f64) -> Body {
+    Body::new(len, Section::Circle { diameter: 8e-3 }, e, 0.5, 1000.0).unwrap()
+}
+
+#[test]
+fn column_ratio_counts_the_axial_component_of_gravity() {
+    let mut b = rod(0.1, 1e5);
+    let (a, i, ..) = b.section.properties();
+    let want = 1000.0 * a * 9.81 * 1e-3 / (1e5 * i);
+    b.gravity = Vector3::new(0.0, 0.0, -9.81);
+    assert!((column_ratio(&b) - want).abs() < 1e-12 * want);
+    b.gravity = Vector3::new(9.81 * 0.6, 0.0, -9.81 * 0.8); // inclined: axial part only
+    assert!((column_ratio(&b) - 0.8 * want).abs() < 1e-12 * want);
+    b.gravity = Vector3::new(0.0, 0.0, 9.81); // hanging: in tension
+    assert_eq!(column_ratio(&b), 0.0);
+    // Greenhill length for 7.837: just below and above
+    let lc = (7.837 * 1e5 * i / (1000.0 * a * 9.81)).cbrt();
+    for (f, past) in [(0.99, false), (1.01, true)] {
+        let mut c = rod(lc * f, 1e5);
+        c.gravity = Vector3::new(0.0, 0.0, -9.81);
+        assert_eq!(past_self_weight_buckling(&c), past);
+    }
+}
+
+/// One constant-tension tendon at x = 3 mm from `s0` to `s1`, no gravity.
+fn one_tendon(s0: f64, s1: f64, helix: bool) -> (Robot, Vec<f64>) {
+    let routing = if helix {
+        Routing::Helix { radius: 2.5e-3, rate: 40.0, phase: 0.3 }
+    } else {
+        Routing::Straight { x: 3e-3, y: 0.0 }
+    };
+    let act = Actuator::new(routing, s0, s1, Arc::new(ConstantTension));
+    (Robot::new(rod(0.1, 1e6), vec![act]).unwrap(), vec![0.05])
+}
+
+#[test]
+fn a_lone_tendon_loads_the_base_with_nothing() {
+    // The string is internal to the robot: with no external load the base
+    // wrench (body + strings anchored at the base) is zero. The body alone
+    // carries -tau t(0) when the string is anchored at the base, and nothing
+    // when both its anchors are inside the body.
+    for (s0, s1, helix) in [(0.0, 0.1, false), (0.0, 0.07, true), (0.02, 0.1, false), (0.03, 0.08, true)] {
+        let (robot, q) = one_tendon(s0, s1, helix);
+        let sol = solve(&robot, &q, &SolveOptions::default(), None).unwrap();
+        let eq = equilibrium(&robot, &sol);
+        // scale: the tension 0.05 N; force error at the solver's tolerance
+        // 1e-10 EI/L^2 = 2e-11 N, i.e. 4e-10 relative; 1e-8 is the issue's target
+        assert!(eq.relative < EQUILIBRIUM_TOL, "{s0} {s1} {helix}: {eq:?}");
+        assert!(sol.base_force.norm() < 1e-8 * 0.05, "{}", sol.base_force);
+        assert!(sol.base_moment.norm() < 1e-8 * 0.05 * 0.1, "{}", sol.base_moment);
+        let n0 = sol.internal_force[0];
+        if s0 == 0.0 {
+            assert!((n0.norm() - 0.05).abs() < 1e-9, "{n0}"); // -tau t(0)
+        } else {
+            assert!(n0.norm() < 1e-8 * 0.05, "{n0}");
+        }
+        assert!(eq.solution_mismatch < 1e-14, "{eq:?}");
+    }
+}
+
+#[test]
+fn equilibrium_holds_with_gravity_and_tip_loads() {
+    let (mut robot, q) = one_tendon(0.02, 0.09, true);
+    robot.body.gravity = Vector3::new(3.0, -2.0, -9.0);
+    robot.body.tip_force = Vector3::new(1e-3, 2e-3, -1e-3);
+    robot.body.tip_moment = Vector3::new(0.0, 1e-4, 5e-5);
+    let sol = solve(&robot, &q, &SolveOptions::default(), None).unwrap();
+    let eq = equilibrium(&robot, &sol);
+    assert!(eq.relative < EQUILIBRIUM_TOL, "{eq:?}");
+    assert!(eq.solution_mismatch < 1e-14, "{eq:?}");
+}
+
+#[test]
+fn equilibrium_check_fails_on_a_perturbed_solution() {
+    let (mut robot, q) = one_tendon(0.0, 0.1, false);
+    robot.body.gravity = Vector3::new(0.0, 0.0, -9.81);
+    let opts = SolveOptions::default();
+    let sol = solve(&robot, &q, &opts, None).unwrap();
+    assert!(equilibrium(&robot, &sol).relative < EQUILIBRIUM_TOL);
+    // the same profile integrated from base strains off by 1e-6 (scaled):
+    // a rod that is not in equilibrium with its loads
+    for k in 0..6 {
+        let mut x = sol.unknowns.clone();
+        x[k] += 1e-6;
+        let bad = assemble(&robot, &q, &Loads::of(&robot), &x, opts.steps, 0, 0).unwrap();
+        let eq = equilibrium(&robot, &bad);
+        assert!(eq.relative > 10.0 * EQUILIBRIUM_TOL, "unknown {k}: {eq:?}");
+    }
+    // a wrong gravity in the check's model of the loads
+    let mut other = robot.clone();
+    other.body.gravity *= 1.0 + 1e-6;
+    assert!(equilibrium(&other, &sol).relative > 10.0 * EQUILIBRIUM_TOL);
+}
+
+/// Designs of the seeded subset (the first of the benchmark's 1,000).
+const SUBSET: usize = 40;
+/// Designs of the subset, not past self-weight buckling, that the solver
+/// fails to converge cold (continuation included). Measured; the issue-10
+/// target is 0. On main (bcb9266: FD-Jacobian Newton with Broyden updates, two
+/// grids, input continuation): 2, designs #12 (a helical linear tendon and a
+/// tendon, both anchored inside a 14 kPa body lying sideways under gravity)
+/// and #33 (one straight tendon in a 35 kPa, 154 mm body, gravity, tip load),
+/// "line search failed". With the exact-Jacobian solver (branch `solver`,
+/// 89da0aa): 1, design #21 (a TCA and a linear tendon in a 4.3 MPa body
+/// hanging under gravity): "continuation stalled at lambda = 0", best
+/// residual 7e-5. Lower it as the solver improves.
+const KNOWN_COLD_FAILURES: usize = 1;
+
+#[test]
+fn seeded_subset_converges_and_balances() {
+    let opts = SolveOptions::default();
+    let fine = SolveOptions { steps: 4 * opts.steps, ..opts };
+    let mut failed = Vec::new();
+    let mut unbalanced = Vec::new();
+    for d in random_designs(DEFAULT_SEED, SUBSET) {
+        match solve(&d.robot, &d.inputs, &opts, None) {
+            Ok(sol) => {
+                let eq = equilibrium(&d.robot, &sol).relative;
+                if eq > EQUILIBRIUM_TOL {
+                    // RK4 does not conserve the force balance n(L) - n(0) =
+                    // -int f ds exactly: its truncation error, O(h^4), reaches
+                    // 1e-7..3e-5 relative at 100 steps on sharply bent or
+                    // helical designs (measured on designs #17, #46, #52,
+                    // #59, #63, #92, #112, #158: a factor 200-300 per 4x
+                    // steps, all below 1e-10 at 1,600 steps). That is the
+                    // discretisation, not the solver or the check. Such a
+                    // design must balance to 1e-8 on 4x the steps, or its
+                    // residual must drop there by > 50 (h^4 predicts 256),
+                    // which a solver error would not do.
+                    let f = solve(&d.robot, &d.inputs, &fine, Some(&sol)).or_else(|_| solve(&d.robot, &d.inputs, &fine, None));
+                    match f {
+                        Ok(f) => {
+                            let eqf = equilibrium(&d.robot, &f).relative;
+                            if eqf > EQUILIBRIUM_TOL && eqf * 50.0 > eq {
+                                unbalanced.push((d.index, eq, eqf));
+                            }
+                        }
+                        Err(_) => unbalanced.push((d.index, eq, f64::NAN)),
+                    }
+                }
+            }
+            Err(e) if !d.past_buckling() => failed.push(format!("{}: {e}", d.summary())),
+            Err(_) => {}
+        }
+    }
+    assert!(unbalanced.is_empty(), "equilibrium (index, 100 steps, 400 steps): {unbalanced:?}");
+    eprintln!("{} cold failures not past buckling:\n{}", failed.len(), failed.join("\n"));
+    assert!(failed.len() <= KNOWN_COLD_FAILURES, "{}", failed.join("\n"));
+}
