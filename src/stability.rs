@@ -58,11 +58,13 @@
 //! # Margin
 //!
 //! The smallest eigenvalue of the symmetric part of the dimensionless tip
-//! stiffness: the minimum over the nodes of (S2) (free tip, no strain-
-//! dependent actuator), or of (S3) restricted to the free directions.
+//! stiffness at the tip: (S2) at `s = L` (free tip, no strain-dependent
+//! actuator), or (S3) restricted to the free directions.
 //! Positive iff stable (above `-NEUTRAL`: neutral symmetry modes count as
 //! stable); it passes through zero at a buckling load or a fold.
-//! If a conjugate point lies inside the body it is at most `-(L - s_c)/L`.
+//! If a conjugate point lies inside the body it is at most `-(L - s_c)/L`
+//! (continuous at a first conjugate point reaching the tip). Along `s` only
+//! positive definiteness is tested (Cholesky), to keep the verdict cheap.
 //!
 //! # Cost
 //!
@@ -71,7 +73,7 @@
 //! every node's `Y`, `H` and the actuator rows; [`stability_fd`] does the
 //! same from `7 + N` recorded IVPs by forward differences (a cross-check).
 
-use nalgebra::{DMatrix, DVector, Matrix3, Quaternion, SymmetricEigen, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Quaternion, SymmetricEigen, Vector3};
 
 use crate::error::{Error, Result};
 use crate::rod::{rot, Robot, RodState};
@@ -99,8 +101,10 @@ pub struct Stability {
     /// Till and Rucker's determinant (S1) normalised to 1 at the base,
     /// `det(Y(s) Y(0)^-1)`, at each node (frozen tensions).
     pub determinant: Vec<f64>,
-    /// Smallest eigenvalue of the symmetric part of (S2) at each node (the
-    /// base node, where `K` is infinite, carries `+inf`).
+    /// At the tip node, the smallest eigenvalue of the symmetric part of
+    /// (S2); at the other nodes `+1` where it is positive definite (above
+    /// `-NEUTRAL`) and `-1` where not (a Cholesky test: no eigenvalue is
+    /// computed there); the base node, where `K` is infinite, carries `+inf`.
     pub min_stiffness: Vec<f64>,
     /// Integrations for the verdict: 1 tangent IVP ([`stability`]) or
     /// `7 + N` IVPs ([`stability_fd`]).
@@ -365,37 +369,53 @@ fn verdict(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>], t: Tangents,
     let len = robot.body.length;
     let nodes = t.s.len();
     let s_nodes = t.s.clone();
-    let y0inv = t.y[0].columns(0, 6).into_owned().try_inverse();
+    // frozen-tension scan with fixed-size 6 x 6 algebra: the determinant
+    // (S1), the Dirichlet test (det H) and positive definiteness of (S2) by
+    // Cholesky (an eigenvalue is computed at the tip only)
+    let m6 = |m: &DMatrix<f64>| Matrix6::from_fn(|i, j| m[(i, j)]);
+    let y0inv = m6(&t.y[0]).try_inverse();
     let mut determinant = Vec::with_capacity(nodes);
     let mut min_stiffness = Vec::with_capacity(nodes);
     let mut conjugate: Option<f64> = None;
     let mut dirichlet: Option<f64> = None;
     let mut hdet_sign = 0.0;
     for k in 0..nodes {
-        let y = t.y[k].columns(0, 6).into_owned();
+        let y = m6(&t.y[k]);
         determinant.push(match &y0inv {
-            Some(yi) => (&y * yi).determinant(),
+            Some(yi) => (y * yi).determinant(),
             None => f64::NAN,
         });
         if k == 0 || s_nodes[k] <= 0.0 {
             min_stiffness.push(f64::INFINITY);
             continue;
         }
-        let h = t.h[k].columns(0, 6).into_owned();
+        let h = m6(&t.h[k]);
         let hd = h.determinant();
         if hdet_sign == 0.0 {
             hdet_sign = hd.signum();
         } else if dirichlet.is_none() && hd * hdet_sign <= 0.0 {
             dirichlet = Some(s_nodes[k]);
         }
-        let lam = match h.try_inverse() {
-            Some(hi) => min_sym_eig(&(&y * hi)),
-            None => f64::NEG_INFINITY,
+        let pd = match h.try_inverse() {
+            Some(hi) => {
+                let kk = y * hi;
+                let sym = (kk + kk.transpose()) * 0.5 + Matrix6::identity() * NEUTRAL;
+                sym.cholesky().is_some()
+            }
+            None => false,
         };
-        if conjugate.is_none() && !(lam > -NEUTRAL) {
+        if conjugate.is_none() && !pd {
             conjugate = Some(s_nodes[k]);
         }
-        min_stiffness.push(lam);
+        min_stiffness.push(if pd { 1.0 } else { -1.0 });
+    }
+    // min_stiffness: the smallest eigenvalue at the tip, the sign of the
+    // Cholesky test elsewhere
+    if nodes > 1 {
+        if let Some(hi) = m6(&t.h[nodes - 1]).try_inverse() {
+            let kk = DMatrix::from_fn(6, 6, |i, j| (m6(&t.y[nodes - 1]) * hi)[(i, j)]);
+            min_stiffness[nodes - 1] = min_sym_eig(&kk);
+        }
     }
     let kk = actuator_stiffness(robot, sol)?;
     let springy = kk.iter().any(|k| k.abs() > 0.0);
@@ -413,7 +433,7 @@ fn verdict(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>], t: Tangents,
         mode,
     };
     if frozen {
-        let m = out.min_stiffness.iter().skip(1).fold(f64::INFINITY, |a, &b| a.min(b));
+        let m = out.min_stiffness[last];
         if let Some(hi) = t.h[last].columns(0, 6).into_owned().try_inverse() {
             let (_, v) = min_sym_pair(&(t.y[last].columns(0, 6).into_owned() * hi));
             mode.copy_from_slice(v.as_slice());
