@@ -44,21 +44,22 @@ fn steel_tendon_converges_to_the_rounding_floor() {
     // warm start after +1 % tension: a couple of iterations
     let t: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
     let w = solve(&robot, &t, &SolveOptions::default(), Some(&d)).unwrap();
-    assert!(w.iterations <= 3, "{} iterations", w.iterations);
+    // (chord iterations with the neighbour's Jacobian: one plain IVP each)
+    assert!(w.iterations <= 5 && w.evaluations <= w.iterations + 2, "{} iterations, {} IVPs", w.iterations, w.evaluations);
 }
 
 #[test]
 fn continuation_records_its_path_and_counts_all_work() {
     let robot = fig6_square(true);
-    // one iteration is too few from the cold guess at 150 C: the direct
+    // three iterations are too few from the cold guess at 150 C: the direct
     // solve fails and continuation in inputs and loads takes over
-    let opts = SolveOptions { max_iter: 2, ..Default::default() };
+    let opts = SolveOptions { max_iter: 3, ..Default::default() };
     let s = solve(&robot, &[150.0, 150.0], &opts, None).unwrap();
     assert!(!s.continuation_steps.is_empty());
     assert_eq!(*s.continuation_steps.last().unwrap(), 1.0);
     assert!(s.continuation_steps.windows(2).all(|w| w[0] < w[1]));
     // the failed direct attempt's iterations and IVPs are counted too
-    assert!(s.iterations > 2 && s.evaluations > s.iterations);
+    assert!(s.iterations > 3 && s.evaluations > s.iterations);
     let reference = solve(&robot, &[150.0, 150.0], &SolveOptions::default(), None).unwrap();
     assert!((s.tip_position() - reference.tip_position()).norm() < 1e-9);
 }

@@ -20,6 +20,8 @@ use crate::rod::Robot;
 
 /// Newton iterations under which the next homotopy step doubles.
 pub const EASY_ITERATIONS: usize = 4;
+/// Tolerance of the intermediate homotopy steps (scaled residual).
+pub const INTERMEDIATE_TOL: f64 = 1e-8;
 /// Smallest homotopy step.
 pub const MIN_STEP: f64 = 1e-4;
 
@@ -76,7 +78,9 @@ pub(crate) fn continuation(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &
                 }
             }
         }
-        match newton_shooting(&r, &inp, &l, opts, &x0, jac.as_ref(), lt >= 1.0, work) {
+        // intermediate steps are predictors: converged to 1e-8 (or tol if looser)
+        let step_opts = if lt >= 1.0 { *opts } else { SolveOptions { tol: opts.tol.max(INTERMEDIATE_TOL), ..*opts } };
+        match newton_shooting(&r, &inp, &l, &step_opts, &x0, jac.as_ref(), lt >= 1.0, work) {
             Ok((nr, last)) => {
                 lam = lt;
                 path.push(lt);

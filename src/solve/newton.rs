@@ -133,7 +133,9 @@ pub fn newton<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, solver: 
 /// contracts the residual, and a step taken with a kept (not freshly
 /// computed) Jacobian must at least halve `max |f|` at full length; otherwise
 /// the Jacobian is recomputed at the current point and the iteration redone
-/// with the full line search. A kept Jacobian costs no tangent IVP, so warm
+/// with the full line search. A kept Jacobian that reduces `max |f|` by less
+/// than ten times, or before the last allowed iteration, is recomputed for
+/// the next step. A kept Jacobian costs no tangent IVP, so warm
 /// starts and the last iterations of a cold solve cost one plain IVP each.
 pub fn newton_from<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, solver: &'static str, jac0: Option<&DMatrix<f64>>) -> Result<NewtonResult> {
     let mut x = x0.to_vec();
@@ -214,6 +216,11 @@ pub fn newton_from<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, sol
             let xt: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
             match sys.residual(&xt) {
                 Ok(rt) if inf_norm(&rt) <= 0.5 * res => {
+                    // slow (linear) contraction, or the last iteration next:
+                    // a fresh Jacobian for the next step
+                    if inf_norm(&rt) > 0.1 * res || iterations + 1 >= opts.max_iter {
+                        jacobian = None;
+                    }
                     x = xt;
                     r = rt;
                 }
