@@ -366,7 +366,7 @@ pub fn follow_branch(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solu
         let next = match tr.step(&cur, ds) {
             Ok(p) => p,
             Err(Error::Interrupted) => return Err(Error::Interrupted),
-            Err(e) if matches!(e, Error::InvalidParameter { .. } | Error::InvalidInput { .. }) => break,
+            Err(Error::InvalidParameter { .. } | Error::InvalidInput { .. }) => break,
             Err(e) => {
                 ds *= 0.5;
                 if ds < opts.min_step {
@@ -429,7 +429,8 @@ impl Tracer<'_, '_> {
         // Illinois variant: halve the stale end's value so both ends move
         let mut side = 0i32;
         for _ in 0..16 {
-            if !(f0 * f1 < 0.0) {
+            // (a NaN product also stops the search)
+            if f0 * f1 >= 0.0 || (f0 * f1).is_nan() {
                 break;
             }
             let sm = s0 - f0 * (s1 - s0) / (f1 - f0);
@@ -509,7 +510,7 @@ pub fn sweep_stable(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solut
         // the sweep ends early at a loss of stability or at a fold (the
         // parameter cannot run back)
         let folded = br.events.iter().any(|e| e.kind == EventKind::Fold);
-        let ended_early = folded || br.points.last().map_or(false, |p| !p.stability.stable);
+        let ended_early = folded || br.points.last().is_some_and(|p| !p.stability.stable);
         let within = |l: f64| (l - opts.end) * dir <= 0.0;
         for p in br.points.into_iter() {
             let ahead = points.last().map_or(true, |q: &BranchPoint| (p.parameter - q.parameter) * dir > 0.0);

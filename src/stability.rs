@@ -379,13 +379,13 @@ fn verdict(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>], t: Tangents,
     let mut conjugate: Option<f64> = None;
     let mut dirichlet: Option<f64> = None;
     let mut hdet_sign = 0.0;
-    for k in 0..nodes {
+    for (k, &sk) in s_nodes.iter().enumerate() {
         let y = m6(&t.y[k]);
         determinant.push(match &y0inv {
             Some(yi) => (y * yi).determinant(),
             None => f64::NAN,
         });
-        if k == 0 || s_nodes[k] <= 0.0 {
+        if k == 0 || sk <= 0.0 {
             min_stiffness.push(f64::INFINITY);
             continue;
         }
@@ -394,7 +394,7 @@ fn verdict(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>], t: Tangents,
         if hdet_sign == 0.0 {
             hdet_sign = hd.signum();
         } else if dirichlet.is_none() && hd * hdet_sign <= 0.0 {
-            dirichlet = Some(s_nodes[k]);
+            dirichlet = Some(sk);
         }
         let pd = match h.try_inverse() {
             Some(hi) => {
@@ -405,7 +405,7 @@ fn verdict(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>], t: Tangents,
             None => false,
         };
         if conjugate.is_none() && !pd {
-            conjugate = Some(s_nodes[k]);
+            conjugate = Some(sk);
         }
         min_stiffness.push(if pd { 1.0 } else { -1.0 });
     }
