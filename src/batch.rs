@@ -42,7 +42,7 @@ impl Default for BatchOptions {
 /// Stacked results of [`solve_batch`], one entry per row.
 #[derive(Debug, Clone, Default)]
 pub struct BatchOutput {
-    /// Tip positions [m] (NaN where a solve failed).
+    /// Tip positions \[m\] (NaN where a solve failed).
     pub tip_positions: Vec<[f64; 3]>,
     /// Tip rotations, row-major 3x3 (NaN where a solve failed).
     pub tip_rotations: Vec<[f64; 9]>,

@@ -12,7 +12,7 @@ pub enum Error {
     /// A scalar argument is non-finite or outside its allowed range.
     #[error("invalid {name} = {value}: allowed {allowed}")]
     InvalidParameter {
-        /// Name of the argument, with its unit (e.g. `temperature [C]`).
+        /// Name of the argument, with its unit (e.g. `temperature \[C\]`).
         name: String,
         /// The offending value (SI units).
         value: f64,
@@ -61,7 +61,7 @@ pub enum Error {
     /// non-finite state).
     #[error("integration failed at s = {s:.6e} m: {reason}")]
     Integration {
-        /// Arc length [m] at which integration failed.
+        /// Arc length \[m\] at which integration failed.
         s: f64,
         /// Why.
         reason: String,

@@ -108,7 +108,7 @@ pub const TABLE1_NORMAL: [f64; 3] = [-1.0, 0.0, 0.0];
 /// paper): steel rod `L = 0.5 m`, radius 1 mm, `E = 200 GPa`, `G = 80 GPa`,
 /// 8000 kg/m^3, gravity 9.81 m/s^2 along base-frame `+x`, four straight
 /// constant-tension tendons at 15.06 mm offset at 0/90/180/270 deg ending at
-/// the tip. Inputs: the tensions [N], [`STEEL_TENDON_TENSIONS`].
+/// the tip. Inputs: the tensions \[N\], [`STEEL_TENDON_TENSIONS`].
 pub fn steel_tendon_robot() -> Robot {
     use crate::rod::ConstantTension;
     let length = 0.5;
@@ -126,7 +126,7 @@ pub fn steel_tendon_robot() -> Robot {
     Robot::new(body, tendons).expect("valid")
 }
 
-/// Tendon tensions [N] of [`steel_tendon_robot`]'s benchmark case.
+/// Tendon tensions \[N\] of [`steel_tendon_robot`]'s benchmark case.
 pub const STEEL_TENDON_TENSIONS: [f64; 4] = [15.0, 0.0, 0.0, 0.0];
 
 /// The issue-10 soft tendon rod: 0.2 m long, 10 mm diameter, 1 MPa
@@ -140,10 +140,10 @@ pub fn soft_tendon_robot() -> Robot {
     Robot::new(body, vec![Actuator::new(Routing::Straight { x: SOFT_TENDON_OFFSET, y: 0.0 }, 0.0, length, law)]).expect("valid")
 }
 
-/// Tendon offset [m] of [`soft_tendon_robot`].
+/// Tendon offset \[m\] of [`soft_tendon_robot`].
 pub const SOFT_TENDON_OFFSET: f64 = 4e-3;
 
-/// Tension [N] that bends [`soft_tendon_robot`] by `angle` [rad] at its tip
+/// Tension \[N\] that bends [`soft_tendon_robot`] by `angle` \[rad\] at its tip
 /// in the inextensible, unsheared limit: a constant tendon moment
 /// `tau r = E I theta / L`.
 pub fn soft_tendon_tension(angle: f64) -> f64 {

@@ -4,7 +4,7 @@
 //! Tip pose perturbations are measured in the world frame as
 //! `[dp; dtheta]`, `dtheta` the rotation vector of `R1 R0^T`. Actuation
 //! variables `z` map to actuator inputs through `groups` (actuator `i` takes
-//! variable `groups[i]`): the two legs of a U-shaped TCA share one
+//! variable `groups\[i\]`): the two legs of a U-shaped TCA share one
 //! temperature. Tip wrenches `W = [F; M]` are in the world frame.
 
 use nalgebra::{DMatrix, DVector, Matrix3, Quaternion, Rotation3, Vector3};
@@ -124,7 +124,7 @@ fn pose_delta(p0: &Vector3<f64>, r0: &Matrix3<f64>, p1: &Vector3<f64>, r1: &Matr
     [dp.x, dp.y, dp.z, th.x, th.y, th.z]
 }
 
-/// Characteristic force [N] and moment [N m] of a body: `E I / L^2`, `E I / L`.
+/// Characteristic force \[N\] and moment \[N m\] of a body: `E I / L^2`, `E I / L`.
 pub fn load_scales(robot: &Robot) -> (f64, f64) {
     let b = &robot.body;
     let (_, ix, iy, _) = b.section.properties();
@@ -381,7 +381,7 @@ pub struct InverseResult {
     pub solution: Solution,
     /// Final actuation variables.
     pub variables: Vec<f64>,
-    /// Distance [m] from the target (and angle [rad] if orientation was asked).
+    /// Distance \[m\] from the target (and angle \[rad\] if orientation was asked).
     pub error: f64,
     /// Iterations (Jacobian evaluations).
     pub iterations: usize,
@@ -398,7 +398,7 @@ pub struct InverseResult {
 pub struct InverseOptions {
     /// Forward solver options.
     pub forward: SolveOptions,
-    /// Position tolerance [m].
+    /// Position tolerance \[m\].
     pub tol: f64,
     /// Iteration limit.
     pub max_iter: usize,
@@ -417,8 +417,8 @@ impl Default for InverseOptions {
     }
 }
 
-/// Reach a target tip position `target` [m] (and orientation: rotation matrix
-/// `target_rotation`, weighted by `orientation_weight` [m/rad]) by iterating
+/// Reach a target tip position `target` \[m\] (and orientation: rotation matrix
+/// `target_rotation`, weighted by `orientation_weight` \[m/rad\]) by iterating
 /// the local inverse `dz = J^+ dx` (damped least squares) with variables kept
 /// within their bounds (ambient to the material's limit for TCAs).
 ///
@@ -543,7 +543,7 @@ pub fn tip_position_inverse(
 /// `f >= 0` (the tip presses along `+normal`).
 #[derive(Debug, Clone, Copy)]
 pub struct Block {
-    /// A point of the blocking plane [m].
+    /// A point of the blocking plane \[m\].
     pub point: Vector3<f64>,
     /// Unit normal: the direction the tip presses in.
     pub normal: Vector3<f64>,
@@ -574,7 +574,7 @@ impl Block {
 pub struct BlockedResult {
     /// The forward solution with the contact force applied at the tip.
     pub solution: Solution,
-    /// Contact force magnitude [N] (the tip presses with it along the normal).
+    /// Contact force magnitude \[N\] (the tip presses with it along the normal).
     pub force: f64,
     /// Actuation variables.
     pub variables: Vec<f64>,
@@ -585,7 +585,7 @@ pub struct BlockedResult {
 }
 
 /// Direct solve with the tip held (mixed boundary condition): at given
-/// actuation variables `z`, the contact force `f` [N] is an extra unknown and
+/// actuation variables `z`, the contact force `f` \[N\] is an extra unknown and
 /// `normal . (p(L) - point) = 0` an extra residual. `f` may come out negative
 /// if the tip would pull away from the block (the caller decides whether
 /// contact holds).
@@ -619,7 +619,7 @@ pub fn blocked_force(robot: &Robot, groups: &Groups, block: &Block, z: &[f64], o
 }
 
 /// Direct solve for the single actuation variable at which the blocked tip
-/// presses with `force` [N] (the variable is an extra unknown). Independent
+/// presses with `force` \[N\] (the variable is an extra unknown). Independent
 /// check of [`blocked_temperature`].
 pub fn blocked_variable_direct(robot: &Robot, groups: &Groups, block: &Block, force: f64, z_guess: f64, opts: &SolveOptions, warm: Option<&Solution>) -> Result<BlockedResult> {
     groups.validate(robot)?;
@@ -657,7 +657,7 @@ pub fn blocked_variable_direct(robot: &Robot, groups: &Groups, block: &Block, fo
 
 /// The paper's incremental method (eq 43 with `dx = 0`): starting from a
 /// solution `start` whose tip touches the block with zero force, raise the
-/// contact force to `force` [N] in `increments` steps, each
+/// contact force to `force` \[N\] in `increments` steps, each
 /// `dq = -(n^T J)^-1 n^T C dW`, followed by one forward solve and a
 /// position correction `dq = (n^T J)^-1 n^T (point - p)` so that the tip stays
 /// on the block. Needs exactly one actuation variable. A force that needs
@@ -744,7 +744,7 @@ pub fn blocked_temperature(robot: &Robot, groups: &Groups, block: &Block, start:
 }
 
 /// Grasp temperature (eq 44): the actuation variable at which `fingers`
-/// identical fingers with friction coefficient `mu` hold a mass `mass` [kg],
+/// identical fingers with friction coefficient `mu` hold a mass `mass` \[kg\],
 /// `mu n F(T) = m g`, each finger's tip blocked at its reference position
 /// and pressing along `normal`. Returns the blocked result for one finger.
 #[allow(clippy::too_many_arguments)]

@@ -1,5 +1,5 @@
 //! The shooting boundary value problem (eqs 32-33): the public names of
-//! [`crate::solve::shooting`] and [`crate::solve::newton`] under their
+//! [`crate::solve::shooting`] and [`mod@crate::solve::newton`] under their
 //! historical path.
 
 pub use crate::solve::newton::{newton, FnSystem, NewtonOptions, NewtonResult, Status, System};

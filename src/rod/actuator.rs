@@ -12,26 +12,26 @@ use crate::tca::Tca;
 /// Path of an actuator in the body frame, with exact derivatives in `s`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Routing {
-    /// Parallel to the centre line at a constant offset `(x, y)` [m].
+    /// Parallel to the centre line at a constant offset `(x, y)` \[m\].
     Straight {
-        /// Body-frame x offset [m].
+        /// Body-frame x offset \[m\].
         x: f64,
-        /// Body-frame y offset [m].
+        /// Body-frame y offset \[m\].
         y: f64,
     },
     /// Helix about the centre line: `r = radius (cos(rate s + phase), sin(rate s + phase), 0)`.
     Helix {
-        /// Radius [m].
+        /// Radius \[m\].
         radius: f64,
-        /// Angular rate [rad/m] (positive: right-handed about +z).
+        /// Angular rate \[rad/m\] (positive: right-handed about +z).
         rate: f64,
-        /// Angle at `s = 0` [rad].
+        /// Angle at `s = 0` \[rad\].
         phase: f64,
     },
 }
 
 impl Routing {
-    /// `(r, r', r'')` at arc length `s` [m].
+    /// `(r, r', r'')` at arc length `s` \[m\].
     #[inline]
     pub fn eval(&self, s: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
         match *self {
@@ -70,11 +70,11 @@ impl Routing {
 /// tension works, which is the paper's point that the equations hold for any
 /// string-like actuator.
 pub trait ForceLaw: Send + Sync + Debug {
-    /// Tension [N] (positive pulls the anchors together) at total elongation
-    /// `elongation` [m] (current length minus reference length) and input
+    /// Tension \[N\] (positive pulls the anchors together) at total elongation
+    /// `elongation` \[m\] (current length minus reference length) and input
     /// `input` (unit in [`ForceLaw::input_name`]).
     fn tension(&self, elongation: f64, input: f64) -> Result<f64>;
-    /// Name and unit of the input, e.g. `temperature [C]`.
+    /// Name and unit of the input, e.g. `temperature \[C\]`.
     fn input_name(&self) -> &'static str;
     /// Valid input interval.
     fn input_bounds(&self) -> (f64, f64);
@@ -91,15 +91,15 @@ pub trait ForceLaw: Send + Sync + Debug {
     }
     /// Short name of the law.
     fn kind(&self) -> &'static str;
-    /// Inverse law: the elongation [m] at which the actuator carries
-    /// `tension` [N] at `input`, where that is unique. Used only to build
+    /// Inverse law: the elongation \[m\] at which the actuator carries
+    /// `tension` \[N\] at `input`, where that is unique. Used only to build
     /// initial guesses (a warm start keeps the tension, a cold start begins at
     /// zero tension), so `None` is always safe.
     fn elongation(&self, _tension: f64, _input: f64) -> Option<f64> {
         None
     }
-    /// Tension [N] with its derivatives with respect to the elongation
-    /// [N/m] and to the input [N per input unit], for the exact shooting
+    /// Tension \[N\] with its derivatives with respect to the elongation
+    /// \[N/m\] and to the input [N per input unit], for the exact shooting
     /// Jacobian. The default differences [`ForceLaw::tension`] centrally
     /// (relative step `eps^(1/3)`, error ~1e-10 relative): override it with
     /// the exact derivatives.
@@ -122,7 +122,7 @@ pub trait ForceLaw: Send + Sync + Debug {
     }
 }
 
-/// The TCA law (eq 13) at the input temperature [C]: tension from the TCA's
+/// The TCA law (eq 13) at the input temperature \[C\]: tension from the TCA's
 /// total elongation, with coil contact below zero elongation.
 #[derive(Debug, Clone)]
 pub struct TcaLaw(pub Tca);
@@ -161,7 +161,7 @@ impl ForceLaw for TcaLaw {
     }
 }
 
-/// A tendon pulled with a given tension [N] (the input), whatever its elongation.
+/// A tendon pulled with a given tension \[N\] (the input), whatever its elongation.
 #[derive(Debug, Clone, Copy)]
 pub struct ConstantTension;
 
@@ -186,12 +186,12 @@ impl ForceLaw for ConstantTension {
     }
 }
 
-/// A linearly elastic tendon of stiffness `k` [N/m] under displacement
-/// control: the input is the length [m] pulled in at the base, the tension is
+/// A linearly elastic tendon of stiffness `k` \[N/m\] under displacement
+/// control: the input is the length \[m\] pulled in at the base, the tension is
 /// `k (pull + elongation)` and zero when slack.
 #[derive(Debug, Clone, Copy)]
 pub struct LinearTendon {
-    /// Axial stiffness of the tendon [N/m].
+    /// Axial stiffness of the tendon \[N/m\].
     pub stiffness: f64,
 }
 
@@ -227,9 +227,9 @@ impl ForceLaw for LinearTendon {
 pub struct Actuator {
     /// Path in the body frame.
     pub routing: Routing,
-    /// Proximal anchor [m] (0: anchored to the base).
+    /// Proximal anchor \[m\] (0: anchored to the base).
     pub s_start: f64,
-    /// Distal anchor [m] (the body length: anchored at the tip).
+    /// Distal anchor \[m\] (the body length: anchored at the tip).
     pub s_end: f64,
     /// The paper's length ratio `L_i` (eq 18). `None`: computed pointwise from
     /// the reference configuration, `|nu* + omega* x r + r'|`, which makes the
@@ -241,7 +241,7 @@ pub struct Actuator {
 }
 
 impl Actuator {
-    /// An actuator from `s_start` to `s_end` [m].
+    /// An actuator from `s_start` to `s_end` \[m\].
     pub fn new(routing: Routing, s_start: f64, s_end: f64, law: Arc<dyn ForceLaw>) -> Self {
         Actuator {
             routing,

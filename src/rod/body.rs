@@ -8,32 +8,32 @@ use crate::error::{finite, non_negative, positive, Error, Result};
 /// The soft body: geometry, material, reference strains and external loads.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
-    /// Length of the centre line [m].
+    /// Length of the centre line \[m\].
     pub length: f64,
     /// Cross-section.
     pub section: Section,
-    /// Young's modulus `E_B` [Pa].
+    /// Young's modulus `E_B` \[Pa\].
     pub youngs_modulus: f64,
-    /// Shear modulus `G_B` [Pa].
+    /// Shear modulus `G_B` \[Pa\].
     pub shear_modulus: f64,
-    /// Density `psi` [kg/m^3].
+    /// Density `psi` \[kg/m^3\].
     pub density: f64,
     /// Shear correction factor `k` in `K_nu = diag(k G A, k G A, E A)`
     /// (1 in the paper).
     pub shear_coefficient: f64,
-    /// Reference linear strain `nu*` [-] (`(0, 0, 1)` for an unstretched body).
+    /// Reference linear strain `nu*` \[-\] (`(0, 0, 1)` for an unstretched body).
     pub nu_star: Vector3<f64>,
-    /// Reference angular strain `omega*` [1/m] (non-zero for a pre-curved body).
+    /// Reference angular strain `omega*` \[1/m\] (non-zero for a pre-curved body).
     pub omega_star: Vector3<f64>,
-    /// Gravitational acceleration in the world frame [m/s^2].
+    /// Gravitational acceleration in the world frame \[m/s^2\].
     pub gravity: Vector3<f64>,
-    /// Extra distributed force in the world frame [N/m].
+    /// Extra distributed force in the world frame \[N/m\].
     pub distributed_force: Vector3<f64>,
-    /// Distributed moment in the world frame [N m/m].
+    /// Distributed moment in the world frame \[N m/m\].
     pub distributed_moment: Vector3<f64>,
-    /// Tip force in the world frame [N].
+    /// Tip force in the world frame \[N\].
     pub tip_force: Vector3<f64>,
-    /// Tip moment in the world frame [N m].
+    /// Tip moment in the world frame \[N m\].
     pub tip_moment: Vector3<f64>,
 }
 
@@ -91,7 +91,7 @@ impl Body {
         Ok(())
     }
 
-    /// `K_nu = diag(k G A, k G A, E A)` [N] and `K_omega = diag(E I_x, E I_y, G J)` [N m^2].
+    /// `K_nu = diag(k G A, k G A, E A)` \[N\] and `K_omega = diag(E I_x, E I_y, G J)` \[N m^2\].
     pub fn stiffness(&self) -> (Matrix3<f64>, Matrix3<f64>) {
         let (a, ix, iy, j) = self.section.properties();
         let (e, g, k) = (self.youngs_modulus, self.shear_modulus, self.shear_coefficient);

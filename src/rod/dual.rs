@@ -55,7 +55,7 @@ impl Real for f64 {
     }
 }
 
-/// `re + sum_k eps[k] e_k` with `e_j e_k = 0`: value and `N` directional derivatives.
+/// `re + sum_k eps\[k\] e_k` with `e_j e_k = 0`: value and `N` directional derivatives.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Dual<const N: usize> {
     /// Value.

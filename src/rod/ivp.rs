@@ -11,12 +11,12 @@ use crate::error::Result;
 pub struct IvpSpec<'a> {
     /// The robot.
     pub robot: &'a Robot,
-    /// Tension of each actuator [N] (constant along a string).
+    /// Tension of each actuator \[N\] (constant along a string).
     pub tensions: &'a [f64],
-    /// Tip force [N], world frame (overrides `body.tip_force`, so that
+    /// Tip force \[N\], world frame (overrides `body.tip_force`, so that
     /// Jacobians can perturb it).
     pub tip_force: Vector3<f64>,
-    /// Tip moment [N m], world frame.
+    /// Tip moment \[N m\], world frame.
     pub tip_moment: Vector3<f64>,
     /// RK4 steps over the body length.
     pub steps: usize,
@@ -27,10 +27,10 @@ pub struct IvpSpec<'a> {
 pub struct IvpResult {
     /// Tip state.
     pub tip: RodState,
-    /// Elongation of each actuator at its distal anchor [m].
+    /// Elongation of each actuator at its distal anchor \[m\].
     pub elongation: Vec<f64>,
-    /// Tip residual in body frame: `K_nu (v - nu*) - R^T F + sum tau t_b` [N]
-    /// and `K_omega (u - omega*) - R^T M + sum r x tau t_b` [N m] (eqs 32-33).
+    /// Tip residual in body frame: `K_nu (v - nu*) - R^T F + sum tau t_b` \[N\]
+    /// and `K_omega (u - omega*) - R^T M + sum r x tau t_b` \[N m\] (eqs 32-33).
     pub tip_force_residual: Vector3<f64>,
     /// See `tip_force_residual`.
     pub tip_moment_residual: Vector3<f64>,

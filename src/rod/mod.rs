@@ -7,8 +7,8 @@
 //! * actuator `i` runs at body-frame offset `r_i(s)` between arc lengths
 //!   `s_start` and `s_end`; its scalar force `tau_i` is a *tension* (positive
 //!   pulls the anchors together); a heated extension TCA pushes, `tau_i < 0`;
-//! * loads are given in the world frame: gravity `g` [m/s^2], distributed force
-//!   [N/m] and moment [N m/m], tip force [N] and moment [N m].
+//! * loads are given in the world frame: gravity `g` \[m/s^2\], distributed force
+//!   \[N/m\] and moment \[N m/m\], tip force \[N\] and moment \[N m\].
 //!
 //! Rotation: `R` is carried as a unit quaternion `q` with `q' = q (0, u) / 2`
 //! (eq 8), integrated by RK4 and renormalised after every step. `R(q)` is
@@ -60,15 +60,15 @@ pub fn rot(q: &Quaternion<f64>) -> Matrix3<f64> {
 /// A state of the rod at one arc length.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RodState {
-    /// Position [m], world frame.
+    /// Position \[m\], world frame.
     pub p: Vector3<f64>,
     /// Orientation (unit quaternion, body to world).
     pub q: Quaternion<f64>,
-    /// Linear strain `nu` [-], body frame.
+    /// Linear strain `nu` \[-\], body frame.
     pub v: Vector3<f64>,
-    /// Angular strain `omega` [1/m], body frame.
+    /// Angular strain `omega` \[1/m\], body frame.
     pub u: Vector3<f64>,
-    /// Actuator elongations `delta_i(s)` [m].
+    /// Actuator elongations `delta_i(s)` \[m\].
     pub delta: Vec<f64>,
 }
 

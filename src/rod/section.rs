@@ -7,27 +7,27 @@ use crate::error::{positive, Result};
 /// Cross-section of the body.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Section {
-    /// Solid circle of the given diameter [m].
+    /// Solid circle of the given diameter \[m\].
     Circle {
-        /// Diameter [m].
+        /// Diameter \[m\].
         diameter: f64,
     },
-    /// Solid rectangle, `width` [m] along body `x`, `height` [m] along body `y`.
+    /// Solid rectangle, `width` \[m\] along body `x`, `height` \[m\] along body `y`.
     Rectangle {
-        /// Extent along body x [m].
+        /// Extent along body x \[m\].
         width: f64,
-        /// Extent along body y [m].
+        /// Extent along body y \[m\].
         height: f64,
     },
     /// User-given properties.
     Custom {
-        /// Area [m^2].
+        /// Area \[m^2\].
         area: f64,
-        /// Second moment about body x [m^4] (bending with curvature `u_x`).
+        /// Second moment about body x \[m^4\] (bending with curvature `u_x`).
         ix: f64,
-        /// Second moment about body y [m^4] (bending with curvature `u_y`).
+        /// Second moment about body y \[m^4\] (bending with curvature `u_y`).
         iy: f64,
-        /// Torsion constant [m^4].
+        /// Torsion constant \[m^4\].
         j: f64,
     },
 }
@@ -62,7 +62,7 @@ impl Section {
         }
     }
 
-    /// Distance [m] from the centre line to the section's edge in the body-frame
+    /// Distance \[m\] from the centre line to the section's edge in the body-frame
     /// direction `(cos(theta), sin(theta))`.
     pub fn edge_distance(&self, theta: f64) -> f64 {
         match *self {

@@ -303,11 +303,11 @@ impl RodRhs<'_> {
 /// the derivative of the initial strains and of the tensions along it.
 #[derive(Debug, Clone)]
 pub struct TangentSeeds {
-    /// `d nu(0)` [-], `3 x k`.
+    /// `d nu(0)` \[-\], `3 x k`.
     pub nu0: DMatrix<f64>,
-    /// `d omega(0)` [1/m], `3 x k`.
+    /// `d omega(0)` \[1/m\], `3 x k`.
     pub omega0: DMatrix<f64>,
-    /// `d tau` [N], `n_actuators x k`.
+    /// `d tau` \[N\], `n_actuators x k`.
     pub tensions: DMatrix<f64>,
 }
 
@@ -325,7 +325,7 @@ impl TangentSeeds {
 /// One recorded grid node of a tangent IVP.
 #[derive(Debug, Clone)]
 pub struct TangentNode {
-    /// Arc length [m].
+    /// Arc length \[m\].
     pub s: f64,
     /// State `y(s)` (`p, q, nu, omega, delta`; see [`crate::rod::BASE_STATES`]).
     pub state: Vec<f64>,
@@ -342,9 +342,9 @@ pub struct TangentIvp {
     pub tip: DMatrix<f64>,
     /// `d delta_i(s_end) / d seed` (distal elongations), `n_actuators x k`.
     pub elongation: DMatrix<f64>,
-    /// `d r_F / d seed` (tip force balance (32), body frame) [N], `3 x k`.
+    /// `d r_F / d seed` (tip force balance (32), body frame) \[N\], `3 x k`.
     pub tip_force_residual: DMatrix<f64>,
-    /// `d r_M / d seed` (tip moment balance (33)) [N m], `3 x k`.
+    /// `d r_M / d seed` (tip moment balance (33)) \[N m\], `3 x k`.
     pub tip_moment_residual: DMatrix<f64>,
     /// Every grid node with its tangents, if `record` (anchor nodes after their jump).
     pub nodes: Vec<TangentNode>,
@@ -371,6 +371,7 @@ pub fn integrate_tangent(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64
         let part = match w {
             0..=4 => pass::<4>(spec, v0, u0, seeds, c0, w, record)?,
             5..=8 => pass::<8>(spec, v0, u0, seeds, c0, w, record)?,
+            9..=12 => pass::<12>(spec, v0, u0, seeds, c0, w, record)?,
             _ => pass::<MAX_PASS>(spec, v0, u0, seeds, c0, w, record)?,
         };
         out = Some(match out {

@@ -1,4 +1,4 @@
-//! Solvers: one Newton solver ([`newton`]), the shooting boundary value
+//! Solvers: one Newton solver ([`newton()`](fn@newton)), the shooting boundary value
 //! problem that uses it ([`shooting`]), homotopy continuation
 //! ([`continuation`]) and cooperative cancellation ([`cancel`]).
 

@@ -10,7 +10,7 @@
 //! the body are met exactly by the point loads applied during integration.
 //!
 //! The Jacobian is exact ([`shoot_jacobian`]: tangents of the discrete RK4
-//! map), the Newton solver is [`crate::solve::newton`], and a cold solve that
+//! map), the Newton solver is [`crate::solve::newton()`], and a cold solve that
 //! fails falls back on homotopy continuation
 //! ([`crate::solve::continuation`]).
 
@@ -84,7 +84,7 @@ pub fn reference_guess(robot: &Robot) -> Vec<f64> {
     x
 }
 
-/// Tensions [N] of all actuators for guessed elongations `delta` [m].
+/// Tensions \[N\] of all actuators for guessed elongations `delta` \[m\].
 pub fn tensions(robot: &Robot, inputs: &[f64], delta: &[f64]) -> Result<Vec<f64>> {
     robot
         .actuators
@@ -98,9 +98,9 @@ pub fn tensions(robot: &Robot, inputs: &[f64], delta: &[f64]) -> Result<Vec<f64>
 /// Tip loads and step count of one forward problem.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Loads {
-    /// Tip force [N], world frame.
+    /// Tip force \[N\], world frame.
     pub tip_force: Vector3<f64>,
-    /// Tip moment [N m], world frame.
+    /// Tip moment \[N m\], world frame.
     pub tip_moment: Vector3<f64>,
 }
 
@@ -192,8 +192,8 @@ pub fn shoot_jacobian(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], s
     Ok((r, jac, tan, tau))
 }
 
-/// Factors that make the tip balance dimensionless: force residuals [N] are
-/// multiplied by `L^2 / (E I)` and moment residuals [N m] by `L / (E I)`
+/// Factors that make the tip balance dimensionless: force residuals \[N\] are
+/// multiplied by `L^2 / (E I)` and moment residuals \[N m\] by `L / (E I)`
 /// (`E I` the smaller bending stiffness), so that both measure the same thing,
 /// a tip load relative to what bends the body by order one. (Scaling the
 /// force by `K_nu^-1` instead made the line search blind to force errors of
@@ -208,34 +208,34 @@ pub fn residual_scales(robot: &Robot) -> (f64, f64) {
 /// A converged forward solution, sampled at the integration nodes.
 #[derive(Debug, Clone)]
 pub struct Solution {
-    /// Arc length of each node [m].
+    /// Arc length of each node \[m\].
     pub s: Vec<f64>,
-    /// Centre-line positions [m], world frame.
+    /// Centre-line positions \[m\], world frame.
     pub positions: Vec<Vector3<f64>>,
     /// Rotations (body to world).
     pub rotations: Vec<Matrix3<f64>>,
-    /// Linear strains `nu` [-], body frame.
+    /// Linear strains `nu` \[-\], body frame.
     pub nu: Vec<Vector3<f64>>,
-    /// Angular strains `omega` [1/m], body frame.
+    /// Angular strains `omega` \[1/m\], body frame.
     pub omega: Vec<Vector3<f64>>,
-    /// Internal force `n = R K_nu (nu - nu*)` [N], world frame.
+    /// Internal force `n = R K_nu (nu - nu*)` \[N\], world frame.
     pub internal_force: Vec<Vector3<f64>>,
-    /// Internal moment `m = R K_omega (omega - omega*)` [N m], world frame.
+    /// Internal moment `m = R K_omega (omega - omega*)` \[N m\], world frame.
     pub internal_moment: Vec<Vector3<f64>>,
-    /// Elongation of each actuator up to each node [m] (`nodes x actuators`).
+    /// Elongation of each actuator up to each node \[m\] (`nodes x actuators`).
     pub elongation_profile: Vec<Vec<f64>>,
-    /// Actuator paths `p + R r_i(s)` [m] at the nodes within each actuator's span.
+    /// Actuator paths `p + R r_i(s)` \[m\] at the nodes within each actuator's span.
     pub actuator_paths: Vec<Vec<Vector3<f64>>>,
-    /// Actuator tensions [N] (negative: the actuator pushes).
+    /// Actuator tensions \[N\] (negative: the actuator pushes).
     pub tensions: Vec<f64>,
-    /// Actuator total elongations [m].
+    /// Actuator total elongations \[m\].
     pub elongations: Vec<f64>,
     /// Actuation inputs the solution is for.
     pub inputs: Vec<f64>,
-    /// Force [N] the body and its actuators transmit to the base (world
+    /// Force \[N\] the body and its actuators transmit to the base (world
     /// frame); the base reaction is its negative.
     pub base_force: Vector3<f64>,
-    /// Moment [N m] about the base origin transmitted to the base.
+    /// Moment \[N m\] about the base origin transmitted to the base.
     pub base_moment: Vector3<f64>,
     /// Newton iterations.
     pub iterations: usize,
@@ -262,7 +262,7 @@ pub struct Solution {
 }
 
 impl Solution {
-    /// Tip position [m].
+    /// Tip position \[m\].
     pub fn tip_position(&self) -> Vector3<f64> {
         *self.positions.last().expect("a solution has nodes")
     }
@@ -380,9 +380,6 @@ pub fn initial_guess(robot: &Robot, inputs: &[f64], warm: Option<&Solution>) -> 
             }
         }
     }
-    if warm.is_none() {
-        linear_guess(robot, inputs, &Loads::of(robot), &mut x);
-    }
     x
 }
 
@@ -435,13 +432,13 @@ pub fn linear_guess(robot: &Robot, inputs: &[f64], loads: &Loads, x: &mut [f64])
 /// Tip pose of a forward solution, without the sampled profile (for batches).
 #[derive(Debug, Clone)]
 pub struct TipSolution {
-    /// Tip position [m].
+    /// Tip position \[m\].
     pub position: Vector3<f64>,
     /// Tip rotation (body to world).
     pub rotation: Matrix3<f64>,
     /// Scaled shooting unknowns.
     pub unknowns: Vec<f64>,
-    /// Actuator tensions [N].
+    /// Actuator tensions \[N\].
     pub tensions: Vec<f64>,
     /// Inputs the solution is for.
     pub inputs: Vec<f64>,
