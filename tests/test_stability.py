@@ -137,3 +137,29 @@ def test_stable_sweep_jumps_at_buckling() -> None:
     assert isinstance(before, core.Solution) and isinstance(after, core.Solution)
     # after the jump the column is bent (tip moved sideways)
     assert np.hypot(*after.positions[-1][:2]) > 1e-3
+
+
+def test_buckling_experiment_registered_and_physical() -> None:
+    from tcarod.experiments import REGISTRY
+    from tcarod.experiments.buckling import GREENHILL, predict_buckling
+
+    assert "buckling" in REGISTRY
+    r = predict_buckling()
+    q = r.column_critical_scale() * r.column_weight_per_g
+    # shear and axial compliance of the stubby soft column can only lower
+    # Greenhill's inextensible, unshearable load; by a few percent at L/h = 5.6
+    assert 0.95 * GREENHILL < q < GREENHILL
+    # the straight column is stable below the located load, unstable above
+    for p, s in zip(r.column_branch.parameter, r.column_branch.stable):
+        assert s == (p < r.column_critical_scale())
+    # the stable sweep is monotone in gravity and jumps once, at the load
+    assert np.all(np.diff(r.column_sweep.parameter) > 0) and r.column_sweep.stable.all()
+    assert [round(p, 6) for p, _, _ in r.column_sweep.jumps] == [round(r.column_critical_scale(), 6)]
+    # heated variant: the in-plane shape turns stable at one temperature
+    tc = r.circle_critical_c()
+    assert 25.0 < tc < 160.0
+    for t, s in zip(r.circle_planar.parameter, r.circle_planar.stable):
+        assert s == (t > tc)
+    doc = r.to_json()
+    assert doc["name"] == "buckling" and "column_branch_gravity_scale" in doc
+    assert "Greenhill" in r.table()
