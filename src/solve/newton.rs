@@ -72,6 +72,11 @@ pub trait System {
     }
     /// Function evaluations so far (IVPs for shooting, failed ones included).
     fn evaluations(&self) -> usize;
+    /// Switch to a more accurate Jacobian, if the system has one; `true` if
+    /// it did (then a failed line search is retried with it).
+    fn refine(&mut self) -> bool {
+        false
+    }
 }
 
 /// Options of [`newton`].
@@ -253,6 +258,11 @@ pub fn newton_from<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, sol
             let _ = phi;
             t *= 0.5;
             if t < opts.min_step {
+                if sys.refine() {
+                    jacobian = None;
+                    iterations -= 1;
+                    break;
+                }
                 let floor = sys.floor(&x, &r);
                 if res <= FLOOR_MARGIN * floor {
                     let evaluations = sys.evaluations();

@@ -479,14 +479,24 @@ pub struct Shooting<'a> {
     pub evaluations: usize,
     /// Tangent IVPs among them.
     pub tangent_evaluations: usize,
+    /// RK4 steps of the Newton Jacobian: a tenth of `steps` (at least
+    /// [`COARSE_JACOBIAN_MIN_STEPS`]) until [`System::refine`] switches to
+    /// the exact Jacobian of the full grid (`None`).
+    jacobian_steps: Option<usize>,
     last: Option<(Vec<f64>, Vec<f64>, IvpResult, Vec<f64>)>,
 }
+
+/// Fewest RK4 steps of the coarse-grid Newton Jacobian (below ten times
+/// this, the Jacobian is taken on the full grid).
+pub const COARSE_JACOBIAN_MIN_STEPS: usize = 10;
 
 impl<'a> Shooting<'a> {
     /// The system of `robot` at `inputs` under `loads` on `steps` RK4 steps;
     /// `record`: keep the nodes of the last IVP.
     pub fn new(robot: &'a Robot, inputs: &'a [f64], loads: &'a Loads, steps: usize, record: bool) -> Self {
-        Shooting { robot, inputs, loads, steps, record, evaluations: 0, tangent_evaluations: 0, last: None }
+        let coarse = steps / 10;
+        let jacobian_steps = if coarse >= COARSE_JACOBIAN_MIN_STEPS { Some(coarse) } else { None };
+        Shooting { robot, inputs, loads, steps, record, evaluations: 0, tangent_evaluations: 0, jacobian_steps, last: None }
     }
     /// The last plain IVP if it was at `x`: `(residual, ivp, tensions)`.
     fn take_last(&mut self, x: &[f64]) -> Option<(Vec<f64>, IvpResult, Vec<f64>)> {
@@ -507,8 +517,16 @@ impl System for Shooting<'_> {
     fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
         self.evaluations += 1;
         self.tangent_evaluations += 1;
-        let (r, j, _, _) = shoot_jacobian(self.robot, self.inputs, self.loads, x, self.steps, false)?;
+        // the tangents of a grid of a tenth of the steps: a tenth of the cost,
+        // and a Jacobian within RK4's coarse-grid error (~1e-4) of the exact
+        // one, which Newton's convergence test on the full grid absorbs in a
+        // chord step or two; the full-grid Jacobian after a failed line search
+        let steps = self.jacobian_steps.unwrap_or(self.steps);
+        let (r, j, _, _) = shoot_jacobian(self.robot, self.inputs, self.loads, x, steps, false)?;
         Ok((r, j))
+    }
+    fn refine(&mut self) -> bool {
+        self.jacobian_steps.take().is_some()
     }
     /// `4 eps max(fs (k_nu |nu| + |F| + sum |tau|), ms (k_omega |omega| L + |M| + sum |r_i| |tau_i|))`:
     /// the rounding of the largest terms of the tip balance (32)-(33),
