@@ -20,6 +20,7 @@
 
 pub mod error;
 pub mod batch;
+pub mod branch;
 pub mod bench;
 pub mod experiments;
 pub mod inverse;
@@ -29,6 +30,7 @@ pub mod roots;
 pub mod rod;
 pub mod shooting;
 pub mod solve;
+pub mod stability;
 pub mod tca;
 pub mod validate;
 

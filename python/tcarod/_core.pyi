@@ -738,3 +738,82 @@ def bench_rows() -> list[tuple[str, str, float]]:
 
 def bench_time(name: str, repeats: int = 7, min_time: float = 0.05) -> list[float]:
     """Seconds per operation of row ``name``, one value per run (timed in Rust)."""
+
+# --- stability and branch following (src/python/stability.rs; see tcarod.stability) ---
+
+@final
+class Stability:
+    """Stability verdict of one equilibrium (see ``tcarod.stability``)."""
+
+    @property
+    def stable(self) -> bool: ...
+    @property
+    def margin(self) -> float:
+        """Smallest eigenvalue of the dimensionless tip stiffness [-]: > 0 iff stable."""
+    @property
+    def conjugate_point(self) -> float | None:
+        """Arc length [m] of the first conjugate point, or None."""
+    @property
+    def s(self) -> _FloatArray: ...
+    @property
+    def determinant(self) -> _FloatArray:
+        """Till and Rucker's ``det(Y(s) Y(0)^-1)`` [-] at the nodes."""
+    @property
+    def min_stiffness(self) -> _FloatArray: ...
+    @property
+    def mode(self) -> _FloatArray:
+        """Softest tip mode ``(dp / L, dtheta)``, shape ``(6,)``."""
+    @property
+    def evaluations(self) -> int: ...
+
+@final
+class Branch:
+    """A followed branch or a stable sweep (see ``tcarod.stability.follow_branch``)."""
+
+    @property
+    def parameter(self) -> _FloatArray: ...
+    @property
+    def tip_positions(self) -> _FloatArray:
+        """Tip positions [m], shape ``(k, 3)``."""
+    @property
+    def stable(self) -> npt.NDArray[np.bool_]: ...
+    @property
+    def margin(self) -> _FloatArray: ...
+    @property
+    def solutions(self) -> list[Solution]: ...
+    @property
+    def events(self) -> list[tuple[str, float, _FloatArray]]:
+        """``(kind, parameter, tip position [m])``, kind ``"fold"`` or ``"bifurcation"``."""
+    @property
+    def folds(self) -> _FloatArray: ...
+    @property
+    def bifurcations(self) -> _FloatArray: ...
+    @property
+    def jumps(self) -> list[tuple[float, Solution, Solution]]:
+        """Stable sweeps: ``(parameter, before, after)``."""
+    @property
+    def evaluations(self) -> int: ...
+    def __len__(self) -> int: ...
+
+def stability(robot: Robot, solution: Solution, *, blocked: Sequence[Sequence[float]] | None = None) -> Stability:
+    """Stability of ``solution``; ``blocked``: world directions of held tip translation."""
+
+def follow_branch(
+    robot: Robot,
+    *,
+    parameter: str,
+    start: float,
+    end: float,
+    actuators: Sequence[int] | None = None,
+    inputs: float | Sequence[float] | None = None,
+    step: float = 0.02,
+    max_step: float = 0.1,
+    max_points: int = 500,
+    stable_only: bool = False,
+    warm_start: Solution | None = None,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> Branch:
+    """Pseudo-arclength continuation in ``parameter`` (``"inputs"``,
+    ``"gravity_scale"``, ``"tip_load_scale"``) from ``start`` to ``end``."""

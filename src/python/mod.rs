@@ -7,6 +7,7 @@ mod batch;
 mod errors;
 mod inverse;
 mod rod;
+mod stability;
 mod tca;
 
 use pyo3::prelude::*;
@@ -35,6 +36,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     rod::register(m)?;
     inverse::register(m)?;
     batch::register(m)?;
+    stability::register(m)?;
     Ok(())
 }
 

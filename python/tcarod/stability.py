@@ -1,0 +1,131 @@
+"""Elastic stability of equilibria and branch following (beyond the paper).
+
+* :func:`stability` -- the verdict of one equilibrium: Till and Rucker's
+  conjugate-point test (IEEE T-RO 2017) extended to embedded actuators whose
+  tension depends on strain, dead loads and a blocked tip (see
+  ``docs/stability.md``). ``margin`` is the smallest eigenvalue of the
+  dimensionless tip stiffness: > 0 iff stable.
+* :func:`follow_branch` -- pseudo-arclength continuation in one scalar
+  parameter (the actuators' input, a gravity scale or a tip-load scale)
+  through folds, with the stability of each point and the located folds and
+  bifurcations; ``stable_only=True`` sweeps like a physical robot, staying on
+  stable equilibria and recording where it jumps.
+* :func:`plot_branch` -- a tip coordinate against the parameter, stable parts
+  solid, unstable dashed (needs the ``plot`` extra).
+
+Units: SI (m, N); temperatures in degrees C; scales dimensionless.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Literal, Sequence
+
+from . import _core
+from ._optional import require
+
+Stability = _core.Stability
+Branch = _core.Branch
+
+__all__ = ["Branch", "Stability", "follow_branch", "plot_branch", "stability"]
+
+Parameter = Literal["inputs", "gravity_scale", "tip_load_scale"]
+
+
+def stability(robot: _core.Robot, solution: _core.Solution, *, blocked: Sequence[Sequence[float]] | None = None) -> Stability:
+    """Stability verdict of ``solution`` (an equilibrium of ``robot``).
+
+    ``blocked``: world directions along which the tip translation is held
+    (e.g. the block normal of a blocked-tip solution). One tangent
+    integration. Returns a :class:`Stability` with ``stable``, ``margin``
+    [-], ``conjugate_point`` [m] or None, and the profiles ``s``,
+    ``determinant`` and ``min_stiffness``.
+    """
+    return _core.stability(robot, solution, blocked=None if blocked is None else [list(b) for b in blocked])
+
+
+def follow_branch(
+    robot: _core.Robot,
+    parameter: Parameter,
+    start: float,
+    end: float,
+    *,
+    actuators: Sequence[int] | None = None,
+    inputs: Sequence[float] | None = None,
+    warm_start: _core.Solution | None = None,
+    stable_only: bool = False,
+    step: float = 0.02,
+    max_step: float = 0.1,
+    max_points: int = 500,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> Branch:
+    """Follow the equilibria of ``robot`` as ``parameter`` goes from
+    ``start`` to ``end``.
+
+    ``parameter="inputs"`` drives the inputs of ``actuators`` (default all)
+    together; the other inputs stay at ``inputs`` (default the reference
+    inputs). ``"gravity_scale"`` multiplies the body's gravity vector,
+    ``"tip_load_scale"`` its tip force and moment. Steps are arclengths in
+    units of ``|end - start|``. ``warm_start``: an equilibrium at ``start``
+    to begin on (one of several coexisting shapes). ``stable_only``: stop
+    following a branch where it loses stability or folds back and land on the
+    nearest stable equilibrium just beyond (``Branch.jumps``).
+    """
+    return _core.follow_branch(
+        robot,
+        parameter=parameter,
+        start=start,
+        end=end,
+        actuators=None if actuators is None else list(actuators),
+        inputs=None if inputs is None else list(inputs),
+        step=step,
+        max_step=max_step,
+        max_points=max_points,
+        stable_only=stable_only,
+        warm_start=warm_start,
+        steps=steps,
+        tol=tol,
+        max_iter=max_iter,
+    )
+
+
+def plot_branch(
+    branch: Branch,
+    *,
+    component: int = 2,
+    ax: Any = None,
+    label: str | None = None,
+    color: str | None = None,
+    scale: float = 1e3,
+) -> Any:
+    """Plot tip coordinate ``component`` (0 x, 1 y, 2 z; times ``scale``,
+    default mm) against the parameter: stable runs solid, unstable dashed,
+    folds as circles, bifurcations as crosses, jumps as dotted arrows.
+    Returns the matplotlib Axes."""
+    if component not in (0, 1, 2):
+        raise ValueError(f"component must be 0, 1 or 2, got {component!r}")
+    plt = require("matplotlib.pyplot")
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.0, 4.0))
+    lam = branch.parameter
+    y = branch.tip_positions[:, component] * scale
+    stable = branch.stable
+    first = True
+    i = 0
+    while i < len(lam):
+        j = i
+        while j + 1 < len(lam) and stable[j + 1] == stable[i]:
+            j += 1
+        hi = min(j + 2, len(lam))  # join to the next run
+        (line,) = ax.plot(lam[i:hi], y[i:hi], "-" if stable[i] else "--", color=color, label=label if first else None)
+        color = line.get_color()
+        first = False
+        i = j + 1
+    for kind, par, tip in branch.events:
+        ax.plot([par], [tip[component] * scale], "o" if kind == "fold" else "x", color=color, mfc="none")
+    for par, before, after in branch.jumps:
+        y0 = before.positions[-1][component] * scale
+        y1 = after.positions[-1][component] * scale
+        ax.annotate("", xy=(par, y1), xytext=(par, y0), arrowprops={"arrowstyle": "->", "linestyle": ":", "color": color})
+    return ax
