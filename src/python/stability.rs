@@ -6,8 +6,9 @@ use nalgebra::Vector3;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 
-use super::errors::Real;
-use super::rod::{options, Count, Inputs, PyActuator, PyBody, PyRobot, PySolution};
+use super::Real;
+use super::rod::{solve_options, PyActuator, PyBody, PyRobot, PySolution};
+use super::{count_or, counts, reals};
 use crate::branch::{follow_branch as follow_core, sweep_stable, BranchOptions, BranchPoint, EventKind, Parameter, Problem};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
@@ -214,7 +215,7 @@ fn wrap(py: Python<'_>, pb: &Problem<'_>, acts: &[PyActuator], lambda: f64, s: S
 /// equilibria and record the jumps. `warm_start`: an equilibrium at `start`
 /// (or near it) to begin on, e.g. one of several coexisting shapes.
 #[pyfunction]
-#[pyo3(signature = (robot, *, parameter, start, end, actuators=None, inputs=None, step=Real(0.02), max_step=Real(0.1), max_points=Count(500), stable_only=false, warm_start=None, steps=Count(100), tol=Real(1e-10), max_iter=Count(50)),
+#[pyo3(signature = (robot, *, parameter, start, end, actuators=None, inputs=None, step=Real(0.02), max_step=Real(0.1), max_points=None, stable_only=false, warm_start=None, steps=None, tol=Real(1e-10), max_iter=None),
     text_signature = "(robot, *, parameter, start, end, actuators=None, inputs=None, step=0.02, max_step=0.1, max_points=500, stable_only=False, warm_start=None, steps=100, tol=1e-10, max_iter=50)")]
 #[allow(clippy::too_many_arguments)]
 fn follow_branch(
@@ -223,29 +224,44 @@ fn follow_branch(
     parameter: &str,
     start: Real,
     end: Real,
-    actuators: Option<Vec<usize>>,
-    inputs: Option<Inputs>,
+    actuators: Option<Bound<'_, PyAny>>,
+    inputs: Option<Bound<'_, PyAny>>,
     step: Real,
     max_step: Real,
-    max_points: Count,
+    max_points: Option<Bound<'_, PyAny>>,
     stable_only: bool,
     warm_start: Option<PyRef<'_, PySolution>>,
-    steps: Count,
+    steps: Option<Bound<'_, PyAny>>,
     tol: Real,
-    max_iter: Count,
+    max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<PyBranch> {
     let r = robot.inner.clone();
     let acts = robot.actuators.clone();
+    let n_act = r.actuators.len();
+    let actuators = match actuators.as_ref().filter(|o| !o.is_none()) {
+        Some(o) => {
+            let idx = counts("actuators", o, n_act.max(1))?;
+            if let Some(bad) = idx.iter().find(|&&i| i >= n_act) {
+                return Err(Error::input("actuators", format!("index {bad} out of range: the robot has {n_act} actuators")).into());
+            }
+            Some(idx)
+        }
+        None => None,
+    };
     let par = parse_parameter(parameter, actuators, &r)?;
-    let q = inputs.map(|i| i.into_vec()).unwrap_or_else(|| r.reference_inputs());
-    let solve = options(steps.0, tol.0, max_iter.0)?;
+    let q = match inputs.as_ref().filter(|o| !o.is_none()) {
+        Some(o) => reals("inputs", o, Some(n_act))?,
+        None => r.reference_inputs(),
+    };
+    let max_points = count_or("max_points", max_points.as_ref(), 500, 2, 100_000)?;
+    let solve = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
     let opts = BranchOptions {
         start: start.0,
         end: end.0,
         step: step.0,
         max_step: max_step.0,
         min_step: (1e-6f64).min(step.0),
-        max_points: max_points.0,
+        max_points,
         stop_when_unstable: false,
         solve,
     };
