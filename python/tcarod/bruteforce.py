@@ -27,6 +27,7 @@ from typing import Sequence
 import numpy as np
 import numpy.typing as npt
 
+from ._optional import require
 from .rod import Robot, Solution
 
 __all__ = ["BruteForceResult", "brute_force_blocked_temperature", "brute_force_tip_position"]
@@ -79,6 +80,7 @@ def brute_force_blocked_temperature(
     ``-force * normal`` [N], lies on the plane through ``point`` [m] with unit
     ``normal``: bounded Brent minimisation of the gap [m] over the
     temperature range, to ``xatol`` [C]."""
+    require("scipy")  # optional: the `fit` extra
     from scipy.optimize import minimize_scalar
 
     grp = list(groups) if groups is not None else [0] * len(robot.actuators)
@@ -127,6 +129,7 @@ def brute_force_tip_position(
     range, plus a penalty of 1 mm per C outside it (scipy's bounded
     Nelder-Mead clips the simplex itself, which collapses it on a bound and
     stalls, e.g. when starting at ambient temperature)."""
+    require("scipy")  # optional: the `fit` extra
     from scipy.optimize import minimize
 
     grp = list(groups) if groups is not None else list(range(len(robot.actuators)))

@@ -43,6 +43,7 @@ from typing import Any, Final, Sequence
 import numpy as np
 import numpy.typing as npt
 
+from ._optional import require
 from .tca import Material, Tca
 
 __all__ = ["PARAMETERS", "CalibrationResult", "TcaExperiment", "calibrate"]
@@ -146,7 +147,8 @@ def calibrate(
     Needs scipy (``pip install scipy``). Raises ``ValueError`` on unknown
     names, mismatched data or fewer points than parameters + 1.
     """
-    from scipy import optimize, stats  # optional dependency: only calibration needs it
+    require("scipy")  # optional: the `fit` extra
+    from scipy import optimize, stats
 
     mat = Material.silver_coated_nylon() if base is None else base
     if isinstance(experiment, TcaExperiment):
