@@ -6,7 +6,8 @@
   from the installed tcarod (``tcarod reproduce NAME --out docs/figures``; the
   printed table goes to ``docs/figures/NAME.txt``), and the notebooks of
   ``examples/`` are copied to ``docs/gallery/`` for mkdocs-jupyter, which
-  executes them. Both folders are build outputs (.gitignore).
+  executes them (never from its cache: the outputs depend on the installed
+  tcarod). Both folders are build outputs (.gitignore).
 * on_post_build: if the Rust crate docs exist (``cargo doc --no-deps``, run by
   ``make docs``), they are copied to ``site/rust/``.
 """
@@ -49,6 +50,9 @@ def on_config(config: Any) -> Any:
 
 
 def on_pre_build(config: Any) -> None:
+    # mkdocs-jupyter caches executed notebooks by their source; the outputs
+    # also depend on the installed tcarod, so every build executes afresh.
+    shutil.rmtree(ROOT / ".cache" / "mkdocs-jupyter", ignore_errors=True)
     FIGURES.mkdir(exist_ok=True)
     for name in EXPERIMENTS:
         run = subprocess.run(
