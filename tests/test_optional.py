@@ -71,7 +71,9 @@ def test_every_extra_named_by_require_is_declared_in_pyproject() -> None:
 
 
 def test_core_dependencies_are_numpy_and_toml_only() -> None:
-    names = {req.split(";")[0].split(">")[0].split("=")[0].strip().lower() for req in PYPROJECT["project"]["dependencies"]}
+    names = {
+        req.split(";")[0].split(">")[0].split("=")[0].strip().lower() for req in PYPROJECT["project"]["dependencies"]
+    }
     assert names == {"numpy", "tomli", "tomli-w"}
 
 

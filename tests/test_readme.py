@@ -66,7 +66,13 @@ def test_quick_start_is_two_commands_and_ci_runs_the_second() -> None:
     assert "pip install" in install_and_run and "tcarod reproduce" in install_and_run
     # the main job draws figures and fits Table I: it needs the optional extras
     assert "[all]" in install_and_run
-    for part in ("pip install -e '.[test]' && ", "cargo test", "python -m pytest", "mypy.stubtest", "mkdocs build --strict"):
+    for part in (
+        "pip install -e '.[test]' && ",
+        "cargo test",
+        "python -m pytest",
+        "mypy.stubtest",
+        "mkdocs build --strict",
+    ):
         assert part in test
     # CI greps exactly one line starting with the test install
     starts = [line for line in README.splitlines() if line.startswith("pip install -e '.[test]' && ")]
