@@ -4,11 +4,11 @@
 //! batch throughput on 1 and 2 threads.
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use tcarod::batch::{solve_batch, BatchOptions};
-use tcarod::bench::{operation, ROWS};
+use tcarod::bench::{operation, ROWS, SOLVER_ROWS};
 use tcarod::experiments::fig6_square;
 
 fn rows(c: &mut Criterion) {
-    for row in ROWS {
+    for row in ROWS.iter().chain(SOLVER_ROWS.iter()) {
         let mut op = operation(row.name).expect("bench problem solves");
         let mut g = c.benchmark_group("rod");
         if row.name == "grasp" {

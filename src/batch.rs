@@ -6,13 +6,14 @@
 //! a warm-start chain restarts at every chunk, so the results do not depend
 //! on the number of threads or on how chunks are spread over machines.
 
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use nalgebra::Vector3;
 
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 use crate::shooting::{solve_tip, Loads, SolveOptions, TipSolution};
+use crate::solve::cancel;
 
 /// Options of [`solve_batch`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,7 +42,7 @@ impl Default for BatchOptions {
 /// Stacked results of [`solve_batch`], one entry per row.
 #[derive(Debug, Clone, Default)]
 pub struct BatchOutput {
-    /// Tip positions [m] (NaN where a solve failed).
+    /// Tip positions \[m\] (NaN where a solve failed).
     pub tip_positions: Vec<[f64; 3]>,
     /// Tip rotations, row-major 3x3 (NaN where a solve failed).
     pub tip_rotations: Vec<[f64; 9]>,
@@ -159,7 +160,14 @@ pub fn solve_batch(
         .map(|i| std::sync::Mutex::new(Some(i)))
         .collect();
     let next = AtomicUsize::new(0);
+    // cancellation: workers poll `stop` (set by whoever sees the caller's
+    // cancel check fire, see `crate::solve::cancel`)
+    let stop = AtomicBool::new(false);
+    let running = AtomicUsize::new(0);
     let work = || loop {
+        if stop.load(Ordering::Relaxed) {
+            break;
+        }
         let c = next.fetch_add(1, Ordering::Relaxed);
         if c >= n_chunks {
             break;
@@ -169,17 +177,34 @@ pub fn solve_batch(
             .expect("no panics while held")
             .take()
             .expect("each chunk once");
-        solve_chunk(robot, inputs, wrenches, opts, c * cs, p, r, it, ev, ok);
+        if solve_chunk(robot, inputs, wrenches, opts, c * cs, p, r, it, ev, ok).is_err() {
+            stop.store(true, Ordering::Relaxed);
+        }
     };
     let threads = thread_count(opts.threads).min(n_chunks.max(1));
     if threads <= 1 {
         work();
     } else {
+        let flag = || stop.load(Ordering::Relaxed);
         std::thread::scope(|s| {
             for _ in 0..threads {
-                s.spawn(work);
+                running.fetch_add(1, Ordering::SeqCst);
+                s.spawn(|| {
+                    cancel::interruptible(&flag, work);
+                    running.fetch_sub(1, Ordering::SeqCst);
+                });
+            }
+            // the calling thread polls its own cancel check for the workers
+            while running.load(Ordering::SeqCst) > 0 {
+                if cancel::check().is_err() {
+                    stop.store(true, Ordering::Relaxed);
+                }
+                std::thread::sleep(std::time::Duration::from_millis(5));
             }
         });
+    }
+    if stop.load(Ordering::Relaxed) {
+        return Err(Error::Interrupted);
     }
     Ok(out)
 }
@@ -196,7 +221,7 @@ fn solve_chunk(
     iters: &mut [u32],
     evals: &mut [u32],
     ok: &mut [bool],
-) {
+) -> Result<()> {
     let na = robot.actuators.len();
     let base = Loads::of(robot);
     let mut warm: Option<TipSolution> = None;
@@ -213,6 +238,7 @@ fn solve_chunk(
             None => base,
         };
         let q = &inputs[k * na..(k + 1) * na];
+        cancel::check()?;
         match solve_tip(
             robot,
             q,
@@ -232,9 +258,11 @@ fn solve_chunk(
                 ok[j] = true;
                 warm = Some(s);
             }
+            Err(Error::Interrupted) => return Err(Error::Interrupted),
             Err(_) => {
                 warm = None;
             }
         }
     }
+    Ok(())
 }

@@ -14,25 +14,26 @@ use crate::error::Result;
 use crate::experiments::{
     fig6_square, table1_finger, G0, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL,
 };
-use crate::inverse::{grasp, sensitivities_fast, Groups, Scheme};
-use crate::shooting::{shoot, solve, Loads, SolveOptions};
+use crate::experiments::{steel_tendon_robot, STEEL_TENDON_TENSIONS};
+use crate::inverse::{grasp, sensitivities_exact, sensitivities_fast, Groups, Scheme};
+use crate::shooting::{shoot, shoot_jacobian, solve, Loads, SolveOptions};
 
-/// Temperature [C] of both TCAs in the benches.
+/// Temperature \[C\] of both TCAs in the benches.
 pub const BENCH_TEMPERATURE: f64 = 100.0;
-/// Temperature step [C] of the warm-start row.
+/// Temperature step \[C\] of the warm-start row.
 pub const WARM_STEP: f64 = 5.0;
 /// RK4 steps of the "within 1 um of a 5,000-step reference" row (measured by
 /// `tests/perf.rs`: at most 0.43 um over 40-160 C).
 pub const ACCURATE_STEPS: usize = 10;
 
-/// One row of the table: name, what it times, its target [s].
+/// One row of the table: name, what it times, its target \[s\].
 #[derive(Debug, Clone, Copy)]
 pub struct Row {
     /// Short name (`ivp`, `cold`, ...).
     pub name: &'static str,
     /// What is timed.
     pub description: &'static str,
-    /// Target time [s].
+    /// Target time \[s\].
     pub target: f64,
 }
 
@@ -67,6 +68,32 @@ pub const ROWS: [Row; 6] = [
         name: "cold_1um",
         description: "cold forward solve within 1 um of a 5,000-step reference (10 RK4 steps)",
         target: 100e-6,
+    },
+];
+
+/// Rows of the solver issue (benches/rod.rs only, not in the performance
+/// table): exact J and C, one tangent IVP, the steel tendon robot
+/// ([`steel_tendon_robot`]) cold and warm after +1 % tension.
+pub const SOLVER_ROWS: [Row; 4] = [
+    Row {
+        name: "jc_exact",
+        description: "J and C at a solution from one tangent IVP (Scheme::Exact)",
+        target: 300e-6,
+    },
+    Row {
+        name: "tangent",
+        description: "one tangent IVP: residual and exact shooting Jacobian",
+        target: 100e-6,
+    },
+    Row {
+        name: "steel_cold",
+        description: "steel tendon robot, cold forward solve",
+        target: 300e-6,
+    },
+    Row {
+        name: "steel_warm",
+        description: "steel tendon robot, warm solve after +1 % tension",
+        target: 300e-6,
     },
 ];
 
@@ -133,6 +160,27 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
                 .map(|_| ())
             })
         }
+        "jc_exact" => {
+            let sol = solve(&robot, &t, &opts, None)?;
+            let loads = Loads::of(&robot);
+            let groups = Groups(vec![0, 0]);
+            Box::new(move || sensitivities_exact(&robot, std::hint::black_box(&sol), &loads, &groups, opts.steps).map(|_| ()))
+        }
+        "tangent" => {
+            let sol = solve(&robot, &t, &opts, None)?;
+            let loads = Loads::of(&robot);
+            Box::new(move || shoot_jacobian(&robot, &sol.inputs, &loads, std::hint::black_box(&sol.unknowns), opts.steps, false).map(|_| ()))
+        }
+        "steel_cold" => {
+            let steel = steel_tendon_robot();
+            Box::new(move || solve(&steel, std::hint::black_box(&STEEL_TENDON_TENSIONS), &opts, None).map(|_| ()))
+        }
+        "steel_warm" => {
+            let steel = steel_tendon_robot();
+            let w = solve(&steel, &STEEL_TENDON_TENSIONS, &opts, None)?;
+            let up: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
+            Box::new(move || solve(&steel, std::hint::black_box(&up), &opts, Some(&w)).map(|_| ()))
+        }
         "cold_1um" => {
             let o = SolveOptions {
                 steps: ACCURATE_STEPS,
@@ -150,7 +198,7 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
 }
 
 /// Time `repeats` runs of row `name` (after one warm-up run), each run
-/// repeated in a loop for at least `min_time` [s]; returns seconds per
+/// repeated in a loop for at least `min_time` \[s\]; returns seconds per
 /// operation of each run.
 pub fn time_row(name: &str, repeats: usize, min_time: f64) -> Result<Vec<f64>> {
     let mut op = operation(name)?;

@@ -12,7 +12,7 @@ pub enum Error {
     /// A scalar argument is non-finite or outside its allowed range.
     #[error("invalid {name} = {value}: allowed {allowed}")]
     InvalidParameter {
-        /// Name of the argument, with its unit (e.g. `temperature [C]`).
+        /// Name of the argument, with its unit (e.g. `temperature \[C\]`).
         name: String,
         /// The offending value (SI units).
         value: f64,
@@ -37,28 +37,64 @@ pub enum Error {
     },
     /// A Newton (or other iterative) solve stopped without meeting its tolerance.
     #[error(
-        "{solver} did not converge: residual {residual:.3e} after {iterations} iterations ({reason})"
+        "{solver} did not converge: best residual {residual:.3e} after {iterations} iterations, {evaluations} evaluations ({reason})"
     )]
     NotConverged {
         /// Which solver.
         solver: &'static str,
         /// Iterations performed.
         iterations: usize,
-        /// Final residual norm (dimensionless unless the solver says otherwise).
+        /// IVPs (function evaluations) spent, failed attempts included.
+        evaluations: usize,
+        /// Best residual norm reached (dimensionless unless the solver says otherwise).
         residual: f64,
         /// Why it stopped.
+        stop: StopReason,
+        /// Details.
         reason: String,
     },
+    /// A cancel check (e.g. Ctrl-C in Python) stopped the work.
+    #[error("interrupted")]
+    Interrupted,
     /// The rod's initial value problem could not be integrated (singular
     /// stiffness system, an actuator stretched past its straight-fibre limit,
     /// non-finite state).
     #[error("integration failed at s = {s:.6e} m: {reason}")]
     Integration {
-        /// Arc length [m] at which integration failed.
+        /// Arc length \[m\] at which integration failed.
         s: f64,
         /// Why.
         reason: String,
     },
+}
+
+/// Why an iterative solve stopped without converging.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum StopReason {
+    /// The iteration limit was reached.
+    IterationLimit,
+    /// The line search could not reduce the merit function.
+    LineSearch,
+    /// The Jacobian was singular.
+    SingularJacobian,
+    /// A non-finite state or residual.
+    NonFinite,
+    /// Another reason given in the message.
+    Other,
+}
+
+impl StopReason {
+    /// Snake-case name (the Python attribute `ConvergenceError.reason`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            StopReason::IterationLimit => "iteration_limit",
+            StopReason::LineSearch => "line_search",
+            StopReason::SingularJacobian => "singular_jacobian",
+            StopReason::NonFinite => "non_finite",
+            StopReason::Other => "other",
+        }
+    }
 }
 
 /// Result alias of the crate.

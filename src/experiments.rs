@@ -103,3 +103,51 @@ pub const TABLE1_FINGERS: usize = 2;
 pub const TABLE1_MASSES: [f64; 3] = [1e-3, 2e-3, 3e-3];
 /// Unit direction a Table I finger presses in (world frame).
 pub const TABLE1_NORMAL: [f64; 3] = [-1.0, 0.0, 0.0];
+
+/// The issue-10 steel tendon robot, a shared speed benchmark (not from the
+/// paper): steel rod `L = 0.5 m`, radius 1 mm, `E = 200 GPa`, `G = 80 GPa`,
+/// 8000 kg/m^3, gravity 9.81 m/s^2 along base-frame `+x`, four straight
+/// constant-tension tendons at 15.06 mm offset at 0/90/180/270 deg ending at
+/// the tip. Inputs: the tensions \[N\], [`STEEL_TENDON_TENSIONS`].
+pub fn steel_tendon_robot() -> Robot {
+    use crate::rod::ConstantTension;
+    let length = 0.5;
+    let mut body = Body::new(length, Section::Circle { diameter: 2e-3 }, 200e9, 0.25, 8000.0).expect("valid");
+    body.shear_modulus = 80e9;
+    body.gravity = Vector3::new(G0, 0.0, 0.0);
+    let law = Arc::new(ConstantTension);
+    let offset = 15.06e-3;
+    let tendons = (0..4)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::FRAC_PI_2;
+            Actuator::new(Routing::Straight { x: offset * a.cos(), y: offset * a.sin() }, 0.0, length, law.clone())
+        })
+        .collect();
+    Robot::new(body, tendons).expect("valid")
+}
+
+/// Tendon tensions \[N\] of [`steel_tendon_robot`]'s benchmark case.
+pub const STEEL_TENDON_TENSIONS: [f64; 4] = [15.0, 0.0, 0.0, 0.0];
+
+/// The issue-10 soft tendon rod: 0.2 m long, 10 mm diameter, 1 MPa
+/// (Poisson 0.5), weightless, one straight constant-tension tendon at
+/// [`SOFT_TENDON_OFFSET`] from the centre line to the tip.
+pub fn soft_tendon_robot() -> Robot {
+    use crate::rod::ConstantTension;
+    let length = 0.2;
+    let body = Body::new(length, Section::Circle { diameter: 10e-3 }, 1e6, 0.5, 0.0).expect("valid");
+    let law = Arc::new(ConstantTension);
+    Robot::new(body, vec![Actuator::new(Routing::Straight { x: SOFT_TENDON_OFFSET, y: 0.0 }, 0.0, length, law)]).expect("valid")
+}
+
+/// Tendon offset \[m\] of [`soft_tendon_robot`].
+pub const SOFT_TENDON_OFFSET: f64 = 4e-3;
+
+/// Tension \[N\] that bends [`soft_tendon_robot`] by `angle` \[rad\] at its tip
+/// in the inextensible, unsheared limit: a constant tendon moment
+/// `tau r = E I theta / L`.
+pub fn soft_tendon_tension(angle: f64) -> f64 {
+    let r = soft_tendon_robot();
+    let (_, ix, _, _) = r.body.section.properties();
+    angle * r.body.youngs_modulus * ix / (SOFT_TENDON_OFFSET * r.body.length)
+}

@@ -4,14 +4,16 @@
 //! Tip pose perturbations are measured in the world frame as
 //! `[dp; dtheta]`, `dtheta` the rotation vector of `R1 R0^T`. Actuation
 //! variables `z` map to actuator inputs through `groups` (actuator `i` takes
-//! variable `groups[i]`): the two legs of a U-shaped TCA share one
+//! variable `groups\[i\]`): the two legs of a U-shaped TCA share one
 //! temperature. Tip wrenches `W = [F; M]` are in the world frame.
 
-use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Quaternion, Rotation3, Vector3};
 
 use crate::error::{Error, Result};
-use crate::rod::Robot;
-use crate::shooting::{assemble, initial_guess, newton, shoot, solve_loaded, Loads, SolveOptions, Solution};
+use crate::rod::{integrate_tangent, IvpSpec, Robot, TangentSeeds};
+use crate::error::StopReason;
+use crate::shooting::{assemble, initial_guess, shoot, solve_loaded, Loads, SolveOptions, Solution};
+use crate::solve::{newton, FnSystem};
 
 /// Finite-difference scheme for [`sensitivities`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,6 +22,12 @@ pub enum Scheme {
     Forward,
     /// Central differences, step `cbrt(eps) max(1, |z|/z_c) z_c`: twice the IVPs, `O(h^2)` error.
     Central,
+    /// Exact: one tangent IVP ([`crate::rod::integrate_tangent`]) along the
+    /// unknowns and the actuation variables, the wrench columns in closed
+    /// form; no step size, no truncation error (the TCA law's temperature
+    /// slope is differenced inside the law, see
+    /// [`crate::rod::ForceLaw::tension_derivatives`]).
+    Exact,
 }
 
 /// Actuation Jacobian and compliance at a solution.
@@ -116,7 +124,7 @@ fn pose_delta(p0: &Vector3<f64>, r0: &Matrix3<f64>, p1: &Vector3<f64>, r1: &Matr
     [dp.x, dp.y, dp.z, th.x, th.y, th.z]
 }
 
-/// Characteristic force [N] and moment [N m] of a body: `E I / L^2`, `E I / L`.
+/// Characteristic force \[N\] and moment \[N m\] of a body: `E I / L^2`, `E I / L`.
 pub fn load_scales(robot: &Robot) -> (f64, f64) {
     let b = &robot.body;
     let (_, ix, iy, _) = b.section.properties();
@@ -130,6 +138,7 @@ pub fn sensitivities(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Grou
     let rel = match scheme {
         Scheme::Forward => f64::EPSILON.sqrt(),
         Scheme::Central => f64::EPSILON.cbrt(),
+        Scheme::Exact => return sensitivities_exact(robot, sol, loads, groups, steps),
     };
     sensitivities_with_step(robot, sol, loads, groups, steps, scheme, rel)
 }
@@ -143,8 +152,84 @@ pub fn sensitivities_fast(robot: &Robot, sol: &Solution, loads: &Loads, groups: 
     let rel = match scheme {
         Scheme::Forward => f64::EPSILON.sqrt(),
         Scheme::Central => f64::EPSILON.cbrt(),
+        Scheme::Exact => return sensitivities_exact(robot, sol, loads, groups, steps),
     };
     sensitivities_impl(robot, sol, loads, groups, steps, scheme, rel, true)
+}
+
+/// `J` and `C` (eqs 39-42) exactly, from one tangent IVP at the solution
+/// along the `6 + N` shooting unknowns and the `n_vars` actuation variables:
+/// `E_u, E_q` are the tangents of the tip pose (`dtheta = 2 vec(dq q^-1)`,
+/// world frame), `B_u, B_q` those of the scaled residual, `E_W = 0` and
+/// `B_W` in closed form (see [`sensitivities_fast`]).
+pub fn sensitivities_exact(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Groups, steps: usize) -> Result<Sensitivities> {
+    groups.validate(robot)?;
+    let len = robot.body.length;
+    let na = robot.actuators.len();
+    let nx = 6 + na;
+    let nz = groups.n_vars();
+    let x = &sol.unknowns;
+    let mut tau = Vec::with_capacity(na);
+    let mut seeds = TangentSeeds::zeros(na, nx + nz);
+    for k in 0..3 {
+        seeds.nu0[(k, k)] = 1.0;
+        seeds.omega0[(k, 3 + k)] = 1.0 / len;
+    }
+    for (i, a) in robot.actuators.iter().enumerate() {
+        let (t, dt_de, dt_dq) = a.law.tension_derivatives(x[6 + i] * len, sol.inputs[i])?;
+        tau.push(t);
+        seeds.tensions[(i, 6 + i)] = dt_de * len;
+        seeds.tensions[(i, nx + groups.0[i])] = dt_dq;
+    }
+    let spec = IvpSpec { robot, tensions: &tau, tip_force: loads.tip_force, tip_moment: loads.tip_moment, steps };
+    let v0 = Vector3::new(x[0], x[1], x[2]);
+    let u0 = Vector3::new(x[3], x[4], x[5]) / len;
+    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, false)?;
+    let ncol = nx + nz;
+    // pose tangents: dp, and dtheta = 2 vec(dq conj(q)) for a unit q
+    let q = tan.ivp.tip.q;
+    let mut e = DMatrix::<f64>::zeros(6, ncol + 6);
+    for c in 0..ncol {
+        for k in 0..3 {
+            e[(k, c)] = tan.tip[(k, c)];
+        }
+        let dq = Quaternion::new(tan.tip[(3, c)], tan.tip[(4, c)], tan.tip[(5, c)], tan.tip[(6, c)]);
+        let w = dq * q.conjugate() * 2.0;
+        e[(3, c)] = w.i;
+        e[(4, c)] = w.j;
+        e[(5, c)] = w.k;
+    }
+    let (fs, ms) = crate::shooting::residual_scales(robot);
+    let mut bm = DMatrix::<f64>::zeros(nx, ncol + 6);
+    for c in 0..ncol {
+        for k in 0..3 {
+            bm[(k, c)] = tan.tip_force_residual[(k, c)] * fs;
+            bm[(3 + k, c)] = tan.tip_moment_residual[(k, c)] * ms;
+        }
+        for i in 0..na {
+            bm[(6 + i, c)] = tan.elongation[(i, c)] / len - if c == 6 + i { 1.0 } else { 0.0 };
+        }
+    }
+    let r0 = tan.ivp.tip.rotation();
+    for k in 0..6 {
+        for i in 0..3 {
+            let (row, val) = if k < 3 { (i, -r0[(k, i)] * fs) } else { (3 + i, -r0[(k - 3, i)] * ms) };
+            bm[(row, ncol + k)] = val;
+        }
+    }
+    let lu = bm.columns(0, nx).into_owned().lu();
+    let singular = || Error::NotConverged {
+        solver: "sensitivities",
+        iterations: 0,
+        evaluations: 1,
+        residual: f64::INFINITY,
+        stop: StopReason::SingularJacobian,
+        reason: "B_u is singular".into(),
+    };
+    let eu = e.columns(0, nx).into_owned();
+    let jac = e.columns(nx, nz).into_owned() - &eu * lu.solve(&bm.columns(nx, nz).into_owned()).ok_or_else(singular)?; // (41)
+    let comp = -(&eu * lu.solve(&bm.columns(ncol, 6).into_owned()).ok_or_else(singular)?); // (42), E_W = 0
+    Ok(Sensitivities { jacobian: jac, compliance: comp, evaluations: 1 })
 }
 
 /// [`sensitivities`] with a chosen relative step (for studies of step-size error).
@@ -273,7 +358,9 @@ fn sensitivities_impl(
         lu.solve(&rhs).ok_or_else(|| Error::NotConverged {
             solver: "sensitivities",
             iterations: 0,
+            evaluations: 0,
             residual: f64::INFINITY,
+            stop: StopReason::SingularJacobian,
             reason: "B_u is singular".into(),
         })
     };
@@ -294,7 +381,7 @@ pub struct InverseResult {
     pub solution: Solution,
     /// Final actuation variables.
     pub variables: Vec<f64>,
-    /// Distance [m] from the target (and angle [rad] if orientation was asked).
+    /// Distance \[m\] from the target (and angle \[rad\] if orientation was asked).
     pub error: f64,
     /// Iterations (Jacobian evaluations).
     pub iterations: usize,
@@ -311,7 +398,7 @@ pub struct InverseResult {
 pub struct InverseOptions {
     /// Forward solver options.
     pub forward: SolveOptions,
-    /// Position tolerance [m].
+    /// Position tolerance \[m\].
     pub tol: f64,
     /// Iteration limit.
     pub max_iter: usize,
@@ -330,8 +417,8 @@ impl Default for InverseOptions {
     }
 }
 
-/// Reach a target tip position `target` [m] (and orientation: rotation matrix
-/// `target_rotation`, weighted by `orientation_weight` [m/rad]) by iterating
+/// Reach a target tip position `target` \[m\] (and orientation: rotation matrix
+/// `target_rotation`, weighted by `orientation_weight` \[m/rad\]) by iterating
 /// the local inverse `dz = J^+ dx` (damped least squares) with variables kept
 /// within their bounds (ambient to the material's limit for TCAs).
 ///
@@ -456,7 +543,7 @@ pub fn tip_position_inverse(
 /// `f >= 0` (the tip presses along `+normal`).
 #[derive(Debug, Clone, Copy)]
 pub struct Block {
-    /// A point of the blocking plane [m].
+    /// A point of the blocking plane \[m\].
     pub point: Vector3<f64>,
     /// Unit normal: the direction the tip presses in.
     pub normal: Vector3<f64>,
@@ -487,7 +574,7 @@ impl Block {
 pub struct BlockedResult {
     /// The forward solution with the contact force applied at the tip.
     pub solution: Solution,
-    /// Contact force magnitude [N] (the tip presses with it along the normal).
+    /// Contact force magnitude \[N\] (the tip presses with it along the normal).
     pub force: f64,
     /// Actuation variables.
     pub variables: Vec<f64>,
@@ -498,7 +585,7 @@ pub struct BlockedResult {
 }
 
 /// Direct solve with the tip held (mixed boundary condition): at given
-/// actuation variables `z`, the contact force `f` [N] is an extra unknown and
+/// actuation variables `z`, the contact force `f` \[N\] is an extra unknown and
 /// `normal . (p(L) - point) = 0` an extra residual. `f` may come out negative
 /// if the tip would pull away from the block (the caller decides whether
 /// contact holds).
@@ -517,7 +604,8 @@ pub fn blocked_force(robot: &Robot, groups: &Groups, block: &Block, z: &[f64], o
         r.push(block.normal.dot(&(ivp.tip.p - block.point)) / len);
         Ok(r)
     };
-    let nr = newton(&x0, f, opts, "blocked-tip shooting")?;
+    let mut sys = FnSystem::new(f);
+    let nr = newton(&mut sys, &x0, &opts.newton(), "blocked-tip shooting")?;
     let force = nr.x[nx] * fc;
     let l = block.loads(robot, force);
     let sol = assemble(robot, &inputs, &l, &nr.x[..nx], opts.steps, nr.iterations, nr.evaluations)?;
@@ -531,7 +619,7 @@ pub fn blocked_force(robot: &Robot, groups: &Groups, block: &Block, z: &[f64], o
 }
 
 /// Direct solve for the single actuation variable at which the blocked tip
-/// presses with `force` [N] (the variable is an extra unknown). Independent
+/// presses with `force` \[N\] (the variable is an extra unknown). Independent
 /// check of [`blocked_temperature`].
 pub fn blocked_variable_direct(robot: &Robot, groups: &Groups, block: &Block, force: f64, z_guess: f64, opts: &SolveOptions, warm: Option<&Solution>) -> Result<BlockedResult> {
     groups.validate(robot)?;
@@ -554,7 +642,8 @@ pub fn blocked_variable_direct(robot: &Robot, groups: &Groups, block: &Block, fo
         r.push(block.normal.dot(&(ivp.tip.p - block.point)) / len);
         Ok(r)
     };
-    let nr = newton(&x0, f, opts, "blocked-tip temperature shooting")?;
+    let mut sys = FnSystem::new(f);
+    let nr = newton(&mut sys, &x0, &opts.newton(), "blocked-tip temperature shooting")?;
     let z = nr.x[nx] * zs;
     let sol = assemble(robot, &groups.inputs(&[z]), &l, &nr.x[..nx], opts.steps, nr.iterations, nr.evaluations)?;
     Ok(BlockedResult {
@@ -568,7 +657,7 @@ pub fn blocked_variable_direct(robot: &Robot, groups: &Groups, block: &Block, fo
 
 /// The paper's incremental method (eq 43 with `dx = 0`): starting from a
 /// solution `start` whose tip touches the block with zero force, raise the
-/// contact force to `force` [N] in `increments` steps, each
+/// contact force to `force` \[N\] in `increments` steps, each
 /// `dq = -(n^T J)^-1 n^T C dW`, followed by one forward solve and a
 /// position correction `dq = (n^T J)^-1 n^T (point - p)` so that the tip stays
 /// on the block. Needs exactly one actuation variable. A force that needs
@@ -601,7 +690,9 @@ pub fn blocked_temperature(robot: &Robot, groups: &Groups, block: &Block, start:
             return Err(Error::NotConverged {
                 solver: "blocked-tip increments",
                 iterations: k,
+                evaluations: evals,
                 residual: f64::INFINITY,
+                stop: StopReason::SingularJacobian,
                 reason: "the actuator cannot move the tip along the block normal (n^T J = 0)".into(),
             });
         }
@@ -645,13 +736,15 @@ pub fn blocked_temperature(robot: &Robot, groups: &Groups, block: &Block, start:
     Err(Error::NotConverged {
         solver: "blocked-tip increments",
         iterations: increments + 3,
+        evaluations: evals,
+        stop: StopReason::IterationLimit,
         residual: n.dot(&(block.point - sol.tip_position())).abs() / robot.body.length,
         reason: "tip did not settle on the block".into(),
     })
 }
 
 /// Grasp temperature (eq 44): the actuation variable at which `fingers`
-/// identical fingers with friction coefficient `mu` hold a mass `mass` [kg],
+/// identical fingers with friction coefficient `mu` hold a mass `mass` \[kg\],
 /// `mu n F(T) = m g`, each finger's tip blocked at its reference position
 /// and pressing along `normal`. Returns the blocked result for one finger.
 #[allow(clippy::too_many_arguments)]

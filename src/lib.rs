@@ -8,8 +8,10 @@
 //! * [`material`], [`tca`]: Section II, the TCA constitutive law (eqs 1-6);
 //! * [`rod`]: Section III, the Cosserat rod with embedded string-like
 //!   actuators (eqs 7-31) and its initial value problem;
-//! * [`shooting`]: Section III, the boundary value problem (eqs 32-33) solved
-//!   by Newton shooting with a line search;
+//! * [`solve`]: one Newton solver (Armijo line search, rounding floor), the
+//!   boundary value problem (eqs 32-33) by shooting with the exact Jacobian
+//!   from the IVP's tangents ([`rod::integrate_tangent`]), homotopy
+//!   continuation and cancellation; [`shooting`] re-exports its names;
 //! * [`inverse`]: Section IV, Jacobian and compliance (eqs 34-43);
 //! * [`experiments`]: Section V, the paper's test problems, shared by tests
 //!   and benches.
@@ -25,11 +27,14 @@ pub mod material;
 pub mod roots;
 pub mod rod;
 pub mod shooting;
+pub mod solve;
 pub mod tca;
 
 #[cfg(feature = "python")]
 mod python;
 
-pub use error::{Error, Result};
+pub use error::{Error, Result, StopReason};
+/// The linear algebra crate of the public API (vectors, matrices).
+pub use nalgebra;
 pub use material::Material;
 pub use tca::{Chirality, Tca};

@@ -529,6 +529,38 @@ impl<'a> TcaAt<'a> {
     }
 }
 
+impl TcaAt<'_> {
+    /// `d tension / d delta` [N/m] of [`Self::tension`], exact (for the
+    /// shooting solver's tangents): eq (6) differentiated through the pitch
+    /// angle `alpha(delta)` of eq (5) for `delta >= 0`, the contact branch's
+    /// slope for `delta < 0`.
+    pub fn tension_slope(&self, delta: f64) -> Result<f64> {
+        let t = self.tca;
+        if delta < 0.0 {
+            let f0 = self.force(0.0)?;
+            let h = 1e-9 * t.coiled_length;
+            let ks = (self.force(h)? - f0) / h;
+            let kc = self.contact_stiffness().max(ks);
+            let eps = Self::CONTACT_SMOOTHING;
+            return Ok(if delta >= -eps { ks - (kc - ks) * delta / eps } else { kc });
+        }
+        let a = t.pitch_angle(delta)?;
+        let (s, c) = a.sin_cos();
+        let da = 1.0 / (t.fibre_length * c); // d alpha / d delta, eq (5)
+        let n = t.n_coils;
+        let ln = t.fibre_length / n;
+        let ka = 8.0 * n / (PI.powi(3) * self.d.powi(4)) * ln.powi(3);
+        let kb = 8.0 * n / (PI * self.d * self.d) * ln;
+        let f11 = self.f11(a);
+        let df11 = ka * (-4.0 * c.powi(3) * s / self.g + 4.0 * (s * c.powi(3) - s.powi(3) * c) / self.e) + kb * (-c * s / self.g + s * c / self.e);
+        let f12 = self.f12(a);
+        let df12 = -2.0 * 8.0 * n / (PI * PI * self.d.powi(4)) * ln * ln * c * s / self.g;
+        let num = delta - self.sign() * f12 * self.tau;
+        let dnum = 1.0 - self.sign() * df12 * da * self.tau;
+        Ok((dnum * f11 - num * df11 * da) / (f11 * f11))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

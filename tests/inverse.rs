@@ -175,3 +175,48 @@ fn incremental_blocked_temperature_reaches_the_top_of_the_range() {
     // a force beyond the range is still refused
     assert!(blocked_temperature(&robot, &groups, &block, &start, top.force * 1.01, 10, &opts()).is_err());
 }
+
+/// The exact J and C (one tangent IVP) against central differences of IVPs
+/// (the paper's eqs 39-42) on TCA bodies with gravity, and against brute
+/// force (differences of full solves) on the steel tendon robot, whose
+/// residual is too stiff in shear for differenced IVPs (step eps^(1/3) puts
+/// a 25 % error in its shear columns; see tests/tangent.rs).
+#[test]
+fn exact_sensitivities_match_differences() {
+    use tcarod::experiments::{steel_tendon_robot, STEEL_TENDON_TENSIONS};
+    let opts = SolveOptions::default();
+    let cases: Vec<(&str, tcarod::rod::Robot, Vec<f64>, Groups)> = vec![
+        ("square", fig6_square(true), vec![100.0, 100.0], Groups(vec![0, 0])),
+        ("square, legs apart", fig6_square(true), vec![90.0, 120.0], Groups::identity(2)),
+        ("circle", fig6_circle(true), vec![80.0], Groups::identity(1)),
+    ];
+    for (name, robot, inputs, groups) in cases {
+        let s = solve(&robot, &inputs, &opts, None).unwrap();
+        let l = Loads::of(&robot);
+        let ex = sensitivities(&robot, &s, &l, &groups, opts.steps, Scheme::Exact).unwrap();
+        let fd = sensitivities(&robot, &s, &l, &groups, opts.steps, Scheme::Central).unwrap();
+        assert_eq!(ex.evaluations, 1);
+        // central differences with step eps^(1/3): truncation and rounding
+        // ~1e-10..1e-8 relative, amplified by B_u^-1; a wrong tangent term
+        // is O(1) wrong
+        for (what, a, b) in [("J", &ex.jacobian, &fd.jacobian), ("C", &ex.compliance, &fd.compliance)] {
+            let err = (a - b).amax() / b.amax();
+            assert!(err < 1e-5, "{name} {what}: relative error {err:e}\nexact {a:.5e}\nfd {b:.5e}");
+        }
+    }
+    let robot = steel_tendon_robot();
+    // the benchmark tensions with the slack tendons at 0.5 N, so that brute
+    // force can step both ways
+    let inputs: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|t| t.max(0.5)).collect();
+    let groups = Groups::identity(4);
+    let l = Loads::of(&robot);
+    let s = solve(&robot, &inputs, &opts, None).unwrap();
+    let ex = sensitivities(&robot, &s, &l, &groups, opts.steps, Scheme::Exact).unwrap();
+    let (bj, bc) = brute(&robot, &inputs, &l, &groups);
+    // brute force: O(h^2) with h = 0.01 N and 1e-3 E I / L^2, and solves
+    // converged to the rounding floor (~1e-9 strain): ~1e-6 relative
+    for (what, a, b) in [("J", &ex.jacobian, &bj), ("C", &ex.compliance, &bc)] {
+        let err = (a - b).amax() / b.amax();
+        assert!(err < 1e-4, "steel {what}: relative error {err:e}\nexact {a:.5e}\nbrute {b:.5e}");
+    }
+}

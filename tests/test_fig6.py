@@ -101,11 +101,12 @@ def test_cold_and_warm_sweeps_agree(result: Fig6Result) -> None:
             # same equations, tolerance 1e-10 in strain: radii agree to ~1e-9 relative
             assert curve.cold_warm_max_relative_difference < 1e-7
             assert len(curve.iterations_warm) == len(curve.iterations_cold) == len(FIG6.temperatures_c)
-            # after the first step a warm start needs few iterations: the solver
-            # counts each Broyden (quasi-Newton) update as an iteration, one IVP
-            # each, so a warm step takes 3-7 here (full Newton took 2-3)
-            assert max(curve.iterations_warm[1:]) <= 8
-            assert sum(curve.iterations_warm) <= sum(curve.iterations_cold)
+            # after the first step a warm start needs few iterations: it reuses the
+            # previous solution's exact Jacobian (chord steps, one plain IVP each,
+            # counted as iterations), so a warm step takes 3-12 here; cold steps
+            # take fewer but costlier iterations (a tangent IVP each), so the
+            # work comparison is in IVPs: test_rod_properties.py
+            assert max(curve.iterations_warm[1:]) <= 12
 
 
 def test_table_reports_radii_gravity_and_iterations(result: Fig6Result) -> None:

@@ -22,10 +22,15 @@ __version__: Final[str]
 class ConvergenceError(RuntimeError):
     """A solve stopped without meeting its tolerance."""
 
-    #: Final residual norm (dimensionless unless the solver says otherwise).
+    #: Best residual norm reached (dimensionless unless the solver says otherwise).
     residual: float
     #: Iterations performed.
     iterations: int
+    #: IVPs integrated, failed attempts included.
+    evaluations: int
+    #: Why it stopped: "iteration_limit", "line_search", "singular_jacobian",
+    #: "non_finite", "integration" or "other".
+    reason: str
 
 @final
 class Material:
@@ -492,7 +497,7 @@ class BlockedResult:
 def sensitivities(
     solution: Solution,
     groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
-    scheme: Literal["forward", "central"] = "forward",
+    scheme: Literal["forward", "central", "exact"] = "forward",
 ) -> tuple[_FloatArray, _FloatArray]:
     """``(J, C)`` at ``solution`` (eqs 41-42): ``J`` is ``6 x n_vars`` [m or rad per C],
     ``C`` is ``6 x 6`` [m or rad per N or N m]."""

@@ -80,7 +80,7 @@ fn solve_batch<'py>(
         threads,
         warm,
     };
-    let out = py.detach(|| core_solve_batch(&r, &q, w.as_deref(), &opts))?;
+    let out = super::errors::detach_interruptible(py, || core_solve_batch(&r, &q, w.as_deref(), &opts))?;
     let pos =
         PyArray1::from_iter(py, out.tip_positions.iter().flatten().copied()).reshape([n, 3])?;
     let rot =

@@ -4,7 +4,12 @@
 //!   -> `ValueError` (the message names the field, its value and the allowed
 //!   range);
 //! * `Error::NotConverged`, `Error::Integration` -> `tcarod.ConvergenceError`
-//!   (a `RuntimeError`) with attributes `residual` and `iterations`.
+//!   (a `RuntimeError`) with attributes `residual` (best reached),
+//!   `iterations`, `evaluations` (IVPs) and `reason` (`"iteration_limit"`,
+//!   `"line_search"`, `"singular_jacobian"`, `"non_finite"`, `"other"`;
+//!   `"integration"` for an IVP that could not be integrated), kept through
+//!   pickling (they live in the instance `__dict__`);
+//! * `Error::Interrupted` -> `KeyboardInterrupt` (see [`detach_interruptible`]).
 //!
 //! Scalar arguments are taken as [`Real`] rather than `f64`, so that a Python
 //! `int` too large for a double becomes `+-inf` (which the core rejects with a
@@ -13,7 +18,7 @@
 //! any Python function taking a `float`. [`finite_output`] guards every value
 //! handed back to Python: no binding returns NaN or inf.
 
-use pyo3::exceptions::{PyOverflowError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyOverflowError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::error::{Error, Result};
@@ -64,7 +69,8 @@ pyo3::create_exception!(
     ConvergenceError,
     PyRuntimeError,
     "A solve stopped without meeting its tolerance. Attributes: `residual` \
-     (final residual norm, dimensionless) and `iterations`."
+     (best residual norm reached, dimensionless), `iterations`, `evaluations` \
+     (IVPs integrated, failed attempts included) and `reason` (why it stopped)."
 );
 
 impl From<Error> for PyErr {
@@ -73,16 +79,19 @@ impl From<Error> for PyErr {
         match e {
             Error::NotConverged {
                 iterations,
+                evaluations,
                 residual,
+                stop,
                 ..
-            } => convergence_error(msg, residual, iterations),
-            Error::Integration { .. } => convergence_error(msg, f64::INFINITY, 0),
+            } => convergence_error(msg, residual, iterations, evaluations, stop.name()),
+            Error::Integration { .. } => convergence_error(msg, f64::INFINITY, 0, 1, "integration"),
+            Error::Interrupted => PyKeyboardInterrupt::new_err(msg),
             _ => PyValueError::new_err(msg),
         }
     }
 }
 
-fn convergence_error(msg: String, residual: f64, iterations: usize) -> PyErr {
+fn convergence_error(msg: String, residual: f64, iterations: usize, evaluations: usize, reason: &str) -> PyErr {
     Python::attach(|py| {
         let err = ConvergenceError::new_err(msg);
         let value = err.value(py);
@@ -90,6 +99,20 @@ fn convergence_error(msg: String, residual: f64, iterations: usize) -> PyErr {
         // practice; if it does, the exception is still raised without them.
         let _ = value.setattr("residual", residual);
         let _ = value.setattr("iterations", iterations);
+        let _ = value.setattr("evaluations", evaluations);
+        let _ = value.setattr("reason", reason);
         err
+    })
+}
+
+/// Run `f` with the GIL released, answering Ctrl-C: the core's cancel check
+/// ([`crate::solve::cancel`], polled every ~20 ms of work at most) briefly
+/// reacquires the GIL and runs Python's signal handlers; a pending
+/// `KeyboardInterrupt` stops the work with [`Error::Interrupted`], which
+/// becomes `KeyboardInterrupt` again.
+pub(crate) fn detach_interruptible<T: Send>(py: Python<'_>, f: impl FnOnce() -> T + Send) -> T {
+    py.detach(|| {
+        let check = || Python::attach(|py| py.check_signals().is_err());
+        crate::solve::cancel::interruptible(&check, f)
     })
 }

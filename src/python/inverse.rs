@@ -55,7 +55,8 @@ fn sensitivities<'py>(py: Python<'py>, solution: PyRef<'py, PySolution>, groups:
     let sch = match scheme {
         "forward" => Scheme::Forward,
         "central" => Scheme::Central,
-        _ => return Err(Error::input("scheme", format!("{scheme:?} is not 'forward' or 'central'")).into()),
+        "exact" => Scheme::Exact,
+        _ => return Err(Error::input("scheme", format!("{scheme:?} is not 'forward', 'central' or 'exact'")).into()),
     };
     let sol = solution.inner.clone();
     let s = py.detach(|| inverse::sensitivities(&robot.inner, &sol, &sol.loads, &g, sol.steps, sch))?;
@@ -135,7 +136,7 @@ fn tip_inverse(
         damping,
     };
     let rr = r.inner.clone();
-    let res = py.detach(|| inverse::tip_position_inverse(&rr, &g, &t, rot.as_ref().map(|m| (m, orientation_weight)), &z0, &opts))?;
+    let res = super::errors::detach_interruptible(py, || inverse::tip_position_inverse(&rr, &g, &t, rot.as_ref().map(|m| (m, orientation_weight)), &z0, &opts))?;
     Ok(PyInverseResult {
         solution: Py::new(py, wrap(robot, res.solution))?,
         variables: res.variables,
@@ -206,7 +207,7 @@ fn blocked_force(
     let opts = options(steps, tol, max_iter)?;
     let warm = warm_start.map(|w| (w.solution.bind(py).get().inner.clone(), w.force));
     let rr = r.inner.clone();
-    let res = py.detach(|| inverse::blocked_force(&rr, &g, &block, &variables, &opts, warm.as_ref().map(|(s, f)| (s, *f))))?;
+    let res = super::errors::detach_interruptible(py, || inverse::blocked_force(&rr, &g, &block, &variables, &opts, warm.as_ref().map(|(s, f)| (s, *f))))?;
     blocked(py, robot, res)
 }
 
@@ -235,7 +236,7 @@ fn blocked_temperature(
     let opts = options(steps, tol, max_iter)?;
     let st = start.inner.clone();
     let rr = r.inner.clone();
-    let res = py.detach(|| inverse::blocked_temperature(&rr, &g, &block, &st, force, increments, &opts))?;
+    let res = super::errors::detach_interruptible(py, || inverse::blocked_temperature(&rr, &g, &block, &st, force, increments, &opts))?;
     blocked(py, robot, res)
 }
 
@@ -261,6 +262,6 @@ fn blocked_temperature_direct(
     let block = Block::new(vec3("point [m]", point)?, vec3("normal", normal)?)?;
     let opts = options(steps, tol, max_iter)?;
     let rr = r.inner.clone();
-    let res = py.detach(|| inverse::blocked_variable_direct(&rr, &g, &block, force, guess, &opts, None))?;
+    let res = super::errors::detach_interruptible(py, || inverse::blocked_variable_direct(&rr, &g, &block, force, guess, &opts, None))?;
     blocked(py, robot, res)
 }

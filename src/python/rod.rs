@@ -625,7 +625,7 @@ impl PyRobot {
         let q = inputs.into_vec();
         let robot = this.inner.clone();
         let warm = warm_start.map(|w| w.inner.clone());
-        let sol = py.detach(|| solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution))?;
+        let sol = super::errors::detach_interruptible(py, || solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution))?;
         Ok(PySolution {
             inner: sol,
             robot: slf.clone().unbind(),
@@ -640,7 +640,7 @@ impl PyRobot {
         let opts = options(steps.0, tol.0, max_iter.0)?;
         let inputs: Vec<Vec<f64>> = inputs.into_iter().map(|row| row.into_iter().map(|x| x.0).collect()).collect();
         let robot = slf.get().inner.clone();
-        let sols = py.detach(|| {
+        let sols = super::errors::detach_interruptible(py, || {
             crate::shooting::sweep(&robot, &inputs, &opts)?.into_iter().map(checked_solution).collect::<Result<Vec<_>>>()
         })?;
         Ok(sols

@@ -1,0 +1,87 @@
+//! Iterations, IVPs and wall time of cold (and warm) forward solves of the
+//! issue-10 tendon cases and the Fig. 6 square: `cargo run --release
+//! --example solver_counts`. (Wall time of one run each, median of 21: an
+//! indication only; the criterion benches in benches/rod.rs are the timings.)
+use std::time::Instant;
+
+use tcarod::experiments::{fig6_square, soft_tendon_robot, soft_tendon_tension, steel_tendon_robot, STEEL_TENDON_TENSIONS};
+use tcarod::shooting::{solve, SolveOptions, Solution};
+use tcarod::rod::Robot;
+
+/// Median wall time [s] of one plain IVP of `robot` at its solution (the unit of "IVP-equivalents").
+fn ivp_time(robot: &Robot, inputs: &[f64], steps: usize) -> f64 {
+    let s = solve(robot, inputs, &SolveOptions { steps, ..Default::default() }, None).unwrap();
+    let l = tcarod::shooting::Loads::of(robot);
+    let mut times: Vec<f64> = (0..21)
+        .map(|_| {
+            let t = Instant::now();
+            for _ in 0..20 {
+                tcarod::shooting::shoot(robot, inputs, &l, std::hint::black_box(&s.unknowns), steps, false).unwrap();
+            }
+            t.elapsed().as_secs_f64() / 20.0
+        })
+        .collect();
+    times.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    times[10]
+}
+
+fn run(name: &str, robot: &Robot, inputs: &[f64], opts: &SolveOptions, warm: Option<&Solution>) -> Option<Solution> {
+    let mut times = Vec::new();
+    let mut last = None;
+    for _ in 0..21 {
+        let t = Instant::now();
+        let r = solve(robot, inputs, opts, warm);
+        times.push(t.elapsed().as_secs_f64());
+        last = Some(r);
+    }
+    times.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    match last.unwrap() {
+        Ok(s) => {
+            let unit = ivp_time(robot, inputs, opts.steps);
+            println!("{name:<28} iterations {:>4}  IVPs {:>5}  residual {:.2e}  {:>9.1} us = {:>6.1} IVP times  tip {:?}", s.iterations, s.evaluations, s.residual, times[10] * 1e6, times[10] / unit, s.tip_position().as_slice());
+            Some(s)
+        }
+        Err(e) => {
+            println!("{name:<28} FAILED: {e}  {:>9.1} us", times[10] * 1e6);
+            None
+        }
+    }
+}
+
+fn main() {
+    let soft = soft_tendon_robot();
+    let o50 = SolveOptions { steps: 50, ..Default::default() };
+    for deg in [10.0f64, 30.0, 45.0, 60.0, 90.0, 120.0] {
+        run(&format!("soft tendon {deg} deg cold"), &soft, &[soft_tendon_tension(deg.to_radians())], &o50, None);
+    }
+    let steel = steel_tendon_robot();
+    let o = SolveOptions::default();
+    if let Some(s) = run("steel tendon cold", &steel, &STEEL_TENDON_TENSIONS, &o, None) {
+        let t: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
+        run("steel tendon warm +1 %", &steel, &t, &o, Some(&s));
+    }
+    let sq = fig6_square(true);
+    if let Some(s) = run("fig6 square 100 C cold", &sq, &[100.0, 100.0], &o, None) {
+        run("fig6 square warm 105 C", &sq, &[105.0, 105.0], &o, Some(&s));
+        // J and C, exact and the paper's forward differences, in IVP times
+        use tcarod::inverse::{sensitivities, sensitivities_fast, Groups, Scheme};
+        let l = tcarod::shooting::Loads::of(&sq);
+        let g = Groups(vec![0, 0]);
+        let unit = ivp_time(&sq, &[100.0, 100.0], 100);
+        for (name, exact) in [("J and C exact", true), ("J and C forward (fast)", false)] {
+            let mut times: Vec<f64> = (0..21)
+                .map(|_| {
+                    let t = Instant::now();
+                    if exact {
+                        sensitivities(&sq, &s, &l, &g, 100, Scheme::Exact).unwrap();
+                    } else {
+                        sensitivities_fast(&sq, &s, &l, &g, 100, Scheme::Forward).unwrap();
+                    }
+                    t.elapsed().as_secs_f64()
+                })
+                .collect();
+            times.sort_by(|a, b| a.partial_cmp(b).unwrap());
+            println!("{name:<28} {:>9.1} us = {:>6.1} IVP times (one IVP {:.1} us)", times[10] * 1e6, times[10] / unit, unit * 1e6);
+        }
+    }
+}

@@ -1,0 +1,254 @@
+//! Actuators: routing `r(s)` in the body frame and the force laws
+//! (TCA, constant tension, linear tendon) with their derivatives.
+
+use std::fmt::Debug;
+use std::sync::Arc;
+
+use nalgebra::Vector3;
+
+use crate::error::{finite, non_negative, Error, Result};
+use crate::tca::Tca;
+
+/// Path of an actuator in the body frame, with exact derivatives in `s`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Routing {
+    /// Parallel to the centre line at a constant offset `(x, y)` \[m\].
+    Straight {
+        /// Body-frame x offset \[m\].
+        x: f64,
+        /// Body-frame y offset \[m\].
+        y: f64,
+    },
+    /// Helix about the centre line: `r = radius (cos(rate s + phase), sin(rate s + phase), 0)`.
+    Helix {
+        /// Radius \[m\].
+        radius: f64,
+        /// Angular rate \[rad/m\] (positive: right-handed about +z).
+        rate: f64,
+        /// Angle at `s = 0` \[rad\].
+        phase: f64,
+    },
+}
+
+impl Routing {
+    /// `(r, r', r'')` at arc length `s` \[m\].
+    #[inline]
+    pub fn eval(&self, s: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        match *self {
+            Routing::Straight { x, y } => (Vector3::new(x, y, 0.0), Vector3::zeros(), Vector3::zeros()),
+            Routing::Helix { radius, rate, phase } => {
+                let (sn, cs) = (rate * s + phase).sin_cos();
+                (
+                    Vector3::new(radius * cs, radius * sn, 0.0),
+                    Vector3::new(-radius * rate * sn, radius * rate * cs, 0.0),
+                    Vector3::new(-radius * rate * rate * cs, -radius * rate * rate * sn, 0.0),
+                )
+            }
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<()> {
+        match *self {
+            Routing::Straight { x, y } => {
+                finite("routing x [m]", x)?;
+                finite("routing y [m]", y)?;
+            }
+            Routing::Helix { radius, rate, phase } => {
+                non_negative("helix radius [m]", radius)?;
+                finite("helix rate [rad/m]", rate)?;
+                finite("helix phase [rad]", phase)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The force law of a string-like actuator: tension as a function of the
+/// actuator's total elongation and of its actuation input.
+///
+/// The rod model (eqs 22-33) never looks inside: any law that returns a
+/// tension works, which is the paper's point that the equations hold for any
+/// string-like actuator.
+pub trait ForceLaw: Send + Sync + Debug {
+    /// Tension \[N\] (positive pulls the anchors together) at total elongation
+    /// `elongation` \[m\] (current length minus reference length) and input
+    /// `input` (unit in [`ForceLaw::input_name`]).
+    fn tension(&self, elongation: f64, input: f64) -> Result<f64>;
+    /// Name and unit of the input, e.g. `temperature \[C\]`.
+    fn input_name(&self) -> &'static str;
+    /// Valid input interval.
+    fn input_bounds(&self) -> (f64, f64);
+    /// The input at which the actuator is passive (reference state).
+    fn reference_input(&self) -> f64;
+    /// Error unless `input` is valid.
+    fn check_input(&self, input: f64) -> Result<()> {
+        let (lo, hi) = self.input_bounds();
+        if input.is_finite() && input >= lo && input <= hi {
+            Ok(())
+        } else {
+            Err(Error::param(self.input_name(), input, format!("{lo} <= input <= {hi}")))
+        }
+    }
+    /// Short name of the law.
+    fn kind(&self) -> &'static str;
+    /// Inverse law: the elongation \[m\] at which the actuator carries
+    /// `tension` \[N\] at `input`, where that is unique. Used only to build
+    /// initial guesses (a warm start keeps the tension, a cold start begins at
+    /// zero tension), so `None` is always safe.
+    fn elongation(&self, _tension: f64, _input: f64) -> Option<f64> {
+        None
+    }
+    /// Tension \[N\] with its derivatives with respect to the elongation
+    /// \[N/m\] and to the input [N per input unit], for the exact shooting
+    /// Jacobian. The default differences [`ForceLaw::tension`] centrally
+    /// (relative step `eps^(1/3)`, error ~1e-10 relative): override it with
+    /// the exact derivatives.
+    fn tension_derivatives(&self, elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
+        let f = self.tension(elongation, input)?;
+        let h = f64::EPSILON.cbrt() * elongation.abs().max(1e-6);
+        let de = (self.tension(elongation + h, input)? - self.tension(elongation - h, input)?) / (2.0 * h);
+        Ok((f, de, self.input_slope(elongation, input)?))
+    }
+    /// `d tension / d input` by central differences within the input bounds
+    /// (step `eps^(1/3) max(1, |input|)`, one-sided at a bound).
+    fn input_slope(&self, elongation: f64, input: f64) -> Result<f64> {
+        let (lo, hi) = self.input_bounds();
+        let h = f64::EPSILON.cbrt() * input.abs().max(1.0);
+        let (a, b) = ((input - h).max(lo), (input + h).min(hi));
+        if b <= a {
+            return Ok(0.0);
+        }
+        Ok((self.tension(elongation, b)? - self.tension(elongation, a)?) / (b - a))
+    }
+}
+
+/// The TCA law (eq 13) at the input temperature \[C\]: tension from the TCA's
+/// total elongation, with coil contact below zero elongation.
+#[derive(Debug, Clone)]
+pub struct TcaLaw(pub Tca);
+
+impl ForceLaw for TcaLaw {
+    fn tension(&self, elongation: f64, input: f64) -> Result<f64> {
+        self.0.at(input)?.tension(elongation)
+    }
+    fn input_name(&self) -> &'static str {
+        "temperature [C]"
+    }
+    fn input_bounds(&self) -> (f64, f64) {
+        (self.0.material().t_min(), self.0.material().t_max())
+    }
+    fn reference_input(&self) -> f64 {
+        self.0.material().t_ref()
+    }
+    fn kind(&self) -> &'static str {
+        "tca"
+    }
+    /// Exact in the elongation ([`crate::tca::TcaAt::tension_slope`]);
+    /// differenced in the temperature, whose effect runs through the
+    /// material's tabulated moduli.
+    fn tension_derivatives(&self, elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
+        let at = self.0.at(input)?;
+        Ok((at.tension(elongation)?, at.tension_slope(elongation)?, self.input_slope(elongation, input)?))
+    }
+    fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
+        let at = self.0.at(input).ok()?;
+        let f0 = at.force(0.0).ok()?;
+        if tension >= f0 {
+            at.displacement(tension).ok()
+        } else {
+            Some((tension - f0) / at.contact_stiffness())
+        }
+    }
+}
+
+/// A tendon pulled with a given tension \[N\] (the input), whatever its elongation.
+#[derive(Debug, Clone, Copy)]
+pub struct ConstantTension;
+
+impl ForceLaw for ConstantTension {
+    fn tension(&self, _elongation: f64, input: f64) -> Result<f64> {
+        Ok(input)
+    }
+    fn input_name(&self) -> &'static str {
+        "tension [N]"
+    }
+    fn input_bounds(&self) -> (f64, f64) {
+        (0.0, f64::MAX)
+    }
+    fn reference_input(&self) -> f64 {
+        0.0
+    }
+    fn kind(&self) -> &'static str {
+        "tension"
+    }
+    fn tension_derivatives(&self, _elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
+        Ok((input, 0.0, 1.0))
+    }
+}
+
+/// A linearly elastic tendon of stiffness `k` \[N/m\] under displacement
+/// control: the input is the length \[m\] pulled in at the base, the tension is
+/// `k (pull + elongation)` and zero when slack.
+#[derive(Debug, Clone, Copy)]
+pub struct LinearTendon {
+    /// Axial stiffness of the tendon \[N/m\].
+    pub stiffness: f64,
+}
+
+impl ForceLaw for LinearTendon {
+    fn tension(&self, elongation: f64, input: f64) -> Result<f64> {
+        Ok((self.stiffness * (input + elongation)).max(0.0))
+    }
+    fn input_name(&self) -> &'static str {
+        "pull [m]"
+    }
+    fn input_bounds(&self) -> (f64, f64) {
+        (f64::MIN, f64::MAX)
+    }
+    fn reference_input(&self) -> f64 {
+        0.0
+    }
+    fn kind(&self) -> &'static str {
+        "linear_tendon"
+    }
+    fn tension_derivatives(&self, elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
+        let f = self.stiffness * (input + elongation);
+        // at the onset (f = 0) the taut side's slope, so that Newton from a
+        // zero-tension guess sees the tendon
+        Ok(if f >= 0.0 { (f, self.stiffness, self.stiffness) } else { (0.0, 0.0, 0.0) })
+    }
+    fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
+        Some(tension.max(0.0) / self.stiffness - input)
+    }
+}
+
+/// A string-like actuator embedded in the body.
+#[derive(Debug, Clone)]
+pub struct Actuator {
+    /// Path in the body frame.
+    pub routing: Routing,
+    /// Proximal anchor \[m\] (0: anchored to the base).
+    pub s_start: f64,
+    /// Distal anchor \[m\] (the body length: anchored at the tip).
+    pub s_end: f64,
+    /// The paper's length ratio `L_i` (eq 18). `None`: computed pointwise from
+    /// the reference configuration, `|nu* + omega* x r + r'|`, which makes the
+    /// reference configuration exactly unstrained for any routing and
+    /// pre-curvature.
+    pub length_ratio: Option<f64>,
+    /// Force law.
+    pub law: Arc<dyn ForceLaw>,
+}
+
+impl Actuator {
+    /// An actuator from `s_start` to `s_end` \[m\].
+    pub fn new(routing: Routing, s_start: f64, s_end: f64, law: Arc<dyn ForceLaw>) -> Self {
+        Actuator {
+            routing,
+            s_start,
+            s_end,
+            length_ratio: None,
+            law,
+        }
+    }
+}

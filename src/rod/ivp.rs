@@ -1,0 +1,169 @@
+//! The initial value problem: fixed-step RK4 from the base to the tip on a
+//! grid with a node at every anchor.
+
+use nalgebra::{Quaternion, Vector3};
+
+use super::ode::RodRhs;
+use super::{rot, Robot, RodState, BASE_STATES};
+use crate::error::Result;
+
+/// Everything an IVP needs besides the state: robot, tensions, loads.
+pub struct IvpSpec<'a> {
+    /// The robot.
+    pub robot: &'a Robot,
+    /// Tension of each actuator \[N\] (constant along a string).
+    pub tensions: &'a [f64],
+    /// Tip force \[N\], world frame (overrides `body.tip_force`, so that
+    /// Jacobians can perturb it).
+    pub tip_force: Vector3<f64>,
+    /// Tip moment \[N m\], world frame.
+    pub tip_moment: Vector3<f64>,
+    /// RK4 steps over the body length.
+    pub steps: usize,
+}
+
+/// Output of one IVP.
+#[derive(Debug, Clone)]
+pub struct IvpResult {
+    /// Tip state.
+    pub tip: RodState,
+    /// Elongation of each actuator at its distal anchor \[m\].
+    pub elongation: Vec<f64>,
+    /// Tip residual in body frame: `K_nu (v - nu*) - R^T F + sum tau t_b` \[N\]
+    /// and `K_omega (u - omega*) - R^T M + sum r x tau t_b` \[N m\] (eqs 32-33).
+    pub tip_force_residual: Vector3<f64>,
+    /// See `tip_force_residual`.
+    pub tip_moment_residual: Vector3<f64>,
+    /// Recorded nodes `(s, state)`, if asked for.
+    pub nodes: Vec<(f64, RodState)>,
+}
+
+/// States held on the stack by [`integrate`] (13 + up to 19 actuators).
+const STACK_STATES: usize = 32;
+
+/// `out = y + h k`, elementwise.
+#[inline(always)]
+fn axpy(out: &mut [f64], y: &[f64], h: f64, k: &[f64]) {
+    for ((o, a), b) in out.iter_mut().zip(y).zip(k) {
+        *o = a + h * b;
+    }
+}
+
+/// Integrate the rod from the base with unknown initial strains `v0`, `u0`
+/// (eqs 22-25), by fixed-step RK4 on a grid that has a node at every actuator
+/// anchor. Actuator elongations start at zero at their proximal anchors.
+pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, record: bool) -> Result<IvpResult> {
+    let robot = spec.robot;
+    let body = &robot.body;
+    let (kse, kbt) = body.stiffness();
+    let fz = RodRhs::new(robot, spec.tensions);
+    let na = robot.actuators.len();
+    let n = robot.n_states();
+    let len = body.length;
+    let steps = spec.steps.max(1);
+    // state and RK4 stages on the stack for up to STACK_STATES states (no
+    // allocation per IVP; cheap IVPs of coarse grids are dominated by it)
+    let mut stack = [0.0f64; 6 * STACK_STATES];
+    let mut heap: Vec<f64>;
+    let all: &mut [f64] = if n <= STACK_STATES {
+        &mut stack[..6 * n]
+    } else {
+        heap = vec![0.0; 6 * n];
+        &mut heap
+    };
+    let (y, rest) = all.split_at_mut(n);
+    let (k1, rest) = rest.split_at_mut(n);
+    let (k2, rest) = rest.split_at_mut(n);
+    let (k3, rest) = rest.split_at_mut(n);
+    let (k4, yt) = rest.split_at_mut(n);
+    y[3] = 1.0;
+    y[7..10].copy_from_slice(v0.as_slice());
+    y[10..13].copy_from_slice(u0.as_slice());
+    let bps = robot.breakpoints();
+    let tol = 1e-12 * len;
+    let mut nodes = Vec::new();
+    let mut elongation = vec![0.0; na];
+    let mut active: Vec<usize> = Vec::with_capacity(na);
+    for w in bps.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        // anchors at `a`: record the elongation of strings ending here, then
+        // apply all anchor and kink loads at `a` together
+        if a > 0.0 {
+            let mut any = false;
+            for i in 0..na {
+                let act = &robot.actuators[i];
+                if (act.s_end - a).abs() <= tol {
+                    elongation[i] = y[BASE_STATES + i];
+                    any = true;
+                }
+                if (act.s_start - a).abs() <= tol {
+                    any = true;
+                }
+            }
+            if any {
+                fz.anchor_loads(a, y)?;
+            }
+        }
+        if record {
+            nodes.push((a, RodState::from_slice(y)));
+        }
+        active.clear();
+        for (i, act) in robot.actuators.iter().enumerate() {
+            if act.s_start <= a + tol && act.s_end >= b - tol {
+                active.push(i);
+            }
+        }
+        let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
+        let h = (b - a) / m as f64;
+        let (h2, h6) = (0.5 * h, h / 6.0);
+        for k in 0..m {
+            let s = a + k as f64 * h;
+            fz.deriv(s, y, &active, k1)?;
+            axpy(yt, y, h2, k1);
+            fz.deriv(s + h2, yt, &active, k2)?;
+            axpy(yt, y, h2, k2);
+            fz.deriv(s + h2, yt, &active, k3)?;
+            axpy(yt, y, h, k3);
+            fz.deriv(s + h, yt, &active, k4)?;
+            for ((((yj, a), b), c), d) in y.iter_mut().zip(k1.iter()).zip(k2.iter()).zip(k3.iter()).zip(k4.iter()) {
+                *yj += h6 * (a + 2.0 * (b + c) + d);
+            }
+            let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();
+            for yq in &mut y[3..7] {
+                *yq /= qn;
+            }
+            if record && k + 1 < m {
+                nodes.push((s + h, RodState::from_slice(y)));
+            }
+        }
+    }
+    // tip: actuators anchored at the tip close the balance (32)-(33)
+    let v = Vector3::new(y[7], y[8], y[9]);
+    let u = Vector3::new(y[10], y[11], y[12]);
+    let q = Quaternion::new(y[3], y[4], y[5], y[6]);
+    let rt = rot(&q).transpose();
+    let mut rf = kse * (v - body.nu_star) - rt * spec.tip_force;
+    let mut rm = kbt * (u - body.omega_star) - rt * spec.tip_moment;
+    for i in 0..na {
+        let act = &robot.actuators[i];
+        if (act.s_end - len).abs() <= tol {
+            elongation[i] = y[BASE_STATES + i];
+            let (pb, r) = fz.pb(i, len, &v, &u);
+            let t = pb / pb.norm();
+            let tau = spec.tensions[i];
+            rf += t * tau;
+            rm += r.cross(&t) * tau;
+        }
+    }
+    let tip = RodState::from_slice(y);
+    if record {
+        nodes.push((len, tip.clone()));
+    }
+    Ok(IvpResult {
+        tip,
+        elongation,
+        tip_force_residual: rf,
+        tip_moment_residual: rm,
+        nodes,
+    })
+}

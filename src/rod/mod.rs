@@ -1,0 +1,89 @@
+//! The Cosserat rod with embedded string-like actuators (paper Section III,
+//! eqs 7-31) and its initial value problem.
+//!
+//! Frames and signs:
+//! * world frame: base at the origin, reference tangent `+z`; `R(s)` maps body
+//!   to world; body strains `v = nu` (linear) and `u = omega` (angular);
+//! * actuator `i` runs at body-frame offset `r_i(s)` between arc lengths
+//!   `s_start` and `s_end`; its scalar force `tau_i` is a *tension* (positive
+//!   pulls the anchors together); a heated extension TCA pushes, `tau_i < 0`;
+//! * loads are given in the world frame: gravity `g` \[m/s^2\], distributed force
+//!   \[N/m\] and moment \[N m/m\], tip force \[N\] and moment \[N m\].
+//!
+//! Rotation: `R` is carried as a unit quaternion `q` with `q' = q (0, u) / 2`
+//! (eq 8), integrated by RK4 and renormalised after every step. `R(q)` is
+//! orthogonal to rounding for any unit `q`, so the only drift is the
+//! quaternion's norm, which renormalisation removes each step.
+//!
+//! String mechanics (Rucker & Webster, T-RO 2011): a string of constant tension
+//! `tau` on the curve `p_a = p + R r` loads the body by `tau t_a'` per unit
+//! length (eqs 14-15) and by point forces `-tau t_a` at its distal anchor and
+//! `+tau t_a` at its proximal anchor. The distributed load depends on `v'` and
+//! `u'`, which gives the linear system (25) with blocks (26)-(31).
+
+mod actuator;
+mod anchors;
+mod body;
+pub mod dual;
+mod ivp;
+mod ode;
+mod robot;
+mod section;
+mod tangent;
+
+pub use actuator::{Actuator, ConstantTension, ForceLaw, LinearTendon, Routing, TcaLaw};
+pub use body::Body;
+pub use ivp::{integrate, IvpResult, IvpSpec};
+pub use robot::{Robot, BASE_STATES};
+pub use section::Section;
+pub use tangent::{integrate_tangent, TangentIvp, TangentNode, TangentSeeds};
+
+use nalgebra::{Matrix3, Quaternion, Vector3};
+
+/// Rotation matrix of a (unit) quaternion `[w, x, y, z]`.
+#[inline]
+pub fn rot(q: &Quaternion<f64>) -> Matrix3<f64> {
+    let (w, x, y, z) = (q.w, q.i, q.j, q.k);
+    Matrix3::new(
+        1.0 - 2.0 * (y * y + z * z),
+        2.0 * (x * y - w * z),
+        2.0 * (x * z + w * y),
+        2.0 * (x * y + w * z),
+        1.0 - 2.0 * (x * x + z * z),
+        2.0 * (y * z - w * x),
+        2.0 * (x * z - w * y),
+        2.0 * (y * z + w * x),
+        1.0 - 2.0 * (x * x + y * y),
+    )
+}
+
+/// A state of the rod at one arc length.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RodState {
+    /// Position \[m\], world frame.
+    pub p: Vector3<f64>,
+    /// Orientation (unit quaternion, body to world).
+    pub q: Quaternion<f64>,
+    /// Linear strain `nu` \[-\], body frame.
+    pub v: Vector3<f64>,
+    /// Angular strain `omega` \[1/m\], body frame.
+    pub u: Vector3<f64>,
+    /// Actuator elongations `delta_i(s)` \[m\].
+    pub delta: Vec<f64>,
+}
+
+impl RodState {
+    pub(crate) fn from_slice(y: &[f64]) -> Self {
+        RodState {
+            p: Vector3::new(y[0], y[1], y[2]),
+            q: Quaternion::new(y[3], y[4], y[5], y[6]),
+            v: Vector3::new(y[7], y[8], y[9]),
+            u: Vector3::new(y[10], y[11], y[12]),
+            delta: y[13..].to_vec(),
+        }
+    }
+    /// Rotation matrix `R` (body to world).
+    pub fn rotation(&self) -> Matrix3<f64> {
+        rot(&self.q)
+    }
+}
