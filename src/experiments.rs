@@ -23,16 +23,16 @@ use nalgebra::Vector3;
 
 use crate::rod::{Actuator, Body, Robot, Routing, Section, TcaLaw};
 
-/// EcoFlex 10 (Section V): density [kg/m^3], Young's modulus [Pa], Poisson ratio.
+/// EcoFlex 10 (Section V): density \[kg/m^3\], Young's modulus \[Pa\], Poisson ratio.
 pub const ECOFLEX10: (f64, f64, f64) = (1040.0, 37.8e3, 0.5);
-/// Standard gravity [m/s^2].
+/// Standard gravity \[m/s^2\].
 pub const G0: f64 = 9.81;
-/// Offset of the manipulators' TCAs from the neutral axis [m] (Section V-B).
+/// Offset of the manipulators' TCAs from the neutral axis \[m\] (Section V-B).
 pub const TCA_OFFSET: f64 = 3e-3;
-/// Half the spacing of the two legs of a U-shaped TCA along body `y` [m]. Not
+/// Half the spacing of the two legs of a U-shaped TCA along body `y` \[m\]. Not
 /// printed in the paper; any symmetric spacing gives the same planar bending.
 pub const U_LEG_HALF_SPACING: f64 = 2.5e-3;
-/// Assumed initial (pre-curvature) radius of the circular manipulator [m];
+/// Assumed initial (pre-curvature) radius of the circular manipulator \[m\];
 /// the paper states it had initial bending but prints no value.
 pub const CIRCLE_PRECURVATURE_RADIUS: f64 = 0.2;
 
@@ -134,11 +134,11 @@ pub fn table1_finger() -> Robot {
 }
 
 /// Table I grasp constants: friction coefficient, fingers, the direction a
-/// finger presses in, and the masses [kg].
+/// finger presses in, and the masses \[kg\].
 pub const TABLE1_MU: f64 = 1.1;
 /// Number of fingers of the Table I gripper.
 pub const TABLE1_FINGERS: usize = 2;
-/// Masses [kg] of Table I.
+/// Masses \[kg\] of Table I.
 pub const TABLE1_MASSES: [f64; 3] = [1e-3, 2e-3, 3e-3];
 /// Unit direction a Table I finger presses in (world frame).
 pub const TABLE1_NORMAL: [f64; 3] = [-1.0, 0.0, 0.0];

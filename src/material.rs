@@ -9,12 +9,12 @@ use crate::error::{finite, positive, Error, Result};
 
 /// Linear-in-temperature material of a twisted polymer fibre.
 ///
-/// * `E_T(T) = e_ref + e_slope (T - t_ref)` [Pa]
-/// * `G_T(T) = g_ref + g_slope (T - t_ref)` [Pa]
-/// * `rho(T) = rho_ref + rho_slope (T - t_ref)` [1/C], entering the fibre
+/// * `E_T(T) = e_ref + e_slope (T - t_ref)` \[Pa\]
+/// * `G_T(T) = g_ref + g_slope (T - t_ref)` \[Pa\]
+/// * `rho(T) = rho_ref + rho_slope (T - t_ref)` \[1/C\], entering the fibre
 ///   diameter as `d = d0 (1 + rho(T) (T - t_ref))` (paper, below eq. 1).
 ///
-/// Temperatures outside `[t_min, t_max]` are rejected, never extrapolated.
+/// Temperatures outside `\[t_min, t_max\]` are rejected, never extrapolated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
     name: String,
@@ -74,7 +74,7 @@ impl Material {
     /// Build a material, validating every field.
     ///
     /// Errors if any value is non-finite, `t_min >= t_max`, `t_ref` lies outside
-    /// `[t_min, t_max]`, or a modulus or the diameter ratio `1 + rho dT` is not
+    /// `\[t_min, t_max\]`, or a modulus or the diameter ratio `1 + rho dT` is not
     /// positive somewhere in the valid range.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
@@ -273,15 +273,15 @@ impl Material {
     pub fn name(&self) -> &str {
         &self.name
     }
-    /// Reference (ambient) temperature [C] at which `d = d0`.
+    /// Reference (ambient) temperature \[C\] at which `d = d0`.
     pub fn t_ref(&self) -> f64 {
         self.t_ref
     }
-    /// Lowest valid temperature [C].
+    /// Lowest valid temperature \[C\].
     pub fn t_min(&self) -> f64 {
         self.t_min
     }
-    /// Highest valid temperature [C].
+    /// Highest valid temperature \[C\].
     pub fn t_max(&self) -> f64 {
         self.t_max
     }
@@ -298,7 +298,7 @@ impl Material {
         )
     }
 
-    /// Error unless `t` [C] is finite and within `[t_min, t_max]`.
+    /// Error unless `t` \[C\] is finite and within `\[t_min, t_max\]`.
     pub fn check_temperature(&self, name: &str, t: f64) -> Result<f64> {
         if t.is_finite() && t >= self.t_min && t <= self.t_max {
             Ok(t)
@@ -325,22 +325,22 @@ impl Material {
         1.0 + (self.rho_ref + self.rho_slope * dt) * dt
     }
 
-    /// Young's modulus `E_T(T)` [Pa] of the twisted fibre.
+    /// Young's modulus `E_T(T)` \[Pa\] of the twisted fibre.
     pub fn youngs_modulus(&self, t: f64) -> Result<f64> {
         self.check_temperature("temperature [C]", t)?;
         Ok(self.youngs_modulus_unchecked(t))
     }
-    /// Shear modulus `G_T(T)` [Pa] of the twisted fibre.
+    /// Shear modulus `G_T(T)` \[Pa\] of the twisted fibre.
     pub fn shear_modulus(&self, t: f64) -> Result<f64> {
         self.check_temperature("temperature [C]", t)?;
         Ok(self.shear_modulus_unchecked(t))
     }
-    /// Radial expansion coefficient `rho(T)` [1/C].
+    /// Radial expansion coefficient `rho(T)` \[1/C\].
     pub fn expansion(&self, t: f64) -> Result<f64> {
         self.check_temperature("temperature [C]", t)?;
         Ok(self.rho_ref + self.rho_slope * (t - self.t_ref))
     }
-    /// Fibre diameter ratio `d/d0 = 1 + rho(T) (T - t_ref)` [-].
+    /// Fibre diameter ratio `d/d0 = 1 + rho(T) (T - t_ref)` \[-\].
     pub fn diameter_ratio(&self, t: f64) -> Result<f64> {
         self.check_temperature("temperature [C]", t)?;
         Ok(self.diameter_ratio_unchecked(t))

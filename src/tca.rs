@@ -56,13 +56,29 @@ pub struct Tca {
 }
 
 impl Tca {
-    /// Build a TCA from the twisted-fibre length `l` [m], the coiled length
-    /// `L` [m], the coil's outer diameter `D` [m], the inserted turns `N` [-],
+    /// Build a TCA from the twisted-fibre length `l` \[m\], the coiled length
+    /// `L` \[m\], the coil's outer diameter `D` \[m\], the inserted turns `N` \[-\],
     /// the chirality and the fibre material.
     ///
     /// Errors on non-finite or non-positive values, on `L >= l` (no pitch angle
     /// `asin(L/l)`), and on geometries whose derived fibre diameter
     /// `d0 = 2 D L / l` is not smaller than the coil diameter `D` (`L/l >= 1/2`).
+    ///
+    /// # Examples
+    ///
+    /// The paper's three-thread TCA of Fig. 5 (`l = 497 mm`, `L = 110 mm`,
+    /// `D = 2 mm`, 300 turns):
+    ///
+    /// ```
+    /// use tcarod::{Chirality, Material, Tca};
+    ///
+    /// let tca = Tca::new(0.497, 0.110, 2e-3, 300.0, Chirality::Extension, Material::silver_coated_nylon())?;
+    /// assert!((tca.alpha0() - (0.110f64 / 0.497).asin()).abs() < 1e-15); // alpha0 = asin(L/l)
+    /// assert!((tca.d0() - 2.0 * 2e-3 * 0.110 / 0.497).abs() < 1e-15); // d0 = 2 D L / l
+    /// // L >= l has no pitch angle: an error naming the argument, not a panic
+    /// assert!(Tca::new(0.110, 0.497, 2e-3, 300.0, Chirality::Extension, Material::silver_coated_nylon()).is_err());
+    /// # Ok::<(), tcarod::Error>(())
+    /// ```
     pub fn new(
         fibre_length: f64,
         coiled_length: f64,
@@ -125,7 +141,7 @@ impl Tca {
     }
 
     /// A TCA specified, as in the paper's manipulators (Section V-B), by its
-    /// coiled length `L` [m], pitch angle `alpha0` [rad], coil diameter `D` [m]
+    /// coiled length `L` \[m\], pitch angle `alpha0` \[rad\], coil diameter `D` \[m\]
     /// and turns `N`: the fibre length follows as `l = L / sin(alpha0)`.
     pub fn from_pitch_angle(
         coiled_length: f64,
@@ -146,19 +162,19 @@ impl Tca {
         Tca::new(cl / alpha0.sin(), cl, coil_diameter, turns, chirality, material)
     }
 
-    /// Twisted-fibre length `l` [m].
+    /// Twisted-fibre length `l` \[m\].
     pub fn fibre_length(&self) -> f64 {
         self.fibre_length
     }
-    /// Coiled length `L` [m].
+    /// Coiled length `L` \[m\].
     pub fn coiled_length(&self) -> f64 {
         self.coiled_length
     }
-    /// Coil outer diameter `D` [m].
+    /// Coil outer diameter `D` \[m\].
     pub fn coil_diameter(&self) -> f64 {
         self.coil_diameter
     }
-    /// Inserted turns `N` [-].
+    /// Inserted turns `N` \[-\].
     pub fn turns(&self) -> f64 {
         self.turns
     }
@@ -170,29 +186,29 @@ impl Tca {
     pub fn material(&self) -> &Material {
         &self.material
     }
-    /// Initial pitch angle `alpha0 = asin(L/l)` [rad].
+    /// Initial pitch angle `alpha0 = asin(L/l)` \[rad\].
     pub fn alpha0(&self) -> f64 {
         self.alpha0
     }
-    /// Number of coils `n = 2 cos(alpha0) l / (pi D)` [-].
+    /// Number of coils `n = 2 cos(alpha0) l / (pi D)` \[-\].
     pub fn n_coils(&self) -> f64 {
         self.n_coils
     }
-    /// Initial twist `phi0 = 2 pi N` [rad].
+    /// Initial twist `phi0 = 2 pi N` \[rad\].
     pub fn phi0(&self) -> f64 {
         self.phi0
     }
-    /// Fibre diameter at the reference temperature, `d0 = 2 D L / l` [m].
+    /// Fibre diameter at the reference temperature, `d0 = 2 D L / l` \[m\].
     pub fn d0(&self) -> f64 {
         self.d0
     }
-    /// Largest elongation [m]: the fibre straight (`alpha = 90 deg`),
+    /// Largest elongation \[m\]: the fibre straight (`alpha = 90 deg`),
     /// `l (1 - sin alpha0)` (eq 5).
     pub fn max_displacement(&self) -> f64 {
         self.fibre_length * (1.0 - self.alpha0.sin())
     }
 
-    /// Pitch angle [rad] at elongation `delta` [m], from eq (5):
+    /// Pitch angle \[rad\] at elongation `delta` \[m\], from eq (5):
     /// `delta = l (sin(alpha) - sin(alpha0))`.
     pub fn pitch_angle(&self, delta: f64) -> Result<f64> {
         let s = self.alpha0.sin() + delta / self.fibre_length;
@@ -209,7 +225,7 @@ impl Tca {
         Ok(s.asin())
     }
 
-    /// The law's temperature-dependent quantities at `temperature` [C].
+    /// The law's temperature-dependent quantities at `temperature` \[C\].
     pub fn at(&self, temperature: f64) -> Result<TcaAt<'_>> {
         let (e, g, ratio) = self.material.state(temperature)?;
         let d = self.d0 * ratio;
@@ -226,24 +242,65 @@ impl Tca {
         })
     }
 
-    /// Elongation `delta` [m] under an axial force `force` [N] (tension > 0)
-    /// at `temperature` [C], with coil contact (`delta >= 0`).
+    /// Elongation `delta` \[m\] under an axial force `force` \[N\] (tension > 0)
+    /// at `temperature` \[C\], with coil contact (`delta >= 0`).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use tcarod::{Chirality, Material, Tca};
+    ///
+    /// let tca = Tca::new(0.497, 0.110, 2e-3, 300.0, Chirality::Extension, Material::silver_coated_nylon())?;
+    /// let weight = -0.010 * 9.81; // 10 g pressing on it: compressive [N]
+    /// assert_eq!(tca.displacement(weight, 40.0)?, 0.0); // below the onset: coils still touch
+    /// let d = tca.displacement(weight, 100.0)?; // [m]
+    /// assert!((d - 11.23e-3).abs() < 0.01e-3, "{d}");
+    /// assert!(tca.displacement(weight, 170.0).is_err()); // outside the material's 25-160 C
+    /// # Ok::<(), tcarod::Error>(())
+    /// ```
     pub fn displacement(&self, force: f64, temperature: f64) -> Result<f64> {
         self.at(temperature)?.displacement(force)
     }
 
-    /// Axial force [N] (tension > 0) that holds the TCA at elongation
-    /// `displacement` [m] at `temperature` [C]. At `delta = 0` this is the
+    /// Axial force \[N\] (tension > 0) that holds the TCA at elongation
+    /// `displacement` \[m\] at `temperature` \[C\]. At `delta = 0` this is the
     /// force at which the coils just touch (any more compression is carried
     /// by coil contact).
+    ///
+    /// # Examples
+    ///
+    /// The inverse of [`Self::displacement`] away from coil contact:
+    ///
+    /// ```
+    /// use tcarod::{Chirality, Material, Tca};
+    ///
+    /// let tca = Tca::new(0.497, 0.110, 2e-3, 300.0, Chirality::Extension, Material::silver_coated_nylon())?;
+    /// let d = tca.displacement(-0.0981, 100.0)?;
+    /// assert!((tca.force(d, 100.0)? + 0.0981).abs() < 1e-9);
+    /// # Ok::<(), tcarod::Error>(())
+    /// ```
     pub fn force(&self, displacement: f64, temperature: f64) -> Result<f64> {
         self.at(temperature)?.force(displacement)
     }
 
-    /// Temperature [C] at which a TCA under `force` [N] has elongation
-    /// `displacement` [m] (`>= 0`). With `displacement = 0` this is the onset
+    /// Temperature \[C\] at which a TCA under `force` \[N\] has elongation
+    /// `displacement` \[m\] (`>= 0`). With `displacement = 0` this is the onset
     /// temperature at which the coils separate. Errors with
     /// [`Error::NoSolution`] if no temperature in the material's range does it.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use tcarod::{Chirality, Material, Tca};
+    ///
+    /// let tca = Tca::new(0.497, 0.110, 2e-3, 300.0, Chirality::Extension, Material::silver_coated_nylon())?;
+    /// let weight = -0.010 * 9.81; // [N]
+    /// let onset = tca.temperature(weight, 0.0)?; // [C] at which the coils separate
+    /// assert!((onset - 41.2).abs() < 0.05, "{onset}");
+    /// let t = tca.temperature(weight, 5e-3)?; // [C] for 5 mm of stroke
+    /// assert!((tca.displacement(weight, t)? - 5e-3).abs() < 1e-9);
+    /// # Ok::<(), tcarod::Error>(())
+    /// ```
     pub fn temperature(&self, force: f64, displacement: f64) -> Result<f64> {
         crate::error::finite("force [N]", force)?;
         if displacement < 0.0 || !displacement.is_finite() {
@@ -271,8 +328,8 @@ impl Tca {
         })
     }
 
-    /// The end of the temperature range [C] at which `force` [N] gives an
-    /// elongation within the forward solve's tolerance of `displacement` [m]
+    /// The end of the temperature range \[C\] at which `force` \[N\] gives an
+    /// elongation within the forward solve's tolerance of `displacement` \[m\]
     /// (`> 0`), if any. A state computed *at* an end of the range (e.g.
     /// `displacement(F, t_max)`) satisfies eqs (2), (5) only to that
     /// tolerance, so the residual at that end may have either sign and the
@@ -313,14 +370,28 @@ impl Tca {
         )
     }
 
-    /// Free stroke [m]: the elongation at `temperature` [C] with no load.
+    /// Free stroke \[m\]: the elongation at `temperature` \[C\] with no load.
     pub fn free_stroke(&self, temperature: f64) -> Result<f64> {
         self.displacement(0.0, temperature)
     }
 
-    /// Blocked force [N] at `temperature` [C]: the axial force that holds the
+    /// Blocked force \[N\] at `temperature` \[C\]: the axial force that holds the
     /// TCA at its coiled length (`delta = 0`). Negative (compressive: the TCA
     /// pushes) for a heated extension TCA, positive for a contraction TCA.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use tcarod::{Chirality, Material, Tca};
+    ///
+    /// let ext = Tca::new(0.497, 0.110, 2e-3, 300.0, Chirality::Extension, Material::silver_coated_nylon())?;
+    /// let con = Tca::new(0.497, 0.110, 2e-3, 300.0, Chirality::Contraction, Material::silver_coated_nylon())?;
+    /// let push = ext.blocked_force(100.0)?; // [N]
+    /// assert!((push + 1.016).abs() < 1e-3, "{push}");
+    /// assert!((con.blocked_force(100.0)? + push).abs() < 1e-12); // a contraction TCA pulls as hard
+    /// assert!(ext.blocked_force(25.0)?.abs() < 1e-12); // no heating, no force
+    /// # Ok::<(), tcarod::Error>(())
+    /// ```
     pub fn blocked_force(&self, temperature: f64) -> Result<f64> {
         self.force(0.0, temperature)
     }
@@ -330,15 +401,15 @@ impl Tca {
 #[derive(Debug, Clone, Copy)]
 pub struct TcaAt<'a> {
     tca: &'a Tca,
-    /// Temperature [C].
+    /// Temperature \[C\].
     pub temperature: f64,
-    /// `E_T(T)` [Pa].
+    /// `E_T(T)` \[Pa\].
     pub e: f64,
-    /// `G_T(T)` [Pa].
+    /// `G_T(T)` \[Pa\].
     pub g: f64,
-    /// Fibre diameter `d(T)` [m].
+    /// Fibre diameter `d(T)` \[m\].
     pub d: f64,
-    /// Untwisting torque `tau(T)` [N m], eq (1).
+    /// Untwisting torque `tau(T)` \[N m\], eq (1).
     pub tau: f64,
 }
 
@@ -347,7 +418,7 @@ impl<'a> TcaAt<'a> {
         self.tca.chirality.sign()
     }
 
-    /// `f11(alpha)` [m/N], eq (3).
+    /// `f11(alpha)` \[m/N\], eq (3).
     pub fn f11(&self, alpha: f64) -> f64 {
         let t = self.tca;
         let n = t.n_coils;
@@ -358,7 +429,7 @@ impl<'a> TcaAt<'a> {
             + 8.0 * n / (PI * self.d * self.d) * ln * (c2 / (2.0 * self.g) + s2 / (2.0 * self.e))
     }
 
-    /// `f12(alpha)` [1/N... m/(N m)], eq (4).
+    /// `f12(alpha)` \[1/N... m/(N m)\], eq (4).
     pub fn f12(&self, alpha: f64) -> f64 {
         let t = self.tca;
         let n = t.n_coils;
@@ -367,7 +438,7 @@ impl<'a> TcaAt<'a> {
         8.0 * n / (PI * PI * self.d.powi(4)) * ln * ln * c * c / self.g
     }
 
-    /// Elongation [m] under `force` [N], with coil contact. Solves
+    /// Elongation \[m\] under `force` \[N\], with coil contact. Solves
     /// `delta = f11(alpha(delta)) F + s f12(alpha(delta)) tau` (eqs 2, 5).
     pub fn displacement(&self, force: f64) -> Result<f64> {
         crate::error::finite("force [N]", force)?;
@@ -402,7 +473,7 @@ impl<'a> TcaAt<'a> {
         })
     }
 
-    /// Axial force [N] at elongation `delta >= 0` [m]: eq (6),
+    /// Axial force \[N\] at elongation `delta >= 0` \[m\]: eq (6),
     /// `F = (delta - s f12 tau) / f11`.
     pub fn force(&self, delta: f64) -> Result<f64> {
         if delta < 0.0 || !delta.is_finite() {
@@ -416,7 +487,7 @@ impl<'a> TcaAt<'a> {
         Ok((delta - self.sign() * self.f12(a) * self.tau) / self.f11(a))
     }
 
-    /// Stiffness [N/m] used for coil contact inside a body: the stacked coils
+    /// Stiffness \[N/m\] used for coil contact inside a body: the stacked coils
     /// as a solid ring column, `E_T pi (D - d) d / L`. Far stiffer than the
     /// coil spring (about 400x for the paper's manipulator TCAs), so a TCA
     /// shortens by micrometres at most once its coils touch.
@@ -425,13 +496,13 @@ impl<'a> TcaAt<'a> {
         self.e * PI * (t.coil_diameter - self.d).max(self.d) * self.d / t.coiled_length
     }
 
-    /// Width [m] of the smoothed onset of coil contact inside a body (see
+    /// Width \[m\] of the smoothed onset of coil contact inside a body (see
     /// [`Self::tension`]): 0.1 um, far below any elongation of interest
     /// (the paper's TCAs move by millimetres) and far above the finite-
     /// difference steps of the shooting Jacobian (~1e-9 m).
     pub const CONTACT_SMOOTHING: f64 = 1e-7;
 
-    /// Tension [N] at any elongation `delta` [m], for use inside a body:
+    /// Tension \[N\] at any elongation `delta` \[m\], for use inside a body:
     /// eq (6) for `delta >= 0`; for `delta < 0` (coils pressed together) the
     /// slope rises from the coil spring's `k_s = dF/d delta (0+)` to the
     /// contact stiffness `k_c` ([`Self::contact_stiffness`]) linearly over

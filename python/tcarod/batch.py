@@ -23,7 +23,6 @@ Example::
 
 from __future__ import annotations
 
-import importlib
 import math
 from dataclasses import dataclass, fields
 from typing import Any, Callable, Iterable, Iterator, Union
@@ -270,7 +269,7 @@ def _array_parts(inputs: Any, wrenches: Any, block: int, robot: RobotLike) -> It
 
 def _progress_bar(total: int | None) -> Any:
     # optional dependency, imported only when a bar is asked for (untyped)
-    tqdm: Any = importlib.import_module("tqdm").tqdm
+    tqdm: Any = require("tqdm").tqdm
     return tqdm(total=total, unit="solve", smoothing=0.1)
 
 
@@ -350,7 +349,7 @@ def _solve_dask(
         for a, b in _blocks(q.shape[0], chunk_size)
     ]
     if progress:
-        as_completed: Any = importlib.import_module("distributed").as_completed
+        as_completed: Any = require("distributed").as_completed
         bar = _progress_bar(q.shape[0])
         for f in as_completed(futures):
             bar.update(len(f.result()))

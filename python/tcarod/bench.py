@@ -25,6 +25,7 @@ from typing import Any, Callable
 import numpy as np
 
 from . import __version__, _core
+from ._optional import require
 from .batch import fig6_square_robot, solve_batch
 
 __all__ = ["add_parser", "measure", "run"]
@@ -70,6 +71,7 @@ def _load_baseline() -> ModuleType | None:
         return None
     mod = importlib.util.module_from_spec(spec)
     sys.modules[spec.name] = mod  # dataclasses look their module up
+    require("scipy")  # the baseline solves with scipy.optimize (the `fit` extra)
     spec.loader.exec_module(mod)
     return mod
 

@@ -48,6 +48,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as V
+from ._optional import require
 
 __all__ = [
     "DENSITY_KG_PER_M3",
@@ -542,6 +543,7 @@ def _shifted(p: VoltageProfile, start: float) -> VoltageProfile:
 def plot_step_response(model: ThermalModel, voltage_v: float, duration_s: float | None = None) -> Any:
     """Temperature [C] after a voltage step ``voltage_v`` [V] at t = 0, with the
     steady state and the time constant marked. Returns a matplotlib ``Figure``."""
+    require("matplotlib")  # optional: the `plot` extra
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -572,6 +574,7 @@ def plot_step_response(model: ThermalModel, voltage_v: float, duration_s: float 
 
 def plot_shape_trajectory(traj: ShapeTrajectory) -> Any:
     """Tip position [mm] and actuator temperatures [C] against time [s]. Returns a ``Figure``."""
+    require("matplotlib")  # optional: the `plot` extra
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 

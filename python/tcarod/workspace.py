@@ -19,6 +19,7 @@ import numpy.typing as npt
 
 from . import _validate as V
 from ._core import ConvergenceError
+from ._optional import require
 
 __all__ = ["Workspace", "plot_workspace", "snake_grid", "solve_rows", "workspace_map"]
 
@@ -147,6 +148,7 @@ def plot_workspace(ws: Workspace, colour_by: str = "bending") -> Any:
     """3-D scatter of the reachable tip positions [mm], coloured by the
     bending angle [deg] (``colour_by="bending"``) or by the hottest input [C]
     (``"max_temperature"``). Returns a matplotlib ``Figure`` (Agg, no display)."""
+    require("matplotlib")  # optional: the `plot` extra
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
