@@ -84,9 +84,9 @@ def _fig6_text() -> str:
 @pytest.mark.parametrize(
     ("old", "new", "key", "line_text"),
     [
-        ("turns = 76.4\nchirality = \"extension\"\nmaterial = \"silver_coated_nylon\"\n\n[[actuators]]",
-         "turns = -76.4\nchirality = \"extension\"\nmaterial = \"silver_coated_nylon\"\n\n[[actuators]]",
-         "actuators[0].tca.turns", "turns = -76.4"),
+        ("turns = 38.2\nchirality = \"extension\"\nmaterial = \"silver_coated_nylon\"\n\n[[actuators]]",
+         "turns = -38.2\nchirality = \"extension\"\nmaterial = \"silver_coated_nylon\"\n\n[[actuators]]",
+         "actuators[0].tca.turns", "turns = -38.2"),
         ("youngs_modulus_pa = 37.8e3", "youngs_modulus_pa = \"soft\"", "body.youngs_modulus_pa", "youngs_modulus_pa = \"soft\""),
         ("x_m = 0.003, y_m = -0.0025", "x_m = 0.003, z_m = -0.0025", "actuators[1].routing.z_m", "z_m = -0.0025"),
         ("temperatures_c = [100.0, 100.0]", "temperatures_c = [100.0, 200.0]", "temperatures_c", "temperatures_c = [100.0, 200.0]"),
@@ -127,7 +127,7 @@ def test_cli_solve_prints_pose_and_writes_plot(tmp_path: Path, capsys: pytest.Ca
 
 def test_cli_solve_reports_bad_files(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     bad = tmp_path / "bad.toml"
-    bad.write_text(_fig6_text().replace("turns = 76.4", "turns = 0", 1), encoding="utf-8")
+    bad.write_text(_fig6_text().replace("turns = 38.2", "turns = 0", 1), encoding="utf-8")
     assert main(["solve", str(bad), "-T", "100"]) == 2
     err = capsys.readouterr().err
     assert "actuators[0].tca.turns" in err and "bad.toml:" in err
@@ -230,9 +230,9 @@ def test_fibre_length_tca_is_saved_by_fibre_length() -> None:
 
     base = load_design(DESIGNS / "fig6_square.toml").robot
     act = base.actuators[0]
-    tca = Tca(0.497, 0.110, 2e-3, 300.0)  # alpha0 not a round number of degrees
+    tca = Tca(0.180, 0.040, 1.7e-3, 76.4)  # alpha0 = asin(L/l) = 12.84 deg: not a round number
     from tcarod import Actuator
 
     robot = Robot(base.body, [Actuator.tca(tca, act.routing)])
     text = dumps_design(robot)
-    assert "fibre_length_m = 0.497" in text and "alpha0_deg" not in text
+    assert "fibre_length_m = 0.18" in text and "alpha0_deg" not in text

@@ -20,7 +20,7 @@ import pytest
 from hypothesis import HealthCheck, Phase, example, given, settings
 
 from fuzz.harness import ALLOWED, classify
-from fuzz.strategies import ENTRIES, Call, EvilLen, Fix, Opaque
+from fuzz.strategies import ENTRIES, Call
 
 #: In-process time limit per call [s]: far above any valid call here (the
 #: slowest, a calibration or a 3x3 workspace map, takes well under 1 s).
@@ -36,52 +36,7 @@ C = np.complex128(0.01 + 1j)  # a complex length [m] / angle / temperature: a wr
 #: own, each with one reproducer (run first as an explicit example, so the
 #: strict xfail fails every time whatever the random draws; a fix shows up as
 #: XPASS and the mark must go).
-KNOWN: dict[str, tuple[str, Call]] = {
-    "Tca": (_CPLX, Call("Tca", (C * 50, 0.110, 2e-3, 300.0))),
-    "Tca.from_pitch_angle": (_CPLX, Call("Tca.from_pitch_angle", (C, 0.26, 1.7e-3, 76.4))),
-    "Tca.segment": (_CPLX, Call("Tca.segment", (Fix("TCA"), np.complex128(0.5 + 1j)))),
-    "Tca.pitch_angle": (_CPLX, Call("Tca.pitch_angle", (Fix("TCA"), C))),
-    "Tca.f11": (_CPLX, Call("Tca.f11", (Fix("TCA"), np.complex128(0.3 + 1j), 60.0))),
-    "Tca.torque": (_CPLX, Call("Tca.torque", (Fix("TCA"), np.complex128(60 + 1j)))),
-    "Material": (_CPLX, Call("Material", (), {"youngs_modulus": np.complex128(1e9 + 1j), "shear_modulus": 2e8,
-                                               "expansion": 1e-4})),
-    "Material.youngs_modulus": (_CPLX, Call("Material.youngs_modulus", (Fix("MAT"), np.complex128(60 + 1j)))),
-    "Material.diameter_ratio": (_CPLX, Call("Material.diameter_ratio", (Fix("MAT"), np.complex128(60 + 1j)))),
-    "Section.circle": (_CPLX, Call("Section.circle", (C,))),
-    "Section.rectangle": (_CPLX, Call("Section.rectangle", (C, 0.01))),
-    "Section.custom": (_CPLX, Call("Section.custom", (np.complex128(1e-4 + 1j), 1e-9, 1e-9, 1e-9))),
-    "Section.edge_distance": (_CPLX, Call("Section.edge_distance", (Fix("SQ"), np.complex128(0.3 + 1j)))),
-    "Routing.straight": (_CPLX, Call("Routing.straight", (C, 0.0))),
-    "Routing.helix": (_CPLX, Call("Routing.helix", (C, 10.0))),
-    "Routing.evaluate": (_CPLX, Call("Routing.evaluate", (Fix("HELIX"), C))),
-    "Body": (_CPLX, Call("Body", (np.complex128(0.04 + 1j), Fix("SQ"), 3.78e4))),
-    "Actuator.tca": (_CPLX, Call("Actuator.tca", (Fix("TCA"), Fix("ROUTE"), np.complex128(0.0 + 1j)))),
-    "Actuator.tendon": (_CPLX, Call("Actuator.tendon", (Fix("ROUTE"), np.complex128(0.0 + 1j)))),
-    "Actuator.linear_tendon": (_CPLX, Call("Actuator.linear_tendon", (np.complex128(10 + 1j), Fix("ROUTE")))),
-    "Robot": (f"{_API} (bindings): Robot(body, <__len__ = 2**62>) -> PanicException 'capacity overflow'",
-              Call("Robot", (Fix("BODY"), EvilLen()))),
-    "Robot.solve": (f"{_API} (bindings): solve(<__len__ = 2**62>) -> PanicException 'capacity overflow'",
-                    Call("Robot.solve", (Fix("R"), EvilLen()))),
-    "Robot.sweep": (f"{_API} (bindings): sweep(<__len__ = 2**62>) -> PanicException 'capacity overflow'",
-                    Call("Robot.sweep", (Fix("R"), EvilLen()))),
-    "tip_position": (f"{_API} inverse.py: max_iter=-1 -> OverflowError (want ValueError naming max_iter)",
-                     Call("tip_position", (Fix("RNG"), Fix("TIP")), {"max_iter": -1})),
-    "blocked_temperature": (f"{_API}: start = a Solution of another robot -> PanicException 'index out of bounds'",
-                            Call("blocked_temperature", (Fix("RNG"), Fix("TIP"), [-1.0, 0.0, 0.0], 1e-3),
-                                 {"start": Fix("SOL_OTHER"), "groups": [0, 0]})),
-    "blocked_temperature_direct": (f"{_API} inverse.py: robot='' -> AttributeError (want TypeError)",
-                                   Call("blocked_temperature_direct", ("", Fix("TIP"), [-1.0, 0.0, 0.0], 1e-3))),
-    "blocked_force": (f"{_API} inverse.py: force=-10**400 -> OverflowError (an int beyond the double range is inf: ValueError)",
-                      Call("blocked_force", (Fix("RNG"), [0.0, 0.0, 0.04], [-1.0, 0.0, 0.0], -(10**400)))),
-    "grasp_temperature": ("grasp.py (fidelity helper's): finger=b'ab' -> AttributeError (want TypeError)",
-                          Call("grasp_temperature", (1e-3,), {"finger": b"ab"})),
-    "circle_radius": (f"{_API} rod.py: circle_radius(None, ...) -> NaN (None is not a point: TypeError)",
-                      Call("circle_radius", (None, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]))),
-    "inner_edge_radius": (f"{_API} rod.py: inner_edge_radius(None) -> AttributeError (want TypeError)",
-                          Call("inner_edge_radius", (None,))),
-    "solve_batch": (f"{_API} batch.py: chunk_size=-1 -> OverflowError (want ValueError naming chunk_size)",
-                    Call("solve_batch", (Fix("R"), [[60.0, 60.0]]), {"chunk_size": -1})),
-}
+KNOWN: dict[str, tuple[str, Call]] = {}  # none left after the merge of the bindings work (issue 12)
 
 
 def _param(name: str) -> object:

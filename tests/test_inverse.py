@@ -228,8 +228,9 @@ def test_reachable_fig6_targets_are_reached_with_the_default_budget(temps: tuple
     assert res.error <= 1e-7 and res.nit < res.max_iter
     assert "reached" in res.message
     # the temperatures that made the target come back (the map is 1:1 here);
-    # 1e-3 C: a 1e-7 m tip tolerance over ~1e-4 m/C sensitivity
-    np.testing.assert_allclose(res.variables, temps, rtol=0, atol=1e-3)
+    # 5e-3 C: a 1e-7 m tip tolerance over the weakest sensitivity, one leg at
+    # 40 C with 38.2 turns per leg (4.6e-5 m/C, so ~2.2e-3 C), with margin
+    np.testing.assert_allclose(res.variables, temps, rtol=0, atol=5e-3)
     np.testing.assert_array_equal(res.tip_position, res.solution.tip_position)
     assert res.nfev == res.evaluations > 0
 

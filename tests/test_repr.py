@@ -9,7 +9,7 @@ from typing import Any
 import pytest
 
 import tcarod
-from tcarod import Actuator, Body, Material, Robot, Routing, Section, Tca, _core
+from tcarod import Actuator, Body, Material, Routing, Section, Tca, _core
 from tcarod.batch import fig6_square_robot
 
 TCA = Tca(0.497, 0.110, 2e-3, 300.0)

@@ -24,7 +24,7 @@ import pytest
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipeinc, ellipk, ellipkinc
 
-from tcarod import Actuator, Body, ConvergenceError, Robot, Routing, Section, Solution, inner_edge_radius
+from tcarod import Actuator, Body, Robot, Routing, Section, Solution, inner_edge_radius
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -311,7 +311,10 @@ def test_mirrored_layout_mirrors_shape(design: Design, upright: bool) -> None:
 def test_rotated_layout_rotates_shape(design: Design, angle: float, helix: bool) -> None:
     # A circle (or square: I_x = I_y) is isotropic in bending, so the model is
     # invariant under rotation of the actuator layout about the axis (no gravity).
-    d = 2.0 * min(design.half_width, design.half_height)
+    # Offsets are up to 0.7 of each half-size, so |(x, y)| <= 0.99 max(half sizes):
+    # sized by the larger half-size, every rotated layout stays inside the section
+    # (routings outside it are rejected at construction).
+    d = 2.0 * max(design.half_width, design.half_height)
     section = Section.circle(d * math.sqrt(2)) if design.section.kind == "circle" else Section.rectangle(d, d)
     body = Body(design.length, section, design.youngs_modulus, poisson=0.5)
     c, s = math.cos(angle), math.sin(angle)

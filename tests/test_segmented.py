@@ -8,7 +8,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from tcarod import ConvergenceError, Robot, Routing, _core
+from tcarod import Robot, Routing, _core
 from tcarod.experiments.fig1b import FIG1B
 from tcarod.segmented import segment_bounds, segmented_actuators
 

@@ -112,7 +112,7 @@ def test_follow_branch_bad_arguments() -> None:
         core.follow_branch(r, parameter="tip_load_scale", start=math.inf, end=1.0)
     with pytest.raises(ValueError, match="max_points"):
         core.follow_branch(r, parameter="tip_load_scale", start=0.0, end=1.0, max_points=1)
-    with pytest.raises(ValueError, match="index"):
+    with pytest.raises(ValueError, match="actuators"):  # names the argument
         core.follow_branch(r, parameter="inputs", start=0.0, end=1.0, actuators=[3])
 
 

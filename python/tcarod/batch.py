@@ -23,7 +23,6 @@ Example::
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, fields
 from typing import Any, Callable, Iterable, Iterator, Union
 
@@ -359,20 +358,10 @@ def _solve_dask(
 
 
 def fig6_square_robot(gravity: bool = True) -> Robot:
-    """The paper's Fig. 6 square manipulator (Section V-B), as in the Rust
-    fixture ``tcarod::experiments::fig6_square``: EcoFlex 10, 10 mm square,
-    40 mm long, a U-shaped TCA as two legs at ``x = 3 mm``, ``y = +-2.5 mm``,
-    standing upright (gravity ``-z``) if ``gravity``."""
-    length = 0.040
-    density, youngs, poisson = 1040.0, 37.8e3, 0.5
-    body = _c.Body(
-        length,
-        _c.Section.rectangle(10e-3, 10e-3),
-        youngs,
-        poisson=poisson,
-        density=density,
-        gravity=[0.0, 0.0, -9.81] if gravity else None,
-    )
-    tca = _core.Tca.from_pitch_angle(length, math.radians(15.0), 1.7e-3, 76.4, "extension", _core.Material.silver_coated_nylon())
-    legs = [_c.Actuator.tca(tca, _c.Routing.straight(3e-3, y), 0.0, length) for y in (2.5e-3, -2.5e-3)]
-    return _c.Robot(body, legs)
+    """The paper's Fig. 6 square manipulator (Section V-B) with the default
+    turns reading: :func:`tcarod.manipulators.square_manipulator` at 40 mm,
+    standing upright (gravity ``-z``) if ``gravity``. A named module-level
+    function, so Dask and process pools can ship it as a robot factory."""
+    from .manipulators import UPRIGHT, square_manipulator  # deferred: manipulators builds on this API
+
+    return square_manipulator(0.040, gravity_m_per_s2=UPRIGHT if gravity else None)

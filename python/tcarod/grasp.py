@@ -28,6 +28,7 @@ from typing import Any, Final, Literal, Sequence
 from .manipulators import DEFAULT_TURNS_READING, HANGING, TurnsReading, square_manipulator
 from .inverse import BlockedResult, blocked_force, blocked_temperature, blocked_temperature_direct
 from .rod import Robot
+from . import _validate as V
 from .tca import Material
 
 __all__ = [
@@ -145,7 +146,7 @@ def grasp(
         raise ValueError(f"invalid fingers = {fingers!r}: must be an integer >= 1")
     if method not in ("incremental", "direct"):
         raise ValueError(f"method must be 'incremental' or 'direct', got {method!r}")
-    robot = table1_finger() if finger is None else finger
+    robot = table1_finger() if finger is None else V.instance("finger", finger, Robot, "a tcarod.Robot")
     grp = list(groups) if groups is not None else [0] * len(robot.actuators)
     force = m * g / (mu_ * fingers)  # eq (44)
     inputs = robot.reference_inputs

@@ -35,6 +35,7 @@ from . import _core
 from ._core import BlockedResult, InverseResult
 from .rod import Robot, Solution
 from .tca import _as_float_array
+from . import _validate as V
 
 __all__ = [
     "BlockedResult",
@@ -252,6 +253,7 @@ def blocked_temperature_direct(
     actuator's input range). Newton from a poor guess may fail with
     :class:`tcarod.ConvergenceError`; the incremental method is the robust one.
     """
+    V.instance("robot", robot, Robot, "a tcarod.Robot")
     if guess is None:
         lo, hi = robot.actuators[0].input_bounds
         guess = 0.5 * (lo + hi)

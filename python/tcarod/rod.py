@@ -39,6 +39,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _core
+from . import _validate as V
 
 Section = _core.Section
 Routing = _core.Routing
@@ -63,7 +64,7 @@ __all__ = [
 
 def circle_radius(a: Sequence[float] | FloatArray, b: Sequence[float] | FloatArray, c: Sequence[float] | FloatArray) -> float:
     """Radius [m] of the circle through three points [m]; ``inf`` if collinear."""
-    pa, pb, pc = (np.asarray(x, dtype=np.float64) for x in (a, b, c))
+    pa, pb, pc = (np.asarray(V.vector(n, x, 3, "m")) for n, x in (("a", a), ("b", b), ("c", c)))
     ab = float(np.linalg.norm(pb - pa))
     bc = float(np.linalg.norm(pc - pb))
     ca = float(np.linalg.norm(pa - pc))
@@ -83,6 +84,7 @@ def inner_edge_radius(solution: Solution) -> float:
     at the section's edge distance in that direction. Returns ``inf`` for a
     straight body.
     """
+    V.instance("solution", solution, Solution, "a tcarod.Solution")
     omega = solution.omega
     mean = omega[:, :2].mean(axis=0)
     if not np.all(np.isfinite(mean)) or float(np.hypot(*mean)) == 0.0:

@@ -26,7 +26,6 @@ to ~1e-9 C. Nothing here changes a default.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any, Final, Sequence
 

@@ -240,11 +240,10 @@ fn follow_branch(
     let n_act = r.actuators.len();
     let actuators = match actuators.as_ref().filter(|o| !o.is_none()) {
         Some(o) => {
-            let idx = counts("actuators", o, n_act.max(1))?;
-            if let Some(bad) = idx.iter().find(|&&i| i >= n_act) {
-                return Err(Error::input("actuators", format!("index {bad} out of range: the robot has {n_act} actuators")).into());
+            if n_act == 0 {
+                return Err(Error::input("actuators", "the robot has no actuators").into());
             }
-            Some(idx)
+            Some(counts("actuators", o, n_act - 1)?)
         }
         None => None,
     };

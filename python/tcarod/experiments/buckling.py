@@ -114,7 +114,7 @@ class BucklingResult:
             " shear and axial compliance lower it; a slender one matches to 0.02 %, tests/stability.rs)",
             f"  stable sweep: {len(self.column_sweep)} points, jumps at gravity scale "
             + ", ".join(f"{p:.4f}" for p, _, _ in self.column_sweep.jumps),
-            f"  tip at 3 g (post-buckled) [mm]: "
+            "  tip at 3 g (post-buckled) [mm]: "
             + ", ".join(f"{x * 1e3:.2f}" for x in self.column_sweep.tip_positions[-1]),
             "",
             f"Fig. 6 circle, pre-curved toward +x, weight x {self.circle_weight:g} "
