@@ -42,10 +42,13 @@ fn thread_cpu() -> Option<f64> {
     if !cfg!(target_os = "linux") || !cfg!(target_pointer_width = "64") {
         return None;
     }
-    let mut ts = Timespec { tv_sec: 0, tv_nsec: 0 };
+    let mut ts = Timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
     // SAFETY: `ts` is a valid, writable timespec (64-bit Linux layout).
     let rc = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    (rc == 0).then(|| ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
+    (rc == 0).then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
 }
 
 /// Quantile `q` of sorted data (nearest rank).
@@ -65,7 +68,10 @@ fn sorted(mut v: Vec<f64>) -> Vec<f64> {
 fn reason(e: &Error) -> String {
     match e {
         Error::NotConverged { reason, .. } => reason.clone(),
-        Error::Integration { reason, .. } => format!("integration: {}", reason.split(':').next().unwrap_or(reason)),
+        Error::Integration { reason, .. } => format!(
+            "integration: {}",
+            reason.split(':').next().unwrap_or(reason)
+        ),
         other => format!("{other}"),
     }
 }
@@ -91,16 +97,31 @@ struct Outcome {
 }
 
 fn main() {
-    let n: usize = std::env::var("TCAROD_DESIGNS").ok().and_then(|v| v.parse().ok()).unwrap_or(1000);
-    let seed: u64 = std::env::var("TCAROD_SEED").ok().and_then(|v| v.parse().ok()).unwrap_or(DEFAULT_SEED);
+    let n: usize = std::env::var("TCAROD_DESIGNS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1000);
+    let seed: u64 = std::env::var("TCAROD_SEED")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(DEFAULT_SEED);
     let verbose = std::env::var("TCAROD_VERBOSE").is_ok_and(|v| v == "1");
     let mut opts = SolveOptions::default();
-    if let Some(steps) = std::env::var("TCAROD_STEPS").ok().and_then(|v| v.parse().ok()) {
+    if let Some(steps) = std::env::var("TCAROD_STEPS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
         opts.steps = steps;
     }
     // TCAROD_ONLY=i,j,...: just these designs (diagnostics)
-    let only: Option<Vec<usize>> = std::env::var("TCAROD_ONLY").ok().map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect());
-    let clock = if thread_cpu().is_some() { "thread-cpu (clock_gettime)" } else { "wall (Instant)" };
+    let only: Option<Vec<usize>> = std::env::var("TCAROD_ONLY")
+        .ok()
+        .map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect());
+    let clock = if thread_cpu().is_some() {
+        "thread-cpu (clock_gettime)"
+    } else {
+        "wall (Instant)"
+    };
     let wall = Instant::now();
     let now = || thread_cpu().unwrap_or_else(|| wall.elapsed().as_secs_f64());
     let mut out = Vec::with_capacity(n);
@@ -115,13 +136,23 @@ fn main() {
             Ok(sol) => {
                 let eq = equilibrium(&d.robot, &sol);
                 if only.is_some() {
-                    eprintln!("#{i} steps {} residual {:.2e}: {eq:?}", opts.steps, sol.residual);
+                    eprintln!(
+                        "#{i} steps {} residual {:.2e}: {eq:?}",
+                        opts.steps, sol.residual
+                    );
                 }
                 // one plain IVP at the solution, 5 times
                 let loads = Loads::of(&d.robot);
                 let t1 = now();
                 for _ in 0..5 {
-                    let _ = std::hint::black_box(shoot(&d.robot, &d.inputs, &loads, &sol.unknowns, opts.steps, false));
+                    let _ = std::hint::black_box(shoot(
+                        &d.robot,
+                        &d.inputs,
+                        &loads,
+                        &sol.unknowns,
+                        opts.steps,
+                        false,
+                    ));
                 }
                 let ivp = (now() - t1) / 5.0;
                 Ok(Converged {
@@ -149,12 +180,22 @@ fn main() {
         // above the target: is it RK4's truncation error? (4x steps: 1/256 of it)
         let fine = match &result {
             Ok(c) if c.equilibrium > EQUILIBRIUM_TOL => {
-                let fo = SolveOptions { steps: 4 * opts.steps, ..opts };
-                solve(&d.robot, &d.inputs, &fo, None).ok().map(|s| equilibrium(&d.robot, &s).relative)
+                let fo = SolveOptions {
+                    steps: 4 * opts.steps,
+                    ..opts
+                };
+                solve(&d.robot, &d.inputs, &fo, None)
+                    .ok()
+                    .map(|s| equilibrium(&d.robot, &s).relative)
             }
             _ => None,
         };
-        out.push(Outcome { past: d.past_buckling(), cpu, result, fine });
+        out.push(Outcome {
+            past: d.past_buckling(),
+            cpu,
+            result,
+            fine,
+        });
     }
     let wall = wall.elapsed().as_secs_f64();
     report(&out, n, seed, clock, wall);
@@ -170,7 +211,12 @@ fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
     let eq = sorted(ok.iter().map(|r| r.equilibrium).collect());
     let ive = sorted(ok.iter().map(|r| r.ivp_equivalents).collect());
     let cpu = sorted(out.iter().map(|o| o.cpu).collect());
-    let cpu_ok = sorted(out.iter().filter(|o| o.result.is_ok()).map(|o| o.cpu).collect());
+    let cpu_ok = sorted(
+        out.iter()
+            .filter(|o| o.result.is_ok())
+            .map(|o| o.cpu)
+            .collect(),
+    );
     let mut fails: Vec<(String, usize, usize)> = Vec::new();
     for o in out {
         if let Err(r) = &o.result {
@@ -183,7 +229,7 @@ fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
             }
         }
     }
-    fails.sort_by(|a, b| b.1.cmp(&a.1));
+    fails.sort_by_key(|f| std::cmp::Reverse(f.1));
     let eq_bad = eq.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
     println!("designs: {n} (seed {seed:#x}), {} past self-weight buckling; clock: {clock}; wall {wall:.1} s", n - not_past);
     println!("converged cold: {} / {n} all, {ok_not_past} / {not_past} not past buckling; {via_cont} of them via continuation", ok.len());
@@ -201,7 +247,13 @@ fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
         quantile(&ive, 0.99),
         quantile(&ive, 1.0)
     );
-    println!("iterations: median {} p90 {} p99 {} max {}", quantile(&it, 0.5), quantile(&it, 0.9), quantile(&it, 0.99), quantile(&it, 1.0));
+    println!(
+        "iterations: median {} p90 {} p99 {} max {}",
+        quantile(&it, 0.5),
+        quantile(&it, 0.9),
+        quantile(&it, 0.99),
+        quantile(&it, 1.0)
+    );
     println!(
         "CPU per solve (all) [ms]: median {:.3} p99 {:.1} max {:.1}; converged only: median {:.3} p99 {:.1} max {:.1}; total {:.1} s",
         quantile(&cpu, 0.5) * 1e3,
@@ -228,7 +280,10 @@ fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
     for (r, k, p) in &fails {
         println!("  failed: {k:4} ({p} past buckling)  {r}");
     }
-    let fails_json: Vec<String> = fails.iter().map(|(r, k, p)| format!("{{\"reason\":{:?},\"count\":{k},\"past_buckling\":{p}}}", r)).collect();
+    let fails_json: Vec<String> = fails
+        .iter()
+        .map(|(r, k, p)| format!("{{\"reason\":{:?},\"count\":{k},\"past_buckling\":{p}}}", r))
+        .collect();
     println!(
         "JSON {{\"bench\":\"designs\",\"n\":{n},\"seed\":{seed},\"past_buckling\":{},\"converged\":{},\"converged_not_past\":{ok_not_past},\"not_past\":{not_past},\
 \"via_continuation\":{via_cont},\"ivp\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"ivp_equivalents\":{{\"median\":{:.2},\"p90\":{:.2},\"p99\":{:.2},\"max\":{:.2}}},\"iterations\":{{\"median\":{},\"max\":{}}},\

@@ -47,11 +47,19 @@ class Worker:
     """One long-lived worker subprocess."""
 
     def __init__(self) -> None:
-        env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(TESTS), os.environ.get("PYTHONPATH", "")]),
-                   MPLBACKEND="Agg", PYTHONHASHSEED="0")
+        env = dict(
+            os.environ,
+            PYTHONPATH=os.pathsep.join([str(TESTS), os.environ.get("PYTHONPATH", "")]),
+            MPLBACKEND="Agg",
+            PYTHONHASHSEED="0",
+        )
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "fuzz.harness"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-            stderr=subprocess.DEVNULL, env=env, cwd=str(TESTS),
+            [sys.executable, "-m", "fuzz.harness"],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
+            env=env,
+            cwd=str(TESTS),
         )
         assert self.proc.stdin is not None and self.proc.stdout is not None
         self.stdin, self.stdout = self.proc.stdin, self.proc.stdout
@@ -158,8 +166,13 @@ def run(calls: int, timeout: float, seed_value: int, workers: int) -> tuple[Pool
                 submitted = [0]
 
                 @seed(seed_value * 1_000_003 + round_no * 1000 + k)
-                @settings(max_examples=n, deadline=None, database=None, phases=[Phase.generate],
-                          suppress_health_check=list(HealthCheck))
+                @settings(
+                    max_examples=n,
+                    deadline=None,
+                    database=None,
+                    phases=[Phase.generate],
+                    suppress_health_check=list(HealthCheck),
+                )
                 @given(ENTRIES[entry][0])
                 def chunk(call: Call) -> None:
                     pool.submit(call)
@@ -178,8 +191,12 @@ def run(calls: int, timeout: float, seed_value: int, workers: int) -> tuple[Pool
                     left[entry] -= n
             pool.drain()
             round_no += 1
-            print(f"  {len(pool.results)} calls, {time.perf_counter() - t0:.0f} s, "
-                  f"{sum(1 for _, o, _ in pool.results if o not in ALLOWED)} violations", file=sys.stderr, flush=True)
+            print(
+                f"  {len(pool.results)} calls, {time.perf_counter() - t0:.0f} s, "
+                f"{sum(1 for _, o, _ in pool.results if o not in ALLOWED)} violations",
+                file=sys.stderr,
+                flush=True,
+            )
     except KeyboardInterrupt:
         print("interrupted: summary of the calls so far", file=sys.stderr)
         pool.drain()
@@ -213,20 +230,30 @@ def summary(pool: Pool, elapsed: float, args: argparse.Namespace) -> tuple[str, 
         tag = "" if o in ALLOWED else " (VIOLATION)"
         lines.append(f"| {o}{tag} | {by_class.get(o, 0)} |")
     lines.append(f"| **contract violations** | **{violations}** |")
-    lines += ["", "| entry point | calls | " + " | ".join(COLUMNS) + " | violations |",
-              "|---|---:|" + "---:|" * (len(COLUMNS) + 1)]
+    lines += [
+        "",
+        "| entry point | calls | " + " | ".join(COLUMNS) + " | violations |",
+        "|---|---:|" + "---:|" * (len(COLUMNS) + 1),
+    ]
     for e in sorted(ENTRIES):
         c = by_entry.get(e, collections.Counter())
         bad = sum(n for o, n in c.items() if o not in ALLOWED)
-        bad_s = str(bad) if not bad else f"{bad} (" + ", ".join(f"{o} {n}" for o, n in c.items() if o not in ALLOWED) + ")"
+        bad_s = (
+            str(bad) if not bad else f"{bad} (" + ", ".join(f"{o} {n}" for o, n in c.items() if o not in ALLOWED) + ")"
+        )
         lines.append(f"| {e} | {sum(c.values())} | " + " | ".join(str(c.get(o, 0)) for o in COLUMNS) + f" | {bad_s} |")
     if first:
         lines += ["", "First reproducer of each (entry point, violation):"]
         for (e, o), (r, d) in sorted(first.items()):
             lines.append(f"- {o}: {r[:300]} -> {d[:200]}")
-    doc = {"calls": total, "elapsed_s": elapsed, "by_class": dict(by_class), "violations": violations,
-           "by_entry": {e: dict(c) for e, c in by_entry.items()},
-           "first": [{"entry": e, "outcome": o, "call": r, "detail": d} for (e, o), (r, d) in sorted(first.items())]}
+    doc = {
+        "calls": total,
+        "elapsed_s": elapsed,
+        "by_class": dict(by_class),
+        "violations": violations,
+        "by_entry": {e: dict(c) for e, c in by_entry.items()},
+        "first": [{"entry": e, "outcome": o, "call": r, "detail": d} for (e, o), (r, d) in sorted(first.items())],
+    }
     return "\n".join(lines), doc
 
 

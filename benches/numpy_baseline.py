@@ -148,7 +148,9 @@ def residual(x: FloatArray, m: Fig6Square, temperatures: FloatArray, steps: int)
     return np.concatenate([rf / m.kse, rm / m.kbt * LENGTH, (y[13:15] - delta) / LENGTH])
 
 
-def solve(m: Fig6Square, temperatures: FloatArray, steps: int = 100, x0: FloatArray | None = None) -> tuple[FloatArray, FloatArray, FloatArray, int]:
+def solve(
+    m: Fig6Square, temperatures: FloatArray, steps: int = 100, x0: FloatArray | None = None
+) -> tuple[FloatArray, FloatArray, FloatArray, int]:
     """Forward solve: ``(tip position [m], tip rotation, unknowns, residual evaluations)``."""
     if x0 is None:
         x0 = np.zeros(8)
@@ -188,7 +190,9 @@ def timings(repeats: int = 5) -> dict[str, float]:
 
 if __name__ == "__main__":
     r = timings()
-    print(f"IVP (100 RK4 steps):  NumPy {r['numpy_ivp_s'] * 1e3:9.3f} ms   Rust {r['rust_ivp_s'] * 1e6:8.1f} us   ratio {r['numpy_ivp_s'] / r['rust_ivp_s']:7.0f}x")
+    print(
+        f"IVP (100 RK4 steps):  NumPy {r['numpy_ivp_s'] * 1e3:9.3f} ms   Rust {r['rust_ivp_s'] * 1e6:8.1f} us   ratio {r['numpy_ivp_s'] / r['rust_ivp_s']:7.0f}x"
+    )
     print(
         f"cold forward solve:   NumPy {r['numpy_cold_solve_s'] * 1e3:9.3f} ms   Rust {r['rust_cold_solve_s'] * 1e6:8.1f} us   "
         f"ratio {r['numpy_cold_solve_s'] / r['rust_cold_solve_s']:7.0f}x"

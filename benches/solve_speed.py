@@ -139,8 +139,10 @@ def main() -> None:
             ivps[k] = count(out)
     ivp_s = statistics.median(ivp_times)
     load_after = os.getloadavg()
-    print(f"load average before {load_before[0]:.2f} {load_before[1]:.2f} {load_before[2]:.2f}, "
-          f"after {load_after[0]:.2f} {load_after[1]:.2f} {load_after[2]:.2f}; {os.cpu_count()} CPUs")
+    print(
+        f"load average before {load_before[0]:.2f} {load_before[1]:.2f} {load_before[2]:.2f}, "
+        f"after {load_after[0]:.2f} {load_after[1]:.2f} {load_after[2]:.2f}; {os.cpu_count()} CPUs"
+    )
     print(f"Fig. 6 square: one full-grid IVP (Rust row 'ivp', CPU) {ivp_s * 1e6:.1f} us")
     print(f"{'case':<14} {'median':>10} {'min':>10} {'IVPs':>5} {'xIVP':>6}  target")
     rows = []
@@ -148,12 +150,19 @@ def main() -> None:
         med = statistics.median(times[k])
         ratio = med / ivp_s if k.startswith("fig6") else float("nan")
         n = ivps[k]
-        print(f"{k:<14} {med * 1e6:8.1f}us {min(times[k]) * 1e6:8.1f}us {n if n >= 0 else '-':>5} "
-              f"{ratio:6.2f}  {target}")
+        print(
+            f"{k:<14} {med * 1e6:8.1f}us {min(times[k]) * 1e6:8.1f}us {n if n >= 0 else '-':>5} {ratio:6.2f}  {target}"
+        )
         rows.append({"case": k, "median_s": med, "min_s": min(times[k]), "ivps": n, "target": target})
     if args.json:
-        doc = {"bench": "solve_speed", "repeats": args.repeats, "ivp_s": ivp_s,
-               "load_before": load_before, "load_after": load_after, "rows": rows}
+        doc = {
+            "bench": "solve_speed",
+            "repeats": args.repeats,
+            "ivp_s": ivp_s,
+            "load_before": load_before,
+            "load_after": load_after,
+            "rows": rows,
+        }
         print("JSON " + json.dumps(doc))
 
 

@@ -32,7 +32,10 @@ extern "C" {
 /// Thread CPU time [s] (`CLOCK_THREAD_CPUTIME_ID` = 3 on Linux), else wall time.
 fn cpu(t0: Instant) -> f64 {
     if cfg!(target_os = "linux") && cfg!(target_pointer_width = "64") {
-        let mut ts = Timespec { tv_sec: 0, tv_nsec: 0 };
+        let mut ts = Timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
         // SAFETY: `ts` is a valid, writable timespec (64-bit Linux layout).
         if unsafe { clock_gettime(3, &mut ts) } == 0 {
             return ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9;
@@ -42,7 +45,10 @@ fn cpu(t0: Instant) -> f64 {
 }
 
 fn env(name: &str, default: u64) -> u64 {
-    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
 }
 
 fn main() {
@@ -62,17 +68,41 @@ fn main() {
         let len = r.body.length;
         let cold = solve(r, &d.inputs, &opts, None).ok();
         let reference = r.reference_inputs();
-        let path: Vec<Vec<f64>> = (1..=8).map(|k| reference.iter().zip(&d.inputs).map(|(a, b)| a + (b - a) * k as f64 / 8.0).collect()).collect();
-        let warm = sweep(r, &path, &opts).ok().and_then(|v| v.into_iter().last());
+        let path: Vec<Vec<f64>> = (1..=8)
+            .map(|k| {
+                reference
+                    .iter()
+                    .zip(&d.inputs)
+                    .map(|(a, b)| a + (b - a) * k as f64 / 8.0)
+                    .collect()
+            })
+            .collect();
+        let warm = sweep(r, &path, &opts)
+            .ok()
+            .and_then(|v| v.into_iter().last());
         let vc = cold.as_ref().and_then(|s| {
             let a = cpu(t0);
             let v = stability(r, s, &[]).ok()?;
             let b = cpu(t0);
             for _ in 0..5 {
-                let _ = std::hint::black_box(shoot(r, &s.inputs, &s.loads, &s.unknowns, s.steps, false));
+                let _ = std::hint::black_box(shoot(
+                    r,
+                    &s.inputs,
+                    &s.loads,
+                    &s.unknowns,
+                    s.steps,
+                    false,
+                ));
             }
             let c = cpu(t0);
-            let _ = std::hint::black_box(shoot_jacobian(r, &s.inputs, &s.loads, &s.unknowns, s.steps, false));
+            let _ = std::hint::black_box(shoot_jacobian(
+                r,
+                &s.inputs,
+                &s.loads,
+                &s.unknowns,
+                s.steps,
+                false,
+            ));
             let d = cpu(t0);
             let ivp = (c - b) / 5.0;
             ratios.push((b - a) / ivp);
@@ -121,7 +151,10 @@ fn main() {
     let nr = ratios.len();
     let med = median(ratios);
     let med_t = median(tangent_ratios);
-    println!("designs {n}, seed {seed}, {:.1} s", t0.elapsed().as_secs_f64());
+    println!(
+        "designs {n}, seed {seed}, {:.1} s",
+        t0.elapsed().as_secs_f64()
+    );
     println!("converged: cold {cold_ok}, warm sweep {warm_ok}; stable: cold {stable_cold}, warm {stable_warm}");
     println!(
         "cold and warm tips differ by > 1 % L: {differ} (one of the pair unstable: {one_unstable}, of which cold unstable / warm stable: {cold_unstable_warm_stable}; both stable: {both_stable}; both unstable: {both_unstable})"

@@ -7,7 +7,10 @@ fn tca_solves(c: &mut Criterion) {
     let tca = fig5_tca(3);
     let force = -0.5 * 7.5e-3 * 9.81;
     c.bench_function("tca_displacement_fig5_100C", |b| {
-        b.iter(|| tca.displacement(black_box(force), black_box(100.0)).unwrap())
+        b.iter(|| {
+            tca.displacement(black_box(force), black_box(100.0))
+                .unwrap()
+        })
     });
     c.bench_function("tca_force_fig5_100C", |b| {
         b.iter(|| tca.force(black_box(5e-3), black_box(100.0)).unwrap())

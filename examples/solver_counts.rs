@@ -4,19 +4,38 @@
 //! indication only; the criterion benches in benches/rod.rs are the timings.)
 use std::time::Instant;
 
-use tcarod::experiments::{fig6_square, soft_tendon_robot, soft_tendon_tension, steel_tendon_robot, STEEL_TENDON_TENSIONS};
-use tcarod::shooting::{solve, SolveOptions, Solution};
+use tcarod::experiments::{
+    fig6_square, soft_tendon_robot, soft_tendon_tension, steel_tendon_robot, STEEL_TENDON_TENSIONS,
+};
 use tcarod::rod::Robot;
+use tcarod::shooting::{solve, Solution, SolveOptions};
 
 /// Median wall time [s] of one plain IVP of `robot` at its solution (the unit of "IVP-equivalents").
 fn ivp_time(robot: &Robot, inputs: &[f64], steps: usize) -> f64 {
-    let s = solve(robot, inputs, &SolveOptions { steps, ..Default::default() }, None).unwrap();
+    let s = solve(
+        robot,
+        inputs,
+        &SolveOptions {
+            steps,
+            ..Default::default()
+        },
+        None,
+    )
+    .unwrap();
     let l = tcarod::shooting::Loads::of(robot);
     let mut times: Vec<f64> = (0..21)
         .map(|_| {
             let t = Instant::now();
             for _ in 0..20 {
-                tcarod::shooting::shoot(robot, inputs, &l, std::hint::black_box(&s.unknowns), steps, false).unwrap();
+                tcarod::shooting::shoot(
+                    robot,
+                    inputs,
+                    &l,
+                    std::hint::black_box(&s.unknowns),
+                    steps,
+                    false,
+                )
+                .unwrap();
             }
             t.elapsed().as_secs_f64() / 20.0
         })
@@ -25,7 +44,13 @@ fn ivp_time(robot: &Robot, inputs: &[f64], steps: usize) -> f64 {
     times[10]
 }
 
-fn run(name: &str, robot: &Robot, inputs: &[f64], opts: &SolveOptions, warm: Option<&Solution>) -> Option<Solution> {
+fn run(
+    name: &str,
+    robot: &Robot,
+    inputs: &[f64],
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+) -> Option<Solution> {
     let mut times = Vec::new();
     let mut last = None;
     for _ in 0..21 {
@@ -50,13 +75,28 @@ fn run(name: &str, robot: &Robot, inputs: &[f64], opts: &SolveOptions, warm: Opt
 
 fn main() {
     let soft = soft_tendon_robot();
-    let o50 = SolveOptions { steps: 50, ..Default::default() };
+    let o50 = SolveOptions {
+        steps: 50,
+        ..Default::default()
+    };
     for deg in [10.0f64, 30.0, 45.0, 60.0, 90.0, 120.0] {
-        run(&format!("soft tendon {deg} deg cold"), &soft, &[soft_tendon_tension(deg.to_radians())], &o50, None);
+        run(
+            &format!("soft tendon {deg} deg cold"),
+            &soft,
+            &[soft_tendon_tension(deg.to_radians())],
+            &o50,
+            None,
+        );
     }
     let steel = steel_tendon_robot();
     let o = SolveOptions::default();
-    if let Some(s) = run("steel tendon cold", &steel, &STEEL_TENDON_TENSIONS, &o, None) {
+    if let Some(s) = run(
+        "steel tendon cold",
+        &steel,
+        &STEEL_TENDON_TENSIONS,
+        &o,
+        None,
+    ) {
         let t: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
         run("steel tendon warm +1 %", &steel, &t, &o, Some(&s));
     }
@@ -81,7 +121,12 @@ fn main() {
                 })
                 .collect();
             times.sort_by(|a, b| a.partial_cmp(b).unwrap());
-            println!("{name:<28} {:>9.1} us = {:>6.1} IVP times (one IVP {:.1} us)", times[10] * 1e6, times[10] / unit, unit * 1e6);
+            println!(
+                "{name:<28} {:>9.1} us = {:>6.1} IVP times (one IVP {:.1} us)",
+                times[10] * 1e6,
+                times[10] / unit,
+                unit * 1e6
+            );
         }
     }
 }

@@ -164,16 +164,43 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
             let sol = solve(&robot, &t, &opts, None)?;
             let loads = Loads::of(&robot);
             let groups = Groups(vec![0, 0]);
-            Box::new(move || sensitivities_exact(&robot, std::hint::black_box(&sol), &loads, &groups, opts.steps).map(|_| ()))
+            Box::new(move || {
+                sensitivities_exact(
+                    &robot,
+                    std::hint::black_box(&sol),
+                    &loads,
+                    &groups,
+                    opts.steps,
+                )
+                .map(|_| ())
+            })
         }
         "tangent" => {
             let sol = solve(&robot, &t, &opts, None)?;
             let loads = Loads::of(&robot);
-            Box::new(move || shoot_jacobian(&robot, &sol.inputs, &loads, std::hint::black_box(&sol.unknowns), opts.steps, false).map(|_| ()))
+            Box::new(move || {
+                shoot_jacobian(
+                    &robot,
+                    &sol.inputs,
+                    &loads,
+                    std::hint::black_box(&sol.unknowns),
+                    opts.steps,
+                    false,
+                )
+                .map(|_| ())
+            })
         }
         "steel_cold" => {
             let steel = steel_tendon_robot();
-            Box::new(move || solve(&steel, std::hint::black_box(&STEEL_TENDON_TENSIONS), &opts, None).map(|_| ()))
+            Box::new(move || {
+                solve(
+                    &steel,
+                    std::hint::black_box(&STEEL_TENDON_TENSIONS),
+                    &opts,
+                    None,
+                )
+                .map(|_| ())
+            })
         }
         "steel_warm" => {
             let steel = steel_tendon_robot();

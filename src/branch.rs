@@ -16,7 +16,10 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::error::{Error, Result};
 use crate::rod::Robot;
-use crate::shooting::{assemble, initial_guess, reference_guess, shoot, shoot_jacobian, solve_loaded, Loads, SolveOptions, Solution};
+use crate::shooting::{
+    assemble, initial_guess, reference_guess, shoot, shoot_jacobian, solve_loaded, Loads, Solution,
+    SolveOptions,
+};
 use crate::solve::newton::{newton, System};
 use crate::stability::{stability, Stability};
 
@@ -45,7 +48,14 @@ impl<'a> Problem<'a> {
     pub fn new(robot: &'a Robot, parameter: Parameter, inputs: &[f64]) -> Result<Self> {
         robot.validate()?;
         if inputs.len() != robot.actuators.len() {
-            return Err(Error::input("inputs", format!("expected {} values, got {}", robot.actuators.len(), inputs.len())));
+            return Err(Error::input(
+                "inputs",
+                format!(
+                    "expected {} values, got {}",
+                    robot.actuators.len(),
+                    inputs.len()
+                ),
+            ));
         }
         if let Parameter::Inputs(idx) = &parameter {
             if idx.is_empty() {
@@ -53,11 +63,19 @@ impl<'a> Problem<'a> {
             }
             for &i in idx {
                 if i >= robot.actuators.len() {
-                    return Err(Error::param("parameter actuator index", i as f64, format!("0 <= index < {}", robot.actuators.len())));
+                    return Err(Error::param(
+                        "parameter actuator index",
+                        i as f64,
+                        format!("0 <= index < {}", robot.actuators.len()),
+                    ));
                 }
             }
         }
-        Ok(Problem { robot, parameter, inputs: inputs.to_vec() })
+        Ok(Problem {
+            robot,
+            parameter,
+            inputs: inputs.to_vec(),
+        })
     }
 
     /// Robot, inputs and loads at parameter value `lambda`.
@@ -101,7 +119,12 @@ impl<'a> Problem<'a> {
     }
 
     /// Newton solve at fixed `lambda` from `warm` (or cold).
-    pub fn solve(&self, lambda: f64, opts: &SolveOptions, warm: Option<&Solution>) -> Result<Solution> {
+    pub fn solve(
+        &self,
+        lambda: f64,
+        opts: &SolveOptions,
+        warm: Option<&Solution>,
+    ) -> Result<Solution> {
         let (robot, inputs, loads) = self.at(lambda)?;
         solve_loaded(&robot, &inputs, &loads, opts, warm)
     }
@@ -153,11 +176,23 @@ impl BranchOptions {
         if self.start == self.end {
             return Err(Error::param("end", self.end, "!= start"));
         }
-        if !(self.min_step > 0.0 && self.min_step <= self.step && self.step <= self.max_step && self.max_step.is_finite()) {
-            return Err(Error::param("step", self.step, "0 < min_step <= step <= max_step < inf"));
+        if !(self.min_step > 0.0
+            && self.min_step <= self.step
+            && self.step <= self.max_step
+            && self.max_step.is_finite())
+        {
+            return Err(Error::param(
+                "step",
+                self.step,
+                "0 < min_step <= step <= max_step < inf",
+            ));
         }
         if self.max_points < 2 || self.max_points > 1_000_000 {
-            return Err(Error::param("max_points", self.max_points as f64, "2 <= max_points <= 1e6"));
+            return Err(Error::param(
+                "max_points",
+                self.max_points as f64,
+                "2 <= max_points <= 1e6",
+            ));
         }
         self.solve.validate()
     }
@@ -215,7 +250,13 @@ pub struct Branch {
 /// Jacobian `[F_x, F_lambda~]` (`m x (m+1)`, scaled lambda) and the
 /// residual: `F_x` exact from one tangent IVP, `F_lambda` by a forward
 /// difference (one IVP).
-fn jacobian(pb: &Problem<'_>, y: &[f64], scale: f64, steps: usize, evals: &mut usize) -> Result<(Vec<f64>, DMatrix<f64>)> {
+fn jacobian(
+    pb: &Problem<'_>,
+    y: &[f64],
+    scale: f64,
+    steps: usize,
+    evals: &mut usize,
+) -> Result<(Vec<f64>, DMatrix<f64>)> {
     let m = y.len() - 1;
     let (robot, inputs, loads) = pb.at(y[m] * scale)?;
     let (r, jx, _, _) = shoot_jacobian(&robot, &inputs, &loads, &y[..m], steps, false)?;
@@ -291,7 +332,13 @@ impl Tracer<'_, '_> {
         Ok(Pt {
             y,
             t,
-            bp: BranchPoint { parameter: lambda, solution, stability, dparameter, jacobian_det },
+            bp: BranchPoint {
+                parameter: lambda,
+                solution,
+                stability,
+                dparameter,
+                jacobian_det,
+            },
         })
     }
 
@@ -299,8 +346,20 @@ impl Tracer<'_, '_> {
     /// `[F(y); t . (y - y_pred)] = 0` with the exact `F_x`.
     fn step(&mut self, from: &Pt, ds: f64) -> Result<Pt> {
         crate::solve::cancel::check()?;
-        let yp: Vec<f64> = from.y.iter().zip(from.t.iter()).map(|(a, b)| a + ds * b).collect();
-        let mut sys = Corrector { pb: self.pb, scale: self.scale, steps: self.opts.solve.steps, t: &from.t, yp: &yp, evaluations: 0 };
+        let yp: Vec<f64> = from
+            .y
+            .iter()
+            .zip(from.t.iter())
+            .map(|(a, b)| a + ds * b)
+            .collect();
+        let mut sys = Corrector {
+            pb: self.pb,
+            scale: self.scale,
+            steps: self.opts.solve.steps,
+            t: &from.t,
+            yp: &yp,
+            evaluations: 0,
+        };
         let res = newton(&mut sys, &yp, &self.opts.solve.newton(), "branch following");
         self.evals += sys.evaluations;
         let nr = res?;
@@ -323,13 +382,25 @@ impl System for Corrector<'_, '_> {
         let m = y.len() - 1;
         self.evaluations += 1;
         let mut r = self.pb.residual(&y[..m], y[m] * self.scale, self.steps)?;
-        r.push(y.iter().zip(self.yp).zip(self.t.iter()).map(|((a, b), c)| (a - b) * c).sum());
+        r.push(
+            y.iter()
+                .zip(self.yp)
+                .zip(self.t.iter())
+                .map(|((a, b), c)| (a - b) * c)
+                .sum(),
+        );
         Ok(r)
     }
     fn residual_and_jacobian(&mut self, y: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
         let m = y.len() - 1;
         let (mut r, j) = jacobian(self.pb, y, self.scale, self.steps, &mut self.evaluations)?;
-        r.push(y.iter().zip(self.yp).zip(self.t.iter()).map(|((a, b), c)| (a - b) * c).sum());
+        r.push(
+            y.iter()
+                .zip(self.yp)
+                .zip(self.t.iter())
+                .map(|((a, b), c)| (a - b) * c)
+                .sum(),
+        );
         let mut a = DMatrix::zeros(m + 1, m + 1);
         a.view_mut((0, 0), (m, m + 1)).copy_from(&j);
         a.row_mut(m).copy_from(&self.t.transpose());
@@ -342,11 +413,20 @@ impl System for Corrector<'_, '_> {
 
 /// Follow the branch through `start` (a converged equilibrium at
 /// `opts.start`, or a cold solve there) toward `opts.end`.
-pub fn follow_branch(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solution>) -> Result<Branch> {
+pub fn follow_branch(
+    pb: &Problem<'_>,
+    opts: &BranchOptions,
+    start: Option<&Solution>,
+) -> Result<Branch> {
     opts.validate()?;
     let scale = (opts.end - opts.start).abs();
     let dir = (opts.end - opts.start).signum();
-    let mut tr = Tracer { pb, scale, opts: *opts, evals: 0 };
+    let mut tr = Tracer {
+        pb,
+        scale,
+        opts: *opts,
+        evals: 0,
+    };
     let sol0 = match start {
         Some(s) => pb.solve(opts.start, &opts.solve, Some(s))?,
         None => pb.solve(opts.start, &opts.solve, None)?,
@@ -379,7 +459,13 @@ pub fn follow_branch(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solu
             }
         };
         // a jump to another branch shows as a large change of the unknowns
-        let dy: f64 = next.y.iter().zip(&cur.y).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
+        let dy: f64 = next
+            .y
+            .iter()
+            .zip(&cur.y)
+            .map(|(a, b)| (a - b).powi(2))
+            .sum::<f64>()
+            .sqrt();
         if dy > 3.0 * ds && ds > opts.min_step {
             ds *= 0.5;
             continue;
@@ -396,7 +482,10 @@ pub fn follow_branch(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solu
         let lam = next.bp.parameter;
         let unstable = !next.bp.stability.stable;
         pts.push(std::mem::replace(&mut cur, next));
-        if lam < lo - 1e-12 * scale || lam > hi + 1e-12 * scale || (opts.stop_when_unstable && (unstable || fold)) {
+        if lam < lo - 1e-12 * scale
+            || lam > hi + 1e-12 * scale
+            || (opts.stop_when_unstable && (unstable || fold))
+        {
             break;
         }
         ds = (ds * 1.5).min(opts.max_step);
@@ -463,7 +552,12 @@ impl Tracer<'_, '_> {
             }
         }
         let _ = best.0;
-        Ok(Event { kind, parameter: best.1, tip_position: best.2, after_point: idx })
+        Ok(Event {
+            kind,
+            parameter: best.1,
+            tip_position: best.2,
+            after_point: idx,
+        })
     }
 }
 
@@ -494,7 +588,11 @@ pub struct StableSweep {
 /// bifurcation) or turns back in the parameter (a fold), then land on a stable equilibrium just beyond (the nearest
 /// one, by tip position, among those reached from a few perturbed starts)
 /// and go on. Equilibria that are unstable from the start are refused.
-pub fn sweep_stable(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solution>) -> Result<StableSweep> {
+pub fn sweep_stable(
+    pb: &Problem<'_>,
+    opts: &BranchOptions,
+    start: Option<&Solution>,
+) -> Result<StableSweep> {
     opts.validate()?;
     let mut o = *opts;
     o.stop_when_unstable = true;
@@ -513,32 +611,48 @@ pub fn sweep_stable(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solut
         let ended_early = folded || br.points.last().is_some_and(|p| !p.stability.stable);
         let within = |l: f64| (l - opts.end) * dir <= 0.0;
         for p in br.points.into_iter() {
-            let ahead = points.last().map_or(true, |q: &BranchPoint| (p.parameter - q.parameter) * dir > 0.0);
+            let ahead = points.last().map_or(true, |q: &BranchPoint| {
+                (p.parameter - q.parameter) * dir > 0.0
+            });
             if p.stability.stable && within(p.parameter) && ahead {
                 points.push(p);
             }
         }
         if points.len() == n0 {
-            return Err(Error::input("start", "the equilibrium at the start of the sweep is not stable"));
+            return Err(Error::input(
+                "start",
+                "the equilibrium at the start of the sweep is not stable",
+            ));
         }
         if !ended_early {
             break;
         }
         let before = points.last().expect("non-empty").solution.clone();
-        let lam_c = br.events.last().map_or(points.last().expect("non-empty").parameter, |e| e.parameter);
+        let lam_c = br
+            .events
+            .last()
+            .map_or(points.last().expect("non-empty").parameter, |e| e.parameter);
         if !within(lam_c) {
             break;
         }
         let past = lam_c + dir * 3e-3 * (opts.end - opts.start).abs();
         let after = land(pb, past, &before, &opts.solve, &mut evals)?;
-        jumps.push(Jump { parameter: lam_c, before, after: after.clone() });
+        jumps.push(Jump {
+            parameter: lam_c,
+            before,
+            after: after.clone(),
+        });
         o.start = past;
         from = Some(after);
         if !within(past) {
             break;
         }
     }
-    Ok(StableSweep { points, jumps, evaluations: evals })
+    Ok(StableSweep {
+        points,
+        jumps,
+        evaluations: evals,
+    })
 }
 
 /// A stable equilibrium at `lambda` near `before`: by imperfection homotopy
@@ -549,7 +663,13 @@ pub fn sweep_stable(pb: &Problem<'_>, opts: &BranchOptions, start: Option<&Solut
 /// `L omega(0)` pushed by +-0.03, 0.1, 0.3, 1 and 3 about each bending axis (the
 /// tensions kept); among the stable results, the one whose tip is nearest
 /// `before`'s.
-fn land(pb: &Problem<'_>, lambda: f64, before: &Solution, opts: &SolveOptions, evals: &mut usize) -> Result<Solution> {
+fn land(
+    pb: &Problem<'_>,
+    lambda: f64,
+    before: &Solution,
+    opts: &SolveOptions,
+    evals: &mut usize,
+) -> Result<Solution> {
     let (robot, inputs, loads) = pb.at(lambda)?;
     let tip = before.tip_position();
     let mut found: Vec<Solution> = vec![];
@@ -569,13 +689,17 @@ fn land(pb: &Problem<'_>, lambda: f64, before: &Solution, opts: &SolveOptions, e
     let len = robot.body.length;
     let (_, ix, iy, _) = robot.body.section.properties();
     let ei = robot.body.youngs_modulus * ix.min(iy);
-    let mode = solve_loaded(&robot, &inputs, &loads, opts, Some(before)).ok().and_then(|s| stability(&robot, &s, &[]).ok()).map(|st| st.mode);
+    let mode = solve_loaded(&robot, &inputs, &loads, opts, Some(before))
+        .ok()
+        .and_then(|s| stability(&robot, &s, &[]).ok())
+        .map(|st| st.mode);
     if let Some(mode) = mode {
         for sgn in [1.0, -1.0] {
             let mut w: Option<Solution> = Some(before.clone());
             for eps in [0.5, 0.25, 0.1, 0.04, 0.015, 0.005, 0.0] {
                 let mut l = loads;
-                l.tip_force += Vector3::new(mode[0], mode[1], mode[2]) * (sgn * eps * ei / (len * len));
+                l.tip_force +=
+                    Vector3::new(mode[0], mode[1], mode[2]) * (sgn * eps * ei / (len * len));
                 l.tip_moment += Vector3::new(mode[3], mode[4], mode[5]) * (sgn * eps * ei / len);
                 w = solve_loaded(&robot, &inputs, &l, opts, w.as_ref()).ok();
                 if w.is_none() {
@@ -587,7 +711,10 @@ fn land(pb: &Problem<'_>, lambda: f64, before: &Solution, opts: &SolveOptions, e
             }
         }
     }
-    let mut guesses = vec![reference_guess(&robot), initial_guess(&robot, &inputs, Some(before))];
+    let mut guesses = vec![
+        reference_guess(&robot),
+        initial_guess(&robot, &inputs, Some(before)),
+    ];
     for amp in [0.03, 0.1, 0.3, 1.0, 3.0] {
         for k in [3usize, 4] {
             for sgn in [-1.0, 1.0] {
@@ -608,7 +735,11 @@ fn land(pb: &Problem<'_>, lambda: f64, before: &Solution, opts: &SolveOptions, e
     crate::solve::cancel::check()?;
     found
         .into_iter()
-        .min_by(|a, b| (a.tip_position() - tip).norm().total_cmp(&(b.tip_position() - tip).norm()))
+        .min_by(|a, b| {
+            (a.tip_position() - tip)
+                .norm()
+                .total_cmp(&(b.tip_position() - tip).norm())
+        })
         .ok_or_else(|| Error::NoSolution {
             reason: format!("no stable equilibrium found just past the jump at parameter {lambda}"),
         })

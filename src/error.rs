@@ -115,7 +115,11 @@ impl Error {
     /// other variants are returned unchanged.
     pub fn renamed(self, rename: impl FnOnce(&str) -> String) -> Self {
         match self {
-            Error::InvalidParameter { name, value, allowed } => Error::InvalidParameter {
+            Error::InvalidParameter {
+                name,
+                value,
+                allowed,
+            } => Error::InvalidParameter {
                 name: rename(&name),
                 value,
                 allowed,

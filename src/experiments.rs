@@ -13,8 +13,15 @@ pub fn fig5_tca(threads: u32) -> Tca {
         4 => (0.471, 259.0, 2.13e-3),
         _ => panic!("Fig. 5 has three- and four-thread TCAs only"),
     };
-    Tca::new(l, 0.110, d, turns, Chirality::Extension, Material::silver_coated_nylon())
-        .expect("Fig. 5 TCA is valid")
+    Tca::new(
+        l,
+        0.110,
+        d,
+        turns,
+        Chirality::Extension,
+        Material::silver_coated_nylon(),
+    )
+    .expect("Fig. 5 TCA is valid")
 }
 
 use std::sync::Arc;
@@ -91,7 +98,17 @@ pub fn manipulator_tca(length: f64, turns: f64) -> Tca {
 /// standing upright (gravity `-z`) if `gravity`.
 pub fn square_manipulator(length: f64, gravity: bool) -> Robot {
     let (psi, e, nu) = ECOFLEX10;
-    let mut body = Body::new(length, Section::Rectangle { width: 10e-3, height: 10e-3 }, e, nu, psi).expect("valid");
+    let mut body = Body::new(
+        length,
+        Section::Rectangle {
+            width: 10e-3,
+            height: 10e-3,
+        },
+        e,
+        nu,
+        psi,
+    )
+    .expect("valid");
     if gravity {
         body.gravity = Vector3::new(0.0, 0.0, -G0);
     }
@@ -99,7 +116,14 @@ pub fn square_manipulator(length: f64, gravity: bool) -> Robot {
     let law = Arc::new(TcaLaw(manipulator_tca(length, turns)));
     let legs = [U_LEG_HALF_SPACING, -U_LEG_HALF_SPACING]
         .iter()
-        .map(|&y| Actuator::new(Routing::Straight { x: TCA_OFFSET, y }, 0.0, length, law.clone()))
+        .map(|&y| {
+            Actuator::new(
+                Routing::Straight { x: TCA_OFFSET, y },
+                0.0,
+                length,
+                law.clone(),
+            )
+        })
         .collect();
     Robot::new(body, legs).expect("valid")
 }
@@ -109,13 +133,29 @@ pub fn square_manipulator(length: f64, gravity: bool) -> Robot {
 pub fn fig6_circle(gravity: bool) -> Robot {
     let (psi, e, nu) = ECOFLEX10;
     let length = 0.040;
-    let mut body = Body::new(length, Section::Circle { diameter: 8e-3 }, e, nu, psi).expect("valid");
+    let mut body =
+        Body::new(length, Section::Circle { diameter: 8e-3 }, e, nu, psi).expect("valid");
     body.omega_star = Vector3::new(0.0, -1.0 / CIRCLE_PRECURVATURE_RADIUS, 0.0);
     if gravity {
         body.gravity = Vector3::new(0.0, 0.0, -G0);
     }
-    let law = Arc::new(TcaLaw(manipulator_tca(length, DEFAULT_TURNS_READING.leg_turns(length, 1))));
-    Robot::new(body, vec![Actuator::new(Routing::Straight { x: TCA_OFFSET, y: 0.0 }, 0.0, length, law)]).expect("valid")
+    let law = Arc::new(TcaLaw(manipulator_tca(
+        length,
+        DEFAULT_TURNS_READING.leg_turns(length, 1),
+    )));
+    Robot::new(
+        body,
+        vec![Actuator::new(
+            Routing::Straight {
+                x: TCA_OFFSET,
+                y: 0.0,
+            },
+            0.0,
+            length,
+            law,
+        )],
+    )
+    .expect("valid")
 }
 
 /// Fig. 6 bottom: square manipulator, 40 mm long.
@@ -151,7 +191,14 @@ pub const TABLE1_NORMAL: [f64; 3] = [-1.0, 0.0, 0.0];
 pub fn steel_tendon_robot() -> Robot {
     use crate::rod::ConstantTension;
     let length = 0.5;
-    let mut body = Body::new(length, Section::Circle { diameter: 2e-3 }, 200e9, 0.25, 8000.0).expect("valid");
+    let mut body = Body::new(
+        length,
+        Section::Circle { diameter: 2e-3 },
+        200e9,
+        0.25,
+        8000.0,
+    )
+    .expect("valid");
     body.shear_modulus = 80e9;
     body.gravity = Vector3::new(G0, 0.0, 0.0);
     let law = Arc::new(ConstantTension);
@@ -159,7 +206,15 @@ pub fn steel_tendon_robot() -> Robot {
     let tendons = (0..4)
         .map(|k| {
             let a = k as f64 * std::f64::consts::FRAC_PI_2;
-            Actuator::new(Routing::Straight { x: offset * a.cos(), y: offset * a.sin() }, 0.0, length, law.clone())
+            Actuator::new(
+                Routing::Straight {
+                    x: offset * a.cos(),
+                    y: offset * a.sin(),
+                },
+                0.0,
+                length,
+                law.clone(),
+            )
         })
         .collect();
     Robot::new(body, tendons).expect("valid")
@@ -174,9 +229,22 @@ pub const STEEL_TENDON_TENSIONS: [f64; 4] = [15.0, 0.0, 0.0, 0.0];
 pub fn soft_tendon_robot() -> Robot {
     use crate::rod::ConstantTension;
     let length = 0.2;
-    let body = Body::new(length, Section::Circle { diameter: 10e-3 }, 1e6, 0.5, 0.0).expect("valid");
+    let body =
+        Body::new(length, Section::Circle { diameter: 10e-3 }, 1e6, 0.5, 0.0).expect("valid");
     let law = Arc::new(ConstantTension);
-    Robot::new(body, vec![Actuator::new(Routing::Straight { x: SOFT_TENDON_OFFSET, y: 0.0 }, 0.0, length, law)]).expect("valid")
+    Robot::new(
+        body,
+        vec![Actuator::new(
+            Routing::Straight {
+                x: SOFT_TENDON_OFFSET,
+                y: 0.0,
+            },
+            0.0,
+            length,
+            law,
+        )],
+    )
+    .expect("valid")
 }
 
 /// Tendon offset \[m\] of [`soft_tendon_robot`].
@@ -225,7 +293,11 @@ mod tests {
         // Fig. 8's 26 mm legs: 38.2 / 76.4 / 49.66
         assert!((TurnsReading::PerLength.leg_turns(0.026, 2) - 49.66).abs() < 1e-12);
         // the circle's single TCA has 76.4 turns in every reading
-        for r in [TurnsReading::PerTca, TurnsReading::PerLeg, TurnsReading::PerLength] {
+        for r in [
+            TurnsReading::PerTca,
+            TurnsReading::PerLeg,
+            TurnsReading::PerLength,
+        ] {
             assert!((r.leg_turns(0.040, 1) - 76.4).abs() < 1e-12);
         }
     }

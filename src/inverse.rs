@@ -9,10 +9,12 @@
 
 use nalgebra::{DMatrix, DVector, Matrix3, Quaternion, Rotation3, Vector3};
 
+use crate::error::StopReason;
 use crate::error::{Error, Result};
 use crate::rod::{integrate_tangent, IvpSpec, Robot, TangentSeeds};
-use crate::error::StopReason;
-use crate::shooting::{assemble, initial_guess, shoot, solve_loaded, Loads, SolveOptions, Solution};
+use crate::shooting::{
+    assemble, initial_guess, shoot, solve_loaded, Loads, Solution, SolveOptions,
+};
 use crate::solve::{newton, FnSystem};
 
 /// Finite-difference scheme for [`sensitivities`].
@@ -61,13 +63,20 @@ impl Groups {
         if self.0.len() != robot.actuators.len() {
             return Err(Error::input(
                 "groups",
-                format!("expected one entry per actuator ({}), got {}", robot.actuators.len(), self.0.len()),
+                format!(
+                    "expected one entry per actuator ({}), got {}",
+                    robot.actuators.len(),
+                    self.0.len()
+                ),
             ));
         }
         let n = self.n_vars();
         for k in 0..n {
             if !self.0.contains(&k) {
-                return Err(Error::input("groups", format!("variable {k} drives no actuator (use 0..n without gaps)")));
+                return Err(Error::input(
+                    "groups",
+                    format!("variable {k} drives no actuator (use 0..n without gaps)"),
+                ));
             }
         }
         Ok(())
@@ -101,7 +110,11 @@ impl Groups {
 /// (An `acos` of the trace loses all digits of angles below ~1e-8 rad, which
 /// finite differences produce.)
 pub fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
-    let w = Vector3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]) * 0.5;
+    let w = Vector3::new(
+        r[(2, 1)] - r[(1, 2)],
+        r[(0, 2)] - r[(2, 0)],
+        r[(1, 0)] - r[(0, 1)],
+    ) * 0.5;
     let sn = w.norm();
     let cs = 0.5 * (r.trace() - 1.0);
     if sn < 1e-300 {
@@ -118,7 +131,12 @@ pub fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
     w * (th / sn)
 }
 
-fn pose_delta(p0: &Vector3<f64>, r0: &Matrix3<f64>, p1: &Vector3<f64>, r1: &Matrix3<f64>) -> [f64; 6] {
+fn pose_delta(
+    p0: &Vector3<f64>,
+    r0: &Matrix3<f64>,
+    p1: &Vector3<f64>,
+    r1: &Matrix3<f64>,
+) -> [f64; 6] {
     let dp = p1 - p0;
     let th = rotation_vector(&(r1 * r0.transpose()));
     [dp.x, dp.y, dp.z, th.x, th.y, th.z]
@@ -134,7 +152,14 @@ pub fn load_scales(robot: &Robot) -> (f64, f64) {
 
 /// `J` and `C` at a converged solution, from finite differences of IVPs
 /// around it (eqs 41-42), the paper's way.
-pub fn sensitivities(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Groups, steps: usize, scheme: Scheme) -> Result<Sensitivities> {
+pub fn sensitivities(
+    robot: &Robot,
+    sol: &Solution,
+    loads: &Loads,
+    groups: &Groups,
+    steps: usize,
+    scheme: Scheme,
+) -> Result<Sensitivities> {
     let rel = match scheme {
         Scheme::Forward => f64::EPSILON.sqrt(),
         Scheme::Central => f64::EPSILON.cbrt(),
@@ -148,7 +173,14 @@ pub fn sensitivities(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Grou
 /// (32)-(33) linearly, so `B_W` is known in closed form and `E_W = 0`. Needs
 /// `1 + 6 + N + n_vars` IVPs (forward) instead of the paper's `12 + 2N`;
 /// `C` has no truncation error from the wrench steps.
-pub fn sensitivities_fast(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Groups, steps: usize, scheme: Scheme) -> Result<Sensitivities> {
+pub fn sensitivities_fast(
+    robot: &Robot,
+    sol: &Solution,
+    loads: &Loads,
+    groups: &Groups,
+    steps: usize,
+    scheme: Scheme,
+) -> Result<Sensitivities> {
     let rel = match scheme {
         Scheme::Forward => f64::EPSILON.sqrt(),
         Scheme::Central => f64::EPSILON.cbrt(),
@@ -162,7 +194,13 @@ pub fn sensitivities_fast(robot: &Robot, sol: &Solution, loads: &Loads, groups: 
 /// `E_u, E_q` are the tangents of the tip pose (`dtheta = 2 vec(dq q^-1)`,
 /// world frame), `B_u, B_q` those of the scaled residual, `E_W = 0` and
 /// `B_W` in closed form (see [`sensitivities_fast`]).
-pub fn sensitivities_exact(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Groups, steps: usize) -> Result<Sensitivities> {
+pub fn sensitivities_exact(
+    robot: &Robot,
+    sol: &Solution,
+    loads: &Loads,
+    groups: &Groups,
+    steps: usize,
+) -> Result<Sensitivities> {
     groups.validate(robot)?;
     let len = robot.body.length;
     let na = robot.actuators.len();
@@ -181,7 +219,13 @@ pub fn sensitivities_exact(robot: &Robot, sol: &Solution, loads: &Loads, groups:
         seeds.tensions[(i, 6 + i)] = dt_de * len;
         seeds.tensions[(i, nx + groups.0[i])] = dt_dq;
     }
-    let spec = IvpSpec { robot, tensions: &tau, tip_force: loads.tip_force, tip_moment: loads.tip_moment, steps };
+    let spec = IvpSpec {
+        robot,
+        tensions: &tau,
+        tip_force: loads.tip_force,
+        tip_moment: loads.tip_moment,
+        steps,
+    };
     let v0 = Vector3::new(x[0], x[1], x[2]);
     let u0 = Vector3::new(x[3], x[4], x[5]) / len;
     let tan = integrate_tangent(&spec, &v0, &u0, &seeds, false)?;
@@ -193,7 +237,12 @@ pub fn sensitivities_exact(robot: &Robot, sol: &Solution, loads: &Loads, groups:
         for k in 0..3 {
             e[(k, c)] = tan.tip[(k, c)];
         }
-        let dq = Quaternion::new(tan.tip[(3, c)], tan.tip[(4, c)], tan.tip[(5, c)], tan.tip[(6, c)]);
+        let dq = Quaternion::new(
+            tan.tip[(3, c)],
+            tan.tip[(4, c)],
+            tan.tip[(5, c)],
+            tan.tip[(6, c)],
+        );
         let w = dq * q.conjugate() * 2.0;
         e[(3, c)] = w.i;
         e[(4, c)] = w.j;
@@ -213,7 +262,11 @@ pub fn sensitivities_exact(robot: &Robot, sol: &Solution, loads: &Loads, groups:
     let r0 = tan.ivp.tip.rotation();
     for k in 0..6 {
         for i in 0..3 {
-            let (row, val) = if k < 3 { (i, -r0[(k, i)] * fs) } else { (3 + i, -r0[(k - 3, i)] * ms) };
+            let (row, val) = if k < 3 {
+                (i, -r0[(k, i)] * fs)
+            } else {
+                (3 + i, -r0[(k - 3, i)] * ms)
+            };
             bm[(row, ncol + k)] = val;
         }
     }
@@ -227,14 +280,31 @@ pub fn sensitivities_exact(robot: &Robot, sol: &Solution, loads: &Loads, groups:
         reason: "B_u is singular".into(),
     };
     let eu = e.columns(0, nx).into_owned();
-    let jac = e.columns(nx, nz).into_owned() - &eu * lu.solve(&bm.columns(nx, nz).into_owned()).ok_or_else(singular)?; // (41)
-    let comp = -(&eu * lu.solve(&bm.columns(ncol, 6).into_owned()).ok_or_else(singular)?); // (42), E_W = 0
-    Ok(Sensitivities { jacobian: jac, compliance: comp, evaluations: 1 })
+    let jac = e.columns(nx, nz).into_owned()
+        - &eu
+            * lu.solve(&bm.columns(nx, nz).into_owned())
+                .ok_or_else(singular)?; // (41)
+    let comp = -(&eu
+        * lu.solve(&bm.columns(ncol, 6).into_owned())
+            .ok_or_else(singular)?); // (42), E_W = 0
+    Ok(Sensitivities {
+        jacobian: jac,
+        compliance: comp,
+        evaluations: 1,
+    })
 }
 
 /// [`sensitivities`] with a chosen relative step (for studies of step-size error).
 #[allow(clippy::too_many_arguments)]
-pub fn sensitivities_with_step(robot: &Robot, sol: &Solution, loads: &Loads, groups: &Groups, steps: usize, scheme: Scheme, rel: f64) -> Result<Sensitivities> {
+pub fn sensitivities_with_step(
+    robot: &Robot,
+    sol: &Solution,
+    loads: &Loads,
+    groups: &Groups,
+    steps: usize,
+    scheme: Scheme,
+    rel: f64,
+) -> Result<Sensitivities> {
     sensitivities_impl(robot, sol, loads, groups, steps, scheme, rel, false)
 }
 
@@ -266,20 +336,21 @@ fn sensitivities_impl(
     };
     let mut e = DMatrix::<f64>::zeros(6, nx + nz + 6);
     let mut bm = DMatrix::<f64>::zeros(nx, nx + nz + 6);
-    let mut put = |col: usize, plus: ([f64; 6], Vec<f64>), minus: Option<([f64; 6], Vec<f64>)>, h: f64| {
-        for i in 0..6 {
-            e[(i, col)] = match &minus {
-                Some(m) => (plus.0[i] - m.0[i]) / (2.0 * h),
-                None => plus.0[i] / h,
-            };
-        }
-        for i in 0..nx {
-            bm[(i, col)] = match &minus {
-                Some(m) => (plus.1[i] - m.1[i]) / (2.0 * h),
-                None => (plus.1[i] - b0[i]) / h,
-            };
-        }
-    };
+    let mut put =
+        |col: usize, plus: ([f64; 6], Vec<f64>), minus: Option<([f64; 6], Vec<f64>)>, h: f64| {
+            for i in 0..6 {
+                e[(i, col)] = match &minus {
+                    Some(m) => (plus.0[i] - m.0[i]) / (2.0 * h),
+                    None => plus.0[i] / h,
+                };
+            }
+            for i in 0..nx {
+                bm[(i, col)] = match &minus {
+                    Some(m) => (plus.1[i] - m.1[i]) / (2.0 * h),
+                    None => (plus.1[i] - b0[i]) / h,
+                };
+            }
+        };
     // unknowns u
     for j in 0..nx {
         // Typical sizes: strains ~1; actuator elongations / L ~1e-2. The
@@ -323,7 +394,11 @@ fn sensitivities_impl(
         for k in 0..6 {
             let col = nx + nz + k;
             for i in 0..3 {
-                let (row, val) = if k < 3 { (i, -r0[(k, i)] * fs) } else { (3 + i, -r0[(k - 3, i)] * ms) };
+                let (row, val) = if k < 3 {
+                    (i, -r0[(k, i)] * fs)
+                } else {
+                    (3 + i, -r0[(k - 3, i)] * ms)
+                };
                 bm[(row, col)] = val;
             }
         }
@@ -332,7 +407,11 @@ fn sensitivities_impl(
         let (fc, mc) = load_scales(robot);
         for k in 0..6 {
             let scale = if k < 3 { fc } else { mc };
-            let w0 = if k < 3 { loads.tip_force[k] } else { loads.tip_moment[k - 3] };
+            let w0 = if k < 3 {
+                loads.tip_force[k]
+            } else {
+                loads.tip_moment[k - 3]
+            };
             let h = rel * (w0.abs() / scale).max(1.0) * scale;
             let perturbed = |d: f64| {
                 let mut l = *loads;
@@ -366,7 +445,8 @@ fn sensitivities_impl(
     };
     let eu = e.columns(0, nx).into_owned();
     let jac = e.columns(nx, nz).into_owned() - &eu * solve_b(bm.columns(nx, nz).into_owned())?;
-    let comp = e.columns(nx + nz, 6).into_owned() - &eu * solve_b(bm.columns(nx + nz, 6).into_owned())?;
+    let comp =
+        e.columns(nx + nz, 6).into_owned() - &eu * solve_b(bm.columns(nx + nz, 6).into_owned())?;
     Ok(Sensitivities {
         jacobian: jac,
         compliance: comp,
@@ -439,10 +519,17 @@ pub fn tip_position_inverse(
     }
     let nz = groups.n_vars();
     if z_start.len() != nz {
-        return Err(Error::input("start", format!("expected {nz} variables, got {}", z_start.len())));
+        return Err(Error::input(
+            "start",
+            format!("expected {nz} variables, got {}", z_start.len()),
+        ));
     }
     let bounds = groups.bounds(robot);
-    let mut z: Vec<f64> = z_start.iter().zip(&bounds).map(|(v, (lo, hi))| v.clamp(*lo, *hi)).collect();
+    let mut z: Vec<f64> = z_start
+        .iter()
+        .zip(&bounds)
+        .map(|(v, (lo, hi))| v.clamp(*lo, *hi))
+        .collect();
     let loads = Loads::of(robot);
     let mut sol = solve_loaded(robot, &groups.inputs(&z), &loads, &opts.forward, None)?;
     let mut evals = sol.evaluations;
@@ -462,7 +549,14 @@ pub fn tip_position_inverse(
     let mut iterations = 0;
     while err.norm() > opts.tol && iterations < opts.max_iter {
         iterations += 1;
-        let sens = sensitivities_fast(robot, &sol, &loads, groups, opts.forward.steps, Scheme::Forward)?;
+        let sens = sensitivities_fast(
+            robot,
+            &sol,
+            &loads,
+            groups,
+            opts.forward.steps,
+            Scheme::Forward,
+        )?;
         evals += sens.evaluations;
         let mut jr = sens.jacobian.rows(0, rows).into_owned();
         if let Some((_, w)) = target_rotation {
@@ -483,7 +577,10 @@ pub fn tip_position_inverse(
             let jf = DMatrix::from_fn(rows, cols.len(), |r, c| jr[(r, cols[c])]);
             let lam2 = opts.damping * opts.damping;
             let a = jf.transpose() * &jf + DMatrix::identity(cols.len(), cols.len()) * lam2;
-            let step = a.lu().solve(&(jf.transpose() * &err)).unwrap_or_else(|| DVector::zeros(cols.len()));
+            let step = a
+                .lu()
+                .solve(&(jf.transpose() * &err))
+                .unwrap_or_else(|| DVector::zeros(cols.len()));
             dz = DVector::zeros(nz);
             for (c, &k) in cols.iter().enumerate() {
                 dz[k] = step[c];
@@ -504,8 +601,16 @@ pub fn tip_position_inverse(
         let mut t = 1.0;
         let mut accepted = false;
         while t > 1e-4 {
-            let zt: Vec<f64> = (0..nz).map(|k| (z[k] + t * dz[k]).clamp(bounds[k].0, bounds[k].1)).collect();
-            if let Ok(st) = solve_loaded(robot, &groups.inputs(&zt), &loads, &opts.forward, Some(&sol)) {
+            let zt: Vec<f64> = (0..nz)
+                .map(|k| (z[k] + t * dz[k]).clamp(bounds[k].0, bounds[k].1))
+                .collect();
+            if let Ok(st) = solve_loaded(
+                robot,
+                &groups.inputs(&zt),
+                &loads,
+                &opts.forward,
+                Some(&sol),
+            ) {
                 evals += st.evaluations;
                 let et = err_vec(&st);
                 if et.norm() < err.norm() {
@@ -526,7 +631,11 @@ pub fn tip_position_inverse(
         }
     }
     let (e, s, zb) = best;
-    let at_bound = zb.iter().zip(&bounds).map(|(v, (lo, hi))| *v <= *lo || *v >= *hi).collect();
+    let at_bound = zb
+        .iter()
+        .zip(&bounds)
+        .map(|(v, (lo, hi))| *v <= *lo || *v >= *hi)
+        .collect();
     Ok(InverseResult {
         solution: s,
         variables: zb,
@@ -560,7 +669,10 @@ impl Block {
         if !(n > 0.0) {
             return Err(Error::input("normal", "must be a non-zero vector"));
         }
-        Ok(Block { point, normal: normal / n })
+        Ok(Block {
+            point,
+            normal: normal / n,
+        })
     }
     fn loads(&self, robot: &Robot, f: f64) -> Loads {
         let mut l = Loads::of(robot);
@@ -589,7 +701,14 @@ pub struct BlockedResult {
 /// `normal . (p(L) - point) = 0` an extra residual. `f` may come out negative
 /// if the tip would pull away from the block (the caller decides whether
 /// contact holds).
-pub fn blocked_force(robot: &Robot, groups: &Groups, block: &Block, z: &[f64], opts: &SolveOptions, warm: Option<(&Solution, f64)>) -> Result<BlockedResult> {
+pub fn blocked_force(
+    robot: &Robot,
+    groups: &Groups,
+    block: &Block,
+    z: &[f64],
+    opts: &SolveOptions,
+    warm: Option<(&Solution, f64)>,
+) -> Result<BlockedResult> {
     groups.validate(robot)?;
     let inputs = groups.inputs(z);
     robot.check_inputs(&inputs)?;
@@ -608,7 +727,15 @@ pub fn blocked_force(robot: &Robot, groups: &Groups, block: &Block, z: &[f64], o
     let nr = newton(&mut sys, &x0, &opts.newton(), "blocked-tip shooting")?;
     let force = nr.x[nx] * fc;
     let l = block.loads(robot, force);
-    let sol = assemble(robot, &inputs, &l, &nr.x[..nx], opts.steps, nr.iterations, nr.evaluations)?;
+    let sol = assemble(
+        robot,
+        &inputs,
+        &l,
+        &nr.x[..nx],
+        opts.steps,
+        nr.iterations,
+        nr.evaluations,
+    )?;
     Ok(BlockedResult {
         solution: sol,
         force,
@@ -621,14 +748,25 @@ pub fn blocked_force(robot: &Robot, groups: &Groups, block: &Block, z: &[f64], o
 /// Direct solve for the single actuation variable at which the blocked tip
 /// presses with `force` \[N\] (the variable is an extra unknown). Independent
 /// check of [`blocked_temperature`].
-pub fn blocked_variable_direct(robot: &Robot, groups: &Groups, block: &Block, force: f64, z_guess: f64, opts: &SolveOptions, warm: Option<&Solution>) -> Result<BlockedResult> {
+pub fn blocked_variable_direct(
+    robot: &Robot,
+    groups: &Groups,
+    block: &Block,
+    force: f64,
+    z_guess: f64,
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+) -> Result<BlockedResult> {
     groups.validate(robot)?;
     if groups.n_vars() != 1 {
-        return Err(Error::input("groups", "a blocked-force temperature needs exactly one actuation variable"));
+        return Err(Error::input(
+            "groups",
+            "a blocked-force temperature needs exactly one actuation variable",
+        ));
     }
     crate::error::finite("force [N]", force)?;
     let (lo, hi) = groups.bounds(robot)[0];
-    let zs = (hi - lo).min(1e3).max(1.0);
+    let zs = (hi - lo).clamp(1.0, 1e3);
     let len = robot.body.length;
     let nx = 6 + robot.actuators.len();
     let l = block.loads(robot, force);
@@ -643,9 +781,22 @@ pub fn blocked_variable_direct(robot: &Robot, groups: &Groups, block: &Block, fo
         Ok(r)
     };
     let mut sys = FnSystem::new(f);
-    let nr = newton(&mut sys, &x0, &opts.newton(), "blocked-tip temperature shooting")?;
+    let nr = newton(
+        &mut sys,
+        &x0,
+        &opts.newton(),
+        "blocked-tip temperature shooting",
+    )?;
     let z = nr.x[nx] * zs;
-    let sol = assemble(robot, &groups.inputs(&[z]), &l, &nr.x[..nx], opts.steps, nr.iterations, nr.evaluations)?;
+    let sol = assemble(
+        robot,
+        &groups.inputs(&[z]),
+        &l,
+        &nr.x[..nx],
+        opts.steps,
+        nr.iterations,
+        nr.evaluations,
+    )?;
     Ok(BlockedResult {
         solution: sol,
         force,
@@ -664,10 +815,21 @@ pub fn blocked_variable_direct(robot: &Robot, groups: &Groups, block: &Block, fo
 /// an input outside the actuator's range is [`Error::NoSolution`]; a step that
 /// overshoots a bound by linearisation error (a tenth of the step at most) is
 /// clamped to it.
-pub fn blocked_temperature(robot: &Robot, groups: &Groups, block: &Block, start: &Solution, force: f64, increments: usize, opts: &SolveOptions) -> Result<BlockedResult> {
+pub fn blocked_temperature(
+    robot: &Robot,
+    groups: &Groups,
+    block: &Block,
+    start: &Solution,
+    force: f64,
+    increments: usize,
+    opts: &SolveOptions,
+) -> Result<BlockedResult> {
     groups.validate(robot)?;
     if groups.n_vars() != 1 {
-        return Err(Error::input("groups", "a blocked-force temperature needs exactly one actuation variable"));
+        return Err(Error::input(
+            "groups",
+            "a blocked-force temperature needs exactly one actuation variable",
+        ));
     }
     crate::error::finite("force [N]", force)?;
     if increments == 0 {
@@ -693,12 +855,19 @@ pub fn blocked_temperature(robot: &Robot, groups: &Groups, block: &Block, start:
                 evaluations: evals,
                 residual: f64::INFINITY,
                 stop: StopReason::SingularJacobian,
-                reason: "the actuator cannot move the tip along the block normal (n^T J = 0)".into(),
+                reason: "the actuator cannot move the tip along the block normal (n^T J = 0)"
+                    .into(),
             });
         }
         // wrench increment on the tip: -df n (force only)
         let step = if k < increments { df } else { 0.0 };
-        let nc_dw: f64 = (0..3).map(|i| (0..3).map(|j| n[i] * sens.compliance[(i, j)] * (-n[j] * step)).sum::<f64>()).sum();
+        let nc_dw: f64 = (0..3)
+            .map(|i| {
+                (0..3)
+                    .map(|j| n[i] * sens.compliance[(i, j)] * (-n[j] * step))
+                    .sum::<f64>()
+            })
+            .sum();
         let gap = n.dot(&(block.point - sol.tip_position()));
         let dz = (-nc_dw + gap) / nj;
         z += dz;
@@ -748,7 +917,17 @@ pub fn blocked_temperature(robot: &Robot, groups: &Groups, block: &Block, start:
 /// `mu n F(T) = m g`, each finger's tip blocked at its reference position
 /// and pressing along `normal`. Returns the blocked result for one finger.
 #[allow(clippy::too_many_arguments)]
-pub fn grasp(robot: &Robot, groups: &Groups, normal: &Vector3<f64>, mass: f64, mu: f64, fingers: usize, gravity: f64, increments: usize, opts: &SolveOptions) -> Result<BlockedResult> {
+pub fn grasp(
+    robot: &Robot,
+    groups: &Groups,
+    normal: &Vector3<f64>,
+    mass: f64,
+    mu: f64,
+    fingers: usize,
+    gravity: f64,
+    increments: usize,
+    opts: &SolveOptions,
+) -> Result<BlockedResult> {
     crate::error::positive("mass [kg]", mass)?;
     crate::error::positive("mu [-]", mu)?;
     crate::error::positive("gravity [m/s^2]", gravity)?;

@@ -18,16 +18,20 @@
 //!
 //! SI units throughout (m, N, Pa, kg), except temperatures, in degrees Celsius.
 
-pub mod error;
+// `!(x > 0.0)` is deliberate throughout: unlike `x <= 0.0` it is also true for
+// NaN, so one comparison rejects non-positive and non-finite values alike.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod batch;
-pub mod branch;
 pub mod bench;
+pub mod branch;
+pub mod error;
 pub mod experiments;
 pub mod inverse;
 pub mod material;
 pub mod problems;
-pub mod roots;
 pub mod rod;
+pub mod roots;
 pub mod shooting;
 pub mod solve;
 pub mod stability;
@@ -38,7 +42,7 @@ pub mod validate;
 mod python;
 
 pub use error::{Error, Result, StopReason};
+pub use material::Material;
 /// The linear algebra crate of the public API (vectors, matrices).
 pub use nalgebra;
-pub use material::Material;
 pub use tca::{Chirality, Tca};

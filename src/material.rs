@@ -102,7 +102,11 @@ impl Material {
             return Err(Error::param("t_min [C]", t_min, "> -273.15 C"));
         }
         if t_max <= t_min {
-            return Err(Error::param("t_max [C]", t_max, format!("> t_min = {t_min} C")));
+            return Err(Error::param(
+                "t_max [C]",
+                t_max,
+                format!("> t_min = {t_min} C"),
+            ));
         }
         if t_ref < t_min || t_ref > t_max {
             return Err(Error::param(
@@ -211,7 +215,10 @@ impl Material {
         let t_ref = 25.0_f64;
         // normal equations of  rho_ref (1 - a x) + rho_slope (2 x - a x^2) = a,  x = T - t_ref
         let (mut m11, mut m12, mut m22, mut b1, mut b2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for &(t, a) in NYLON66_RADIAL_CTE.iter().filter(|p| p.0 >= t_ref && p.0 <= 160.0) {
+        for &(t, a) in NYLON66_RADIAL_CTE
+            .iter()
+            .filter(|p| p.0 >= t_ref && p.0 <= 160.0)
+        {
             let x = t - t_ref;
             let (u, v) = (1.0 - a * x, 2.0 * x - a * x * x);
             m11 += u * u;
@@ -385,18 +392,27 @@ mod tests {
             assert!(rel.abs() < tol, "{t} C: {rel}");
         }
         let (.., r, rs) = m.coefficients();
-        assert!((r - 1.158e-4).abs() < 1e-7 && (rs - 1.160e-6).abs() < 1e-9, "{r} {rs}");
+        assert!(
+            (r - 1.158e-4).abs() < 1e-7 && (rs - 1.160e-6).abs() < 1e-9,
+            "{r} {rs}"
+        );
     }
 
     #[test]
     fn instantaneous_expansion_is_log_derivative_of_diameter() {
-        for m in [Material::silver_coated_nylon(), Material::nylon66_measured_cte()] {
+        for m in [
+            Material::silver_coated_nylon(),
+            Material::nylon66_measured_cte(),
+        ] {
             for t in [30.0, 95.0, 150.0] {
                 let h = 1e-3;
                 let ln_d = |t: f64| m.diameter_ratio(t).unwrap().ln();
                 let fd = (ln_d(t + h) - ln_d(t - h)) / (2.0 * h);
                 // central difference: truncation ~h^2 |(ln d)'''| < 1e-12, rounding ~1e-16/h
-                assert!((m.instantaneous_expansion(t).unwrap() - fd).abs() < 1e-10, "{t}");
+                assert!(
+                    (m.instantaneous_expansion(t).unwrap() - fd).abs() < 1e-10,
+                    "{t}"
+                );
             }
         }
         // the default's d'/d over 95-135 C is 5.90e-4 .. 8.41e-4 1/C (issue 13 quotes d'/d0,
@@ -417,7 +433,8 @@ mod tests {
         assert!(nylon66_radial_cte(160.5).is_err() && nylon66_radial_cte(f64::NAN).is_err());
         let m = Material::nylon66_measured_cte();
         let h = m.with_expansion_scale(0.5).unwrap();
-        let ratio = (h.diameter_ratio(120.0).unwrap() - 1.0) / (m.diameter_ratio(120.0).unwrap() - 1.0);
+        let ratio =
+            (h.diameter_ratio(120.0).unwrap() - 1.0) / (m.diameter_ratio(120.0).unwrap() - 1.0);
         assert!((ratio - 0.5).abs() < 1e-12);
         assert!(m.with_expansion_scale(0.0).is_err());
     }

@@ -153,7 +153,9 @@ impl Design {
         let b = &self.robot.body;
         let sec = match b.section {
             Section::Circle { diameter } => format!("circle {:.1} mm", diameter * 1e3),
-            Section::Rectangle { width, height } => format!("rect {:.1}x{:.1} mm", width * 1e3, height * 1e3),
+            Section::Rectangle { width, height } => {
+                format!("rect {:.1}x{:.1} mm", width * 1e3, height * 1e3)
+            }
             Section::Custom { .. } => "custom".into(),
         };
         let acts: Vec<String> = self
@@ -167,7 +169,11 @@ impl Design {
                     Routing::Straight { .. } => "straight",
                     Routing::Helix { .. } => "helix",
                 };
-                format!("{k:?} {route} [{:.0},{:.0}] mm @ {x:.4e}", a.s_start * 1e3, a.s_end * 1e3)
+                format!(
+                    "{k:?} {route} [{:.0},{:.0}] mm @ {x:.4e}",
+                    a.s_start * 1e3,
+                    a.s_end * 1e3
+                )
             })
             .collect();
         format!(
@@ -267,11 +273,12 @@ fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
     if rng.chance(0.3) {
         body.tip_moment = rng.unit_vector() * rng.range(0.0, 1.0) * ei / length;
     }
-    let half_min = 0.5 * match section {
-        Section::Circle { diameter } => diameter,
-        Section::Rectangle { width, height } => width.min(height),
-        Section::Custom { .. } => unreachable!(),
-    };
+    let half_min = 0.5
+        * match section {
+            Section::Circle { diameter } => diameter,
+            Section::Rectangle { width, height } => width.min(height),
+            Section::Custom { .. } => unreachable!(),
+        };
     let n_act = 1 + rng.below(4);
     let mut actuators = Vec::with_capacity(n_act);
     let mut inputs = Vec::with_capacity(n_act);
@@ -283,8 +290,16 @@ fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
             _ => ActuatorKind::LinearTendon,
         };
         // anchors: each inside the body with probability 0.4
-        let s_start = if rng.chance(0.4) { rng.range(0.0, 0.5) * length } else { 0.0 };
-        let s_end = if rng.chance(0.4) { rng.range(s_start / length + 0.2, 1.0) * length } else { length };
+        let s_start = if rng.chance(0.4) {
+            rng.range(0.0, 0.5) * length
+        } else {
+            0.0
+        };
+        let s_end = if rng.chance(0.4) {
+            rng.range(s_start / length + 0.2, 1.0) * length
+        } else {
+            length
+        };
         let span = s_end - s_start;
         // the actuator's own radius: a TCA's coil, a tendon's sheath
         let own = match kind {
@@ -322,13 +337,27 @@ fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
             _ => half_min,
         };
         let ea = e * section.properties().0;
-        let kappa = (theta / span).min(0.3 / half_max).min(0.2 * ea / n_act as f64 * offset / ei);
+        let kappa = (theta / span)
+            .min(0.3 / half_max)
+            .min(0.2 * ea / n_act as f64 * offset / ei);
         let (law, input): (Arc<dyn crate::rod::ForceLaw>, f64) = match kind {
             ActuatorKind::Tca => {
-                let chirality = if rng.chance(0.7) { Chirality::Extension } else { Chirality::Contraction };
+                let chirality = if rng.chance(0.7) {
+                    Chirality::Extension
+                } else {
+                    Chirality::Contraction
+                };
                 let alpha0 = rng.range(10.0, 20.0).to_radians();
                 let turns = span * rng.range(1000.0, 2500.0);
-                let tca = Tca::from_pitch_angle(span, alpha0, 2.0 * own, turns, chirality, Material::silver_coated_nylon()).ok()?;
+                let tca = Tca::from_pitch_angle(
+                    span,
+                    alpha0,
+                    2.0 * own,
+                    turns,
+                    chirality,
+                    Material::silver_coated_nylon(),
+                )
+                .ok()?;
                 (Arc::new(TcaLaw(tca)), rng.range(25.0, 160.0))
             }
             ActuatorKind::ConstantTension => (Arc::new(ConstantTension), ei * kappa / offset),
@@ -348,7 +377,12 @@ fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
     }
     let robot = Robot::new(body, actuators).ok()?;
     robot.check_inputs(&inputs).ok()?;
-    Some(Design { index, robot, inputs, kinds })
+    Some(Design {
+        index,
+        robot,
+        inputs,
+        kinds,
+    })
 }
 
 /// Result of [`equilibrium`]: base wrench against external loads.
@@ -413,7 +447,11 @@ pub fn equilibrium(robot: &Robot, sol: &Solution) -> Equilibrium {
     let wf = fd * len + tf;
     let wm = pint.cross(&fd) + ld * len + tip_p.cross(&tf) + tm;
     scale_f = scale_f.max((fd * len).norm()).max(tf.norm());
-    let mut scale_m = (ld * len).norm().max(tm.norm()).max(scale_f * len).max((pint.cross(&fd)).norm());
+    let mut scale_m = (ld * len)
+        .norm()
+        .max(tm.norm())
+        .max(scale_f * len)
+        .max((pint.cross(&fd)).norm());
     for (n, m) in sol.internal_force.iter().zip(&sol.internal_moment) {
         scale_f = scale_f.max(n.norm());
         scale_m = scale_m.max(m.norm());
@@ -423,7 +461,8 @@ pub fn equilibrium(robot: &Robot, sol: &Solution) -> Equilibrium {
     let em = bm - wm;
     let rel = |x: f64, s: f64| if s > 0.0 { x / s } else { x };
     let relative = rel(ef.norm(), scale_f).max(rel(em.norm(), scale_m));
-    let solution_mismatch = rel((sol.base_force - bf).norm(), scale_f).max(rel((sol.base_moment - bm).norm(), scale_m));
+    let solution_mismatch =
+        rel((sol.base_force - bf).norm(), scale_f).max(rel((sol.base_moment - bm).norm(), scale_m));
     Equilibrium {
         force_error: ef,
         moment_error: em,

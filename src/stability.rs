@@ -137,7 +137,8 @@ fn wrench(robot: &Robot, tau: &[f64], s: f64, st: &RodState) -> (Vector3<f64>, V
     let mut m = kbt * (st.u - b.omega_star);
     let at_tip = s >= len - tol;
     for (i, a) in robot.actuators.iter().enumerate() {
-        let crosses = a.s_start <= s + tol && (a.s_end > s + tol || (at_tip && a.s_end >= len - tol));
+        let crosses =
+            a.s_start <= s + tol && (a.s_end > s + tol || (at_tip && a.s_end >= len - tol));
         if crosses {
             let (r, rp, _) = a.routing.eval(s);
             let pb = st.v + st.u.cross(&r) + rp;
@@ -149,7 +150,13 @@ fn wrench(robot: &Robot, tau: &[f64], s: f64, st: &RodState) -> (Vector3<f64>, V
     (rm * n, rm * m)
 }
 
-fn profile(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize) -> Result<Profile> {
+fn profile(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    steps: usize,
+) -> Result<Profile> {
     let (resid, ivp, tau) = shoot(robot, inputs, loads, x, steps, true)?;
     let k = ivp.nodes.len();
     let mut pr = Profile {
@@ -171,7 +178,11 @@ fn profile(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize
 
 /// Axial vector of the skew part of `a`.
 fn vee_skew(a: &Matrix3<f64>) -> Vector3<f64> {
-    Vector3::new(a[(2, 1)] - a[(1, 2)], a[(0, 2)] - a[(2, 0)], a[(1, 0)] - a[(0, 1)]) * 0.5
+    Vector3::new(
+        a[(2, 1)] - a[(1, 2)],
+        a[(0, 2)] - a[(2, 0)],
+        a[(1, 0)] - a[(0, 1)],
+    ) * 0.5
 }
 
 /// Smallest eigenvalue of the symmetric part of a square matrix.
@@ -183,7 +194,11 @@ fn min_sym_eig(k: &DMatrix<f64>) -> f64 {
 fn min_sym_pair(k: &DMatrix<f64>) -> (f64, DVector<f64>) {
     let sym = (k + k.transpose()) * 0.5;
     let e = SymmetricEigen::new(sym);
-    let (i, _) = e.eigenvalues.iter().enumerate().fold((0, f64::INFINITY), |a, (i, &v)| if v < a.1 { (i, v) } else { a });
+    let (i, _) =
+        e.eigenvalues.iter().enumerate().fold(
+            (0, f64::INFINITY),
+            |a, (i, &v)| if v < a.1 { (i, v) } else { a },
+        );
     (e.eigenvalues[i], e.eigenvectors.column(i).into_owned())
 }
 
@@ -223,14 +238,28 @@ fn exact_tangents(robot: &Robot, sol: &Solution) -> Result<Tangents> {
     let tol = 1e-12 * len;
     let (kse, kbt) = b.stiffness();
     let (fs, ms) = residual_scales(robot);
-    let (_, jac, tan, tau) = shoot_jacobian(robot, &sol.inputs, &sol.loads, &sol.unknowns, sol.steps, true)?;
+    let (_, jac, tan, tau) = shoot_jacobian(
+        robot,
+        &sol.inputs,
+        &sol.loads,
+        &sol.unknowns,
+        sol.steps,
+        true,
+    )?;
     // d tau / d z: only through the actuator's own elongation guess
     let mut dtau = DMatrix::zeros(na, nz);
     for (i, a) in robot.actuators.iter().enumerate() {
-        let (_, dt_de, _) = a.law.tension_derivatives(sol.unknowns[6 + i] * len, sol.inputs[i])?;
+        let (_, dt_de, _) = a
+            .law
+            .tension_derivatives(sol.unknowns[6 + i] * len, sol.inputs[i])?;
         dtau[(i, 6 + i)] = dt_de * len;
     }
-    let mut out = Tangents { s: vec![], y: vec![], h: vec![], e: jac.rows(6, na).into_owned() };
+    let mut out = Tangents {
+        s: vec![],
+        y: vec![],
+        h: vec![],
+        e: jac.rows(6, na).into_owned(),
+    };
     for node in &tan.nodes {
         let sk = node.s;
         let y = &node.state;
@@ -246,7 +275,8 @@ fn exact_tangents(robot: &Robot, sol: &Solution) -> Result<Tangents> {
         let mut dmb = kbt * t.rows(10, 3);
         let at_tip = sk >= len - tol;
         for (i, a) in robot.actuators.iter().enumerate() {
-            if !(a.s_start <= sk + tol && (a.s_end > sk + tol || (at_tip && a.s_end >= len - tol))) {
+            if !(a.s_start <= sk + tol && (a.s_end > sk + tol || (at_tip && a.s_end >= len - tol)))
+            {
                 continue;
             }
             let (r, rp, _) = a.routing.eval(sk);
@@ -335,11 +365,20 @@ fn check(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<()> 
     robot.validate()?;
     let na = robot.actuators.len();
     if sol.unknowns.len() != 6 + na || sol.inputs.len() != na {
-        return Err(Error::input("solution", format!("solution of a robot with {} actuators, this one has {na}", sol.inputs.len())));
+        return Err(Error::input(
+            "solution",
+            format!(
+                "solution of a robot with {} actuators, this one has {na}",
+                sol.inputs.len()
+            ),
+        ));
     }
     for (j, b) in blocked.iter().enumerate() {
         if !(b.iter().all(|v| v.is_finite()) && b.norm() > 0.0) {
-            return Err(Error::input(&format!("blocked[{j}]"), "must be a finite non-zero vector"));
+            return Err(Error::input(
+                &format!("blocked[{j}]"),
+                "must be a finite non-zero vector",
+            ));
         }
     }
     Ok(())
@@ -363,7 +402,13 @@ pub fn stability_fd(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> 
     verdict(robot, sol, blocked, t, 7 + robot.actuators.len())
 }
 
-fn verdict(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>], t: Tangents, evaluations: usize) -> Result<Stability> {
+fn verdict(
+    robot: &Robot,
+    sol: &Solution,
+    blocked: &[Vector3<f64>],
+    t: Tangents,
+    evaluations: usize,
+) -> Result<Stability> {
     let na = robot.actuators.len();
     let nz = 6 + na;
     let len = robot.body.length;
@@ -452,13 +497,18 @@ fn verdict(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>], t: Tangents,
     } else {
         let ex = t.e.columns(0, 6).into_owned();
         let ed = t.e.columns(6, na).into_owned();
-        let Some(edi) = ed.try_inverse() else { return Ok(out) };
+        let Some(edi) = ed.try_inverse() else {
+            return Ok(out);
+        };
         let mut z = DMatrix::zeros(nz, 6);
-        z.view_mut((0, 0), (6, 6)).copy_from(&DMatrix::identity(6, 6));
+        z.view_mut((0, 0), (6, 6))
+            .copy_from(&DMatrix::identity(6, 6));
         z.view_mut((6, 0), (na, 6)).copy_from(&(-edi * ex));
         z
     };
-    let Some(hi) = (&t.h[last] * &z).try_inverse() else { return Ok(out) };
+    let Some(hi) = (&t.h[last] * &z).try_inverse() else {
+        return Ok(out);
+    };
     let kfull = &t.y[last] * &z * hi;
     // restrict to tip variations orthogonal to the blocked directions
     let basis: Vec<DVector<f64>> = blocked

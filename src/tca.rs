@@ -159,7 +159,14 @@ impl Tca {
             ));
         }
         let cl = positive("coiled_length L [m]", coiled_length)?;
-        Tca::new(cl / alpha0.sin(), cl, coil_diameter, turns, chirality, material)
+        Tca::new(
+            cl / alpha0.sin(),
+            cl,
+            coil_diameter,
+            turns,
+            chirality,
+            material,
+        )
     }
 
     /// Twisted-fibre length `l` \[m\].
@@ -425,7 +432,9 @@ impl<'a> TcaAt<'a> {
         let ln = t.fibre_length / n;
         let (s, c) = alpha.sin_cos();
         let (s2, c2) = (s * s, c * c);
-        8.0 * n / (PI.powi(3) * self.d.powi(4)) * ln.powi(3) * (c2 * c2 / self.g + 2.0 * s2 * c2 / self.e)
+        8.0 * n / (PI.powi(3) * self.d.powi(4))
+            * ln.powi(3)
+            * (c2 * c2 / self.g + 2.0 * s2 * c2 / self.e)
             + 8.0 * n / (PI * self.d * self.d) * ln * (c2 / (2.0 * self.g) + s2 / (2.0 * self.e))
     }
 
@@ -542,7 +551,11 @@ impl TcaAt<'_> {
             let ks = (self.force(h)? - f0) / h;
             let kc = self.contact_stiffness().max(ks);
             let eps = Self::CONTACT_SMOOTHING;
-            return Ok(if delta >= -eps { ks - (kc - ks) * delta / eps } else { kc });
+            return Ok(if delta >= -eps {
+                ks - (kc - ks) * delta / eps
+            } else {
+                kc
+            });
         }
         let a = t.pitch_angle(delta)?;
         let (s, c) = a.sin_cos();
@@ -552,7 +565,9 @@ impl TcaAt<'_> {
         let ka = 8.0 * n / (PI.powi(3) * self.d.powi(4)) * ln.powi(3);
         let kb = 8.0 * n / (PI * self.d * self.d) * ln;
         let f11 = self.f11(a);
-        let df11 = ka * (-4.0 * c.powi(3) * s / self.g + 4.0 * (s * c.powi(3) - s.powi(3) * c) / self.e) + kb * (-c * s / self.g + s * c / self.e);
+        let df11 = ka
+            * (-4.0 * c.powi(3) * s / self.g + 4.0 * (s * c.powi(3) - s.powi(3) * c) / self.e)
+            + kb * (-c * s / self.g + s * c / self.e);
         let f12 = self.f12(a);
         let df12 = -2.0 * 8.0 * n / (PI * PI * self.d.powi(4)) * ln * ln * c * s / self.g;
         let num = delta - self.sign() * f12 * self.tau;
@@ -566,8 +581,15 @@ mod tests {
     use super::*;
 
     fn fig5_three_thread() -> Tca {
-        Tca::new(0.497, 0.110, 2e-3, 300.0, Chirality::Extension, Material::silver_coated_nylon())
-            .unwrap()
+        Tca::new(
+            0.497,
+            0.110,
+            2e-3,
+            300.0,
+            Chirality::Extension,
+            Material::silver_coated_nylon(),
+        )
+        .unwrap()
     }
 
     #[test]
@@ -578,7 +600,9 @@ mod tests {
         let f = |d: f64| at.tension(d).unwrap();
         // continuity at 0 and at -eps (relative 1e-9: rounding of the pieces)
         assert!((f(-1e-18) - f(0.0)).abs() < 1e-12);
-        assert!((f(-e * (1.0 - 1e-12)) - f(-e * (1.0 + 1e-12))).abs() < 1e-9 * f(-e).abs().max(1e-12));
+        assert!(
+            (f(-e * (1.0 - 1e-12)) - f(-e * (1.0 + 1e-12))).abs() < 1e-9 * f(-e).abs().max(1e-12)
+        );
         // slope rises from the spring's to the contact stiffness
         let slope = |d: f64| (f(d + 1e-12) - f(d - 1e-12)) / 2e-12;
         assert!(slope(-2.0 * e) > 100.0 * slope(1e-6));
@@ -655,7 +679,10 @@ mod tests {
             // ratios of scaled lengths: equal to rounding (a few ulps)
             assert!((s.alpha0() - t.alpha0()).abs() < 1e-14, "{frac}");
             assert!((s.d0() - t.d0()).abs() < 1e-15 * t.d0().max(1.0), "{frac}");
-            assert!((s.turns() / s.fibre_length() - t.turns() / t.fibre_length()).abs() < 1e-9, "{frac}");
+            assert!(
+                (s.turns() / s.fibre_length() - t.turns() / t.fibre_length()).abs() < 1e-9,
+                "{frac}"
+            );
             assert!((s.n_coils() - frac * t.n_coils()).abs() < 1e-12 * t.n_coils());
             assert_eq!(s.coil_diameter(), t.coil_diameter());
             assert_eq!(s.chirality(), t.chirality());
@@ -667,7 +694,11 @@ mod tests {
             for (f, temp) in [(0.02, 25.0), (-0.05, 120.0), (0.0, 160.0)] {
                 let dw = t.displacement(f, temp).unwrap();
                 let ds = s.displacement(f, temp).unwrap();
-                assert!((ds - frac * dw).abs() <= 1e-9 * dw.abs().max(1e-12), "{frac} {f} {temp}: {ds} vs {}", frac * dw);
+                assert!(
+                    (ds - frac * dw).abs() <= 1e-9 * dw.abs().max(1e-12),
+                    "{frac} {f} {temp}: {ds} vs {}",
+                    frac * dw
+                );
                 if dw > 0.0 {
                     let fw = t.force(dw, temp).unwrap();
                     let fs = s.force(frac * dw, temp).unwrap();

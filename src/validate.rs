@@ -58,7 +58,10 @@ fn section_extent(s: &Section) -> (f64, f64) {
     match *s {
         Section::Circle { diameter } => (diameter, diameter),
         Section::Rectangle { width, height } => (width, height),
-        Section::Custom { .. } => (2.0 * s.edge_distance(0.0), 2.0 * s.edge_distance(std::f64::consts::FRAC_PI_2)),
+        Section::Custom { .. } => (
+            2.0 * s.edge_distance(0.0),
+            2.0 * s.edge_distance(std::f64::consts::FRAC_PI_2),
+        ),
     }
 }
 
@@ -114,7 +117,12 @@ pub fn tca_fits_span(coiled_length: f64, actuator: &Actuator, name: &str) -> Res
 /// `|nu* + omega* x r + r'|` minus `stretch / span`. Error unless that rate
 /// is constant along the span (straight routings; helices in a body without
 /// reference curvature) and the ratio stays positive.
-pub fn pretension_length_ratio(body: &Body, actuator: &Actuator, stretch: f64, name: &str) -> Result<f64> {
+pub fn pretension_length_ratio(
+    body: &Body,
+    actuator: &Actuator,
+    stretch: f64,
+    name: &str,
+) -> Result<f64> {
     let span = actuator.s_end - actuator.s_start;
     let rate = |s: f64| {
         let (r, rp, _) = actuator.routing.eval(s);
@@ -133,7 +141,10 @@ pub fn pretension_length_ratio(body: &Body, actuator: &Actuator, stretch: f64, n
     }
     let ratio = r0 - stretch / span;
     if !(ratio.is_finite() && ratio > 0.0) {
-        return Err(Error::input(name, format!("pretension_n stretches the TCA by {stretch} m, more than its span {span} m")));
+        return Err(Error::input(
+            name,
+            format!("pretension_n stretches the TCA by {stretch} m, more than its span {span} m"),
+        ));
     }
     Ok(ratio)
 }
@@ -163,8 +174,22 @@ mod tests {
     fn routing_outside_a_14_mm_body_is_rejected() {
         let s = Section::Circle { diameter: 14e-3 };
         assert!(routing_in_section(&s, &Routing::Straight { x: 5e-3, y: 0.0 }, "a").is_ok());
-        let e = routing_in_section(&s, &Routing::Straight { x: 20e-3, y: 0.0 }, "actuators[0].routing").unwrap_err();
+        let e = routing_in_section(
+            &s,
+            &Routing::Straight { x: 20e-3, y: 0.0 },
+            "actuators[0].routing",
+        )
+        .unwrap_err();
         assert!(e.to_string().contains("actuators[0].routing"));
-        assert!(routing_in_section(&s, &Routing::Helix { radius: 8e-3, rate: 1.0, phase: 0.0 }, "a").is_err());
+        assert!(routing_in_section(
+            &s,
+            &Routing::Helix {
+                radius: 8e-3,
+                rate: 1.0,
+                phase: 0.0
+            },
+            "a"
+        )
+        .is_err());
     }
 }

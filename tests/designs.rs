@@ -5,8 +5,8 @@ use std::sync::Arc;
 
 use nalgebra::Vector3;
 use tcarod::problems::{
-    column_ratio, equilibrium, past_self_weight_buckling, random_design, random_designs, ActuatorKind, SplitMix64,
-    DEFAULT_SEED, EQUILIBRIUM_TOL, MAX_WEIGHT_RATIO,
+    column_ratio, equilibrium, past_self_weight_buckling, random_design, random_designs,
+    ActuatorKind, SplitMix64, DEFAULT_SEED, EQUILIBRIUM_TOL, MAX_WEIGHT_RATIO,
 };
 use tcarod::rod::{Actuator, Body, ConstantTension, Robot, Routing, Section};
 use tcarod::shooting::{assemble, solve, Loads, SolveOptions};
@@ -16,7 +16,11 @@ fn splitmix64_matches_reference_values() {
     // first outputs of SplitMix64 seeded with 1234567 (reference C
     // implementation, Vigna, prng.di.unimi.it/splitmix64.c)
     let mut r = SplitMix64::new(1234567);
-    let want = [6457827717110365317u64, 3203168211198807973, 9817491932198370423];
+    let want = [
+        6457827717110365317u64,
+        3203168211198807973,
+        9817491932198370423,
+    ];
     for w in want {
         assert_eq!(r.next_u64(), w);
     }
@@ -49,7 +53,8 @@ fn generator_makes_valid_varied_designs() {
         assert!((10e3..=10e6).contains(&b.youngs_modulus), "{}", d.summary());
         assert!((1..=4).contains(&r.actuators.len()));
         let (a, ix, iy, _) = b.section.properties();
-        let ratio = b.density * a * b.gravity.norm() * b.length.powi(3) / (b.youngs_modulus * ix.min(iy));
+        let ratio =
+            b.density * a * b.gravity.norm() * b.length.powi(3) / (b.youngs_modulus * ix.min(iy));
         assert!(ratio <= MAX_WEIGHT_RATIO);
         if matches!(b.section, Section::Rectangle { .. }) {
             rect += 1;
@@ -67,7 +72,9 @@ fn generator_makes_valid_varied_designs() {
             };
             let edge = match act.routing {
                 Routing::Straight { .. } => b.section.edge_distance(theta),
-                Routing::Helix { .. } => (0..64).map(|i| b.section.edge_distance(i as f64 * 0.1)).fold(f64::MAX, f64::min),
+                Routing::Helix { .. } => (0..64)
+                    .map(|i| b.section.edge_distance(i as f64 * 0.1))
+                    .fold(f64::MAX, f64::min),
             };
             assert!(off < edge, "{}", d.summary());
             interior += usize::from(act.s_start > 0.0 || act.s_end < b.length);
@@ -75,7 +82,13 @@ fn generator_makes_valid_varied_designs() {
         }
     }
     // every feature the issue lists is present in a fair share of the set
-    for (name, n) in [("helix", helix), ("interior anchor", interior), ("gravity", gravity), ("tip load", tip), ("rectangle", rect)] {
+    for (name, n) in [
+        ("helix", helix),
+        ("interior anchor", interior),
+        ("gravity", gravity),
+        ("tip load", tip),
+        ("rectangle", rect),
+    ] {
         assert!(n >= 30, "{name}: {n}");
     }
     assert!(kinds.iter().all(|&n| n >= 100), "{kinds:?}");
@@ -111,7 +124,11 @@ fn column_ratio_counts_the_axial_component_of_gravity() {
 /// One constant-tension tendon at x = 3 mm from `s0` to `s1`, no gravity.
 fn one_tendon(s0: f64, s1: f64, helix: bool) -> (Robot, Vec<f64>) {
     let routing = if helix {
-        Routing::Helix { radius: 2.5e-3, rate: 40.0, phase: 0.3 }
+        Routing::Helix {
+            radius: 2.5e-3,
+            rate: 40.0,
+            phase: 0.3,
+        }
     } else {
         Routing::Straight { x: 3e-3, y: 0.0 }
     };
@@ -125,7 +142,12 @@ fn a_lone_tendon_loads_the_base_with_nothing() {
     // wrench (body + strings anchored at the base) is zero. The body alone
     // carries -tau t(0) when the string is anchored at the base, and nothing
     // when both its anchors are inside the body.
-    for (s0, s1, helix) in [(0.0, 0.1, false), (0.0, 0.07, true), (0.02, 0.1, false), (0.03, 0.08, true)] {
+    for (s0, s1, helix) in [
+        (0.0, 0.1, false),
+        (0.0, 0.07, true),
+        (0.02, 0.1, false),
+        (0.03, 0.08, true),
+    ] {
         let (robot, q) = one_tendon(s0, s1, helix);
         let sol = solve(&robot, &q, &SolveOptions::default(), None).unwrap();
         let eq = equilibrium(&robot, &sol);
@@ -133,7 +155,11 @@ fn a_lone_tendon_loads_the_base_with_nothing() {
         // 1e-10 EI/L^2 = 2e-11 N, i.e. 4e-10 relative; 1e-8 is the issue's target
         assert!(eq.relative < EQUILIBRIUM_TOL, "{s0} {s1} {helix}: {eq:?}");
         assert!(sol.base_force.norm() < 1e-8 * 0.05, "{}", sol.base_force);
-        assert!(sol.base_moment.norm() < 1e-8 * 0.05 * 0.1, "{}", sol.base_moment);
+        assert!(
+            sol.base_moment.norm() < 1e-8 * 0.05 * 0.1,
+            "{}",
+            sol.base_moment
+        );
         let n0 = sol.internal_force[0];
         if s0 == 0.0 {
             assert!((n0.norm() - 0.05).abs() < 1e-9, "{n0}"); // -tau t(0)
@@ -195,7 +221,10 @@ const KNOWN_COLD_FAILURES: usize = 1;
 #[test]
 fn seeded_subset_converges_and_balances() {
     let opts = SolveOptions::default();
-    let fine = SolveOptions { steps: 4 * opts.steps, ..opts };
+    let fine = SolveOptions {
+        steps: 4 * opts.steps,
+        ..opts
+    };
     let mut failed = Vec::new();
     let mut unbalanced = Vec::new();
     for d in random_designs(DEFAULT_SEED, SUBSET) {
@@ -213,7 +242,8 @@ fn seeded_subset_converges_and_balances() {
                     // design must balance to 1e-8 on 4x the steps, or its
                     // residual must drop there by > 50 (h^4 predicts 256),
                     // which a solver error would not do.
-                    let f = solve(&d.robot, &d.inputs, &fine, Some(&sol)).or_else(|_| solve(&d.robot, &d.inputs, &fine, None));
+                    let f = solve(&d.robot, &d.inputs, &fine, Some(&sol))
+                        .or_else(|_| solve(&d.robot, &d.inputs, &fine, None));
                     match f {
                         Ok(f) => {
                             let eqf = equilibrium(&d.robot, &f).relative;
@@ -229,7 +259,14 @@ fn seeded_subset_converges_and_balances() {
             Err(_) => {}
         }
     }
-    assert!(unbalanced.is_empty(), "equilibrium (index, 100 steps, 400 steps): {unbalanced:?}");
-    eprintln!("{} cold failures not past buckling:\n{}", failed.len(), failed.join("\n"));
+    assert!(
+        unbalanced.is_empty(),
+        "equilibrium (index, 100 steps, 400 steps): {unbalanced:?}"
+    );
+    eprintln!(
+        "{} cold failures not past buckling:\n{}",
+        failed.len(),
+        failed.join("\n")
+    );
     assert!(failed.len() <= KNOWN_COLD_FAILURES, "{}", failed.join("\n"));
 }

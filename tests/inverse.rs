@@ -5,11 +5,19 @@ use tcarod::inverse::*;
 use tcarod::shooting::{solve, solve_loaded, Loads, SolveOptions};
 
 fn opts() -> SolveOptions {
-    SolveOptions { tol: 1e-12, ..Default::default() }
+    SolveOptions {
+        tol: 1e-12,
+        ..Default::default()
+    }
 }
 
 /// Brute-force J and C: central differences of full BVP solves.
-fn brute(robot: &tcarod::rod::Robot, inputs: &[f64], loads: &Loads, groups: &Groups) -> (DMatrix<f64>, DMatrix<f64>) {
+fn brute(
+    robot: &tcarod::rod::Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    groups: &Groups,
+) -> (DMatrix<f64>, DMatrix<f64>) {
     let base = solve_loaded(robot, inputs, loads, &opts(), None).unwrap();
     let nz = groups.n_vars();
     let z0 = groups.vars(inputs);
@@ -70,7 +78,10 @@ fn jacobian_and_compliance_match_brute_force() {
         let f = sensitivities(&robot, &sol, &loads, &groups, sol.steps, Scheme::Forward).unwrap();
         let ejf = (&f.jacobian - &jb).norm() / jb.norm();
         assert!(ejf < 1e-3, "forward J rel err {ejf:e}");
-        assert_eq!(f.evaluations, 1 + 6 + robot.actuators.len() + groups.n_vars() + 6);
+        assert_eq!(
+            f.evaluations,
+            1 + 6 + robot.actuators.len() + groups.n_vars() + 6
+        );
     }
 }
 
@@ -78,10 +89,22 @@ fn jacobian_and_compliance_match_brute_force() {
 fn compliance_is_symmetric_and_matches_the_linear_cantilever() {
     // Loads here are conservative (elastic strings, gravity, dead tip loads),
     // so C is a Hessian inverse: symmetric at any equilibrium.
-    for (robot, inputs) in [(fig6_square(true), vec![100.0, 100.0]), (fig6_circle(false), vec![140.0])] {
+    for (robot, inputs) in [
+        (fig6_square(true), vec![100.0, 100.0]),
+        (fig6_circle(false), vec![140.0]),
+    ] {
         let sol = solve(&robot, &inputs, &opts(), None).unwrap();
         let groups = Groups::identity(robot.actuators.len());
-        let c = sensitivities(&robot, &sol, &Loads::of(&robot), &groups, sol.steps, Scheme::Central).unwrap().compliance;
+        let c = sensitivities(
+            &robot,
+            &sol,
+            &Loads::of(&robot),
+            &groups,
+            sol.steps,
+            Scheme::Central,
+        )
+        .unwrap()
+        .compliance;
         let asym = (&c - c.transpose()).norm() / c.norm();
         assert!(asym < 1e-6, "asymmetry {asym:e}"); // central FD error ~1e-8
     }
@@ -91,7 +114,16 @@ fn compliance_is_symmetric_and_matches_the_linear_cantilever() {
     let body = fig6_square(false).body.clone();
     let robot = tcarod::rod::Robot::new(body, vec![]).unwrap();
     let sol = solve(&robot, &[], &opts(), None).unwrap();
-    let c = sensitivities(&robot, &sol, &Loads::of(&robot), &Groups(vec![]), sol.steps, Scheme::Central).unwrap().compliance;
+    let c = sensitivities(
+        &robot,
+        &sol,
+        &Loads::of(&robot),
+        &Groups(vec![]),
+        sol.steps,
+        Scheme::Central,
+    )
+    .unwrap()
+    .compliance;
     let asym = (&c - c.transpose()).norm() / c.norm();
     assert!(asym < 1e-8, "asymmetry {asym:e}");
     let eig = c.clone().symmetric_eigen().eigenvalues;
@@ -104,7 +136,11 @@ fn compliance_is_symmetric_and_matches_the_linear_cantilever() {
     let want_z = l / (b.youngs_modulus * a);
     // exact for the linearised rod; central FD relative error ~1e-9
     for (k, want) in [(0, want_x), (1, want_y), (2, want_z)] {
-        assert!((c[(k, k)] - want).abs() / want < 1e-7, "C[{k},{k}] = {} vs {want}", c[(k, k)]);
+        assert!(
+            (c[(k, k)] - want).abs() / want < 1e-7,
+            "C[{k},{k}] = {} vs {want}",
+            c[(k, k)]
+        );
     }
     // rotation per tip moment: L / (E I)
     let want = l / (b.youngs_modulus * iy);
@@ -119,12 +155,22 @@ fn incremental_blocked_temperature_matches_direct_solve() {
     let block = Block::new(start.tip_position(), Vector3::new(-1.0, 0.0, 0.0)).unwrap();
     for force in [5e-3, 2e-2] {
         let inc = blocked_temperature(&robot, &groups, &block, &start, force, 10, &opts()).unwrap();
-        let dir = blocked_variable_direct(&robot, &groups, &block, force, 80.0, &opts(), None).unwrap();
+        let dir =
+            blocked_variable_direct(&robot, &groups, &block, force, 80.0, &opts(), None).unwrap();
         // both converge the same equations to 1e-9 m tip gap and 1e-10 strain
-        assert!((inc.variables[0] - dir.variables[0]).abs() < 1e-5, "{} vs {}", inc.variables[0], dir.variables[0]);
+        assert!(
+            (inc.variables[0] - dir.variables[0]).abs() < 1e-5,
+            "{} vs {}",
+            inc.variables[0],
+            dir.variables[0]
+        );
         // and the force solve at that temperature returns the force
         let f = blocked_force(&robot, &groups, &block, &dir.variables, &opts(), None).unwrap();
-        assert!((f.force - force).abs() < 1e-9 * force.max(1e-3) * 1e3, "{} vs {force}", f.force);
+        assert!(
+            (f.force - force).abs() < 1e-9 * force.max(1e-3) * 1e3,
+            "{} vs {force}",
+            f.force
+        );
         assert!(inc.variables[0] > 55.0);
     }
 }
@@ -134,12 +180,28 @@ fn tip_position_inverse_reaches_reachable_and_reports_unreachable_targets() {
     let robot = fig6_square(false);
     let groups = Groups(vec![0, 1]);
     let truth = solve(&robot, &[90.0, 140.0], &opts(), None).unwrap();
-    let res = tip_position_inverse(&robot, &groups, &truth.tip_position(), None, &[25.0, 25.0], &InverseOptions::default()).unwrap();
+    let res = tip_position_inverse(
+        &robot,
+        &groups,
+        &truth.tip_position(),
+        None,
+        &[25.0, 25.0],
+        &InverseOptions::default(),
+    )
+    .unwrap();
     assert!(res.reached, "{res:?}");
     assert!((res.solution.tip_position() - truth.tip_position()).norm() < 1e-7);
     // the tip cannot move toward +x: extension TCAs at +x only bend toward -x
     let far = Vector3::new(0.02, 0.0, 0.03);
-    let res = tip_position_inverse(&robot, &groups, &far, None, &[60.0, 60.0], &InverseOptions::default()).unwrap();
+    let res = tip_position_inverse(
+        &robot,
+        &groups,
+        &far,
+        None,
+        &[60.0, 60.0],
+        &InverseOptions::default(),
+    )
+    .unwrap();
     assert!(!res.reached);
     assert!(res.at_bound.iter().all(|&b| b), "{:?}", res.variables);
     assert!(res.variables.iter().all(|&t| (t - 25.0).abs() < 1e-9));
@@ -152,7 +214,18 @@ fn grasp_temperature_rises_with_mass() {
     let groups = Groups(vec![0, 0]);
     let mut last = 25.0;
     for m in [1e-3, 2e-3, 3e-3] {
-        let r = grasp(&finger, &groups, &Vector3::new(-1.0, 0.0, 0.0), m, 1.1, 2, G0, 8, &opts()).unwrap();
+        let r = grasp(
+            &finger,
+            &groups,
+            &Vector3::new(-1.0, 0.0, 0.0),
+            m,
+            1.1,
+            2,
+            G0,
+            8,
+            &opts(),
+        )
+        .unwrap();
         assert!((r.force - m * G0 / 2.2).abs() < 1e-15);
         assert!(r.variables[0] > last);
         last = r.variables[0];
@@ -171,9 +244,22 @@ fn incremental_blocked_temperature_reaches_the_top_of_the_range() {
     let top = blocked_force(&robot, &groups, &block, &[160.0], &opts(), None).unwrap();
     let inc = blocked_temperature(&robot, &groups, &block, &start, top.force, 10, &opts()).unwrap();
     // gap tolerance 1e-9 L and dT/dF ~ 1.5e3 C/N: agreement far below 1e-6 C
-    assert!((inc.variables[0] - 160.0).abs() < 1e-6, "{}", inc.variables[0]);
+    assert!(
+        (inc.variables[0] - 160.0).abs() < 1e-6,
+        "{}",
+        inc.variables[0]
+    );
     // a force beyond the range is still refused
-    assert!(blocked_temperature(&robot, &groups, &block, &start, top.force * 1.01, 10, &opts()).is_err());
+    assert!(blocked_temperature(
+        &robot,
+        &groups,
+        &block,
+        &start,
+        top.force * 1.01,
+        10,
+        &opts()
+    )
+    .is_err());
 }
 
 /// The exact J and C (one tangent IVP) against central differences of IVPs
@@ -186,8 +272,18 @@ fn exact_sensitivities_match_differences() {
     use tcarod::experiments::{steel_tendon_robot, STEEL_TENDON_TENSIONS};
     let opts = SolveOptions::default();
     let cases: Vec<(&str, tcarod::rod::Robot, Vec<f64>, Groups)> = vec![
-        ("square", fig6_square(true), vec![100.0, 100.0], Groups(vec![0, 0])),
-        ("square, legs apart", fig6_square(true), vec![90.0, 120.0], Groups::identity(2)),
+        (
+            "square",
+            fig6_square(true),
+            vec![100.0, 100.0],
+            Groups(vec![0, 0]),
+        ),
+        (
+            "square, legs apart",
+            fig6_square(true),
+            vec![90.0, 120.0],
+            Groups::identity(2),
+        ),
         ("circle", fig6_circle(true), vec![80.0], Groups::identity(1)),
     ];
     for (name, robot, inputs, groups) in cases {
@@ -199,9 +295,15 @@ fn exact_sensitivities_match_differences() {
         // central differences with step eps^(1/3): truncation and rounding
         // ~1e-10..1e-8 relative, amplified by B_u^-1; a wrong tangent term
         // is O(1) wrong
-        for (what, a, b) in [("J", &ex.jacobian, &fd.jacobian), ("C", &ex.compliance, &fd.compliance)] {
+        for (what, a, b) in [
+            ("J", &ex.jacobian, &fd.jacobian),
+            ("C", &ex.compliance, &fd.compliance),
+        ] {
             let err = (a - b).amax() / b.amax();
-            assert!(err < 1e-5, "{name} {what}: relative error {err:e}\nexact {a:.5e}\nfd {b:.5e}");
+            assert!(
+                err < 1e-5,
+                "{name} {what}: relative error {err:e}\nexact {a:.5e}\nfd {b:.5e}"
+            );
         }
     }
     let robot = steel_tendon_robot();
@@ -217,6 +319,9 @@ fn exact_sensitivities_match_differences() {
     // converged to the rounding floor (~1e-9 strain): ~1e-6 relative
     for (what, a, b) in [("J", &ex.jacobian, &bj), ("C", &ex.compliance, &bc)] {
         let err = (a - b).amax() / b.amax();
-        assert!(err < 1e-4, "steel {what}: relative error {err:e}\nexact {a:.5e}\nbrute {b:.5e}");
+        assert!(
+            err < 1e-4,
+            "steel {what}: relative error {err:e}\nexact {a:.5e}\nbrute {b:.5e}"
+        );
     }
 }

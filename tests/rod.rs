@@ -23,7 +23,11 @@ fn pure_tip_moment_gives_circular_arc() {
     let l = 0.04;
     let want = Vector3::new((1.0 - (k * l).cos()) / k, 0.0, (k * l).sin() / k);
     // RK4 with 100 steps integrates an arc to ~1e-12 m; solver tol 1e-10 in strain
-    assert!((sol.tip_position() - want).norm() < 1e-11, "{}", sol.tip_position() - want);
+    assert!(
+        (sol.tip_position() - want).norm() < 1e-11,
+        "{}",
+        sol.tip_position() - want
+    );
     for w in &sol.omega {
         assert!((w.y - k).abs() < 1e-8);
     }
@@ -36,14 +40,24 @@ fn straight_tendon_gives_arc_less_axial_shortening() {
     let (ei, ea) = (body.youngs_modulus * ix, body.youngs_modulus * a);
     let r = 3e-3;
     let tau = 0.05;
-    let act = Actuator::new(Routing::Straight { x: r, y: 0.0 }, 0.0, 0.04, Arc::new(ConstantTension));
+    let act = Actuator::new(
+        Routing::Straight { x: r, y: 0.0 },
+        0.0,
+        0.04,
+        Arc::new(ConstantTension),
+    );
     let robot = Robot::new(body, vec![act]).unwrap();
     let sol = solve(&robot, &[tau], &SolveOptions::default(), None).unwrap();
     let k = tau * r / ei; // tendon moment / EI, bends toward the tendon (+x)
     let vz = 1.0 - tau / ea;
     let l = 0.04;
     let want = Vector3::new(vz * (1.0 - (k * l).cos()) / k, 0.0, vz * (k * l).sin() / k);
-    assert!((sol.tip_position() - want).norm() < 1e-11, "{:?} vs {:?}", sol.tip_position(), want);
+    assert!(
+        (sol.tip_position() - want).norm() < 1e-11,
+        "{:?} vs {:?}",
+        sol.tip_position(),
+        want
+    );
     assert!(sol.tip_position().x > 0.0);
 }
 
@@ -53,7 +67,10 @@ fn quaternion_keeps_rotation_orthogonal() {
     body.tip_moment = Vector3::new(3e-6, 5e-5, 1e-6);
     body.tip_force = Vector3::new(1e-3, -2e-3, 0.0);
     let robot = Robot::new(body, vec![]).unwrap();
-    let opts = SolveOptions { steps: 20_000, ..Default::default() };
+    let opts = SolveOptions {
+        steps: 20_000,
+        ..Default::default()
+    };
     let sol = solve(&robot, &[], &opts, None).unwrap();
     let worst = sol
         .rotations
@@ -69,7 +86,10 @@ fn heated_extension_tca_at_plus_x_bends_toward_minus_x() {
     let robot = fig6_square(false);
     let sol = solve(&robot, &[100.0, 100.0], &SolveOptions::default(), None).unwrap();
     assert!(sol.tip_position().x < -1e-3, "{}", sol.tip_position());
-    assert!(sol.tensions.iter().all(|&t| t < 0.0), "a heated extension TCA pushes");
+    assert!(
+        sol.tensions.iter().all(|&t| t < 0.0),
+        "a heated extension TCA pushes"
+    );
     assert!(sol.elongations.iter().all(|&d| d > 0.0));
 }
 
@@ -94,6 +114,14 @@ fn base_wrench_balances_external_loads() {
     let sol = solve(&robot, &[120.0, 90.0], &SolveOptions::default(), None).unwrap();
     let fe = robot.body.distributed_load();
     let want_f = robot.body.tip_force + fe * robot.body.length;
-    assert!((sol.base_force - want_f).norm() < 1e-12 * 10.0, "{} vs {}", sol.base_force, want_f);
-    println!("iterations {} evaluations {}", sol.iterations, sol.evaluations);
+    assert!(
+        (sol.base_force - want_f).norm() < 1e-12 * 10.0,
+        "{} vs {}",
+        sol.base_force,
+        want_f
+    );
+    println!(
+        "iterations {} evaluations {}",
+        sol.iterations, sol.evaluations
+    );
 }

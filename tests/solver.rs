@@ -2,7 +2,9 @@
 //! cases, convergence to the rounding floor, continuation with its path,
 //! cancellation, honest work counts.
 use nalgebra::Vector3;
-use tcarod::experiments::{fig6_square, soft_tendon_robot, soft_tendon_tension, steel_tendon_robot, STEEL_TENDON_TENSIONS};
+use tcarod::experiments::{
+    fig6_square, soft_tendon_robot, soft_tendon_tension, steel_tendon_robot, STEEL_TENDON_TENSIONS,
+};
 use tcarod::inverse::rotation_vector;
 use tcarod::shooting::{solve, sweep, SolveOptions, Status};
 use tcarod::solve::cancel::interruptible;
@@ -11,7 +13,10 @@ use tcarod::{Error, StopReason};
 #[test]
 fn soft_tendon_bends_to_its_angle_in_a_few_iterations() {
     let robot = soft_tendon_robot();
-    let opts = SolveOptions { steps: 50, ..Default::default() };
+    let opts = SolveOptions {
+        steps: 50,
+        ..Default::default()
+    };
     for deg in [10.0f64, 30.0, 45.0, 60.0, 90.0, 120.0] {
         let th = deg.to_radians();
         let s = solve(&robot, &[soft_tendon_tension(th)], &opts, None).unwrap();
@@ -21,10 +26,17 @@ fn soft_tendon_bends_to_its_angle_in_a_few_iterations() {
         // shape, not the curvature). RK4's phase error on q' = q (0, u) / 2
         // is ~(h theta / 2L)^5 / 120 per step: 50 steps at 120 deg, 3.4e-9 rad
         let angle = rotation_vector(&s.tip_rotation());
-        assert!((angle - Vector3::new(0.0, th, 0.0)).norm() < 1e-8, "{deg} deg: {angle:?}");
+        assert!(
+            (angle - Vector3::new(0.0, th, 0.0)).norm() < 1e-8,
+            "{deg} deg: {angle:?}"
+        );
         // was 8-183 iterations and 33-711 IVPs before the exact Jacobian
         assert!(s.iterations <= 3, "{deg} deg: {} iterations", s.iterations);
-        assert!(s.evaluations <= 2 * s.iterations + 2, "{deg} deg: {} IVPs", s.evaluations);
+        assert!(
+            s.evaluations <= 2 * s.iterations + 2,
+            "{deg} deg: {} IVPs",
+            s.evaluations
+        );
         assert!(s.continuation_steps.is_empty());
     }
 }
@@ -34,18 +46,37 @@ fn steel_tendon_converges_to_the_rounding_floor() {
     let robot = steel_tendon_robot();
     // tol far below the rounding floor (~EA eps L^2 / EI ~ 1e-10): converges
     // to the floor and says so, instead of failing
-    let opts = SolveOptions { tol: 1e-14, ..Default::default() };
+    let opts = SolveOptions {
+        tol: 1e-14,
+        ..Default::default()
+    };
     let s = solve(&robot, &STEEL_TENDON_TENSIONS, &opts, None).unwrap();
     assert_eq!(s.status, Status::ConvergedAtFloor);
-    assert!(s.floor > 1e-14 && s.residual <= 100.0 * s.floor, "residual {:e}, floor {:e}", s.residual, s.floor);
+    assert!(
+        s.floor > 1e-14 && s.residual <= 100.0 * s.floor,
+        "residual {:e}, floor {:e}",
+        s.residual,
+        s.floor
+    );
     // the same solution as at the default tolerance, to far below a micrometre
-    let d = solve(&robot, &STEEL_TENDON_TENSIONS, &SolveOptions::default(), None).unwrap();
+    let d = solve(
+        &robot,
+        &STEEL_TENDON_TENSIONS,
+        &SolveOptions::default(),
+        None,
+    )
+    .unwrap();
     assert!((s.tip_position() - d.tip_position()).norm() < 1e-9);
     // warm start after +1 % tension: a couple of iterations
     let t: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
     let w = solve(&robot, &t, &SolveOptions::default(), Some(&d)).unwrap();
     // (chord iterations with the neighbour's Jacobian: one plain IVP each)
-    assert!(w.iterations <= 5 && w.evaluations <= w.iterations + 2, "{} iterations, {} IVPs", w.iterations, w.evaluations);
+    assert!(
+        w.iterations <= 5 && w.evaluations <= w.iterations + 2,
+        "{} iterations, {} IVPs",
+        w.iterations,
+        w.evaluations
+    );
 }
 
 #[test]
@@ -53,7 +84,10 @@ fn continuation_records_its_path_and_counts_all_work() {
     let robot = fig6_square(true);
     // three iterations are too few from the cold guess at 150 C: the direct
     // solve fails and continuation in inputs and loads takes over
-    let opts = SolveOptions { max_iter: 3, ..Default::default() };
+    let opts = SolveOptions {
+        max_iter: 3,
+        ..Default::default()
+    };
     let s = solve(&robot, &[150.0, 150.0], &opts, None).unwrap();
     assert!(!s.continuation_steps.is_empty());
     assert_eq!(*s.continuation_steps.last().unwrap(), 1.0);
@@ -67,9 +101,18 @@ fn continuation_records_its_path_and_counts_all_work() {
 #[test]
 fn failures_report_best_residual_work_and_reason() {
     let robot = fig6_square(true);
-    let opts = SolveOptions { max_iter: 1, ..Default::default() };
+    let opts = SolveOptions {
+        max_iter: 1,
+        ..Default::default()
+    };
     match solve(&robot, &[150.0, 150.0], &opts, None) {
-        Err(Error::NotConverged { iterations, evaluations, residual, stop, .. }) => {
+        Err(Error::NotConverged {
+            iterations,
+            evaluations,
+            residual,
+            stop,
+            ..
+        }) => {
             assert_eq!(stop, StopReason::IterationLimit);
             assert!(iterations >= 1 && evaluations > iterations);
             assert!(residual.is_finite() && residual > 0.0);
@@ -81,12 +124,18 @@ fn failures_report_best_residual_work_and_reason() {
 #[test]
 fn a_cancel_check_interrupts_a_sweep() {
     let robot = fig6_square(true);
-    let rows: Vec<Vec<f64>> = (0..100_000).map(|k| vec![40.0 + 1e-3 * k as f64; 2]).collect();
+    let rows: Vec<Vec<f64>> = (0..100_000)
+        .map(|k| vec![40.0 + 1e-3 * k as f64; 2])
+        .collect();
     let start = std::time::Instant::now();
     let stop_after = std::time::Duration::from_millis(100);
     let check = || start.elapsed() > stop_after;
     let r = interruptible(&check, || sweep(&robot, &rows, &SolveOptions::default()));
-    assert!(matches!(r, Err(Error::Interrupted)), "{:?}", r.map(|v| v.len()));
+    assert!(
+        matches!(r, Err(Error::Interrupted)),
+        "{:?}",
+        r.map(|v| v.len())
+    );
     // polled every 20 ms of work at most (plus one solve): far below the sweep's minutes
     assert!(start.elapsed() < std::time::Duration::from_secs(5));
 }

@@ -2,9 +2,9 @@
 //! and an independent planar elastica with self-weight.
 
 use nalgebra::Vector3;
+use tcarod::branch::{follow_branch, sweep_stable, BranchOptions, EventKind, Parameter, Problem};
 use tcarod::rod::{Body, Robot, Section};
 use tcarod::shooting::{solve, SolveOptions};
-use tcarod::branch::{follow_branch, sweep_stable, BranchOptions, EventKind, Parameter, Problem};
 use tcarod::stability::stability;
 
 /// A slender round steel-like column: L/r = 100, so shear and extension move
@@ -71,7 +71,17 @@ fn euler_column_critical_load_located() {
 /// path cannot be continued uniquely; the verdict of such a column is tested
 /// in `euler_column_*`.
 fn heavy_column() -> Robot {
-    let mut b = Body::new(0.5, Section::Rectangle { width: 10e-3, height: 9e-3 }, 1e6, 0.5, 1000.0).unwrap();
+    let mut b = Body::new(
+        0.5,
+        Section::Rectangle {
+            width: 10e-3,
+            height: 9e-3,
+        },
+        1e6,
+        0.5,
+        1000.0,
+    )
+    .unwrap();
     let (a, ix, iy, _) = b.section.properties();
     let g0 = b.youngs_modulus * ix.min(iy) / (b.density * a * 0.125);
     b.gravity = Vector3::new(0.0, 0.0, -g0);
@@ -82,7 +92,13 @@ fn heavy_column() -> Robot {
 fn self_weight_buckling_located() {
     let r = heavy_column();
     let pb = Problem::new(&r, Parameter::GravityScale, &[]).unwrap();
-    let opts = BranchOptions { start: 1.0, end: 10.0, step: 0.05, max_step: 0.2, ..Default::default() };
+    let opts = BranchOptions {
+        start: 1.0,
+        end: 10.0,
+        step: 0.05,
+        max_step: 0.2,
+        ..Default::default()
+    };
     let br = follow_branch(&pb, &opts, None).unwrap();
     // the perfect column stays straight: no fold, two bifurcations, about
     // the weak axis at Greenhill's load and the strong one at (10/9)^2 times it
@@ -92,9 +108,17 @@ fn self_weight_buckling_located() {
     let q2 = br.events[1].parameter / (10.0f64 / 9.0).powi(2);
     println!("self-weight buckling at rho A g L^3 / EI = {q:.5}, second mode {q2:.5} (Greenhill 7.837), {} IVP-equivalents", br.evaluations);
     assert!((q / GREENHILL - 1.0).abs() < 5e-3, "located at {q}");
-    assert!((q2 / GREENHILL - 1.0).abs() < 5e-3, "second located at {q2}");
+    assert!(
+        (q2 / GREENHILL - 1.0).abs() < 5e-3,
+        "second located at {q2}"
+    );
     for p in &br.points {
-        assert_eq!(p.stability.stable, p.parameter < GREENHILL, "at {}", p.parameter);
+        assert_eq!(
+            p.stability.stable,
+            p.parameter < GREENHILL,
+            "at {}",
+            p.parameter
+        );
     }
 }
 
@@ -112,7 +136,14 @@ fn elastica_tip(q: f64) -> (f64, f64) {
         let mut y = [0.0, k0, 0.0, 0.0];
         for i in 0..n {
             let s = i as f64 * h;
-            let add = |a: [f64; 4], b: [f64; 4], c: f64| [a[0] + c * b[0], a[1] + c * b[1], a[2] + c * b[2], a[3] + c * b[3]];
+            let add = |a: [f64; 4], b: [f64; 4], c: f64| {
+                [
+                    a[0] + c * b[0],
+                    a[1] + c * b[1],
+                    a[2] + c * b[2],
+                    a[3] + c * b[3],
+                ]
+            };
             let k1 = f(s, y);
             let k2 = f(s + h / 2.0, add(y, k1, h / 2.0));
             let k3 = f(s + h / 2.0, add(y, k2, h / 2.0));
@@ -154,7 +185,13 @@ fn post_buckled_branch_matches_elastica() {
     let r = heavy_column();
     let len = r.body.length;
     let pb = Problem::new(&r, Parameter::GravityScale, &[]).unwrap();
-    let opts = BranchOptions { start: 1.0, end: 12.0, step: 0.05, max_step: 0.2, ..Default::default() };
+    let opts = BranchOptions {
+        start: 1.0,
+        end: 12.0,
+        step: 0.05,
+        max_step: 0.2,
+        ..Default::default()
+    };
     let sw = sweep_stable(&pb, &opts, None).unwrap();
     // one jump, at self-weight buckling, onto the (nearby) buckled branch
     assert_eq!(sw.jumps.len(), 1);
@@ -168,7 +205,11 @@ fn post_buckled_branch_matches_elastica() {
         println!("q = {:.4}: tcarod tip (lateral, z)/L = ({lateral:.5}, {:.5}), elastica ({xe:.5}, {ze:.5})", p.parameter, tip.z);
         // extension and shear of the Cosserat body (q L/(E A) ~ 1e-3 at
         // these loads, (r/L)^2 = 1e-4) and the 100-step RK4 grid: 2e-3 L
-        assert!((lateral - xe.abs()).abs() < 2e-3 && (tip.z - ze).abs() < 2e-3, "q = {}", p.parameter);
+        assert!(
+            (lateral - xe.abs()).abs() < 2e-3 && (tip.z - ze).abs() < 2e-3,
+            "q = {}",
+            p.parameter
+        );
         checked += 1;
     }
     assert!(checked >= 5);
@@ -191,10 +232,18 @@ fn exact_tangents_match_finite_differences() {
         let sol = solve(&r, &q, &SolveOptions::default(), None).unwrap();
         let a = stability(&r, &sol, &[]).unwrap();
         let b = stability_fd(&r, &sol, &[]).unwrap();
-        println!("inputs {:?}: exact margin {:.6e} stable {}, FD {:.6e} {}", q, a.margin, a.stable, b.margin, b.stable);
+        println!(
+            "inputs {:?}: exact margin {:.6e} stable {}, FD {:.6e} {}",
+            q, a.margin, a.stable, b.margin, b.stable
+        );
         assert_eq!(a.stable, b.stable);
         // forward differences with step sqrt(eps): ~1e-6 relative error
-        assert!((a.margin - b.margin).abs() < 1e-4 * (1.0 + a.margin.abs()), "{} vs {}", a.margin, b.margin);
+        assert!(
+            (a.margin - b.margin).abs() < 1e-4 * (1.0 + a.margin.abs()),
+            "{} vs {}",
+            a.margin,
+            b.margin
+        );
         assert_eq!(a.evaluations, 1);
     }
 }

@@ -5,7 +5,10 @@
 use std::sync::Arc;
 
 use nalgebra::{DMatrix, Vector3};
-use tcarod::experiments::{fig6_circle, fig6_square, manipulator_tca, MANIPULATOR_TURNS, soft_tendon_robot, steel_tendon_robot};
+use tcarod::experiments::{
+    fig6_circle, fig6_square, manipulator_tca, soft_tendon_robot, steel_tendon_robot,
+    MANIPULATOR_TURNS,
+};
 use tcarod::rod::{Actuator, Body, ConstantTension, LinearTendon, Robot, Routing, Section, TcaLaw};
 use tcarod::shooting::{initial_guess, shoot, shoot_jacobian, solve, Loads, SolveOptions};
 
@@ -14,15 +17,44 @@ use tcarod::shooting::{initial_guess, shoot, shoot_jacobian, solve, Loads, Solve
 /// TCA over the first half (anchored inside), gravity sideways, a tip load.
 fn mixed() -> Robot {
     let len = 0.1;
-    let mut body = Body::new(len, Section::Rectangle { width: 12e-3, height: 9e-3 }, 200e3, 0.45, 1100.0).unwrap();
+    let mut body = Body::new(
+        len,
+        Section::Rectangle {
+            width: 12e-3,
+            height: 9e-3,
+        },
+        200e3,
+        0.45,
+        1100.0,
+    )
+    .unwrap();
     body.gravity = Vector3::new(3.0, -2.0, -9.0);
     body.tip_force = Vector3::new(0.001, 0.002, -0.001);
     body.tip_moment = Vector3::new(0.0, 1e-5, 2e-5);
     body.omega_star = Vector3::new(0.5, 0.0, 1.0);
     let acts = vec![
-        Actuator::new(Routing::Helix { radius: 3e-3, rate: 20.0, phase: 0.3 }, 0.2 * len, len, Arc::new(ConstantTension)),
-        Actuator::new(Routing::Straight { x: -3e-3, y: 2e-3 }, 0.3 * len, 0.7 * len, Arc::new(LinearTendon { stiffness: 500.0 })),
-        Actuator::new(Routing::Straight { x: 0.0, y: -3.5e-3 }, 0.0, 0.5 * len, Arc::new(TcaLaw(manipulator_tca(0.5 * len, MANIPULATOR_TURNS)))),
+        Actuator::new(
+            Routing::Helix {
+                radius: 3e-3,
+                rate: 20.0,
+                phase: 0.3,
+            },
+            0.2 * len,
+            len,
+            Arc::new(ConstantTension),
+        ),
+        Actuator::new(
+            Routing::Straight { x: -3e-3, y: 2e-3 },
+            0.3 * len,
+            0.7 * len,
+            Arc::new(LinearTendon { stiffness: 500.0 }),
+        ),
+        Actuator::new(
+            Routing::Straight { x: 0.0, y: -3.5e-3 },
+            0.0,
+            0.5 * len,
+            Arc::new(TcaLaw(manipulator_tca(0.5 * len, MANIPULATOR_TURNS))),
+        ),
     ];
     Robot::new(body, acts).unwrap()
 }
@@ -56,7 +88,10 @@ fn check(name: &str, robot: &Robot, inputs: &[f64], x: &[f64], steps: usize) {
     // the generic (dual) twin of the RHS and the f64 fast path compute the
     // same map: residuals agree to rounding of O(1) strains over the grid
     for (a, b) in r.iter().zip(&r0) {
-        assert!((a - b).abs() <= 1e-9 * (1.0 + b.abs()), "{name}: residual {a:e} vs {b:e}");
+        assert!(
+            (a - b).abs() <= 1e-9 * (1.0 + b.abs()),
+            "{name}: residual {a:e} vs {b:e}"
+        );
     }
     let fd = fd_jacobian(robot, inputs, x, steps);
     let scale = fd.amax().max(1.0);
@@ -83,8 +118,18 @@ fn tangent_jacobian_matches_differences() {
     let mut opp = sq.clone();
     opp.actuators[1].routing = Routing::Straight { x: -3e-3, y: 0.0 };
     let s2 = solve(&opp, &[130.0, 25.0], &opts, None).unwrap();
-    assert!(s2.elongations[1] < 0.0, "the passive TCA is pressed: {:?}", s2.elongations);
-    check("opposed TCAs, coil contact", &opp, &[130.0, 25.0], &s2.unknowns, 100);
+    assert!(
+        s2.elongations[1] < 0.0,
+        "the passive TCA is pressed: {:?}",
+        s2.elongations
+    );
+    check(
+        "opposed TCAs, coil contact",
+        &opp,
+        &[130.0, 25.0],
+        &s2.unknowns,
+        100,
+    );
     // pre-curved circle
     let c = fig6_circle(true);
     let sc = solve(&c, &[90.0], &opts, None).unwrap();
@@ -92,7 +137,13 @@ fn tangent_jacobian_matches_differences() {
     // steel tendons, three at zero tension
     let st = steel_tendon_robot();
     let x0 = initial_guess(&st, &[15.0, 0.0, 0.0, 0.0], None);
-    check("steel tendon cold guess", &st, &[15.0, 0.0, 0.0, 0.0], &x0, 100);
+    check(
+        "steel tendon cold guess",
+        &st,
+        &[15.0, 0.0, 0.0, 0.0],
+        &x0,
+        100,
+    );
     // soft tendon at a large angle
     let so = soft_tendon_robot();
     let mut x = initial_guess(&so, &[2.0], None);

@@ -79,9 +79,7 @@ def test_from_pitch_angle_rejects_bad_alpha0(bad: float) -> None:
         Tca.from_pitch_angle(0.04, bad, 1.7e-3, 76.4)
 
 
-@pytest.mark.parametrize(
-    ("index", "field"), [(0, "coiled_length"), (2, "coil_diameter"), (3, "turns")]
-)
+@pytest.mark.parametrize(("index", "field"), [(0, "coiled_length"), (2, "coil_diameter"), (3, "turns")])
 @pytest.mark.parametrize("bad", [NAN, -INF, 0.0, -2.0])
 def test_from_pitch_angle_rejects_bad_sizes(index: int, field: str, bad: float) -> None:
     args: list[Any] = [0.04, math.radians(15), 1.7e-3, 76.4]
@@ -242,7 +240,16 @@ def _is_real_array(v: object) -> bool:
 
 def _assert_no_nan(out: object) -> None:
     if isinstance(out, Tca):
-        values = [out.fibre_length, out.coiled_length, out.coil_diameter, out.turns, out.alpha0, out.n_coils, out.phi0, out.d0]
+        values = [
+            out.fibre_length,
+            out.coiled_length,
+            out.coil_diameter,
+            out.turns,
+            out.alpha0,
+            out.n_coils,
+            out.phi0,
+            out.d0,
+        ]
         assert not any(math.isnan(v) for v in values), out
     elif isinstance(out, Material):
         assert not any(math.isnan(v) for v in out.coefficients), out
@@ -333,8 +340,22 @@ class _LyingLength:
         raise IndexError(k)
 
 
-@pytest.mark.parametrize("bad", [b"ab", bytearray(b"ab"), "ab", None, 1j, np.complex128(25.0), [25.0, 1j],
-                                 [25.0, np.complex64(25.0)], [25.0, "25"], [25.0, None], object()])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        b"ab",
+        bytearray(b"ab"),
+        "ab",
+        None,
+        1j,
+        np.complex128(25.0),
+        [25.0, 1j],
+        [25.0, np.complex64(25.0)],
+        [25.0, "25"],
+        [25.0, None],
+        object(),
+    ],
+)
 def test_solve_inputs_of_the_wrong_type_are_type_errors(bad: object) -> None:
     with pytest.raises(TypeError):
         SQUARE.solve(bad)  # type: ignore[arg-type]
@@ -403,11 +424,18 @@ def test_increments_out_of_range(bad: int) -> None:
         blocked_temperature(SQUARE_NG, start.tip_position, [-1, 0, 0], 1e-3, start, groups=[0, 0], increments=bad)
 
 
-@pytest.mark.parametrize(("kw", "match"), [
-    ({"chunk_size": 0}, "chunk_size"), ({"chunk_size": -5}, "chunk_size"), ({"chunk_size": 10**40}, "chunk_size"),
-    ({"threads": -1}, "threads"), ({"threads": 10**6}, "threads"), ({"steps": 10**9}, "steps"),
-    ({"max_iter": -(2**70)}, "max_iter"),
-])
+@pytest.mark.parametrize(
+    ("kw", "match"),
+    [
+        ({"chunk_size": 0}, "chunk_size"),
+        ({"chunk_size": -5}, "chunk_size"),
+        ({"chunk_size": 10**40}, "chunk_size"),
+        ({"threads": -1}, "threads"),
+        ({"threads": 10**6}, "threads"),
+        ({"steps": 10**9}, "steps"),
+        ({"max_iter": -(2**70)}, "max_iter"),
+    ],
+)
 def test_batch_counts_out_of_range(kw: dict[str, int], match: str) -> None:
     q = np.array([[30.0, 30.0]])
     with pytest.raises(ValueError, match=match):
@@ -434,6 +462,7 @@ def test_wrong_classes_are_type_errors() -> None:
 
 
 # ---------------------------------------------------- issue 14: geometric sanity
+
 
 def test_routing_outside_the_section_is_a_value_error() -> None:
     body = Body(0.04, Section.circle(0.014), 1e5)
@@ -464,7 +493,9 @@ def test_sizes_that_look_like_millimetres_warn() -> None:
 
 
 def test_ambient_below_the_preset_range_points_to_a_custom_material() -> None:
-    with pytest.raises(ValueError, match=r"inputs\[0\].*25 <= T <= 160.*Material\(\.\.\., t_ref=<ambient>, t_min=<ambient>\)"):
+    with pytest.raises(
+        ValueError, match=r"inputs\[0\].*25 <= T <= 160.*Material\(\.\.\., t_ref=<ambient>, t_min=<ambient>\)"
+    ):
         SQUARE.solve([20.0, 20.0])
     cold = Material(youngs_modulus=1.2e9, shear_modulus=2.2e8, expansion=1.1e-4, t_ref=20.0, t_min=20.0, t_max=160.0)
     tca = Tca.from_pitch_angle(0.04, math.radians(15.0), 1.7e-3, 76.4, material=cold)

@@ -93,7 +93,9 @@ def test_dask_client_gives_the_local_results() -> None:
     robot = fig6_square_robot()
     q = _sweep(12)
     local = solve_batch(robot, q, chunk_size=3)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster:
         with distributed.Client(cluster) as client:
             remote = solve_batch(fig6_square_robot, q, chunk_size=3, client=client)
     np.testing.assert_array_equal(local.tip_positions, remote.tip_positions)

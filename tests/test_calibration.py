@@ -24,7 +24,9 @@ def _data(n: int, noise_m: float, seed: int) -> tuple[np.ndarray, np.ndarray]:
 
 def test_exact_data_recovers_the_parameters() -> None:
     t, y = _data(28, 0.0, 0)
-    r = calibrate(EXP, t, y, fit=("expansion_scale", "friction_mass_kg"), initial={"youngs_modulus_slope_pa_per_c": -1e6})
+    r = calibrate(
+        EXP, t, y, fit=("expansion_scale", "friction_mass_kg"), initial={"youngs_modulus_slope_pa_per_c": -1e6}
+    )
     # noise-free: the optimum is the truth up to the solver's tolerances
     # (least_squares' ftol/xtol 1e-8 relative)
     assert r.estimate[0] == pytest.approx(1.15, rel=1e-5)
@@ -34,7 +36,9 @@ def test_exact_data_recovers_the_parameters() -> None:
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_noisy_data_recovery_within_stated_multiple_of_standard_error(seed: int) -> None:
     t, y = _data(28, 0.05e-3, seed)  # 28 points, 0.05 mm noise
-    r = calibrate(EXP, t, y, fit=("expansion_scale", "friction_mass_kg"), initial={"youngs_modulus_slope_pa_per_c": -1e6})
+    r = calibrate(
+        EXP, t, y, fit=("expansion_scale", "friction_mass_kg"), initial={"youngs_modulus_slope_pa_per_c": -1e6}
+    )
     assert r.success
     truth = np.array([TRUE["expansion_scale"], TRUE["friction_mass_kg"]])
     z = np.abs(r.estimate - truth) / r.standard_error
@@ -50,7 +54,9 @@ def test_more_data_narrows_the_interval() -> None:
     widths = []
     for n in (8, 55):
         t, y = _data(n, 0.05e-3, 7)
-        r = calibrate(EXP, t, y, fit=("expansion_scale", "friction_mass_kg"), initial={"youngs_modulus_slope_pa_per_c": -1e6})
+        r = calibrate(
+            EXP, t, y, fit=("expansion_scale", "friction_mass_kg"), initial={"youngs_modulus_slope_pa_per_c": -1e6}
+        )
         widths.append(r.ci_high - r.ci_low)
     # ~1/sqrt(n): 55 points vs 8 should be ~2.6x narrower; require 1.5x
     assert np.all(widths[1] * 1.5 < widths[0])

@@ -42,9 +42,19 @@ def test_reproduce_fig5_json(tmp_path: Path) -> None:
     assert len(fig5["cases"]) == 4
     for case in fig5["cases"]:
         for key in (
-            "label", "threads", "fibre_length_m", "coiled_length_m", "coil_diameter_m", "turns",
-            "mass_kg", "friction_equivalent_kg", "force_per_half_n", "displacement_m",
-            "onset_temperature_c", "final_temperature_c", "displacement_at_final_temperature_m",
+            "label",
+            "threads",
+            "fibre_length_m",
+            "coiled_length_m",
+            "coil_diameter_m",
+            "turns",
+            "mass_kg",
+            "friction_equivalent_kg",
+            "force_per_half_n",
+            "displacement_m",
+            "onset_temperature_c",
+            "final_temperature_c",
+            "displacement_at_final_temperature_m",
             "straight_fibre_limit_m",
         ):
             assert key in case, key
@@ -116,7 +126,10 @@ def test_unwritable_output_exits_2_with_one_line(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize(
     "exc",
-    [ValueError("invalid temperature [C] = 200:\n allowed 25 <= T <= 160 C"), tcarod.ConvergenceError("did not converge")],
+    [
+        ValueError("invalid temperature [C] = 200:\n allowed 25 <= T <= 160 C"),
+        tcarod.ConvergenceError("did not converge"),
+    ],
     ids=["ValueError", "ConvergenceError"],
 )
 def test_model_errors_exit_2_with_one_line(
@@ -162,7 +175,9 @@ def test_closed_pipe_ends_quietly(tmp_path: Path) -> None:
     # `tcarod ... --json | head`: the reader goes away before the output is written
     proc = subprocess.Popen(
         [sys.executable, "-m", "tcarod.cli", "solve", *TWO, *TWO, "--out", str(tmp_path), "--json"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=tmp_path,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        cwd=tmp_path,
     )
     assert proc.stdout is not None and proc.stderr is not None
     proc.stdout.close()

@@ -56,10 +56,13 @@ def test_round_trip_of_custom_material_helix_and_segments(tmp_path: Path) -> Non
 
     mat = Material(youngs_modulus=1.5e9, shear_modulus=3e8, expansion=2e-4, youngs_modulus_slope=-1e6, name="mine")
     tca = Tca.from_pitch_angle(0.02, 0.25, 1.7e-3, 40.0, "extension", mat)
-    body = Body(0.05, Section.custom(1e-4, 8e-10, 9e-10, 1.5e-9), 40e3, poisson=0.45, density=1000.0,
-                tip_force=[0.0, 1e-3, 0.0])
-    acts = [Actuator.tca(tca, Routing.helix(3e-3, 20.0, 0.3), 0.01, 0.03),
-            Actuator.tca(tca, Routing.straight(-3e-3, 0.0), 0.03)]
+    body = Body(
+        0.05, Section.custom(1e-4, 8e-10, 9e-10, 1.5e-9), 40e3, poisson=0.45, density=1000.0, tip_force=[0.0, 1e-3, 0.0]
+    )
+    acts = [
+        Actuator.tca(tca, Routing.helix(3e-3, 20.0, 0.3), 0.01, 0.03),
+        Actuator.tca(tca, Routing.straight(-3e-3, 0.0), 0.03),
+    ]
     robot = Robot(body, acts)
     path = save_design(tmp_path / "r.toml", robot)
     d = load_design(path)
@@ -70,7 +73,7 @@ def test_round_trip_of_custom_material_helix_and_segments(tmp_path: Path) -> Non
 
 
 def test_syntax_error_names_the_line() -> None:
-    text = "[body]\nlength_m = 0.04\nsection = { kind = \"circle\", diameter_m = }\n"
+    text = '[body]\nlength_m = 0.04\nsection = { kind = "circle", diameter_m = }\n'
     with pytest.raises(DesignError) as e:
         loads_design(text, "bad.toml")
     assert e.value.line == 3
@@ -84,12 +87,25 @@ def _fig6_text() -> str:
 @pytest.mark.parametrize(
     ("old", "new", "key", "line_text"),
     [
-        ("turns = 38.2\nchirality = \"extension\"\nmaterial = \"silver_coated_nylon\"\n\n[[actuators]]",
-         "turns = -38.2\nchirality = \"extension\"\nmaterial = \"silver_coated_nylon\"\n\n[[actuators]]",
-         "actuators[0].tca.turns", "turns = -38.2"),
-        ("youngs_modulus_pa = 37.8e3", "youngs_modulus_pa = \"soft\"", "body.youngs_modulus_pa", "youngs_modulus_pa = \"soft\""),
+        (
+            'turns = 38.2\nchirality = "extension"\nmaterial = "silver_coated_nylon"\n\n[[actuators]]',
+            'turns = -38.2\nchirality = "extension"\nmaterial = "silver_coated_nylon"\n\n[[actuators]]',
+            "actuators[0].tca.turns",
+            "turns = -38.2",
+        ),
+        (
+            "youngs_modulus_pa = 37.8e3",
+            'youngs_modulus_pa = "soft"',
+            "body.youngs_modulus_pa",
+            'youngs_modulus_pa = "soft"',
+        ),
         ("x_m = 0.003, y_m = -0.0025", "x_m = 0.003, z_m = -0.0025", "actuators[1].routing.z_m", "z_m = -0.0025"),
-        ("temperatures_c = [100.0, 100.0]", "temperatures_c = [100.0, 200.0]", "temperatures_c", "temperatures_c = [100.0, 200.0]"),
+        (
+            "temperatures_c = [100.0, 100.0]",
+            "temperatures_c = [100.0, 200.0]",
+            "temperatures_c",
+            "temperatures_c = [100.0, 200.0]",
+        ),
         ("density_kg_per_m3 = 1040.0", "densty_kg_per_m3 = 1040.0", "body.densty_kg_per_m3", "densty_kg_per_m3"),
     ],
     ids=["negative-turns", "string-modulus", "unknown-routing-key", "temperature-range", "typo"],
@@ -143,10 +159,13 @@ def test_design_error_is_a_value_error() -> None:
     assert issubclass(DesignError, ValueError)
 
 
-@pytest.mark.parametrize("text", [
-    "[body]\nlength_m = " + "[" * 1000 + "]" * 1000,  # was RecursionError inside tomllib
-    "[body]\nlength_m = " + "{a=" * 1000 + "1" + "}" * 1000,
-])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "[body]\nlength_m = " + "[" * 1000 + "]" * 1000,  # was RecursionError inside tomllib
+        "[body]\nlength_m = " + "{a=" * 1000 + "1" + "}" * 1000,
+    ],
+)
 def test_deep_nesting_is_a_design_error_naming_the_line(text: str) -> None:
     with pytest.raises(DesignError, match="nested deeper") as err:
         loads_design(text, "deep.toml")
@@ -210,11 +229,14 @@ def test_tendon_designs_round_trip() -> None:
     from tcarod import Actuator, Routing
 
     base = load_design(DESIGNS / "fig6_square.toml").robot
-    robot = type(base)(base.body, [
-        base.actuators[0],
-        Actuator.tendon(Routing.helix(0.004, 10.0, 0.3), 0.0, 0.03),
-        Actuator.linear_tendon(120.0, Routing.straight(-0.003, 0.0)),
-    ])
+    robot = type(base)(
+        base.body,
+        [
+            base.actuators[0],
+            Actuator.tendon(Routing.helix(0.004, 10.0, 0.3), 0.0, 0.03),
+            Actuator.linear_tendon(120.0, Routing.straight(-0.003, 0.0)),
+        ],
+    )
     text = dumps_design(robot)
     again = loads_design(text).robot
     assert [a.kind for a in again.actuators] == ["tca", "tension", "linear_tendon"]

@@ -18,10 +18,18 @@ def test_fixture_matches_the_paper() -> None:
     # Section V-A, with l and L un-swapped (NOTES.md 1)
     three, four = FIG5.tcas
     assert (three.threads, three.coiled_length_m, three.fibre_length_m, three.coil_diameter_m, three.turns) == (
-        3, 0.110, 0.497, 2.0e-3, 300.0
+        3,
+        0.110,
+        0.497,
+        2.0e-3,
+        300.0,
     )
     assert (four.threads, four.coiled_length_m, four.fibre_length_m, four.coil_diameter_m, four.turns) == (
-        4, 0.110, 0.471, 2.13e-3, 259.0
+        4,
+        0.110,
+        0.471,
+        2.13e-3,
+        259.0,
     )
     assert [(w.mass_kg, w.friction_equivalent_kg) for w in FIG5.loads] == [(5e-3, 2.5e-3), (10e-3, 5e-3)]
     assert FIG5.temperatures_c == tuple(float(t) for t in range(25, 161, 5))
@@ -128,8 +136,12 @@ def test_prediction_respects_the_material() -> None:
     m = Material.silver_coated_nylon()
     e, es, g, gs, r, rs = m.coefficients
     more = Material(
-        youngs_modulus=e, youngs_modulus_slope=es, shear_modulus=g, shear_modulus_slope=gs,
-        expansion=2 * r, expansion_slope=2 * rs,
+        youngs_modulus=e,
+        youngs_modulus_slope=es,
+        shear_modulus=g,
+        shear_modulus_slope=gs,
+        expansion=2 * r,
+        expansion_slope=2 * rs,
     )
     base = predict_fig5().curves[0].displacement_at_final_temperature_m
     boosted = predict_fig5(material=more).curves[0].displacement_at_final_temperature_m

@@ -132,8 +132,17 @@ def test_cold_and_warm_sweeps_agree(result: Fig6Result) -> None:
 
 def test_table_reports_radii_gravity_and_iterations(result: Fig6Result) -> None:
     text = result.table()
-    for part in ("R gravity [mm]", "R no gravity [mm]", "gravity change [mm]", "Newton it. warm",
-                 "cold", "ASSUMED", "0.2 m", "Published data: none", "inf"):
+    for part in (
+        "R gravity [mm]",
+        "R no gravity [mm]",
+        "gravity change [mm]",
+        "Newton it. warm",
+        "cold",
+        "ASSUMED",
+        "0.2 m",
+        "Published data: none",
+        "inf",
+    ):
         assert part in text, part
     # one row per temperature per manipulator
     assert sum(1 for line in text.splitlines() if line.strip().startswith("100 |")) == 2

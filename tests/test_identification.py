@@ -159,7 +159,10 @@ def test_identify_rejects_bad_arguments() -> None:
 def test_table1_json_carries_the_identification(ident: Identification) -> None:
     base = TABLE1.predict()
     res = Table1Result(
-        experiment=TABLE1, rows=base.rows, readings=base.readings, identifications=(ident,),
+        experiment=TABLE1,
+        rows=base.rows,
+        readings=base.readings,
+        identifications=(ident,),
         identification_fig8_n=((5e-3, 1e-2),),
     )
     doc = json.loads(json.dumps(res.to_json(), allow_nan=False))

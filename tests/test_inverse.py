@@ -220,7 +220,9 @@ def test_brute_force_tip_position_agrees_with_finite_differences(square40) -> No
 FIG6 = fig6_square_robot()
 
 
-@pytest.mark.parametrize("temps", [(40.0, 40.0), (90.0, 90.0), (130.0, 130.0), (40.0, 90.0), (130.0, 90.0), (40.0, 130.0)])
+@pytest.mark.parametrize(
+    "temps", [(40.0, 40.0), (90.0, 90.0), (130.0, 130.0), (40.0, 90.0), (130.0, 90.0), (40.0, 130.0)]
+)
 def test_reachable_fig6_targets_are_reached_with_the_default_budget(temps: tuple[float, float]) -> None:
     target = FIG6.solve(list(temps)).tip_position
     res = tip_position(FIG6, target)  # defaults: tol 1e-7 m, max_iter 50

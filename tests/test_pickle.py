@@ -86,7 +86,9 @@ def _objects() -> dict[str, Callable[[], Any]]:
         "solution": lambda: SQUARE.solve([90.0, 90.0]),
         "solution_loaded": lambda: Robot(_body(), [Actuator.tendon(Routing.straight(0.003, 0.0))]).solve([0.02]),
         "inverse_result": lambda: tip_position(SQUARE, SQUARE.solve([60.0, 60.0]).tip_position, groups=[0, 0]),
-        "blocked_result": lambda: blocked_force(SQUARE, SQUARE.solve([25.0, 25.0]).tip_position, [-1.0, 0.0, 0.0], 60.0, groups=[0, 0]),
+        "blocked_result": lambda: blocked_force(
+            SQUARE, SQUARE.solve([25.0, 25.0]).tip_position, [-1.0, 0.0, 0.0], 60.0, groups=[0, 0]
+        ),
         "batch_result": lambda: solve_batch(SQUARE, [[40.0, 40.0], [90.0, 95.0], [130.0, 120.0]], chunk_size=2),
     }
 
@@ -128,8 +130,22 @@ def test_different_objects_are_unequal() -> None:
 def test_a_pickled_solution_keeps_every_array_and_warm_starts_the_same() -> None:
     sol = SQUARE.solve([90.0, 90.0])
     back = pickle.loads(pickle.dumps(sol))
-    for field in ("s", "positions", "rotations", "nu", "omega", "internal_force", "internal_moment", "tensions",
-                  "elongations", "elongation_profile", "inputs", "base_force", "base_moment", "unknowns"):
+    for field in (
+        "s",
+        "positions",
+        "rotations",
+        "nu",
+        "omega",
+        "internal_force",
+        "internal_moment",
+        "tensions",
+        "elongations",
+        "elongation_profile",
+        "inputs",
+        "base_force",
+        "base_moment",
+        "unknowns",
+    ):
         np.testing.assert_array_equal(getattr(back, field), getattr(sol, field))
     assert (back.iterations, back.evaluations, back.residual) == (sol.iterations, sol.evaluations, sol.residual)
     assert back.robot == SQUARE

@@ -79,8 +79,9 @@ def test_notebook_shows_figures_as_images_without_magics(tmp_path: object) -> No
     pytest.importorskip("ipykernel")
     nb = nbformat.v4.new_notebook()
     nb.cells = [
-        nbformat.v4.new_code_cell("from tcarod.batch import fig6_square_robot\n"
-                                  "sol = fig6_square_robot().solve([100.0, 100.0])"),
+        nbformat.v4.new_code_cell(
+            "from tcarod.batch import fig6_square_robot\nsol = fig6_square_robot().solve([100.0, 100.0])"
+        ),
         nbformat.v4.new_code_cell("sol.plot()"),
         nbformat.v4.new_code_cell("sol"),
     ]

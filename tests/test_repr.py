@@ -13,7 +13,9 @@ from tcarod import Actuator, Body, Material, Routing, Section, Tca, _core
 from tcarod.batch import fig6_square_robot
 
 TCA = Tca(0.497, 0.110, 2e-3, 300.0)
-NAMESPACE: dict[str, Any] = {n: getattr(tcarod, n) for n in ("Actuator", "Body", "Material", "Robot", "Routing", "Section", "Tca")}
+NAMESPACE: dict[str, Any] = {
+    n: getattr(tcarod, n) for n in ("Actuator", "Body", "Material", "Robot", "Routing", "Section", "Tca")
+}
 
 VALUES = [
     Material.silver_coated_nylon(),
@@ -25,7 +27,14 @@ VALUES = [
     Section.custom(1e-4, 1e-9, 2e-9, 3e-9),
     Routing.straight(0.005, 0.0),
     Routing.helix(0.003, 50.0, 0.25),
-    Body(0.04, Section.rectangle(0.01, 0.01), 37.8e3, density=1040.0, gravity=[0.0, 0.0, -9.81], omega_star=[0.0, 5.0, 0.0]),
+    Body(
+        0.04,
+        Section.rectangle(0.01, 0.01),
+        37.8e3,
+        density=1040.0,
+        gravity=[0.0, 0.0, -9.81],
+        omega_star=[0.0, 5.0, 0.0],
+    ),
     Actuator.tca(TCA, Routing.straight(0.003, 0.0), pretension_n=0.01),
     Actuator.tca(TCA, Routing.straight(0.003, 0.0), 0.0, 0.04, 0.98),
     Actuator.tendon(Routing.straight(0.0, 0.003)),
@@ -49,12 +58,24 @@ def test_result_reprs_are_python_syntax_without_rust_debug() -> None:
         text = repr(obj)
         assert "success=" in text and not re.search(r"\btrue\b|\bfalse\b|[{}]", text), text
     assert "success=False" in repr(inv) and "status=1" in repr(inv)
-    assert repr(Body(0.04, Section.circle(0.01), 1e5)).startswith("Body(length=0.04, section=Section.circle(diameter=0.01)")
+    assert repr(Body(0.04, Section.circle(0.01), 1e5)).startswith(
+        "Body(length=0.04, section=Section.circle(diameter=0.01)"
+    )
     assert repr(Routing.straight(0.005, 0.0)) == "Routing.straight(x=0.005, y=0.0)"
 
 
-CLASSES = [_core.Tca, _core.Material, _core.Section, _core.Routing, _core.Body, _core.Actuator, _core.Robot,
-           _core.Solution, _core.InverseResult, _core.BlockedResult]
+CLASSES = [
+    _core.Tca,
+    _core.Material,
+    _core.Section,
+    _core.Routing,
+    _core.Body,
+    _core.Actuator,
+    _core.Robot,
+    _core.Solution,
+    _core.InverseResult,
+    _core.BlockedResult,
+]
 UNIT = re.compile(r"\[[^\]]+\]|`")  # a unit in brackets, or the named value or type in backticks
 
 
@@ -77,9 +98,20 @@ def test_property_docstrings_give_units_or_meaning(cls: type) -> None:
 
 
 def test_signatures_are_real() -> None:
-    fns: list[Any] = [_core.Robot, _core.Body, _core.Tca, _core.Material, _core.Robot.solve, _core.Robot.sweep,
-                      _core.Actuator.tca, _core.Routing.helix, _core.tip_inverse, _core.solve_batch,
-                      _core.blocked_temperature, _core.blocked_force]
+    fns: list[Any] = [
+        _core.Robot,
+        _core.Body,
+        _core.Tca,
+        _core.Material,
+        _core.Robot.solve,
+        _core.Robot.sweep,
+        _core.Actuator.tca,
+        _core.Routing.helix,
+        _core.tip_inverse,
+        _core.solve_batch,
+        _core.blocked_temperature,
+        _core.blocked_force,
+    ]
     for f in fns:
         sig = str(inspect.signature(f))
         assert "Ellipsis" not in sig and "..." not in sig, (f, sig)

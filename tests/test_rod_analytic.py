@@ -239,9 +239,9 @@ def test_helix_of_zero_rate_equals_straight_routing() -> None:
     tau = 0.03
     body = weightless_body()
     helix = Robot(body, [Actuator.tendon(Routing.helix(radius, 0.0, phase))]).solve([tau])
-    straight = Robot(body, [Actuator.tendon(Routing.straight(radius * math.cos(phase), radius * math.sin(phase)))]).solve(
-        [tau]
-    )
+    straight = Robot(
+        body, [Actuator.tendon(Routing.straight(radius * math.cos(phase), radius * math.sin(phase)))]
+    ).solve([tau])
     np.testing.assert_allclose(helix.positions, straight.positions, rtol=0.0, atol=1e-14)  # identical arithmetic
 
 

@@ -42,12 +42,12 @@ SETTINGS = settings(max_examples=25, deadline=None, suppress_health_check=[Healt
 # ------------------------------------------------------------ random designs
 
 
-
 def span_tca(s_start: float, s_end: float | None, length: float) -> Tca:
     """The paper's manipulator TCA cut to the span it is anchored over (a TCA
     may not be longer than its span: src/validate.rs), twist per length kept."""
     span = (length if s_end is None else s_end) - s_start
     return Tca.from_pitch_angle(span, math.radians(15.0), 1.7e-3, 76.4 * span / 0.04)
+
 
 @dataclass(frozen=True)
 class ActuatorSpec:
@@ -161,8 +161,17 @@ def designs(draw: st.DrawFn, nested: bool = False) -> Design:
     area = section.properties[0]
     density = min(draw(st.floats(0.0, 2000.0)), 2.0 * ei / (area * G0 * length**3))
     return Design(
-        length, section, hw, hh, e, density, g,  # type: ignore[arg-type]
-        tip_force, tip_moment, dist_moment, tuple(acts),  # type: ignore[arg-type]
+        length,
+        section,
+        hw,
+        hh,
+        e,
+        density,
+        g,  # type: ignore[arg-type]
+        tip_force,
+        tip_moment,
+        dist_moment,
+        tuple(acts),  # type: ignore[arg-type]
     )
 
 
@@ -250,8 +259,9 @@ def test_tca_pressed_into_coil_contact_converges(tip_force_y: float) -> None:
 def test_reference_temperature_keeps_reference_shape(design: Design, precurvature: tuple[float, float]) -> None:
     # every actuator a TCA at 25 C; no load, no gravity; straight or pre-curved body
     omega_star = (precurvature[0], precurvature[1], 0.0)  # [1/m]
-    body = Body(design.length, design.section, design.youngs_modulus, poisson=0.5, density=design.density,
-                omega_star=omega_star)
+    body = Body(
+        design.length, design.section, design.youngs_modulus, poisson=0.5, density=design.density, omega_star=omega_star
+    )
     acts = []
     for a in design.actuators:
         s0 = a.s_start_frac * design.length
@@ -276,8 +286,14 @@ def test_reference_temperature_keeps_reference_shape(design: Design, precurvatur
 
 
 def _symmetric_robot(design: Design, xy: list[tuple[float, float]], gravity_z: float = 0.0) -> Robot:
-    body = Body(design.length, design.section, design.youngs_modulus, poisson=0.5,
-                density=design.density, gravity=(0.0, 0.0, gravity_z))
+    body = Body(
+        design.length,
+        design.section,
+        design.youngs_modulus,
+        poisson=0.5,
+        density=design.density,
+        gravity=(0.0, 0.0, gravity_z),
+    )
     robot = design.robot()
     acts = []
     for a, (x, y) in zip(robot.actuators, xy):
@@ -460,8 +476,10 @@ BODY = Body(0.04, Section.rectangle(10e-3, 10e-3), 37.8e3, poisson=0.5)
         (lambda: Actuator.linear_tendon(0.0, Routing.straight(3e-3, 0.0)), "stiffness"),
         (lambda: Actuator.tendon(Routing.straight(3e-3, 0.0)).tension(0.0, -1.0), "tension"),
         (lambda: Actuator.tca(TCA40, Routing.straight(0.0, 0.0)).tension(math.nan, 100.0), "elongation"),
-        (lambda: SQUARE.solve([100.0, 100.0], warm_start=FIG6.manipulators[0].robot(False).solve([100.0])),
-         "warm_start"),
+        (
+            lambda: SQUARE.solve([100.0, 100.0], warm_start=FIG6.manipulators[0].robot(False).solve([100.0])),
+            "warm_start",
+        ),
     ],
 )
 def test_bad_input_raises_value_error_naming_the_field(call: Any, field: str) -> None:
@@ -478,9 +496,24 @@ def test_wrong_input_type_raises_type_error(bad: Any) -> None:
 def test_solution_getters_are_finite() -> None:
     # no getter hands NaN (or inf) to Python
     sol: Solution = FIG6.manipulators[0].robot(True).solve([160.0])
-    for name in ("s", "positions", "rotations", "nu", "omega", "internal_force", "internal_moment",
-                 "elongation_profile", "tensions", "elongations", "inputs", "base_force", "base_moment",
-                 "tip_position", "tip_rotation", "unknowns"):
+    for name in (
+        "s",
+        "positions",
+        "rotations",
+        "nu",
+        "omega",
+        "internal_force",
+        "internal_moment",
+        "elongation_profile",
+        "tensions",
+        "elongations",
+        "inputs",
+        "base_force",
+        "base_moment",
+        "tip_position",
+        "tip_rotation",
+        "unknowns",
+    ):
         assert np.all(np.isfinite(getattr(sol, name))), name
     assert all(np.all(np.isfinite(p)) for p in sol.actuator_paths)
     assert math.isfinite(sol.residual)

@@ -15,7 +15,9 @@ from tcarod.segmented import segment_bounds, segmented_actuators
 LENGTH = FIG1B.length_m
 
 
-def _robot(segments: int, gravity: bool, tip_moment: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> tuple[Robot, object]:
+def _robot(
+    segments: int, gravity: bool, tip_moment: tuple[float, float, float] = (0.0, 0.0, 0.0)
+) -> tuple[Robot, object]:
     f = replace(FIG1B, segments=segments)
     body = f.body(gravity=gravity).replace(tip_moment=list(tip_moment))
     return Robot(body, f.actuators()), f
@@ -80,7 +82,9 @@ def _gravity_difference(temperature_c: float = 100.0) -> tuple[float, float]:
     whole = _single_tca_robot(1, g).solve([temperature_c])
     seg = _single_tca_robot(4, g).solve([temperature_c] * 4)
     k_whole = np.interp(seg.s, whole.s, whole.omega[:, 1])
-    return float(np.linalg.norm(whole.tip_position - seg.tip_position)), float(np.max(np.abs(seg.omega[:, 1] - k_whole)))
+    return float(np.linalg.norm(whole.tip_position - seg.tip_position)), float(
+        np.max(np.abs(seg.omega[:, 1] - k_whole))
+    )
 
 
 def test_with_gravity_segmented_differs_from_one_tca() -> None:
@@ -161,17 +165,20 @@ def test_segmented_horizontal_cold_converges_and_balances() -> None:
 # ------------------------------------------------------------------ bad input (issue 12)
 
 
-@pytest.mark.parametrize(("args", "exc", "name"), [
-    ((3, 0.0, 1e30), None, ""),  # a huge span is fine: finite, increasing bounds
-    ((10**7, 0.0, 0.04), ValueError, "segments"),  # beyond MAX_SEGMENTS: bounded work
-    ((-1, 0.0, 0.04), ValueError, "segments"),
-    ((2.0, 0.0, 0.04), TypeError, "segments"),
-    (("3", 0.0, 0.04), TypeError, "segments"),
-    ((3, "0", 0.04), TypeError, "s_start"),
-    ((3, 0.0, float("nan")), ValueError, "s_end"),
-    ((3, 0.0, 5e-324), ValueError, "span"),  # segments of zero length in floating point
-    (([0.5, float("inf")], 0.0, 0.04), ValueError, "segments"),
-])
+@pytest.mark.parametrize(
+    ("args", "exc", "name"),
+    [
+        ((3, 0.0, 1e30), None, ""),  # a huge span is fine: finite, increasing bounds
+        ((10**7, 0.0, 0.04), ValueError, "segments"),  # beyond MAX_SEGMENTS: bounded work
+        ((-1, 0.0, 0.04), ValueError, "segments"),
+        ((2.0, 0.0, 0.04), TypeError, "segments"),
+        (("3", 0.0, 0.04), TypeError, "segments"),
+        ((3, "0", 0.04), TypeError, "s_start"),
+        ((3, 0.0, float("nan")), ValueError, "s_end"),
+        ((3, 0.0, 5e-324), ValueError, "span"),  # segments of zero length in floating point
+        (([0.5, float("inf")], 0.0, 0.04), ValueError, "segments"),
+    ],
+)
 def test_segment_bounds_contract(args: tuple[object, ...], exc: type | None, name: str) -> None:
     if exc is None:
         bounds = segment_bounds(*args)  # type: ignore[arg-type]

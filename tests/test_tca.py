@@ -145,7 +145,11 @@ def test_contraction_tca_mirrors_extension_under_tension() -> None:
 
 
 @SETTINGS
-@given(temperature=temperatures, u=st.floats(min_value=1e-3, max_value=1.0), chirality=st.sampled_from(["extension", "contraction"]))
+@given(
+    temperature=temperatures,
+    u=st.floats(min_value=1e-3, max_value=1.0),
+    chirality=st.sampled_from(["extension", "contraction"]),
+)
 def test_force_inverts_displacement(temperature: float, u: float, chirality: str) -> None:
     tca = fig5_tca(chirality)
     # Forces that keep the coils open (above the blocked force) and stay well
@@ -164,7 +168,11 @@ def test_force_inverts_displacement(temperature: float, u: float, chirality: str
 
 
 @SETTINGS
-@given(temperature=temperatures, u=st.floats(min_value=1e-4, max_value=0.8), chirality=st.sampled_from(["extension", "contraction"]))
+@given(
+    temperature=temperatures,
+    u=st.floats(min_value=1e-4, max_value=0.8),
+    chirality=st.sampled_from(["extension", "contraction"]),
+)
 def test_displacement_inverts_force(temperature: float, u: float, chirality: str) -> None:
     tca = fig5_tca(chirality)
     delta = u * tca.max_displacement

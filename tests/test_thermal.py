@@ -37,7 +37,9 @@ def test_lumped_parameters_and_time_constant() -> None:
     # tau = m c_p / (h A) = density c_p r / (2 h): independent of l and threads
     assert MODEL.time_constant_s == pytest.approx(1127.0 * 2000.0 * r / (2 * 23.0), rel=1e-12)
     assert MODEL.time_constant_s == pytest.approx(4.9, abs=0.01)
-    assert replace(MODEL, threads=4, fibre_length_m=0.5).time_constant_s == pytest.approx(MODEL.time_constant_s, rel=1e-12)
+    assert replace(MODEL, threads=4, fibre_length_m=0.5).time_constant_s == pytest.approx(
+        MODEL.time_constant_s, rel=1e-12
+    )
 
 
 def test_resistance_is_required_and_checked() -> None:
@@ -206,15 +208,18 @@ def test_tiny_heat_transfer_is_a_value_error_not_zero_division() -> None:
         ThermalModel(0.3, 3, 60.0, heat_transfer_w_per_m2k=5e-324)
 
 
-@pytest.mark.parametrize(("kwargs", "exc", "name"), [
-    ({"fibre_length_m": "0.3"}, TypeError, "fibre_length_m"),
-    ({"fibre_length_m": None}, TypeError, "fibre_length_m"),
-    ({"threads": 2.5}, TypeError, "threads"),
-    ({"threads": 10**400}, ValueError, "threads"),
-    ({"threads": -1}, ValueError, "threads"),
-    ({"ambient_c": 1j}, TypeError, "ambient_c"),
-    ({"resistance": "60"}, TypeError, "resistance"),
-])
+@pytest.mark.parametrize(
+    ("kwargs", "exc", "name"),
+    [
+        ({"fibre_length_m": "0.3"}, TypeError, "fibre_length_m"),
+        ({"fibre_length_m": None}, TypeError, "fibre_length_m"),
+        ({"threads": 2.5}, TypeError, "threads"),
+        ({"threads": 10**400}, ValueError, "threads"),
+        ({"threads": -1}, ValueError, "threads"),
+        ({"ambient_c": 1j}, TypeError, "ambient_c"),
+        ({"resistance": "60"}, TypeError, "resistance"),
+    ],
+)
 def test_model_arguments_wrong_type_or_range_name_the_argument(kwargs: dict[str, Any], exc: type, name: str) -> None:
     args: dict[str, Any] = {"fibre_length_m": 0.3, "threads": 3, "resistance": 60.0, **kwargs}
     with pytest.raises(exc, match=name):

@@ -38,15 +38,18 @@ def test_grid_beyond_the_cap_is_a_value_error_before_any_solve() -> None:
         snake_grid([list(range(1000))] * 3)
 
 
-@pytest.mark.parametrize(("call", "exc", "name"), [
-    (lambda: workspace_map(None, [25.0]), TypeError, "robot"),
-    (lambda: workspace_map(ROBOT, "25"), TypeError, "grid_c"),
-    (lambda: workspace_map(ROBOT, [float("nan")]), ValueError, "grid_c"),
-    (lambda: workspace_map(ROBOT, [25.0], steps=-1), ValueError, "steps"),
-    (lambda: workspace_map(ROBOT, [25.0], steps=10**30), ValueError, "steps"),
-    (lambda: solve_rows(ROBOT, [[25.0, 1j]]), TypeError, "inputs"),
-    (lambda: plot_workspace(ws=None), TypeError, "ws"),  # type: ignore[arg-type]
-])
+@pytest.mark.parametrize(
+    ("call", "exc", "name"),
+    [
+        (lambda: workspace_map(None, [25.0]), TypeError, "robot"),
+        (lambda: workspace_map(ROBOT, "25"), TypeError, "grid_c"),
+        (lambda: workspace_map(ROBOT, [float("nan")]), ValueError, "grid_c"),
+        (lambda: workspace_map(ROBOT, [25.0], steps=-1), ValueError, "steps"),
+        (lambda: workspace_map(ROBOT, [25.0], steps=10**30), ValueError, "steps"),
+        (lambda: solve_rows(ROBOT, [[25.0, 1j]]), TypeError, "inputs"),
+        (lambda: plot_workspace(ws=None), TypeError, "ws"),  # type: ignore[arg-type]
+    ],
+)
 def test_bad_arguments_name_the_argument(call: object, exc: type, name: str) -> None:
     with pytest.raises(exc, match=name):
         call()  # type: ignore[operator]

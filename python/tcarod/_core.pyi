@@ -713,6 +713,7 @@ def blocked_temperature_direct(
 ) -> BlockedResult:
     """Direct mixed solve: the actuation variable is a shooting unknown, the
     contact ``force`` [N] is given (check of :func:`blocked_temperature`)."""
+
 # --- batch solves and bench timings (src/python/batch.rs; see tcarod.batch) ---
 
 def solve_batch(

@@ -74,8 +74,11 @@ def solution_html(sol: Any) -> str:
     ]
     head = _row(["actuator", "input", "tension", "elongation"], "th")
     return (
-        "<div><b>tcarod Solution</b><table>" + "".join(rows) + "</table>"
-        + ("<table>" + head + "".join(acts) + "</table>" if acts else "") + "</div>"
+        "<div><b>tcarod Solution</b><table>"
+        + "".join(rows)
+        + "</table>"
+        + ("<table>" + head + "".join(acts) + "</table>" if acts else "")
+        + "</div>"
     )
 
 
@@ -94,10 +97,15 @@ def robot_html(robot: Any) -> str:
     for k, a in enumerate(robot.actuators):
         lo, hi = a.input_bounds
         end = "tip" if a.s_end == float("inf") else f"{float(a.s_end) * 1e3:g}"
-        acts.append(_row([str(k), str(a.kind), f"{float(a.s_start) * 1e3:g}", end, str(a.input_name), f"{lo:g} .. {hi:g}"]))
+        acts.append(
+            _row([str(k), str(a.kind), f"{float(a.s_start) * 1e3:g}", end, str(a.input_name), f"{lo:g} .. {hi:g}"])
+        )
     return (
-        "<div><b>tcarod Robot</b><table>" + "".join(rows) + "</table>"
-        + ("<table>" + head + "".join(acts) + "</table>" if acts else "") + "</div>"
+        "<div><b>tcarod Robot</b><table>"
+        + "".join(rows)
+        + "</table>"
+        + ("<table>" + head + "".join(acts) + "</table>" if acts else "")
+        + "</div>"
     )
 
 

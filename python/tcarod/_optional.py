@@ -35,6 +35,5 @@ def require(module: str) -> ModuleType:
         top = module.split(".")[0]
         extra = EXTRAS.get(top, "all")
         raise MissingDependencyError(
-            f"{top} is needed for this feature and is not installed: "
-            f"pip install 'tcarod[{extra}]'"
+            f"{top} is needed for this feature and is not installed: pip install 'tcarod[{extra}]'"
         ) from exc

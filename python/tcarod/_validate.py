@@ -99,8 +99,9 @@ def integer(name: str, value: object, lo: int, hi: int) -> int:
     return n
 
 
-def real_array(name: str, value: Any, *, ndim: int | None = None, max_size: int = MAX_OUTPUT_POINTS,
-               unit: str = "") -> FloatArray:
+def real_array(
+    name: str, value: Any, *, ndim: int | None = None, max_size: int = MAX_OUTPUT_POINTS, unit: str = ""
+) -> FloatArray:
     """``value`` as a finite float64 array: ``TypeError`` for strings,
     ``None``, complex or non-numeric elements; ``ValueError`` for NaN/inf,
     the wrong number of dimensions or more than ``max_size`` elements."""

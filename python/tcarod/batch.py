@@ -131,7 +131,9 @@ class BatchResult:
             for i in range(self.inputs.shape[1]):
                 cols[f"input_{i}"] = self.inputs[:, i]
         if self.wrenches is not None:
-            for i, name in enumerate(("force_x_n", "force_y_n", "force_z_n", "moment_x_nm", "moment_y_nm", "moment_z_nm")):
+            for i, name in enumerate(
+                ("force_x_n", "force_y_n", "force_z_n", "moment_x_nm", "moment_y_nm", "moment_z_nm")
+            ):
                 cols[name] = self.wrenches[:, i]
         for i, axis in enumerate("xyz"):
             cols[f"tip_{axis}_m"] = self.tip_positions[:, i]
@@ -231,7 +233,9 @@ def iter_batches(
     ``progress=True`` shows a tqdm bar (rows)."""
     nthreads = threads if threads > 0 else _core.default_threads()
     block = chunk_size * (block_chunks if block_chunks is not None else 4 * nthreads)
-    if isinstance(inputs, np.ndarray) or (isinstance(inputs, (list, tuple)) and inputs and not hasattr(inputs[0], "shape")):
+    if isinstance(inputs, np.ndarray) or (
+        isinstance(inputs, (list, tuple)) and inputs and not hasattr(inputs[0], "shape")
+    ):
         parts: Iterable[tuple[Any, Any]] = _array_parts(inputs, wrenches, block, robot)
         total: int | None = int(np.asarray(inputs).shape[0])
     else:
@@ -256,7 +260,9 @@ def iter_batches(
             bar.close()
 
 
-def _array_parts(inputs: Any, wrenches: Any, block: int, robot: RobotLike) -> Iterator[tuple[FloatArray, FloatArray | None]]:
+def _array_parts(
+    inputs: Any, wrenches: Any, block: int, robot: RobotLike
+) -> Iterator[tuple[FloatArray, FloatArray | None]]:
     na = len(_robot(robot).actuators)
     q = _as_rows(inputs, na, "inputs")
     w = None if wrenches is None else _as_rows(wrenches, 6, "wrenches")
@@ -308,7 +314,15 @@ def solve_batch(
         return _solve_block(r, q, w, steps, tol, max_iter, chunk_size, threads)
     return BatchResult.concatenate(
         iter_batches(
-            r, q, wrenches, steps=steps, tol=tol, max_iter=max_iter, chunk_size=chunk_size, threads=threads, progress=True
+            r,
+            q,
+            wrenches,
+            steps=steps,
+            tol=tol,
+            max_iter=max_iter,
+            chunk_size=chunk_size,
+            threads=threads,
+            progress=True,
         )
     )
 

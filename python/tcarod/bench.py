@@ -43,7 +43,9 @@ def add_parser(sub: Any) -> None:
     )
     p.add_argument("--repeats", type=int, default=7, metavar="N", help="timed runs per row (default 7)")
     p.add_argument("--min-time", type=float, default=0.05, metavar="S", help="seconds per run (default 0.05)")
-    p.add_argument("--batch", type=int, default=2000, metavar="N", help="solves per throughput batch (default 2000; 0: skip)")
+    p.add_argument(
+        "--batch", type=int, default=2000, metavar="N", help="solves per throughput batch (default 2000; 0: skip)"
+    )
     p.add_argument("--no-baseline", action="store_true", help="skip the (slow) NumPy/SciPy baseline")
     p.add_argument("--progress", action="store_true", help="show a progress bar for the throughput batches")
     p.add_argument("--json", action="store_true", help="print one JSON document instead of the table (times in s)")
@@ -87,7 +89,14 @@ def measure(
         med = statistics.median(runs)
         medians[name] = med
         rows.append(
-            {"name": name, "description": description, "target_s": target, "median_s": med, "runs_s": runs, "meets_target": med <= target}
+            {
+                "name": name,
+                "description": description,
+                "target_s": target,
+                "median_s": med,
+                "runs_s": runs,
+                "meets_target": med <= target,
+            }
         )
     # Python call overhead on a warm solve: the same solve as row "warm", called from Python
     robot = fig6_square_robot(True)
@@ -107,7 +116,12 @@ def measure(
             t0 = time.perf_counter()
             res = solve_batch(robot, q, chunk_size=max(1, batch // 16), threads=threads, progress=progress)
             dt = time.perf_counter() - t0
-            throughput[f"threads_{threads}"] = {"solves": batch, "seconds": dt, "solves_per_s": batch / dt, "all_converged": bool(res.converged.all())}
+            throughput[f"threads_{threads}"] = {
+                "solves": batch,
+                "seconds": dt,
+                "solves_per_s": batch / dt,
+                "all_converged": bool(res.converged.all()),
+            }
     numpy: dict[str, Any] | None = None
     if baseline:
         mod = _load_baseline()
@@ -141,7 +155,9 @@ def _fmt(s: float) -> str:
 def _table(doc: dict[str, Any]) -> str:
     lines = [f"{'operation':<74} {'median':>10} {'target':>10}  ok"]
     for r in doc["rows"]:
-        lines.append(f"{r['description']:<74} {_fmt(r['median_s']):>10} {_fmt(r['target_s']):>10}  {'yes' if r['meets_target'] else 'NO'}")
+        lines.append(
+            f"{r['description']:<74} {_fmt(r['median_s']):>10} {_fmt(r['target_s']):>10}  {'yes' if r['meets_target'] else 'NO'}"
+        )
     o = doc["python_overhead"]
     lines.append(
         f"{'Python call overhead on a warm solve':<74} {o['fraction'] * 100:>9.1f}% {'10%':>10}  {'yes' if o['fraction'] < 0.1 else 'NO'}"
@@ -163,8 +179,12 @@ def run(args: argparse.Namespace) -> int:
 
     from ._optional import require
 
-    if not (1 <= args.repeats <= 10_000 and math.isfinite(args.min_time) and 0 <= args.min_time <= 60
-            and 0 <= args.batch <= 1_000_000):
+    if not (
+        1 <= args.repeats <= 10_000
+        and math.isfinite(args.min_time)
+        and 0 <= args.min_time <= 60
+        and 0 <= args.batch <= 1_000_000
+    ):
         raise ValueError("--repeats must be in 1..10000, --min-time in [0, 60] s, --batch in 0..1000000")
     if args.progress:
         require("tqdm")  # one line naming the extra, before any work

@@ -160,8 +160,9 @@ def brute_force_tip_position(
     grp = _groups(robot, groups, list(range(len(robot.actuators))))
     nz = max(grp) + 1
     refs = robot.reference_inputs
-    x0 = np.asarray(V.vector("start", start, nz) if start is not None else [refs[grp.index(k)] for k in range(nz)],
-                    dtype=np.float64)
+    x0 = np.asarray(
+        V.vector("start", start, nz) if start is not None else [refs[grp.index(k)] for k in range(nz)], dtype=np.float64
+    )
     target = V.vector("target", target, 3, "m")
     xatol = V.positive("xatol", xatol, "C")
     fatol = V.positive("fatol", fatol, "m")
@@ -179,7 +180,9 @@ def brute_force_tip_position(
         sol = fwd.solve(_inputs(grp, [float(v) for v in zc]))
         return float(np.linalg.norm(np.asarray(sol.tip_position) - tgt)) + 1e-3 * float(np.linalg.norm(z - zc))
 
-    simplex = [x0] + [x0 + simplex_size_c * np.eye(nz)[k] * (1.0 if x0[k] + simplex_size_c <= hi[k] else -1.0) for k in range(nz)]
+    simplex = [x0] + [
+        x0 + simplex_size_c * np.eye(nz)[k] * (1.0 if x0[k] + simplex_size_c <= hi[k] else -1.0) for k in range(nz)
+    ]
     res = minimize(
         distance,
         x0,

@@ -76,8 +76,14 @@ class TcaExperiment:
     chirality: str = "extension"
 
     def __post_init__(self) -> None:
-        for name, unit in (("fibre_length_m", "m"), ("coiled_length_m", "m"), ("coil_diameter_m", "m"),
-                           ("turns", ""), ("load_share", ""), ("gravity_m_per_s2", "m/s^2")):
+        for name, unit in (
+            ("fibre_length_m", "m"),
+            ("coiled_length_m", "m"),
+            ("coil_diameter_m", "m"),
+            ("turns", ""),
+            ("load_share", ""),
+            ("gravity_m_per_s2", "m/s^2"),
+        ):
             object.__setattr__(self, name, V.positive(name, getattr(self, name), unit))
         object.__setattr__(self, "mass_kg", V.real("mass_kg", self.mass_kg, lo=0.0, unit="kg"))
         if not isinstance(self.chirality, str):
@@ -168,17 +174,25 @@ def calibrate(
         ts = [V.real_array("temperatures_c", temperatures_c, max_size=100_000, unit="C")]
         ys = [V.real_array("displacements_m", displacements_m, max_size=100_000, unit="m")]
     else:
-        exps = [V.instance("experiment", e, TcaExperiment, "a TcaExperiment or a sequence of them")
-                for e in V.sequence("experiment", experiment, 1000)]
-        ts = [V.real_array(f"temperatures_c[{k}]", x, max_size=100_000, unit="C")
-              for k, x in enumerate(V.sequence("temperatures_c", temperatures_c, 1000))]
-        ys = [V.real_array(f"displacements_m[{k}]", x, max_size=100_000, unit="m")
-              for k, x in enumerate(V.sequence("displacements_m", displacements_m, 1000))]
+        exps = [
+            V.instance("experiment", e, TcaExperiment, "a TcaExperiment or a sequence of them")
+            for e in V.sequence("experiment", experiment, 1000)
+        ]
+        ts = [
+            V.real_array(f"temperatures_c[{k}]", x, max_size=100_000, unit="C")
+            for k, x in enumerate(V.sequence("temperatures_c", temperatures_c, 1000))
+        ]
+        ys = [
+            V.real_array(f"displacements_m[{k}]", x, max_size=100_000, unit="m")
+            for k, x in enumerate(V.sequence("displacements_m", displacements_m, 1000))
+        ]
         if not (len(exps) == len(ts) == len(ys)) or not exps:
             raise ValueError(f"give one temperature and one displacement array per experiment ({len(exps)})")
     for k, (tk, yk) in enumerate(zip(ts, ys)):
         if tk.shape != yk.shape or tk.ndim != 1:
-            raise ValueError(f"experiment {k}: temperatures_c {tk.shape} and displacements_m {yk.shape} must be 1-D of one length")
+            raise ValueError(
+                f"experiment {k}: temperatures_c {tk.shape} and displacements_m {yk.shape} must be 1-D of one length"
+            )
     t = np.concatenate(ts)
     y = np.concatenate(ys)
     names = tuple(V.sequence("fit", fit, len(PARAMETERS) + 1))

@@ -94,12 +94,20 @@ def _add_solve_parser(sub: Any) -> None:
         "temperatures_c), print the tip pose and write DIR/<design name>.png.",
     )
     sol.add_argument("designs", nargs="+", metavar="DESIGN.toml", help="robot design file(s)")
-    sol.add_argument("--temperature", "-T", nargs="+", type=float, metavar="T",
-                     help="temperature [C] of each actuator, or one for all")
-    sol.add_argument("--out", metavar="DIR", default=DEFAULT_OUT_DIR,
-                     help=f"directory for the PNG (default: {DEFAULT_OUT_DIR}/)")
-    sol.add_argument("--json", action="store_true",
-                     help="print one JSON document (tip position in m, rotation, tensions in N)")
+    sol.add_argument(
+        "--temperature",
+        "-T",
+        nargs="+",
+        type=float,
+        metavar="T",
+        help="temperature [C] of each actuator, or one for all",
+    )
+    sol.add_argument(
+        "--out", metavar="DIR", default=DEFAULT_OUT_DIR, help=f"directory for the PNG (default: {DEFAULT_OUT_DIR}/)"
+    )
+    sol.add_argument(
+        "--json", action="store_true", help="print one JSON document (tip position in m, rotation, tensions in N)"
+    )
 
 
 def _solve_designs(paths: Sequence[str], temperatures: Sequence[float] | None, out_dir: Path, as_json: bool) -> int:
@@ -111,8 +119,9 @@ def _solve_designs(paths: Sequence[str], temperatures: Sequence[float] | None, o
     return 0
 
 
-def _solve_design(design_path: str, temperatures: Sequence[float] | None, out_dir: Path, as_json: bool,
-                  emit: bool = True) -> dict[str, Any]:
+def _solve_design(
+    design_path: str, temperatures: Sequence[float] | None, out_dir: Path, as_json: bool, emit: bool = True
+) -> dict[str, Any]:
     from .design import load_design
 
     design = load_design(design_path)
@@ -143,15 +152,15 @@ def _solve_design(design_path: str, temperatures: Sequence[float] | None, out_di
     tip = [float(x) for x in solution.tip_position]
     rot = [[float(x) for x in row] for row in solution.tip_rotation]
     doc: dict[str, Any] = {
-            "tcarod_version": __version__,
-            "design": str(design_path),
-            "temperature_c": temps,
-            "tip_position_m": tip,
-            "tip_rotation": rot,
-            "tensions_n": [float(x) for x in solution.tensions],
-            "iterations": int(solution.iterations),
-            "png_path": str(png),
-        }
+        "tcarod_version": __version__,
+        "design": str(design_path),
+        "temperature_c": temps,
+        "tip_position_m": tip,
+        "tip_rotation": rot,
+        "tensions_n": [float(x) for x in solution.tensions],
+        "iterations": int(solution.iterations),
+        "png_path": str(png),
+    }
     if as_json:
         if emit:
             print(json.dumps(doc, indent=2, allow_nan=False))

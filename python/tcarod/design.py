@@ -126,6 +126,7 @@ class Design:
 # Line lookup for semantic errors
 # --------------------------------------------------------------------------
 
+
 def _header_parts(line: str) -> tuple[bool, str] | None:
     """``(is_array, inner)`` if the stripped ``line`` is a table header, else ``None``."""
     if not line.startswith("["):
@@ -135,7 +136,7 @@ def _header_parts(line: str) -> tuple[bool, str] | None:
     close = line.find("]", inner_start)
     if close < 0:
         return None
-    rest = line[close + (2 if arr else 1):].strip()
+    rest = line[close + (2 if arr else 1) :].strip()
     if rest and not rest.startswith("#"):
         return None  # e.g. a continuation line of a multi-line array
     if "=" in line[:close]:
@@ -287,8 +288,9 @@ class _Reader:
             if k not in allowed:
                 raise self.error((*path, k), f"unknown key (allowed: {', '.join(allowed)})")
 
-    def number(self, d: dict[str, Any], key: str, path: tuple[str, ...], default: float | None = None,
-               positive: bool = False) -> float:
+    def number(
+        self, d: dict[str, Any], key: str, path: tuple[str, ...], default: float | None = None, positive: bool = False
+    ) -> float:
         if key not in d:
             if default is None:
                 raise self.error((*path, key), "missing")
@@ -307,13 +309,19 @@ class _Reader:
         if key not in d:
             return None
         v = d[key]
-        if not (isinstance(v, list) and len(v) == 3 and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)):
+        if not (
+            isinstance(v, list)
+            and len(v) == 3
+            and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)
+        ):
             raise self.error((*path, key), f"must be a list of 3 numbers, got {_short(v)}")
         if not all(math.isfinite(_float(x)) for x in v):
             raise self.error((*path, key), f"must be finite, got {_short(v)}")
         return [_float(x) for x in v]
 
-    def string(self, d: dict[str, Any], key: str, path: tuple[str, ...], choices: Sequence[str], default: str | None = None) -> str:
+    def string(
+        self, d: dict[str, Any], key: str, path: tuple[str, ...], choices: Sequence[str], default: str | None = None
+    ) -> str:
         if key not in d:
             if default is None:
                 raise self.error((*path, key), "missing")
@@ -350,10 +358,28 @@ _BODY_VECTORS = {
     "tip_force_n": "tip_force",
     "tip_moment_nm": "tip_moment",
 }
-_BODY_KEYS = ("length_m", "section", "youngs_modulus_pa", "poisson", "shear_modulus_pa", "density_kg_per_m3",
-              "shear_coefficient", *_BODY_VECTORS)
-_MATERIAL_KEYS = ("youngs_modulus_pa", "shear_modulus_pa", "expansion_per_c", "youngs_modulus_slope_pa_per_c",
-                  "shear_modulus_slope_pa_per_c", "expansion_slope_per_c2", "t_ref_c", "t_min_c", "t_max_c", "name")
+_BODY_KEYS = (
+    "length_m",
+    "section",
+    "youngs_modulus_pa",
+    "poisson",
+    "shear_modulus_pa",
+    "density_kg_per_m3",
+    "shear_coefficient",
+    *_BODY_VECTORS,
+)
+_MATERIAL_KEYS = (
+    "youngs_modulus_pa",
+    "shear_modulus_pa",
+    "expansion_per_c",
+    "youngs_modulus_slope_pa_per_c",
+    "shear_modulus_slope_pa_per_c",
+    "expansion_slope_per_c2",
+    "t_ref_c",
+    "t_min_c",
+    "t_max_c",
+    "name",
+)
 
 
 def _section(r: _Reader, d: Any, path: tuple[str, ...]) -> Any:
@@ -364,7 +390,9 @@ def _section(r: _Reader, d: Any, path: tuple[str, ...]) -> Any:
         return Section.circle(r.number(t, "diameter_m", path, positive=True))
     if kind == "rectangle":
         r.check_keys(t, path, ("kind", "width_m", "height_m"))
-        return Section.rectangle(r.number(t, "width_m", path, positive=True), r.number(t, "height_m", path, positive=True))
+        return Section.rectangle(
+            r.number(t, "width_m", path, positive=True), r.number(t, "height_m", path, positive=True)
+        )
     keys = ("area_m2", "ix_m4", "iy_m4", "j_m4")
     r.check_keys(t, path, ("kind", *keys))
     return Section.custom(*(r.number(t, k, path, positive=True) for k in keys))
@@ -391,8 +419,12 @@ def _body(r: _Reader, d: Any) -> Any:
         raise r.error((*path, "section"), "missing")
     section = _section(r, t["section"], (*path, "section"))
     try:
-        return Body(r.number(t, "length_m", path, positive=True), section,
-                    r.number(t, "youngs_modulus_pa", path, positive=True), **kw)
+        return Body(
+            r.number(t, "length_m", path, positive=True),
+            section,
+            r.number(t, "youngs_modulus_pa", path, positive=True),
+            **kw,
+        )
     except DesignError:
         raise
     except ValueError as exc:
@@ -433,7 +465,11 @@ def _material(r: _Reader, d: Any, path: tuple[str, ...]) -> Any:
 
 def _tca(r: _Reader, d: Any, path: tuple[str, ...]) -> Any:
     t = r.table(d, path)
-    r.check_keys(t, path, ("coiled_length_m", "fibre_length_m", "alpha0_deg", "coil_diameter_m", "turns", "chirality", "material"))
+    r.check_keys(
+        t,
+        path,
+        ("coiled_length_m", "fibre_length_m", "alpha0_deg", "coil_diameter_m", "turns", "chirality", "material"),
+    )
     chir = r.string(t, "chirality", path, ("extension", "contraction"), default="extension")
     mat = _material(r, t.get("material", "silver_coated_nylon"), (*path, "material"))
     cl = r.number(t, "coiled_length_m", path, positive=True)
@@ -443,7 +479,9 @@ def _tca(r: _Reader, d: Any, path: tuple[str, ...]) -> Any:
         raise r.error((*path, "fibre_length_m"), "give exactly one of fibre_length_m and alpha0_deg")
     try:
         if "alpha0_deg" in t:
-            return Tca.from_pitch_angle(cl, math.radians(r.number(t, "alpha0_deg", path, positive=True)), dd, nn, chir, mat)  # type: ignore[arg-type]
+            return Tca.from_pitch_angle(
+                cl, math.radians(r.number(t, "alpha0_deg", path, positive=True)), dd, nn, chir, mat
+            )  # type: ignore[arg-type]
         return Tca(r.number(t, "fibre_length_m", path, positive=True), cl, dd, nn, chir, mat)  # type: ignore[arg-type]
     except DesignError:
         raise
@@ -458,7 +496,9 @@ def _routing(r: _Reader, d: Any, path: tuple[str, ...]) -> Any:
         r.check_keys(t, path, ("kind", "x_m", "y_m"))
         return Routing.straight(r.number(t, "x_m", path), r.number(t, "y_m", path))
     r.check_keys(t, path, ("kind", "radius_m", "rate_rad_per_m", "phase_rad"))
-    return Routing.helix(r.number(t, "radius_m", path), r.number(t, "rate_rad_per_m", path), r.number(t, "phase_rad", path, default=0.0))
+    return Routing.helix(
+        r.number(t, "radius_m", path), r.number(t, "rate_rad_per_m", path), r.number(t, "phase_rad", path, default=0.0)
+    )
 
 
 def _actuator(r: _Reader, d: Any, path: tuple[str, ...]) -> Any:
@@ -481,7 +521,9 @@ def _actuator(r: _Reader, d: Any, path: tuple[str, ...]) -> Any:
                 r.check_keys(td, tp, ("kind",))
                 return Actuator.tendon(routing, s_start, s_end, lr)
             r.check_keys(td, tp, ("kind", "stiffness_n_per_m"))
-            return Actuator.linear_tendon(r.number(td, "stiffness_n_per_m", tp, positive=True), routing, s_start, s_end, lr)
+            return Actuator.linear_tendon(
+                r.number(td, "stiffness_n_per_m", tp, positive=True), routing, s_start, s_end, lr
+            )
         tca = _tca(r, t["tca"], (*path, "tca"))
         return Actuator.tca(tca, routing, s_start, s_end, lr)
     except DesignError:
@@ -534,7 +576,9 @@ def loads_design(text: str, source: str = "<string>") -> Design:
         for i, (a, x) in enumerate(zip(acts, temps)):
             lo, hi = a.input_bounds
             if not (lo <= x <= hi):
-                raise r.error(("temperatures_c",), f"value {i} = {x} C is outside the material's range {lo:g}..{hi:g} C")
+                raise r.error(
+                    ("temperatures_c",), f"value {i} = {x} C is outside the material's range {lo:g}..{hi:g} C"
+                )
     return Design(robot, temps)
 
 
@@ -610,8 +654,11 @@ def _section_doc(s: Any) -> dict[str, Any]:
         return {"kind": "circle", "diameter_m": _clean(math.sqrt(4.0 * area / math.pi))}
     if s.kind == "rectangle":
         # A = w h, Ix = w h^3 / 12, Iy = h w^3 / 12
-        return {"kind": "rectangle", "width_m": _clean(math.sqrt(12.0 * iy / area)),
-                "height_m": _clean(math.sqrt(12.0 * ix / area))}
+        return {
+            "kind": "rectangle",
+            "width_m": _clean(math.sqrt(12.0 * iy / area)),
+            "height_m": _clean(math.sqrt(12.0 * ix / area)),
+        }
     return {"kind": "custom", "area_m2": area, "ix_m4": ix, "iy_m4": iy, "j_m4": j}
 
 
@@ -629,20 +676,30 @@ def _tca_doc(tca: Any) -> dict[str, Any]:
     rebuilt = None
     if deg is not None:
         try:
-            rebuilt = Tca.from_pitch_angle(float(tca.coiled_length), math.radians(deg), float(tca.coil_diameter),
-                                           float(tca.turns), tca.chirality, tca.material)
+            rebuilt = Tca.from_pitch_angle(
+                float(tca.coiled_length),
+                math.radians(deg),
+                float(tca.coil_diameter),
+                float(tca.turns),
+                tca.chirality,
+                tca.material,
+            )
         except ValueError:
             rebuilt = None
-    if rebuilt is not None and abs(float(rebuilt.fibre_length) - float(tca.fibre_length)) <= 4.0 * math.ulp(float(tca.fibre_length)):
+    if rebuilt is not None and abs(float(rebuilt.fibre_length) - float(tca.fibre_length)) <= 4.0 * math.ulp(
+        float(tca.fibre_length)
+    ):
         doc["alpha0_deg"] = deg
     else:
         doc["fibre_length_m"] = float(tca.fibre_length)
-    doc.update({
-        "coil_diameter_m": float(tca.coil_diameter),
-        "turns": float(tca.turns),
-        "chirality": tca.chirality,
-        "material": _material_doc(tca.material),
-    })
+    doc.update(
+        {
+            "coil_diameter_m": float(tca.coil_diameter),
+            "turns": float(tca.turns),
+            "chirality": tca.chirality,
+            "material": _material_doc(tca.material),
+        }
+    )
     return doc
 
 
@@ -678,9 +735,10 @@ def dumps_design(robot: Any, temperatures_c: Sequence[float] | None = None) -> s
         "youngs_modulus_pa": e_b,
     }
     poisson = _clean(e_b / (2.0 * g_b) - 1.0)
-    if len(f"{poisson:.17g}".rstrip("0")) <= 8 and Body(
-        float(kw["length"]), kw["section"], e_b, poisson=poisson
-    ).shear_modulus == g_b:
+    if (
+        len(f"{poisson:.17g}".rstrip("0")) <= 8
+        and Body(float(kw["length"]), kw["section"], e_b, poisson=poisson).shear_modulus == g_b
+    ):
         body["poisson"] = poisson
     else:
         body["shear_modulus_pa"] = g_b

@@ -131,8 +131,10 @@ class Reading:
             "per_leg": "76.4 turns per leg",
             "per_length": "76.4 turns per 40 mm (38.2 per 20 mm leg)",
         }[self.turns_reading]
-        rho = {"measured_cte": "rho(T) fitted to the measured CTE (Choy 1984)",
-               "sun_zhao": "rho(T) of Sun & Zhao's diameter fit (default)"}[self.material]
+        rho = {
+            "measured_cte": "rho(T) fitted to the measured CTE (Choy 1984)",
+            "sun_zhao": "rho(T) of Sun & Zhao's diameter fit (default)",
+        }[self.material]
         free = " and ".join(self.free)
         return f"{turns}; {rho}; free: {free}"
 
@@ -275,8 +277,13 @@ def _fit(
     hi = [150.0, math.log(20.0)][: len(free)]
     x_start = np.clip(np.asarray(x0[: len(free)], dtype=np.float64), np.add(lo, 1e-9), np.subtract(hi, 1e-9))
     fit = opt.least_squares(
-        lambda x: model(x) - tgt, x_start, bounds=(lo, hi), x_scale=[10.0, 0.3][: len(free)],
-        diff_step=1e-5, xtol=1e-8, ftol=1e-10,
+        lambda x: model(x) - tgt,
+        x_start,
+        bounds=(lo, hi),
+        x_scale=[10.0, 0.3][: len(free)],
+        diff_step=1e-5,
+        xtol=1e-8,
+        ftol=1e-10,
     )
     return fit.x, model(fit.x)
 

@@ -165,8 +165,5 @@ def square_manipulator(
     )
     turns = leg_turns(length_m, 2, turns_reading)
     tca = manipulator_tca(length_m, turns=turns, coil_diameter_m=coil_diameter_m, material=material)
-    legs = [
-        Actuator.tca(tca, Routing.straight(tca_offset_m, y))
-        for y in (U_LEG_HALF_SPACING_M, -U_LEG_HALF_SPACING_M)
-    ]
+    legs = [Actuator.tca(tca, Routing.straight(tca_offset_m, y)) for y in (U_LEG_HALF_SPACING_M, -U_LEG_HALF_SPACING_M)]
     return Robot(body, legs)

@@ -118,7 +118,9 @@ def plot_fig6(result: Fig6Result) -> Figure:
         m = with_g.manipulator
         for curve, style, label in ((with_g, "-", "model, gravity (upright)"), (without, "--", "model, no gravity")):
             radii_mm = np.where(np.isfinite(curve.radii_m), curve.radii_m * 1e3, np.nan)
-            ax.plot(curve.temperatures_c, radii_mm, linestyle=style, color="black", marker=".", markersize=3, label=label)
+            ax.plot(
+                curve.temperatures_c, radii_mm, linestyle=style, color="black", marker=".", markersize=3, label=label
+            )
         published = result.experiment.published_data
         if published is not None:
             for p in published:
@@ -219,7 +221,9 @@ def plot_solution(
     pos = solution.positions
     rot = solution.rotations
     section = solution.robot.body.section
-    ax.plot(pos[:, 0] * mm, pos[:, 1] * mm, pos[:, 2] * mm, "k--", linewidth=1.0, label="centre line", gid="centre-line")
+    ax.plot(
+        pos[:, 0] * mm, pos[:, 1] * mm, pos[:, 2] * mm, "k--", linewidth=1.0, label="centre line", gid="centre-line"
+    )
     points = [pos * mm]
 
     def edge_point(theta: float) -> npt.NDArray[np.float64]:
@@ -230,8 +234,15 @@ def plot_solution(
     for k, theta in enumerate(_outline_angles(section)):
         pts = (pos + rot @ edge_point(theta)) * mm
         points.append(pts)
-        ax.plot(pts[:, 0], pts[:, 1], pts[:, 2], color="0.55", linewidth=0.8,
-                label="body outline" if k == 0 else None, gid=f"outline-{k}")
+        ax.plot(
+            pts[:, 0],
+            pts[:, 1],
+            pts[:, 2],
+            color="0.55",
+            linewidth=0.8,
+            label="body outline" if k == 0 else None,
+            gid=f"outline-{k}",
+        )
     # cross-section rings at evenly spaced nodes (base and tip included)
     ring_angles = np.linspace(0.0, 2.0 * math.pi, 73)
     ring_local = np.array([edge_point(float(t)) for t in ring_angles])  # (73, 3), body frame
@@ -244,8 +255,15 @@ def plot_solution(
     for k, (path, tension) in enumerate(zip(solution.actuator_paths, solution.tensions)):
         p = path * mm
         points.append(p)
-        ax.plot(p[:, 0], p[:, 1], p[:, 2], color=colours[k % len(colours)], linewidth=2.0,
-                label=f"actuator {k}: {tension * 1e3:.1f} mN", gid=f"actuator-{k}")
+        ax.plot(
+            p[:, 0],
+            p[:, 1],
+            p[:, 2],
+            color=colours[k % len(colours)],
+            linewidth=2.0,
+            label=f"actuator {k}: {tension * 1e3:.1f} mN",
+            gid=f"actuator-{k}",
+        )
     # equal aspect: a cube around the drawn points (of every overlaid shape)
     allp = np.concatenate(points)
     lo, hi = allp.min(axis=0), allp.max(axis=0)

@@ -62,7 +62,9 @@ __all__ = [
 ]
 
 
-def circle_radius(a: Sequence[float] | FloatArray, b: Sequence[float] | FloatArray, c: Sequence[float] | FloatArray) -> float:
+def circle_radius(
+    a: Sequence[float] | FloatArray, b: Sequence[float] | FloatArray, c: Sequence[float] | FloatArray
+) -> float:
     """Radius [m] of the circle through three points [m]; ``inf`` if collinear."""
     pa, pb, pc = (np.asarray(V.vector(n, x, 3, "m")) for n, x in (("a", a), ("b", b), ("c", c)))
     ab = float(np.linalg.norm(pb - pa))

@@ -31,7 +31,9 @@ __all__ = ["Branch", "Stability", "follow_branch", "plot_branch", "stability"]
 Parameter = Literal["inputs", "gravity_scale", "tip_load_scale"]
 
 
-def stability(robot: _core.Robot, solution: _core.Solution, *, blocked: Sequence[Sequence[float]] | None = None) -> Stability:
+def stability(
+    robot: _core.Robot, solution: _core.Solution, *, blocked: Sequence[Sequence[float]] | None = None
+) -> Stability:
     """Stability verdict of ``solution`` (an equilibrium of ``robot``).
 
     ``blocked``: world directions along which the tip translation is held
@@ -127,5 +129,7 @@ def plot_branch(
     for par, before, after in branch.jumps:
         y0 = before.positions[-1][component] * scale
         y1 = after.positions[-1][component] * scale
-        ax.annotate("", xy=(par, y1), xytext=(par, y0), arrowprops={"arrowstyle": "->", "linestyle": ":", "color": color})
+        ax.annotate(
+            "", xy=(par, y1), xytext=(par, y0), arrowprops={"arrowstyle": "->", "linestyle": ":", "color": color}
+        )
     return ax

@@ -189,9 +189,7 @@ class Sensitivity:
         }
 
 
-def table1_sensitivity(
-    step: float = 0.10, masses_kg: Sequence[float] = TABLE1_MASSES_KG
-) -> tuple[Sensitivity, ...]:
+def table1_sensitivity(step: float = 0.10, masses_kg: Sequence[float] = TABLE1_MASSES_KG) -> tuple[Sensitivity, ...]:
     """Every parameter of :data:`PARAMETERS` scaled by ``1 -+ step``; sorted
     by :attr:`Sensitivity.mean_abs_elasticity`, largest first."""
     step = V.real("step", step, lo=0.0, hi=0.5, lo_open=True, hi_open=True)

@@ -188,7 +188,13 @@ class ThermalModel:
     _r: Callable[[float, float], float] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        for name in ("fibre_length_m", "thread_radius_m", "density_kg_per_m3", "specific_heat_j_per_kgk", "heat_transfer_w_per_m2k"):
+        for name in (
+            "fibre_length_m",
+            "thread_radius_m",
+            "density_kg_per_m3",
+            "specific_heat_j_per_kgk",
+            "heat_transfer_w_per_m2k",
+        ):
             object.__setattr__(self, name, V.positive(name, getattr(self, name)))
         object.__setattr__(self, "threads", V.integer("threads", self.threads, 1, 10_000))
         amb = V.real("ambient_c", self.ambient_c, lo=-273.15, unit="C")
@@ -206,7 +212,9 @@ class ThermalModel:
                 )
         r: Any = self.resistance
         if r is None:
-            raise TypeError("resistance [ohm] is required: give an ohm value, a LinearResistance or a callable R(T, strain)")
+            raise TypeError(
+                "resistance [ohm] is required: give an ohm value, a LinearResistance or a callable R(T, strain)"
+            )
         if isinstance(r, bool):
             raise TypeError("resistance must be a number [ohm], a LinearResistance or a callable, not bool")
         if isinstance(r, (numbers.Real, np.number)):
@@ -215,7 +223,9 @@ class ThermalModel:
         elif callable(r):
             fn = r
         else:
-            raise TypeError(f"resistance must be a number [ohm], a LinearResistance or a callable, not {type(r).__name__}")
+            raise TypeError(
+                f"resistance must be a number [ohm], a LinearResistance or a callable, not {type(r).__name__}"
+            )
         object.__setattr__(self, "_r", fn)
 
     # -- lumped parameters ---------------------------------------------------
@@ -350,7 +360,9 @@ class ThermalModel:
         V.instance("profile", profile, VoltageProfile, "a VoltageProfile")
         t_out = V.real_array("times_s", times_s, ndim=1, unit="s")
         if t_out.size == 0 or np.any(np.diff(t_out) < 0.0) or t_out[0] < profile.times_s[0]:
-            raise ValueError("times_s [s] must be a non-empty increasing sequence starting at or after the profile's start")
+            raise ValueError(
+                "times_s [s] must be a non-empty increasing sequence starting at or after the profile's start"
+            )
         t0 = float(profile.times_s[0])
         temp0 = self.ambient_c if initial_c is None else V.real("initial_c", initial_c, lo=-273.15, hi=1e6, unit="C")
         strain = V.real("strain", strain)
@@ -425,7 +437,9 @@ def steady_temperatures(models: Sequence[ThermalModel], voltages_v: Sequence[flo
     return [m.steady_temperature(v) for m, v in zip(models, voltages_v)]
 
 
-def solve_with_voltages(robot: Any, models: Sequence[ThermalModel], voltages_v: Sequence[float], **solve_kwargs: Any) -> Any:
+def solve_with_voltages(
+    robot: Any, models: Sequence[ThermalModel], voltages_v: Sequence[float], **solve_kwargs: Any
+) -> Any:
     """Forward solution of ``robot`` with each actuator at the steady
     temperature of its voltage [V] (one :class:`ThermalModel` per actuator)."""
     _robot(robot)
@@ -469,19 +483,27 @@ def quasi_static_trajectory(
     """
     _robot(robot)
     models = _models(models)
-    profiles = [V.instance("profiles", p, VoltageProfile, "a sequence of VoltageProfile")
-                for p in V.sequence("profiles", profiles, V.MAX_SEGMENTS)]
+    profiles = [
+        V.instance("profiles", p, VoltageProfile, "a sequence of VoltageProfile")
+        for p in V.sequence("profiles", profiles, V.MAX_SEGMENTS)
+    ]
     steps = V.integer("steps", steps, 1, 100_000)
     n = len(robot.actuators)
     if len(models) != n or len(profiles) != n:
-        raise ValueError(f"models and profiles: expected {n} each (one per actuator), got {len(models)} and {len(profiles)}")
+        raise ValueError(
+            f"models and profiles: expected {n} each (one per actuator), got {len(models)} and {len(profiles)}"
+        )
     t = V.real_array("times_s", times_s, ndim=1, max_size=10_000, unit="s")
     coupled = any(not _temperature_only(m) for m in models)
     temps = np.empty((t.size, n))
     if not coupled:
         for i, (m, p) in enumerate(zip(models, profiles)):
             temps[:, i] = m.transient(p, t).temperature_c
-    over = np.nonzero(np.any(temps > np.array([m.t_max_c for m in models]), axis=1))[0] if not coupled else np.array([], int)
+    over = (
+        np.nonzero(np.any(temps > np.array([m.t_max_c for m in models]), axis=1))[0]
+        if not coupled
+        else np.array([], int)
+    )
     if over.size:
         raise ValueError(f"the temperature exceeds t_max at t = {t[over[0]]:.3f} s: lower the voltage")
     coiled = [_coiled_length(a) for a in robot.actuators]
@@ -495,7 +517,9 @@ def quasi_static_trajectory(
             else:
                 strains = [float(e) / c for e, c in zip(sols[-1].elongations, coiled)]
                 state = [
-                    float(m.transient(_shifted(p, t[k - 1]), [t[k - 1], t[k]], initial_c=s0, strain=e).temperature_c[-1])
+                    float(
+                        m.transient(_shifted(p, t[k - 1]), [t[k - 1], t[k]], initial_c=s0, strain=e).temperature_c[-1]
+                    )
                     for m, p, s0, e in zip(models, profiles, state, strains)
                 ]
             for m, s0 in zip(models, state):
@@ -515,8 +539,10 @@ def _robot(robot: Any) -> Any:
 
 
 def _models(models: Any) -> list[ThermalModel]:
-    return [V.instance("models", m, ThermalModel, "a sequence of ThermalModel")
-            for m in V.sequence("models", models, V.MAX_SEGMENTS)]
+    return [
+        V.instance("models", m, ThermalModel, "a sequence of ThermalModel")
+        for m in V.sequence("models", models, V.MAX_SEGMENTS)
+    ]
 
 
 def _temperature_only(m: ThermalModel) -> bool:

@@ -31,8 +31,7 @@ def snake_grid(levels: Sequence[Sequence[float]]) -> FloatArray:
     consecutive rows differ in one input by one level (a boustrophedon), which
     keeps warm starts close. Shape ``(prod(len), len(levels))``; at most
     ``MAX_GRID_POINTS`` (100,000) rows (``ValueError`` beyond)."""
-    lists = [V.real_array(f"levels[{i}]", lv, ndim=1).tolist()
-             for i, lv in enumerate(V.sequence("levels", levels, 64))]
+    lists = [V.real_array(f"levels[{i}]", lv, ndim=1).tolist() for i, lv in enumerate(V.sequence("levels", levels, 64))]
     total = 1
     for lv in lists:
         total *= len(lv)
@@ -122,9 +121,7 @@ def workspace_map(robot: Any, grid_c: Sequence[float] | FloatArray, steps: int =
         raise ValueError("invalid grid_c: need at least one value [C]")
     n = len(robot.actuators)
     if float(grid.size) ** n > V.MAX_GRID_POINTS:
-        raise ValueError(
-            f"invalid grid_c: {grid.size}^{n} grid points, at most {V.MAX_GRID_POINTS} allowed"
-        )
+        raise ValueError(f"invalid grid_c: {grid.size}^{n} grid points, at most {V.MAX_GRID_POINTS} allowed")
     inputs = snake_grid([[float(x) for x in grid]] * n)
     t0 = time.perf_counter()
     sols = solve_rows(robot, inputs, steps=steps)
@@ -176,4 +173,3 @@ def plot_workspace(ws: Workspace, colour_by: str = "bending") -> Any:
     ax.set_title(f"Reachable tip positions: {len(ws.grid_c)}^{n_in} = {ws.temperatures_c.shape[0]} input combinations")
     fig.colorbar(sc, ax=ax, shrink=0.7, label=label)
     return fig
-

@@ -69,7 +69,13 @@ fn solve_batch<'py>(
     }
     let n = shape[0];
     if n > MAX_BATCH_ROWS {
-        return Err(Error::input("inputs", format!("{n} rows: at most {MAX_BATCH_ROWS} rows per call (use tcarod.batch.iter_batches)")).into());
+        return Err(Error::input(
+            "inputs",
+            format!(
+                "{n} rows: at most {MAX_BATCH_ROWS} rows per call (use tcarod.batch.iter_batches)"
+            ),
+        )
+        .into());
     }
     let q: Vec<f64> = inputs.as_array().iter().copied().collect(); // row-major
     let w: Option<Vec<f64>> = match wrenches {
@@ -92,7 +98,8 @@ fn solve_batch<'py>(
         threads,
         warm,
     };
-    let out = super::errors::detach_interruptible(py, || core_solve_batch(&r, &q, w.as_deref(), &opts))?;
+    let out =
+        super::errors::detach_interruptible(py, || core_solve_batch(&r, &q, w.as_deref(), &opts))?;
     let pos =
         PyArray1::from_iter(py, out.tip_positions.iter().flatten().copied()).reshape([n, 3])?;
     let rot =
@@ -123,7 +130,12 @@ fn bench_rows() -> Vec<(&'static str, &'static str, f64)> {
 /// released while timing.
 #[pyfunction]
 #[pyo3(signature = (name, repeats=None, min_time=Real(0.05)), text_signature = "(name, repeats=7, min_time=0.05)")]
-fn bench_time(py: Python<'_>, name: &str, repeats: Option<Bound<'_, PyAny>>, min_time: Real) -> PyResult<Vec<f64>> {
+fn bench_time(
+    py: Python<'_>,
+    name: &str,
+    repeats: Option<Bound<'_, PyAny>>,
+    min_time: Real,
+) -> PyResult<Vec<f64>> {
     let repeats = count_or("repeats", repeats.as_ref(), 7, 1, 1000)?;
     let min_time = crate::error::non_negative("min_time [s]", min_time.0)?;
     if min_time > 60.0 {

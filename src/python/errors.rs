@@ -91,7 +91,13 @@ impl From<Error> for PyErr {
     }
 }
 
-fn convergence_error(msg: String, residual: f64, iterations: usize, evaluations: usize, reason: &str) -> PyErr {
+fn convergence_error(
+    msg: String,
+    residual: f64,
+    iterations: usize,
+    evaluations: usize,
+    reason: &str,
+) -> PyErr {
     Python::attach(|py| {
         let err = ConvergenceError::new_err(msg);
         let value = err.value(py);

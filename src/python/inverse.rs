@@ -40,8 +40,12 @@ fn groups_for(robot: &PyRobot, groups: Option<&Bound<'_, PyAny>>) -> PyResult<Gr
 }
 
 fn dmat<'py>(py: Python<'py>, m: &nalgebra::DMatrix<f64>) -> Bound<'py, PyArray2<f64>> {
-    let flat: Vec<f64> = (0..m.nrows()).flat_map(|i| (0..m.ncols()).map(move |j| m[(i, j)])).collect();
-    PyArray1::from_vec(py, flat).reshape([m.nrows(), m.ncols()]).expect("shape")
+    let flat: Vec<f64> = (0..m.nrows())
+        .flat_map(|i| (0..m.ncols()).map(move |j| m[(i, j)]))
+        .collect();
+    PyArray1::from_vec(py, flat)
+        .reshape([m.nrows(), m.ncols()])
+        .expect("shape")
 }
 
 fn vec3(name: &str, a: &Bound<'_, PyAny>) -> PyResult<Vector3<f64>> {
@@ -60,7 +64,11 @@ fn same_robot(py: Python<'_>, robot: &PyRobot, solution: &PySolution, name: &str
     if solution.robot.bind(py).get().same_as(robot) {
         Ok(())
     } else {
-        Err(Error::input(name, "a Solution of a different robot (solve this robot first)").into())
+        Err(Error::input(
+            name,
+            "a Solution of a different robot (solve this robot first)",
+        )
+        .into())
     }
 }
 
@@ -70,17 +78,29 @@ fn same_robot(py: Python<'_>, robot: &PyRobot, solution: &PySolution, name: &str
 #[pyfunction]
 #[pyo3(signature = (solution, groups=None, scheme="forward"))]
 #[allow(clippy::type_complexity)]
-fn sensitivities<'py>(py: Python<'py>, solution: PyRef<'py, PySolution>, groups: Option<Bound<'py, PyAny>>, scheme: &str) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>)> {
+fn sensitivities<'py>(
+    py: Python<'py>,
+    solution: PyRef<'py, PySolution>,
+    groups: Option<Bound<'py, PyAny>>,
+    scheme: &str,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>)> {
     let robot = solution.robot.bind(py).get().clone();
     let g = groups_for(&robot, groups.as_ref())?;
     let sch = match scheme {
         "forward" => Scheme::Forward,
         "central" => Scheme::Central,
         "exact" => Scheme::Exact,
-        _ => return Err(Error::input("scheme", format!("{scheme:?} is not 'forward', 'central' or 'exact'")).into()),
+        _ => {
+            return Err(Error::input(
+                "scheme",
+                format!("{scheme:?} is not 'forward', 'central' or 'exact'"),
+            )
+            .into())
+        }
     };
     let sol = solution.inner.clone();
-    let s = py.detach(|| inverse::sensitivities(&robot.inner, &sol, &sol.loads, &g, sol.steps, sch))?;
+    let s =
+        py.detach(|| inverse::sensitivities(&robot.inner, &sol, &sol.loads, &g, sol.steps, sch))?;
     Ok((dmat(py, &s.jacobian), dmat(py, &s.compliance)))
 }
 
@@ -182,7 +202,10 @@ impl PyInverseResult {
     /// Tip position [m] of `solution`, shape `(3,)`.
     #[getter]
     fn tip_position<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, self.solution.bind(py).get().inner.tip_position().as_slice())
+        PyArray1::from_slice(
+            py,
+            self.solution.bind(py).get().inner.tip_position().as_slice(),
+        )
     }
     fn __repr__(&self) -> String {
         format!(
@@ -198,8 +221,13 @@ impl PyInverseResult {
         )
     }
     /// Pickle support (the solution travels with its robot).
-    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
-        let f = py.import("tcarod._core")?.getattr("_restore_inverse_result")?;
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let f = py
+            .import("tcarod._core")?
+            .getattr("_restore_inverse_result")?;
         let args = (
             self.solution.clone_ref(py),
             self.variables.clone(),
@@ -214,7 +242,9 @@ impl PyInverseResult {
         Ok((f, args))
     }
     fn __eq__(&self, py: Python<'_>, other: &Bound<'_, PyAny>) -> PyResult<bool> {
-        let Ok(o) = other.cast::<PyInverseResult>() else { return Ok(false) };
+        let Ok(o) = other.cast::<PyInverseResult>() else {
+            return Ok(false);
+        };
         let o = o.get();
         let same = self.variables == o.variables
             && self.error.to_bits() == o.error.to_bits()
@@ -255,7 +285,9 @@ fn restore_inverse_result(
 
 /// A 3x3 rotation matrix from Python (rows of 3 reals).
 fn rotation_arg(obj: &Bound<'_, PyAny>) -> PyResult<Matrix3<f64>> {
-    let rows = obj.try_iter().map_err(|_| pyo3::exceptions::PyTypeError::new_err("target_rotation: expected a 3x3 matrix"))?;
+    let rows = obj.try_iter().map_err(|_| {
+        pyo3::exceptions::PyTypeError::new_err("target_rotation: expected a 3x3 matrix")
+    })?;
     let mut m = Vec::new();
     for (i, row) in rows.enumerate() {
         if i >= 3 {
@@ -264,10 +296,16 @@ fn rotation_arg(obj: &Bound<'_, PyAny>) -> PyResult<Matrix3<f64>> {
         m.push(reals(&format!("target_rotation[{i}]"), &row?, Some(3))?);
     }
     if m.len() != 3 {
-        return Err(Error::input("target_rotation", format!("expected 3 rows, got {}", m.len())).into());
+        return Err(Error::input(
+            "target_rotation",
+            format!("expected 3 rows, got {}", m.len()),
+        )
+        .into());
     }
     let mm = Matrix3::from_fn(|i, j| m[i][j]);
-    if !mm.iter().all(|x| x.is_finite()) || (mm.transpose() * mm - Matrix3::identity()).norm() > 1e-6 {
+    if !mm.iter().all(|x| x.is_finite())
+        || (mm.transpose() * mm - Matrix3::identity()).norm() > 1e-6
+    {
         return Err(Error::input("target_rotation", "must be a 3x3 rotation matrix").into());
     }
     Ok(mm)
@@ -321,7 +359,9 @@ fn tip_inverse(
     };
     let rr = r.inner.clone();
     let w = orientation_weight.0;
-    let res = super::errors::detach_interruptible(py, || inverse::tip_position_inverse(&rr, &g, &t, rot.as_ref().map(|m| (m, w)), &z0, &opts))?;
+    let res = super::errors::detach_interruptible(py, || {
+        inverse::tip_position_inverse(&rr, &g, &t, rot.as_ref().map(|m| (m, w)), &z0, &opts)
+    })?;
     Ok(PyInverseResult {
         solution: Py::new(py, wrap(robot, res.solution))?,
         variables: res.variables,
@@ -374,7 +414,10 @@ impl PyBlockedResult {
     /// Why the solve stopped, in words (`str`).
     #[getter]
     fn message(&self) -> String {
-        format!("converged: contact force {:.6e} N after {} iterations", self.force, self.iterations)
+        format!(
+            "converged: contact force {:.6e} N after {} iterations",
+            self.force, self.iterations
+        )
     }
     /// Iterations (same as `iterations`), SciPy naming.
     #[getter]
@@ -389,7 +432,10 @@ impl PyBlockedResult {
     /// Tip position [m] of `solution`, shape `(3,)`.
     #[getter]
     fn tip_position<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, self.solution.bind(py).get().inner.tip_position().as_slice())
+        PyArray1::from_slice(
+            py,
+            self.solution.bind(py).get().inner.tip_position().as_slice(),
+        )
     }
     fn __repr__(&self) -> String {
         format!(
@@ -401,13 +447,27 @@ impl PyBlockedResult {
         )
     }
     /// Pickle support (the solution travels with its robot).
-    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
-        let f = py.import("tcarod._core")?.getattr("_restore_blocked_result")?;
-        let args = (self.solution.clone_ref(py), self.force, self.variables.clone(), self.iterations, self.evaluations).into_pyobject(py)?;
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let f = py
+            .import("tcarod._core")?
+            .getattr("_restore_blocked_result")?;
+        let args = (
+            self.solution.clone_ref(py),
+            self.force,
+            self.variables.clone(),
+            self.iterations,
+            self.evaluations,
+        )
+            .into_pyobject(py)?;
         Ok((f, args))
     }
     fn __eq__(&self, py: Python<'_>, other: &Bound<'_, PyAny>) -> PyResult<bool> {
-        let Ok(o) = other.cast::<PyBlockedResult>() else { return Ok(false) };
+        let Ok(o) = other.cast::<PyBlockedResult>() else {
+            return Ok(false);
+        };
         let o = o.get();
         let same = self.force.to_bits() == o.force.to_bits()
             && self.variables == o.variables
@@ -420,7 +480,13 @@ impl PyBlockedResult {
 /// Rebuild a `BlockedResult` (pickle support; not public API).
 #[pyfunction]
 #[pyo3(name = "_restore_blocked_result")]
-fn restore_blocked_result(solution: Py<PySolution>, force: f64, variables: Vec<f64>, iterations: usize, evaluations: usize) -> PyBlockedResult {
+fn restore_blocked_result(
+    solution: Py<PySolution>,
+    force: f64,
+    variables: Vec<f64>,
+    iterations: usize,
+    evaluations: usize,
+) -> PyBlockedResult {
     PyBlockedResult {
         solution,
         force,
@@ -430,7 +496,11 @@ fn restore_blocked_result(solution: Py<PySolution>, force: f64, variables: Vec<f
     }
 }
 
-fn blocked(py: Python<'_>, robot: &Bound<'_, PyRobot>, b: BlockedResult) -> PyResult<PyBlockedResult> {
+fn blocked(
+    py: Python<'_>,
+    robot: &Bound<'_, PyRobot>,
+    b: BlockedResult,
+) -> PyResult<PyBlockedResult> {
     Ok(PyBlockedResult {
         solution: Py::new(py, wrap(robot, b.solution))?,
         force: b.force,
@@ -469,7 +539,16 @@ fn blocked_force(
     }
     let warm = warm_start.map(|w| (w.solution.bind(py).get().inner.clone(), w.force));
     let rr = r.inner.clone();
-    let res = super::errors::detach_interruptible(py, || inverse::blocked_force(&rr, &g, &block, &variables, &opts, warm.as_ref().map(|(s, f)| (s, *f))))?;
+    let res = super::errors::detach_interruptible(py, || {
+        inverse::blocked_force(
+            &rr,
+            &g,
+            &block,
+            &variables,
+            &opts,
+            warm.as_ref().map(|(s, f)| (s, *f)),
+        )
+    })?;
     blocked(py, robot, res)
 }
 
@@ -502,7 +581,9 @@ fn blocked_temperature(
     let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
     let st = start.inner.clone();
     let rr = r.inner.clone();
-    let res = super::errors::detach_interruptible(py, || inverse::blocked_temperature(&rr, &g, &block, &st, force.0, increments, &opts))?;
+    let res = super::errors::detach_interruptible(py, || {
+        inverse::blocked_temperature(&rr, &g, &block, &st, force.0, increments, &opts)
+    })?;
     blocked(py, robot, res)
 }
 
@@ -530,6 +611,8 @@ fn blocked_temperature_direct(
     let block = Block::new(vec3("point [m]", &point)?, vec3("normal", &normal)?)?;
     let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
     let rr = r.inner.clone();
-    let res = super::errors::detach_interruptible(py, || inverse::blocked_variable_direct(&rr, &g, &block, force.0, guess.0, &opts, None))?;
+    let res = super::errors::detach_interruptible(py, || {
+        inverse::blocked_variable_direct(&rr, &g, &block, force.0, guess.0, &opts, None)
+    })?;
     blocked(py, robot, res)
 }

@@ -24,7 +24,12 @@ pyo3::create_exception!(
 
 /// Warn with [`UnitsWarning`].
 pub(crate) fn warn_units(py: Python<'_>, msg: String) -> PyResult<()> {
-    PyErr::warn(py, &py.get_type::<UnitsWarning>(), &std::ffi::CString::new(msg)?, 1)
+    PyErr::warn(
+        py,
+        &py.get_type::<UnitsWarning>(),
+        &std::ffi::CString::new(msg)?,
+        1,
+    )
 }
 
 #[pymodule]
@@ -122,7 +127,10 @@ fn reject_non_real(obj: &Bound<'_, PyAny>) -> PyResult<()> {
         || obj.is_instance_of::<PyComplex>()
         || is_numpy_complex(obj);
     if bad {
-        return Err(PyTypeError::new_err(format!("expected a real number, not {}", obj.get_type().name()?)));
+        return Err(PyTypeError::new_err(format!(
+            "expected a real number, not {}",
+            obj.get_type().name()?
+        )));
     }
     Ok(())
 }
@@ -146,29 +154,56 @@ pub(crate) const MAX_SEQUENCE: usize = 10_000;
 /// other than `expect` (if given) or beyond [`MAX_SEQUENCE`]. A scalar is
 /// read as a list of one when `expect` allows it. Never trusts `__len__`
 /// for allocation.
-pub(crate) fn reals(name: &str, obj: &Bound<'_, PyAny>, expect: Option<usize>) -> PyResult<Vec<f64>> {
+pub(crate) fn reals(
+    name: &str,
+    obj: &Bound<'_, PyAny>,
+    expect: Option<usize>,
+) -> PyResult<Vec<f64>> {
     use pyo3::exceptions::{PyTypeError, PyValueError};
     use pyo3::types::{PyByteArray, PyBytes, PyString};
-    if obj.is_instance_of::<PyString>() || obj.is_instance_of::<PyBytes>() || obj.is_instance_of::<PyByteArray>() {
-        return Err(PyTypeError::new_err(format!("{name}: expected a sequence of real numbers, not {}", obj.get_type().name()?)));
+    if obj.is_instance_of::<PyString>()
+        || obj.is_instance_of::<PyBytes>()
+        || obj.is_instance_of::<PyByteArray>()
+    {
+        return Err(PyTypeError::new_err(format!(
+            "{name}: expected a sequence of real numbers, not {}",
+            obj.get_type().name()?
+        )));
     }
     // a scalar (a number, or a 0-d array): one value
-    let is_scalar = obj.hasattr("__float__")? && !obj.hasattr("__len__")? || obj.getattr("ndim").map(|n| n.eq(0).unwrap_or(false)).unwrap_or(false);
+    let is_scalar = obj.hasattr("__float__")? && !obj.hasattr("__len__")?
+        || obj
+            .getattr("ndim")
+            .map(|n| n.eq(0).unwrap_or(false))
+            .unwrap_or(false);
     if is_scalar {
-        let x = obj.extract::<Real>().map_err(|e| PyTypeError::new_err(format!("{name}: {}", e.value(obj.py()))))?;
+        let x = obj
+            .extract::<Real>()
+            .map_err(|e| PyTypeError::new_err(format!("{name}: {}", e.value(obj.py()))))?;
         return check_len(name, vec![x.0], expect);
     }
-    let iter = obj
-        .try_iter()
-        .map_err(|_| PyTypeError::new_err(format!("{name}: expected a sequence of real numbers, not {}", obj.get_type().name().map(|n| n.to_string()).unwrap_or_default())))?;
+    let iter = obj.try_iter().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "{name}: expected a sequence of real numbers, not {}",
+            obj.get_type()
+                .name()
+                .map(|n| n.to_string())
+                .unwrap_or_default()
+        ))
+    })?;
     let limit = expect.unwrap_or(MAX_SEQUENCE);
     let mut out = Vec::new();
     for (k, item) in iter.enumerate() {
         if k >= limit.max(MAX_SEQUENCE) {
-            return Err(PyValueError::new_err(format!("{name}: more than {} values (the cap per call)", limit.max(MAX_SEQUENCE))));
+            return Err(PyValueError::new_err(format!(
+                "{name}: more than {} values (the cap per call)",
+                limit.max(MAX_SEQUENCE)
+            )));
         }
         let item = item?;
-        let x = item.extract::<Real>().map_err(|e| PyTypeError::new_err(format!("{name}[{k}]: {}", e.value(obj.py()))))?;
+        let x = item
+            .extract::<Real>()
+            .map_err(|e| PyTypeError::new_err(format!("{name}[{k}]: {}", e.value(obj.py()))))?;
         out.push(x.0);
     }
     check_len(name, out, expect)
@@ -176,13 +211,20 @@ pub(crate) fn reals(name: &str, obj: &Bound<'_, PyAny>, expect: Option<usize>) -
 
 fn check_len(name: &str, v: Vec<f64>, expect: Option<usize>) -> PyResult<Vec<f64>> {
     match expect {
-        Some(n) if v.len() != n => Err(pyo3::exceptions::PyValueError::new_err(format!("{name}: expected {n} values, got {}", v.len()))),
+        Some(n) if v.len() != n => Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "{name}: expected {n} values, got {}",
+            v.len()
+        ))),
         _ => Ok(v),
     }
 }
 
 /// `obj` (optional) as a 3-vector of finite reals named `name`.
-pub(crate) fn vec3_arg(name: &str, obj: Option<&Bound<'_, PyAny>>, default: [f64; 3]) -> PyResult<[f64; 3]> {
+pub(crate) fn vec3_arg(
+    name: &str,
+    obj: Option<&Bound<'_, PyAny>>,
+    default: [f64; 3],
+) -> PyResult<[f64; 3]> {
     match obj {
         None => Ok(default),
         Some(o) if o.is_none() => Ok(default),
@@ -203,7 +245,9 @@ pub(crate) fn count(name: &str, obj: &Bound<'_, PyAny>, lo: usize, hi: usize) ->
     use pyo3::exceptions::{PyTypeError, PyValueError};
     use pyo3::types::PyBool;
     if obj.is_instance_of::<PyBool>() {
-        return Err(PyTypeError::new_err(format!("{name}: expected an integer, not bool")));
+        return Err(PyTypeError::new_err(format!(
+            "{name}: expected an integer, not bool"
+        )));
     }
     let v: i128 = match obj.extract::<i64>() {
         Ok(v) => v as i128,
@@ -214,12 +258,27 @@ pub(crate) fn count(name: &str, obj: &Bound<'_, PyAny>, lo: usize, hi: usize) ->
                 i128::MIN
             }
         }
-        Err(_) => return Err(PyTypeError::new_err(format!("{name}: expected an integer, not {}", obj.get_type().name()?))),
+        Err(_) => {
+            return Err(PyTypeError::new_err(format!(
+                "{name}: expected an integer, not {}",
+                obj.get_type().name()?
+            )))
+        }
     };
     if v < lo as i128 || v > hi as i128 {
-        let shown = if v == i128::MAX || v == i128::MIN { obj.str()?.to_string() } else { v.to_string() };
-        let shown = if shown.len() > 40 { format!("{}...", &shown[..40]) } else { shown };
-        return Err(PyValueError::new_err(format!("invalid {name} = {shown}: allowed {lo} <= {name} <= {hi}")));
+        let shown = if v == i128::MAX || v == i128::MIN {
+            obj.str()?.to_string()
+        } else {
+            v.to_string()
+        };
+        let shown = if shown.len() > 40 {
+            format!("{}...", &shown[..40])
+        } else {
+            shown
+        };
+        return Err(PyValueError::new_err(format!(
+            "invalid {name} = {shown}: allowed {lo} <= {name} <= {hi}"
+        )));
     }
     Ok(v as usize)
 }
@@ -228,14 +287,24 @@ pub(crate) fn count(name: &str, obj: &Bound<'_, PyAny>, lo: usize, hi: usize) ->
 pub(crate) fn counts(name: &str, obj: &Bound<'_, PyAny>, hi: usize) -> PyResult<Vec<usize>> {
     use pyo3::exceptions::{PyTypeError, PyValueError};
     use pyo3::types::{PyByteArray, PyBytes, PyString};
-    if obj.is_instance_of::<PyString>() || obj.is_instance_of::<PyBytes>() || obj.is_instance_of::<PyByteArray>() {
-        return Err(PyTypeError::new_err(format!("{name}: expected a sequence of integers, not {}", obj.get_type().name()?)));
+    if obj.is_instance_of::<PyString>()
+        || obj.is_instance_of::<PyBytes>()
+        || obj.is_instance_of::<PyByteArray>()
+    {
+        return Err(PyTypeError::new_err(format!(
+            "{name}: expected a sequence of integers, not {}",
+            obj.get_type().name()?
+        )));
     }
-    let iter = obj.try_iter().map_err(|_| PyTypeError::new_err(format!("{name}: expected a sequence of integers")))?;
+    let iter = obj
+        .try_iter()
+        .map_err(|_| PyTypeError::new_err(format!("{name}: expected a sequence of integers")))?;
     let mut out = Vec::new();
     for (k, item) in iter.enumerate() {
         if k >= MAX_SEQUENCE {
-            return Err(PyValueError::new_err(format!("{name}: more than {MAX_SEQUENCE} values (the cap per call)")));
+            return Err(PyValueError::new_err(format!(
+                "{name}: more than {MAX_SEQUENCE} values (the cap per call)"
+            )));
         }
         out.push(count(&format!("{name}[{k}]"), &item?, 0, hi)?);
     }
@@ -243,7 +312,13 @@ pub(crate) fn counts(name: &str, obj: &Bound<'_, PyAny>, hi: usize) -> PyResult<
 }
 
 /// [`count`] of an optional argument, `default` when absent or `None`.
-pub(crate) fn count_or(name: &str, obj: Option<&Bound<'_, PyAny>>, default: usize, lo: usize, hi: usize) -> PyResult<usize> {
+pub(crate) fn count_or(
+    name: &str,
+    obj: Option<&Bound<'_, PyAny>>,
+    default: usize,
+    lo: usize,
+    hi: usize,
+) -> PyResult<usize> {
     match obj {
         Some(o) if !o.is_none() => count(name, o, lo, hi),
         _ => Ok(default),

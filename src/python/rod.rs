@@ -8,11 +8,13 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::errors::finite_output;
-use super::{count_or, hash_text, pf, ps, pv, reals, vec3_arg, Real};
 use super::tca::PyTca;
+use super::{count_or, hash_text, pf, ps, pv, reals, vec3_arg, Real};
 use crate::error::{Error, Result};
-use crate::rod::{Actuator, Body, ConstantTension, ForceLaw, LinearTendon, Robot, Routing, Section, TcaLaw};
-use crate::shooting::{solve, SolveOptions, Solution};
+use crate::rod::{
+    Actuator, Body, ConstantTension, ForceLaw, LinearTendon, Robot, Routing, Section, TcaLaw,
+};
+use crate::shooting::{solve, Solution, SolveOptions};
 
 /// What `__reduce__` returns: a rebuilding callable and its arguments.
 type Reduce<'py, A> = PyResult<(Bound<'py, PyAny>, A)>;
@@ -42,9 +44,17 @@ fn experiment_robot(name: &str, gravity: bool) -> PyResult<PyRobot> {
     let robot = match name {
         "fig6_circle" => crate::experiments::fig6_circle(gravity),
         "fig6_square" => crate::experiments::fig6_square(gravity),
-        _ => return Err(Error::input("name", format!("unknown fixture {name:?} (fig6_circle, fig6_square)")).into()),
+        _ => {
+            return Err(Error::input(
+                "name",
+                format!("unknown fixture {name:?} (fig6_circle, fig6_square)"),
+            )
+            .into())
+        }
     };
-    let body = PyBody { inner: robot.body.clone() };
+    let body = PyBody {
+        inner: robot.body.clone(),
+    };
     let actuators = robot
         .actuators
         .iter()
@@ -71,23 +81,37 @@ impl PySection {
     #[staticmethod]
     fn circle(diameter: Real) -> PyResult<Self> {
         let diameter = crate::error::positive("diameter [m]", diameter.0)?;
-        Ok(checked_section("diameter [m]", Section::Circle { diameter })?)
+        Ok(checked_section(
+            "diameter [m]",
+            Section::Circle { diameter },
+        )?)
     }
     /// Solid rectangle: `width` [m] along body x, `height` [m] along body y.
     #[staticmethod]
     fn rectangle(width: Real, height: Real) -> PyResult<Self> {
         let width = crate::error::positive("width [m]", width.0)?;
         let height = crate::error::positive("height [m]", height.0)?;
-        Ok(checked_section("width [m] / height [m]", Section::Rectangle { width, height })?)
+        Ok(checked_section(
+            "width [m] / height [m]",
+            Section::Rectangle { width, height },
+        )?)
     }
     /// User-given area [m^2], second moments about body x and y [m^4] and torsion constant [m^4].
     #[staticmethod]
     fn custom(area: Real, ix: Real, iy: Real, j: Real) -> PyResult<Self> {
         let (area, ix, iy, j) = (area.0, ix.0, iy.0, j.0);
-        for (n, v) in [("area [m^2]", area), ("ix [m^4]", ix), ("iy [m^4]", iy), ("j [m^4]", j)] {
+        for (n, v) in [
+            ("area [m^2]", area),
+            ("ix [m^4]", ix),
+            ("iy [m^4]", iy),
+            ("j [m^4]", j),
+        ] {
             crate::error::positive(n, v)?;
         }
-        Ok(checked_section("area [m^2]", Section::Custom { area, ix, iy, j })?)
+        Ok(checked_section(
+            "area [m^2]",
+            Section::Custom { area, ix, iy, j },
+        )?)
     }
     /// `(area [m^2], ix [m^4], iy [m^4], j [m^4])`.
     #[getter]
@@ -97,7 +121,10 @@ impl PySection {
     /// Distance [m] from the centre line to the edge in body-frame direction angle `theta` [rad].
     fn edge_distance(&self, theta: Real) -> PyResult<f64> {
         let theta = crate::error::finite("theta [rad]", theta.0)?;
-        Ok(finite_output("edge_distance [m]", self.inner.edge_distance(theta))?)
+        Ok(finite_output(
+            "edge_distance [m]",
+            self.inner.edge_distance(theta),
+        )?)
     }
     /// Constructor keywords, exactly as given: `{"diameter": ..}` [m],
     /// `{"width": .., "height": ..}` [m] or `{"area": .. [m^2], "ix", "iy", "j": .. [m^4]}`.
@@ -130,8 +157,18 @@ impl PySection {
     fn __repr__(&self) -> String {
         match self.inner {
             Section::Circle { diameter } => format!("Section.circle(diameter={})", pf(diameter)),
-            Section::Rectangle { width, height } => format!("Section.rectangle(width={}, height={})", pf(width), pf(height)),
-            Section::Custom { area, ix, iy, j } => format!("Section.custom(area={}, ix={}, iy={}, j={})", pf(area), pf(ix), pf(iy), pf(j)),
+            Section::Rectangle { width, height } => format!(
+                "Section.rectangle(width={}, height={})",
+                pf(width),
+                pf(height)
+            ),
+            Section::Custom { area, ix, iy, j } => format!(
+                "Section.custom(area={}, ix={}, iy={}, j={})",
+                pf(area),
+                pf(ix),
+                pf(iy),
+                pf(j)
+            ),
         }
     }
     /// Pickle support: rebuilt by the same static constructor.
@@ -145,7 +182,10 @@ impl PySection {
         Ok((f, (self.kind(), v)))
     }
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
-        other.cast::<PySection>().ok().map(|o| o.get().inner == self.inner)
+        other
+            .cast::<PySection>()
+            .ok()
+            .map(|o| o.get().inner == self.inner)
     }
     fn __hash__(&self) -> u64 {
         hash_text(&self.__repr__())
@@ -161,7 +201,11 @@ fn restore_section(kind: &str, values: Vec<Real>) -> PyResult<PySection> {
         ("circle", [d]) => PySection::circle(*d),
         ("rectangle", [w, h]) => PySection::rectangle(*w, *h),
         ("custom", [a, ix, iy, j]) => PySection::custom(*a, *ix, *iy, *j),
-        _ => Err(Error::input("kind", format!("{kind:?} with {} values is not a section", v.len())).into()),
+        _ => Err(Error::input(
+            "kind",
+            format!("{kind:?} with {} values is not a section", v.len()),
+        )
+        .into()),
     }
 }
 
@@ -195,7 +239,9 @@ impl PyRouting {
     fn straight(x: Real, y: Real) -> PyResult<Self> {
         let x = crate::error::finite("x [m]", x.0)?;
         let y = crate::error::finite("y [m]", y.0)?;
-        Ok(PyRouting { inner: Routing::Straight { x, y } })
+        Ok(PyRouting {
+            inner: Routing::Straight { x, y },
+        })
     }
     /// Helix of `radius` [m] turning at `rate` [rad/m] from angle `phase` [rad].
     #[staticmethod]
@@ -204,11 +250,25 @@ impl PyRouting {
         let radius = crate::error::non_negative("radius [m]", radius.0)?;
         let rate = crate::error::finite("rate [rad/m]", rate.0)?;
         let phase = crate::error::finite("phase [rad]", phase.0)?;
-        Ok(PyRouting { inner: Routing::Helix { radius, rate, phase } })
+        Ok(PyRouting {
+            inner: Routing::Helix {
+                radius,
+                rate,
+                phase,
+            },
+        })
     }
     /// `(r, r', r'')` at arc length `s` [m] as three length-3 arrays (body frame).
     #[allow(clippy::type_complexity)]
-    fn evaluate<'py>(&self, py: Python<'py>, s: Real) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    fn evaluate<'py>(
+        &self,
+        py: Python<'py>,
+        s: Real,
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+    )> {
         let s = crate::error::finite("s [m]", s.0)?;
         let (r, rp, rpp) = self.inner.eval(s);
         for (name, v) in [("r [m]", &r), ("r' [-]", &rp), ("r'' [1/m]", &rpp)] {
@@ -221,7 +281,16 @@ impl PyRouting {
     fn __repr__(&self) -> String {
         match self.inner {
             Routing::Straight { x, y } => format!("Routing.straight(x={}, y={})", pf(x), pf(y)),
-            Routing::Helix { radius, rate, phase } => format!("Routing.helix(radius={}, rate={}, phase={})", pf(radius), pf(rate), pf(phase)),
+            Routing::Helix {
+                radius,
+                rate,
+                phase,
+            } => format!(
+                "Routing.helix(radius={}, rate={}, phase={})",
+                pf(radius),
+                pf(rate),
+                pf(phase)
+            ),
         }
     }
     /// Constructor keywords, exactly as given: `{"x": .., "y": ..}` [m] or
@@ -234,7 +303,11 @@ impl PyRouting {
                 d.set_item("x", x)?;
                 d.set_item("y", y)?;
             }
-            Routing::Helix { radius, rate, phase } => {
+            Routing::Helix {
+                radius,
+                rate,
+                phase,
+            } => {
                 d.set_item("radius", radius)?;
                 d.set_item("rate", rate)?;
                 d.set_item("phase", phase)?;
@@ -255,12 +328,19 @@ impl PyRouting {
         let f = py.import("tcarod._core")?.getattr("_restore_routing")?;
         let v = match self.inner {
             Routing::Straight { x, y } => vec![x, y],
-            Routing::Helix { radius, rate, phase } => vec![radius, rate, phase],
+            Routing::Helix {
+                radius,
+                rate,
+                phase,
+            } => vec![radius, rate, phase],
         };
         Ok((f, (self.kind(), v)))
     }
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
-        other.cast::<PyRouting>().ok().map(|o| o.get().inner == self.inner)
+        other
+            .cast::<PyRouting>()
+            .ok()
+            .map(|o| o.get().inner == self.inner)
     }
     fn __hash__(&self) -> u64 {
         hash_text(&self.__repr__())
@@ -274,7 +354,11 @@ fn restore_routing(kind: &str, values: Vec<Real>) -> PyResult<PyRouting> {
     match (kind, values.as_slice()) {
         ("straight", [x, y]) => PyRouting::straight(*x, *y),
         ("helix", [r, k, p]) => PyRouting::helix(*r, *k, *p),
-        _ => Err(Error::input("kind", format!("{kind:?} with {} values is not a routing", values.len())).into()),
+        _ => Err(Error::input(
+            "kind",
+            format!("{kind:?} with {} values is not a routing", values.len()),
+        )
+        .into()),
     }
 }
 
@@ -282,21 +366,26 @@ fn vec3<'py>(py: Python<'py>, v: &Vector3<f64>) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, v.as_slice())
 }
 
-
 /// Error unless the body's derived quantities (stiffnesses, weight per
 /// length) are finite and the stiffnesses positive, so that no getter can
 /// return inf or NaN.
 fn check_derived(b: &Body) -> Result<()> {
     let (kv, kw) = b.stiffness();
     for k in 0..3 {
-        for (name, v) in [("stiffness K_nu [N]", kv[(k, k)]), ("stiffness K_omega [N m^2]", kw[(k, k)])] {
+        for (name, v) in [
+            ("stiffness K_nu [N]", kv[(k, k)]),
+            ("stiffness K_omega [N m^2]", kw[(k, k)]),
+        ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(Error::input(name, format!("is {v}: youngs_modulus / shear_modulus times the section properties leave double range")));
             }
         }
     }
     for (k, x) in b.distributed_load().iter().enumerate() {
-        finite_output(&format!("distributed_load [N/m][{k}] (density x area x gravity)"), *x)?;
+        finite_output(
+            &format!("distributed_load [N/m][{k}] (density x area x gravity)"),
+            *x,
+        )?;
     }
     Ok(())
 }
@@ -354,21 +443,32 @@ impl PyBody {
         tip_force: Option<Bound<'_, PyAny>>,
         tip_moment: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let (length, youngs_modulus, density, shear_coefficient) = (length.0, youngs_modulus.0, density.0, shear_coefficient.0);
+        let (length, youngs_modulus, density, shear_coefficient) =
+            (length.0, youngs_modulus.0, density.0, shear_coefficient.0);
         let (poisson, shear_modulus) = (poisson.map(|r| r.0), shear_modulus.map(|r| r.0));
         crate::error::positive("length [m]", length)?;
         let mut b = match (poisson, shear_modulus) {
             (Some(_), Some(_)) => {
-                return Err(Error::input("poisson / shear_modulus", "give one of them, not both").into())
+                return Err(
+                    Error::input("poisson / shear_modulus", "give one of them, not both").into(),
+                )
             }
-            (p, None) => Body::new(length, section.inner, youngs_modulus, p.unwrap_or(0.5), density)?,
+            (p, None) => Body::new(
+                length,
+                section.inner,
+                youngs_modulus,
+                p.unwrap_or(0.5),
+                density,
+            )?,
             (None, Some(g)) => {
                 let mut b = Body::new(length, section.inner, youngs_modulus, 0.0, density)?;
                 b.shear_modulus = g;
                 b
             }
         };
-        let v = |name: &str, o: &Option<Bound<'_, PyAny>>, d: [f64; 3]| vec3_arg(name, o.as_ref(), d).map(Vector3::from);
+        let v = |name: &str, o: &Option<Bound<'_, PyAny>>, d: [f64; 3]| {
+            vec3_arg(name, o.as_ref(), d).map(Vector3::from)
+        };
         b.shear_coefficient = shear_coefficient;
         b.nu_star = v("nu_star", &nu_star, [0.0, 0.0, 1.0])?;
         b.omega_star = v("omega_star", &omega_star, [0.0; 3])?;
@@ -436,7 +536,9 @@ impl PyBody {
     /// The cross-section (`Section`).
     #[getter]
     fn section(&self) -> PySection {
-        PySection { inner: self.inner.section }
+        PySection {
+            inner: self.inner.section,
+        }
     }
     /// Young's modulus E_B [Pa].
     #[getter]
@@ -489,7 +591,10 @@ impl PyBody {
         vec3(py, &self.inner.distributed_moment)
     }
     /// `(K_nu, K_omega)` diagonal stiffness matrices, 3x3 each ([N], [N m^2]).
-    fn stiffness<'py>(&self, py: Python<'py>) -> (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>) {
+    fn stiffness<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>) {
         let (a, b) = self.inner.stiffness();
         (mat3(py, &a), mat3(py, &b))
     }
@@ -507,11 +612,17 @@ impl PyBody {
         body_repr(&self.inner)
     }
     /// Constructor arguments, for pickle and copy.
-    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, PyDict>)> {
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, PyDict>)> {
         Ok((pyo3::types::PyTuple::empty(py), self.kwargs(py)?))
     }
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
-        other.cast::<PyBody>().ok().map(|o| o.get().inner == self.inner)
+        other
+            .cast::<PyBody>()
+            .ok()
+            .map(|o| o.get().inner == self.inner)
     }
     fn __hash__(&self) -> u64 {
         hash_text(&body_repr(&self.inner))
@@ -550,7 +661,9 @@ fn body_repr(b: &Body) -> String {
 }
 
 fn mat3<'py>(py: Python<'py>, m: &Matrix3<f64>) -> Bound<'py, PyArray2<f64>> {
-    let rows: Vec<Vec<f64>> = (0..3).map(|i| (0..3).map(|j| m[(i, j)]).collect()).collect();
+    let rows: Vec<Vec<f64>> = (0..3)
+        .map(|i| (0..3).map(|j| m[(i, j)]).collect())
+        .collect();
     PyArray2::from_vec2(py, &rows).expect("3x3")
 }
 
@@ -585,7 +698,13 @@ pub struct PyActuator {
     s_end_given: bool,
 }
 
-fn make_actuator(routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>, law: Arc<dyn ForceLaw>) -> PyResult<Actuator> {
+fn make_actuator(
+    routing: PyRouting,
+    s_start: Real,
+    s_end: Option<Real>,
+    length_ratio: Option<Real>,
+    law: Arc<dyn ForceLaw>,
+) -> PyResult<Actuator> {
     let (s_start, s_end, length_ratio) = (s_start.0, s_end.map(|r| r.0), length_ratio.map(|r| r.0));
     crate::error::non_negative("s_start [m]", s_start)?;
     let mut a = Actuator::new(routing.inner, s_start, s_end.unwrap_or(f64::INFINITY), law);
@@ -611,7 +730,10 @@ impl PyActuator {
     }
     /// Everything that defines the actuator, as text (for `==` and hash).
     fn identity(&self) -> String {
-        format!("{:?} {:?} {:?} {}", self.inner, self.pretension, self.stiffness, self.s_end_given)
+        format!(
+            "{:?} {:?} {:?} {}",
+            self.inner, self.pretension, self.stiffness, self.s_end_given
+        )
     }
     fn s_end_arg(&self) -> Option<f64> {
         self.s_end_given.then_some(self.inner.s_end)
@@ -629,18 +751,31 @@ impl PyActuator {
     #[staticmethod]
     #[pyo3(signature = (tca, routing, s_start=Real(0.0), s_end=None, length_ratio=None, *, pretension_n=None),
         text_signature = "(tca, routing, s_start=0.0, s_end=None, length_ratio=None, *, pretension_n=None)")]
-    fn tca(tca: PyTca, routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>, pretension_n: Option<Real>) -> PyResult<Self> {
+    fn tca(
+        tca: PyTca,
+        routing: PyRouting,
+        s_start: Real,
+        s_end: Option<Real>,
+        length_ratio: Option<Real>,
+        pretension_n: Option<Real>,
+    ) -> PyResult<Self> {
         let given = s_end.is_some();
         let law = Arc::new(TcaLaw(tca.inner.clone()));
         let pretension = match pretension_n {
             None => None,
             Some(f) => {
                 if length_ratio.is_some() {
-                    return Err(Error::input("pretension_n / length_ratio", "give one of them, not both").into());
+                    return Err(Error::input(
+                        "pretension_n / length_ratio",
+                        "give one of them, not both",
+                    )
+                    .into());
                 }
                 let f = crate::error::non_negative("pretension_n [N]", f.0)?;
                 // the pre-stretch it implies must exist (below the straight-fibre limit)
-                tca.inner.displacement(f, tca.inner.material().t_ref()).map_err(|e| e.renamed(|n| format!("pretension_n ({n})")))?;
+                tca.inner
+                    .displacement(f, tca.inner.material().t_ref())
+                    .map_err(|e| e.renamed(|n| format!("pretension_n ({n})")))?;
                 Some(f)
             }
         };
@@ -658,17 +793,46 @@ impl PyActuator {
     #[staticmethod]
     #[pyo3(signature = (routing, s_start=Real(0.0), s_end=None, length_ratio=None),
         text_signature = "(routing, s_start=0.0, s_end=None, length_ratio=None)")]
-    fn tendon(routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>) -> PyResult<Self> {
-        Ok(PyActuator::plain(make_actuator(routing, s_start, s_end, length_ratio, Arc::new(ConstantTension))?, s_end.is_some()))
+    fn tendon(
+        routing: PyRouting,
+        s_start: Real,
+        s_end: Option<Real>,
+        length_ratio: Option<Real>,
+    ) -> PyResult<Self> {
+        Ok(PyActuator::plain(
+            make_actuator(
+                routing,
+                s_start,
+                s_end,
+                length_ratio,
+                Arc::new(ConstantTension),
+            )?,
+            s_end.is_some(),
+        ))
     }
     /// An elastic tendon of `stiffness` [N/m] whose input is the length [m]
     /// pulled in at the base; anchors and `length_ratio` as for `Actuator.tca`.
     #[staticmethod]
     #[pyo3(signature = (stiffness, routing, s_start=Real(0.0), s_end=None, length_ratio=None),
         text_signature = "(stiffness, routing, s_start=0.0, s_end=None, length_ratio=None)")]
-    fn linear_tendon(stiffness: Real, routing: PyRouting, s_start: Real, s_end: Option<Real>, length_ratio: Option<Real>) -> PyResult<Self> {
+    fn linear_tendon(
+        stiffness: Real,
+        routing: PyRouting,
+        s_start: Real,
+        s_end: Option<Real>,
+        length_ratio: Option<Real>,
+    ) -> PyResult<Self> {
         let stiffness = crate::error::positive("stiffness [N/m]", stiffness.0)?;
-        let mut a = PyActuator::plain(make_actuator(routing, s_start, s_end, length_ratio, Arc::new(LinearTendon { stiffness }))?, s_end.is_some());
+        let mut a = PyActuator::plain(
+            make_actuator(
+                routing,
+                s_start,
+                s_end,
+                length_ratio,
+                Arc::new(LinearTendon { stiffness }),
+            )?,
+            s_end.is_some(),
+        );
         a.stiffness = Some(stiffness);
         Ok(a)
     }
@@ -684,9 +848,26 @@ impl PyActuator {
     }
     /// Pickle support: rebuilt by the same static constructor.
     #[allow(clippy::type_complexity)]
-    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (&'static str, Option<PyTca>, Option<f64>, PyRouting, f64, Option<f64>, Option<f64>, Option<f64>))> {
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(
+        Bound<'py, PyAny>,
+        (
+            &'static str,
+            Option<PyTca>,
+            Option<f64>,
+            PyRouting,
+            f64,
+            Option<f64>,
+            Option<f64>,
+            Option<f64>,
+        ),
+    )> {
         if self.kind() == "tca" && self.tca.is_none() {
-            return Err(pyo3::exceptions::PyTypeError::new_err("cannot pickle an Actuator built in Rust without its Tca"));
+            return Err(pyo3::exceptions::PyTypeError::new_err(
+                "cannot pickle an Actuator built in Rust without its Tca",
+            ));
         }
         let f = py.import("tcarod._core")?.getattr("_restore_actuator")?;
         Ok((
@@ -695,7 +876,9 @@ impl PyActuator {
                 self.kind(),
                 self.tca.clone(),
                 self.stiffness,
-                PyRouting { inner: self.inner.routing },
+                PyRouting {
+                    inner: self.inner.routing,
+                },
                 self.inner.s_start,
                 self.s_end_arg(),
                 self.inner.length_ratio,
@@ -704,7 +887,10 @@ impl PyActuator {
         ))
     }
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
-        other.cast::<PyActuator>().ok().map(|o| o.get().identity() == self.identity())
+        other
+            .cast::<PyActuator>()
+            .ok()
+            .map(|o| o.get().identity() == self.identity())
     }
     fn __hash__(&self) -> u64 {
         hash_text(&self.identity())
@@ -732,7 +918,9 @@ impl PyActuator {
     /// Body-frame path (`Routing`).
     #[getter]
     fn routing(&self) -> PyRouting {
-        PyRouting { inner: self.inner.routing }
+        PyRouting {
+            inner: self.inner.routing,
+        }
     }
     /// Proximal anchor [m] (0: the base).
     #[getter]
@@ -758,10 +946,16 @@ impl PyActuator {
     fn tension(&self, elongation: Real, input: Real) -> PyResult<f64> {
         let elongation = crate::error::finite("elongation [m]", elongation.0)?;
         self.inner.law.check_input(input.0)?;
-        Ok(finite_output("tension [N]", self.inner.law.tension(elongation, input.0)?)?)
+        Ok(finite_output(
+            "tension [N]",
+            self.inner.law.tension(elongation, input.0)?,
+        )?)
     }
     fn __repr__(&self) -> String {
-        let routing = PyRouting { inner: self.inner.routing }.__repr__();
+        let routing = PyRouting {
+            inner: self.inner.routing,
+        }
+        .__repr__();
         let mut tail = format!("routing={routing}, s_start={}", pf(self.inner.s_start));
         if let Some(e) = self.s_end_arg() {
             tail += &format!(", s_end={}", pf(e));
@@ -771,11 +965,19 @@ impl PyActuator {
         }
         match (self.kind(), &self.tca, self.stiffness) {
             ("tca", Some(t), _) => {
-                let tca = Python::attach(|py| Bound::new(py, t.clone()).and_then(|b| PyTca::__repr__(&b))).unwrap_or_else(|_| "Tca(...)".into());
-                let pre = self.pretension.map(|f| format!(", pretension_n={}", pf(f))).unwrap_or_default();
+                let tca = Python::attach(|py| {
+                    Bound::new(py, t.clone()).and_then(|b| PyTca::__repr__(&b))
+                })
+                .unwrap_or_else(|_| "Tca(...)".into());
+                let pre = self
+                    .pretension
+                    .map(|f| format!(", pretension_n={}", pf(f)))
+                    .unwrap_or_default();
                 format!("Actuator.tca(tca={tca}, {tail}{pre})")
             }
-            ("linear_tendon", _, Some(k)) => format!("Actuator.linear_tendon(stiffness={}, {tail})", pf(k)),
+            ("linear_tendon", _, Some(k)) => {
+                format!("Actuator.linear_tendon(stiffness={}, {tail})", pf(k))
+            }
             ("tension", _, _) => format!("Actuator.tendon({tail})"),
             (kind, _, _) => format!("<Actuator kind={} {tail}>", ps(kind)),
         }
@@ -797,10 +999,18 @@ fn restore_actuator(
     pretension_n: Option<Real>,
 ) -> PyResult<PyActuator> {
     match (kind, tca, stiffness) {
-        ("tca", Some(t), _) => PyActuator::tca(t, routing, s_start, s_end, length_ratio, pretension_n),
+        ("tca", Some(t), _) => {
+            PyActuator::tca(t, routing, s_start, s_end, length_ratio, pretension_n)
+        }
         ("tension", _, _) => PyActuator::tendon(routing, s_start, s_end, length_ratio),
-        ("linear_tendon", _, Some(k)) => PyActuator::linear_tendon(k, routing, s_start, s_end, length_ratio),
-        _ => Err(Error::input("kind", format!("{kind:?} with these parameters is not an actuator")).into()),
+        ("linear_tendon", _, Some(k)) => {
+            PyActuator::linear_tendon(k, routing, s_start, s_end, length_ratio)
+        }
+        _ => Err(Error::input(
+            "kind",
+            format!("{kind:?} with these parameters is not an actuator"),
+        )
+        .into()),
     }
 }
 
@@ -824,7 +1034,11 @@ pub struct PyRobot {
 /// Solver options from Python arguments: `steps` in `1..=MAX_STEPS`,
 /// `max_iter` in `1..=MAX_ITER` (ValueError naming the argument and range
 /// beyond; TypeError for non-integers), `tol` finite and > 0.
-pub(crate) fn solve_options(steps: Option<&Bound<'_, PyAny>>, tol: Real, max_iter: Option<&Bound<'_, PyAny>>) -> PyResult<SolveOptions> {
+pub(crate) fn solve_options(
+    steps: Option<&Bound<'_, PyAny>>,
+    tol: Real,
+    max_iter: Option<&Bound<'_, PyAny>>,
+) -> PyResult<SolveOptions> {
     use crate::validate::{MAX_ITER, MAX_STEPS};
     let steps = count_or("steps", steps, 100, 1, MAX_STEPS)?;
     let max_iter = count_or("max_iter", max_iter, 50, 1, MAX_ITER)?;
@@ -868,9 +1082,22 @@ fn checked_solution(sol: Solution) -> Result<Solution> {
         .chain(sol.actuator_paths.iter().flatten())
         .chain([&sol.base_force, &sol.base_moment]);
     let ok = vecs.flat_map(|v| v.iter()).all(|x| x.is_finite())
-        && sol.rotations.iter().all(|r| r.iter().all(|x| x.is_finite()))
-        && sol.s.iter().chain(&sol.tensions).chain(&sol.elongations).chain(&sol.unknowns).all(|x| x.is_finite())
-        && sol.elongation_profile.iter().flatten().all(|x| x.is_finite())
+        && sol
+            .rotations
+            .iter()
+            .all(|r| r.iter().all(|x| x.is_finite()))
+        && sol
+            .s
+            .iter()
+            .chain(&sol.tensions)
+            .chain(&sol.elongations)
+            .chain(&sol.unknowns)
+            .all(|x| x.is_finite())
+        && sol
+            .elongation_profile
+            .iter()
+            .flatten()
+            .all(|x| x.is_finite())
         && sol.residual.is_finite();
     if ok {
         Ok(sol)
@@ -906,12 +1133,21 @@ impl PyRobot {
         Robot::new(body.inner.clone(), acts.clone())?;
         for (i, (a, x)) in actuators.iter().zip(acts.iter_mut()).enumerate() {
             let name = format!("actuators[{i}]");
-            crate::validate::routing_in_section(&body.inner.section, &x.routing, &format!("{name}.routing"))?;
+            crate::validate::routing_in_section(
+                &body.inner.section,
+                &x.routing,
+                &format!("{name}.routing"),
+            )?;
             if let Some(t) = &a.tca {
                 crate::validate::tca_fits_span(t.inner.coiled_length(), x, &format!("{name}.tca"))?;
                 if let Some(f) = a.pretension {
                     let stretch = t.inner.displacement(f, t.inner.material().t_ref())?;
-                    x.length_ratio = Some(crate::validate::pretension_length_ratio(&body.inner, x, stretch, &format!("{name}.pretension_n"))?);
+                    x.length_ratio = Some(crate::validate::pretension_length_ratio(
+                        &body.inner,
+                        x,
+                        stretch,
+                        &format!("{name}.pretension_n"),
+                    )?);
                 }
             }
         }
@@ -963,7 +1199,9 @@ impl PyRobot {
         check_ambient(&this.inner, &q)?;
         let robot = this.inner.clone();
         let warm = warm_start.map(|w| w.inner.clone());
-        let sol = super::errors::detach_interruptible(py, || solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution))?;
+        let sol = super::errors::detach_interruptible(py, || {
+            solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution)
+        })?;
         Ok(PySolution {
             inner: sol,
             robot: slf.clone().unbind(),
@@ -975,13 +1213,29 @@ impl PyRobot {
     /// list of `Solution`. Options as for `solve`.
     #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None),
         text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50)")]
-    fn sweep(slf: &Bound<'_, Self>, py: Python<'_>, inputs: Bound<'_, PyAny>, steps: Option<Bound<'_, PyAny>>, tol: Real, max_iter: Option<Bound<'_, PyAny>>) -> PyResult<Vec<PySolution>> {
+    fn sweep(
+        slf: &Bound<'_, Self>,
+        py: Python<'_>,
+        inputs: Bound<'_, PyAny>,
+        steps: Option<Bound<'_, PyAny>>,
+        tol: Real,
+        max_iter: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<Vec<PySolution>> {
         let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
-        let rows_iter = inputs.try_iter().map_err(|_| pyo3::exceptions::PyTypeError::new_err("inputs: expected a sequence of rows"))?;
+        let rows_iter = inputs.try_iter().map_err(|_| {
+            pyo3::exceptions::PyTypeError::new_err("inputs: expected a sequence of rows")
+        })?;
         let mut rows: Vec<Vec<f64>> = Vec::new();
         for (k, row) in rows_iter.enumerate() {
             if k >= crate::validate::MAX_BATCH_ROWS {
-                return Err(Error::input("inputs", format!("more than {} rows per call", crate::validate::MAX_BATCH_ROWS)).into());
+                return Err(Error::input(
+                    "inputs",
+                    format!(
+                        "more than {} rows per call",
+                        crate::validate::MAX_BATCH_ROWS
+                    ),
+                )
+                .into());
             }
             let row = reals(&format!("inputs[{k}]"), &row?, None)?;
             check_ambient(&slf.get().inner, &row)?;
@@ -989,7 +1243,10 @@ impl PyRobot {
         }
         let robot = slf.get().inner.clone();
         let sols = super::errors::detach_interruptible(py, || {
-            crate::shooting::sweep(&robot, &rows, &opts)?.into_iter().map(checked_solution).collect::<Result<Vec<_>>>()
+            crate::shooting::sweep(&robot, &rows, &opts)?
+                .into_iter()
+                .map(checked_solution)
+                .collect::<Result<Vec<_>>>()
         })?;
         Ok(sols
             .into_iter()
@@ -1002,10 +1259,17 @@ impl PyRobot {
 
     fn __repr__(&self) -> String {
         let acts: Vec<String> = self.actuators.iter().map(|a| a.__repr__()).collect();
-        format!("Robot(body={}, actuators=[{}])", body_repr(&self.body.inner), acts.join(", "))
+        format!(
+            "Robot(body={}, actuators=[{}])",
+            body_repr(&self.body.inner),
+            acts.join(", ")
+        )
     }
     /// Constructor arguments, for pickle and copy.
-    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, PyDict>)> {
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, PyDict>)> {
         let args = (self.body.clone(), self.actuators.clone()).into_pyobject(py)?;
         Ok((args, PyDict::new(py)))
     }
@@ -1023,28 +1287,43 @@ impl PyRobot {
         Arc::ptr_eq(&self.inner, &other.inner)
             || (self.body.inner == other.body.inner
                 && self.actuators.len() == other.actuators.len()
-                && self.actuators.iter().zip(&other.actuators).all(|(a, b)| a.identity() == b.identity()))
+                && self
+                    .actuators
+                    .iter()
+                    .zip(&other.actuators)
+                    .all(|(a, b)| a.identity() == b.identity()))
     }
 }
 
 /// `seq` as a list of actuators, at most [`super::MAX_SEQUENCE`] (never
 /// trusting `__len__`): `TypeError` for anything else.
 fn actuator_list(seq: &Bound<'_, PyAny>) -> PyResult<Vec<PyActuator>> {
-    let iter = seq.try_iter().map_err(|_| pyo3::exceptions::PyTypeError::new_err("actuators: expected a sequence of Actuator"))?;
+    let iter = seq.try_iter().map_err(|_| {
+        pyo3::exceptions::PyTypeError::new_err("actuators: expected a sequence of Actuator")
+    })?;
     let mut out = Vec::new();
     for (k, item) in iter.enumerate() {
         if k >= super::MAX_SEQUENCE {
-            return Err(Error::input("actuators", format!("more than {} actuators", super::MAX_SEQUENCE)).into());
+            return Err(Error::input(
+                "actuators",
+                format!("more than {} actuators", super::MAX_SEQUENCE),
+            )
+            .into());
         }
         let item = item?;
         let a = item.cast::<PyActuator>().map_err(|_| {
-            pyo3::exceptions::PyTypeError::new_err(format!("actuators[{k}]: expected an Actuator, not {}", item.get_type().name().map(|n| n.to_string()).unwrap_or_default()))
+            pyo3::exceptions::PyTypeError::new_err(format!(
+                "actuators[{k}]: expected an Actuator, not {}",
+                item.get_type()
+                    .name()
+                    .map(|n| n.to_string())
+                    .unwrap_or_default()
+            ))
         })?;
         out.push(a.get().clone());
     }
     Ok(out)
 }
-
 
 /// A converged forward solution. Arrays are NumPy, SI units, world frame
 /// unless noted; `n` nodes along the body.
@@ -1061,7 +1340,9 @@ pub struct PySolution {
 
 fn stack3<'py>(py: Python<'py>, v: &[Vector3<f64>]) -> Bound<'py, PyArray2<f64>> {
     let flat: Vec<f64> = v.iter().flat_map(|x| [x.x, x.y, x.z]).collect();
-    PyArray1::from_vec(py, flat).reshape([v.len(), 3]).expect("n x 3")
+    PyArray1::from_vec(py, flat)
+        .reshape([v.len(), 3])
+        .expect("n x 3")
 }
 
 #[pymethods]
@@ -1090,7 +1371,9 @@ impl PySolution {
             .iter()
             .flat_map(|r| (0..3).flat_map(move |i| (0..3).map(move |j| r[(i, j)])))
             .collect();
-        PyArray1::from_vec(py, flat).reshape([self.inner.rotations.len(), 3, 3]).expect("n x 3 x 3")
+        PyArray1::from_vec(py, flat)
+            .reshape([self.inner.rotations.len(), 3, 3])
+            .expect("n x 3 x 3")
     }
     /// Linear strain `nu` [-] (body frame), shape `(n, 3)`.
     #[getter]
@@ -1116,13 +1399,25 @@ impl PySolution {
     #[getter]
     fn elongation_profile<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let na = self.inner.tensions.len();
-        let flat: Vec<f64> = self.inner.elongation_profile.iter().flatten().copied().collect();
-        PyArray1::from_vec(py, flat).reshape([self.inner.s.len(), na]).expect("n x na")
+        let flat: Vec<f64> = self
+            .inner
+            .elongation_profile
+            .iter()
+            .flatten()
+            .copied()
+            .collect();
+        PyArray1::from_vec(py, flat)
+            .reshape([self.inner.s.len(), na])
+            .expect("n x na")
     }
     /// Path of each actuator `p + R r_i` [m] over its span: list of `(k_i, 3)` arrays.
     #[getter]
     fn actuator_paths<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray2<f64>>> {
-        self.inner.actuator_paths.iter().map(|p| stack3(py, p)).collect()
+        self.inner
+            .actuator_paths
+            .iter()
+            .map(|p| stack3(py, p))
+            .collect()
     }
     /// Actuator tensions [N] (negative: the actuator pushes), shape `(n_actuators,)`.
     #[getter]
@@ -1181,9 +1476,14 @@ impl PySolution {
     }
     /// 3-D plot of the shape with the actuators (see `tcarod.plotting.plot_solution`).
     #[pyo3(signature = (**kwargs))]
-    fn plot<'py>(slf: &Bound<'py, Self>, kwargs: Option<&Bound<'py, PyDict>>) -> PyResult<Bound<'py, PyAny>> {
+    fn plot<'py>(
+        slf: &Bound<'py, Self>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         let py = slf.py();
-        py.import("tcarod.plotting")?.getattr("plot_solution")?.call((slf,), kwargs)
+        py.import("tcarod.plotting")?
+            .getattr("plot_solution")?
+            .call((slf,), kwargs)
     }
     fn __repr__(&self) -> String {
         let p = self.inner.tip_position();
@@ -1210,7 +1510,10 @@ impl PySolution {
     /// Why the solve stopped, in words (`str`).
     #[getter]
     fn message(&self) -> String {
-        format!("converged: residual {:.3e} after {} Newton iterations", self.inner.residual, self.inner.iterations)
+        format!(
+            "converged: residual {:.3e} after {} Newton iterations",
+            self.inner.residual, self.inner.iterations
+        )
     }
     /// Newton iterations (same as `iterations`), SciPy naming.
     #[getter]
@@ -1231,10 +1534,16 @@ impl PySolution {
     /// profile is rebuilt by one IVP from them (bit-identical: the IVP is
     /// deterministic), the Newton Jacobian kept for warm starts.
     #[allow(clippy::type_complexity)]
-    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
         let f = py.import("tcarod._core")?.getattr("_restore_solution")?;
         let s = &self.inner;
-        let jac = s.newton_jacobian.as_ref().map(|j| (j.nrows(), j.ncols(), j.as_slice().to_vec()));
+        let jac = s
+            .newton_jacobian
+            .as_ref()
+            .map(|j| (j.nrows(), j.ncols(), j.as_slice().to_vec()));
         let args = (
             self.robot.clone_ref(py),
             s.inputs.clone(),
@@ -1299,7 +1608,11 @@ fn restore_solution(
 ) -> PyResult<PySolution> {
     let r = robot.get().inner.clone();
     let na = r.actuators.len();
-    if inputs.len() != na || unknowns.len() != 6 + na || steps == 0 || steps > crate::validate::MAX_STEPS {
+    if inputs.len() != na
+        || unknowns.len() != 6 + na
+        || steps == 0
+        || steps > crate::validate::MAX_STEPS
+    {
         return Err(Error::input("state", "does not belong to this robot").into());
     }
     r.check_inputs(&inputs)?;
@@ -1308,11 +1621,27 @@ fn restore_solution(
         tip_moment: Vector3::from(tip_moment),
     };
     let jac = match jacobian {
-        Some((m, n, v)) if m * n == v.len() && m == unknowns.len() && n == unknowns.len() => Some(nalgebra::DMatrix::from_vec(m, n, v)),
+        Some((m, n, v)) if m * n == v.len() && m == unknowns.len() && n == unknowns.len() => {
+            Some(nalgebra::DMatrix::from_vec(m, n, v))
+        }
         Some(_) => return Err(Error::input("state", "Jacobian of the wrong size").into()),
         None => None,
     };
-    let mut sol = py.detach(|| crate::shooting::assemble(&r, &inputs, &loads, &unknowns, steps, iterations, evaluations).and_then(checked_solution))?;
+    let mut sol = py.detach(|| {
+        crate::shooting::assemble(
+            &r,
+            &inputs,
+            &loads,
+            &unknowns,
+            steps,
+            iterations,
+            evaluations,
+        )
+        .and_then(checked_solution)
+    })?;
     sol.newton_jacobian = jac;
-    Ok(PySolution { inner: sol, robot: robot.unbind() })
+    Ok(PySolution {
+        inner: sol,
+        robot: robot.unbind(),
+    })
 }

@@ -6,10 +6,13 @@ use nalgebra::Vector3;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 
-use super::Real;
 use super::rod::{solve_options, PyActuator, PyBody, PyRobot, PySolution};
+use super::Real;
 use super::{count_or, counts, reals};
-use crate::branch::{follow_branch as follow_core, sweep_stable, BranchOptions, BranchPoint, EventKind, Parameter, Problem};
+use crate::branch::{
+    follow_branch as follow_core, sweep_stable, BranchOptions, BranchPoint, EventKind, Parameter,
+    Problem,
+};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 use crate::shooting::Solution;
@@ -35,7 +38,9 @@ fn arr1<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
 
 fn arr3<'py>(py: Python<'py>, v: &[Vector3<f64>]) -> Bound<'py, PyArray2<f64>> {
     let flat: Vec<f64> = v.iter().flat_map(|x| [x.x, x.y, x.z]).collect();
-    PyArray1::from_vec(py, flat).reshape([v.len(), 3]).expect("n x 3")
+    PyArray1::from_vec(py, flat)
+        .reshape([v.len(), 3])
+        .expect("n x 3")
 }
 
 #[pymethods]
@@ -64,14 +69,24 @@ impl PyStability {
     /// Till and Rucker's determinant `det(Y(s) Y(0)^-1)` [-] at the nodes.
     #[getter]
     fn determinant<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        let v: Vec<f64> = self.inner.determinant.iter().map(|x| if x.is_finite() { *x } else { 0.0 }).collect();
+        let v: Vec<f64> = self
+            .inner
+            .determinant
+            .iter()
+            .map(|x| if x.is_finite() { *x } else { 0.0 })
+            .collect();
         arr1(py, &v)
     }
     /// Smallest eigenvalue of the truncated rod's tip stiffness [-] at the
     /// nodes (the base node, where it is infinite, carries the largest float).
     #[getter]
     fn min_stiffness<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        let v: Vec<f64> = self.inner.min_stiffness.iter().map(|x| x.clamp(-f64::MAX, f64::MAX)).collect();
+        let v: Vec<f64> = self
+            .inner
+            .min_stiffness
+            .iter()
+            .map(|x| x.clamp(-f64::MAX, f64::MAX))
+            .collect();
         arr1(py, &v)
     }
     /// Softest tip mode `(dp / L, dtheta)` (world frame), shape `(6,)`.
@@ -85,7 +100,12 @@ impl PyStability {
         self.inner.evaluations
     }
     fn __repr__(&self) -> String {
-        format!("Stability(stable={}, margin={:.6e}, conjugate_point={:?})", if self.inner.stable { "True" } else { "False" }, self.inner.margin, self.inner.conjugate_point)
+        format!(
+            "Stability(stable={}, margin={:.6e}, conjugate_point={:?})",
+            if self.inner.stable { "True" } else { "False" },
+            self.inner.margin,
+            self.inner.conjugate_point
+        )
     }
 }
 
@@ -102,12 +122,23 @@ fn finite_margin(mut s: Stability) -> Stability {
 /// this robot's.
 #[pyfunction]
 #[pyo3(signature = (robot, solution, *, blocked=None), text_signature = "(robot, solution, *, blocked=None)")]
-fn stability(py: Python<'_>, robot: PyRef<'_, PyRobot>, solution: PyRef<'_, PySolution>, blocked: Option<Vec<[Real; 3]>>) -> PyResult<PyStability> {
+fn stability(
+    py: Python<'_>,
+    robot: PyRef<'_, PyRobot>,
+    solution: PyRef<'_, PySolution>,
+    blocked: Option<Vec<[Real; 3]>>,
+) -> PyResult<PyStability> {
     let r = robot.inner.clone();
     let sol = solution.inner.clone();
-    let blocked: Vec<Vector3<f64>> = blocked.unwrap_or_default().into_iter().map(|b| Vector3::new(b[0].0, b[1].0, b[2].0)).collect();
+    let blocked: Vec<Vector3<f64>> = blocked
+        .unwrap_or_default()
+        .into_iter()
+        .map(|b| Vector3::new(b[0].0, b[1].0, b[2].0))
+        .collect();
     let st = py.detach(|| stability_core(&r, &sol, &blocked))?;
-    Ok(PyStability { inner: finite_margin(st) })
+    Ok(PyStability {
+        inner: finite_margin(st),
+    })
 }
 
 /// A followed branch or a stable sweep: arrays over its points, located
@@ -152,22 +183,44 @@ impl PyBranch {
     /// `"fold"` or `"bifurcation"`.
     #[getter]
     fn events<'py>(&self, py: Python<'py>) -> Vec<(String, f64, Bound<'py, PyArray1<f64>>)> {
-        self.events.iter().map(|(k, p, t)| (k.clone(), *p, arr1(py, t.as_slice()))).collect()
+        self.events
+            .iter()
+            .map(|(k, p, t)| (k.clone(), *p, arr1(py, t.as_slice())))
+            .collect()
     }
     /// Parameters of the located folds, shape `(j,)`.
     #[getter]
     fn folds<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arr1(py, &self.events.iter().filter(|e| e.0 == "fold").map(|e| e.1).collect::<Vec<_>>())
+        arr1(
+            py,
+            &self
+                .events
+                .iter()
+                .filter(|e| e.0 == "fold")
+                .map(|e| e.1)
+                .collect::<Vec<_>>(),
+        )
     }
     /// Parameters of the located bifurcations, shape `(j,)`.
     #[getter]
     fn bifurcations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arr1(py, &self.events.iter().filter(|e| e.0 == "bifurcation").map(|e| e.1).collect::<Vec<_>>())
+        arr1(
+            py,
+            &self
+                .events
+                .iter()
+                .filter(|e| e.0 == "bifurcation")
+                .map(|e| e.1)
+                .collect::<Vec<_>>(),
+        )
     }
     /// Jumps of a stable sweep: `(parameter, before, after)` solutions.
     #[getter]
     fn jumps(&self, py: Python<'_>) -> Vec<(f64, Py<PySolution>, Py<PySolution>)> {
-        self.jumps.iter().map(|(p, a, b)| (*p, a.clone_ref(py), b.clone_ref(py))).collect()
+        self.jumps
+            .iter()
+            .map(|(p, a, b)| (*p, a.clone_ref(py), b.clone_ref(py)))
+            .collect()
     }
     /// Integrations spent (IVPs and tangent IVPs).
     #[getter]
@@ -178,7 +231,12 @@ impl PyBranch {
         self.points.len()
     }
     fn __repr__(&self) -> String {
-        format!("Branch({} points, {} events, {} jumps)", self.points.len(), self.events.len(), self.jumps.len())
+        format!(
+            "Branch({} points, {} events, {} jumps)",
+            self.points.len(),
+            self.events.len(),
+            self.jumps.len()
+        )
     }
 }
 
@@ -186,21 +244,46 @@ fn parse_parameter(name: &str, actuators: Option<Vec<usize>>, robot: &Robot) -> 
     match name {
         "gravity_scale" => Ok(Parameter::GravityScale),
         "tip_load_scale" => Ok(Parameter::TipLoadScale),
-        "inputs" => Ok(Parameter::Inputs(actuators.unwrap_or_else(|| (0..robot.actuators.len()).collect()))),
-        _ => Err(Error::input("parameter", format!("{name:?}: expected 'inputs', 'gravity_scale' or 'tip_load_scale'"))),
+        "inputs" => Ok(Parameter::Inputs(
+            actuators.unwrap_or_else(|| (0..robot.actuators.len()).collect()),
+        )),
+        _ => Err(Error::input(
+            "parameter",
+            format!("{name:?}: expected 'inputs', 'gravity_scale' or 'tip_load_scale'"),
+        )),
     }
 }
 
 /// The robot at one parameter value, as a Python `Robot` (gravity and tip loads applied).
-fn robot_at(py: Python<'_>, pb: &Problem<'_>, acts: &[PyActuator], lambda: f64) -> PyResult<Py<PyRobot>> {
+fn robot_at(
+    py: Python<'_>,
+    pb: &Problem<'_>,
+    acts: &[PyActuator],
+    lambda: f64,
+) -> PyResult<Py<PyRobot>> {
     let (mut robot, _, loads) = pb.at(lambda)?;
     robot.body.tip_force = loads.tip_force;
     robot.body.tip_moment = loads.tip_moment;
-    let body = PyBody { inner: robot.body.clone() };
-    Py::new(py, PyRobot { inner: Arc::new(robot), body, actuators: acts.to_vec() })
+    let body = PyBody {
+        inner: robot.body.clone(),
+    };
+    Py::new(
+        py,
+        PyRobot {
+            inner: Arc::new(robot),
+            body,
+            actuators: acts.to_vec(),
+        },
+    )
 }
 
-fn wrap(py: Python<'_>, pb: &Problem<'_>, acts: &[PyActuator], lambda: f64, s: Solution) -> PyResult<Py<PySolution>> {
+fn wrap(
+    py: Python<'_>,
+    pb: &Problem<'_>,
+    acts: &[PyActuator],
+    lambda: f64,
+    s: Solution,
+) -> PyResult<Py<PySolution>> {
     let robot = robot_at(py, pb, acts, lambda)?;
     Py::new(py, PySolution { inner: s, robot })
 }
@@ -268,33 +351,69 @@ fn follow_branch(
     let warm = warm_start.map(|w| w.inner.clone());
     if let Some(w) = &warm {
         if w.unknowns.len() != 6 + r.actuators.len() {
-            return Err(Error::input("warm_start", "solution of a robot with a different number of actuators").into());
+            return Err(Error::input(
+                "warm_start",
+                "solution of a robot with a different number of actuators",
+            )
+            .into());
         }
     }
     if stable_only {
-        let sw = super::errors::detach_interruptible(py, || sweep_stable(&pb, &opts, warm.as_ref()))?;
+        let sw =
+            super::errors::detach_interruptible(py, || sweep_stable(&pb, &opts, warm.as_ref()))?;
         let mut out = collect(py, &pb, &acts, sw.points, vec![], sw.evaluations)?;
         for j in sw.jumps {
-            out.jumps.push((j.parameter, wrap(py, &pb, &acts, j.parameter, j.before)?, wrap(py, &pb, &acts, j.parameter, j.after)?));
+            out.jumps.push((
+                j.parameter,
+                wrap(py, &pb, &acts, j.parameter, j.before)?,
+                wrap(py, &pb, &acts, j.parameter, j.after)?,
+            ));
         }
         Ok(out)
     } else {
-        let br = super::errors::detach_interruptible(py, || follow_core(&pb, &opts, warm.as_ref()))?;
+        let br =
+            super::errors::detach_interruptible(py, || follow_core(&pb, &opts, warm.as_ref()))?;
         let events = br
             .events
             .iter()
-            .map(|e| (if e.kind == EventKind::Fold { "fold" } else { "bifurcation" }.to_string(), e.parameter, e.tip_position))
+            .map(|e| {
+                (
+                    if e.kind == EventKind::Fold {
+                        "fold"
+                    } else {
+                        "bifurcation"
+                    }
+                    .to_string(),
+                    e.parameter,
+                    e.tip_position,
+                )
+            })
             .collect();
         collect(py, &pb, &acts, br.points, events, br.evaluations)
     }
 }
 
-fn collect(py: Python<'_>, pb: &Problem<'_>, acts: &[PyActuator], points: Vec<BranchPoint>, events: Vec<(String, f64, Vector3<f64>)>, evaluations: usize) -> PyResult<PyBranch> {
-    let mut out = PyBranch { points: vec![], solutions: vec![], events, jumps: vec![], evaluations };
+fn collect(
+    py: Python<'_>,
+    pb: &Problem<'_>,
+    acts: &[PyActuator],
+    points: Vec<BranchPoint>,
+    events: Vec<(String, f64, Vector3<f64>)>,
+    evaluations: usize,
+) -> PyResult<PyBranch> {
+    let mut out = PyBranch {
+        points: vec![],
+        solutions: vec![],
+        events,
+        jumps: vec![],
+        evaluations,
+    };
     for p in points {
         let st = finite_margin(p.stability);
-        out.points.push((p.parameter, p.solution.tip_position(), st.stable, st.margin));
-        out.solutions.push(wrap(py, pb, acts, p.parameter, p.solution)?);
+        out.points
+            .push((p.parameter, p.solution.tip_position(), st.stable, st.margin));
+        out.solutions
+            .push(wrap(py, pb, acts, p.parameter, p.solution)?);
     }
     Ok(out)
 }

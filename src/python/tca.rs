@@ -180,7 +180,10 @@ impl PyMaterial {
         material_repr(&self.inner)
     }
     /// Constructor arguments, for pickle and copy.
-    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
         let m = &self.inner;
         let (e, es, g, gs, r, rs) = m.coefficients();
         let d = PyDict::new(py);
@@ -201,7 +204,10 @@ impl PyMaterial {
         Ok((PyTuple::empty(py), d))
     }
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
-        other.cast::<PyMaterial>().ok().map(|o| o.get().inner == self.inner)
+        other
+            .cast::<PyMaterial>()
+            .ok()
+            .map(|o| o.get().inner == self.inner)
     }
     fn __hash__(&self) -> u64 {
         hash_text(&material_repr(&self.inner))
@@ -383,7 +389,14 @@ impl PyTca {
         };
         Ok(slf
             .get_type()
-            .call1((t.fibre_length(), t.coiled_length(), t.coil_diameter(), t.turns(), chirality, mat))?
+            .call1((
+                t.fibre_length(),
+                t.coiled_length(),
+                t.coil_diameter(),
+                t.turns(),
+                chirality,
+                mat,
+            ))?
             .unbind())
     }
 
@@ -529,7 +542,10 @@ impl PyTca {
         ))
     }
     /// Constructor arguments, for pickle and copy.
-    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
         let t = &self.inner;
         let args = (
             t.fibre_length(),
@@ -537,13 +553,18 @@ impl PyTca {
             t.coil_diameter(),
             t.turns(),
             self.chirality(),
-            PyMaterial { inner: t.material().clone() },
+            PyMaterial {
+                inner: t.material().clone(),
+            },
         )
             .into_pyobject(py)?;
         Ok((args, PyDict::new(py)))
     }
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> Option<bool> {
-        other.cast::<PyTca>().ok().map(|o| o.get().inner == self.inner)
+        other
+            .cast::<PyTca>()
+            .ok()
+            .map(|o| o.get().inner == self.inner)
     }
     fn __hash__(&self) -> u64 {
         hash_text(&format!("{:?}", self.inner))

@@ -35,8 +35,14 @@ impl Routing {
     #[inline]
     pub fn eval(&self, s: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
         match *self {
-            Routing::Straight { x, y } => (Vector3::new(x, y, 0.0), Vector3::zeros(), Vector3::zeros()),
-            Routing::Helix { radius, rate, phase } => {
+            Routing::Straight { x, y } => {
+                (Vector3::new(x, y, 0.0), Vector3::zeros(), Vector3::zeros())
+            }
+            Routing::Helix {
+                radius,
+                rate,
+                phase,
+            } => {
                 let (sn, cs) = (rate * s + phase).sin_cos();
                 (
                     Vector3::new(radius * cs, radius * sn, 0.0),
@@ -53,7 +59,11 @@ impl Routing {
                 finite("routing x [m]", x)?;
                 finite("routing y [m]", y)?;
             }
-            Routing::Helix { radius, rate, phase } => {
+            Routing::Helix {
+                radius,
+                rate,
+                phase,
+            } => {
                 non_negative("helix radius [m]", radius)?;
                 finite("helix rate [rad/m]", rate)?;
                 finite("helix phase [rad]", phase)?;
@@ -86,7 +96,11 @@ pub trait ForceLaw: Send + Sync + Debug {
         if input.is_finite() && input >= lo && input <= hi {
             Ok(())
         } else {
-            Err(Error::param(self.input_name(), input, format!("{lo} <= input <= {hi}")))
+            Err(Error::param(
+                self.input_name(),
+                input,
+                format!("{lo} <= input <= {hi}"),
+            ))
         }
     }
     /// Short name of the law.
@@ -106,7 +120,8 @@ pub trait ForceLaw: Send + Sync + Debug {
     fn tension_derivatives(&self, elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
         let f = self.tension(elongation, input)?;
         let h = f64::EPSILON.cbrt() * elongation.abs().max(1e-6);
-        let de = (self.tension(elongation + h, input)? - self.tension(elongation - h, input)?) / (2.0 * h);
+        let de = (self.tension(elongation + h, input)? - self.tension(elongation - h, input)?)
+            / (2.0 * h);
         Ok((f, de, self.input_slope(elongation, input)?))
     }
     /// `d tension / d input` by central differences within the input bounds
@@ -148,7 +163,11 @@ impl ForceLaw for TcaLaw {
     /// material's tabulated moduli.
     fn tension_derivatives(&self, elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
         let at = self.0.at(input)?;
-        Ok((at.tension(elongation)?, at.tension_slope(elongation)?, self.input_slope(elongation, input)?))
+        Ok((
+            at.tension(elongation)?,
+            at.tension_slope(elongation)?,
+            self.input_slope(elongation, input)?,
+        ))
     }
     fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
         let at = self.0.at(input).ok()?;
@@ -215,7 +234,11 @@ impl ForceLaw for LinearTendon {
         let f = self.stiffness * (input + elongation);
         // at the onset (f = 0) the taut side's slope, so that Newton from a
         // zero-tension guess sees the tendon
-        Ok(if f >= 0.0 { (f, self.stiffness, self.stiffness) } else { (0.0, 0.0, 0.0) })
+        Ok(if f >= 0.0 {
+            (f, self.stiffness, self.stiffness)
+        } else {
+            (0.0, 0.0, 0.0)
+        })
     }
     fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
         Some(tension.max(0.0) / self.stiffness - input)

@@ -39,10 +39,11 @@ impl RodRhs<'_> {
         if terms.is_empty() {
             return Ok(());
         }
-        let tangent = |i: usize, v: &Vector3<f64>, u: &Vector3<f64>| -> (Vector3<f64>, Vector3<f64>) {
-            let (pb, r) = self.pb(i, s, v, u);
-            (pb / pb.norm(), r)
-        };
+        let tangent =
+            |i: usize, v: &Vector3<f64>, u: &Vector3<f64>| -> (Vector3<f64>, Vector3<f64>) {
+                let (pb, r) = self.pb(i, s, v, u);
+                (pb / pb.norm(), r)
+            };
         // explicit part (from s-)
         let mut f_minus = Vector3::zeros();
         let mut m_minus = Vector3::zeros();
@@ -121,5 +122,4 @@ impl RodRhs<'_> {
         y[10..13].copy_from_slice(&[w[3], w[4], w[5]]);
         Ok(())
     }
-
 }

@@ -39,7 +39,13 @@ pub struct Body {
 
 impl Body {
     /// A straight, unloaded, weightless body of isotropic material: `G_B = E_B / (2 (1 + poisson))`.
-    pub fn new(length: f64, section: Section, youngs_modulus: f64, poisson: f64, density: f64) -> Result<Self> {
+    pub fn new(
+        length: f64,
+        section: Section,
+        youngs_modulus: f64,
+        poisson: f64,
+        density: f64,
+    ) -> Result<Self> {
         if !(poisson.is_finite() && poisson > -1.0 && poisson <= 0.5) {
             return Err(Error::param("poisson [-]", poisson, "-1 < poisson <= 0.5"));
         }
@@ -86,7 +92,11 @@ impl Body {
             }
         }
         if self.nu_star.z <= 0.0 {
-            return Err(Error::param("nu_star[2] [-]", self.nu_star.z, "> 0 (the body must not fold back)"));
+            return Err(Error::param(
+                "nu_star[2] [-]",
+                self.nu_star.z,
+                "> 0 (the body must not fold back)",
+            ));
         }
         Ok(())
     }
@@ -94,7 +104,11 @@ impl Body {
     /// `K_nu = diag(k G A, k G A, E A)` \[N\] and `K_omega = diag(E I_x, E I_y, G J)` \[N m^2\].
     pub fn stiffness(&self) -> (Matrix3<f64>, Matrix3<f64>) {
         let (a, ix, iy, j) = self.section.properties();
-        let (e, g, k) = (self.youngs_modulus, self.shear_modulus, self.shear_coefficient);
+        let (e, g, k) = (
+            self.youngs_modulus,
+            self.shear_modulus,
+            self.shear_coefficient,
+        );
         (
             Matrix3::from_diagonal(&Vector3::new(k * g * a, k * g * a, e * a)),
             Matrix3::from_diagonal(&Vector3::new(e * ix, e * iy, g * j)),

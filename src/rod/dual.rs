@@ -84,7 +84,10 @@ impl<const N: usize> Dual<N> {
 impl<const N: usize> Real for Dual<N> {
     #[inline(always)]
     fn cst(x: f64) -> Self {
-        Dual { re: x, eps: [0.0; N] }
+        Dual {
+            re: x,
+            eps: [0.0; N],
+        }
     }
     #[inline(always)]
     fn re(&self) -> f64 {
@@ -128,10 +131,13 @@ impl<const N: usize> Mul for Dual<N> {
     #[inline(always)]
     fn mul(self, o: Self) -> Self {
         let mut eps = [0.0; N];
-        for k in 0..N {
-            eps[k] = self.eps[k] * o.re + self.re * o.eps[k];
+        for ((e, a), b) in eps.iter_mut().zip(&self.eps).zip(&o.eps) {
+            *e = a * o.re + self.re * b;
         }
-        Dual { re: self.re * o.re, eps }
+        Dual {
+            re: self.re * o.re,
+            eps,
+        }
     }
 }
 impl<const N: usize> Div for Dual<N> {
@@ -141,8 +147,8 @@ impl<const N: usize> Div for Dual<N> {
         let inv = 1.0 / o.re;
         let re = self.re * inv;
         let mut eps = [0.0; N];
-        for k in 0..N {
-            eps[k] = (self.eps[k] - re * o.eps[k]) * inv;
+        for ((e, a), b) in eps.iter_mut().zip(&self.eps).zip(&o.eps) {
+            *e = (a - re * b) * inv;
         }
         Dual { re, eps }
     }

@@ -52,7 +52,12 @@ fn axpy(out: &mut [f64], y: &[f64], h: f64, k: &[f64]) {
 /// Integrate the rod from the base with unknown initial strains `v0`, `u0`
 /// (eqs 22-25), by fixed-step RK4 on a grid that has a node at every actuator
 /// anchor. Actuator elongations start at zero at their proximal anchors.
-pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, record: bool) -> Result<IvpResult> {
+pub fn integrate(
+    spec: &IvpSpec<'_>,
+    v0: &Vector3<f64>,
+    u0: &Vector3<f64>,
+    record: bool,
+) -> Result<IvpResult> {
     let robot = spec.robot;
     let body = &robot.body;
     let (kse, kbt) = body.stiffness();
@@ -125,7 +130,13 @@ pub fn integrate(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, recor
             fz.deriv(s + h2, yt, &active, k3)?;
             axpy(yt, y, h, k3);
             fz.deriv(s + h, yt, &active, k4)?;
-            for ((((yj, a), b), c), d) in y.iter_mut().zip(k1.iter()).zip(k2.iter()).zip(k3.iter()).zip(k4.iter()) {
+            for ((((yj, a), b), c), d) in y
+                .iter_mut()
+                .zip(k1.iter())
+                .zip(k2.iter())
+                .zip(k3.iter())
+                .zip(k4.iter())
+            {
                 *yj += h6 * (a + 2.0 * (b + c) + d);
             }
             let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();

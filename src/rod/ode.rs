@@ -63,7 +63,9 @@ impl<'a> RodRhs<'a> {
                 straight: match a.routing {
                     Routing::Straight { x, y } => {
                         let r = Vector3::new(x, y, 0.0);
-                        let l = a.length_ratio.unwrap_or_else(|| (body.nu_star + body.omega_star.cross(&r)).norm());
+                        let l = a
+                            .length_ratio
+                            .unwrap_or_else(|| (body.nu_star + body.omega_star.cross(&r)).norm());
                         Some((r, r.cross_matrix(), l))
                     }
                     Routing::Helix { .. } => None,
@@ -86,7 +88,13 @@ impl<'a> RodRhs<'a> {
 
     /// Body-frame tangent rate of actuator `i`: `v + u x r + r'` (eq 19 without `R`).
     #[inline]
-    pub(crate) fn pb(&self, i: usize, s: f64, v: &Vector3<f64>, u: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    pub(crate) fn pb(
+        &self,
+        i: usize,
+        s: f64,
+        v: &Vector3<f64>,
+        u: &Vector3<f64>,
+    ) -> (Vector3<f64>, Vector3<f64>) {
         let (r, rp, _) = self.robot.actuators[i].routing.eval(s);
         (v + u.cross(&r) + rp, r)
     }
@@ -129,7 +137,10 @@ impl<'a> RodRhs<'a> {
             dy[BASE_STATES + k] = 0.0;
         }
         let (vd, ud) = if active.is_empty() {
-            (rhs_v.component_mul(&self.kse_inv), rhs_u.component_mul(&self.kbt_inv))
+            (
+                rhs_v.component_mul(&self.kse_inv),
+                rhs_u.component_mul(&self.kbt_inv),
+            )
         } else {
             // Blocks in plain arrays (nalgebra's generic 3x3 arithmetic costs
             // several times the flops here). Symmetric blocks are stored whole.
@@ -208,9 +219,11 @@ impl<'a> RodRhs<'a> {
                 m11[p][q] = m11[q][p];
                 m22[p][q] = m22[q][p];
             }
-            let singular = || Error::Integration {
+            let singular = || {
+                Error::Integration {
                 s,
                 reason: "singular stiffness system (25): actuator compression exceeds the body's stiffness".into(),
+            }
             };
             let m11_inv = inv_sym3_upper(&m11).ok_or_else(singular)?;
             // Y = M11^-1 M12, a = M11^-1 e
@@ -218,7 +231,9 @@ impl<'a> RodRhs<'a> {
             let mut ae = [0.0; 3];
             for p in 0..3 {
                 for q in 0..3 {
-                    y12[p][q] = m11_inv[p][0] * m12[0][q] + m11_inv[p][1] * m12[1][q] + m11_inv[p][2] * m12[2][q];
+                    y12[p][q] = m11_inv[p][0] * m12[0][q]
+                        + m11_inv[p][1] * m12[1][q]
+                        + m11_inv[p][2] * m12[2][q];
                 }
                 ae[p] = m11_inv[p][0] * e[0] + m11_inv[p][1] * e[1] + m11_inv[p][2] * e[2];
             }
@@ -227,7 +242,8 @@ impl<'a> RodRhs<'a> {
             let mut g = [0.0; 3];
             for p in 0..3 {
                 for q in p..3 {
-                    sc[p][q] = m22[p][q] - (m12[0][p] * y12[0][q] + m12[1][p] * y12[1][q] + m12[2][p] * y12[2][q]);
+                    sc[p][q] = m22[p][q]
+                        - (m12[0][p] * y12[0][q] + m12[1][p] * y12[1][q] + m12[2][p] * y12[2][q]);
                     sc[q][p] = sc[p][q];
                 }
                 g[p] = f[p] - (m12[0][p] * ae[0] + m12[1][p] * ae[1] + m12[2][p] * ae[2]);
@@ -267,5 +283,4 @@ impl<'a> RodRhs<'a> {
         }
         Ok(())
     }
-
 }

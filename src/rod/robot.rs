@@ -30,7 +30,11 @@ impl Robot {
         for (i, a) in self.actuators.iter().enumerate() {
             a.routing.validate()?;
             if !(a.s_start.is_finite() && a.s_start >= 0.0 && a.s_start < len) {
-                return Err(Error::param(&format!("actuators[{i}].s_start [m]"), a.s_start, format!("0 <= s_start < body length {len} m")));
+                return Err(Error::param(
+                    &format!("actuators[{i}].s_start [m]"),
+                    a.s_start,
+                    format!("0 <= s_start < body length {len} m"),
+                ));
             }
             if !(a.s_end.is_finite() && a.s_end > a.s_start && a.s_end <= len * (1.0 + 1e-12)) {
                 return Err(Error::param(
@@ -49,7 +53,10 @@ impl Robot {
                 let (r, rp, _) = a.routing.eval(s);
                 let w = self.body.nu_star + self.body.omega_star.cross(&r) + rp;
                 if w.norm() < 1e-9 {
-                    return Err(Error::input(&format!("actuators[{i}]"), "its reference path has zero length rate"));
+                    return Err(Error::input(
+                        &format!("actuators[{i}]"),
+                        "its reference path has zero length rate",
+                    ));
                 }
             }
         }
@@ -66,18 +73,27 @@ impl Robot {
         if inputs.len() != self.actuators.len() {
             return Err(Error::input(
                 "inputs",
-                format!("expected {} values (one per actuator), got {}", self.actuators.len(), inputs.len()),
+                format!(
+                    "expected {} values (one per actuator), got {}",
+                    self.actuators.len(),
+                    inputs.len()
+                ),
             ));
         }
         for (i, (a, &x)) in self.actuators.iter().zip(inputs).enumerate() {
-            a.law.check_input(x).map_err(|e| e.renamed(|name| format!("inputs[{i}] ({name})")))?;
+            a.law
+                .check_input(x)
+                .map_err(|e| e.renamed(|name| format!("inputs[{i}] ({name})")))?;
         }
         Ok(())
     }
 
     /// Reference (passive) inputs: ambient temperature for TCAs, zero tension/pull for tendons.
     pub fn reference_inputs(&self) -> Vec<f64> {
-        self.actuators.iter().map(|a| a.law.reference_input()).collect()
+        self.actuators
+            .iter()
+            .map(|a| a.law.reference_input())
+            .collect()
     }
 
     /// Sorted unique breakpoints: 0, L and every actuator anchor.

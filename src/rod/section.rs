@@ -50,7 +50,9 @@ impl Section {
                 } else {
                     (height, width)
                 };
-                let j = a * b.powi(3) * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b.powi(4) / (12.0 * a.powi(4))));
+                let j = a
+                    * b.powi(3)
+                    * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b.powi(4) / (12.0 * a.powi(4))));
                 (
                     width * height,
                     width * height.powi(3) / 12.0,
@@ -69,8 +71,16 @@ impl Section {
             Section::Circle { diameter } => 0.5 * diameter,
             Section::Rectangle { width, height } => {
                 let (s, c) = theta.sin_cos();
-                let tx = if c.abs() > 1e-12 { 0.5 * width / c.abs() } else { f64::INFINITY };
-                let ty = if s.abs() > 1e-12 { 0.5 * height / s.abs() } else { f64::INFINITY };
+                let tx = if c.abs() > 1e-12 {
+                    0.5 * width / c.abs()
+                } else {
+                    f64::INFINITY
+                };
+                let ty = if s.abs() > 1e-12 {
+                    0.5 * height / s.abs()
+                } else {
+                    f64::INFINITY
+                };
                 tx.min(ty)
             }
             Section::Custom { area, .. } => (area / PI).sqrt(),

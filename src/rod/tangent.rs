@@ -25,19 +25,31 @@ type V3<T> = [T; 3];
 
 #[inline(always)]
 fn cross<T: Real>(a: &V3<T>, b: &V3<T>) -> V3<T> {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 /// `a x b` for a constant `b`.
 #[inline(always)]
 fn cross_c<T: Real>(a: &V3<T>, b: &Vector3<f64>) -> V3<T> {
-    [a[1] * b.z - a[2] * b.y, a[2] * b.x - a[0] * b.z, a[0] * b.y - a[1] * b.x]
+    [
+        a[1] * b.z - a[2] * b.y,
+        a[2] * b.x - a[0] * b.z,
+        a[0] * b.y - a[1] * b.x,
+    ]
 }
 
 /// `a x b` for a constant `a`.
 #[inline(always)]
 fn c_cross<T: Real>(a: &Vector3<f64>, b: &V3<T>) -> V3<T> {
-    [b[2] * a.y - b[1] * a.z, b[0] * a.z - b[2] * a.x, b[1] * a.x - b[0] * a.y]
+    [
+        b[2] * a.y - b[1] * a.z,
+        b[0] * a.z - b[2] * a.x,
+        b[1] * a.x - b[0] * a.y,
+    ]
 }
 
 #[inline(always)]
@@ -51,9 +63,21 @@ fn rot_t<T: Real>(q: &[T; 4]) -> [[T; 3]; 3] {
     let (w, x, y, z) = (q[0], q[1], q[2], q[3]);
     let one = T::cst(1.0);
     [
-        [one - (y * y + z * z) * 2.0, (x * y - w * z) * 2.0, (x * z + w * y) * 2.0],
-        [(x * y + w * z) * 2.0, one - (x * x + z * z) * 2.0, (y * z - w * x) * 2.0],
-        [(x * z - w * y) * 2.0, (y * z + w * x) * 2.0, one - (x * x + y * y) * 2.0],
+        [
+            one - (y * y + z * z) * 2.0,
+            (x * y - w * z) * 2.0,
+            (x * z + w * y) * 2.0,
+        ],
+        [
+            (x * y + w * z) * 2.0,
+            one - (x * x + z * z) * 2.0,
+            (y * z - w * x) * 2.0,
+        ],
+        [
+            (x * z - w * y) * 2.0,
+            (y * z + w * x) * 2.0,
+            one - (x * x + y * y) * 2.0,
+        ],
     ]
 }
 
@@ -98,7 +122,14 @@ impl RodRhs<'_> {
 
     /// `dy/ds` (eqs 22-31) in any [`Real`] arithmetic, with tensions `tau`:
     /// the plain twin of [`RodRhs::deriv`].
-    pub(crate) fn deriv_generic<T: Real>(&self, s: f64, y: &[T], tau: &[T], active: &[usize], dy: &mut [T]) -> Result<()> {
+    pub(crate) fn deriv_generic<T: Real>(
+        &self,
+        s: f64,
+        y: &[T],
+        tau: &[T],
+        active: &[usize],
+        dy: &mut [T],
+    ) -> Result<()> {
         let body = &self.robot.body;
         let zero = T::cst(0.0);
         let rm = rot_t(&[y[3], y[4], y[5], y[6]]);
@@ -121,7 +152,10 @@ impl RodRhs<'_> {
             *d = zero;
         }
         let (vd, ud): (V3<T>, V3<T>) = if active.is_empty() {
-            (std::array::from_fn(|k| e[k] * self.kse_inv[k]), std::array::from_fn(|k| f[k] * self.kbt_inv[k]))
+            (
+                std::array::from_fn(|k| e[k] * self.kse_inv[k]),
+                std::array::from_fn(|k| f[k] * self.kbt_inv[k]),
+            )
         } else {
             let mut m11 = [[zero; 3]; 3];
             let mut m12 = [[zero; 3]; 3];
@@ -136,7 +170,10 @@ impl RodRhs<'_> {
                 let pb: V3<T> = std::array::from_fn(|k| v[k] + ucr[k] + rp[k]); // eq (19), body frame
                 let nrm = dot(&pb, &pb).sqrt();
                 if !(nrm.re() > 1e-12) {
-                    return Err(Error::Integration { s, reason: format!("actuator {i} has zero length rate") });
+                    return Err(Error::Integration {
+                        s,
+                        reason: format!("actuator {i} has zero length rate"),
+                    });
                 }
                 // A_i = c (I - t t^T), c = tau / |pb| (eq 20)
                 let c = tau[i] / nrm;
@@ -179,25 +216,42 @@ impl RodRhs<'_> {
                 m11[p][q] = m11[q][p];
                 m22[p][q] = m22[q][p];
             }
-            let singular = || Error::Integration {
+            let singular = || {
+                Error::Integration {
                 s,
                 reason: "singular stiffness system (25): actuator compression exceeds the body's stiffness".into(),
+            }
             };
             let m11_inv = inv_sym3(&m11).ok_or_else(singular)?;
             // Y = M11^-1 M12, a = M11^-1 e; S = M22 - M12^T Y, g = f - M12^T a
-            let y12: [[T; 3]; 3] = std::array::from_fn(|p| std::array::from_fn(|q| m11_inv[p][0] * m12[0][q] + m11_inv[p][1] * m12[1][q] + m11_inv[p][2] * m12[2][q]));
-            let ae: V3<T> = std::array::from_fn(|p| m11_inv[p][0] * e[0] + m11_inv[p][1] * e[1] + m11_inv[p][2] * e[2]);
+            let y12: [[T; 3]; 3] = std::array::from_fn(|p| {
+                std::array::from_fn(|q| {
+                    m11_inv[p][0] * m12[0][q]
+                        + m11_inv[p][1] * m12[1][q]
+                        + m11_inv[p][2] * m12[2][q]
+                })
+            });
+            let ae: V3<T> = std::array::from_fn(|p| {
+                m11_inv[p][0] * e[0] + m11_inv[p][1] * e[1] + m11_inv[p][2] * e[2]
+            });
             let mut sc = [[zero; 3]; 3];
             for p in 0..3 {
                 for q in p..3 {
-                    sc[p][q] = m22[p][q] - (m12[0][p] * y12[0][q] + m12[1][p] * y12[1][q] + m12[2][p] * y12[2][q]);
+                    sc[p][q] = m22[p][q]
+                        - (m12[0][p] * y12[0][q] + m12[1][p] * y12[1][q] + m12[2][p] * y12[2][q]);
                     sc[q][p] = sc[p][q];
                 }
             }
-            let g: V3<T> = std::array::from_fn(|p| f[p] - (m12[0][p] * ae[0] + m12[1][p] * ae[1] + m12[2][p] * ae[2]));
+            let g: V3<T> = std::array::from_fn(|p| {
+                f[p] - (m12[0][p] * ae[0] + m12[1][p] * ae[1] + m12[2][p] * ae[2])
+            });
             let s_inv = inv_sym3(&sc).ok_or_else(singular)?;
-            let ud: V3<T> = std::array::from_fn(|p| s_inv[p][0] * g[0] + s_inv[p][1] * g[1] + s_inv[p][2] * g[2]);
-            let vd: V3<T> = std::array::from_fn(|p| ae[p] - (y12[p][0] * ud[0] + y12[p][1] * ud[1] + y12[p][2] * ud[2]));
+            let ud: V3<T> = std::array::from_fn(|p| {
+                s_inv[p][0] * g[0] + s_inv[p][1] * g[1] + s_inv[p][2] * g[2]
+            });
+            let vd: V3<T> = std::array::from_fn(|p| {
+                ae[p] - (y12[p][0] * ud[0] + y12[p][1] * ud[1] + y12[p][2] * ud[2])
+            });
             (vd, ud)
         };
         for k in 0..3 {
@@ -212,7 +266,10 @@ impl RodRhs<'_> {
         dy[7..10].copy_from_slice(&vd);
         dy[10..13].copy_from_slice(&ud);
         if !dy.iter().all(|d| d.is_finite()) {
-            return Err(Error::Integration { s, reason: "non-finite derivative".into() });
+            return Err(Error::Integration {
+                s,
+                reason: "non-finite derivative".into(),
+            });
         }
         Ok(())
     }
@@ -221,7 +278,14 @@ impl RodRhs<'_> {
     /// strains `w = (v, u)`, pre-jump strains `w0` and tensions `tau`, with
     /// every string anchored at or passing `s` (zero tensions included, so
     /// that the derivative with respect to a tension is right).
-    fn anchor_residual<T: Real>(&self, s: f64, terms: &[(usize, f64, f64)], w: &[T; 6], w0: &[T; 6], tau: &[T]) -> [T; 6] {
+    fn anchor_residual<T: Real>(
+        &self,
+        s: f64,
+        terms: &[(usize, f64, f64)],
+        w: &[T; 6],
+        w0: &[T; 6],
+        tau: &[T],
+    ) -> [T; 6] {
         let len = self.robot.body.length;
         let zero = T::cst(0.0);
         let (mut f, mut m) = ([zero; 3], [zero; 3]);
@@ -246,21 +310,35 @@ impl RodRhs<'_> {
                 add(i, a, w);
             }
         }
-        std::array::from_fn(|k| if k < 3 { w[k] - w0[k] + f[k] * self.kse_inv[k] } else { (w[k] - w0[k] + m[k - 3] * self.kbt_inv[k - 3]) * len })
+        std::array::from_fn(|k| {
+            if k < 3 {
+                w[k] - w0[k] + f[k] * self.kse_inv[k]
+            } else {
+                (w[k] - w0[k] + m[k - 3] * self.kbt_inv[k - 3]) * len
+            }
+        })
     }
 
     /// The anchor jump at `s` on a dual state: the real part by the `f64`
     /// Newton solve of `anchor_loads`, the tangents by the implicit function
     /// theorem, `dw = -G_w^-1 (G_w0 dw0 + G_tau dtau)`, with `G_w` exact
     /// (6-direction duals).
-    fn anchor_tangent<const N: usize>(&self, s: f64, y: &mut [Dual<N>], tau: &[Dual<N>]) -> Result<()> {
+    fn anchor_tangent<const N: usize>(
+        &self,
+        s: f64,
+        y: &mut [Dual<N>],
+        tau: &[Dual<N>],
+    ) -> Result<()> {
         let tol = 1e-12 * self.robot.body.length;
         let mut terms: Vec<(usize, f64, f64)> = Vec::new();
         for (i, act) in self.robot.actuators.iter().enumerate() {
             let ends = (act.s_end - s).abs() <= tol;
             let starts = (act.s_start - s).abs() <= tol;
             let passes = act.s_start < s - tol && act.s_end > s + tol;
-            let (b, a) = (if ends || passes { 1.0 } else { 0.0 }, if starts || passes { 1.0 } else { 0.0 });
+            let (b, a) = (
+                if ends || passes { 1.0 } else { 0.0 },
+                if starts || passes { 1.0 } else { 0.0 },
+            );
             if b != 0.0 || a != 0.0 {
                 terms.push((i, b, a));
             }
@@ -289,7 +367,10 @@ impl RodRhs<'_> {
         let mut out: [Dual<N>; 6] = wn;
         for d in 0..N {
             let rhs = Vector6::from_fn(|r, _| -gn[r].eps[d]);
-            let dw = lu.solve(&rhs).ok_or_else(|| Error::Integration { s, reason: "singular anchor-load system".into() })?;
+            let dw = lu.solve(&rhs).ok_or_else(|| Error::Integration {
+                s,
+                reason: "singular anchor-load system".into(),
+            })?;
             for k in 0..6 {
                 out[k].eps[d] = dw[k];
             }
@@ -314,7 +395,11 @@ pub struct TangentSeeds {
 impl TangentSeeds {
     /// `k` zero directions for a robot with `na` actuators.
     pub fn zeros(na: usize, k: usize) -> Self {
-        TangentSeeds { nu0: DMatrix::zeros(3, k), omega0: DMatrix::zeros(3, k), tensions: DMatrix::zeros(na, k) }
+        TangentSeeds {
+            nu0: DMatrix::zeros(3, k),
+            omega0: DMatrix::zeros(3, k),
+            tensions: DMatrix::zeros(na, k),
+        }
     }
     /// Number of directions.
     pub fn directions(&self) -> usize {
@@ -358,11 +443,25 @@ const MAX_PASS: usize = 16;
 /// jumps and the tip balance. The tangents are the exact derivatives of the
 /// discrete map. With `record`, every grid node's state and tangent matrix
 /// are returned (for stability analyses).
-pub fn integrate_tangent(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, seeds: &TangentSeeds, record: bool) -> Result<TangentIvp> {
+pub fn integrate_tangent(
+    spec: &IvpSpec<'_>,
+    v0: &Vector3<f64>,
+    u0: &Vector3<f64>,
+    seeds: &TangentSeeds,
+    record: bool,
+) -> Result<TangentIvp> {
     let k = seeds.directions();
     let na = spec.robot.actuators.len();
-    if seeds.nu0.nrows() != 3 || seeds.omega0.nrows() != 3 || seeds.tensions.nrows() != na || seeds.omega0.ncols() != k || seeds.tensions.ncols() != k {
-        return Err(Error::input("seeds", format!("expected 3, 3 and {na} rows and equal column counts")));
+    if seeds.nu0.nrows() != 3
+        || seeds.omega0.nrows() != 3
+        || seeds.tensions.nrows() != na
+        || seeds.omega0.ncols() != k
+        || seeds.tensions.ncols() != k
+    {
+        return Err(Error::input(
+            "seeds",
+            format!("expected 3, 3 and {na} rows and equal column counts"),
+        ));
     }
     let mut out: Option<TangentIvp> = None;
     let mut c0 = 0;
@@ -401,7 +500,15 @@ pub fn integrate_tangent(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64
 }
 
 /// One pass of [`integrate_tangent`] over directions `c0 .. c0 + w` (`w <= N`).
-fn pass<const N: usize>(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>, seeds: &TangentSeeds, c0: usize, w: usize, record: bool) -> Result<TangentIvp> {
+fn pass<const N: usize>(
+    spec: &IvpSpec<'_>,
+    v0: &Vector3<f64>,
+    u0: &Vector3<f64>,
+    seeds: &TangentSeeds,
+    c0: usize,
+    w: usize,
+    record: bool,
+) -> Result<TangentIvp> {
     type D<const N: usize> = Dual<N>;
     let robot = spec.robot;
     let body = &robot.body;
@@ -410,8 +517,12 @@ fn pass<const N: usize>(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>
     let n = robot.n_states();
     let len = body.length;
     let steps = spec.steps.max(1);
-    let seed = |m: &DMatrix<f64>, row: usize| -> [f64; N] { std::array::from_fn(|d| if d < w { m[(row, c0 + d)] } else { 0.0 }) };
-    let tau: Vec<D<N>> = (0..na).map(|i| Dual::new(spec.tensions[i], seed(&seeds.tensions, i))).collect();
+    let seed = |m: &DMatrix<f64>, row: usize| -> [f64; N] {
+        std::array::from_fn(|d| if d < w { m[(row, c0 + d)] } else { 0.0 })
+    };
+    let tau: Vec<D<N>> = (0..na)
+        .map(|i| Dual::new(spec.tensions[i], seed(&seeds.tensions, i)))
+        .collect();
     let zero = D::<N>::cst(0.0);
     let mut y = vec![zero; n];
     y[3] = D::cst(1.0);
@@ -419,7 +530,13 @@ fn pass<const N: usize>(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>
         y[7 + k] = Dual::new(v0[k], seed(&seeds.nu0, k));
         y[10 + k] = Dual::new(u0[k], seed(&seeds.omega0, k));
     }
-    let (mut k1, mut k2, mut k3, mut k4, mut yt) = (vec![zero; n], vec![zero; n], vec![zero; n], vec![zero; n], vec![zero; n]);
+    let (mut k1, mut k2, mut k3, mut k4, mut yt) = (
+        vec![zero; n],
+        vec![zero; n],
+        vec![zero; n],
+        vec![zero; n],
+        vec![zero; n],
+    );
     let to_node = |s: f64, y: &[D<N>]| TangentNode {
         s,
         state: y.iter().map(|d| d.re).collect(),
@@ -491,7 +608,8 @@ fn pass<const N: usize>(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>
     let rtf = rt_mul(&rm, &spec.tip_force);
     let rtm = rt_mul(&rm, &spec.tip_moment);
     let mut rf: V3<D<N>> = std::array::from_fn(|k| (v[k] - body.nu_star[k]) * fz.kse[k] - rtf[k]);
-    let mut rmm: V3<D<N>> = std::array::from_fn(|k| (u[k] - body.omega_star[k]) * fz.kbt[k] - rtm[k]);
+    let mut rmm: V3<D<N>> =
+        std::array::from_fn(|k| (u[k] - body.omega_star[k]) * fz.kbt[k] - rtm[k]);
     for (i, act) in robot.actuators.iter().enumerate() {
         if (act.s_end - len).abs() <= tol {
             elongation[i] = y[BASE_STATES + i];
@@ -513,7 +631,14 @@ fn pass<const N: usize>(spec: &IvpSpec<'_>, v0: &Vector3<f64>, u0: &Vector3<f64>
         nodes.push(to_node(len, &y));
     }
     let tan = |v: &[D<N>]| DMatrix::from_fn(v.len(), w, |r, c| v[r].eps[c]);
-    let ivp_nodes = if record { nodes.iter().map(|nd| (nd.s, RodState::from_slice(&nd.state))).collect() } else { Vec::new() };
+    let ivp_nodes = if record {
+        nodes
+            .iter()
+            .map(|nd| (nd.s, RodState::from_slice(&nd.state)))
+            .collect()
+    } else {
+        Vec::new()
+    };
     Ok(TangentIvp {
         ivp: IvpResult {
             tip,

@@ -36,7 +36,13 @@ pub fn interruptible<T>(check: CancelCheck<'_>, f: impl FnOnce() -> T) -> T {
     // lifetime ends (the guard pops it on return and on unwinding).
     let ptr: *const (dyn Fn() -> bool + Sync + '_) = check;
     let ptr: *const (dyn Fn() -> bool + Sync + 'static) = unsafe { std::mem::transmute(ptr) };
-    HOOK.with(|h| h.borrow_mut().push(Hook { check: ptr, last: Instant::now(), cancelled: false }));
+    HOOK.with(|h| {
+        h.borrow_mut().push(Hook {
+            check: ptr,
+            last: Instant::now(),
+            cancelled: false,
+        })
+    });
     struct Pop;
     impl Drop for Pop {
         fn drop(&mut self) {
@@ -54,7 +60,9 @@ pub fn interruptible<T>(check: CancelCheck<'_>, f: impl FnOnce() -> T) -> T {
 pub fn check() -> Result<()> {
     let stop = HOOK.with(|h| {
         let mut h = h.borrow_mut();
-        let Some(top) = h.last_mut() else { return false };
+        let Some(top) = h.last_mut() else {
+            return false;
+        };
         if top.cancelled {
             return true;
         }

@@ -14,7 +14,10 @@
 //! (Pseudo-arclength continuation through folds is the stability module's.)
 
 use super::cancel;
-use super::shooting::{is_input_error, newton_shooting, reference_guess, solution_from, tensions, Loads, SolveOptions, Solution, Work};
+use super::shooting::{
+    is_input_error, newton_shooting, reference_guess, solution_from, tensions, Loads, Solution,
+    SolveOptions, Work,
+};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 
@@ -26,7 +29,14 @@ pub const INTERMEDIATE_TOL: f64 = 1e-8;
 pub const MIN_STEP: f64 = 1e-4;
 
 /// The robot, inputs and loads at homotopy parameter `lam` in `[0, 1]`.
-fn at(robot: &Robot, from: &[f64], inputs: &[f64], loads: &Loads, scale_loads: bool, lam: f64) -> (Robot, Vec<f64>, Loads) {
+fn at(
+    robot: &Robot,
+    from: &[f64],
+    inputs: &[f64],
+    loads: &Loads,
+    scale_loads: bool,
+    lam: f64,
+) -> (Robot, Vec<f64>, Loads) {
     if lam >= 1.0 {
         return (robot.clone(), inputs.to_vec(), *loads);
     }
@@ -39,13 +49,24 @@ fn at(robot: &Robot, from: &[f64], inputs: &[f64], loads: &Loads, scale_loads: b
         l.tip_force *= lam;
         l.tip_moment *= lam;
     }
-    let inp = from.iter().zip(inputs).map(|(a, b)| a + lam * (b - a)).collect();
+    let inp = from
+        .iter()
+        .zip(inputs)
+        .map(|(a, b)| a + lam * (b - a))
+        .collect();
     (r, inp, l)
 }
 
 /// Continuation to `inputs` under `loads` (see the module docs); adds its
 /// work to `work`.
-pub(crate) fn continuation(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptions, warm: Option<&Solution>, work: &mut Work) -> Result<Solution> {
+pub(crate) fn continuation(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+    work: &mut Work,
+) -> Result<Solution> {
     let len = robot.body.length;
     let cold = warm.is_none();
     let from = match warm {
@@ -79,7 +100,14 @@ pub(crate) fn continuation(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &
             }
         }
         // intermediate steps are predictors: converged to 1e-8 (or tol if looser)
-        let step_opts = if lt >= 1.0 { *opts } else { SolveOptions { tol: opts.tol.max(INTERMEDIATE_TOL), ..*opts } };
+        let step_opts = if lt >= 1.0 {
+            *opts
+        } else {
+            SolveOptions {
+                tol: opts.tol.max(INTERMEDIATE_TOL),
+                ..*opts
+            }
+        };
         match newton_shooting(&r, &inp, &l, &step_opts, &x0, jac.as_ref(), lt >= 1.0, work) {
             Ok((nr, last)) => {
                 lam = lt;
@@ -115,7 +143,13 @@ pub(crate) fn continuation(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &
         }
     }
     Err(match last_err {
-        Some(Error::NotConverged { solver, residual, stop, reason, .. }) => Error::NotConverged {
+        Some(Error::NotConverged {
+            solver,
+            residual,
+            stop,
+            reason,
+            ..
+        }) => Error::NotConverged {
             solver,
             iterations: work.iterations,
             evaluations: work.evaluations,

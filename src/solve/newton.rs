@@ -127,7 +127,12 @@ fn merit(r: &[f64]) -> f64 {
 /// the evaluations and a [`StopReason`]; [`Error::Interrupted`] if the
 /// cancel check (see [`crate::solve::cancel`]) fires. An error of the first
 /// evaluation is returned as it is (e.g. an invalid input).
-pub fn newton<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, solver: &'static str) -> Result<NewtonResult> {
+pub fn newton<S: System>(
+    sys: &mut S,
+    x0: &[f64],
+    opts: &NewtonOptions,
+    solver: &'static str,
+) -> Result<NewtonResult> {
     newton_from(sys, x0, opts, solver, None)
 }
 
@@ -142,35 +147,69 @@ pub fn newton<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, solver: 
 /// than four times, or before the last allowed iteration, is recomputed for
 /// the next step. A kept Jacobian costs no tangent IVP, so warm
 /// starts and the last iterations of a cold solve cost one plain IVP each.
-pub fn newton_from<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, solver: &'static str, jac0: Option<&DMatrix<f64>>) -> Result<NewtonResult> {
+pub fn newton_from<S: System>(
+    sys: &mut S,
+    x0: &[f64],
+    opts: &NewtonOptions,
+    solver: &'static str,
+    jac0: Option<&DMatrix<f64>>,
+) -> Result<NewtonResult> {
     let mut x = x0.to_vec();
     let mut r = sys.residual(&x)?;
     let mut iterations = 0;
     let mut best = inf_norm(&r);
-    let mut jacobian: Option<DMatrix<f64>> = jac0.filter(|j| j.nrows() == r.len() && j.ncols() == x.len() && j.iter().all(|v| v.is_finite())).cloned();
+    let mut jacobian: Option<DMatrix<f64>> = jac0
+        .filter(|j| j.nrows() == r.len() && j.ncols() == x.len() && j.iter().all(|v| v.is_finite()))
+        .cloned();
     let mut fresh = false;
-    let fail = |sys: &S, iterations, best: f64, reason: StopReason, detail: String| Error::NotConverged {
-        solver,
-        iterations,
-        evaluations: sys.evaluations(),
-        residual: best,
-        stop: reason,
-        reason: detail,
-    };
+    let fail =
+        |sys: &S, iterations, best: f64, reason: StopReason, detail: String| Error::NotConverged {
+            solver,
+            iterations,
+            evaluations: sys.evaluations(),
+            residual: best,
+            stop: reason,
+            reason: detail,
+        };
     loop {
         let res = inf_norm(&r);
         if !res.is_finite() {
-            return Err(fail(sys, iterations, best, StopReason::NonFinite, "non-finite residual".into()));
+            return Err(fail(
+                sys,
+                iterations,
+                best,
+                StopReason::NonFinite,
+                "non-finite residual".into(),
+            ));
         }
         best = best.min(res);
         let floor = sys.floor(&x, &r);
         if res <= opts.tol.max(floor) {
-            let status = if res <= opts.tol { Status::Converged } else { Status::ConvergedAtFloor };
+            let status = if res <= opts.tol {
+                Status::Converged
+            } else {
+                Status::ConvergedAtFloor
+            };
             let evaluations = sys.evaluations();
-            return Ok(NewtonResult { x, residual: r, norm: res, floor, status, iterations, evaluations, jacobian });
+            return Ok(NewtonResult {
+                x,
+                residual: r,
+                norm: res,
+                floor,
+                status,
+                iterations,
+                evaluations,
+                jacobian,
+            });
         }
         if iterations >= opts.max_iter {
-            return Err(fail(sys, iterations, best, StopReason::IterationLimit, "iteration limit reached".into()));
+            return Err(fail(
+                sys,
+                iterations,
+                best,
+                StopReason::IterationLimit,
+                "iteration limit reached".into(),
+            ));
         }
         cancel::check()?;
         iterations += 1;
@@ -184,7 +223,11 @@ pub fn newton_from<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, sol
         };
         let rv = DVector::from_column_slice(&r);
         let (m, n) = jac.shape();
-        let dx = if m == n { jac.clone().lu().solve(&(-&rv)) } else { jac.clone().svd(true, true).solve(&(-&rv), 1e-14).ok() };
+        let dx = if m == n {
+            jac.clone().lu().solve(&(-&rv))
+        } else {
+            jac.clone().svd(true, true).solve(&(-&rv), 1e-14).ok()
+        };
         let grad = jac.tr_mul(&rv); // grad phi = J^T f
         let mut dx = match dx {
             Some(d) if d.iter().all(|v| v.is_finite()) => d,
@@ -194,7 +237,13 @@ pub fn newton_from<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, sol
                 continue;
             }
             _ => {
-                return Err(fail(sys, iterations, best, StopReason::SingularJacobian, "singular Jacobian".into()));
+                return Err(fail(
+                    sys,
+                    iterations,
+                    best,
+                    StopReason::SingularJacobian,
+                    "singular Jacobian".into(),
+                ));
             }
         };
         let mut slope = grad.dot(&dx);
@@ -207,7 +256,13 @@ pub fn newton_from<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, sol
             // scaled to the Gauss-Newton step length
             let g2 = grad.norm_squared();
             if !(g2 > 0.0) {
-                return Err(fail(sys, iterations, best, StopReason::SingularJacobian, "zero gradient of the merit".into()));
+                return Err(fail(
+                    sys,
+                    iterations,
+                    best,
+                    StopReason::SingularJacobian,
+                    "zero gradient of the merit".into(),
+                ));
             }
             let jg = &jac * &grad;
             dx = -&grad * (g2 / jg.norm_squared().max(f64::MIN_POSITIVE));
@@ -266,9 +321,24 @@ pub fn newton_from<S: System>(sys: &mut S, x0: &[f64], opts: &NewtonOptions, sol
                 let floor = sys.floor(&x, &r);
                 if res <= FLOOR_MARGIN * floor {
                     let evaluations = sys.evaluations();
-                    return Ok(NewtonResult { x, residual: r, norm: res, floor, status: Status::ConvergedAtFloor, iterations, evaluations, jacobian });
+                    return Ok(NewtonResult {
+                        x,
+                        residual: r,
+                        norm: res,
+                        floor,
+                        status: Status::ConvergedAtFloor,
+                        iterations,
+                        evaluations,
+                        jacobian,
+                    });
                 }
-                return Err(fail(sys, iterations, best, StopReason::LineSearch, "line search failed to reduce the residual".into()));
+                return Err(fail(
+                    sys,
+                    iterations,
+                    best,
+                    StopReason::LineSearch,
+                    "line search failed to reduce the residual".into(),
+                ));
             }
         }
         if t < 1.0 {
@@ -310,17 +380,31 @@ mod tests {
     #[test]
     fn solves_rosenbrock_from_afar_and_reports_failures() {
         let mut sys = FnSystem::new(|x: &[f64]| Ok(vec![10.0 * (x[1] - x[0] * x[0]), 1.0 - x[0]]));
-        let o = NewtonOptions { tol: 1e-12, max_iter: 50, min_step: 1e-10 };
+        let o = NewtonOptions {
+            tol: 1e-12,
+            max_iter: 50,
+            min_step: 1e-10,
+        };
         let r = newton(&mut sys, &[-1.2, 1.0], &o, "test").unwrap();
         assert!((r.x[0] - 1.0).abs() < 1e-10 && (r.x[1] - 1.0).abs() < 1e-10);
         assert_eq!(r.status, Status::Converged);
         // x^2 + 1 = 0 has no real root: the merit's minimum is at 0 with f = 1
         let mut sys = FnSystem::new(|x: &[f64]| Ok(vec![x[0] * x[0] + 1.0]));
         match newton(&mut sys, &[0.7], &o, "test") {
-            Err(Error::NotConverged { residual, evaluations, stop, .. }) => {
+            Err(Error::NotConverged {
+                residual,
+                evaluations,
+                stop,
+                ..
+            }) => {
                 assert!((residual - 1.0).abs() < 1e-6, "best residual {residual}");
                 assert!(evaluations > 2);
-                assert!(matches!(stop, StopReason::LineSearch | StopReason::SingularJacobian | StopReason::IterationLimit));
+                assert!(matches!(
+                    stop,
+                    StopReason::LineSearch
+                        | StopReason::SingularJacobian
+                        | StopReason::IterationLimit
+                ));
             }
             other => panic!("expected NotConverged, got {other:?}"),
         }
@@ -347,7 +431,11 @@ mod tests {
                 self.0
             }
         }
-        let o = NewtonOptions { tol: 1e-12, max_iter: 20, min_step: 1e-6 };
+        let o = NewtonOptions {
+            tol: 1e-12,
+            max_iter: 20,
+            min_step: 1e-6,
+        };
         let r = newton(&mut Noisy(0), &[10.0], &o, "test").unwrap();
         assert_eq!(r.status, Status::ConvergedAtFloor);
         assert!((r.x[0] - 2.0).abs() <= 2e-9);

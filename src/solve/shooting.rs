@@ -20,8 +20,16 @@ use super::cancel;
 use super::continuation::continuation;
 use super::newton::{newton_from, NewtonOptions, NewtonResult, Status, System};
 use crate::error::{Error, Result};
-use crate::rod::{integrate, integrate_tangent, IvpResult, IvpSpec, Robot, TangentIvp, TangentSeeds};
+use crate::rod::{
+    integrate, integrate_tangent, IvpResult, IvpSpec, Robot, TangentIvp, TangentSeeds,
+};
 
+/// Residual, its exact Jacobian, the tangent IVP and the tensions of one evaluation.
+type ResidualAndJacobian = (Vec<f64>, DMatrix<f64>, TangentIvp, Vec<f64>);
+/// Unknowns, residual, IVP and tensions of the last evaluation, kept for the solution.
+type LastEvaluation = (Vec<f64>, Vec<f64>, IvpResult, Vec<f64>);
+/// Residual, IVP and tensions at the Newton solution (when it was the last one integrated).
+type FinalIvp = (Vec<f64>, IvpResult, Vec<f64>);
 /// Options of the Newton shooting solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolveOptions {
@@ -38,7 +46,11 @@ pub struct SolveOptions {
 impl SolveOptions {
     /// The Newton options of these.
     pub fn newton(&self) -> NewtonOptions {
-        NewtonOptions { tol: self.tol, max_iter: self.max_iter, min_step: self.min_step }
+        NewtonOptions {
+            tol: self.tol,
+            max_iter: self.max_iter,
+            min_step: self.min_step,
+        }
     }
 }
 
@@ -57,7 +69,11 @@ impl SolveOptions {
     /// Validate.
     pub fn validate(&self) -> Result<()> {
         if self.steps == 0 || self.steps > 10_000_000 {
-            return Err(Error::param("steps", self.steps as f64, "1 <= steps <= 1e7"));
+            return Err(Error::param(
+                "steps",
+                self.steps as f64,
+                "1 <= steps <= 1e7",
+            ));
         }
         if !(self.tol.is_finite() && self.tol > 0.0) {
             return Err(Error::param("tol", self.tol, "finite and > 0"));
@@ -115,7 +131,14 @@ impl Loads {
 }
 
 /// One IVP from scaled unknowns `x`, and its scaled residual.
-pub fn shoot(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize, record: bool) -> Result<(Vec<f64>, IvpResult, Vec<f64>)> {
+pub fn shoot(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    steps: usize,
+    record: bool,
+) -> Result<(Vec<f64>, IvpResult, Vec<f64>)> {
     let len = robot.body.length;
     let na = robot.actuators.len();
     let v0 = Vector3::new(x[0], x[1], x[2]);
@@ -136,8 +159,8 @@ pub fn shoot(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usi
     let mut r = Vec::with_capacity(6 + na);
     r.extend_from_slice(ef.as_slice());
     r.extend_from_slice(em.as_slice());
-    for i in 0..na {
-        r.push((ivp.elongation[i] - delta[i]) / len);
+    for (e, d) in ivp.elongation.iter().zip(&delta[..na]) {
+        r.push((e - d) / len);
     }
     Ok((r, ivp, tau))
 }
@@ -147,7 +170,14 @@ pub fn shoot(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usi
 /// the discrete RK4 map, from the variational equations and the force laws'
 /// derivatives), `(6 + N) x (6 + N)`. With `record`, the IVP's nodes carry
 /// `d y(s) / d x` (see [`crate::rod::TangentNode`]).
-pub fn shoot_jacobian(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize, record: bool) -> Result<(Vec<f64>, DMatrix<f64>, TangentIvp, Vec<f64>)> {
+pub fn shoot_jacobian(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    steps: usize,
+    record: bool,
+) -> Result<ResidualAndJacobian> {
     let len = robot.body.length;
     let na = robot.actuators.len();
     let nx = 6 + na;
@@ -181,8 +211,10 @@ pub fn shoot_jacobian(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], s
         r.push((ivp.elongation[i] - x[6 + i] * len) / len);
     }
     let mut jac = DMatrix::zeros(nx, nx);
-    jac.rows_mut(0, 3).copy_from(&(&tan.tip_force_residual * fs));
-    jac.rows_mut(3, 3).copy_from(&(&tan.tip_moment_residual * ms));
+    jac.rows_mut(0, 3)
+        .copy_from(&(&tan.tip_force_residual * fs));
+    jac.rows_mut(3, 3)
+        .copy_from(&(&tan.tip_moment_residual * ms));
     for i in 0..na {
         for j in 0..nx {
             jac[(6 + i, j)] = tan.elongation[(i, j)] / len;
@@ -273,9 +305,28 @@ impl Solution {
 }
 
 /// Build a [`Solution`] by integrating once more from converged unknowns.
-pub fn assemble(robot: &Robot, inputs: &[f64], loads: &Loads, x: &[f64], steps: usize, iterations: usize, evaluations: usize) -> Result<Solution> {
+pub fn assemble(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    steps: usize,
+    iterations: usize,
+    evaluations: usize,
+) -> Result<Solution> {
     let (r, ivp, tau) = shoot(robot, inputs, loads, x, steps, true)?;
-    assemble_from(robot, inputs, loads, x, steps, iterations, evaluations, r, ivp, tau)
+    assemble_from(
+        robot,
+        inputs,
+        loads,
+        x,
+        steps,
+        iterations,
+        evaluations,
+        r,
+        ivp,
+        tau,
+    )
 }
 
 /// [`assemble`] from the recorded IVP at `x` (residual `r`, tensions `tau`).
@@ -330,7 +381,8 @@ pub(crate) fn assemble_from(
         sol.nu.push(st.v);
         sol.omega.push(st.u);
         sol.internal_force.push(rm * kse * (st.v - body.nu_star));
-        sol.internal_moment.push(rm * kbt * (st.u - body.omega_star));
+        sol.internal_moment
+            .push(rm * kbt * (st.u - body.omega_star));
         sol.elongation_profile.push(st.delta.clone());
         for (i, a) in robot.actuators.iter().enumerate() {
             if *s >= a.s_start - tol && *s <= a.s_end + tol {
@@ -402,7 +454,10 @@ pub fn linear_guess(robot: &Robot, inputs: &[f64], loads: &Loads, x: &mut [f64])
     let f = b.distributed_load();
     let e3 = Vector3::z();
     let mut n0 = loads.tip_force + f * len;
-    let mut m0 = loads.tip_moment + b.distributed_moment * len + e3.cross(&loads.tip_force) * len + e3.cross(&f) * (0.5 * len * len);
+    let mut m0 = loads.tip_moment
+        + b.distributed_moment * len
+        + e3.cross(&loads.tip_force) * len
+        + e3.cross(&f) * (0.5 * len * len);
     let tol = 1e-12 * len;
     for (i, a) in robot.actuators.iter().enumerate() {
         if a.s_start > tol {
@@ -483,7 +538,7 @@ pub struct Shooting<'a> {
     /// [`COARSE_JACOBIAN_MIN_STEPS`]) until [`System::refine`] switches to
     /// the exact Jacobian of the full grid (`None`).
     jacobian_steps: Option<usize>,
-    last: Option<(Vec<f64>, Vec<f64>, IvpResult, Vec<f64>)>,
+    last: Option<LastEvaluation>,
 }
 
 /// Fewest RK4 steps of the coarse-grid Newton Jacobian (below ten times
@@ -493,10 +548,30 @@ pub const COARSE_JACOBIAN_MIN_STEPS: usize = 10;
 impl<'a> Shooting<'a> {
     /// The system of `robot` at `inputs` under `loads` on `steps` RK4 steps;
     /// `record`: keep the nodes of the last IVP.
-    pub fn new(robot: &'a Robot, inputs: &'a [f64], loads: &'a Loads, steps: usize, record: bool) -> Self {
+    pub fn new(
+        robot: &'a Robot,
+        inputs: &'a [f64],
+        loads: &'a Loads,
+        steps: usize,
+        record: bool,
+    ) -> Self {
         let coarse = steps / 10;
-        let jacobian_steps = if coarse >= COARSE_JACOBIAN_MIN_STEPS { Some(coarse) } else { None };
-        Shooting { robot, inputs, loads, steps, record, evaluations: 0, tangent_evaluations: 0, jacobian_steps, last: None }
+        let jacobian_steps = if coarse >= COARSE_JACOBIAN_MIN_STEPS {
+            Some(coarse)
+        } else {
+            None
+        };
+        Shooting {
+            robot,
+            inputs,
+            loads,
+            steps,
+            record,
+            evaluations: 0,
+            tangent_evaluations: 0,
+            jacobian_steps,
+            last: None,
+        }
     }
     /// The last plain IVP if it was at `x`: `(residual, ivp, tensions)`.
     fn take_last(&mut self, x: &[f64]) -> Option<(Vec<f64>, IvpResult, Vec<f64>)> {
@@ -510,7 +585,14 @@ impl<'a> Shooting<'a> {
 impl System for Shooting<'_> {
     fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
         self.evaluations += 1;
-        let (r, ivp, tau) = shoot(self.robot, self.inputs, self.loads, x, self.steps, self.record)?;
+        let (r, ivp, tau) = shoot(
+            self.robot,
+            self.inputs,
+            self.loads,
+            x,
+            self.steps,
+            self.record,
+        )?;
         self.last = Some((x.to_vec(), r.clone(), ivp, tau));
         Ok(r)
     }
@@ -544,7 +626,12 @@ impl System for Shooting<'_> {
         let vmax = x[0].abs().max(x[1].abs()).max(x[2].abs());
         let umax = x[3].abs().max(x[4].abs()).max(x[5].abs()) / len;
         let st: f64 = tau.iter().map(|t| t.abs()).sum();
-        let srt: f64 = robot.actuators.iter().zip(&tau).map(|(a, t)| a.routing.eval(len).0.norm() * t.abs()).sum();
+        let srt: f64 = robot
+            .actuators
+            .iter()
+            .zip(&tau)
+            .map(|(a, t)| a.routing.eval(len).0.norm() * t.abs())
+            .sum();
         let f = fs * (kse.max() * vmax + self.loads.tip_force.amax() + st);
         let m = ms * (kbt.max() * umax * len + self.loads.tip_moment.amax() + srt);
         4.0 * f64::EPSILON * f.max(m)
@@ -571,6 +658,7 @@ impl Work {
 /// Newton shooting from `x0`; returns the Newton result and the IVP at its
 /// solution (if it was the last one integrated). Adds the work to `work`
 /// (also on failure).
+#[allow(clippy::too_many_arguments)] // the shooting problem's parts, passed through to `Shooting::new`
 pub(crate) fn newton_shooting(
     robot: &Robot,
     inputs: &[f64],
@@ -580,7 +668,7 @@ pub(crate) fn newton_shooting(
     jac0: Option<&DMatrix<f64>>,
     record: bool,
     work: &mut Work,
-) -> Result<(NewtonResult, Option<(Vec<f64>, IvpResult, Vec<f64>)>)> {
+) -> Result<(NewtonResult, Option<FinalIvp>)> {
     let mut sys = Shooting::new(robot, inputs, loads, opts.steps, record);
     let out = newton_from(&mut sys, x0, &opts.newton(), "forward shooting", jac0);
     match out {
@@ -589,9 +677,23 @@ pub(crate) fn newton_shooting(
             let last = sys.take_last(&nr.x);
             Ok((nr, last))
         }
-        Err(Error::NotConverged { solver, iterations, evaluations: _, residual, stop, reason }) => {
+        Err(Error::NotConverged {
+            solver,
+            iterations,
+            evaluations: _,
+            residual,
+            stop,
+            reason,
+        }) => {
             work.add(&sys, iterations);
-            Err(Error::NotConverged { solver, iterations: work.iterations, evaluations: work.evaluations, residual, stop, reason })
+            Err(Error::NotConverged {
+                solver,
+                iterations: work.iterations,
+                evaluations: work.evaluations,
+                residual,
+                stop,
+                reason,
+            })
         }
         Err(e) => {
             work.add(&sys, 0);
@@ -612,7 +714,9 @@ pub(crate) fn solution_from(
     work: &mut Work,
 ) -> Result<Solution> {
     let mut s = match last {
-        Some((r, ivp, tau)) if !ivp.nodes.is_empty() => assemble_from(robot, inputs, loads, &nr.x, opts.steps, 0, 0, r, ivp, tau)?,
+        Some((r, ivp, tau)) if !ivp.nodes.is_empty() => {
+            assemble_from(robot, inputs, loads, &nr.x, opts.steps, 0, 0, r, ivp, tau)?
+        }
         _ => {
             work.evaluations += 1;
             assemble(robot, inputs, loads, &nr.x, opts.steps, 0, 0)?
@@ -643,28 +747,51 @@ pub(crate) fn solution_from(
 /// assert!(sol.residual <= 1e-10);
 /// assert!(sol.tip_position().x < 0.0); // the heated extension TCAs bend it toward -x
 /// ```
-pub fn solve(robot: &Robot, inputs: &[f64], opts: &SolveOptions, warm: Option<&Solution>) -> Result<Solution> {
+pub fn solve(
+    robot: &Robot,
+    inputs: &[f64],
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+) -> Result<Solution> {
     solve_loaded(robot, inputs, &Loads::of(robot), opts, warm)
 }
 
 pub(crate) fn is_input_error(e: &Error) -> bool {
-    matches!(e, Error::InvalidParameter { .. } | Error::InvalidInput { .. } | Error::Interrupted)
+    matches!(
+        e,
+        Error::InvalidParameter { .. } | Error::InvalidInput { .. } | Error::Interrupted
+    )
 }
 
 /// [`solve`] with explicit tip loads.
-pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptions, warm: Option<&Solution>) -> Result<Solution> {
+pub fn solve_loaded(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+) -> Result<Solution> {
     robot.validate()?;
     robot.check_inputs(inputs)?;
     opts.validate()?;
     if let Some(w) = warm {
-        if w.unknowns.len() != 6 + robot.actuators.len() || w.tensions.len() != robot.actuators.len() {
+        if w.unknowns.len() != 6 + robot.actuators.len()
+            || w.tensions.len() != robot.actuators.len()
+        {
             return Err(Error::input(
                 "warm_start",
-                format!("solution of a robot with {} actuators, this one has {}", w.tensions.len(), robot.actuators.len()),
+                format!(
+                    "solution of a robot with {} actuators, this one has {}",
+                    w.tensions.len(),
+                    robot.actuators.len()
+                ),
             ));
         }
     }
-    for (name, v) in [("tip_force [N]", &loads.tip_force), ("tip_moment [N m]", &loads.tip_moment)] {
+    for (name, v) in [
+        ("tip_force [N]", &loads.tip_force),
+        ("tip_moment [N m]", &loads.tip_moment),
+    ] {
         for (k, z) in v.iter().enumerate() {
             crate::error::finite(&format!("{name}[{k}]"), *z)?;
         }
@@ -679,16 +806,41 @@ pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOp
     match newton_shooting(robot, inputs, loads, opts, &x0, jac0, true, &mut work) {
         Ok((nr, last)) => solution_from(robot, inputs, loads, opts, nr, last, &mut work),
         Err(e) if is_input_error(&e) => Err(e),
-        Err(first) => continuation(robot, inputs, loads, opts, warm, &mut work).map_err(|e| match e {
-            Error::Interrupted => e,
-            Error::NotConverged { residual, stop, reason, .. } => match first {
-                Error::NotConverged { residual: r0, stop: s0, reason: why0, solver, .. } if r0 <= residual => {
-                    Error::NotConverged { solver, iterations: work.iterations, evaluations: work.evaluations, residual: r0, stop: s0, reason: format!("{why0}; continuation failed too") }
-                }
-                _ => Error::NotConverged { solver: "forward shooting", iterations: work.iterations, evaluations: work.evaluations, residual, stop, reason: format!("continuation: {reason}") },
-            },
-            _ => first,
-        }),
+        Err(first) => {
+            continuation(robot, inputs, loads, opts, warm, &mut work).map_err(|e| match e {
+                Error::Interrupted => e,
+                Error::NotConverged {
+                    residual,
+                    stop,
+                    reason,
+                    ..
+                } => match first {
+                    Error::NotConverged {
+                        residual: r0,
+                        stop: s0,
+                        reason: why0,
+                        solver,
+                        ..
+                    } if r0 <= residual => Error::NotConverged {
+                        solver,
+                        iterations: work.iterations,
+                        evaluations: work.evaluations,
+                        residual: r0,
+                        stop: s0,
+                        reason: format!("{why0}; continuation failed too"),
+                    },
+                    _ => Error::NotConverged {
+                        solver: "forward shooting",
+                        iterations: work.iterations,
+                        evaluations: work.evaluations,
+                        residual,
+                        stop,
+                        reason: format!("continuation: {reason}"),
+                    },
+                },
+                _ => first,
+            })
+        }
     }
 }
 
@@ -697,7 +849,13 @@ pub fn solve_loaded(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOp
 /// solution. Falls back on [`solve_loaded`] (with its continuation) when the
 /// direct Newton solve fails. Inputs are not validated here: call
 /// `robot.check_inputs` first.
-pub fn solve_tip(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptions, warm: Option<&TipSolution>) -> Result<TipSolution> {
+pub fn solve_tip(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    warm: Option<&TipSolution>,
+) -> Result<TipSolution> {
     let len = robot.body.length;
     let mut x0 = match warm {
         Some(w) => w.unknowns.clone(),
@@ -740,10 +898,19 @@ pub fn solve_tip(robot: &Robot, inputs: &[f64], loads: &Loads, opts: &SolveOptio
         Err(e) if is_input_error(&e) => Err(e),
         Err(_) => {
             let w = match warm {
-                Some(w) => Some(assemble(robot, &w.inputs, loads, &w.unknowns, opts.steps, 0, 0)?),
+                Some(w) => Some(assemble(
+                    robot,
+                    &w.inputs,
+                    loads,
+                    &w.unknowns,
+                    opts.steps,
+                    0,
+                    0,
+                )?),
                 None => None,
             };
-            let mut s = TipSolution::from_solution(solve_loaded(robot, inputs, loads, opts, w.as_ref())?);
+            let mut s =
+                TipSolution::from_solution(solve_loaded(robot, inputs, loads, opts, w.as_ref())?);
             s.iterations += work.iterations;
             s.evaluations += work.evaluations;
             Ok(s)

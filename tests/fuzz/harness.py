@@ -181,7 +181,9 @@ def _static(name: str) -> Any:  # noqa: C901 - one table of fixtures
         other = t.Robot(t.Body(0.03, _static("CIRC"), 5e4, poisson=0.5), [t.Actuator.tca(tca, _static("ROUTE"))])
         return other.solve([50.0])
     if name == "ROBOT_TENDON":
-        return t.Robot(_static("BODY"), [_static("ACT"), t.Actuator.linear_tendon(100.0, t.Routing.straight(-0.003, 0.0))])
+        return t.Robot(
+            _static("BODY"), [_static("ACT"), t.Actuator.linear_tendon(100.0, t.Routing.straight(-0.003, 0.0))]
+        )
     if name == "FINGER":
         return table1_finger()
     if name == "MODEL":
@@ -196,8 +198,14 @@ def _static(name: str) -> Any:  # noqa: C901 - one table of fixtures
         return thermal.VoltageProfile((-1e300, 0.0), (0.0, 1.0))
     if name == "EXP":
         return calibration.TcaExperiment(0.2485, 0.055, 2e-3, 150.0, 7.5e-3, load_share=0.5)
-    paths = {"DESIGN_PATH": "fig6.toml", "BAD_DESIGN_PATH": "bad.toml", "MISSING_PATH": "missing.toml",
-             "OUT_DIR": "out", "BIG_PATH": "big.toml", "BINARY_PATH": "binary.toml"}
+    paths = {
+        "DESIGN_PATH": "fig6.toml",
+        "BAD_DESIGN_PATH": "bad.toml",
+        "MISSING_PATH": "missing.toml",
+        "OUT_DIR": "out",
+        "BIG_PATH": "big.toml",
+        "BINARY_PATH": "binary.toml",
+    }
     if name in paths:
         return str(_tmpdir() / paths[name])
     raise KeyError(name)
@@ -258,8 +266,19 @@ def nonfinite(obj: Any, depth: int = 0) -> str | None:  # noqa: C901 - one table
     name = type(obj).__name__
     attrs: tuple[str, ...] = ()
     if name == "Solution":
-        attrs = ("positions", "rotations", "tensions", "elongations", "inputs", "tip_position", "residual",
-                 "internal_force", "internal_moment", "base_force", "base_moment")
+        attrs = (
+            "positions",
+            "rotations",
+            "tensions",
+            "elongations",
+            "inputs",
+            "tip_position",
+            "residual",
+            "internal_force",
+            "internal_moment",
+            "base_force",
+            "base_moment",
+        )
     elif name == "InverseResult":
         attrs = ("variables", "error", "solution")
     elif name == "BlockedResult":
@@ -288,7 +307,16 @@ def nonfinite(obj: Any, depth: int = 0) -> str | None:  # noqa: C901 - one table
     elif name == "Section":
         attrs = ("properties",)
     elif name == "Body":
-        attrs = ("length", "youngs_modulus", "shear_modulus", "density", "nu_star", "omega_star", "gravity", "tip_force")
+        attrs = (
+            "length",
+            "youngs_modulus",
+            "shear_modulus",
+            "density",
+            "nu_star",
+            "omega_star",
+            "gravity",
+            "tip_force",
+        )
     elif name == "Actuator":
         attrs = ("s_start", "reference_input")
     elif name in ("BruteForceResult", "Identification"):
@@ -355,8 +383,12 @@ def classify(call: Call, timeout: float | None = None) -> tuple[str, str]:
     """``(outcome class, detail)`` of running ``call``."""
     fn = targets()[call.entry]
     try:
-        with _time_limit(timeout), warnings.catch_warnings(), \
-                contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        with (
+            _time_limit(timeout),
+            warnings.catch_warnings(),
+            contextlib.redirect_stdout(io.StringIO()),
+            contextlib.redirect_stderr(io.StringIO()),
+        ):
             warnings.simplefilter("ignore")
             args = resolve(call.args)
             kwargs = resolve(call.kwargs)

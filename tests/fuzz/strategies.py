@@ -24,7 +24,9 @@ import numpy as np
 from hypothesis import strategies as st
 
 #: A valid design file (the Fig. 6 square), mutated by the design-file strategies.
-DESIGN_TEXT = (Path(__file__).resolve().parents[2] / "examples" / "designs" / "fig6_square.toml").read_text(encoding="utf-8")
+DESIGN_TEXT = (Path(__file__).resolve().parents[2] / "examples" / "designs" / "fig6_square.toml").read_text(
+    encoding="utf-8"
+)
 
 # --------------------------------------------------------------------- values
 
@@ -83,11 +85,40 @@ class EvilLen:
 
 
 SPECIAL_FLOATS = [
-    math.nan, math.inf, -math.inf, 0.0, -0.0, 5e-324, -5e-324, 2.2250738585072014e-308,
-    1e-300, 1e300, -1e300, 1.7976931348623157e308, -1.7976931348623157e308, 1e15, -1.0,
+    math.nan,
+    math.inf,
+    -math.inf,
+    0.0,
+    -0.0,
+    5e-324,
+    -5e-324,
+    2.2250738585072014e-308,
+    1e-300,
+    1e300,
+    -1e300,
+    1.7976931348623157e308,
+    -1.7976931348623157e308,
+    1e15,
+    -1.0,
 ]
 HUGE_INTS = [-(2**63), 2**63, 2**64, -(2**31) - 1, 2**31, 10**400, -(10**400), 2**62]
-BAD_TYPES = [None, "x", "1.0", "", b"ab", 1j, complex(1.0, 0.0), np.complex128(1 + 1j), Opaque(), [], {}, (), EvilLen(), True, False]
+BAD_TYPES = [
+    None,
+    "x",
+    "1.0",
+    "",
+    b"ab",
+    1j,
+    complex(1.0, 0.0),
+    np.complex128(1 + 1j),
+    Opaque(),
+    [],
+    {},
+    (),
+    EvilLen(),
+    True,
+    False,
+]
 
 bad_type = st.sampled_from(BAD_TYPES)
 special_float = st.sampled_from(SPECIAL_FLOATS)
@@ -103,8 +134,12 @@ def fnum(lo: float, hi: float) -> st.SearchStrategy[Any]:
     """Mostly ``num(lo, hi)``; sometimes an edge value, a huge int, any float or a wrong type."""
     return st.one_of(
         *[num(lo, hi)] * 18,
-        special_float, huge_int, st.floats(), bad_type,
-        st.builds(np.float64, num(lo, hi)), st.integers(-3, 300),
+        special_float,
+        huge_int,
+        st.floats(),
+        bad_type,
+        st.builds(np.float64, num(lo, hi)),
+        st.integers(-3, 300),
     )
 
 
@@ -112,7 +147,10 @@ def fint(lo: int, hi: int) -> st.SearchStrategy[Any]:
     """Mostly an int in ``[lo, hi]``; sometimes negative, huge, a float or a wrong type."""
     return st.one_of(
         *[st.integers(lo, hi)] * 16,
-        st.integers(-(2**70), 2**70), huge_int, st.sampled_from([-1, 0, 1, 1.5, 2.0, math.nan]), bad_type,
+        st.integers(-(2**70), 2**70),
+        huge_int,
+        st.sampled_from([-1, 0, 1, 1.5, 2.0, math.nan]),
+        bad_type,
         st.builds(np.int64, st.integers(lo, hi)),
     )
 
@@ -190,8 +228,27 @@ def _design_text() -> st.SearchStrategy[str]:
     dropped or duplicated, garbage or deep nesting inserted."""
     lines = DESIGN_TEXT.splitlines()
     junk = st.one_of(
-        st.sampled_from(["nan", "inf", "-inf", "1e400", "0", "-1", "\"x\"", "[]", "{}", "true", "99999999999999999999999",
-                         "[1, 2]", "{ kind = \"blob\" }", "= =", "[[actuators]]", "[body]", "\"" + "a" * 10]),
+        st.sampled_from(
+            [
+                "nan",
+                "inf",
+                "-inf",
+                "1e400",
+                "0",
+                "-1",
+                '"x"',
+                "[]",
+                "{}",
+                "true",
+                "99999999999999999999999",
+                "[1, 2]",
+                '{ kind = "blob" }',
+                "= =",
+                "[[actuators]]",
+                "[body]",
+                '"' + "a" * 10,
+            ]
+        ),
         st.integers(1, 3000).map(lambda n: "[" * n + "]" * n),
         st.integers(1, 3000).map(lambda n: "{a=" * n + "1" + "}" * n),
         st.integers(1, 50_000).map(lambda n: " " * n),
@@ -219,23 +276,61 @@ def _design_text() -> st.SearchStrategy[str]:
 def _argv() -> st.SearchStrategy[list[Any]]:
     token = st.one_of(
         # no bare "reproduce" / "bench": running every experiment or benchmark is valid, long work
-        st.sampled_from(["solve", "--json", "--out", "-T", "--temperature", "--version", "--help",
-                         "nope", "-", "--", "--repeats", "--min-time", "--batch", "fig99"]),
-        st.just(Fix("DESIGN_PATH")), st.just(Fix("BAD_DESIGN_PATH")), st.just(Fix("OUT_DIR")),
-        st.floats().map(str), st.text(max_size=12),
+        st.sampled_from(
+            [
+                "solve",
+                "--json",
+                "--out",
+                "-T",
+                "--temperature",
+                "--version",
+                "--help",
+                "nope",
+                "-",
+                "--",
+                "--repeats",
+                "--min-time",
+                "--batch",
+                "fig99",
+            ]
+        ),
+        st.just(Fix("DESIGN_PATH")),
+        st.just(Fix("BAD_DESIGN_PATH")),
+        st.just(Fix("OUT_DIR")),
+        st.floats().map(str),
+        st.text(max_size=12),
     )
     solve = st.builds(
-        lambda paths, temps, js: ["solve", *paths, "--out", Fix("OUT_DIR"), *(["-T", *temps] if temps else []),
-                                  *(["--json"] if js else [])],
-        st.lists(st.sampled_from([Fix("DESIGN_PATH"), Fix("BAD_DESIGN_PATH"), Fix("MISSING_PATH")]), min_size=1, max_size=2),
-        st.lists(st.one_of(st.floats(20, 170).map(lambda x: f"{x:.3g}"), st.floats().map(str), st.text(max_size=5)), max_size=3),
+        lambda paths, temps, js: [
+            "solve",
+            *paths,
+            "--out",
+            Fix("OUT_DIR"),
+            *(["-T", *temps] if temps else []),
+            *(["--json"] if js else []),
+        ],
+        st.lists(
+            st.sampled_from([Fix("DESIGN_PATH"), Fix("BAD_DESIGN_PATH"), Fix("MISSING_PATH")]), min_size=1, max_size=2
+        ),
+        st.lists(
+            st.one_of(st.floats(20, 170).map(lambda x: f"{x:.3g}"), st.floats().map(str), st.text(max_size=5)),
+            max_size=3,
+        ),
         st.booleans(),
     )
     garbage = st.lists(token, max_size=6)
-    fast_errors = st.sampled_from([
-        ["reproduce", "nope"], ["reproduce", "fig5", "fig99"], ["reproduce", "--help"], ["bench", "--repeats", "-1"],
-        ["bench", "--min-time", "nan"], ["bench", "--min-time", "1e300"], ["bench", "--batch", "-5"], ["bench", "--help"],
-    ])
+    fast_errors = st.sampled_from(
+        [
+            ["reproduce", "nope"],
+            ["reproduce", "fig5", "fig99"],
+            ["reproduce", "--help"],
+            ["bench", "--repeats", "-1"],
+            ["bench", "--min-time", "nan"],
+            ["bench", "--min-time", "1e300"],
+            ["bench", "--batch", "-5"],
+            ["bench", "--help"],
+        ]
+    )
     return st.one_of(garbage, garbage, garbage, solve, fast_errors)
 
 
@@ -249,8 +344,16 @@ def _entries() -> dict[str, tuple[st.SearchStrategy[Call], float]]:
 
     chir = st.sampled_from(["extension", "contraction", "sideways", None, 1])
     # TCA law
-    reg("Tca", 1, fnum(0.05, 1.0), fnum(0.01, 0.2), fnum(1e-4, 5e-3), fnum(1.0, 500.0),
-        chirality=chir, material=fix("MAT"))
+    reg(
+        "Tca",
+        1,
+        fnum(0.05, 1.0),
+        fnum(0.01, 0.2),
+        fnum(1e-4, 5e-3),
+        fnum(1.0, 500.0),
+        chirality=chir,
+        material=fix("MAT"),
+    )
     reg("Tca.from_pitch_angle", 1, fnum(0.01, 0.2), fnum(0.05, 1.0), fnum(1e-4, 5e-3), fnum(1.0, 500.0), chirality=chir)
     arr_or = lambda lo, hi: st.one_of(fnum(lo, hi), fvec(3, lo, hi))  # noqa: E731
     reg("Tca.displacement", 1, this("TCA"), arr_or(-0.5, 0.5), arr_or(25.0, 160.0))
@@ -274,75 +377,230 @@ def _entries() -> dict[str, tuple[st.SearchStrategy[Call], float]]:
     reg("Routing.straight", 1, fnum(-0.01, 0.01), fnum(-0.01, 0.01))
     reg("Routing.helix", 1, fnum(0.0, 0.01), fnum(-100.0, 100.0), phase=fnum(-7.0, 7.0))
     reg("Routing.evaluate", 1, this("HELIX", "ROUTE"), fnum(0.0, 0.05))
-    reg("Body", 2, fnum(0.01, 0.2), fix("SQ", "CIRC"), fnum(1e3, 1e6),
-        poisson=fnum(0.0, 0.5), density=fnum(0.0, 2000.0), gravity=fvec(3, -10.0, 10.0),
-        tip_force=fvec(3, -0.1, 0.1), omega_star=fvec(3, -10.0, 10.0), shear_coefficient=fnum(0.5, 1.0))
-    reg("Actuator.tca", 1, fix("TCA"), fix("ROUTE", "HELIX"), fnum(0.0, 0.04), maybe(fnum(0.0, 0.04)), maybe(fnum(0.5, 1.0)))
+    reg(
+        "Body",
+        2,
+        fnum(0.01, 0.2),
+        fix("SQ", "CIRC"),
+        fnum(1e3, 1e6),
+        poisson=fnum(0.0, 0.5),
+        density=fnum(0.0, 2000.0),
+        gravity=fvec(3, -10.0, 10.0),
+        tip_force=fvec(3, -0.1, 0.1),
+        omega_star=fvec(3, -10.0, 10.0),
+        shear_coefficient=fnum(0.5, 1.0),
+    )
+    reg(
+        "Actuator.tca",
+        1,
+        fix("TCA"),
+        fix("ROUTE", "HELIX"),
+        fnum(0.0, 0.04),
+        maybe(fnum(0.0, 0.04)),
+        maybe(fnum(0.5, 1.0)),
+    )
     reg("Actuator.tendon", 1, fix("ROUTE"), fnum(0.0, 0.04), maybe(fnum(0.0, 0.04)))
     reg("Actuator.linear_tendon", 1, fnum(0.0, 1e3), fix("ROUTE"), fnum(0.0, 0.04), maybe(fnum(0.0, 0.04)))
     reg("Robot", 2, fix("BODY"), st.one_of(st.lists(fix("ACT", "ACT2"), max_size=4), bad_type))
     # forward
-    reg("Robot.solve", 8, this("R", "RNG"), st.one_of(TEMPS2, TEMP), warm_start=maybe(fix("SOL", "SOL_OTHER")), **SOLVE_KW)
+    reg(
+        "Robot.solve",
+        8,
+        this("R", "RNG"),
+        st.one_of(TEMPS2, TEMP),
+        warm_start=maybe(fix("SOL", "SOL_OTHER")),
+        **SOLVE_KW,
+    )
     reg("Robot.sweep", 15, this("R", "RNG"), INPUT_ROWS, **SOLVE_KW)
     reg("circle_radius", 1, VEC3_POS, VEC3_POS, VEC3_POS)
     reg("inner_edge_radius", 1, fix("SOL", "SOL_OTHER"))
     # inverse
     near_tip = st.one_of(st.just(Fix("TIP")), fvec(3, -0.03, 0.05))
-    reg("tip_position", 40, ROBOTS, near_tip, groups=GROUPS, max_iter=fint(1, 20), tol=fnum(1e-9, 1e-5),
-        start=maybe(TEMPS2), steps=fint(2, 120))
+    reg(
+        "tip_position",
+        40,
+        ROBOTS,
+        near_tip,
+        groups=GROUPS,
+        max_iter=fint(1, 20),
+        tol=fnum(1e-9, 1e-5),
+        start=maybe(TEMPS2),
+        steps=fint(2, 120),
+    )
     reg("blocked_force", 15, ROBOTS, near_tip, VEC3_NORMAL, st.one_of(TEMPS2, TEMP), groups=GROUPS, steps=fint(2, 120))
-    reg("blocked_temperature", 40, fix("RNG"), near_tip, VEC3_NORMAL, fnum(1e-4, 0.05),
-        start=maybe(fix("SOL0", "SOL_OTHER")), groups=GROUPS, increments=fint(1, 12), steps=fint(2, 120))
-    reg("blocked_temperature_direct", 30, fix("RNG"), near_tip, VEC3_NORMAL, fnum(1e-4, 0.05),
-        guess=maybe(TEMP), groups=GROUPS, steps=fint(2, 120))
-    reg("jacobian_and_compliance", 10, fix("SOL", "SOL_OTHER"), groups=GROUPS,
-        scheme=st.sampled_from(["forward", "central", "sideways", None]))
-    reg("grasp_temperature", 40, fnum(1e-4, 3e-3), finger=fix("FINGER"), mu=fnum(0.1, 2.0), fingers=fint(1, 4),
-        gravity=fnum(1.0, 20.0), method=st.sampled_from(["incremental", "direct", "x"]), increments=fint(1, 12))
-    reg("solve_batch", 15, ROBOTS, INPUT_ROWS, chunk_size=fint(1, 64), threads=fint(0, 2), steps=fint(2, 120),
-        max_iter=fint(1, 60), wrenches=maybe(st.one_of(fvec(6, -0.01, 0.01).map(lambda v: [v]), bad_type)))
+    reg(
+        "blocked_temperature",
+        40,
+        fix("RNG"),
+        near_tip,
+        VEC3_NORMAL,
+        fnum(1e-4, 0.05),
+        start=maybe(fix("SOL0", "SOL_OTHER")),
+        groups=GROUPS,
+        increments=fint(1, 12),
+        steps=fint(2, 120),
+    )
+    reg(
+        "blocked_temperature_direct",
+        30,
+        fix("RNG"),
+        near_tip,
+        VEC3_NORMAL,
+        fnum(1e-4, 0.05),
+        guess=maybe(TEMP),
+        groups=GROUPS,
+        steps=fint(2, 120),
+    )
+    reg(
+        "jacobian_and_compliance",
+        10,
+        fix("SOL", "SOL_OTHER"),
+        groups=GROUPS,
+        scheme=st.sampled_from(["forward", "central", "sideways", None]),
+    )
+    reg(
+        "grasp_temperature",
+        40,
+        fnum(1e-4, 3e-3),
+        finger=fix("FINGER"),
+        mu=fnum(0.1, 2.0),
+        fingers=fint(1, 4),
+        gravity=fnum(1.0, 20.0),
+        method=st.sampled_from(["incremental", "direct", "x"]),
+        increments=fint(1, 12),
+    )
+    reg(
+        "solve_batch",
+        15,
+        ROBOTS,
+        INPUT_ROWS,
+        chunk_size=fint(1, 64),
+        threads=fint(0, 2),
+        steps=fint(2, 120),
+        max_iter=fint(1, 60),
+        wrenches=maybe(st.one_of(fvec(6, -0.01, 0.01).map(lambda v: [v]), bad_type)),
+    )
     # thermal
     res = st.one_of(fnum(1.0, 100.0), st.just(Fix("LINRES")))
-    reg("ThermalModel", 1, fnum(0.01, 1.0), fint(1, 8), res, thread_radius_m=fnum(1e-5, 1e-3),
-        heat_transfer_w_per_m2k=fnum(1.0, 100.0), density_kg_per_m3=fnum(100.0, 2000.0),
-        specific_heat_j_per_kgk=fnum(100.0, 3000.0), ambient_c=fnum(0.0, 40.0), t_max_c=fnum(60.0, 200.0))
+    reg(
+        "ThermalModel",
+        1,
+        fnum(0.01, 1.0),
+        fint(1, 8),
+        res,
+        thread_radius_m=fnum(1e-5, 1e-3),
+        heat_transfer_w_per_m2k=fnum(1.0, 100.0),
+        density_kg_per_m3=fnum(100.0, 2000.0),
+        specific_heat_j_per_kgk=fnum(100.0, 3000.0),
+        ambient_c=fnum(0.0, 40.0),
+        t_max_c=fnum(60.0, 200.0),
+    )
     reg("LinearResistance", 1, fnum(1.0, 100.0), fnum(-0.01, 0.01), fnum(0.0, 40.0), fnum(-1.0, 1.0))
-    reg("VoltageProfile", 1, st.one_of(st.lists(fnum(-10.0, 100.0), max_size=4), bad_type),
-        st.one_of(st.lists(fnum(0.0, 10.0), max_size=4), bad_type))
+    reg(
+        "VoltageProfile",
+        1,
+        st.one_of(st.lists(fnum(-10.0, 100.0), max_size=4), bad_type),
+        st.one_of(st.lists(fnum(0.0, 10.0), max_size=4), bad_type),
+    )
     reg("VoltageProfile.step", 1, fnum(0.0, 10.0), at_s=fnum(0.0, 10.0))
     reg("ThermalModel.power_w", 1, this("MODEL", "MODEL_T"), fnum(0.0, 10.0), TEMP)
     reg("ThermalModel.steady_temperature", 1, this("MODEL", "MODEL_T"), fnum(0.0, 10.0))
     reg("ThermalModel.steady_voltage", 1, this("MODEL", "MODEL_T"), TEMP)
-    profile = st.one_of(st.just(Fix("PROFILE")), st.just(Fix("PROFILE_EARLY")),
-                        st.builds(lambda t, v: Fix("PROFILE_AT", (t, v)), fnum(-1e300, 10.0), fnum(0.0, 10.0)), bad_type)
-    times = st.one_of(st.lists(num(0.0, 30.0), min_size=1, max_size=6).map(sorted), fvec(3, 0.0, 30.0),
-                      st.just([0.0, 1e300]), bad_type)
-    reg("ThermalModel.transient", 3, this("MODEL", "MODEL_T"), profile, times, initial_c=maybe(fnum(0.0, 160.0)),
-        max_step_s=maybe(fnum(1e-3, 1.0)))
+    profile = st.one_of(
+        st.just(Fix("PROFILE")),
+        st.just(Fix("PROFILE_EARLY")),
+        st.builds(lambda t, v: Fix("PROFILE_AT", (t, v)), fnum(-1e300, 10.0), fnum(0.0, 10.0)),
+        bad_type,
+    )
+    times = st.one_of(
+        st.lists(num(0.0, 30.0), min_size=1, max_size=6).map(sorted),
+        fvec(3, 0.0, 30.0),
+        st.just([0.0, 1e300]),
+        bad_type,
+    )
+    reg(
+        "ThermalModel.transient",
+        3,
+        this("MODEL", "MODEL_T"),
+        profile,
+        times,
+        initial_c=maybe(fnum(0.0, 160.0)),
+        max_step_s=maybe(fnum(1e-3, 1.0)),
+    )
     reg("steady_temperatures", 1, st.lists(fix("MODEL", "MODEL_T"), max_size=3), st.lists(fnum(0.0, 10.0), max_size=3))
     reg("solve_with_voltages", 6, fix("RNG"), st.lists(fix("MODEL"), max_size=3), st.lists(fnum(0.0, 3.0), max_size=3))
-    reg("quasi_static_trajectory", 25, fix("RNG"), st.lists(fix("MODEL", "MODEL_T"), min_size=2, max_size=2),
-        st.lists(profile, min_size=2, max_size=2), st.lists(num(0.0, 20.0), min_size=1, max_size=3).map(sorted),
-        steps=fint(2, 100))
+    reg(
+        "quasi_static_trajectory",
+        25,
+        fix("RNG"),
+        st.lists(fix("MODEL", "MODEL_T"), min_size=2, max_size=2),
+        st.lists(profile, min_size=2, max_size=2),
+        st.lists(num(0.0, 20.0), min_size=1, max_size=3).map(sorted),
+        steps=fint(2, 100),
+    )
     # segmented, workspace, calibration
     seg = st.one_of(fint(1, 6), st.lists(fnum(0.0, 1.0), max_size=4), st.just([0.25, 0.75]))
     reg("segment_bounds", 1, seg, fnum(0.0, 0.02), fnum(0.02, 0.05))
     reg("segmented_actuators", 1, fix("TCA"), fix("ROUTE"), seg, fnum(0.0, 0.02), fnum(0.02, 0.05))
     reg("snake_grid", 1, st.one_of(st.lists(st.lists(fnum(25.0, 160.0), max_size=4), max_size=3), bad_type))
-    reg("workspace_map", 30, fix("RNG"), st.one_of(st.lists(fnum(25.0, 160.0), max_size=3), bad_type,
-                                                   st.just(np.linspace(25.0, 160.0, 400))), steps=fint(2, 80))
+    reg(
+        "workspace_map",
+        30,
+        fix("RNG"),
+        st.one_of(st.lists(fnum(25.0, 160.0), max_size=3), bad_type, st.just(np.linspace(25.0, 160.0, 400))),
+        steps=fint(2, 80),
+    )
     reg("solve_rows", 15, fix("RNG"), INPUT_ROWS, steps=fint(2, 80))
-    reg("TcaExperiment", 1, fnum(0.1, 1.0), fnum(0.01, 0.2), fnum(1e-4, 5e-3), fnum(1.0, 500.0), fnum(0.0, 0.02),
-        load_share=fnum(0.1, 1.0), chirality=chir)
-    reg("calibrate", 60, fix("EXP"), st.lists(fnum(25.0, 160.0), min_size=0, max_size=6),
+    reg(
+        "TcaExperiment",
+        1,
+        fnum(0.1, 1.0),
+        fnum(0.01, 0.2),
+        fnum(1e-4, 5e-3),
+        fnum(1.0, 500.0),
+        fnum(0.0, 0.02),
+        load_share=fnum(0.1, 1.0),
+        chirality=chir,
+    )
+    reg(
+        "calibrate",
+        60,
+        fix("EXP"),
+        st.lists(fnum(25.0, 160.0), min_size=0, max_size=6),
         st.lists(fnum(0.0, 0.02), min_size=0, max_size=6),
-        fit=st.one_of(st.just(["expansion_scale"]), st.lists(st.sampled_from(
-            ["expansion_scale", "friction_mass_kg", "friction_ratio", "youngs_modulus_slope_pa_per_c", "x"]), max_size=3),
-            bad_type), confidence=fnum(0.5, 0.99))
+        fit=st.one_of(
+            st.just(["expansion_scale"]),
+            st.lists(
+                st.sampled_from(
+                    ["expansion_scale", "friction_mass_kg", "friction_ratio", "youngs_modulus_slope_pa_per_c", "x"]
+                ),
+                max_size=3,
+            ),
+            bad_type,
+        ),
+        confidence=fnum(0.5, 0.99),
+    )
     # design files and CLI
     reg("loads_design", 2, st.one_of(_design_text(), _design_text(), st.text(max_size=200), bad_type))
-    reg("load_design", 2, st.one_of(st.sampled_from([Fix("DESIGN_PATH"), Fix("BAD_DESIGN_PATH"), Fix("MISSING_PATH"),
-                                                     Fix("OUT_DIR"), Fix("BIG_PATH"), Fix("BINARY_PATH"), "", "\0"]), bad_type))
+    reg(
+        "load_design",
+        2,
+        st.one_of(
+            st.sampled_from(
+                [
+                    Fix("DESIGN_PATH"),
+                    Fix("BAD_DESIGN_PATH"),
+                    Fix("MISSING_PATH"),
+                    Fix("OUT_DIR"),
+                    Fix("BIG_PATH"),
+                    Fix("BINARY_PATH"),
+                    "",
+                    "\0",
+                ]
+            ),
+            bad_type,
+        ),
+    )
     reg("dumps_design", 2, fix("R", "ROBOT_TENDON"), maybe(TEMPS2))
     reg("cli.main", 20, _argv())
     return E
@@ -371,14 +629,36 @@ def _more_entries() -> None:
     scales = st.one_of(st.none(), st.dictionaries(keys, fnum(0.5, 2.0), max_size=2), bad_type)
     ENTRIES["perturbed_finger"] = (call("perturbed_finger", scales), 2)
     ENTRIES["table1_grip_temperatures"] = (
-        call("table1_grip_temperatures", scales, st.one_of(st.lists(fnum(1e-4, 3e-3), max_size=2), bad_type)), 1000)
-    ENTRIES["brute_force_blocked_temperature"] = (call(
-        "brute_force_blocked_temperature", fix("RNG"), st.one_of(st.just(Fix("TIP")), fvec(3, -0.03, 0.05)),
-        VEC3_NORMAL, fnum(1e-4, 0.05), groups=GROUPS, xatol=fnum(1e-3, 1.0), steps=fint(2, 60)), 1000)
-    ENTRIES["brute_force_tip_position"] = (call(
-        "brute_force_tip_position", fix("RNG"), st.one_of(st.just(Fix("TIP")), fvec(3, -0.03, 0.05)),
-        start=maybe(TEMPS2), groups=GROUPS, xatol=fnum(1e-2, 1.0), max_solves=fint(1, 40), steps=fint(2, 60),
-        simplex_size_c=fnum(0.1, 20.0)), 1000)
+        call("table1_grip_temperatures", scales, st.one_of(st.lists(fnum(1e-4, 3e-3), max_size=2), bad_type)),
+        1000,
+    )
+    ENTRIES["brute_force_blocked_temperature"] = (
+        call(
+            "brute_force_blocked_temperature",
+            fix("RNG"),
+            st.one_of(st.just(Fix("TIP")), fvec(3, -0.03, 0.05)),
+            VEC3_NORMAL,
+            fnum(1e-4, 0.05),
+            groups=GROUPS,
+            xatol=fnum(1e-3, 1.0),
+            steps=fint(2, 60),
+        ),
+        1000,
+    )
+    ENTRIES["brute_force_tip_position"] = (
+        call(
+            "brute_force_tip_position",
+            fix("RNG"),
+            st.one_of(st.just(Fix("TIP")), fvec(3, -0.03, 0.05)),
+            start=maybe(TEMPS2),
+            groups=GROUPS,
+            xatol=fnum(1e-2, 1.0),
+            max_solves=fint(1, 40),
+            steps=fint(2, 60),
+            simplex_size_c=fnum(0.1, 20.0),
+        ),
+        1000,
+    )
 
 
 _more_entries()

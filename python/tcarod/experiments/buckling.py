@@ -125,7 +125,10 @@ class BucklingResult:
             f"events {[(k, round(p, 2)) for k, p, _ in self.circle_sweep.events]}, "
             f"jumps {[round(p, 2) for p, _, _ in self.circle_sweep.jumps]}",
             "  tip y [mm] along the sweep at 25 / 60 / 100 C: "
-            + " / ".join(f"{np.interp(t, self.circle_sweep.parameter, self.circle_sweep.tip_positions[:, 1]) * 1e3:.1f}" for t in (25, 60, 100)),
+            + " / ".join(
+                f"{np.interp(t, self.circle_sweep.parameter, self.circle_sweep.tip_positions[:, 1]) * 1e3:.1f}"
+                for t in (25, 60, 100)
+            ),
         ]
         return "\n".join(lines)
 
@@ -137,7 +140,10 @@ class BucklingResult:
                 "stable": b.stable.tolist(),
                 "margin": b.margin.tolist(),
                 "events": [{"kind": k, "parameter": p, "tip_position_m": t.tolist()} for k, p, t in b.events],
-                "jumps": [{"parameter": p, "tip_before_m": a.positions[-1].tolist(), "tip_after_m": c.positions[-1].tolist()} for p, a, c in b.jumps],
+                "jumps": [
+                    {"parameter": p, "tip_before_m": a.positions[-1].tolist(), "tip_after_m": c.positions[-1].tolist()}
+                    for p, a, c in b.jumps
+                ],
             }
 
         return {

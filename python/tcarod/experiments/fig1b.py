@@ -121,7 +121,9 @@ class Fig1bManipulator:
         """The robot: :meth:`body` with :meth:`actuators`."""
         return Robot(self.body(gravity), self.actuators())
 
-    def inputs(self, temperatures_c: Sequence[float], segment_temperatures_c: Sequence[float] | None = None) -> list[float]:
+    def inputs(
+        self, temperatures_c: Sequence[float], segment_temperatures_c: Sequence[float] | None = None
+    ) -> list[float]:
         """Actuator inputs [C] from one temperature per TCA; with a segmented
         TCA 0, ``segment_temperatures_c`` (one per segment, proximal first)
         replaces ``temperatures_c[0]``."""
@@ -130,7 +132,9 @@ class Fig1bManipulator:
             raise ValueError(f"temperatures_c: expected {len(self.angles_deg)} values (one per TCA), got {len(temps)}")
         if self.segments <= 1:
             return temps
-        seg = [temps[0]] * self.segments if segment_temperatures_c is None else [float(t) for t in segment_temperatures_c]
+        seg = (
+            [temps[0]] * self.segments if segment_temperatures_c is None else [float(t) for t in segment_temperatures_c]
+        )
         if len(seg) != self.segments:
             raise ValueError(f"segment_temperatures_c: expected {self.segments} values, got {len(seg)}")
         return seg + temps[1:]
@@ -170,7 +174,9 @@ class Fig1bWorkspaceResult:
             "illustrative": True,
             "grid_c": [float(t) for t in w.grid_c],
             "temperatures_c": w.temperatures_c.tolist(),
-            "tip_position_m": [None if not np.all(np.isfinite(p)) else [float(x) for x in p] for p in w.tip_positions_m],
+            "tip_position_m": [
+                None if not np.all(np.isfinite(p)) else [float(x) for x in p] for p in w.tip_positions_m
+            ],
             "elapsed_s": float(w.elapsed_s),
         }
 

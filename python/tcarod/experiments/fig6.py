@@ -259,9 +259,18 @@ class Fig6Result:
         rule = "-" * len(head)
         for k, (with_g, without) in enumerate(self.curves):
             m = with_g.manipulator
-            lines += ["", f"{m.label}: {m.length_m * 1e3:g} mm long, TCA {m.tca_offset_m * 1e3:g} mm off the axis"
-                      + (f", pre-curvature radius {m.precurvature_radius_m * 1e3:g} mm (assumed)"
-                         if m.precurvature_radius_m is not None else ""), rule, head, rule]
+            lines += [
+                "",
+                f"{m.label}: {m.length_m * 1e3:g} mm long, TCA {m.tca_offset_m * 1e3:g} mm off the axis"
+                + (
+                    f", pre-curvature radius {m.precurvature_radius_m * 1e3:g} mm (assumed)"
+                    if m.precurvature_radius_m is not None
+                    else ""
+                ),
+                rule,
+                head,
+                rule,
+            ]
             change = self.gravity_radius_change_m(k)
             for i, t in enumerate(self.temperatures_c):
                 ch = "n/a" if not math.isfinite(change[i]) else f"{change[i] * 1e3:+.2f}"
@@ -429,7 +438,9 @@ def predict_fig6(experiment: Fig6Experiment = FIG6, *, readings: bool = True) ->
         for m in experiment.manipulators:
             for reading in TURNS_READINGS:
                 robot = m.robot(True, reading)
-                sols = robot.sweep([[t] * len(m.tca_y_m) for t in experiment.reading_temperatures_c], steps=experiment.steps)
+                sols = robot.sweep(
+                    [[t] * len(m.tca_y_m) for t in experiment.reading_temperatures_c], steps=experiment.steps
+                )
                 rd[(m.label, reading)] = tuple(float(inner_edge_radius(s)) for s in sols)
     return Fig6Result(experiment=experiment, curves=curves, readings=rd)
 

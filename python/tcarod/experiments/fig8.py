@@ -272,7 +272,9 @@ class Fig8Result:
             color="tab:red",
             label="incremental eq 43 check",
         )
-        ax.axvline(exp.taut_temperature_c, color="0.6", linestyle=":", label=f"wire taut ({exp.taut_temperature_c:g} °C)")
+        ax.axvline(
+            exp.taut_temperature_c, color="0.6", linestyle=":", label=f"wire taut ({exp.taut_temperature_c:g} °C)"
+        )
         ax.set_xlabel("Temperature [°C]")
         ax.set_ylabel("Tip force [mN]")
         ax.set_title("Fig. 8: blocked-tip force, 26 mm manipulator", fontsize="medium")
@@ -316,7 +318,9 @@ def predict_fig8(
         if f is None or f <= 0.0:
             continue
         inc = blocked_temperature(robot, point, experiment.normal, f, free, groups=groups)
-        checks.append(Fig8CrossCheck(temperature_c=float(t), force_n=f, incremental_temperature_c=float(inc.variables[0])))
+        checks.append(
+            Fig8CrossCheck(temperature_c=float(t), force_n=f, incremental_temperature_c=float(inc.variables[0]))
+        )
     rd = []
     if readings:
         ts = experiment.reading_temperatures_c

@@ -232,7 +232,10 @@ class Table1Result:
         for k, i in enumerate(self.identifications):
             d = i.to_json()
             if self.identification_fig8_n:
-                d["fig8_force_n_at_c"] = {"100": self.identification_fig8_n[k][0], "140": self.identification_fig8_n[k][1]}
+                d["fig8_force_n_at_c"] = {
+                    "100": self.identification_fig8_n[k][0],
+                    "140": self.identification_fig8_n[k][1],
+                }
             idents.append(d)
         return {
             "name": exp.name,
@@ -330,7 +333,9 @@ def predict_table1(
         for mat in MATERIAL_PRESETS:
             f = table1_finger(material=material_preset(mat), turns_reading=tr)
             grips = tuple(g.temperature_c for g in _grips(experiment, f, "incremental"))
-            slope = force_line(experiment.masses_kg, grips, experiment.mu, experiment.fingers, experiment.gravity_m_per_s2)[0]
+            slope = force_line(
+                experiment.masses_kg, grips, experiment.mu, experiment.fingers, experiment.gravity_m_per_s2
+            )[0]
             readings.append(Table1Reading(turns_reading=tr, material=mat, grip_c=grips, slope_n_per_c=slope))
     sens = table1_sensitivity() if study and material is None else ()
     idents: list[Identification] = []
