@@ -27,7 +27,7 @@ use crate::stability::{stability, Stability};
 #[derive(Debug, Clone, PartialEq)]
 pub enum Parameter {
     /// The inputs of the listed actuators, all set to the parameter
-    /// (temperature [C], tension [N] or pull [m]).
+    /// (temperature \[C\], tension \[N\] or pull \[m\]).
     Inputs(Vec<usize>),
     /// Scale [-] of the body's tip force and moment.
     TipLoadScale,
@@ -230,7 +230,7 @@ pub struct Event {
     pub kind: EventKind,
     /// Parameter value at the event.
     pub parameter: f64,
-    /// Tip position [m] at the event.
+    /// Tip position \[m\] at the event.
     pub tip_position: Vector3<f64>,
     /// Index of the branch point just before the event.
     pub after_point: usize,

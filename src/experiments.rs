@@ -45,7 +45,7 @@ pub const CIRCLE_PRECURVATURE_RADIUS: f64 = 0.2;
 
 /// Turns printed for "all the TCAs used in the manipulator" (Section V-B).
 pub const MANIPULATOR_TURNS: f64 = 76.4;
-/// Coiled length [m] of the circular manipulator's single TCA, the one TCA
+/// Coiled length \[m\] of the circular manipulator's single TCA, the one TCA
 /// whose printed turns are unambiguous (anchor of [`TurnsReading::PerLength`]).
 pub const TURNS_ANCHOR_LENGTH: f64 = 0.040;
 
@@ -66,7 +66,7 @@ pub enum TurnsReading {
 }
 
 impl TurnsReading {
-    /// Turns [-] of one leg of coiled length `length` [m] of a TCA with `legs` legs.
+    /// Turns [-] of one leg of coiled length `length` \[m\] of a TCA with `legs` legs.
     pub fn leg_turns(self, length: f64, legs: usize) -> f64 {
         match self {
             TurnsReading::PerTca => MANIPULATOR_TURNS / legs as f64,
@@ -259,10 +259,10 @@ pub fn soft_tendon_tension(angle: f64) -> f64 {
     angle * r.body.youngs_modulus * ix / (SOFT_TENDON_OFFSET * r.body.length)
 }
 
-/// The paper's own Table I predictions [C] for [`TABLE1_MASSES`].
+/// The paper's own Table I predictions \[C\] for [`TABLE1_MASSES`].
 pub const TABLE1_PAPER_PREDICTIONS: [f64; 3] = [93.7, 114.8, 136.3];
 
-/// Default contact temperature [C] of the Table I fingers: the zero-force
+/// Default contact temperature \[C\] of the Table I fingers: the zero-force
 /// intercept of the paper's predictions, which are linear in the force per
 /// finger `m g / (mu n)` (least-squares line of temperature on force,
 /// evaluated at zero force: 72.33 C). The paper prints no gap between the

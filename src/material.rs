@@ -49,7 +49,7 @@ pub const NYLON66_RADIAL_CTE: [(f64, f64); 8] = [
     (160.0, 43.68e-5),
 ];
 
-/// The measured radial CTE of oriented nylon 6,6 [1/K] at `t` [C]: linear
+/// The measured radial CTE of oriented nylon 6,6 [1/K] at `t` \[C\]: linear
 /// interpolation of [`NYLON66_RADIAL_CTE`]; an error outside its -41..160 C.
 pub fn nylon66_radial_cte(t: f64) -> Result<f64> {
     let data = &NYLON66_RADIAL_CTE;

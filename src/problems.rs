@@ -117,11 +117,11 @@ impl SplitMix64 {
 /// Kind of a random design's actuator.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ActuatorKind {
-    /// A TCA (input: temperature [C]).
+    /// A TCA (input: temperature \[C\]).
     Tca,
-    /// A tendon at a given tension (input: tension [N]).
+    /// A tendon at a given tension (input: tension \[N\]).
     ConstantTension,
-    /// A linear tendon under displacement control (input: pull [m]).
+    /// A linear tendon under displacement control (input: pull \[m\]).
     LinearTendon,
 }
 
@@ -133,7 +133,7 @@ pub struct Design {
     pub index: usize,
     /// The robot; `body.tip_force` / `tip_moment` hold the tip loads.
     pub robot: Robot,
-    /// One input per actuator (temperature [C], tension [N] or pull [m]).
+    /// One input per actuator (temperature \[C\], tension \[N\] or pull \[m\]).
     pub inputs: Vec<f64>,
     /// Kind of each actuator.
     pub kinds: Vec<ActuatorKind>,
@@ -389,11 +389,11 @@ fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
 #[derive(Debug, Clone, Copy)]
 pub struct Equilibrium {
     /// Base force (body plus actuators anchored at the base) minus the
-    /// external loads [N], world frame.
+    /// external loads \[N\], world frame.
     pub force_error: Vector3<f64>,
     /// Base moment about the base origin minus the external loads' [N m].
     pub moment_error: Vector3<f64>,
-    /// Force scale [N]: the largest of the external load, the tip force,
+    /// Force scale \[N\]: the largest of the external load, the tip force,
     /// the actuator tensions and the internal force along the body.
     pub force_scale: f64,
     /// Moment scale [N m]: the largest of the external moments, the force

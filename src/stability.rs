@@ -93,10 +93,10 @@ pub struct Stability {
     /// Smallest eigenvalue of the symmetric dimensionless tip stiffness
     /// (see the module docs); > 0 iff stable.
     pub margin: f64,
-    /// Arc length [m] of the first conjugate point of the frozen-tension
+    /// Arc length \[m\] of the first conjugate point of the frozen-tension
     /// problem (first node where (S2) is no longer positive definite), if any.
     pub conjugate_point: Option<f64>,
-    /// Arc length [m] of the nodes.
+    /// Arc length \[m\] of the nodes.
     pub s: Vec<f64>,
     /// Till and Rucker's determinant (S1) normalised to 1 at the base,
     /// `det(Y(s) Y(0)^-1)`, at each node (frozen tensions).

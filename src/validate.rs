@@ -45,7 +45,7 @@ pub fn body_looks_like_mm(b: &Body) -> Option<String> {
     }
 }
 
-/// A warning text if a TCA's coil diameter [m] looks like millimetres.
+/// A warning text if a TCA's coil diameter \[m\] looks like millimetres.
 pub fn coil_diameter_looks_like_mm(coil_diameter: f64) -> Option<String> {
     (coil_diameter > 0.1).then(|| {
         format!("Tca: coil_diameter = {coil_diameter} m: sizes are in metres (SI); did you give millimetres? (1.7 mm is 1.7e-3)")
@@ -96,8 +96,8 @@ pub fn routing_in_section(section: &Section, routing: &Routing, name: &str) -> R
     Ok(())
 }
 
-/// Error unless a TCA of coiled length `coiled_length` [m] fits the span
-/// `s_end - s_start` [m] of actuator `name`.
+/// Error unless a TCA of coiled length `coiled_length` \[m\] fits the span
+/// `s_end - s_start` \[m\] of actuator `name`.
 pub fn tca_fits_span(coiled_length: f64, actuator: &Actuator, name: &str) -> Result<()> {
     let span = actuator.s_end - actuator.s_start;
     if coiled_length > SPAN_SLACK * span {
@@ -113,7 +113,7 @@ pub fn tca_fits_span(coiled_length: f64, actuator: &Actuator, name: &str) -> Res
 }
 
 /// The constant length ratio `L_i` (eq 18) of an actuator installed stretched
-/// by `stretch` [m] over its span: the reference path's length rate
+/// by `stretch` \[m\] over its span: the reference path's length rate
 /// `|nu* + omega* x r + r'|` minus `stretch / span`. Error unless that rate
 /// is constant along the span (straight routings; helices in a body without
 /// reference curvature) and the ratio stays positive.
