@@ -63,18 +63,18 @@ def test_every_extra_named_by_require_is_declared_in_pyproject() -> None:
         assert extra in extras, f"{module} -> tcarod[{extra}] is not an extra of pyproject.toml"
         # the extra installs the package it is named for (dask's scheduler
         # `distributed` comes from dask[distributed])
-        dist = {"distributed": "dask"}.get(module, module)
+        dist = {"distributed": "dask", "tomli_w": "tomli-w"}.get(module, module)
         assert any(req.lower().startswith(dist) for req in extras[extra]), (extra, extras[extra])
     # `all` pulls every feature extra
     (all_req,) = extras["all"]
     assert all(extra in all_req for extra in set(EXTRAS.values()))
 
 
-def test_core_dependencies_are_numpy_and_toml_only() -> None:
+def test_core_dependencies_are_numpy_only() -> None:
     names = {
         req.split(";")[0].split(">")[0].split("=")[0].strip().lower() for req in PYPROJECT["project"]["dependencies"]
     }
-    assert names == {"numpy", "tomli", "tomli-w"}
+    assert names == {"numpy"}
 
 
 def test_plotting_without_matplotlib_names_the_plot_extra(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -3,7 +3,8 @@
 The core install needs NumPy only. Plots need the ``plot`` extra (matplotlib),
 fits and the brute-force baseline need ``fit`` (scipy), progress bars need
 ``progress`` (tqdm), cluster batches need ``dask``, table export needs
-``pandas``. Every optional import goes through :func:`require`.
+``pandas``, design files need ``io`` (tomli-w; tomli before Python 3.11).
+Every optional import goes through :func:`require`.
 """
 
 from __future__ import annotations
@@ -19,6 +20,8 @@ EXTRAS: dict[str, str] = {
     "dask": "dask",
     "distributed": "dask",
     "pandas": "pandas",
+    "tomli": "io",
+    "tomli_w": "io",
 }
 
 

@@ -69,10 +69,17 @@ from . import _validate as V
 from .rod import Actuator, Body, Robot, Routing, Section
 from .tca import Material, Tca
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised on Python < 3.11 only
-    import tomli as tomllib
+from ._optional import require
+
+
+def _tomllib() -> Any:
+    """The TOML reader: the standard ``tomllib`` (3.11+), else ``tomli`` (extra ``io``)."""
+    if sys.version_info >= (3, 11):
+        import tomllib
+
+        return tomllib
+    return require("tomli")  # type: ignore[unreachable,unused-ignore]  # Python < 3.11 only
+
 
 __all__ = [
     "MAX_ACTUATORS",
@@ -538,9 +545,10 @@ def loads_design(text: str, source: str = "<string>") -> Design:
     if not isinstance(source, str):
         raise TypeError(f"source must be a str, not {type(source).__name__}")
     _check_limits(text, source)
+    toml = _tomllib()
     try:
-        doc = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
+        doc = toml.loads(text)
+    except toml.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
         raise DesignError(source, "", int(m.group(1)) if m else None, f"TOML syntax error: {exc}") from None
     except RecursionError:  # pragma: no cover - _check_limits caps the nesting first
@@ -722,8 +730,7 @@ def _actuator_doc(i: int, a: Any) -> dict[str, Any]:
 
 def dumps_design(robot: Any, temperatures_c: Sequence[float] | None = None) -> str:
     """TOML text of ``robot`` and optional inputs (temperatures [C] for TCAs)."""
-    import tomli_w
-
+    tomli_w = require("tomli_w")
     V.instance("robot", robot, Robot, "a tcarod.Robot")
     b = robot.body
     kw = b.kwargs()
@@ -754,7 +761,8 @@ def dumps_design(robot: Any, temperatures_c: Sequence[float] | None = None) -> s
         doc["temperatures_c"] = V.vector("temperatures_c", temperatures_c, len(acts), "C")
     doc["body"] = body
     doc["actuators"] = acts
-    return "# tcarod robot design (SI units; see tcarod.design)\n" + tomli_w.dumps(doc)
+    toml_text: str = tomli_w.dumps(doc)
+    return "# tcarod robot design (SI units; see tcarod.design)\n" + toml_text
 
 
 def save_design(path: str | os.PathLike[str], robot: Any, temperatures_c: Sequence[float] | None = None) -> Path:
