@@ -479,9 +479,8 @@ def _tca(r: _Reader, d: Any, path: tuple[str, ...]) -> Any:
         raise r.error((*path, "fibre_length_m"), "give exactly one of fibre_length_m and alpha0_deg")
     try:
         if "alpha0_deg" in t:
-            return Tca.from_pitch_angle(
-                cl, math.radians(r.number(t, "alpha0_deg", path, positive=True)), dd, nn, chir, mat
-            )  # type: ignore[arg-type]
+            a0 = math.radians(r.number(t, "alpha0_deg", path, positive=True))
+            return Tca.from_pitch_angle(cl, a0, dd, nn, chir, mat)  # type: ignore[arg-type]
         return Tca(r.number(t, "fibre_length_m", path, positive=True), cl, dd, nn, chir, mat)  # type: ignore[arg-type]
     except DesignError:
         raise
