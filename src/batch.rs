@@ -46,6 +46,9 @@ pub struct BatchOutput {
     pub tip_positions: Vec<[f64; 3]>,
     /// Tip rotations, row-major 3x3 (NaN where a solve failed).
     pub tip_rotations: Vec<[f64; 9]>,
+    /// Actuator tensions \[N\], `n_rows x n_actuators` row-major (NaN where
+    /// a solve failed).
+    pub tensions: Vec<f64>,
     /// Newton iterations of each solve.
     pub iterations: Vec<u32>,
     /// IVPs integrated by each solve.
@@ -55,15 +58,27 @@ pub struct BatchOutput {
 }
 
 impl BatchOutput {
-    fn with_len(n: usize) -> Self {
+    fn with_len(n: usize, n_actuators: usize) -> Self {
         BatchOutput {
             tip_positions: vec![[f64::NAN; 3]; n],
             tip_rotations: vec![[f64::NAN; 9]; n],
+            tensions: vec![f64::NAN; n * n_actuators],
             iterations: vec![0; n],
             evaluations: vec![0; n],
             converged: vec![false; n],
         }
     }
+}
+
+/// One chunk's disjoint slices of a [`BatchOutput`].
+struct ChunkOut<'a> {
+    pos: &'a mut [[f64; 3]],
+    rot: &'a mut [[f64; 9]],
+    /// `rows x n_actuators`, row-major.
+    tensions: &'a mut [f64],
+    iters: &'a mut [u32],
+    evals: &'a mut [u32],
+    ok: &'a mut [bool],
 }
 
 /// Number of worker threads for `requested` (0: available parallelism).
@@ -81,8 +96,8 @@ pub fn thread_count(requested: usize) -> usize {
 /// else the body's own tip loads).
 ///
 /// Invalid inputs are an error (naming the row) before any work; a solve that
-/// does not converge gives `converged = false` and NaN pose, and the next row
-/// of its chunk starts cold.
+/// does not converge gives `converged = false`, NaN pose and NaN tensions,
+/// and the next row of its chunk starts cold.
 pub fn solve_batch(
     robot: &Robot,
     inputs: &[f64],
@@ -133,31 +148,36 @@ pub fn solve_batch(
             .check_inputs(&inputs[k * na..(k + 1) * na])
             .map_err(|e| e.renamed(|name| format!("row {k}: {name}")))?;
     }
-    let mut out = BatchOutput::with_len(n);
+    let mut out = BatchOutput::with_len(n, na);
     let cs = opts.chunk_size;
     let n_chunks = n.div_ceil(cs);
+    // the tensions of each chunk (empty slices without actuators)
+    let tensions: Vec<&mut [f64]> = if na == 0 {
+        (0..n_chunks).map(|_| Default::default()).collect()
+    } else {
+        out.tensions.chunks_mut(cs * na).collect()
+    };
     // One work item per chunk: its index and its disjoint slices of the output.
-    type Item<'a> = (
-        usize,
-        &'a mut [[f64; 3]],
-        &'a mut [[f64; 9]],
-        &'a mut [u32],
-        &'a mut [u32],
-        &'a mut [bool],
-    );
-    let items: Vec<Item<'_>> = out
+    let items: Vec<std::sync::Mutex<Option<(usize, ChunkOut<'_>)>>> = out
         .tip_positions
         .chunks_mut(cs)
         .zip(out.tip_rotations.chunks_mut(cs))
+        .zip(tensions)
         .zip(out.iterations.chunks_mut(cs))
         .zip(out.evaluations.chunks_mut(cs))
         .zip(out.converged.chunks_mut(cs))
         .enumerate()
-        .map(|(c, ((((p, r), it), ev), ok))| (c, p, r, it, ev, ok))
-        .collect();
-    let items: Vec<std::sync::Mutex<Option<Item<'_>>>> = items
-        .into_iter()
-        .map(|i| std::sync::Mutex::new(Some(i)))
+        .map(|(c, (((((pos, rot), tensions), iters), evals), ok))| {
+            let chunk = ChunkOut {
+                pos,
+                rot,
+                tensions,
+                iters,
+                evals,
+                ok,
+            };
+            std::sync::Mutex::new(Some((c, chunk)))
+        })
         .collect();
     let next = AtomicUsize::new(0);
     // cancellation: workers poll `stop` (set by whoever sees the caller's
@@ -172,12 +192,12 @@ pub fn solve_batch(
         if c >= n_chunks {
             break;
         }
-        let (c, p, r, it, ev, ok) = items[c]
+        let (c, chunk) = items[c]
             .lock()
             .expect("no panics while held")
             .take()
             .expect("each chunk once");
-        if solve_chunk(robot, inputs, wrenches, opts, c * cs, p, r, it, ev, ok).is_err() {
+        if solve_chunk(robot, inputs, wrenches, opts, c * cs, chunk).is_err() {
             stop.store(true, Ordering::Relaxed);
         }
     };
@@ -209,19 +229,22 @@ pub fn solve_batch(
     Ok(out)
 }
 
-#[allow(clippy::too_many_arguments)]
 fn solve_chunk(
     robot: &Robot,
     inputs: &[f64],
     wrenches: Option<&[f64]>,
     opts: &BatchOptions,
     first: usize,
-    pos: &mut [[f64; 3]],
-    rot: &mut [[f64; 9]],
-    iters: &mut [u32],
-    evals: &mut [u32],
-    ok: &mut [bool],
+    out: ChunkOut<'_>,
 ) -> Result<()> {
+    let ChunkOut {
+        pos,
+        rot,
+        tensions,
+        iters,
+        evals,
+        ok,
+    } = out;
     let na = robot.actuators.len();
     let base = Loads::of(robot);
     let mut warm: Option<TipSolution> = None;
@@ -253,6 +276,7 @@ fn solve_chunk(
                         rot[j][3 * a + b] = s.rotation[(a, b)];
                     }
                 }
+                tensions[j * na..(j + 1) * na].copy_from_slice(&s.tensions);
                 iters[j] = s.iterations as u32;
                 evals[j] = s.evaluations as u32;
                 ok[j] = true;

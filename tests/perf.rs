@@ -52,6 +52,12 @@ fn batch_equals_individual_solves() {
                     assert!((b.tip_rotations[k][3 * a + c] - r[(a, c)]).abs() < 1e-9);
                 }
             }
+            // tensions [N] (~0.07 N at most here) differ by ~1e-12 N between
+            // the warm batch and the cold single solve: 1e-11 N bounds it
+            for (i, t) in s.tensions.iter().enumerate() {
+                let d = (b.tensions[2 * k + i] - t).abs();
+                assert!(d < 1e-11, "row {k} actuator {i}: {d:e} N");
+            }
         }
     }
 }
@@ -75,6 +81,7 @@ fn batch_is_independent_of_thread_count() {
     };
     let (a, b) = (run(1), run(2));
     assert_eq!(a.tip_positions, b.tip_positions);
+    assert_eq!(a.tensions, b.tensions);
     assert_eq!(a.iterations, b.iterations);
 }
 

@@ -51,16 +51,34 @@ def test_batch_equals_individual_solves() -> None:
         np.testing.assert_allclose(res.tip_rotations[k], s.rotations[-1], rtol=0, atol=1e-9)
 
 
+def test_batch_tensions_equal_individual_solves() -> None:
+    robot = fig6_square_robot()
+    q = _sweep(21)
+    res = solve_batch(robot, q, chunk_size=4, threads=2)
+    assert res.tensions is not None and res.tensions.shape == (21, 2) and res.tensions.dtype == np.float64
+    single = np.array([robot.solve(list(row)).tensions for row in q])
+    # The batch warm-starts, the single solves start cold: both stop at the
+    # Newton residual tolerance (1e-10), so the tensions differ by ~1e-12 N
+    # (measured) against ~0.07 N at most; 1e-9 of the largest tension bounds it.
+    atol = 1e-9 * float(np.abs(single).max())
+    np.testing.assert_allclose(res.tensions, single, rtol=0, atol=atol)
+    # the table has one tension column per actuator [N]
+    pd = pytest.importorskip("pandas", reason="pandas is in the test extra; the table export needs it")
+    df = res.to_pandas()
+    assert isinstance(df, pd.DataFrame)
+    np.testing.assert_array_equal(df[["tension_0_n", "tension_1_n"]].to_numpy(), res.tensions)
+
+
 def test_batch_does_not_depend_on_threads_and_streams_in_blocks() -> None:
     robot = fig6_square_robot()
     q = _sweep(30)
     a = solve_batch(robot, q, chunk_size=5, threads=1)
     b = solve_batch(robot, q, chunk_size=5, threads=2)
-    np.testing.assert_array_equal(a.tip_positions, b.tip_positions)
+    assert a == b  # every array (tensions included), exactly
     parts = list(iter_batches(robot, q, chunk_size=5, block_chunks=2))
     assert [len(p) for p in parts] == [10, 10, 10]
     c = BatchResult.concatenate(parts)
-    np.testing.assert_array_equal(a.tip_positions, c.tip_positions)
+    assert c == a
     # an iterable of blocks (e.g. a generator of a huge sweep) streams the same way
     d = BatchResult.concatenate(iter_batches(robot, (q[i : i + 10] for i in range(0, 30, 10)), chunk_size=5))
     np.testing.assert_array_equal(a.tip_positions, d.tip_positions)
@@ -98,8 +116,7 @@ def test_dask_client_gives_the_local_results() -> None:
     ) as cluster:
         with distributed.Client(cluster) as client:
             remote = solve_batch(fig6_square_robot, q, chunk_size=3, client=client)
-    np.testing.assert_array_equal(local.tip_positions, remote.tip_positions)
-    np.testing.assert_array_equal(local.converged, remote.converged)
+    assert remote == local  # every array (tensions included), exactly
 
 
 @pytest.mark.parametrize(("gravity", "temperature"), [(True, 60.0), (True, 130.0), (False, 100.0)])
@@ -157,4 +174,6 @@ def test_failed_rows_have_status_one_and_nan_pose() -> None:
     bad = ~res.converged
     assert bad.any()
     assert (res.status[bad] == 1).all() and np.isnan(res.tip_positions[bad]).all()
+    assert res.tensions is not None and res.tensions.shape == (6, 2)
+    assert np.isnan(res.tensions[bad]).all() and not np.isnan(res.tensions[~bad]).any()
     assert not res.success and "did not converge" in res.message

@@ -727,9 +727,10 @@ def solve_batch(
     chunk_size: int = 256,
     threads: int = 0,
     warm: bool = True,
-) -> tuple[_FloatArray, _FloatArray, npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.bool_]]:
+) -> tuple[_FloatArray, _FloatArray, _FloatArray, npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.bool_]]:
     """Solve every row of ``inputs`` ``(n, n_actuators)`` in parallel; returns
-    ``(tip_positions (n, 3), tip_rotations (n, 3, 3), iterations, evaluations, converged)``."""
+    ``(tip_positions (n, 3) [m], tip_rotations (n, 3, 3), tensions (n, n_actuators) [N],
+    iterations, evaluations, converged)``."""
 
 def default_threads() -> int:
     """Worker threads ``solve_batch`` uses for ``threads=0``."""

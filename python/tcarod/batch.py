@@ -56,8 +56,10 @@ class BatchResult:
     converge; ``iterations`` and ``evaluations`` (IVPs) ``(n,)``;
     ``converged`` ``(n,)``; ``inputs`` ``(n, n_actuators)`` (temperature [C]
     for TCAs) and ``wrenches`` ``(n, 6)`` (tip force [N], moment [N m]) or
-    ``None``: what was solved. ``tensions`` ``(n, n_actuators)`` [N] when the
-    core reports them, else ``None``.
+    ``None``: what was solved. ``tensions`` ``(n, n_actuators)`` [N]:
+    actuator tensions of each converged solve (``Solution.tensions``; negative:
+    the actuator pushes), NaN where a solve did not converge; ``None`` only
+    for results built by hand without them.
 
     SciPy-style summary: ``success`` (every row converged), ``status`` per row
     (0 converged, 1 not), ``message``, ``nit`` / ``nfev`` per row (aliases of
@@ -123,7 +125,7 @@ class BatchResult:
     def to_pandas(self) -> Any:
         """One row per solve: ``input_<i>`` (one per actuator), ``force_x``
         ... ``moment_z`` if wrenches were given, ``tip_x_m``, ``tip_y_m``,
-        ``tip_z_m``, ``tension_<i>_n`` if known, ``converged``, ``status``,
+        ``tip_z_m``, ``tension_<i>_n`` [N] (one per actuator), ``converged``, ``status``,
         ``nit``, ``nfev``. Needs pandas (``pip install 'tcarod[pandas]'``)."""
         pd: Any = require("pandas")
         cols: dict[str, Any] = {}
@@ -195,7 +197,7 @@ def _solve_block(
     chunk_size: int,
     threads: int,
 ) -> BatchResult:
-    pos, rot, it, ev, ok = _core.solve_batch(
+    pos, rot, tens, it, ev, ok = _core.solve_batch(
         _robot(robot),
         inputs,
         wrenches,
@@ -205,7 +207,7 @@ def _solve_block(
         chunk_size=chunk_size,
         threads=threads,
     )
-    return BatchResult(pos, rot, it, ev, ok, inputs=inputs, wrenches=wrenches)
+    return BatchResult(pos, rot, it, ev, ok, inputs=inputs, wrenches=wrenches, tensions=tens)
 
 
 def _blocks(n: int, block: int) -> list[tuple[int, int]]:

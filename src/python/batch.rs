@@ -22,6 +22,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 type BatchArrays<'py> = (
     Bound<'py, PyArray2<f64>>,
     Bound<'py, PyArray3<f64>>,
+    Bound<'py, PyArray2<f64>>,
     Bound<'py, PyArray1<i64>>,
     Bound<'py, PyArray1<i64>>,
     Bound<'py, PyArray1<bool>>,
@@ -34,9 +35,9 @@ type BatchArrays<'py> = (
 /// 1024). Rows are cut into chunks of `chunk_size` (1 to 10,000,000), each
 /// solved in order with warm starts. `steps` (1 to 100,000), `tol`,
 /// `max_iter` (1 to 100,000) as for `Robot.solve`. Returns `(tip_positions
-/// (n, 3), tip_rotations (n, 3, 3), iterations (n,), evaluations (n,),
-/// converged (n,))`; a row that does not converge has NaN pose and
-/// `converged = False`.
+/// (n, 3) [m], tip_rotations (n, 3, 3), tensions (n, n_actuators) [N],
+/// iterations (n,), evaluations (n,), converged (n,))`; a row that does not
+/// converge has NaN pose and tensions and `converged = False`.
 #[pyfunction]
 #[pyo3(signature = (robot, inputs, wrenches=None, *, steps=None, tol=Real(1e-10), max_iter=None, chunk_size=None, threads=None, warm=true),
     text_signature = "(robot, inputs, wrenches=None, *, steps=100, tol=1e-10, max_iter=50, chunk_size=256, threads=0, warm=True)")]
@@ -104,10 +105,11 @@ fn solve_batch<'py>(
         PyArray1::from_iter(py, out.tip_positions.iter().flatten().copied()).reshape([n, 3])?;
     let rot =
         PyArray1::from_iter(py, out.tip_rotations.iter().flatten().copied()).reshape([n, 3, 3])?;
+    let tens = PyArray1::from_slice(py, &out.tensions).reshape([n, na])?;
     let it = PyArray1::from_iter(py, out.iterations.iter().map(|&k| k as i64));
     let ev = PyArray1::from_iter(py, out.evaluations.iter().map(|&k| k as i64));
     let ok = PyArray1::from_iter(py, out.converged.iter().copied());
-    Ok((pos, rot, it, ev, ok))
+    Ok((pos, rot, tens, it, ev, ok))
 }
 
 /// Worker threads `solve_batch` uses for `threads=0` (the available cores).
