@@ -102,10 +102,7 @@ class Grasp:
 
 
 def _positive(name: str, value: float) -> float:
-    v = float(value)
-    if not (math.isfinite(v) and v > 0.0):
-        raise ValueError(f"invalid {name} = {value!r}: must be finite and > 0")
-    return v
+    return V.real(name, value, lo=0.0, lo_open=True)
 
 
 def grasp(

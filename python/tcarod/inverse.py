@@ -137,6 +137,11 @@ def tip_position(
     and IVPs. The default budget reaches reachable targets on the paper's
     manipulators in 4-7 iterations.
     """
+    V.instance("robot", robot, Robot, "a tcarod.Robot")
+    target_m = _vector("target [m]", target, 3)
+    reach = 1e3 * robot.body.length  # far beyond any reachable tip; keeps the error finite
+    if max(abs(x) for x in target_m) > reach:
+        raise ValueError(f"invalid target [m] = {target_m}: coordinates must be within {reach:g} m (1000 body lengths)")
     rot = None
     if target_rotation is not None:
         m = _as_float_array("target_rotation", target_rotation)
@@ -145,7 +150,7 @@ def tip_position(
         rot = [[float(x) for x in row] for row in m]
     return _core.tip_inverse(
         robot,
-        _vector("target [m]", target, 3),
+        target_m,
         start=None if start is None else _vector("start", start),
         groups=_groups(groups),
         target_rotation=rot,
@@ -217,6 +222,7 @@ def blocked_temperature(
     (e.g. ``groups=[0, 0]`` for a U-shaped TCA). Raises ``ValueError`` if the
     force needs a temperature outside the material's range.
     """
+    V.instance("robot", robot, Robot, "a tcarod.Robot")
     if start is None:
         start = robot.solve(robot.reference_inputs, steps=steps, tol=tol, max_iter=max_iter)
     return _core.blocked_temperature(

@@ -65,15 +65,27 @@ __all__ = [
 def circle_radius(
     a: Sequence[float] | FloatArray, b: Sequence[float] | FloatArray, c: Sequence[float] | FloatArray
 ) -> float:
-    """Radius [m] of the circle through three points [m]; ``inf`` if collinear."""
-    pa, pb, pc = (np.asarray(V.vector(n, x, 3, "m")) for n, x in (("a", a), ("b", b), ("c", c)))
+    """Radius [m] of the circle through three points [m]; ``inf`` if collinear.
+
+    Coordinates are limited to ``|x| <= 1e150`` m (``ValueError`` beyond), so
+    that the arithmetic below, done on coordinates scaled to order one, cannot
+    overflow.
+    """
+    pts = [np.asarray(V.vector(n, x, 3, "m")) for n, x in (("a", a), ("b", b), ("c", c))]
+    for n, p in zip("abc", pts):
+        if float(np.max(np.abs(p))) > 1e150:
+            raise ValueError(f"invalid {n} = {p.tolist()}: coordinates must be at most 1e150 m in magnitude")
+    scale = max(float(np.max(np.abs(p - pts[0]))) for p in pts)
+    if scale == 0.0:
+        return float("inf")
+    pa, pb, pc = ((p - pts[0]) / scale for p in pts)
     ab = float(np.linalg.norm(pb - pa))
     bc = float(np.linalg.norm(pc - pb))
     ca = float(np.linalg.norm(pa - pc))
     area2 = float(np.linalg.norm(np.cross(pb - pa, pc - pa)))
     if area2 <= 1e-15 * max(ab, bc, ca) ** 2:
         return float("inf")
-    return ab * bc * ca / (2.0 * area2)
+    return scale * ab * bc * ca / (2.0 * area2)
 
 
 def inner_edge_radius(solution: Solution) -> float:
