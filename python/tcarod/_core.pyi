@@ -513,6 +513,16 @@ class Solution:
     @property
     def steps(self) -> int:
         """RK4 steps over the body."""
+    @property
+    def stable(self) -> bool:
+        """True if the equilibrium is stable (strict local energy minimum);
+        computed on first access (one tangent IVP, GIL released) and cached.
+        Free-tip verdict: for ``BlockedResult.solution`` use
+        ``tcarod.stability(robot, solution, blocked=[normal])``."""
+    @property
+    def stability_margin(self) -> float:
+        """Smallest eigenvalue of the dimensionless tip stiffness [-], ``> 0``
+        iff ``stable``; computed and cached with ``stable``."""
     def __reduce__(self) -> tuple[Any, ...]: ...
     def __eq__(self, value: object, /) -> bool: ...
 

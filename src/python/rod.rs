@@ -1,6 +1,6 @@
 //! Bindings of the rod model and the shooting solver.
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use nalgebra::{Matrix3, Vector3};
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
@@ -1202,10 +1202,7 @@ impl PyRobot {
         let sol = super::errors::detach_interruptible(py, || {
             solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution)
         })?;
-        Ok(PySolution {
-            inner: sol,
-            robot: slf.clone().unbind(),
-        })
+        Ok(PySolution::new(sol, slf.clone().unbind()))
     }
 
     /// Solve along rows of `inputs` (shape `(k, n_actuators)`, at most
@@ -1250,10 +1247,7 @@ impl PyRobot {
         })?;
         Ok(sols
             .into_iter()
-            .map(|s| PySolution {
-                inner: s,
-                robot: slf.clone().unbind(),
-            })
+            .map(|s| PySolution::new(s, slf.clone().unbind()))
             .collect())
     }
 
@@ -1332,10 +1326,37 @@ fn actuator_list(seq: &Bound<'_, PyAny>) -> PyResult<Vec<PyActuator>> {
 /// `ConvergenceError`), `status` 0, `message`, `nit` (Newton iterations),
 /// `nfev` (IVPs). Naming: `tip_position` [m] per solve, `tip_positions` per
 /// batch (`tcarod.batch.BatchResult`). Picklable (with its robot) and `==`.
+/// Stability: `stable` and `stability_margin`, computed on first access (one
+/// tangent IVP) and cached.
 #[pyclass(name = "Solution", module = "tcarod._core", frozen)]
 pub struct PySolution {
     pub(crate) inner: Solution,
     pub(crate) robot: Py<PyRobot>,
+    /// Cached free-tip stability verdict `(stable, margin)` (issue 16).
+    pub(crate) verdict: OnceLock<(bool, f64)>,
+}
+
+impl PySolution {
+    /// A solution of `robot`; its stability verdict is computed lazily.
+    pub(crate) fn new(inner: Solution, robot: Py<PyRobot>) -> Self {
+        PySolution {
+            inner,
+            robot,
+            verdict: OnceLock::new(),
+        }
+    }
+
+    /// The cached verdict, computing it (GIL released) on first use.
+    fn verdict(&self, py: Python<'_>) -> PyResult<(bool, f64)> {
+        if let Some(v) = self.verdict.get() {
+            return Ok(*v);
+        }
+        let robot = self.robot.bind(py).get().inner.clone();
+        let sol = &self.inner;
+        let st = py.detach(|| crate::stability::stability(&robot, sol, &[]))?;
+        let st = super::stability::finite_margin(st);
+        Ok(*self.verdict.get_or_init(|| (st.stable, st.margin)))
+    }
 }
 
 fn stack3<'py>(py: Python<'py>, v: &[Vector3<f64>]) -> Bound<'py, PyArray2<f64>> {
@@ -1485,15 +1506,38 @@ impl PySolution {
             .getattr("plot_solution")?
             .call((slf,), kwargs)
     }
+    /// True if this equilibrium is stable: a strict local minimum of the
+    /// potential energy (Till and Rucker's criterion, extended to the
+    /// actuators and dead loads; see `tcarod.stability`). Computed on first
+    /// access from one tangent integration (GIL released) and cached.
+    /// Always the free-tip verdict: for `BlockedResult.solution` the contact
+    /// force counts as a dead tip load; for the verdict with the tip held on
+    /// the plane call `tcarod.stability(robot, solution, blocked=[normal])`.
+    #[getter]
+    fn stable(&self, py: Python<'_>) -> PyResult<bool> {
+        Ok(self.verdict(py)?.0)
+    }
+    /// Stability margin [-] (dimensionless): the smallest eigenvalue of the
+    /// dimensionless tip stiffness, `> 0` iff `stable`. Computed and cached
+    /// with `stable`.
+    #[getter]
+    fn stability_margin(&self, py: Python<'_>) -> PyResult<f64> {
+        Ok(self.verdict(py)?.1)
+    }
     fn __repr__(&self) -> String {
         let p = self.inner.tip_position();
+        let stable = match self.verdict.get() {
+            Some((s, _)) => format!(" stable={}", if *s { "True" } else { "False" }),
+            None => String::new(),
+        };
         format!(
-            "<Solution success=True nit={} nfev={} residual={:.2e} inputs={} tip_position={}>",
+            "<Solution success=True nit={} nfev={} residual={:.2e} inputs={} tip_position={}{}>",
             self.inner.iterations,
             self.inner.evaluations,
             self.inner.residual,
             pv(&self.inner.inputs),
-            pv(p.as_slice())
+            pv(p.as_slice()),
+            stable
         )
     }
     /// Always `True`: a `Solution` is returned only when Newton converged
@@ -1640,8 +1684,5 @@ fn restore_solution(
         .and_then(checked_solution)
     })?;
     sol.newton_jacobian = jac;
-    Ok(PySolution {
-        inner: sol,
-        robot: robot.unbind(),
-    })
+    Ok(PySolution::new(sol, robot.unbind()))
 }
