@@ -71,3 +71,22 @@ def test_verdict_survives_pickle(touch: bool) -> None:
     assert back.stable is False
     assert back.stability_margin == core.stability(robot, sol).margin
     assert back == sol
+
+
+def test_require_stable_raises_on_the_unstable_straight_column() -> None:
+    import tcarod
+
+    robot = heavy_column()
+    with pytest.raises(tcarod.UnstableEquilibriumError, match="unstable") as info:
+        robot.solve([], require_stable=True)
+    assert isinstance(info.value, RuntimeError)
+    assert info.value.margin < 0
+    assert info.value.solution.stable is False
+    assert info.value.margin == info.value.solution.stability_margin
+
+
+def test_require_stable_returns_a_stable_solution_with_its_verdict() -> None:
+    robot = core._experiment_robot("fig6_square", True)
+    sol = robot.solve([100.0, 100.0], require_stable=True)
+    assert "stable=True" in repr(sol)  # verdict already cached
+    assert sol.stability_margin > 0

@@ -1180,10 +1180,16 @@ impl PyRobot {
     /// Newton tolerance on the dimensionless residual; `max_iter`: Newton
     /// iterations (1 to 100,000); `warm_start`: a nearby `Solution` of this
     /// robot, or of a robot with the same actuators under other loads (load
-    /// continuation). Raises `ValueError` on bad input, `TypeError` on wrong types and
+    /// continuation); `require_stable`: check the equilibrium's stability
+    /// (one tangent IVP more, cached in `Solution.stable`) and raise
+    /// `UnstableEquilibriumError` (attributes `margin` [-] and `solution`) if it
+    /// is unstable; a stable one is reached with
+    /// `tcarod.stability.follow_branch(..., stable_only=True)` or another
+    /// `warm_start`. Raises `ValueError` on bad input, `TypeError` on wrong types and
     /// `ConvergenceError` if Newton fails.
-    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None),
-        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None)")]
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, require_stable=false),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, require_stable=False)")]
+    #[allow(clippy::too_many_arguments)]
     fn solve(
         slf: &Bound<'_, Self>,
         py: Python<'_>,
@@ -1192,6 +1198,7 @@ impl PyRobot {
         tol: Real,
         max_iter: Option<Bound<'_, PyAny>>,
         warm_start: Option<PyRef<'_, PySolution>>,
+        require_stable: bool,
     ) -> PyResult<PySolution> {
         let this = slf.get();
         let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
@@ -1202,7 +1209,25 @@ impl PyRobot {
         let sol = super::errors::detach_interruptible(py, || {
             solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution)
         })?;
-        Ok(PySolution::new(sol, slf.clone().unbind()))
+        let sol = PySolution::new(sol, slf.clone().unbind());
+        if require_stable {
+            let (stable, margin) = sol.verdict(py)?;
+            if !stable {
+                let tip = sol.inner.tip_position();
+                let err = super::errors::UnstableEquilibriumError::new_err(format!(
+                    "the equilibrium found (tip at {} m) is unstable: stability margin \
+                     {margin:.3e} < 0; continue to a stable one with \
+                     tcarod.stability.follow_branch(..., stable_only=True) or solve from \
+                     another warm_start",
+                    pv(tip.as_slice())
+                ));
+                let value = err.value(py);
+                value.setattr("margin", margin)?;
+                value.setattr("solution", Py::new(py, sol)?)?;
+                return Err(err);
+            }
+        }
+        Ok(sol)
     }
 
     /// Solve along rows of `inputs` (shape `(k, n_actuators)`, at most
