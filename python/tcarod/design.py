@@ -480,8 +480,13 @@ def _tca(r: _Reader, d: Any, path: tuple[str, ...]) -> Any:
     try:
         if "alpha0_deg" in t:
             return Tca.from_pitch_angle(
-                cl, math.radians(r.number(t, "alpha0_deg", path, positive=True)), dd, nn, chir, mat
-            )  # type: ignore[arg-type]
+                cl,
+                math.radians(r.number(t, "alpha0_deg", path, positive=True)),
+                dd,
+                nn,
+                chir,  # type: ignore[arg-type]
+                mat,
+            )
         return Tca(r.number(t, "fibre_length_m", path, positive=True), cl, dd, nn, chir, mat)  # type: ignore[arg-type]
     except DesignError:
         raise
