@@ -7,7 +7,7 @@ SI units throughout (m, N, Pa, kg, s) except temperatures, in degrees C.
 
 from __future__ import annotations
 
-from ._core import ConvergenceError, UnitsWarning, __version__
+from ._core import ConvergenceError, UnitsWarning, UnstableEquilibriumError, __version__
 from .rod import Actuator, Body, Robot, Routing, Section, Solution, circle_radius, inner_edge_radius
 from .tca import Material, Tca
 from .grasp import grasp_temperature
@@ -33,6 +33,7 @@ __all__ = [
     "inner_edge_radius",
     "ConvergenceError",
     "UnitsWarning",
+    "UnstableEquilibriumError",
     "Material",
     "Tca",
     "__version__",

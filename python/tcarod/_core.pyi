@@ -32,6 +32,15 @@ class ConvergenceError(RuntimeError):
     #: "non_finite", "integration" or "other".
     reason: str
 
+class UnstableEquilibriumError(RuntimeError):
+    """``Robot.solve(..., require_stable=True)`` converged to an unstable
+    equilibrium."""
+
+    #: Stability margin of the equilibrium found [-] (< 0).
+    margin: float
+    #: The unstable equilibrium found.
+    solution: Solution
+
 class UnitsWarning(UserWarning):
     """Sizes that are valid SI numbers but look like millimetres."""
 
@@ -413,10 +422,12 @@ class Robot:
         tol: float = 1e-10,
         max_iter: int = 50,
         warm_start: Solution | None = None,
+        require_stable: bool = False,
     ) -> Solution:
         """Forward kinetostatics for one input per actuator (temperature [C] for TCAs);
-        ``steps`` RK4 steps over the body. Raises ``ValueError`` on bad input and
-        ``ConvergenceError`` if Newton fails."""
+        ``steps`` RK4 steps over the body. Raises ``ValueError`` on bad input,
+        ``ConvergenceError`` if Newton fails and, with ``require_stable``,
+        ``UnstableEquilibriumError`` if the equilibrium found is unstable."""
     def sweep(
         self,
         inputs: Sequence[Sequence[float] | _FloatArray] | _FloatArray,
@@ -513,6 +524,16 @@ class Solution:
     @property
     def steps(self) -> int:
         """RK4 steps over the body."""
+    @property
+    def stable(self) -> bool:
+        """True if the equilibrium is stable (strict local energy minimum);
+        computed on first access (one tangent IVP, GIL released) and cached.
+        Free-tip verdict: for ``BlockedResult.solution`` use
+        ``tcarod.stability(robot, solution, blocked=[normal])``."""
+    @property
+    def stability_margin(self) -> float:
+        """Smallest eigenvalue of the dimensionless tip stiffness [-], ``> 0``
+        iff ``stable``; computed and cached with ``stable``."""
     def __reduce__(self) -> tuple[Any, ...]: ...
     def __eq__(self, value: object, /) -> bool: ...
 

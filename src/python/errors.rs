@@ -73,6 +73,15 @@ pyo3::create_exception!(
      (IVPs integrated, failed attempts included) and `reason` (why it stopped)."
 );
 
+pyo3::create_exception!(
+    tcarod._core,
+    UnstableEquilibriumError,
+    PyRuntimeError,
+    "`Robot.solve(..., require_stable=True)` converged to an unstable \
+     equilibrium. Attributes: `margin` (its stability margin [-], < 0) and \
+     `solution` (the unstable `Solution`)."
+);
+
 impl From<Error> for PyErr {
     fn from(e: Error) -> PyErr {
         let msg = e.to_string();

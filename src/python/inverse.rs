@@ -53,10 +53,7 @@ fn vec3(name: &str, a: &Bound<'_, PyAny>) -> PyResult<Vector3<f64>> {
 }
 
 fn wrap(robot: &Bound<'_, PyRobot>, s: crate::shooting::Solution) -> PySolution {
-    PySolution {
-        inner: s,
-        robot: robot.clone().unbind(),
-    }
+    PySolution::new(s, robot.clone().unbind())
 }
 
 /// ValueError unless `solution` belongs to `robot` (equal robots count).

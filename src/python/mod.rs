@@ -12,7 +12,7 @@ mod tca;
 
 use pyo3::prelude::*;
 
-pub use errors::ConvergenceError;
+pub use errors::{ConvergenceError, UnstableEquilibriumError};
 
 pyo3::create_exception!(
     tcarod._core,
@@ -37,6 +37,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
     m.add("UnitsWarning", m.py().get_type::<UnitsWarning>())?;
+    m.add(
+        "UnstableEquilibriumError",
+        m.py().get_type::<UnstableEquilibriumError>(),
+    )?;
     tca::register(m)?;
     rod::register(m)?;
     inverse::register(m)?;

@@ -1,6 +1,6 @@
 //! Bindings of the rod model and the shooting solver.
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use nalgebra::{Matrix3, Vector3};
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
@@ -1180,10 +1180,16 @@ impl PyRobot {
     /// Newton tolerance on the dimensionless residual; `max_iter`: Newton
     /// iterations (1 to 100,000); `warm_start`: a nearby `Solution` of this
     /// robot, or of a robot with the same actuators under other loads (load
-    /// continuation). Raises `ValueError` on bad input, `TypeError` on wrong types and
+    /// continuation); `require_stable`: check the equilibrium's stability
+    /// (one tangent IVP more, cached in `Solution.stable`) and raise
+    /// `UnstableEquilibriumError` (attributes `margin` [-] and `solution`) if it
+    /// is unstable; a stable one is reached with
+    /// `tcarod.stability.follow_branch(..., stable_only=True)` or another
+    /// `warm_start`. Raises `ValueError` on bad input, `TypeError` on wrong types and
     /// `ConvergenceError` if Newton fails.
-    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None),
-        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None)")]
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, require_stable=false),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, require_stable=False)")]
+    #[allow(clippy::too_many_arguments)]
     fn solve(
         slf: &Bound<'_, Self>,
         py: Python<'_>,
@@ -1192,6 +1198,7 @@ impl PyRobot {
         tol: Real,
         max_iter: Option<Bound<'_, PyAny>>,
         warm_start: Option<PyRef<'_, PySolution>>,
+        require_stable: bool,
     ) -> PyResult<PySolution> {
         let this = slf.get();
         let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
@@ -1202,10 +1209,25 @@ impl PyRobot {
         let sol = super::errors::detach_interruptible(py, || {
             solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution)
         })?;
-        Ok(PySolution {
-            inner: sol,
-            robot: slf.clone().unbind(),
-        })
+        let sol = PySolution::new(sol, slf.clone().unbind());
+        if require_stable {
+            let (stable, margin) = sol.verdict(py)?;
+            if !stable {
+                let tip = sol.inner.tip_position();
+                let err = super::errors::UnstableEquilibriumError::new_err(format!(
+                    "the equilibrium found (tip at {} m) is unstable: stability margin \
+                     {margin:.3e} < 0; continue to a stable one with \
+                     tcarod.stability.follow_branch(..., stable_only=True) or solve from \
+                     another warm_start",
+                    pv(tip.as_slice())
+                ));
+                let value = err.value(py);
+                value.setattr("margin", margin)?;
+                value.setattr("solution", Py::new(py, sol)?)?;
+                return Err(err);
+            }
+        }
+        Ok(sol)
     }
 
     /// Solve along rows of `inputs` (shape `(k, n_actuators)`, at most
@@ -1250,10 +1272,7 @@ impl PyRobot {
         })?;
         Ok(sols
             .into_iter()
-            .map(|s| PySolution {
-                inner: s,
-                robot: slf.clone().unbind(),
-            })
+            .map(|s| PySolution::new(s, slf.clone().unbind()))
             .collect())
     }
 
@@ -1332,10 +1351,37 @@ fn actuator_list(seq: &Bound<'_, PyAny>) -> PyResult<Vec<PyActuator>> {
 /// `ConvergenceError`), `status` 0, `message`, `nit` (Newton iterations),
 /// `nfev` (IVPs). Naming: `tip_position` [m] per solve, `tip_positions` per
 /// batch (`tcarod.batch.BatchResult`). Picklable (with its robot) and `==`.
+/// Stability: `stable` and `stability_margin`, computed on first access (one
+/// tangent IVP) and cached.
 #[pyclass(name = "Solution", module = "tcarod._core", frozen)]
 pub struct PySolution {
     pub(crate) inner: Solution,
     pub(crate) robot: Py<PyRobot>,
+    /// Cached free-tip stability verdict `(stable, margin)` (issue 16).
+    pub(crate) verdict: OnceLock<(bool, f64)>,
+}
+
+impl PySolution {
+    /// A solution of `robot`; its stability verdict is computed lazily.
+    pub(crate) fn new(inner: Solution, robot: Py<PyRobot>) -> Self {
+        PySolution {
+            inner,
+            robot,
+            verdict: OnceLock::new(),
+        }
+    }
+
+    /// The cached verdict, computing it (GIL released) on first use.
+    fn verdict(&self, py: Python<'_>) -> PyResult<(bool, f64)> {
+        if let Some(v) = self.verdict.get() {
+            return Ok(*v);
+        }
+        let robot = self.robot.bind(py).get().inner.clone();
+        let sol = &self.inner;
+        let st = py.detach(|| crate::stability::stability(&robot, sol, &[]))?;
+        let st = super::stability::finite_margin(st);
+        Ok(*self.verdict.get_or_init(|| (st.stable, st.margin)))
+    }
 }
 
 fn stack3<'py>(py: Python<'py>, v: &[Vector3<f64>]) -> Bound<'py, PyArray2<f64>> {
@@ -1485,15 +1531,38 @@ impl PySolution {
             .getattr("plot_solution")?
             .call((slf,), kwargs)
     }
+    /// True if this equilibrium is stable: a strict local minimum of the
+    /// potential energy (Till and Rucker's criterion, extended to the
+    /// actuators and dead loads; see `tcarod.stability`). Computed on first
+    /// access from one tangent integration (GIL released) and cached.
+    /// Always the free-tip verdict: for `BlockedResult.solution` the contact
+    /// force counts as a dead tip load; for the verdict with the tip held on
+    /// the plane call `tcarod.stability(robot, solution, blocked=[normal])`.
+    #[getter]
+    fn stable(&self, py: Python<'_>) -> PyResult<bool> {
+        Ok(self.verdict(py)?.0)
+    }
+    /// Stability margin [-] (dimensionless): the smallest eigenvalue of the
+    /// dimensionless tip stiffness, `> 0` iff `stable`. Computed and cached
+    /// with `stable`.
+    #[getter]
+    fn stability_margin(&self, py: Python<'_>) -> PyResult<f64> {
+        Ok(self.verdict(py)?.1)
+    }
     fn __repr__(&self) -> String {
         let p = self.inner.tip_position();
+        let stable = match self.verdict.get() {
+            Some((s, _)) => format!(" stable={}", if *s { "True" } else { "False" }),
+            None => String::new(),
+        };
         format!(
-            "<Solution success=True nit={} nfev={} residual={:.2e} inputs={} tip_position={}>",
+            "<Solution success=True nit={} nfev={} residual={:.2e} inputs={} tip_position={}{}>",
             self.inner.iterations,
             self.inner.evaluations,
             self.inner.residual,
             pv(&self.inner.inputs),
-            pv(p.as_slice())
+            pv(p.as_slice()),
+            stable
         )
     }
     /// Always `True`: a `Solution` is returned only when Newton converged
@@ -1640,8 +1709,5 @@ fn restore_solution(
         .and_then(checked_solution)
     })?;
     sol.newton_jacobian = jac;
-    Ok(PySolution {
-        inner: sol,
-        robot: robot.unbind(),
-    })
+    Ok(PySolution::new(sol, robot.unbind()))
 }

@@ -109,7 +109,7 @@ impl PyStability {
     }
 }
 
-fn finite_margin(mut s: Stability) -> Stability {
+pub(crate) fn finite_margin(mut s: Stability) -> Stability {
     if !s.margin.is_finite() {
         s.margin = if s.margin > 0.0 { f64::MAX } else { -f64::MAX };
     }
@@ -285,7 +285,7 @@ fn wrap(
     s: Solution,
 ) -> PyResult<Py<PySolution>> {
     let robot = robot_at(py, pb, acts, lambda)?;
-    Py::new(py, PySolution { inner: s, robot })
+    Py::new(py, PySolution::new(s, robot))
 }
 
 /// Follow the equilibria of `robot` in one scalar `parameter` from `start`
