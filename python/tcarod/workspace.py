@@ -109,19 +109,31 @@ class Workspace:
         return np.asarray(np.arccos(np.clip(self.tip_tangents[:, 2], -1.0, 1.0)), dtype=np.float64)
 
 
+#: RK4 steps per solve of a workspace map: a map needs tip positions, and 10
+#: steps already put the Fig. 6 tip within 1 um of a 5,000-step reference.
+MAX_MAP_STEPS = 1000
+
+
 def workspace_map(robot: Any, grid_c: Sequence[float] | FloatArray, steps: int = 100) -> Workspace:
     """Tip positions of ``robot`` over the ``k^n`` grid of inputs, each input
     taking every value of ``grid_c`` [C for TCAs] (``n`` = number of actuators).
 
-    At most ``MAX_GRID_POINTS`` (100,000) points (``ValueError`` beyond).
+    At most ``MAX_GRID_POINTS`` (100,000) points, at most ``MAX_MAP_STEPS``
+    (1,000) RK4 steps per solve, and at most ``MAX_RK4_STEPS`` (10,000,000)
+    RK4 steps over the whole map (points x steps); ``ValueError`` beyond.
     """
     _check_robot(robot)
     grid = V.real_array("grid_c", grid_c, ndim=1, unit="C")
     if grid.size == 0:
         raise ValueError("invalid grid_c: need at least one value [C]")
+    steps = V.integer("steps", steps, 1, MAX_MAP_STEPS)
     n = len(robot.actuators)
     if float(grid.size) ** n > V.MAX_GRID_POINTS:
         raise ValueError(f"invalid grid_c: {grid.size}^{n} grid points, at most {V.MAX_GRID_POINTS} allowed")
+    if float(grid.size) ** n * steps > V.MAX_RK4_STEPS:
+        raise ValueError(
+            f"invalid steps = {steps}: {grid.size}^{n} points x {steps} steps exceeds {V.MAX_RK4_STEPS} RK4 steps per map"
+        )
     inputs = snake_grid([[float(x) for x in grid]] * n)
     t0 = time.perf_counter()
     sols = solve_rows(robot, inputs, steps=steps)
