@@ -64,6 +64,16 @@ def _body() -> Any:
     )
 
 
+def _column() -> Robot:
+    """A slender round rod under a tip load along its axis (cheap branches)."""
+    body = _core.Body(0.5, _core.Section.circle(0.01), 1e6, poisson=0.5, density=1000.0, tip_force=[0.0, 0.0, -0.01])
+    return _core.Robot(body, [])
+
+
+def _short_branch() -> _core.Branch:
+    return _core.follow_branch(_column(), parameter="tip_load_scale", start=0.5, end=1.0, step=0.2, max_step=0.5)
+
+
 def _objects() -> dict[str, Callable[[], Any]]:
     """Builders of one instance of every public class (fresh each call)."""
     return {
@@ -89,6 +99,8 @@ def _objects() -> dict[str, Callable[[], Any]]:
         "blocked_result": lambda: blocked_force(
             SQUARE, SQUARE.solve([25.0, 25.0]).tip_position, [-1.0, 0.0, 0.0], 60.0, groups=[0, 0]
         ),
+        "stability": lambda: _core.stability(SQUARE, SQUARE.solve([90.0, 90.0])),
+        "branch": _short_branch,
         "batch_result": lambda: solve_batch(SQUARE, [[40.0, 40.0], [90.0, 95.0], [130.0, 120.0]], chunk_size=2),
     }
 
@@ -161,6 +173,42 @@ def test_convergence_error_keeps_its_fields_through_pickle() -> None:
     back = pickle.loads(pickle.dumps(err))
     assert str(back) == str(err)
     assert back.residual == err.residual > 0 and back.iterations == err.iterations > 0
+
+
+def test_stability_and_branch_keep_every_field_through_pickle() -> None:
+    st = _core.stability(SQUARE, SQUARE.solve([90.0, 90.0]))
+    back = pickle.loads(pickle.dumps(st))
+    assert back == st and back.stable is st.stable and back.margin == st.margin
+    assert back.conjugate_point == st.conjugate_point and back.evaluations == st.evaluations
+    for name in ("s", "determinant", "min_stiffness", "mode"):
+        np.testing.assert_array_equal(getattr(back, name), getattr(st, name))
+    assert st != _core.stability(SQUARE, SQUARE.solve([91.0, 90.0]))
+    br = _short_branch()
+    assert len(br) >= 2
+    back_br = copy.deepcopy(pickle.loads(pickle.dumps(br)))
+    assert back_br == br and len(back_br) == len(br) and back_br.evaluations == br.evaluations
+    for name in ("parameter", "tip_positions", "stable", "margin", "folds", "bifurcations"):
+        np.testing.assert_array_equal(getattr(back_br, name), getattr(br, name))
+    assert back_br.solutions == br.solutions and back_br.jumps == br.jumps
+    assert [(k, p) for k, p, _ in back_br.events] == [(k, p) for k, p, _ in br.events]
+    assert br != st
+
+
+def test_unstable_equilibrium_error_keeps_its_fields_through_pickle() -> None:
+    import tcarod
+
+    section = _core.Section.rectangle(0.01, 0.009)
+    area, ix, iy, _ = section.properties
+    g = 10.0 * 1e6 * min(ix, iy) / (1000.0 * area * 0.5**3)
+    body = _core.Body(0.5, section, 1e6, poisson=0.5, density=1000.0, gravity=[0.0, 0.0, -g])
+    with pytest.raises(tcarod.UnstableEquilibriumError) as info:
+        _core.Robot(body, []).solve([], require_stable=True)
+    err = info.value
+    back = pickle.loads(pickle.dumps(err))
+    assert type(back) is type(err) and isinstance(back, RuntimeError)
+    assert str(back) == str(err)
+    assert back.margin == err.margin < 0
+    assert back.solution == err.solution and back.solution.stable is False
 
 
 def test_robot_and_solution_travel_to_a_spawned_process_pool() -> None:

@@ -788,6 +788,8 @@ class Stability:
         """Softest tip mode ``(dp / L, dtheta)``, shape ``(6,)``."""
     @property
     def evaluations(self) -> int: ...
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
 
 @final
 class Branch:
@@ -817,7 +819,26 @@ class Branch:
     @property
     def evaluations(self) -> int: ...
     def __len__(self) -> int: ...
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
 
+def _restore_stability(
+    stable: bool,
+    margin: float,
+    conjugate_point: float | None,
+    s: Sequence[float],
+    determinant: Sequence[float],
+    min_stiffness: Sequence[float],
+    evaluations: int,
+    mode: Sequence[float],
+) -> Stability: ...
+def _restore_branch(
+    points: Sequence[tuple[float, Sequence[float], bool, float]],
+    solutions: Sequence[Solution],
+    events: Sequence[tuple[str, float, Sequence[float]]],
+    jumps: Sequence[tuple[float, Solution, Solution]],
+    evaluations: int,
+) -> Branch: ...
 def stability(robot: Robot, solution: Solution, *, blocked: Sequence[Sequence[float]] | None = None) -> Stability:
     """Stability of ``solution``; ``blocked``: world directions of held tip translation."""
 

@@ -4,7 +4,9 @@ use std::sync::Arc;
 
 use nalgebra::Vector3;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyTuple;
 
 use super::rod::{solve_options, PyActuator, PyBody, PyRobot, PySolution};
 use super::Real;
@@ -23,6 +25,8 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyBranch>()?;
     m.add_function(wrap_pyfunction!(stability, m)?)?;
     m.add_function(wrap_pyfunction!(follow_branch, m)?)?;
+    m.add_function(wrap_pyfunction!(restore_stability, m)?)?;
+    m.add_function(wrap_pyfunction!(restore_branch, m)?)?;
     Ok(())
 }
 
@@ -31,6 +35,22 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 pub struct PyStability {
     inner: Stability,
 }
+
+/// Exact equality of two floats, NaN equal to NaN (pickle support).
+fn same(a: f64, b: f64) -> bool {
+    a == b || (a.is_nan() && b.is_nan())
+}
+
+fn same_all(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| same(*x, *y))
+}
+
+fn same_vec3(a: &Vector3<f64>, b: &Vector3<f64>) -> bool {
+    same_all(a.as_slice(), b.as_slice())
+}
+
+/// What `__reduce__` returns: a rebuilding callable and its arguments.
+type Reduce<'py> = PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)>;
 
 fn arr1<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, v)
@@ -107,6 +127,77 @@ impl PyStability {
             self.inner.conjugate_point
         )
     }
+    /// Pickle support.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py> {
+        let f = py.import("tcarod._core")?.getattr("_restore_stability")?;
+        let s = &self.inner;
+        let args = (
+            s.stable,
+            s.margin,
+            s.conjugate_point,
+            s.s.clone(),
+            s.determinant.clone(),
+            s.min_stiffness.clone(),
+            s.evaluations,
+            s.mode.to_vec(),
+        )
+            .into_pyobject(py)?;
+        Ok((f, args))
+    }
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        let Ok(o) = other.cast::<PyStability>() else {
+            return false;
+        };
+        let (a, b) = (&self.inner, &o.get().inner);
+        a.stable == b.stable
+            && same(a.margin, b.margin)
+            && match (a.conjugate_point, b.conjugate_point) {
+                (Some(x), Some(y)) => same(x, y),
+                (None, None) => true,
+                _ => false,
+            }
+            && same_all(&a.s, &b.s)
+            && same_all(&a.determinant, &b.determinant)
+            && same_all(&a.min_stiffness, &b.min_stiffness)
+            && a.evaluations == b.evaluations
+            && same_all(&a.mode, &b.mode)
+    }
+}
+
+/// Rebuild a `Stability` (pickle support; not public API).
+#[pyfunction]
+#[pyo3(name = "_restore_stability")]
+#[allow(clippy::too_many_arguments)]
+fn restore_stability(
+    stable: bool,
+    margin: f64,
+    conjugate_point: Option<f64>,
+    s: Vec<f64>,
+    determinant: Vec<f64>,
+    min_stiffness: Vec<f64>,
+    evaluations: usize,
+    mode: Vec<f64>,
+) -> PyResult<PyStability> {
+    let mode: [f64; 6] = mode
+        .try_into()
+        .map_err(|_| PyValueError::new_err("mode: expected 6 values"))?;
+    if determinant.len() != s.len() || min_stiffness.len() != s.len() {
+        return Err(PyValueError::new_err(
+            "s, determinant and min_stiffness must have the same length",
+        ));
+    }
+    Ok(PyStability {
+        inner: Stability {
+            stable,
+            margin,
+            conjugate_point,
+            s,
+            determinant,
+            min_stiffness,
+            evaluations,
+            mode,
+        },
+    })
 }
 
 pub(crate) fn finite_margin(mut s: Stability) -> Stability {
@@ -238,6 +329,96 @@ impl PyBranch {
             self.jumps.len()
         )
     }
+    /// Pickle support (the solutions travel with their robots).
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py> {
+        let f = py.import("tcarod._core")?.getattr("_restore_branch")?;
+        let points: Vec<(f64, [f64; 3], bool, f64)> = self
+            .points
+            .iter()
+            .map(|p| (p.0, [p.1.x, p.1.y, p.1.z], p.2, p.3))
+            .collect();
+        let events: Vec<(String, f64, [f64; 3])> = self
+            .events
+            .iter()
+            .map(|e| (e.0.clone(), e.1, [e.2.x, e.2.y, e.2.z]))
+            .collect();
+        let args = (
+            points,
+            self.solutions(py),
+            events,
+            self.jumps(py),
+            self.evaluations,
+        )
+            .into_pyobject(py)?;
+        Ok((f, args))
+    }
+    fn __eq__(&self, py: Python<'_>, other: &Bound<'_, PyAny>) -> PyResult<bool> {
+        let Ok(o) = other.cast::<PyBranch>() else {
+            return Ok(false);
+        };
+        let o = o.get();
+        let same_fields = self.evaluations == o.evaluations
+            && self.points.len() == o.points.len()
+            && self.points.iter().zip(&o.points).all(|(a, b)| {
+                same(a.0, b.0) && same_vec3(&a.1, &b.1) && a.2 == b.2 && same(a.3, b.3)
+            })
+            && self.events.len() == o.events.len()
+            && self
+                .events
+                .iter()
+                .zip(&o.events)
+                .all(|(a, b)| a.0 == b.0 && same(a.1, b.1) && same_vec3(&a.2, &b.2))
+            && self.solutions.len() == o.solutions.len()
+            && self.jumps.len() == o.jumps.len()
+            && self.jumps.iter().zip(&o.jumps).all(|(a, b)| same(a.0, b.0));
+        if !same_fields {
+            return Ok(false);
+        }
+        for (a, b) in self.solutions.iter().zip(&o.solutions) {
+            if !a.bind(py).eq(b.bind(py))? {
+                return Ok(false);
+            }
+        }
+        for (a, b) in self.jumps.iter().zip(&o.jumps) {
+            if !a.1.bind(py).eq(b.1.bind(py))? || !a.2.bind(py).eq(b.2.bind(py))? {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+}
+
+/// A followed point as pickled: `(parameter, tip position, stable, margin)`.
+type PointArgs = (f64, [f64; 3], bool, f64);
+
+/// Rebuild a `Branch` (pickle support; not public API).
+#[pyfunction]
+#[pyo3(name = "_restore_branch")]
+fn restore_branch(
+    points: Vec<PointArgs>,
+    solutions: Vec<Py<PySolution>>,
+    events: Vec<(String, f64, [f64; 3])>,
+    jumps: Vec<(f64, Py<PySolution>, Py<PySolution>)>,
+    evaluations: usize,
+) -> PyResult<PyBranch> {
+    if solutions.len() != points.len() {
+        return Err(PyValueError::new_err(
+            "points and solutions must have the same length",
+        ));
+    }
+    Ok(PyBranch {
+        points: points
+            .into_iter()
+            .map(|(p, t, s, m)| (p, Vector3::from(t), s, m))
+            .collect(),
+        solutions,
+        events: events
+            .into_iter()
+            .map(|(k, p, t)| (k, p, Vector3::from(t)))
+            .collect(),
+        jumps,
+        evaluations,
+    })
 }
 
 fn parse_parameter(name: &str, actuators: Option<Vec<usize>>, robot: &Robot) -> Result<Parameter> {
