@@ -32,6 +32,18 @@ pub enum Scheme {
     Exact,
 }
 
+impl Scheme {
+    /// Relative finite-difference step by rule: `sqrt(eps)` forward, `cbrt(eps)`
+    /// central; `None` for the exact tangents.
+    fn relative_step(self) -> Option<f64> {
+        match self {
+            Scheme::Forward => Some(f64::EPSILON.sqrt()),
+            Scheme::Central => Some(f64::EPSILON.cbrt()),
+            Scheme::Exact => None,
+        }
+    }
+}
+
 /// Actuation Jacobian and compliance at a solution.
 #[derive(Debug, Clone)]
 pub struct Sensitivities {
@@ -160,10 +172,8 @@ pub fn sensitivities(
     steps: usize,
     scheme: Scheme,
 ) -> Result<Sensitivities> {
-    let rel = match scheme {
-        Scheme::Forward => f64::EPSILON.sqrt(),
-        Scheme::Central => f64::EPSILON.cbrt(),
-        Scheme::Exact => return sensitivities_exact(robot, sol, loads, groups, steps),
+    let Some(rel) = scheme.relative_step() else {
+        return sensitivities_exact(robot, sol, loads, groups, steps);
     };
     sensitivities_with_step(robot, sol, loads, groups, steps, scheme, rel)
 }
@@ -181,10 +191,8 @@ pub fn sensitivities_fast(
     steps: usize,
     scheme: Scheme,
 ) -> Result<Sensitivities> {
-    let rel = match scheme {
-        Scheme::Forward => f64::EPSILON.sqrt(),
-        Scheme::Central => f64::EPSILON.cbrt(),
-        Scheme::Exact => return sensitivities_exact(robot, sol, loads, groups, steps),
+    let Some(rel) = scheme.relative_step() else {
+        return sensitivities_exact(robot, sol, loads, groups, steps);
     };
     sensitivities_impl(robot, sol, loads, groups, steps, scheme, rel, true)
 }

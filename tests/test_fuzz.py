@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import os
 
-import numpy as np
 import pytest
 from hypothesis import HealthCheck, Phase, example, given, settings
 
@@ -27,10 +26,6 @@ from fuzz.strategies import ENTRIES, Call
 TIME_LIMIT_S = 10.0
 #: Examples per entry point: ~150 / relative cost, between 3 and 100.
 BUDGET = {name: max(3, min(100, int(150 / cost))) for name, (_, cost) in ENTRIES.items()}
-
-_API = "api helper's files"
-_CPLX = f"{_API} (bindings): a NumPy complex scalar is accepted as a float, its imaginary part dropped (want TypeError)"
-C = np.complex128(0.01 + 1j)  # a complex length [m] / angle / temperature: a wrong type
 
 #: Entry points with known violations in files this suite's owner does not
 #: own, each with one reproducer (run first as an explicit example, so the
