@@ -1,5 +1,5 @@
-"""Properties of the forward kinetostatics that hold for every design
-(hypothesis), signs, convergence of the Fig. 6 sweeps, and errors.
+"""Properties of the forward kinetostatics that hold for every design,
+checked through the Python API with hypothesis, and the solve's errors.
 
 * global equilibrium: the wrench the body and its actuators transmit to the
   base equals the external loads (actuator forces are internal);
@@ -8,10 +8,12 @@
 * symmetries: mirroring the actuator layout mirrors the shape; rotating it
   about the axis rotates the shape; two equal TCAs opposite each other only
   stretch the body;
-* sign: a heated extension TCA at +x pushes and bends the body toward -x;
-* every Fig. 6 temperature converges both cold and warm-started;
 * failures raise ConvergenceError with ``residual`` and ``iterations``; bad
   input raises ValueError naming the field.
+
+The same properties on seeded designs, the signs, interior anchors, coil
+contact and the Fig. 6 sweeps are the Rust tests in tests/properties.rs; here
+they are checked at the API (hypothesis designs built from Python objects).
 
 Frame: base at the origin, reference tangent +z. SI units, temperatures in C.
 """
@@ -35,8 +37,9 @@ FloatArray = npt.NDArray[np.float64]
 G0 = 9.81
 TCA40 = manipulator_tca(0.040)  # the paper's manipulator TCA for a 40 mm body
 
-# Modest example counts: each example is a few shooting solves of ~ms each.
-SETTINGS = settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+# Modest example counts: each example is a few shooting solves of ~ms each; the
+# physics is also checked on 40 seeded designs per property in tests/properties.rs.
+SETTINGS = settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
 # ------------------------------------------------------------ random designs
@@ -115,7 +118,7 @@ def designs(draw: st.DrawFn, nested: bool = False) -> Design:
     ``nested=True``: random anchors. ``nested=False``: one actuator with a random
     span, or several that run base to tip or along consecutive disjoint pieces,
     so that no anchor inside the body is shared or passed by another actuator
-    (see ``test_anchor_inside_the_body_with_other_strings_keeps_equilibrium``)."""
+    (see ``anchor_inside_the_body_with_other_strings_keeps_equilibrium`` in tests/properties.rs)."""
     length = draw(st.floats(0.02, 0.06))
     if draw(st.booleans()):
         d = draw(st.floats(7e-3, 12e-3))
@@ -153,7 +156,7 @@ def designs(draw: st.DrawFn, nested: bool = False) -> Design:
             s0, s1 = 0.0, None
         # tendon tension up to tau r L / EI ~ 0.5 (bends ~30 degrees)
         # TCAs from 40 C: near 25 C a load that closes the coils makes Newton fail
-        # (test_tca_pressed_into_coil_contact_converges)
+        # (tca_pressed_into_coil_contact_converges in tests/properties.rs)
         value = draw(st.floats(40.0, 120.0)) if kind == "tca" else draw(st.floats(0.0, 0.5 * ei / (length * 5e-3)))
         acts.append(ActuatorSpec(kind, x, y, s0, s1, value))
     # Self-weight: an upright column buckles at rho A g L^3 / EI = 7.84; keep the
@@ -214,41 +217,6 @@ def test_base_wrench_balances_external_loads(design: Design) -> None:
     want_m = tip_m + np.cross(sol.tip_position, tip_f) + np.cross(p_int, f) + body.distributed_moment * L
     m_tol = 100 * 1e-10 * (float(k_om.max()) / L + float(k_nu.max()) * L) + 2.0 * trap_err
     np.testing.assert_allclose(sol.base_moment, want_m, rtol=0.0, atol=m_tol)
-
-
-# At an interior anchor the strains jump, so strings passing or sharing it
-# have a kink there; the kink forces are applied together with the anchor loads
-# (src/rod.rs Frozen::anchor_loads).
-@pytest.mark.parametrize(
-    "spans",
-    [
-        [(0.0, None), (0.02, None)],  # the first string passes the second's proximal anchor
-        [(0.0, 0.02), (0.0, 0.02)],  # shared distal anchor inside the body
-        [(0.02, None), (0.02, None)],  # shared proximal anchor inside the body
-    ],
-    ids=["passing", "shared-distal", "shared-proximal"],
-)
-def test_anchor_inside_the_body_with_other_strings_keeps_equilibrium(spans: list[tuple[float, float | None]]) -> None:
-    tip_force = np.array([0.0, 0.005, 0.0])
-    body = Body(0.04, Section.circle(8e-3), 37.8e3, poisson=0.5, tip_force=tip_force)
-    offsets = [(1e-3, 0.0), (1e-3, 0.0)] if spans[1][0] > spans[0][0] else [(1e-3, 0.0), (-1e-3, 1e-3)]
-    acts = [Actuator.tendon(Routing.straight(*xy), s0, s1) for xy, (s0, s1) in zip(offsets, spans)]
-    sol = Robot(body, acts).solve([0.03, 0.03])
-    # same tolerance as test_base_wrench_balances_external_loads: 100 x 1e-10 x EA
-    # (here 1.9e-8 N; the defect is ~6e-6 N)
-    np.testing.assert_allclose(sol.base_force, tip_force, rtol=0.0, atol=100 * 1e-10 * body.stiffness()[0][2, 2])
-
-
-# Coil contact is C1-smoothed over 0.1 um (TcaAt::tension), so Newton converges
-# through contact onset when a passive TCA is pressed.
-@pytest.mark.parametrize("tip_force_y", [0.5e-3, 2.86e-3])
-def test_tca_pressed_into_coil_contact_converges(tip_force_y: float) -> None:
-    length = 0.03125
-    body = Body(length, Section.rectangle(7.8125e-3, 7.8125e-3), 3e4, poisson=0.5, tip_force=(0.0, tip_force_y, 0.0))
-    tca = Tca.from_pitch_angle(length, math.radians(15.0), 1.7e-3, 76.4 * length / 0.04)
-    sol = Robot(body, [Actuator.tca(tca, Routing.straight(0.0, 1.953125e-3))]).solve([25.0])
-    assert sol.tensions[0] < 0.0  # pressed into contact, the TCA pushes back
-    assert sol.tip_position[1] > 0.0
 
 
 # -------------------------------------------------------- reference state
@@ -380,43 +348,6 @@ def test_opposite_equal_tcas_only_stretch(temperature: float, offset: float, ang
         # heated extension TCAs push (tension < 0): the body is stretched
         assert sol.tensions[0] < 0.0
         assert sol.tip_position[2] > 0.04
-
-
-# ------------------------------------------------------------------- sign
-
-
-@pytest.mark.parametrize("temperature", [60.0, 100.0, 160.0])
-def test_heated_extension_tca_at_plus_x_bends_toward_minus_x(temperature: float) -> None:
-    for manipulator in FIG6.manipulators:
-        robot = manipulator.robot(gravity=False)
-        reference = robot.solve([25.0] * len(robot.actuators))
-        sol = robot.solve([temperature] * len(robot.actuators))
-        assert sol.tip_position[0] < reference.tip_position[0] - 1e-3  # further toward -x, by > 1 mm
-        assert np.all(sol.tensions < 0.0)  # a heated extension TCA pushes
-        assert np.all(sol.elongations > 0.0)  # and lengthens
-        assert abs(sol.tip_position[1]) < 1e-12  # planar: the TCAs are symmetric about y = 0
-
-
-# ------------------------------------------------------------ convergence
-
-
-@pytest.mark.parametrize("gravity", [True, False])
-@pytest.mark.parametrize("index", [0, 1])
-def test_fig6_sweeps_converge_cold_and_warm(index: int, gravity: bool) -> None:
-    manipulator = FIG6.manipulators[index]
-    robot = manipulator.robot(gravity)
-    temps = FIG6.temperatures_c
-    rows = [[t] * len(robot.actuators) for t in temps]
-    warm = robot.sweep(rows)
-    cold = [robot.solve(row) for row in rows]  # every temperature from the reference guess
-    for w, c in zip(warm, cold):
-        assert w.residual <= 1e-10 and c.residual <= 1e-10
-        assert 0 <= w.iterations <= 50 and 0 <= c.iterations <= 50 * 11  # incl. fallback continuation
-        # the same solution from both starts (tolerance 1e-10 in strain -> ~1e-11 m)
-        np.testing.assert_allclose(w.positions, c.positions, rtol=0.0, atol=1e-9)
-    # the warm start pays off over the sweep in IVPs (its chord iterations
-    # are one plain IVP each; a cold iteration needs a tangent IVP)
-    assert sum(s.evaluations for s in warm) < sum(s.evaluations for s in cold)
 
 
 # ------------------------------------------------------- errors and input

@@ -60,49 +60,6 @@ def test_reference_temperature_tension_is_the_spring_law(force: float) -> None:
     assert delta == pytest.approx(f11 * force, rel=1e-12, abs=1e-13)
 
 
-@pytest.mark.parametrize("chirality", ["extension", "contraction"])
-@pytest.mark.parametrize("force", [-1e-6, -0.05, -3.0])
-def test_reference_temperature_compression_is_exactly_zero(chirality: str, force: float) -> None:
-    # Coils touch before actuation (d0 = 2 D L / l assumes it): no shortening.
-    assert fig5_tca(chirality).displacement(force, T_REF) == 0.0
-
-
-def classical_spring_compliance(tca: Tca, alpha: float, temperature: float) -> float:
-    """Close-coiled helical spring with direct shear: 8 n Dc^3/(G d^4) (1 + d^2/(2 Dc^2)),
-    mean coil diameter Dc = l cos(alpha)/(n pi)."""
-    n = tca.n_coils
-    dc = tca.fibre_length * math.cos(alpha) / (n * math.pi)
-    d = tca.fibre_diameter(temperature)
-    g = tca.material.shear_modulus(temperature)
-    return 8.0 * n * dc**3 / (g * d**4) * (1.0 + d**2 / (2.0 * dc**2))
-
-
-@pytest.mark.parametrize("alpha0", [1e-3, 3e-3, 1e-2])
-def test_small_pitch_angle_gives_classical_spring(alpha0: float) -> None:
-    tca = Tca.from_pitch_angle(0.01, alpha0, 2e-3, 50.0)
-    ratio = tca.f11(alpha0, T_REF) / classical_spring_compliance(tca, alpha0, T_REF)
-    # Expanding eq (3) with l/n = pi Dc / cos(alpha): the bending term is the
-    # classical one times cos(a) + 2 sin^2(a) G/(cos(a) E) and the shear term
-    # times cos(a) + sin^2(a) G/(cos(a) E), i.e. 1 + (k G/E - 1/2) a^2 + O(a^4)
-    # with k = 2 or 1. With G/E = 0.185 the relative error is at most
-    # 0.32 a^2, so |ratio - 1| <= a^2 holds with a 3x margin (and fails for an
-    # O(a) error).
-    assert abs(ratio - 1.0) <= alpha0**2
-    # ... and it is genuinely second order, not exact by accident.
-    assert abs(ratio - 1.0) >= 0.05 * alpha0**2
-
-
-def test_free_stroke_rises_monotonically_with_temperature() -> None:
-    temps = np.linspace(T_REF, T_MAX, 271)  # every 0.5 C
-    stroke = EXT.free_stroke(temps)
-    assert isinstance(stroke, np.ndarray)
-    assert stroke[0] == 0.0  # no expansion at t_ref, so no stroke
-    # strictly increasing above the onset (t_ref for a free TCA): the smallest
-    # step is ~2.5e-5 m, ten orders above the 1e-15 m solve tolerance.
-    assert np.all(np.diff(stroke) > 0.0)
-    assert stroke[-1] > 0.01  # centimetres at 160 C, as the paper's TCAs
-
-
 @SETTINGS
 @given(t1=temperatures, t2=temperatures, force=st.floats(min_value=-0.2, max_value=0.0))
 def test_loaded_extension_tca_never_shortens_when_heated(t1: float, t2: float, force: float) -> None:
@@ -112,33 +69,6 @@ def test_loaded_extension_tca_never_shortens_when_heated(t1: float, t2: float, f
     # where both are clamped to exactly 0.
     d_lo, d_hi = EXT.displacement(force, lo), EXT.displacement(force, hi)
     assert d_hi >= d_lo - 1e-14
-
-
-def test_contraction_tca_mirrors_extension_under_tension() -> None:
-    # A small tension keeps the contraction TCA's coils open over the step.
-    force, dt = 0.01, 0.01
-    d0 = EXT.displacement(force, T_REF)
-    assert d0 == CON.displacement(force, T_REF)  # tau = 0: chirality is irrelevant
-    slope_ext = (EXT.displacement(force, T_REF + dt) - d0) / dt
-    slope_con = (CON.displacement(force, T_REF + dt) - d0) / dt
-    assert slope_ext > 0.0 > slope_con
-    # The magnitudes differ by the chirality-independent softening of the
-    # loaded spring, 2 b with b = F (df11/dT) / (1 - F df11/ddelta) (G_T and
-    # E_T fall and d grows with T), ~0.35% here, plus the one-sided
-    # difference's truncation, O(dt): measured 0.6% of b at dt = 1 C, so
-    # ~1e-4 of b at dt = 0.01 C. Rounding: 1e-15 m / 0.01 C = 1e-13 m/C,
-    # 1e-9 of the slope.
-    alpha = EXT.pitch_angle(d0)
-    h = np.cbrt(np.finfo(float).eps) * max(1.0, d0)  # central-difference step [m]
-    df11_ddelta = (EXT.f11(EXT.pitch_angle(d0 + h), T_REF) - EXT.f11(EXT.pitch_angle(d0 - h), T_REF)) / (2 * h)
-    df11_dt = (EXT.f11(alpha, T_REF + dt) - EXT.f11(alpha, T_REF)) / dt
-    b = force * df11_dt / (1.0 - force * df11_ddelta)
-    assert b > 0.0
-    # Magnitudes agree to 1%: 2b is 0.35% of the slope, truncation < 0.1%.
-    assert abs(abs(slope_ext) - abs(slope_con)) <= 1e-2 * abs(slope_ext)
-    # And the whole mismatch is that chirality-independent term, to 1% of b
-    # (100x the truncation estimate above).
-    assert (slope_ext + slope_con) / 2.0 == pytest.approx(b, rel=1e-2)
 
 
 # ---------------------------------------------------------------- inverses
@@ -202,26 +132,6 @@ def test_temperature_inverts_displacement(temperature: float, force: float) -> N
     # the smallest d(delta)/dT in range (~5e-5 m/C at 25 C) adds 2e-11 C:
     # 1e-7 C is a 500x margin.
     assert back == pytest.approx(temperature, rel=0, abs=1e-7)
-
-
-@pytest.mark.parametrize("temperature", [30.0, 60.0, 100.0, 160.0])
-def test_blocked_force_pushes_and_is_the_force_at_zero_displacement(temperature: float) -> None:
-    fb = EXT.blocked_force(temperature)
-    assert fb < 0.0  # heated extension TCA pushes on whatever blocks it
-    assert fb == EXT.force(0.0, temperature)  # same definition, same code path
-    # It is the onset load: slightly more compression keeps the coils closed,
-    # slightly less opens them (1e-9 relative >> the 1e-16 rounding of F).
-    assert EXT.displacement(fb * (1 + 1e-9), temperature) == 0.0
-    assert EXT.displacement(fb * (1 - 1e-6), temperature) > 0.0
-    # and the onset temperature under that load is this temperature (1e-7 C:
-    # Brent's 1e-10 C tolerance with margin, as above).
-    assert EXT.onset_temperature(fb) == pytest.approx(temperature, abs=1e-7)
-    # The contraction TCA pulls instead.
-    assert CON.blocked_force(temperature) == pytest.approx(-fb, rel=1e-12)
-
-
-def test_blocked_force_is_zero_at_reference_temperature() -> None:
-    assert EXT.blocked_force(T_REF) == 0.0
 
 
 # ---------------------------------------------------------------- vectorised API
