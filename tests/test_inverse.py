@@ -59,16 +59,6 @@ def test_jacobian_matches_bvp_differences_and_heating_bends_toward_minus_x(squar
     assert np.all(np.diag(c) > 0)
 
 
-def test_forward_and_central_schemes_agree(square40) -> None:  # type: ignore[no-untyped-def]
-    sol = square40.solve([80.0, 120.0])
-    jf, cf = jacobian_and_compliance(sol)  # one variable per leg, forward differences
-    jc, cc = jacobian_and_compliance(sol, scheme="central")
-    assert jf.shape == (6, 2)
-    # forward differences: relative error ~sqrt(eps) x curvature ~1e-7; 1e-4 is generous
-    assert np.abs(jf - jc).max() < 1e-4 * np.abs(jc).max()
-    assert np.abs(cf - cc).max() < 1e-4 * np.abs(cc).max()
-
-
 def test_tip_position_reaches_a_reachable_target(square40) -> None:  # type: ignore[no-untyped-def]
     truth = square40.solve([90.0, 140.0])
     res = tip_position(square40, truth.tip_position, groups=[0, 1], start=[25.0, 25.0])
