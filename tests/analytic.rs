@@ -59,7 +59,10 @@ fn pure_tip_moment_gives_circular_arc() {
                 // curvature along the whole body, to the solver tolerance (2.5e-9 1/m, margin 4)
                 assert!((w[axis] - k).abs() < 1e-8, "axis {axis} k {k}: {w}");
                 // pure moment: no internal force, so no axial or shear strain
-                assert!((nu - Vector3::z()).amax() < 1e-10, "axis {axis} k {k}: {nu}");
+                assert!(
+                    (nu - Vector3::z()).amax() < 1e-10,
+                    "axis {axis} k {k}: {nu}"
+                );
             }
         }
     }
@@ -102,7 +105,8 @@ fn carlson_rf(mut x: f64, mut y: f64, mut z: f64) -> f64 {
         if (x - a).abs().max((y - a).abs()).max((z - a).abs()) < 1e-4 * a {
             let (dx, dy, dz) = (1.0 - x / a, 1.0 - y / a, 1.0 - z / a);
             let (e2, e3) = (dx * dy - dz * dz, dx * dy * dz);
-            return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / a.sqrt();
+            return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0)
+                / a.sqrt();
         }
     }
     unreachable!("R_F duplication converges in ~20 steps")
@@ -245,12 +249,20 @@ fn large_tip_load_matches_bisshopp_drucker_elastica() {
         let (t2, t4, t8) = (runs[0][j], runs[1][j], runs[2][j]);
         // compliance matters at f = 2: the tip differs from the elastica by 0.3-2 % of L
         assert!((t2.x - y).abs() > 1e-3, "alpha {alpha}");
-        let (r24, r48) = (2.0 * t4 - t2, 2.0 * t8 - t4); // eliminate c1
-        let limit = (4.0 * r48 - r24) / 3.0; // eliminate c2
+        // eliminate c1, then c2
+        let (r24, r48) = (2.0 * t4 - t2, 2.0 * t8 - t4);
+        let limit = (4.0 * r48 - r24) / 3.0;
+
         // 4 digits: |error| < 5e-5 L. The c3/f^3 remainder is ~(2 %)^3 / 64 ~ 1e-7,
         // RK4 (100 steps) and the solver tolerance ~1e-9.
-        assert!((limit.x - y).abs() < 5e-5, "alpha {alpha}: {limit} vs y {y}");
-        assert!((limit.z - x).abs() < 5e-5, "alpha {alpha}: {limit} vs x {x}");
+        assert!(
+            (limit.x - y).abs() < 5e-5,
+            "alpha {alpha}: {limit} vs y {y}"
+        );
+        assert!(
+            (limit.z - x).abs() < 5e-5,
+            "alpha {alpha}: {limit} vs x {x}"
+        );
         assert!(limit.y.abs() < 1e-12);
     }
 }
@@ -377,11 +389,17 @@ fn helical_tendon_small_tension_matches_linear_theory() {
         let tip = sol.tip_position();
         // neglected terms are of relative order kappa L and (twist angle): ~2e-3;
         // 5e-3 leaves margin 2.5
-        assert!((tip.y - y_lin).abs() <= 5e-3 * y_lin.abs(), "turns {turns}: {tip}");
+        assert!(
+            (tip.y - y_lin).abs() <= 5e-3 * y_lin.abs(),
+            "turns {turns}: {tip}"
+        );
         assert!(tip.x.abs() < 5e-3 * y_lin.abs(), "turns {turns}: {tip}");
         let twist = -tau * a * a * w / (gj * c);
         for om in &sol.omega {
-            assert!((om.z - twist).abs() <= 5e-3 * twist.abs(), "turns {turns}: {om}");
+            assert!(
+                (om.z - twist).abs() <= 5e-3 * twist.abs(),
+                "turns {turns}: {om}"
+            );
         }
     }
 }

@@ -55,7 +55,10 @@ fn fig6_radii_with_gravity() {
             let r = inner_edge_radius(&robot, &sol) * 1e3;
             // quoted to 0.01 mm; the solve (strain 1e-10) and RK4 (100 steps, arcs
             // to ~1e-12 m) move the radius by far less than 0.005 mm
-            assert!((r - want).abs() < 0.005, "{name} at {t} C: {r:.4} mm vs {want}");
+            assert!(
+                (r - want).abs() < 0.005,
+                "{name} at {t} C: {r:.4} mm vs {want}"
+            );
             // hotter bends more: the radius shrinks
             assert!(r < last);
             last = r;

@@ -227,7 +227,10 @@ fn tca_pressed_into_coil_contact_converges() {
         };
         let act = tca_actuator(span_tca(length), routing, 0.0, length);
         let sol = solve_default(&Robot::new(body, vec![act]).unwrap(), &[25.0]);
-        assert!(sol.tensions[0] < 0.0, "pressed into contact, the TCA pushes back");
+        assert!(
+            sol.tensions[0] < 0.0,
+            "pressed into contact, the TCA pushes back"
+        );
         assert!(sol.tip_position().y > 0.0);
     }
 }
@@ -263,11 +266,20 @@ fn reference_temperature_keeps_reference_shape() {
         // The reference guess is the exact solution: zero residual, no Newton step.
         assert_eq!(sol.iterations, 0, "case {case}");
         for (k, (w, nu)) in sol.omega.iter().zip(&sol.nu).enumerate() {
-            assert!((w - omega_star).amax() <= 1e-12, "case {case} node {k}: {w}");
-            assert!((nu - Vector3::z()).amax() <= 1e-12, "case {case} node {k}: {nu}");
+            assert!(
+                (w - omega_star).amax() <= 1e-12,
+                "case {case} node {k}: {w}"
+            );
+            assert!(
+                (nu - Vector3::z()).amax() <= 1e-12,
+                "case {case} node {k}: {nu}"
+            );
         }
         assert!(sol.tensions.iter().all(|t| t.abs() < 1e-12), "case {case}");
-        assert!(sol.elongations.iter().all(|e| e.abs() < 1e-15), "case {case}");
+        assert!(
+            sol.elongations.iter().all(|e| e.abs() < 1e-15),
+            "case {case}"
+        );
         if omega_star == Vector3::zeros() {
             for (p, s) in sol.positions.iter().zip(&sol.s) {
                 assert!(p.x.abs() <= 1e-15 && p.y.abs() <= 1e-15, "case {case}: {p}");
@@ -299,7 +311,10 @@ fn mirrored_layout_mirrors_shape() {
         // same equations mirrored; each solve meets its tolerance (strain 1e-10 ->
         // positions ~L * 1e-10 * (K ratio) ~1e-11 m); 1e-9 m leaves a margin of ~100
         for (pa, pb) in a.positions.iter().zip(&b.positions) {
-            assert!((pb - pa.component_mul(&mirror)).amax() <= 1e-9, "case {case}");
+            assert!(
+                (pb - pa.component_mul(&mirror)).amax() <= 1e-9,
+                "case {case}"
+            );
         }
         for (ta, tb) in a.tensions.iter().zip(&b.tensions) {
             assert!((ta - tb).abs() <= 1e-12 + 1e-7 * ta.abs(), "case {case}");
@@ -360,7 +375,9 @@ fn rotated_layout_rotates_shape() {
         let (_, ix, _, _) = section.properties();
         let tension = 0.2 * d.youngs_modulus * ix / (d.length * 5e-3);
         let n = d.specs.len();
-        let inputs: Vec<f64> = (0..n).map(|k| tension * (k + 1) as f64 / n as f64).collect();
+        let inputs: Vec<f64> = (0..n)
+            .map(|k| tension * (k + 1) as f64 / n as f64)
+            .collect();
         let a = solve_default(&robot(0.0), &inputs);
         let b = solve_default(&robot(angle), &inputs);
         // tolerance as for the mirror test
@@ -434,7 +451,10 @@ fn heated_extension_tcas_of_fig6_bend_toward_minus_x() {
             let sol = solve_default(&robot, &vec![temperature; n]);
             // further toward -x, by > 1 mm
             assert!(sol.tip_position().x < reference.tip_position().x - 1e-3);
-            assert!(sol.tensions.iter().all(|&t| t < 0.0), "a heated extension TCA pushes");
+            assert!(
+                sol.tensions.iter().all(|&t| t < 0.0),
+                "a heated extension TCA pushes"
+            );
             assert!(sol.elongations.iter().all(|&e| e > 0.0), "and lengthens");
             // planar: the TCAs are symmetric about y = 0
             assert!(sol.tip_position().y.abs() < 1e-12);
@@ -464,9 +484,8 @@ fn fig6_sweeps_converge_cold_and_warm() {
             }
             // the warm start pays off over the sweep in IVPs (its chord iterations are
             // one plain IVP each; a cold iteration needs a tangent IVP)
-            let ivps = |s: &[tcarod::shooting::Solution]| {
-                s.iter().map(|x| x.evaluations).sum::<usize>()
-            };
+            let ivps =
+                |s: &[tcarod::shooting::Solution]| s.iter().map(|x| x.evaluations).sum::<usize>();
             assert!(ivps(&warm) < ivps(&cold), "gravity {gravity}");
         }
     }

@@ -70,7 +70,10 @@ fn small_pitch_angle_gives_classical_spring() {
         // so |ratio - 1| <= a^2 holds with a 3x margin (and fails for an O(a) error).
         assert!((ratio - 1.0).abs() <= alpha0 * alpha0, "{alpha0}: {ratio}");
         // ... and it is genuinely second order, not exact by accident.
-        assert!((ratio - 1.0).abs() >= 0.05 * alpha0 * alpha0, "{alpha0}: {ratio}");
+        assert!(
+            (ratio - 1.0).abs() >= 0.05 * alpha0 * alpha0,
+            "{alpha0}: {ratio}"
+        );
     }
 }
 
@@ -81,8 +84,8 @@ fn free_stroke_rises_monotonically_with_temperature() {
         .map(|k| ext.free_stroke(T_REF + 0.5 * k as f64).unwrap()) // every 0.5 C
         .collect();
     assert_eq!(stroke[0], 0.0); // no expansion at t_ref, so no stroke
-    // strictly increasing above the onset (t_ref for a free TCA): the smallest step
-    // is ~2.5e-5 m, ten orders above the 1e-15 m solve tolerance.
+                                // strictly increasing above the onset (t_ref for a free TCA): the smallest step
+                                // is ~2.5e-5 m, ten orders above the 1e-15 m solve tolerance.
     assert!(stroke.windows(2).all(|w| w[1] > w[0]));
     assert!(stroke[270] > 0.01); // centimetres at 160 C, as the paper's TCAs
 }
@@ -125,14 +128,20 @@ fn blocked_force_pushes_and_is_the_force_at_zero_displacement() {
         let fb = ext.blocked_force(temperature).unwrap();
         assert!(fb < 0.0); // heated extension TCA pushes on whatever blocks it
         assert_eq!(fb, ext.force(0.0, temperature).unwrap()); // same definition
-        // It is the onset load: slightly more compression keeps the coils closed,
-        // slightly less opens them (1e-9 relative >> the 1e-16 rounding of F).
-        assert_eq!(ext.displacement(fb * (1.0 + 1e-9), temperature).unwrap(), 0.0);
+                                                              // It is the onset load: slightly more compression keeps the coils closed,
+                                                              // slightly less opens them (1e-9 relative >> the 1e-16 rounding of F).
+        assert_eq!(
+            ext.displacement(fb * (1.0 + 1e-9), temperature).unwrap(),
+            0.0
+        );
         assert!(ext.displacement(fb * (1.0 - 1e-6), temperature).unwrap() > 0.0);
         // and the onset temperature under that load is this temperature (1e-7 C:
         // Brent's 1e-10 C tolerance with margin)
         let onset = ext.temperature(fb, 0.0).unwrap();
-        assert!((onset - temperature).abs() <= 1e-7, "{onset} vs {temperature}");
+        assert!(
+            (onset - temperature).abs() <= 1e-7,
+            "{onset} vs {temperature}"
+        );
         // The contraction TCA pulls instead.
         let fc = con.blocked_force(temperature).unwrap();
         assert!((fc + fb).abs() <= 1e-12 * fb.abs());
@@ -150,5 +159,8 @@ fn material_preset_reproduces_documented_values() {
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
     assert!(close(m.youngs_modulus(25.0).unwrap(), 1.198e9));
     assert!(close(m.shear_modulus(25.0).unwrap(), 2.218e8));
-    assert!(close(m.youngs_modulus(160.0).unwrap(), 1.198e9 - 1.3e6 * 135.0));
+    assert!(close(
+        m.youngs_modulus(160.0).unwrap(),
+        1.198e9 - 1.3e6 * 135.0
+    ));
 }

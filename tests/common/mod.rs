@@ -19,7 +19,14 @@ pub const E_B: f64 = 37.8e3;
 
 /// A weightless straight EcoFlex rod of the Fig. 6 circle's section.
 pub fn weightless_body() -> Body {
-    Body::new(LENGTH, Section::Circle { diameter: DIAMETER }, E_B, 0.5, 0.0).unwrap()
+    Body::new(
+        LENGTH,
+        Section::Circle { diameter: DIAMETER },
+        E_B,
+        0.5,
+        0.0,
+    )
+    .unwrap()
 }
 
 /// A constant-tension tendon from `s_start` to `s_end` \[m\].
@@ -46,5 +53,8 @@ pub fn solve_default(robot: &Robot, inputs: &[f64]) -> Solution {
 /// Largest absolute difference of two vector lists.
 pub fn max_diff(a: &[nalgebra::Vector3<f64>], b: &[nalgebra::Vector3<f64>]) -> f64 {
     assert_eq!(a.len(), b.len());
-    a.iter().zip(b).map(|(x, y)| (x - y).amax()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).amax())
+        .fold(0.0, f64::max)
 }
