@@ -126,7 +126,7 @@ def test_cold_and_warm_sweeps_agree(result: Fig6Result) -> None:
             # previous solution's exact Jacobian (chord steps, one plain IVP each,
             # counted as iterations), so a warm step takes 3-12 here; cold steps
             # take fewer but costlier iterations (a tangent IVP each), so the
-            # work comparison is in IVPs: test_rod_properties.py
+            # work comparison is in IVPs: tests/properties.rs
             assert max(curve.iterations_warm[1:]) <= 12
 
 
