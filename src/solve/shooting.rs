@@ -14,12 +14,14 @@
 //! fails falls back on homotopy continuation
 //! ([`crate::solve::continuation`]).
 
+use std::time::{Duration, Instant};
+
 use nalgebra::{DMatrix, Matrix3, Vector3};
 
 use super::cancel;
 use super::continuation::continuation;
 use super::newton::{newton_from, NewtonOptions, NewtonResult, Status, System};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, StopReason};
 use crate::rod::{
     integrate, integrate_tangent, IvpResult, IvpSpec, Robot, TangentIvp, TangentSeeds,
 };
@@ -37,19 +39,33 @@ pub struct SolveOptions {
     pub steps: usize,
     /// Convergence tolerance on the max-norm of the dimensionless residual.
     pub tol: f64,
-    /// Newton iteration limit.
+    /// Newton iteration limit (per Newton run: the direct solve and each
+    /// continuation step).
     pub max_iter: usize,
     /// Smallest line-search step before giving up.
     pub min_step: f64,
+    /// IVP budget of one solve, continuation included (a tangent IVP counts
+    /// as one); exhausting it raises [`Error::NotConverged`] with
+    /// [`crate::StopReason::Budget`].
+    pub max_evaluations: usize,
+    /// Wall-time limit of one solve (`None`: none); passing it raises
+    /// [`Error::NotConverged`] with [`crate::StopReason::Budget`].
+    pub time_limit: Option<Duration>,
 }
 
+/// Default IVP budget of one solve ([`SolveOptions::max_evaluations`]): 40
+/// times the most a converging design of the issue-10 benchmark used
+/// (5,252 IVPs before this budget existed), so that it only stops runaway
+/// solves.
+pub const DEFAULT_MAX_EVALUATIONS: usize = 20_000;
+
 impl SolveOptions {
-    /// The Newton options of these.
+    /// The Newton options of these (the IVP budget, no deadline, no stall
+    /// detection; a forward solve sets those per Newton run).
     pub fn newton(&self) -> NewtonOptions {
         NewtonOptions {
-            tol: self.tol,
-            max_iter: self.max_iter,
-            min_step: self.min_step,
+            max_evaluations: self.max_evaluations,
+            ..NewtonOptions::new(self.tol, self.max_iter, self.min_step)
         }
     }
 }
@@ -61,6 +77,8 @@ impl Default for SolveOptions {
             tol: 1e-10,
             max_iter: 50,
             min_step: 1e-6,
+            max_evaluations: DEFAULT_MAX_EVALUATIONS,
+            time_limit: None,
         }
     }
 }
@@ -83,6 +101,14 @@ impl SolveOptions {
         }
         if !(self.min_step > 0.0 && self.min_step < 1.0) {
             return Err(Error::param("min_step", self.min_step, "0 < min_step < 1"));
+        }
+        if self.max_evaluations == 0 {
+            return Err(Error::param("max_evaluations", 0.0, ">= 1"));
+        }
+        if let Some(t) = self.time_limit {
+            if t.is_zero() {
+                return Err(Error::param("time_limit [s]", 0.0, "> 0"));
+            }
         }
         Ok(())
     }
@@ -178,6 +204,22 @@ pub fn shoot_jacobian(
     steps: usize,
     record: bool,
 ) -> Result<ResidualAndJacobian> {
+    Ok(shoot_jacobian_side(robot, inputs, loads, x, steps, record, false)?.0)
+}
+
+/// [`shoot_jacobian`] with the side of the generalised derivative at an
+/// actuator's onset of tension (see [`tension_slope`]); also returns whether
+/// any actuator is at its onset.
+#[allow(clippy::too_many_arguments)] // the shooting problem's parts
+pub(crate) fn shoot_jacobian_side(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    steps: usize,
+    record: bool,
+    slack: bool,
+) -> Result<(ResidualAndJacobian, bool)> {
     let len = robot.body.length;
     let na = robot.actuators.len();
     let nx = 6 + na;
@@ -185,12 +227,14 @@ pub fn shoot_jacobian(
     let u0 = Vector3::new(x[3], x[4], x[5]) / len;
     let mut tau = Vec::with_capacity(na);
     let mut seeds = TangentSeeds::zeros(na, nx);
+    let mut onset = false;
     for k in 0..3 {
         seeds.nu0[(k, k)] = 1.0;
         seeds.omega0[(k, 3 + k)] = 1.0 / len;
     }
     for (i, a) in robot.actuators.iter().enumerate() {
-        let (t, dt_de, _) = a.law.tension_derivatives(x[6 + i] * len, inputs[i])?;
+        let (t, dt_de, at) = tension_slope(a.law.as_ref(), x[6 + i] * len, inputs[i], len, slack)?;
+        onset |= at;
         tau.push(t);
         seeds.tensions[(i, 6 + i)] = dt_de * len;
     }
@@ -221,7 +265,52 @@ pub fn shoot_jacobian(
         }
         jac[(6 + i, 6 + i)] -= 1.0;
     }
-    Ok((r, jac, tan, tau))
+    Ok(((r, jac, tan, tau), onset))
+}
+
+/// Relative band (of the body length) of elongation within which a slack
+/// actuator counts as at its onset of tension (see [`tension_slope`]).
+pub const ONSET_BAND: f64 = 1e-12;
+
+/// Tension \[N\] and its slope \[N/m\] in the elongation for the Newton
+/// Jacobian, and whether the law is at the onset of its tension (a kink
+/// between a slack side, zero tension and slope, and a taut side within
+/// [`ONSET_BAND`]` L` of elongation). At the onset the slope is a
+/// generalised (Clarke) derivative: the taut side's (`slack == false`) or
+/// zero (`slack == true`). A cold guess sits exactly at the onset of a
+/// linear tendon (zero tension), where rounding of `pull + elongation`
+/// decides the side; there the merit has no descent along one of the two
+/// Newton directions (measured on designs #532 and #719 of the benchmark:
+/// the merit grows like `t^2` from `t = 0`), so a failed line search is
+/// retried with the other side ([`Shooting`]'s `refine`).
+pub fn tension_slope(
+    law: &dyn crate::rod::ForceLaw,
+    elongation: f64,
+    input: f64,
+    length: f64,
+    slack: bool,
+) -> Result<(f64, f64, bool)> {
+    let (t, dt, _) = law.tension_derivatives(elongation, input)?;
+    let h = ONSET_BAND * length;
+    let onset = if t == 0.0 && dt == 0.0 {
+        // slack: is the taut side within the band?
+        match law.tension_derivatives(elongation + h, input) {
+            Ok((_, dtp, _)) if dtp > 0.0 => Some(dtp),
+            _ => None,
+        }
+    } else if dt > 0.0 && t >= 0.0 {
+        // taut: is the slack side within the band?
+        match law.tension_derivatives(elongation - h, input) {
+            Ok((tm, dtm, _)) if tm == 0.0 && dtm == 0.0 => Some(dt),
+            _ => None,
+        }
+    } else {
+        None
+    };
+    Ok(match onset {
+        Some(taut) => (t, if slack { 0.0 } else { taut }, true),
+        None => (t, dt, false),
+    })
 }
 
 /// Factors that make the tip balance dimensionless: force residuals \[N\] are
@@ -539,6 +628,10 @@ pub struct Shooting<'a> {
     /// the exact Jacobian of the full grid (`None`).
     jacobian_steps: Option<usize>,
     last: Option<LastEvaluation>,
+    /// Whether the last Jacobian had an actuator at its onset of tension.
+    at_onset: bool,
+    /// Take the slack side's derivative at an onset (see [`tension_slope`]).
+    slack_onset: bool,
 }
 
 /// Fewest RK4 steps of the coarse-grid Newton Jacobian (below ten times
@@ -571,6 +664,8 @@ impl<'a> Shooting<'a> {
             tangent_evaluations: 0,
             jacobian_steps,
             last: None,
+            at_onset: false,
+            slack_onset: false,
         }
     }
     /// The last plain IVP if it was at `x`: `(residual, ivp, tensions)`.
@@ -604,11 +699,30 @@ impl System for Shooting<'_> {
         // one, which Newton's convergence test on the full grid absorbs in a
         // chord step or two; the full-grid Jacobian after a failed line search
         let steps = self.jacobian_steps.unwrap_or(self.steps);
-        let (r, j, _, _) = shoot_jacobian(self.robot, self.inputs, self.loads, x, steps, false)?;
+        let ((r, j, _, _), onset) = shoot_jacobian_side(
+            self.robot,
+            self.inputs,
+            self.loads,
+            x,
+            steps,
+            false,
+            self.slack_onset,
+        )?;
+        self.at_onset = onset;
         Ok((r, j))
     }
+    /// First the full grid's Jacobian; then, if an actuator was at its
+    /// onset of tension, the slack side's derivative there (see
+    /// [`tension_slope`]).
     fn refine(&mut self) -> bool {
-        self.jacobian_steps.take().is_some()
+        if self.jacobian_steps.take().is_some() {
+            return true;
+        }
+        if self.at_onset && !self.slack_onset {
+            self.slack_onset = true;
+            return true;
+        }
+        false
     }
     /// `4 eps max(fs (k_nu |nu| + |F| + sum |tau|), ms (k_omega |omega| L + |M| + sum |r_i| |tau_i|))`:
     /// the rounding of the largest terms of the tip balance (32)-(33),
@@ -641,19 +755,55 @@ impl System for Shooting<'_> {
     }
 }
 
-/// Work counters carried through a solve and its fallbacks.
+/// Work counters carried through a solve and its fallbacks, and the solve's
+/// budget.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct Work {
     pub iterations: usize,
     pub evaluations: usize,
+    /// IVP budget of the whole solve (0: none).
+    pub max_evaluations: usize,
+    /// Deadline of the whole solve.
+    pub deadline: Option<Instant>,
 }
 
 impl Work {
+    /// Counters at zero and the budget of `opts` from now.
+    pub fn start(opts: &SolveOptions) -> Self {
+        Work {
+            max_evaluations: opts.max_evaluations,
+            deadline: opts.time_limit.map(|t| Instant::now() + t),
+            ..Default::default()
+        }
+    }
     fn add(&mut self, sys: &Shooting<'_>, iterations: usize) {
         self.iterations += iterations;
         self.evaluations += sys.evaluations;
     }
+    /// Whether the budget is spent.
+    pub fn exhausted(&self) -> bool {
+        (self.max_evaluations > 0 && self.evaluations >= self.max_evaluations)
+            || self.deadline.is_some_and(|d| Instant::now() >= d)
+    }
+    /// The Newton options of one run within the remaining budget.
+    fn newton_options(&self, opts: &SolveOptions) -> NewtonOptions {
+        let max_evaluations = if self.max_evaluations == 0 {
+            usize::MAX
+        } else {
+            self.max_evaluations.saturating_sub(self.evaluations)
+        };
+        NewtonOptions {
+            max_evaluations,
+            deadline: self.deadline,
+            stall_window: STALL_WINDOW,
+            ..opts.newton()
+        }
+    }
 }
+
+/// Stall window of forward Newton runs (see
+/// [`NewtonOptions::stall_window`]): they have continuation to fall back on.
+pub const STALL_WINDOW: usize = 4;
 
 /// Newton shooting from `x0`; returns the Newton result and the IVP at its
 /// solution (if it was the last one integrated). Adds the work to `work`
@@ -670,7 +820,8 @@ pub(crate) fn newton_shooting(
     work: &mut Work,
 ) -> Result<(NewtonResult, Option<FinalIvp>)> {
     let mut sys = Shooting::new(robot, inputs, loads, opts.steps, record);
-    let out = newton_from(&mut sys, x0, &opts.newton(), "forward shooting", jac0);
+    let nopts = work.newton_options(opts);
+    let out = newton_from(&mut sys, x0, &nopts, "forward shooting", jac0);
     match out {
         Ok(nr) => {
             work.add(&sys, nr.iterations);
@@ -756,6 +907,16 @@ pub fn solve(
     solve_loaded(robot, inputs, &Loads::of(robot), opts, warm)
 }
 
+pub(crate) fn is_budget_error(e: &Error) -> bool {
+    matches!(
+        e,
+        Error::NotConverged {
+            stop: StopReason::Budget,
+            ..
+        }
+    )
+}
+
 pub(crate) fn is_input_error(e: &Error) -> bool {
     matches!(
         e,
@@ -797,7 +958,7 @@ pub fn solve_loaded(
         }
     }
     cancel::check()?;
-    let mut work = Work::default();
+    let mut work = Work::start(opts);
     let mut x0 = initial_guess(robot, inputs, warm);
     if warm.is_none() {
         linear_guess(robot, inputs, loads, &mut x0);
@@ -805,10 +966,26 @@ pub fn solve_loaded(
     let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
     match newton_shooting(robot, inputs, loads, opts, &x0, jac0, true, &mut work) {
         Ok((nr, last)) => solution_from(robot, inputs, loads, opts, nr, last, &mut work),
-        Err(e) if is_input_error(&e) => Err(e),
+        Err(e) if is_input_error(&e) || is_budget_error(&e) => Err(e),
         Err(first) => {
             continuation(robot, inputs, loads, opts, warm, &mut work).map_err(|e| match e {
                 Error::Interrupted => e,
+                Error::NotConverged {
+                    stop: StopReason::Budget,
+                    residual,
+                    reason,
+                    ..
+                } => Error::NotConverged {
+                    solver: "forward shooting",
+                    iterations: work.iterations,
+                    evaluations: work.evaluations,
+                    residual: match &first {
+                        Error::NotConverged { residual: r0, .. } => r0.min(residual),
+                        _ => residual,
+                    },
+                    stop: StopReason::Budget,
+                    reason,
+                },
                 Error::NotConverged {
                     residual,
                     stop,
@@ -872,7 +1049,7 @@ pub fn solve_tip(
     if warm.is_none() {
         linear_guess(robot, inputs, loads, &mut x0);
     }
-    let mut work = Work::default();
+    let mut work = Work::start(opts);
     let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
     match newton_shooting(robot, inputs, loads, opts, &x0, jac0, false, &mut work) {
         Ok((nr, last)) => {
@@ -895,8 +1072,17 @@ pub fn solve_tip(
                 newton_jacobian: nr.jacobian,
             })
         }
-        Err(e) if is_input_error(&e) => Err(e),
+        Err(e) if is_input_error(&e) || is_budget_error(&e) => Err(e),
         Err(_) => {
+            // the fallback gets what is left of the budget
+            let rest = SolveOptions {
+                max_evaluations: opts.max_evaluations.saturating_sub(work.evaluations).max(1),
+                time_limit: work.deadline.map(|d| {
+                    d.saturating_duration_since(Instant::now())
+                        .max(Duration::from_nanos(1))
+                }),
+                ..*opts
+            };
             let w = match warm {
                 Some(w) => Some(assemble(
                     robot,
@@ -910,7 +1096,7 @@ pub fn solve_tip(
                 None => None,
             };
             let mut s =
-                TipSolution::from_solution(solve_loaded(robot, inputs, loads, opts, w.as_ref())?);
+                TipSolution::from_solution(solve_loaded(robot, inputs, loads, &rest, w.as_ref())?);
             s.iterations += work.iterations;
             s.evaluations += work.evaluations;
             Ok(s)
