@@ -242,6 +242,40 @@ pub fn random_designs(seed: u64, n: usize) -> Vec<Design> {
 /// One attempt; `None` when the draw is rejected (too floppy, or an actuator
 /// that does not fit).
 fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
+    let (body, draw) = draw_body(rng)?;
+    let n_act = 1 + rng.below(4);
+    let mut actuators = Vec::with_capacity(n_act);
+    let mut inputs = Vec::with_capacity(n_act);
+    let mut kinds = Vec::with_capacity(n_act);
+    for _ in 0..n_act {
+        let (act, input, kind) = draw_actuator(rng, &draw, n_act)?;
+        actuators.push(act);
+        inputs.push(input);
+        kinds.push(kind);
+    }
+    let robot = Robot::new(body, actuators).ok()?;
+    robot.check_inputs(&inputs).ok()?;
+    Some(Design {
+        index,
+        robot,
+        inputs,
+        kinds,
+    })
+}
+
+/// Sizes of a drawn body that its actuators' draws need.
+#[derive(Debug, Clone, Copy)]
+struct BodyDraw {
+    length: f64,
+    e: f64,
+    ei: f64,
+    section: Section,
+    half_min: f64,
+}
+
+/// The body of one attempt (sizes, material, gravity, tip loads); `None`
+/// when rejected as too floppy.
+fn draw_body(rng: &mut SplitMix64) -> Option<(Body, BodyDraw)> {
     let length = rng.log_range(0.010, 0.300);
     let e = rng.log_range(10e3, 10e6);
     let poisson = rng.range(0.45, 0.5);
@@ -279,110 +313,120 @@ fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
             Section::Rectangle { width, height } => width.min(height),
             Section::Custom { .. } => unreachable!(),
         };
-    let n_act = 1 + rng.below(4);
-    let mut actuators = Vec::with_capacity(n_act);
-    let mut inputs = Vec::with_capacity(n_act);
-    let mut kinds = Vec::with_capacity(n_act);
-    for _ in 0..n_act {
-        let kind = match rng.below(3) {
-            0 => ActuatorKind::Tca,
-            1 => ActuatorKind::ConstantTension,
-            _ => ActuatorKind::LinearTendon,
-        };
-        // anchors: each inside the body with probability 0.4
-        let s_start = if rng.chance(0.4) {
-            rng.range(0.0, 0.5) * length
-        } else {
-            0.0
-        };
-        let s_end = if rng.chance(0.4) {
-            rng.range(s_start / length + 0.2, 1.0) * length
-        } else {
-            length
-        };
-        let span = s_end - s_start;
-        // the actuator's own radius: a TCA's coil, a tendon's sheath
-        let own = match kind {
-            ActuatorKind::Tca => rng.range(0.3e-3, 2.0e-3).min(0.4 * half_min) * 0.5,
-            _ => 0.05 * half_min,
-        };
-        let helix = rng.chance(0.3);
-        let routing = if helix {
-            let radius = rng.range(0.3, 0.85) * (half_min - own);
-            let turns = rng.range(-1.5, 1.5);
-            Routing::Helix {
-                radius,
-                rate: 2.0 * PI * turns / span,
-                phase: rng.range(0.0, 2.0 * PI),
-            }
-        } else {
-            let theta = rng.range(0.0, 2.0 * PI);
-            let r = rng.range(0.3, 0.85) * (section.edge_distance(theta) - own);
-            Routing::Straight {
-                x: r * theta.cos(),
-                y: r * theta.sin(),
-            }
-        };
-        let offset = match routing {
-            Routing::Straight { x, y } => x.hypot(y),
-            Routing::Helix { radius, .. } => radius,
-        };
-        // tendon curvature: a tip rotation theta over the span, capped so that
-        // the body's surface strain kappa * (half width) stays <= 0.3, and the
-        // tension E I kappa / r capped at 0.2 E A / (actuators): the body
-        // must not be crushed axially (nu_z = 1 - tau / E A)
-        let theta = rng.range(0.1, 3.0);
-        let half_max = match section {
-            Section::Rectangle { width, height } => 0.5 * width.max(height),
-            _ => half_min,
-        };
-        let ea = e * section.properties().0;
-        let kappa = (theta / span)
-            .min(0.3 / half_max)
-            .min(0.2 * ea / n_act as f64 * offset / ei);
-        let (law, input): (Arc<dyn crate::rod::ForceLaw>, f64) = match kind {
-            ActuatorKind::Tca => {
-                let chirality = if rng.chance(0.7) {
-                    Chirality::Extension
-                } else {
-                    Chirality::Contraction
-                };
-                let alpha0 = rng.range(10.0, 20.0).to_radians();
-                let turns = span * rng.range(1000.0, 2500.0);
-                let tca = Tca::from_pitch_angle(
-                    span,
-                    alpha0,
-                    2.0 * own,
-                    turns,
-                    chirality,
-                    Material::silver_coated_nylon(),
-                )
-                .ok()?;
-                (Arc::new(TcaLaw(tca)), rng.range(25.0, 160.0))
-            }
-            ActuatorKind::ConstantTension => (Arc::new(ConstantTension), ei * kappa / offset),
-            ActuatorKind::LinearTendon => {
-                // stiffness k against the bending stiffness seen at the tendon,
-                // E I / (r^2 span); pull for curvature kappa:
-                // k (pull - kappa r span) = E I kappa / r
-                let k_body = ei / (offset * offset * span);
-                let k = rng.log_range(1.0, 100.0) * k_body;
-                let pull = (ei * kappa / offset) / k + kappa * offset * span;
-                (Arc::new(LinearTendon { stiffness: k }), pull)
-            }
-        };
-        actuators.push(Actuator::new(routing, s_start, s_end, law));
-        inputs.push(input);
-        kinds.push(kind);
-    }
-    let robot = Robot::new(body, actuators).ok()?;
-    robot.check_inputs(&inputs).ok()?;
-    Some(Design {
-        index,
-        robot,
-        inputs,
-        kinds,
-    })
+    Some((
+        body,
+        BodyDraw {
+            length,
+            e,
+            ei,
+            section,
+            half_min,
+        },
+    ))
+}
+
+/// One actuator of a body drawn by [`draw_body`] among `n_act`: the
+/// actuator, its input and its kind; `None` when it does not fit.
+fn draw_actuator(
+    rng: &mut SplitMix64,
+    b: &BodyDraw,
+    n_act: usize,
+) -> Option<(Actuator, f64, ActuatorKind)> {
+    let BodyDraw {
+        length,
+        e,
+        ei,
+        section,
+        half_min,
+    } = *b;
+    let kind = match rng.below(3) {
+        0 => ActuatorKind::Tca,
+        1 => ActuatorKind::ConstantTension,
+        _ => ActuatorKind::LinearTendon,
+    };
+    // anchors: each inside the body with probability 0.4
+    let s_start = if rng.chance(0.4) {
+        rng.range(0.0, 0.5) * length
+    } else {
+        0.0
+    };
+    let s_end = if rng.chance(0.4) {
+        rng.range(s_start / length + 0.2, 1.0) * length
+    } else {
+        length
+    };
+    let span = s_end - s_start;
+    // the actuator's own radius: a TCA's coil, a tendon's sheath
+    let own = match kind {
+        ActuatorKind::Tca => rng.range(0.3e-3, 2.0e-3).min(0.4 * half_min) * 0.5,
+        _ => 0.05 * half_min,
+    };
+    let helix = rng.chance(0.3);
+    let routing = if helix {
+        let radius = rng.range(0.3, 0.85) * (half_min - own);
+        let turns = rng.range(-1.5, 1.5);
+        Routing::Helix {
+            radius,
+            rate: 2.0 * PI * turns / span,
+            phase: rng.range(0.0, 2.0 * PI),
+        }
+    } else {
+        let theta = rng.range(0.0, 2.0 * PI);
+        let r = rng.range(0.3, 0.85) * (section.edge_distance(theta) - own);
+        Routing::Straight {
+            x: r * theta.cos(),
+            y: r * theta.sin(),
+        }
+    };
+    let offset = match routing {
+        Routing::Straight { x, y } => x.hypot(y),
+        Routing::Helix { radius, .. } => radius,
+    };
+    // tendon curvature: a tip rotation theta over the span, capped so that
+    // the body's surface strain kappa * (half width) stays <= 0.3, and the
+    // tension E I kappa / r capped at 0.2 E A / (actuators): the body
+    // must not be crushed axially (nu_z = 1 - tau / E A)
+    let theta = rng.range(0.1, 3.0);
+    let half_max = match section {
+        Section::Rectangle { width, height } => 0.5 * width.max(height),
+        _ => half_min,
+    };
+    let ea = e * section.properties().0;
+    let kappa = (theta / span)
+        .min(0.3 / half_max)
+        .min(0.2 * ea / n_act as f64 * offset / ei);
+    let (law, input): (Arc<dyn crate::rod::ForceLaw>, f64) = match kind {
+        ActuatorKind::Tca => {
+            let chirality = if rng.chance(0.7) {
+                Chirality::Extension
+            } else {
+                Chirality::Contraction
+            };
+            let alpha0 = rng.range(10.0, 20.0).to_radians();
+            let turns = span * rng.range(1000.0, 2500.0);
+            let tca = Tca::from_pitch_angle(
+                span,
+                alpha0,
+                2.0 * own,
+                turns,
+                chirality,
+                Material::silver_coated_nylon(),
+            )
+            .ok()?;
+            (Arc::new(TcaLaw(tca)), rng.range(25.0, 160.0))
+        }
+        ActuatorKind::ConstantTension => (Arc::new(ConstantTension), ei * kappa / offset),
+        ActuatorKind::LinearTendon => {
+            // stiffness k against the bending stiffness seen at the tendon,
+            // E I / (r^2 span); pull for curvature kappa:
+            // k (pull - kappa r span) = E I kappa / r
+            let k_body = ei / (offset * offset * span);
+            let k = rng.log_range(1.0, 100.0) * k_body;
+            let pull = (ei * kappa / offset) / k + kappa * offset * span;
+            (Arc::new(LinearTendon { stiffness: k }), pull)
+        }
+    };
+    Some((Actuator::new(routing, s_start, s_end, law), input, kind))
 }
 
 /// Result of [`equilibrium`]: base wrench against external loads.

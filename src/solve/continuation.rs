@@ -122,19 +122,9 @@ pub(crate) fn continuation(
 ) -> Result<Solution> {
     let len = robot.body.length;
     let cold = warm.is_none();
-    let from = match warm {
-        Some(w) => w.inputs.clone(),
-        None => robot.reference_inputs(),
-    };
-    let mut x = match warm {
-        Some(w) => w.unknowns.clone(),
-        None => reference_guess(robot),
-    };
-    let mut tau = match warm {
-        Some(w) => w.tensions.clone(),
-        None => vec![0.0; robot.actuators.len()],
-    };
-    let mut jac = warm.and_then(|w| w.newton_jacobian.clone());
+    let (from, mut x, mut tau, mut jac) = start(robot, warm);
+    // homotopy steps are not stopped for stalling (see `STALL_WINDOW`)
+    work.stall_window = 0;
     let mut lam = 0.0;
     let mut step: f64 = if cold { 0.25 } else { 0.5 };
     let mut path = Vec::new();
@@ -209,7 +199,33 @@ pub(crate) fn continuation(
             }
         }
     }
-    Err(match last_err {
+    Err(stall_error(last_err, work, lam))
+}
+
+/// The start of the path: the inputs, unknowns, tensions and Jacobian of
+/// the warm solution, or of the reference configuration.
+type Start = (Vec<f64>, Vec<f64>, Vec<f64>, Option<nalgebra::DMatrix<f64>>);
+
+fn start(robot: &Robot, warm: Option<&Solution>) -> Start {
+    match warm {
+        Some(w) => (
+            w.inputs.clone(),
+            w.unknowns.clone(),
+            w.tensions.clone(),
+            w.newton_jacobian.clone(),
+        ),
+        None => (
+            robot.reference_inputs(),
+            reference_guess(robot),
+            vec![0.0; robot.actuators.len()],
+            None,
+        ),
+    }
+}
+
+/// The error of a path that stalled at `lam` (its last Newton failure).
+fn stall_error(last_err: Option<Error>, work: &Work, lam: f64) -> Error {
+    match last_err {
         Some(Error::NotConverged {
             solver,
             residual,
@@ -226,5 +242,5 @@ pub(crate) fn continuation(
         },
         Some(e) => e,
         None => Error::input("inputs", "continuation made no step"),
-    })
+    }
 }
