@@ -259,6 +259,32 @@ pub(crate) fn solve_options(
     options(steps, tol.0, max_iter)
 }
 
+/// The per-solve budget from Python arguments: `max_evaluations` in
+/// `1..=1e8` IVPs (default [`crate::shooting::DEFAULT_MAX_EVALUATIONS`]),
+/// `time_limit` in `(0, 1e9]` s (default none).
+pub(crate) fn budget_options(
+    opts: &mut SolveOptions,
+    max_evaluations: Option<&Bound<'_, PyAny>>,
+    time_limit: Option<Real>,
+) -> PyResult<()> {
+    opts.max_evaluations = count_or(
+        "max_evaluations",
+        max_evaluations,
+        crate::shooting::DEFAULT_MAX_EVALUATIONS,
+        1,
+        100_000_000,
+    )?;
+    if let Some(Real(t)) = time_limit {
+        if !(t.is_finite() && t > 0.0 && t <= 1e9) {
+            return Err(
+                crate::error::Error::param("time_limit [s]", t, "0 < time_limit <= 1e9 s").into(),
+            );
+        }
+        opts.time_limit = Some(std::time::Duration::from_secs_f64(t));
+    }
+    Ok(())
+}
+
 /// Error naming `inputs[i]` if a TCA input lies below its material's range,
 /// with the way to a colder ambient (a custom `Material`).
 pub(crate) fn check_ambient(robot: &Robot, inputs: &[f64]) -> PyResult<()> {

@@ -13,6 +13,11 @@ pub(crate) trait Outcome {
     fn iteration_count(&self) -> usize;
     /// IVPs integrated (function evaluations).
     fn ivp_count(&self) -> usize;
+    /// Whether the solve succeeded (default: `status_code() == 0`; a class
+    /// with several success codes overrides it).
+    fn succeeded(&self) -> bool {
+        self.status_code() == 0
+    }
 }
 
 /// Adds the getters `success`, `status`, `message`, `nit` and `nfev` to a
@@ -21,10 +26,11 @@ macro_rules! scipy_fields {
     ($ty:ty) => {
         #[pyo3::pymethods]
         impl $ty {
-            /// `True` if the solve succeeded (`status == 0`), SciPy naming.
+            /// `True` if the solve succeeded (`status == 0` unless the class
+            /// docstring lists other success codes), SciPy naming.
             #[getter]
             fn success(&self) -> bool {
-                $crate::python::outcome::Outcome::status_code(self) == 0
+                $crate::python::outcome::Outcome::succeeded(self)
             }
             /// `0` success; other codes as listed in the class docstring (SciPy naming).
             #[getter]

@@ -8,7 +8,7 @@ use super::actuator::PyActuator;
 use super::body::{body_repr, PyBody};
 use super::solution::{checked_solution, PySolution};
 use crate::error::{Error, Result};
-use crate::python::args::{check_ambient, solve_options};
+use crate::python::args::{budget_options, check_ambient, solve_options};
 use crate::python::to_py::{hash_by_text, positional_args, NewArgs};
 use crate::python::{pv, reals, Real, MAX_SEQUENCE};
 use crate::rod::{Actuator, Robot};
@@ -107,10 +107,13 @@ impl PyRobot {
     /// `UnstableEquilibriumError` (attributes `margin` [-] and `solution`) if it
     /// is unstable; a stable one is reached with
     /// `tcarod.stability.follow_branch(..., stable_only=True)` or another
-    /// `warm_start`. Raises `ValueError` on bad input, `TypeError` on wrong types and
-    /// `ConvergenceError` if Newton fails.
-    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, require_stable=false),
-        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, require_stable=False)")]
+    /// `warm_start`; `max_evaluations`: IVP budget of the solve, continuation
+    /// included (1 to 1e8, default 20,000); `time_limit`: wall-time limit [s]
+    /// (default none); running out of either raises `ConvergenceError` with
+    /// `reason == "budget"`. Raises `ValueError` on bad input, `TypeError` on
+    /// wrong types and `ConvergenceError` if Newton fails.
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, require_stable=false, max_evaluations=None, time_limit=None),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, require_stable=False, max_evaluations=20000, time_limit=None)")]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         slf: &Bound<'_, Self>,
@@ -121,9 +124,12 @@ impl PyRobot {
         max_iter: Option<Bound<'_, PyAny>>,
         warm_start: Option<PyRef<'_, PySolution>>,
         require_stable: bool,
+        max_evaluations: Option<Bound<'_, PyAny>>,
+        time_limit: Option<Real>,
     ) -> PyResult<PySolution> {
         let this = slf.get();
-        let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+        let mut opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+        budget_options(&mut opts, max_evaluations.as_ref(), time_limit)?;
         let q = reals("inputs", &inputs, None)?;
         check_ambient(&this.inner, &q)?;
         let robot = this.inner.clone();

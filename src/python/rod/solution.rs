@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::python::outcome::{scipy_fields, Outcome};
 use crate::python::to_py::{mat3, reduce_with, stack3, vec3, Reduce};
 use crate::python::{pb, pv};
-use crate::shooting::Solution;
+use crate::shooting::{Solution, Status};
 
 /// Every number of a solution is finite (the IVP rejects non-finite
 /// derivatives, so this holds by construction; checked once more at the
@@ -95,13 +95,38 @@ impl PySolution {
     }
 }
 
+/// SciPy-style status code of a converged solve: 0 = `tol` met, 1 = `tol`
+/// lies below the estimated rounding floor and the residual reached the
+/// floor (both successes, as in `scipy.optimize.least_squares`).
+fn status_code(s: Status) -> i64 {
+    match s {
+        Status::Converged => 0,
+        Status::ConvergedAtFloor => 1,
+    }
+}
+
 impl Outcome for PySolution {
     fn status_code(&self) -> i64 {
-        0
+        status_code(self.inner.status)
     }
     fn status_message(&self) -> String {
+        let how = match self.inner.status {
+            Status::Converged => "converged".to_string(),
+            Status::ConvergedAtFloor => format!(
+                "converged at the rounding floor {:.3e} (tol below it)",
+                self.inner.floor
+            ),
+        };
+        let path = if self.inner.continuation_steps.is_empty() {
+            String::new()
+        } else {
+            format!(
+                " ({} continuation steps)",
+                self.inner.continuation_steps.len()
+            )
+        };
         format!(
-            "converged: residual {:.3e} after {} Newton iterations",
+            "{how}: residual {:.3e} after {} Newton iterations{path}",
             self.inner.residual, self.inner.iterations
         )
     }
@@ -110,6 +135,10 @@ impl Outcome for PySolution {
     }
     fn ivp_count(&self) -> usize {
         self.inner.evaluations
+    }
+    /// Every `Solution` is a success (a failed solve raises).
+    fn succeeded(&self) -> bool {
+        true
     }
 }
 
@@ -239,6 +268,20 @@ impl PySolution {
     fn residual(&self) -> f64 {
         self.inner.residual
     }
+    /// Estimated rounding floor of the dimensionless residual at the
+    /// solution [-]: the residual cannot be computed more accurately; a `tol`
+    /// below it converges to it (`status == 1`).
+    #[getter]
+    fn floor(&self) -> f64 {
+        self.inner.floor
+    }
+    /// Homotopy parameters (each in (0, 1], ending at 1) of the continuation
+    /// path the solve took when the direct Newton solve failed; empty if it
+    /// did not.
+    #[getter]
+    fn continuation_steps<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.inner.continuation_steps)
+    }
     /// Scaled shooting unknowns `[nu(0), L omega(0), delta_i / L]`.
     #[getter]
     fn unknowns<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
@@ -313,6 +356,7 @@ impl PySolution {
             s.iterations,
             s.evaluations,
             jac,
+            (status_code(s.status), s.floor, s.continuation_steps.clone()),
         )
             .into_pyobject(py)?;
         reduce_with(py, "_restore_solution", args)
@@ -345,13 +389,17 @@ impl PartialEq for PySolution {
             && a.base_force == b.base_force
             && a.base_moment == b.base_moment
             && a.newton_jacobian == b.newton_jacobian
+            && a.status == b.status
+            && a.floor.to_bits() == b.floor.to_bits()
+            && a.continuation_steps == b.continuation_steps
     }
 }
 
 /// Rebuild a `Solution` from its robot and converged unknowns (pickle
 /// support; not public API).
 #[pyfunction]
-#[pyo3(name = "_restore_solution")]
+#[pyo3(name = "_restore_solution",
+    signature = (robot, inputs, unknowns, tip_force, tip_moment, steps, iterations, evaluations, jacobian, outcome=None))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub(crate) fn restore_solution(
     py: Python<'_>,
@@ -364,6 +412,7 @@ pub(crate) fn restore_solution(
     iterations: usize,
     evaluations: usize,
     jacobian: Option<(usize, usize, Vec<f64>)>,
+    outcome: Option<(i64, f64, Vec<f64>)>,
 ) -> PyResult<PySolution> {
     let r = robot.get().inner.clone();
     let na = r.actuators.len();
@@ -399,5 +448,17 @@ pub(crate) fn restore_solution(
         .and_then(checked_solution)
     })?;
     sol.newton_jacobian = jac;
+    if let Some((code, floor, path)) = outcome {
+        sol.status = match code {
+            0 => Status::Converged,
+            1 => Status::ConvergedAtFloor,
+            _ => return Err(Error::input("state", "unknown status").into()),
+        };
+        if !(floor.is_finite() && floor >= 0.0) || path.iter().any(|l| !(*l > 0.0 && *l <= 1.0)) {
+            return Err(Error::input("state", "floor or continuation path out of range").into());
+        }
+        sol.floor = floor;
+        sol.continuation_steps = path;
+    }
     Ok(PySolution::new(sol, robot.unbind()))
 }
