@@ -298,40 +298,40 @@ fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
     println!("converged cold: {} / {n} all, {ok_not_past} / {not_past} not past buckling; {via_cont} of them via continuation", ok.len());
     println!(
         "IVPs per converged solve: median {} p90 {} p99 {} max {}",
-        quantile(&ivp, 0.5),
-        quantile(&ivp, 0.9),
-        quantile(&ivp, 0.99),
-        quantile(&ivp, 1.0)
+        quantile(ivp, 0.5),
+        quantile(ivp, 0.9),
+        quantile(ivp, 0.99),
+        quantile(ivp, 1.0)
     );
     println!(
         "IVP-equivalents (CPU of the solve / CPU of one plain IVP at its solution): median {:.1} p90 {:.1} p99 {:.1} max {:.1}",
-        quantile(&ive, 0.5),
-        quantile(&ive, 0.9),
-        quantile(&ive, 0.99),
-        quantile(&ive, 1.0)
+        quantile(ive, 0.5),
+        quantile(ive, 0.9),
+        quantile(ive, 0.99),
+        quantile(ive, 1.0)
     );
     println!(
         "iterations: median {} p90 {} p99 {} max {}",
-        quantile(&it, 0.5),
-        quantile(&it, 0.9),
-        quantile(&it, 0.99),
-        quantile(&it, 1.0)
+        quantile(it, 0.5),
+        quantile(it, 0.9),
+        quantile(it, 0.99),
+        quantile(it, 1.0)
     );
     println!(
         "CPU per solve (all) [ms]: median {:.3} p99 {:.1} max {:.1}; converged only: median {:.3} p99 {:.1} max {:.1}; total {:.1} s",
-        quantile(&cpu, 0.5) * 1e3,
-        quantile(&cpu, 0.99) * 1e3,
-        quantile(&cpu, 1.0) * 1e3,
-        quantile(&cpu_ok, 0.5) * 1e3,
-        quantile(&cpu_ok, 0.99) * 1e3,
-        quantile(&cpu_ok, 1.0) * 1e3,
+        quantile(cpu, 0.5) * 1e3,
+        quantile(cpu, 0.99) * 1e3,
+        quantile(cpu, 1.0) * 1e3,
+        quantile(cpu_ok, 0.5) * 1e3,
+        quantile(cpu_ok, 0.99) * 1e3,
+        quantile(cpu_ok, 1.0) * 1e3,
         cpu.iter().sum::<f64>()
     );
     println!(
         "equilibrium (relative) of converged: median {:.1e} p99 {:.1e} max {:.1e}; {eq_bad} above {EQUILIBRIUM_TOL:.0e}",
-        quantile(&eq, 0.5),
-        quantile(&eq, 0.99),
-        quantile(&eq, 1.0)
+        quantile(eq, 0.5),
+        quantile(eq, 0.99),
+        quantile(eq, 1.0)
     );
     let fine = sorted(out.iter().filter_map(|o| o.fine).collect());
     let fine_bad = fine.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
@@ -374,21 +374,21 @@ fn json(st: &Stats<'_>, out: &[Outcome], n: usize, seed: u64) {
 \"cpu_s\":{{\"median\":{:.6e},\"p99\":{:.6e},\"max\":{:.6e},\"total\":{:.3}}},\"equilibrium\":{{\"max\":{:.3e},\"above_tol\":{eq_bad},\"fine_resolved\":{},\"fine_above_tol\":{fine_bad},\"fine_max\":{:.3e}}},\"failures\":[{}]}}",
         n - not_past,
         ok.len(),
-        quantile(&ivp, 0.5),
-        quantile(&ivp, 0.9),
-        quantile(&ivp, 0.99),
-        quantile(&ivp, 1.0),
-        quantile(&ive, 0.5),
-        quantile(&ive, 0.9),
-        quantile(&ive, 0.99),
-        quantile(&ive, 1.0),
-        quantile(&it, 0.5),
-        quantile(&it, 1.0),
-        quantile(&cpu, 0.5),
-        quantile(&cpu, 0.99),
-        quantile(&cpu, 1.0),
+        quantile(ivp, 0.5),
+        quantile(ivp, 0.9),
+        quantile(ivp, 0.99),
+        quantile(ivp, 1.0),
+        quantile(ive, 0.5),
+        quantile(ive, 0.9),
+        quantile(ive, 0.99),
+        quantile(ive, 1.0),
+        quantile(it, 0.5),
+        quantile(it, 1.0),
+        quantile(cpu, 0.5),
+        quantile(cpu, 0.99),
+        quantile(cpu, 1.0),
         cpu.iter().sum::<f64>(),
-        quantile(&eq, 1.0),
+        quantile(eq, 1.0),
         fine.len(),
         quantile(&fine, 1.0),
         fails_json.join(",")

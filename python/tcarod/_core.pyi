@@ -575,6 +575,7 @@ def _restore_solution(
     iterations: int,
     evaluations: int,
     jacobian: tuple[int, int, Sequence[float]] | None,
+    outcome: tuple[int, float, Sequence[float]] | None = None,
 ) -> Solution: ...
 def _restore_inverse_result(
     solution: Solution,
