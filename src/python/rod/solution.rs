@@ -275,9 +275,9 @@ impl PySolution {
     fn floor(&self) -> f64 {
         self.inner.floor
     }
-    /// Homotopy parameters (each in (0, 1], ending at 1) of the continuation
-    /// path the solve took when the direct Newton solve failed; empty if it
-    /// did not.
+    /// Homotopy parameters `lambda` [-] (each in (0, 1], ending at 1) of the
+    /// continuation path the solve took when the direct Newton solve failed;
+    /// empty if it did not.
     #[getter]
     fn continuation_steps<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.inner.continuation_steps)
