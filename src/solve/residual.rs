@@ -168,7 +168,7 @@ pub const ONSET_BAND: f64 = 1e-12;
 /// decides the side; there the merit has no descent along one of the two
 /// Newton directions (measured on designs #532 and #719 of the benchmark:
 /// the merit grows like `t^2` from `t = 0`), so a failed line search is
-/// retried with the other side ([`Shooting`]'s `refine`).
+/// retried with the other side ([`crate::solve::system::Shooting`]'s `refine`).
 pub fn tension_slope(
     law: &dyn crate::rod::ForceLaw,
     elongation: f64,

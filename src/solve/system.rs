@@ -39,7 +39,7 @@ pub struct Shooting<'a> {
     last: Option<LastEvaluation>,
     /// Whether the last Jacobian had an actuator at its onset of tension.
     at_onset: bool,
-    /// Take the slack side's derivative at an onset (see [`tension_slope`]).
+    /// Take the slack side's derivative at an onset (see [`crate::solve::residual::tension_slope`]).
     slack_onset: bool,
 }
 
@@ -122,7 +122,7 @@ impl System for Shooting<'_> {
     }
     /// First the full grid's Jacobian; then, if an actuator was at its
     /// onset of tension, the slack side's derivative there (see
-    /// [`tension_slope`]).
+    /// [`crate::solve::residual::tension_slope`]).
     fn refine(&mut self) -> bool {
         if self.jacobian_steps.take().is_some() {
             return true;
