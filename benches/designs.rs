@@ -17,7 +17,7 @@
 //! `libc` dependency), or wall time from `Instant` where that is unavailable. Prints a table and one `JSON ` line.
 use std::time::Instant;
 
-use tcarod::problems::{equilibrium, random_design, DEFAULT_SEED, EQUILIBRIUM_TOL};
+use tcarod::problems::{equilibrium, random_design, Design, DEFAULT_SEED, EQUILIBRIUM_TOL};
 use tcarod::shooting::{shoot, solve, Loads, SolveOptions};
 use tcarod::Error;
 
@@ -129,79 +129,110 @@ fn main() {
     let n = indices.len();
     for &i in &indices {
         let d = random_design(seed, i);
-        let t0 = now();
-        let r = solve(&d.robot, &d.inputs, &opts, None);
-        let cpu = now() - t0;
-        let result = match r {
-            Ok(sol) => {
-                let eq = equilibrium(&d.robot, &sol);
-                if only.is_some() {
-                    eprintln!(
-                        "#{i} steps {} residual {:.2e}: {eq:?}",
-                        opts.steps, sol.residual
-                    );
-                }
-                // one plain IVP at the solution, 5 times
-                let loads = Loads::of(&d.robot);
-                let t1 = now();
-                for _ in 0..5 {
-                    let _ = std::hint::black_box(shoot(
-                        &d.robot,
-                        &d.inputs,
-                        &loads,
-                        &sol.unknowns,
-                        opts.steps,
-                        false,
-                    ));
-                }
-                let ivp = (now() - t1) / 5.0;
-                Ok(Converged {
-                    ivps: sol.evaluations,
-                    iterations: sol.iterations,
-                    equilibrium: eq.relative,
-                    ivp_equivalents: cpu / ivp,
-                    continuation: !sol.continuation_steps.is_empty(),
-                })
-            }
-            Err(e) => {
-                if verbose {
-                    eprintln!("FAIL {}: {e}", d.summary());
-                }
-                Err(reason(&e))
-            }
-        };
-        if verbose {
-            if let Ok(c) = &result {
-                if c.equilibrium > EQUILIBRIUM_TOL {
-                    eprintln!("EQUILIBRIUM {:.2e} {}", c.equilibrium, d.summary());
-                }
-            }
-        }
-        // above the target: is it RK4's truncation error? (4x steps: 1/256 of it)
-        let fine = match &result {
-            Ok(c) if c.equilibrium > EQUILIBRIUM_TOL => {
-                let fo = SolveOptions {
-                    steps: 4 * opts.steps,
-                    ..opts
-                };
-                solve(&d.robot, &d.inputs, &fo, None)
-                    .ok()
-                    .map(|s| equilibrium(&d.robot, &s).relative)
-            }
-            _ => None,
-        };
-        out.push(Outcome {
-            past: d.past_buckling(),
-            cpu,
-            result,
-            fine,
-        });
+        out.push(solve_one(&d, &opts, verbose, only.is_some(), &now));
     }
     let wall = wall.elapsed().as_secs_f64();
     report(&out, n, seed, clock, wall);
 }
 
-fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
+/// Solve design `d` cold, time it, check its equilibrium (and re-solve on
+/// 4x the steps when above the target).
+fn solve_one(
+    d: &Design,
+    opts: &SolveOptions,
+    verbose: bool,
+    diagnose: bool,
+    now: &dyn Fn() -> f64,
+) -> Outcome {
+    let i = d.index;
+    let opts = *opts;
+    let t0 = now();
+    let r = solve(&d.robot, &d.inputs, &opts, None);
+    let cpu = now() - t0;
+    let result = match r {
+        Ok(sol) => {
+            let eq = equilibrium(&d.robot, &sol);
+            if diagnose {
+                eprintln!(
+                    "#{i} steps {} residual {:.2e}: {eq:?}",
+                    opts.steps, sol.residual
+                );
+            }
+            // one plain IVP at the solution, 5 times
+            let loads = Loads::of(&d.robot);
+            let t1 = now();
+            for _ in 0..5 {
+                let _ = std::hint::black_box(shoot(
+                    &d.robot,
+                    &d.inputs,
+                    &loads,
+                    &sol.unknowns,
+                    opts.steps,
+                    false,
+                ));
+            }
+            let ivp = (now() - t1) / 5.0;
+            Ok(Converged {
+                ivps: sol.evaluations,
+                iterations: sol.iterations,
+                equilibrium: eq.relative,
+                ivp_equivalents: cpu / ivp,
+                continuation: !sol.continuation_steps.is_empty(),
+            })
+        }
+        Err(e) => {
+            if verbose {
+                eprintln!("FAIL {}: {e}", d.summary());
+            }
+            Err(reason(&e))
+        }
+    };
+    if verbose {
+        if let Ok(c) = &result {
+            if c.equilibrium > EQUILIBRIUM_TOL {
+                eprintln!("EQUILIBRIUM {:.2e} {}", c.equilibrium, d.summary());
+            }
+        }
+    }
+    // above the target: is it RK4's truncation error? (4x steps: 1/256 of it)
+    let fine = match &result {
+        Ok(c) if c.equilibrium > EQUILIBRIUM_TOL => {
+            let fo = SolveOptions {
+                steps: 4 * opts.steps,
+                ..opts
+            };
+            solve(&d.robot, &d.inputs, &fo, None)
+                .ok()
+                .map(|s| equilibrium(&d.robot, &s).relative)
+        }
+        _ => None,
+    };
+    Outcome {
+        past: d.past_buckling(),
+        cpu,
+        result,
+        fine,
+    }
+}
+
+/// The benchmark's statistics over all outcomes.
+struct Stats<'a> {
+    ok: Vec<&'a Converged>,
+    via_cont: usize,
+    not_past: usize,
+    ok_not_past: usize,
+    ivp: Vec<f64>,
+    it: Vec<f64>,
+    eq: Vec<f64>,
+    ive: Vec<f64>,
+    cpu: Vec<f64>,
+    cpu_ok: Vec<f64>,
+    /// (reason, count, of them past buckling)
+    fails: Vec<(String, usize, usize)>,
+    eq_bad: usize,
+}
+
+fn stats(out: &[Outcome]) -> Stats<'_> {
     let ok: Vec<&Converged> = out.iter().filter_map(|o| o.result.as_ref().ok()).collect();
     let via_cont = ok.iter().filter(|c| c.continuation).count();
     let not_past = out.iter().filter(|o| !o.past).count();
@@ -231,44 +262,76 @@ fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
     }
     fails.sort_by_key(|f| std::cmp::Reverse(f.1));
     let eq_bad = eq.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
+    Stats {
+        ok,
+        via_cont,
+        not_past,
+        ok_not_past,
+        ivp,
+        it,
+        eq,
+        ive,
+        cpu,
+        cpu_ok,
+        fails,
+        eq_bad,
+    }
+}
+
+fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
+    let st = stats(out);
+    let Stats {
+        ok,
+        via_cont,
+        not_past,
+        ok_not_past,
+        ivp,
+        it,
+        eq,
+        ive,
+        cpu,
+        cpu_ok,
+        fails,
+        eq_bad,
+    } = &st;
     println!("designs: {n} (seed {seed:#x}), {} past self-weight buckling; clock: {clock}; wall {wall:.1} s", n - not_past);
     println!("converged cold: {} / {n} all, {ok_not_past} / {not_past} not past buckling; {via_cont} of them via continuation", ok.len());
     println!(
         "IVPs per converged solve: median {} p90 {} p99 {} max {}",
-        quantile(&ivp, 0.5),
-        quantile(&ivp, 0.9),
-        quantile(&ivp, 0.99),
-        quantile(&ivp, 1.0)
+        quantile(ivp, 0.5),
+        quantile(ivp, 0.9),
+        quantile(ivp, 0.99),
+        quantile(ivp, 1.0)
     );
     println!(
         "IVP-equivalents (CPU of the solve / CPU of one plain IVP at its solution): median {:.1} p90 {:.1} p99 {:.1} max {:.1}",
-        quantile(&ive, 0.5),
-        quantile(&ive, 0.9),
-        quantile(&ive, 0.99),
-        quantile(&ive, 1.0)
+        quantile(ive, 0.5),
+        quantile(ive, 0.9),
+        quantile(ive, 0.99),
+        quantile(ive, 1.0)
     );
     println!(
         "iterations: median {} p90 {} p99 {} max {}",
-        quantile(&it, 0.5),
-        quantile(&it, 0.9),
-        quantile(&it, 0.99),
-        quantile(&it, 1.0)
+        quantile(it, 0.5),
+        quantile(it, 0.9),
+        quantile(it, 0.99),
+        quantile(it, 1.0)
     );
     println!(
         "CPU per solve (all) [ms]: median {:.3} p99 {:.1} max {:.1}; converged only: median {:.3} p99 {:.1} max {:.1}; total {:.1} s",
-        quantile(&cpu, 0.5) * 1e3,
-        quantile(&cpu, 0.99) * 1e3,
-        quantile(&cpu, 1.0) * 1e3,
-        quantile(&cpu_ok, 0.5) * 1e3,
-        quantile(&cpu_ok, 0.99) * 1e3,
-        quantile(&cpu_ok, 1.0) * 1e3,
+        quantile(cpu, 0.5) * 1e3,
+        quantile(cpu, 0.99) * 1e3,
+        quantile(cpu, 1.0) * 1e3,
+        quantile(cpu_ok, 0.5) * 1e3,
+        quantile(cpu_ok, 0.99) * 1e3,
+        quantile(cpu_ok, 1.0) * 1e3,
         cpu.iter().sum::<f64>()
     );
     println!(
         "equilibrium (relative) of converged: median {:.1e} p99 {:.1e} max {:.1e}; {eq_bad} above {EQUILIBRIUM_TOL:.0e}",
-        quantile(&eq, 0.5),
-        quantile(&eq, 0.99),
-        quantile(&eq, 1.0)
+        quantile(eq, 0.5),
+        quantile(eq, 0.99),
+        quantile(eq, 1.0)
     );
     let fine = sorted(out.iter().filter_map(|o| o.fine).collect());
     let fine_bad = fine.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
@@ -277,9 +340,30 @@ fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
         fine.len(),
         quantile(&fine, 1.0)
     );
-    for (r, k, p) in &fails {
+    for (r, k, p) in fails.iter() {
         println!("  failed: {k:4} ({p} past buckling)  {r}");
     }
+    json(&st, out, n, seed);
+}
+
+/// The one `JSON ` line.
+fn json(st: &Stats<'_>, out: &[Outcome], n: usize, seed: u64) {
+    let Stats {
+        ok,
+        via_cont,
+        not_past,
+        ok_not_past,
+        ivp,
+        it,
+        eq,
+        ive,
+        cpu,
+        fails,
+        eq_bad,
+        ..
+    } = st;
+    let fine = sorted(out.iter().filter_map(|o| o.fine).collect());
+    let fine_bad = fine.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
     let fails_json: Vec<String> = fails
         .iter()
         .map(|(r, k, p)| format!("{{\"reason\":{:?},\"count\":{k},\"past_buckling\":{p}}}", r))
@@ -290,21 +374,21 @@ fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
 \"cpu_s\":{{\"median\":{:.6e},\"p99\":{:.6e},\"max\":{:.6e},\"total\":{:.3}}},\"equilibrium\":{{\"max\":{:.3e},\"above_tol\":{eq_bad},\"fine_resolved\":{},\"fine_above_tol\":{fine_bad},\"fine_max\":{:.3e}}},\"failures\":[{}]}}",
         n - not_past,
         ok.len(),
-        quantile(&ivp, 0.5),
-        quantile(&ivp, 0.9),
-        quantile(&ivp, 0.99),
-        quantile(&ivp, 1.0),
-        quantile(&ive, 0.5),
-        quantile(&ive, 0.9),
-        quantile(&ive, 0.99),
-        quantile(&ive, 1.0),
-        quantile(&it, 0.5),
-        quantile(&it, 1.0),
-        quantile(&cpu, 0.5),
-        quantile(&cpu, 0.99),
-        quantile(&cpu, 1.0),
+        quantile(ivp, 0.5),
+        quantile(ivp, 0.9),
+        quantile(ivp, 0.99),
+        quantile(ivp, 1.0),
+        quantile(ive, 0.5),
+        quantile(ive, 0.9),
+        quantile(ive, 0.99),
+        quantile(ive, 1.0),
+        quantile(it, 0.5),
+        quantile(it, 1.0),
+        quantile(cpu, 0.5),
+        quantile(cpu, 0.99),
+        quantile(cpu, 1.0),
         cpu.iter().sum::<f64>(),
-        quantile(&eq, 1.0),
+        quantile(eq, 1.0),
         fine.len(),
         quantile(&fine, 1.0),
         fails_json.join(",")

@@ -80,6 +80,8 @@ pub enum StopReason {
     SingularJacobian,
     /// A non-finite state or residual.
     NonFinite,
+    /// The solve's work budget (IVPs or wall time) ran out.
+    Budget,
     /// Another reason given in the message.
     Other,
 }
@@ -92,6 +94,7 @@ impl StopReason {
             StopReason::LineSearch => "line_search",
             StopReason::SingularJacobian => "singular_jacobian",
             StopReason::NonFinite => "non_finite",
+            StopReason::Budget => "budget",
             StopReason::Other => "other",
         }
     }

@@ -50,7 +50,6 @@ use nalgebra::Vector3;
 
 use crate::material::Material;
 use crate::rod::{Actuator, Body, ConstantTension, LinearTendon, Robot, Routing, Section, TcaLaw};
-use crate::shooting::Solution;
 use crate::tca::{Chirality, Tca};
 
 /// Seed of the benchmark set (`benches/designs.rs`, `tests/designs.rs`).
@@ -242,6 +241,40 @@ pub fn random_designs(seed: u64, n: usize) -> Vec<Design> {
 /// One attempt; `None` when the draw is rejected (too floppy, or an actuator
 /// that does not fit).
 fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
+    let (body, draw) = draw_body(rng)?;
+    let n_act = 1 + rng.below(4);
+    let mut actuators = Vec::with_capacity(n_act);
+    let mut inputs = Vec::with_capacity(n_act);
+    let mut kinds = Vec::with_capacity(n_act);
+    for _ in 0..n_act {
+        let (act, input, kind) = draw_actuator(rng, &draw, n_act)?;
+        actuators.push(act);
+        inputs.push(input);
+        kinds.push(kind);
+    }
+    let robot = Robot::new(body, actuators).ok()?;
+    robot.check_inputs(&inputs).ok()?;
+    Some(Design {
+        index,
+        robot,
+        inputs,
+        kinds,
+    })
+}
+
+/// Sizes of a drawn body that its actuators' draws need.
+#[derive(Debug, Clone, Copy)]
+struct BodyDraw {
+    length: f64,
+    e: f64,
+    ei: f64,
+    section: Section,
+    half_min: f64,
+}
+
+/// The body of one attempt (sizes, material, gravity, tip loads); `None`
+/// when rejected as too floppy.
+fn draw_body(rng: &mut SplitMix64) -> Option<(Body, BodyDraw)> {
     let length = rng.log_range(0.010, 0.300);
     let e = rng.log_range(10e3, 10e6);
     let poisson = rng.range(0.45, 0.5);
@@ -279,226 +312,121 @@ fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
             Section::Rectangle { width, height } => width.min(height),
             Section::Custom { .. } => unreachable!(),
         };
-    let n_act = 1 + rng.below(4);
-    let mut actuators = Vec::with_capacity(n_act);
-    let mut inputs = Vec::with_capacity(n_act);
-    let mut kinds = Vec::with_capacity(n_act);
-    for _ in 0..n_act {
-        let kind = match rng.below(3) {
-            0 => ActuatorKind::Tca,
-            1 => ActuatorKind::ConstantTension,
-            _ => ActuatorKind::LinearTendon,
-        };
-        // anchors: each inside the body with probability 0.4
-        let s_start = if rng.chance(0.4) {
-            rng.range(0.0, 0.5) * length
-        } else {
-            0.0
-        };
-        let s_end = if rng.chance(0.4) {
-            rng.range(s_start / length + 0.2, 1.0) * length
-        } else {
-            length
-        };
-        let span = s_end - s_start;
-        // the actuator's own radius: a TCA's coil, a tendon's sheath
-        let own = match kind {
-            ActuatorKind::Tca => rng.range(0.3e-3, 2.0e-3).min(0.4 * half_min) * 0.5,
-            _ => 0.05 * half_min,
-        };
-        let helix = rng.chance(0.3);
-        let routing = if helix {
-            let radius = rng.range(0.3, 0.85) * (half_min - own);
-            let turns = rng.range(-1.5, 1.5);
-            Routing::Helix {
-                radius,
-                rate: 2.0 * PI * turns / span,
-                phase: rng.range(0.0, 2.0 * PI),
-            }
-        } else {
-            let theta = rng.range(0.0, 2.0 * PI);
-            let r = rng.range(0.3, 0.85) * (section.edge_distance(theta) - own);
-            Routing::Straight {
-                x: r * theta.cos(),
-                y: r * theta.sin(),
-            }
-        };
-        let offset = match routing {
-            Routing::Straight { x, y } => x.hypot(y),
-            Routing::Helix { radius, .. } => radius,
-        };
-        // tendon curvature: a tip rotation theta over the span, capped so that
-        // the body's surface strain kappa * (half width) stays <= 0.3, and the
-        // tension E I kappa / r capped at 0.2 E A / (actuators): the body
-        // must not be crushed axially (nu_z = 1 - tau / E A)
-        let theta = rng.range(0.1, 3.0);
-        let half_max = match section {
-            Section::Rectangle { width, height } => 0.5 * width.max(height),
-            _ => half_min,
-        };
-        let ea = e * section.properties().0;
-        let kappa = (theta / span)
-            .min(0.3 / half_max)
-            .min(0.2 * ea / n_act as f64 * offset / ei);
-        let (law, input): (Arc<dyn crate::rod::ForceLaw>, f64) = match kind {
-            ActuatorKind::Tca => {
-                let chirality = if rng.chance(0.7) {
-                    Chirality::Extension
-                } else {
-                    Chirality::Contraction
-                };
-                let alpha0 = rng.range(10.0, 20.0).to_radians();
-                let turns = span * rng.range(1000.0, 2500.0);
-                let tca = Tca::from_pitch_angle(
-                    span,
-                    alpha0,
-                    2.0 * own,
-                    turns,
-                    chirality,
-                    Material::silver_coated_nylon(),
-                )
-                .ok()?;
-                (Arc::new(TcaLaw(tca)), rng.range(25.0, 160.0))
-            }
-            ActuatorKind::ConstantTension => (Arc::new(ConstantTension), ei * kappa / offset),
-            ActuatorKind::LinearTendon => {
-                // stiffness k against the bending stiffness seen at the tendon,
-                // E I / (r^2 span); pull for curvature kappa:
-                // k (pull - kappa r span) = E I kappa / r
-                let k_body = ei / (offset * offset * span);
-                let k = rng.log_range(1.0, 100.0) * k_body;
-                let pull = (ei * kappa / offset) / k + kappa * offset * span;
-                (Arc::new(LinearTendon { stiffness: k }), pull)
-            }
-        };
-        actuators.push(Actuator::new(routing, s_start, s_end, law));
-        inputs.push(input);
-        kinds.push(kind);
-    }
-    let robot = Robot::new(body, actuators).ok()?;
-    robot.check_inputs(&inputs).ok()?;
-    Some(Design {
-        index,
-        robot,
-        inputs,
-        kinds,
-    })
+    Some((
+        body,
+        BodyDraw {
+            length,
+            e,
+            ei,
+            section,
+            half_min,
+        },
+    ))
 }
 
-/// Result of [`equilibrium`]: base wrench against external loads.
-#[derive(Debug, Clone, Copy)]
-pub struct Equilibrium {
-    /// Base force (body plus actuators anchored at the base) minus the
-    /// external loads \[N\], world frame.
-    pub force_error: Vector3<f64>,
-    /// Base moment about the base origin minus the external loads' [N m].
-    pub moment_error: Vector3<f64>,
-    /// Force scale \[N\]: the largest of the external load, the tip force,
-    /// the actuator tensions and the internal force along the body.
-    pub force_scale: f64,
-    /// Moment scale [N m]: the largest of the external moments, the force
-    /// scale times the body length and the internal moment along the body.
-    pub moment_scale: f64,
-    /// `max(|force_error| / force_scale, |moment_error| / moment_scale)`.
-    pub relative: f64,
-    /// Relative difference between `Solution.base_force`/`base_moment` and
-    /// the base wrench recomputed here (a consistency check of `Solution`).
-    pub solution_mismatch: f64,
-}
-
-/// Relative tolerance of the issue-10 target.
-pub const EQUILIBRIUM_TOL: f64 = 1e-8;
-
-/// Global equilibrium of a converged solution `sol` of `robot` (see the
-/// module docs). The external loads are the body's distributed loads
-/// (gravity, `distributed_force`, `distributed_moment`) and the tip loads the
-/// solution is for (`sol.loads`). `int p ds` is integrated from the nodes'
-/// positions and tangents `p' = R nu` by the end-corrected trapezoid rule
-/// (error `O(h^4)`); on an interval ending at an anchor, where `nu` jumps and
-/// only the post-jump tangent is recorded, by the cubic through the two
-/// previous nodes, the tangent at the interval's start and the end position.
-pub fn equilibrium(robot: &Robot, sol: &Solution) -> Equilibrium {
-    let body = &robot.body;
-    let len = body.length;
-    let tol = 1e-12 * len;
-    // base wrench: body cross-section plus actuators anchored at the base
-    let r0 = sol.rotations[0];
-    let p0 = sol.positions[0];
-    let mut bf = sol.internal_force[0];
-    let mut bm = sol.internal_moment[0] + p0.cross(&bf);
-    let mut scale_f = bf.norm();
-    for (i, a) in robot.actuators.iter().enumerate() {
-        let tau = sol.tensions[i];
-        scale_f = scale_f.max(tau.abs());
-        if a.s_start <= tol {
-            let (ri, rp, _) = a.routing.eval(0.0);
-            let pb = sol.nu[0] + sol.omega[0].cross(&ri) + rp;
-            let t = r0 * pb / pb.norm();
-            bf += t * tau;
-            bm += (p0 + r0 * ri).cross(&(t * tau));
+/// One actuator of a body drawn by [`draw_body`] among `n_act`: the
+/// actuator, its input and its kind; `None` when it does not fit.
+fn draw_actuator(
+    rng: &mut SplitMix64,
+    b: &BodyDraw,
+    n_act: usize,
+) -> Option<(Actuator, f64, ActuatorKind)> {
+    let BodyDraw {
+        length,
+        e,
+        ei,
+        section,
+        half_min,
+    } = *b;
+    let kind = match rng.below(3) {
+        0 => ActuatorKind::Tca,
+        1 => ActuatorKind::ConstantTension,
+        _ => ActuatorKind::LinearTendon,
+    };
+    // anchors: each inside the body with probability 0.4
+    let s_start = if rng.chance(0.4) {
+        rng.range(0.0, 0.5) * length
+    } else {
+        0.0
+    };
+    let s_end = if rng.chance(0.4) {
+        rng.range(s_start / length + 0.2, 1.0) * length
+    } else {
+        length
+    };
+    let span = s_end - s_start;
+    // the actuator's own radius: a TCA's coil, a tendon's sheath
+    let own = match kind {
+        ActuatorKind::Tca => rng.range(0.3e-3, 2.0e-3).min(0.4 * half_min) * 0.5,
+        _ => 0.05 * half_min,
+    };
+    let helix = rng.chance(0.3);
+    let routing = if helix {
+        let radius = rng.range(0.3, 0.85) * (half_min - own);
+        let turns = rng.range(-1.5, 1.5);
+        Routing::Helix {
+            radius,
+            rate: 2.0 * PI * turns / span,
+            phase: rng.range(0.0, 2.0 * PI),
         }
-    }
-    // external loads
-    let fd = body.distributed_load();
-    let ld = body.distributed_moment;
-    let tip_p = sol.tip_position();
-    let (tf, tm) = (sol.loads.tip_force, sol.loads.tip_moment);
-    let pint = position_integral(robot, sol);
-    let wf = fd * len + tf;
-    let wm = pint.cross(&fd) + ld * len + tip_p.cross(&tf) + tm;
-    scale_f = scale_f.max((fd * len).norm()).max(tf.norm());
-    let mut scale_m = (ld * len)
-        .norm()
-        .max(tm.norm())
-        .max(scale_f * len)
-        .max((pint.cross(&fd)).norm());
-    for (n, m) in sol.internal_force.iter().zip(&sol.internal_moment) {
-        scale_f = scale_f.max(n.norm());
-        scale_m = scale_m.max(m.norm());
-    }
-    scale_m = scale_m.max(scale_f * len);
-    let ef = bf - wf;
-    let em = bm - wm;
-    let rel = |x: f64, s: f64| if s > 0.0 { x / s } else { x };
-    let relative = rel(ef.norm(), scale_f).max(rel(em.norm(), scale_m));
-    let solution_mismatch =
-        rel((sol.base_force - bf).norm(), scale_f).max(rel((sol.base_moment - bm).norm(), scale_m));
-    Equilibrium {
-        force_error: ef,
-        moment_error: em,
-        force_scale: scale_f,
-        moment_scale: scale_m,
-        relative,
-        solution_mismatch,
-    }
+    } else {
+        let theta = rng.range(0.0, 2.0 * PI);
+        let r = rng.range(0.3, 0.85) * (section.edge_distance(theta) - own);
+        Routing::Straight {
+            x: r * theta.cos(),
+            y: r * theta.sin(),
+        }
+    };
+    let offset = match routing {
+        Routing::Straight { x, y } => x.hypot(y),
+        Routing::Helix { radius, .. } => radius,
+    };
+    // tendon curvature: a tip rotation theta over the span, capped so that
+    // the body's surface strain kappa * (half width) stays <= 0.3, and the
+    // tension E I kappa / r capped at 0.2 E A / (actuators): the body
+    // must not be crushed axially (nu_z = 1 - tau / E A)
+    let theta = rng.range(0.1, 3.0);
+    let half_max = match section {
+        Section::Rectangle { width, height } => 0.5 * width.max(height),
+        _ => half_min,
+    };
+    let ea = e * section.properties().0;
+    let kappa = (theta / span)
+        .min(0.3 / half_max)
+        .min(0.2 * ea / n_act as f64 * offset / ei);
+    let (law, input): (Arc<dyn crate::rod::ForceLaw>, f64) = match kind {
+        ActuatorKind::Tca => {
+            let chirality = if rng.chance(0.7) {
+                Chirality::Extension
+            } else {
+                Chirality::Contraction
+            };
+            let alpha0 = rng.range(10.0, 20.0).to_radians();
+            let turns = span * rng.range(1000.0, 2500.0);
+            let tca = Tca::from_pitch_angle(
+                span,
+                alpha0,
+                2.0 * own,
+                turns,
+                chirality,
+                Material::silver_coated_nylon(),
+            )
+            .ok()?;
+            (Arc::new(TcaLaw(tca)), rng.range(25.0, 160.0))
+        }
+        ActuatorKind::ConstantTension => (Arc::new(ConstantTension), ei * kappa / offset),
+        ActuatorKind::LinearTendon => {
+            // stiffness k against the bending stiffness seen at the tendon,
+            // E I / (r^2 span); pull for curvature kappa:
+            // k (pull - kappa r span) = E I kappa / r
+            let k_body = ei / (offset * offset * span);
+            let k = rng.log_range(1.0, 100.0) * k_body;
+            let pull = (ei * kappa / offset) / k + kappa * offset * span;
+            (Arc::new(LinearTendon { stiffness: k }), pull)
+        }
+    };
+    Some((Actuator::new(routing, s_start, s_end, law), input, kind))
 }
 
-/// `int_0^L p ds` [m^2] from the solution's nodes (see [`equilibrium`]).
-pub fn position_integral(robot: &Robot, sol: &Solution) -> Vector3<f64> {
-    let len = robot.body.length;
-    let tol = 1e-9 * len;
-    let bps = robot.breakpoints();
-    let is_jump = |s: f64| s > tol && s < len - tol && bps.iter().any(|b| (b - s).abs() <= tol);
-    let tangent = |k: usize| -> Vector3<f64> { sol.rotations[k] * sol.nu[k] };
-    let (s, p) = (&sol.s, &sol.positions);
-    let mut total = Vector3::zeros();
-    for k in 0..s.len().saturating_sub(1) {
-        let h = s[k + 1] - s[k];
-        if h <= 0.0 {
-            continue;
-        }
-        if !is_jump(s[k + 1]) {
-            // end-corrected trapezoid: exact for cubics
-            total += (p[k] + p[k + 1]) * (0.5 * h) + (tangent(k) - tangent(k + 1)) * (h * h / 12.0);
-        } else if k >= 1 && !is_jump(s[k]) && ((s[k] - s[k - 1]) - h).abs() <= 1e-9 * h {
-            // cubic c(t) = p_k + h p'_k t + a t^2 + b t^3 through p_{k-1}, p_{k+1}
-            let a = (p[k + 1] + p[k - 1]) * 0.5 - p[k];
-            let b = (p[k + 1] - p[k - 1]) * 0.5 - tangent(k) * h;
-            total += (p[k] + tangent(k) * (0.5 * h) + a / 3.0 + b / 4.0) * h;
-        } else {
-            // quadratic through p_k, p'_k, p_{k+1}
-            total += (p[k] / 3.0 + p[k + 1] * (2.0 / 3.0)) * h + tangent(k) * (h * h / 6.0);
-        }
-    }
-    total
-}
+mod equilibrium;
+pub use equilibrium::{equilibrium, position_integral, Equilibrium, EQUILIBRIUM_TOL};

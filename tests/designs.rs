@@ -215,7 +215,11 @@ const SUBSET: usize = 40;
 /// "line search failed". With the exact-Jacobian solver (branch `solver`,
 /// 89da0aa): 1, design #21 (a TCA and a linear tendon in a 4.3 MPa body
 /// hanging under gravity): "continuation stalled at lambda = 0", best
-/// residual 7e-5. Lower it as the solver improves.
+/// residual 7e-5. Still so with branch `robust` (generalised derivatives at
+/// actuators' onsets of tension, refinement on linear convergence, secant
+/// continuation predictor), which converges 988 of the 1,000 designs: #21
+/// fails as before ("iteration limit reached; continuation stalled at
+/// lambda = 0", best residual 7.3e-5). Lower it as the solver improves.
 const KNOWN_COLD_FAILURES: usize = 1;
 
 #[test]

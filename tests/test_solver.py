@@ -72,3 +72,58 @@ def test_ctrl_c_interrupts_a_long_sweep() -> None:
     finally:
         timer.cancel()
     assert time.monotonic() - start < 5.0
+
+
+def test_solution_reports_status_floor_and_path() -> None:
+    robot = fig6_square_robot()
+    sol = robot.solve([100.0, 100.0])
+    # the default tol 1e-10 lies above the floor: converged to tol, direct
+    assert sol.status == 0 and sol.success
+    assert 0.0 < sol.floor < 1e-10
+    assert sol.continuation_steps.shape == (0,)
+    # a tol far below the rounding floor converges to the floor and says so
+    deep = robot.solve([100.0, 100.0], tol=1e-16)
+    assert deep.status == 1 and deep.success and "rounding floor" in deep.message
+    assert deep.residual <= 100.0 * deep.floor
+    # same shape to far below a micrometre (1e-9 m: the floor is ~1e-13 of
+    # order-one strains on a 0.1 m body)
+    assert np.abs(deep.tip_position - sol.tip_position).max() < 1e-9
+    # three iterations are too few from the cold guess at 150 C: the path
+    # of the continuation is recorded, increasing to 1
+    cont = robot.solve([150.0, 150.0], max_iter=3)
+    path = cont.continuation_steps
+    assert path.size >= 1 and path[-1] == 1.0 and (np.diff(path) > 0).all()
+    assert "continuation" in cont.message
+    # pickling keeps them
+    for s in (deep, cont):
+        back = pickle.loads(pickle.dumps(s))
+        assert back == s
+        assert (back.status, back.floor) == (s.status, s.floor)
+        assert np.array_equal(back.continuation_steps, s.continuation_steps)
+
+
+def test_budget_bounds_a_solve() -> None:
+    robot = fig6_square_robot()
+    # a cold solve at 150 C needs more than 5 IVPs
+    with pytest.raises(_core.ConvergenceError) as info:
+        robot.solve([150.0, 150.0], max_evaluations=5)
+    err = info.value
+    assert err.reason == "budget" and "budget" in str(err)
+    # stopped at the first check past the budget: one Newton step's IVPs at most
+    assert 5 <= err.evaluations <= 8
+    assert np.isfinite(err.residual) and err.residual > 0.0
+    # a time limit far below one IVP's time stops it too
+    with pytest.raises(_core.ConvergenceError) as info:
+        robot.solve([150.0, 150.0], time_limit=1e-9)
+    assert info.value.reason == "budget"
+    # generous budgets change nothing
+    a = robot.solve([150.0, 150.0])
+    b = robot.solve([150.0, 150.0], max_evaluations=10_000, time_limit=60.0)
+    assert a == b
+    for bad in (0.0, -1.0, float("nan"), float("inf"), 1e10):
+        with pytest.raises(ValueError, match="time_limit"):
+            robot.solve([100.0, 100.0], time_limit=bad)
+    with pytest.raises(ValueError, match="max_evaluations"):
+        robot.solve([100.0, 100.0], max_evaluations=0)
+    with pytest.raises(TypeError):
+        robot.solve([100.0, 100.0], max_evaluations=2.5)

@@ -29,7 +29,8 @@ class ConvergenceError(RuntimeError):
     #: IVPs integrated, failed attempts included.
     evaluations: int
     #: Why it stopped: "iteration_limit", "line_search", "singular_jacobian",
-    #: "non_finite", "integration" or "other".
+    #: "non_finite", "budget" (``max_evaluations`` or ``time_limit`` spent),
+    #: "integration" or "other".
     reason: str
 
 class UnstableEquilibriumError(RuntimeError):
@@ -423,11 +424,16 @@ class Robot:
         max_iter: int = 50,
         warm_start: Solution | None = None,
         require_stable: bool = False,
+        max_evaluations: int = 20000,
+        time_limit: float | None = None,
     ) -> Solution:
         """Forward kinetostatics for one input per actuator (temperature [C] for TCAs);
-        ``steps`` RK4 steps over the body. Raises ``ValueError`` on bad input,
-        ``ConvergenceError`` if Newton fails and, with ``require_stable``,
-        ``UnstableEquilibriumError`` if the equilibrium found is unstable."""
+        ``steps`` RK4 steps over the body; ``max_evaluations`` IVPs and
+        ``time_limit`` seconds bound the whole solve (continuation included).
+        Raises ``ValueError`` on bad input, ``ConvergenceError`` if Newton fails
+        (``reason == "budget"`` when the budget ran out) and, with
+        ``require_stable``, ``UnstableEquilibriumError`` if the equilibrium
+        found is unstable."""
     def sweep(
         self,
         inputs: Sequence[Sequence[float] | _FloatArray] | _FloatArray,
@@ -503,6 +509,14 @@ class Solution:
     def residual(self) -> float:
         """Final residual (max-norm, dimensionless strain units)."""
     @property
+    def floor(self) -> float:
+        """Estimated rounding floor of the dimensionless residual at the solution [-];
+        a ``tol`` below it converges to it (``status == 1``)."""
+    @property
+    def continuation_steps(self) -> _FloatArray:
+        """Homotopy parameters in (0, 1], ending at 1, of the continuation path
+        taken when the direct Newton solve failed; empty if it did not."""
+    @property
     def unknowns(self) -> _FloatArray:
         """Scaled shooting unknowns ``[nu(0), L omega(0), delta_i / L]``."""
     def plot(self, **kwargs: Any) -> Figure:
@@ -512,7 +526,9 @@ class Solution:
         """Always ``True`` (a failed solve raises ``ConvergenceError``)."""
     @property
     def status(self) -> int:
-        """``0`` (converged)."""
+        """``0``: converged to ``tol``; ``1``: ``tol`` lies below the estimated
+        rounding floor and the residual reached the floor (``floor``). Both are
+        successes (as in ``scipy.optimize.least_squares``)."""
     @property
     def message(self) -> str: ...
     @property
@@ -559,6 +575,7 @@ def _restore_solution(
     iterations: int,
     evaluations: int,
     jacobian: tuple[int, int, Sequence[float]] | None,
+    outcome: tuple[int, float, Sequence[float]] | None = None,
 ) -> Solution: ...
 def _restore_inverse_result(
     solution: Solution,

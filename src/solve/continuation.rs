@@ -18,7 +18,7 @@ use super::shooting::{
     is_input_error, newton_shooting, reference_guess, solution_from, tensions, Loads, Solution,
     SolveOptions, Work,
 };
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
 
 /// Newton iterations under which the next homotopy step doubles.
@@ -57,6 +57,59 @@ fn at(
     (r, inp, l)
 }
 
+/// Initial guess of a homotopy step of length `dl` from the converged `x`
+/// (tensions `tau`) at the current `lambda`: the secant through the previous
+/// converged point (`prev`: its distance in `lambda` behind and its
+/// unknowns) extrapolated by `dl` when there is one (first-order predictor:
+/// its error is `O(dl^2)`, against `O(dl)` for the last point itself),
+/// else `x` with the actuator elongations that keep the tensions `tau` at
+/// the step's inputs (see `initial_guess`).
+fn predictor(
+    robot: &Robot,
+    inputs: &[f64],
+    x: &[f64],
+    tau: &[f64],
+    prev: Option<(f64, &[f64])>,
+    dl: f64,
+) -> Vec<f64> {
+    if let Some((back, xp)) = prev {
+        if back > 0.0 {
+            let a = dl / back;
+            return x
+                .iter()
+                .zip(xp)
+                .map(|(xi, pi)| xi + a * (xi - pi))
+                .collect();
+        }
+    }
+    let len = robot.body.length;
+    let mut x0 = x.to_vec();
+    for (i, a) in robot.actuators.iter().enumerate() {
+        if let Some(d) = a.law.elongation(tau[i], inputs[i]) {
+            if d.is_finite() {
+                x0[6 + i] = d / len;
+            }
+        }
+    }
+    x0
+}
+
+/// The budget error of a continuation stopped at `lam`; `residual`: the
+/// best residual of its failed Newton runs (infinite if none failed; the
+/// caller then reports its direct attempt's).
+fn budget_error(work: &Work, lam: f64, residual: f64) -> Error {
+    Error::NotConverged {
+        solver: "forward shooting",
+        iterations: work.iterations,
+        evaluations: work.evaluations,
+        residual,
+        stop: StopReason::Budget,
+        reason: format!(
+            "work budget (IVPs or time limit) exhausted; continuation at lambda = {lam:.4}"
+        ),
+    }
+}
+
 /// Continuation to `inputs` under `loads` (see the module docs); adds its
 /// work to `work`.
 pub(crate) fn continuation(
@@ -69,36 +122,32 @@ pub(crate) fn continuation(
 ) -> Result<Solution> {
     let len = robot.body.length;
     let cold = warm.is_none();
-    let from = match warm {
-        Some(w) => w.inputs.clone(),
-        None => robot.reference_inputs(),
-    };
-    let mut x = match warm {
-        Some(w) => w.unknowns.clone(),
-        None => reference_guess(robot),
-    };
-    let mut tau = match warm {
-        Some(w) => w.tensions.clone(),
-        None => vec![0.0; robot.actuators.len()],
-    };
-    let mut jac = warm.and_then(|w| w.newton_jacobian.clone());
+    let (from, mut x, mut tau, mut jac) = start(robot, warm);
+    // homotopy steps are not stopped for stalling (see `STALL_WINDOW`)
+    work.stall_window = 0;
     let mut lam = 0.0;
     let mut step: f64 = if cold { 0.25 } else { 0.5 };
     let mut path = Vec::new();
     let mut last_err: Option<Error> = None;
+    // the previous converged point (lambda, unknowns), for the secant predictor
+    let mut prev: Option<(f64, Vec<f64>)> = None;
+    // best residual of the failed Newton runs (for the budget error)
+    let mut best = f64::INFINITY;
     while lam < 1.0 {
         cancel::check()?;
+        if work.exhausted() {
+            return Err(budget_error(work, lam, best));
+        }
         let lt = (lam + step).min(1.0);
         let (r, inp, l) = at(robot, &from, inputs, loads, cold, lt);
-        // keep the tensions of the previous step (see `initial_guess`)
-        let mut x0 = x.clone();
-        for (i, a) in r.actuators.iter().enumerate() {
-            if let Some(d) = a.law.elongation(tau[i], inp[i]) {
-                if d.is_finite() {
-                    x0[6 + i] = d / len;
-                }
-            }
-        }
+        let x0 = predictor(
+            &r,
+            &inp,
+            &x,
+            &tau,
+            prev.as_ref().map(|(l0, x0)| (lam - l0, x0.as_slice())),
+            lt - lam,
+        );
         // intermediate steps are predictors: converged to 1e-8 (or tol if looser)
         let step_opts = if lt >= 1.0 {
             *opts
@@ -110,9 +159,8 @@ pub(crate) fn continuation(
         };
         match newton_shooting(&r, &inp, &l, &step_opts, &x0, jac.as_ref(), lt >= 1.0, work) {
             Ok((nr, last)) => {
-                lam = lt;
                 path.push(lt);
-                if lam >= 1.0 {
+                if lt >= 1.0 {
                     let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
                     s.continuation_steps = path;
                     return Ok(s);
@@ -127,13 +175,22 @@ pub(crate) fn continuation(
                         tensions(&r, &inp, &delta)?
                     }
                 };
-                x = nr.x;
+                prev = Some((lam, std::mem::replace(&mut x, nr.x)));
+                lam = lt;
                 if nr.jacobian.is_some() {
                     jac = nr.jacobian;
                 }
             }
             Err(e) if is_input_error(&e) => return Err(e),
+            Err(Error::NotConverged {
+                stop: StopReason::Budget,
+                residual,
+                ..
+            }) => return Err(budget_error(work, lam, best.min(residual))),
             Err(e) => {
+                if let Error::NotConverged { residual, .. } = &e {
+                    best = best.min(*residual);
+                }
                 last_err = Some(e);
                 step *= 0.25;
                 if step < MIN_STEP {
@@ -142,7 +199,33 @@ pub(crate) fn continuation(
             }
         }
     }
-    Err(match last_err {
+    Err(stall_error(last_err, work, lam))
+}
+
+/// The start of the path: the inputs, unknowns, tensions and Jacobian of
+/// the warm solution, or of the reference configuration.
+type Start = (Vec<f64>, Vec<f64>, Vec<f64>, Option<nalgebra::DMatrix<f64>>);
+
+fn start(robot: &Robot, warm: Option<&Solution>) -> Start {
+    match warm {
+        Some(w) => (
+            w.inputs.clone(),
+            w.unknowns.clone(),
+            w.tensions.clone(),
+            w.newton_jacobian.clone(),
+        ),
+        None => (
+            robot.reference_inputs(),
+            reference_guess(robot),
+            vec![0.0; robot.actuators.len()],
+            None,
+        ),
+    }
+}
+
+/// The error of a path that stalled at `lam` (its last Newton failure).
+fn stall_error(last_err: Option<Error>, work: &Work, lam: f64) -> Error {
+    match last_err {
         Some(Error::NotConverged {
             solver,
             residual,
@@ -159,5 +242,5 @@ pub(crate) fn continuation(
         },
         Some(e) => e,
         None => Error::input("inputs", "continuation made no step"),
-    })
+    }
 }

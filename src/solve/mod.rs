@@ -4,7 +4,13 @@
 
 pub mod cancel;
 pub mod continuation;
+pub mod fn_system;
+pub mod guess;
 pub mod newton;
+pub mod options;
+pub mod residual;
 pub mod shooting;
+pub mod solution;
+pub mod system;
 
 pub use newton::{newton, FnSystem, NewtonOptions, NewtonResult, Status, System};

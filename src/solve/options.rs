@@ -1,0 +1,89 @@
+//! Options of the forward shooting solve: grid, tolerance, iteration
+//! limit, and the per-solve work budget (IVPs, wall time).
+
+use std::time::Duration;
+
+use super::newton::NewtonOptions;
+use crate::error::{Error, Result};
+
+/// Options of the Newton shooting solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveOptions {
+    /// RK4 steps over the body length.
+    pub steps: usize,
+    /// Convergence tolerance on the max-norm of the dimensionless residual.
+    pub tol: f64,
+    /// Newton iteration limit (per Newton run: the direct solve and each
+    /// continuation step).
+    pub max_iter: usize,
+    /// Smallest line-search step before giving up.
+    pub min_step: f64,
+    /// IVP budget of one solve, continuation included (a tangent IVP counts
+    /// as one); exhausting it raises [`Error::NotConverged`] with
+    /// [`crate::StopReason::Budget`].
+    pub max_evaluations: usize,
+    /// Wall-time limit of one solve (`None`: none); passing it raises
+    /// [`Error::NotConverged`] with [`crate::StopReason::Budget`].
+    pub time_limit: Option<Duration>,
+}
+
+/// Default IVP budget of one solve ([`SolveOptions::max_evaluations`]): 40
+/// times the most a converging design of the issue-10 benchmark used
+/// (5,252 IVPs before this budget existed), so that it only stops runaway
+/// solves.
+pub const DEFAULT_MAX_EVALUATIONS: usize = 20_000;
+
+impl SolveOptions {
+    /// The Newton options of these (the IVP budget, no deadline, no stall
+    /// detection; a forward solve sets those per Newton run).
+    pub fn newton(&self) -> NewtonOptions {
+        NewtonOptions {
+            max_evaluations: self.max_evaluations,
+            ..NewtonOptions::new(self.tol, self.max_iter, self.min_step)
+        }
+    }
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            steps: 100,
+            tol: 1e-10,
+            max_iter: 50,
+            min_step: 1e-6,
+            max_evaluations: DEFAULT_MAX_EVALUATIONS,
+            time_limit: None,
+        }
+    }
+}
+
+impl SolveOptions {
+    /// Validate.
+    pub fn validate(&self) -> Result<()> {
+        if self.steps == 0 || self.steps > 10_000_000 {
+            return Err(Error::param(
+                "steps",
+                self.steps as f64,
+                "1 <= steps <= 1e7",
+            ));
+        }
+        if !(self.tol.is_finite() && self.tol > 0.0) {
+            return Err(Error::param("tol", self.tol, "finite and > 0"));
+        }
+        if self.max_iter == 0 {
+            return Err(Error::param("max_iter", 0.0, ">= 1"));
+        }
+        if !(self.min_step > 0.0 && self.min_step < 1.0) {
+            return Err(Error::param("min_step", self.min_step, "0 < min_step < 1"));
+        }
+        if self.max_evaluations == 0 {
+            return Err(Error::param("max_evaluations", 0.0, ">= 1"));
+        }
+        if let Some(t) = self.time_limit {
+            if t.is_zero() {
+                return Err(Error::param("time_limit [s]", 0.0, "> 0"));
+            }
+        }
+        Ok(())
+    }
+}

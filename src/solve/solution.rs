@@ -1,0 +1,219 @@
+//! A converged forward solution sampled at the integration nodes, its
+//! assembly from the converged unknowns, and the tip-only result of batches.
+
+use nalgebra::{DMatrix, Matrix3, Vector3};
+
+use super::newton::Status;
+use super::residual::{shoot, Loads};
+use crate::error::Result;
+use crate::rod::{IvpResult, Robot};
+
+/// A converged forward solution, sampled at the integration nodes.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// Arc length of each node \[m\].
+    pub s: Vec<f64>,
+    /// Centre-line positions \[m\], world frame.
+    pub positions: Vec<Vector3<f64>>,
+    /// Rotations (body to world).
+    pub rotations: Vec<Matrix3<f64>>,
+    /// Linear strains `nu` \[-\], body frame.
+    pub nu: Vec<Vector3<f64>>,
+    /// Angular strains `omega` \[1/m\], body frame.
+    pub omega: Vec<Vector3<f64>>,
+    /// Internal force `n = R K_nu (nu - nu*)` \[N\], world frame.
+    pub internal_force: Vec<Vector3<f64>>,
+    /// Internal moment `m = R K_omega (omega - omega*)` \[N m\], world frame.
+    pub internal_moment: Vec<Vector3<f64>>,
+    /// Elongation of each actuator up to each node \[m\] (`nodes x actuators`).
+    pub elongation_profile: Vec<Vec<f64>>,
+    /// Actuator paths `p + R r_i(s)` \[m\] at the nodes within each actuator's span.
+    pub actuator_paths: Vec<Vec<Vector3<f64>>>,
+    /// Actuator tensions \[N\] (negative: the actuator pushes).
+    pub tensions: Vec<f64>,
+    /// Actuator total elongations \[m\].
+    pub elongations: Vec<f64>,
+    /// Actuation inputs the solution is for.
+    pub inputs: Vec<f64>,
+    /// Force \[N\] the body and its actuators transmit to the base (world
+    /// frame); the base reaction is its negative.
+    pub base_force: Vector3<f64>,
+    /// Moment \[N m\] about the base origin transmitted to the base.
+    pub base_moment: Vector3<f64>,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// IVPs integrated.
+    pub evaluations: usize,
+    /// Final max-norm residual (dimensionless).
+    pub residual: f64,
+    /// Scaled shooting unknowns, for warm starts.
+    pub unknowns: Vec<f64>,
+    /// Tip loads the solution is for.
+    pub loads: Loads,
+    /// RK4 steps used.
+    pub steps: usize,
+    /// The exact shooting Jacobian (scaled residual by scaled unknowns) of
+    /// the last Newton iteration; `None` if no iteration was needed.
+    pub newton_jacobian: Option<DMatrix<f64>>,
+    /// How Newton converged (to `tol`, or to the rounding floor above it).
+    pub status: Status,
+    /// Estimated rounding floor of the scaled residual at the solution.
+    pub floor: f64,
+    /// Homotopy parameters of the continuation path taken (each in (0, 1],
+    /// ending at 1), empty if the direct solve converged.
+    pub continuation_steps: Vec<f64>,
+}
+
+impl Solution {
+    /// Tip position \[m\].
+    pub fn tip_position(&self) -> Vector3<f64> {
+        *self.positions.last().expect("a solution has nodes")
+    }
+    /// Tip rotation.
+    pub fn tip_rotation(&self) -> Matrix3<f64> {
+        *self.rotations.last().expect("a solution has nodes")
+    }
+}
+
+/// Build a [`Solution`] by integrating once more from converged unknowns.
+pub fn assemble(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    steps: usize,
+    iterations: usize,
+    evaluations: usize,
+) -> Result<Solution> {
+    let (r, ivp, tau) = shoot(robot, inputs, loads, x, steps, true)?;
+    assemble_from(
+        robot,
+        inputs,
+        loads,
+        x,
+        steps,
+        iterations,
+        evaluations,
+        r,
+        ivp,
+        tau,
+    )
+}
+
+/// [`assemble`] from the recorded IVP at `x` (residual `r`, tensions `tau`).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn assemble_from(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    steps: usize,
+    iterations: usize,
+    evaluations: usize,
+    r: Vec<f64>,
+    ivp: IvpResult,
+    tau: Vec<f64>,
+) -> Result<Solution> {
+    let body = &robot.body;
+    let (kse, kbt) = body.stiffness();
+    let na = robot.actuators.len();
+    let mut sol = Solution {
+        s: Vec::with_capacity(ivp.nodes.len()),
+        positions: Vec::new(),
+        rotations: Vec::new(),
+        nu: Vec::new(),
+        omega: Vec::new(),
+        internal_force: Vec::new(),
+        internal_moment: Vec::new(),
+        elongation_profile: Vec::new(),
+        actuator_paths: vec![Vec::new(); na],
+        tensions: tau.clone(),
+        elongations: ivp.elongation.clone(),
+        inputs: inputs.to_vec(),
+        base_force: Vector3::zeros(),
+        base_moment: Vector3::zeros(),
+        iterations,
+        evaluations,
+        residual: r.iter().fold(0.0, |m: f64, x| m.max(x.abs())),
+        unknowns: x.to_vec(),
+        loads: *loads,
+        steps,
+        newton_jacobian: None,
+        status: Status::Converged,
+        floor: 0.0,
+        continuation_steps: Vec::new(),
+    };
+    let tol = 1e-12 * body.length;
+    for (s, st) in &ivp.nodes {
+        let rm = st.rotation();
+        sol.s.push(*s);
+        sol.positions.push(st.p);
+        sol.rotations.push(rm);
+        sol.nu.push(st.v);
+        sol.omega.push(st.u);
+        sol.internal_force.push(rm * kse * (st.v - body.nu_star));
+        sol.internal_moment
+            .push(rm * kbt * (st.u - body.omega_star));
+        sol.elongation_profile.push(st.delta.clone());
+        for (i, a) in robot.actuators.iter().enumerate() {
+            if *s >= a.s_start - tol && *s <= a.s_end + tol {
+                let (ri, _, _) = a.routing.eval(*s);
+                sol.actuator_paths[i].push(st.p + rm * ri);
+            }
+        }
+    }
+    // Wrench transmitted to the base: body (n, m at s = 0) plus the strings
+    // anchored there, each pulling the base toward the tip with tau t.
+    let st0 = &ivp.nodes[0].1;
+    let r0 = st0.rotation();
+    let mut f = r0 * kse * (st0.v - body.nu_star);
+    let mut m = r0 * kbt * (st0.u - body.omega_star) + st0.p.cross(&f);
+    for (i, a) in robot.actuators.iter().enumerate() {
+        if a.s_start <= tol {
+            let (ri, rp, _) = a.routing.eval(0.0);
+            let pb = st0.v + st0.u.cross(&ri) + rp;
+            let t = r0 * pb / pb.norm();
+            f += t * tau[i];
+            m += (st0.p + r0 * ri).cross(&(t * tau[i]));
+        }
+    }
+    sol.base_force = f;
+    sol.base_moment = m;
+    Ok(sol)
+}
+
+/// Tip pose of a forward solution, without the sampled profile (for batches).
+#[derive(Debug, Clone)]
+pub struct TipSolution {
+    /// Tip position \[m\].
+    pub position: Vector3<f64>,
+    /// Tip rotation (body to world).
+    pub rotation: Matrix3<f64>,
+    /// Scaled shooting unknowns.
+    pub unknowns: Vec<f64>,
+    /// Actuator tensions \[N\].
+    pub tensions: Vec<f64>,
+    /// Inputs the solution is for.
+    pub inputs: Vec<f64>,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// IVPs integrated (coarse-grid ones included).
+    pub evaluations: usize,
+    /// Final Newton Jacobian, for warm starts.
+    pub newton_jacobian: Option<DMatrix<f64>>,
+}
+
+impl TipSolution {
+    pub(crate) fn from_solution(s: Solution) -> Self {
+        TipSolution {
+            position: s.tip_position(),
+            rotation: s.tip_rotation(),
+            unknowns: s.unknowns,
+            tensions: s.tensions,
+            inputs: s.inputs,
+            iterations: s.iterations,
+            evaluations: s.evaluations,
+            newton_jacobian: s.newton_jacobian,
+        }
+    }
+}

@@ -1,0 +1,300 @@
+//! The shooting residual as a Newton [`System`] (coarse-grid, then
+//! full-grid exact Jacobians; the onset side of slack laws), the work and
+//! budget carried through a solve, and one Newton run of a forward problem.
+
+use std::time::Instant;
+
+use nalgebra::DMatrix;
+
+use super::newton::{newton_from, NewtonOptions, NewtonResult, System};
+use super::options::SolveOptions;
+use super::residual::{residual_scales, shoot, shoot_jacobian_side, Loads};
+use super::solution::{assemble, assemble_from, Solution};
+use crate::error::{Error, Result};
+use crate::rod::{IvpResult, Robot};
+
+/// Unknowns, residual, IVP and tensions of the last evaluation, kept for the solution.
+type LastEvaluation = (Vec<f64>, Vec<f64>, IvpResult, Vec<f64>);
+/// Residual, IVP and tensions at the Newton solution (when it was the last one integrated).
+type FinalIvp = (Vec<f64>, IvpResult, Vec<f64>);
+
+/// The shooting residual of one forward problem as a Newton [`System`]:
+/// plain IVPs for residuals, tangent IVPs for the exact Jacobian. Counts
+/// every IVP (failed ones too) and keeps the last plain one (at the point
+/// Newton returns, so that it can serve as the solution's profile).
+pub struct Shooting<'a> {
+    robot: &'a Robot,
+    inputs: &'a [f64],
+    loads: &'a Loads,
+    steps: usize,
+    record: bool,
+    /// IVPs integrated (plain and tangent).
+    pub evaluations: usize,
+    /// Tangent IVPs among them.
+    pub tangent_evaluations: usize,
+    /// RK4 steps of the Newton Jacobian: a tenth of `steps` (at least
+    /// [`COARSE_JACOBIAN_MIN_STEPS`]) until [`System::refine`] switches to
+    /// the exact Jacobian of the full grid (`None`).
+    jacobian_steps: Option<usize>,
+    last: Option<LastEvaluation>,
+    /// Whether the last Jacobian had an actuator at its onset of tension.
+    at_onset: bool,
+    /// Take the slack side's derivative at an onset (see [`crate::solve::residual::tension_slope`]).
+    slack_onset: bool,
+}
+
+/// Fewest RK4 steps of the coarse-grid Newton Jacobian (below ten times
+/// this, the Jacobian is taken on the full grid).
+pub const COARSE_JACOBIAN_MIN_STEPS: usize = 10;
+
+impl<'a> Shooting<'a> {
+    /// The system of `robot` at `inputs` under `loads` on `steps` RK4 steps;
+    /// `record`: keep the nodes of the last IVP.
+    pub fn new(
+        robot: &'a Robot,
+        inputs: &'a [f64],
+        loads: &'a Loads,
+        steps: usize,
+        record: bool,
+    ) -> Self {
+        let coarse = steps / 10;
+        let jacobian_steps = if coarse >= COARSE_JACOBIAN_MIN_STEPS {
+            Some(coarse)
+        } else {
+            None
+        };
+        Shooting {
+            robot,
+            inputs,
+            loads,
+            steps,
+            record,
+            evaluations: 0,
+            tangent_evaluations: 0,
+            jacobian_steps,
+            last: None,
+            at_onset: false,
+            slack_onset: false,
+        }
+    }
+    /// The last plain IVP if it was at `x`: `(residual, ivp, tensions)`.
+    fn take_last(&mut self, x: &[f64]) -> Option<(Vec<f64>, IvpResult, Vec<f64>)> {
+        match self.last.take() {
+            Some((xl, r, ivp, tau)) if xl == x => Some((r, ivp, tau)),
+            _ => None,
+        }
+    }
+}
+
+impl System for Shooting<'_> {
+    fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
+        self.evaluations += 1;
+        let (r, ivp, tau) = shoot(
+            self.robot,
+            self.inputs,
+            self.loads,
+            x,
+            self.steps,
+            self.record,
+        )?;
+        self.last = Some((x.to_vec(), r.clone(), ivp, tau));
+        Ok(r)
+    }
+    fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
+        self.evaluations += 1;
+        self.tangent_evaluations += 1;
+        // the tangents of a grid of a tenth of the steps: a tenth of the cost,
+        // and a Jacobian within RK4's coarse-grid error (~1e-4) of the exact
+        // one, which Newton's convergence test on the full grid absorbs in a
+        // chord step or two; the full-grid Jacobian after a failed line search
+        let steps = self.jacobian_steps.unwrap_or(self.steps);
+        let ((r, j, _, _), onset) = shoot_jacobian_side(
+            self.robot,
+            self.inputs,
+            self.loads,
+            x,
+            steps,
+            false,
+            self.slack_onset,
+        )?;
+        self.at_onset = onset;
+        Ok((r, j))
+    }
+    /// First the full grid's Jacobian; then, if an actuator was at its
+    /// onset of tension, the slack side's derivative there (see
+    /// [`crate::solve::residual::tension_slope`]).
+    fn refine(&mut self) -> bool {
+        if self.jacobian_steps.take().is_some() {
+            return true;
+        }
+        if self.at_onset && !self.slack_onset {
+            self.slack_onset = true;
+            return true;
+        }
+        false
+    }
+    /// `4 eps max(fs (k_nu |nu| + |F| + sum |tau|), ms (k_omega |omega| L + |M| + sum |r_i| |tau_i|))`:
+    /// the rounding of the largest terms of the tip balance (32)-(33),
+    /// `K (strain - strain*)` with strains of order one, in the scaled
+    /// residual. (For a steel rod `EA L^2 / EI` makes this ~1e-9.)
+    fn floor(&self, x: &[f64], _r: &[f64]) -> f64 {
+        let robot = self.robot;
+        let (kse, kbt) = robot.body.stiffness();
+        let (fs, ms) = residual_scales(robot);
+        let len = robot.body.length;
+        let tau: Vec<f64> = match &self.last {
+            Some((_, _, _, tau)) => tau.clone(),
+            None => vec![0.0; robot.actuators.len()],
+        };
+        let vmax = x[0].abs().max(x[1].abs()).max(x[2].abs());
+        let umax = x[3].abs().max(x[4].abs()).max(x[5].abs()) / len;
+        let st: f64 = tau.iter().map(|t| t.abs()).sum();
+        let srt: f64 = robot
+            .actuators
+            .iter()
+            .zip(&tau)
+            .map(|(a, t)| a.routing.eval(len).0.norm() * t.abs())
+            .sum();
+        let f = fs * (kse.max() * vmax + self.loads.tip_force.amax() + st);
+        let m = ms * (kbt.max() * umax * len + self.loads.tip_moment.amax() + srt);
+        4.0 * f64::EPSILON * f.max(m)
+    }
+    fn evaluations(&self) -> usize {
+        self.evaluations
+    }
+}
+
+/// Work counters carried through a solve and its fallbacks, and the solve's
+/// budget.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Work {
+    pub iterations: usize,
+    pub evaluations: usize,
+    /// IVP budget of the whole solve (0: none).
+    pub max_evaluations: usize,
+    /// Deadline of the whole solve.
+    pub deadline: Option<Instant>,
+    /// Stall window of the next Newton runs (see
+    /// [`NewtonOptions::stall_window`]).
+    pub stall_window: usize,
+}
+
+impl Work {
+    /// Counters at zero and the budget of `opts` from now.
+    pub fn start(opts: &SolveOptions) -> Self {
+        Work {
+            max_evaluations: opts.max_evaluations,
+            deadline: opts.time_limit.map(|t| Instant::now() + t),
+            stall_window: STALL_WINDOW,
+            ..Default::default()
+        }
+    }
+    fn add(&mut self, sys: &Shooting<'_>, iterations: usize) {
+        self.iterations += iterations;
+        self.evaluations += sys.evaluations;
+    }
+    /// Whether the budget is spent.
+    pub fn exhausted(&self) -> bool {
+        (self.max_evaluations > 0 && self.evaluations >= self.max_evaluations)
+            || self.deadline.is_some_and(|d| Instant::now() >= d)
+    }
+    /// The Newton options of one run within the remaining budget.
+    fn newton_options(&self, opts: &SolveOptions) -> NewtonOptions {
+        let max_evaluations = if self.max_evaluations == 0 {
+            usize::MAX
+        } else {
+            self.max_evaluations.saturating_sub(self.evaluations)
+        };
+        NewtonOptions {
+            max_evaluations,
+            deadline: self.deadline,
+            stall_window: self.stall_window,
+            ..opts.newton()
+        }
+    }
+}
+
+/// Stall window of a forward solve's direct Newton run (see
+/// [`NewtonOptions::stall_window`]; 0: off). Off by measurement: on the
+/// first 300 benchmark designs, window 4 sent 99 solves to continuation
+/// (42 without) and converged 293 (295 without), with a larger worst case
+/// (4,175 against 2,453 IVP-equivalents). The continuation's own steps run
+/// without it in any case (stopping them early stalled the path at
+/// `lambda = 0` on 67 of the 1,000 designs).
+pub const STALL_WINDOW: usize = 0;
+
+/// Newton shooting from `x0`; returns the Newton result and the IVP at its
+/// solution (if it was the last one integrated). Adds the work to `work`
+/// (also on failure).
+#[allow(clippy::too_many_arguments)] // the shooting problem's parts, passed through to `Shooting::new`
+pub(crate) fn newton_shooting(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    x0: &[f64],
+    jac0: Option<&DMatrix<f64>>,
+    record: bool,
+    work: &mut Work,
+) -> Result<(NewtonResult, Option<FinalIvp>)> {
+    let mut sys = Shooting::new(robot, inputs, loads, opts.steps, record);
+    let nopts = work.newton_options(opts);
+    let out = newton_from(&mut sys, x0, &nopts, "forward shooting", jac0);
+    match out {
+        Ok(nr) => {
+            work.add(&sys, nr.iterations);
+            let last = sys.take_last(&nr.x);
+            Ok((nr, last))
+        }
+        Err(Error::NotConverged {
+            solver,
+            iterations,
+            evaluations: _,
+            residual,
+            stop,
+            reason,
+        }) => {
+            work.add(&sys, iterations);
+            Err(Error::NotConverged {
+                solver,
+                iterations: work.iterations,
+                evaluations: work.evaluations,
+                residual,
+                stop,
+                reason,
+            })
+        }
+        Err(e) => {
+            work.add(&sys, 0);
+            Err(e)
+        }
+    }
+}
+
+/// A [`Solution`] from a converged Newton result (integrating once more,
+/// recorded, unless the last IVP at the solution is given).
+pub(crate) fn solution_from(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    nr: NewtonResult,
+    last: Option<(Vec<f64>, IvpResult, Vec<f64>)>,
+    work: &mut Work,
+) -> Result<Solution> {
+    let mut s = match last {
+        Some((r, ivp, tau)) if !ivp.nodes.is_empty() => {
+            assemble_from(robot, inputs, loads, &nr.x, opts.steps, 0, 0, r, ivp, tau)?
+        }
+        _ => {
+            work.evaluations += 1;
+            assemble(robot, inputs, loads, &nr.x, opts.steps, 0, 0)?
+        }
+    };
+    s.iterations = work.iterations;
+    s.evaluations = work.evaluations;
+    s.newton_jacobian = nr.jacobian;
+    s.status = nr.status;
+    s.floor = nr.floor;
+    Ok(s)
+}
