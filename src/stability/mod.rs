@@ -95,7 +95,7 @@ mod verdict;
 
 pub use landing::land;
 pub use landing::{Landing, Route};
-pub use policy::{solve_checked, unstable_error, Checked, Continued, Policy};
+pub use policy::{solve_checked, sweep_checked, unstable_error, Checked, Continued, Policy};
 
 /// Margins above `-NEUTRAL` count as stable: a symmetry leaves a neutral
 /// mode (a buckled round column can turn about the vertical at no cost, so

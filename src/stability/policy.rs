@@ -142,3 +142,25 @@ pub fn unstable_error(sol: &Solution, st: &Stability) -> Error {
         ),
     }
 }
+
+/// Solve along rows of `inputs`, each warm-started from the previous
+/// solution handed back, under `policy` (as `shooting::sweep`, which it
+/// replaces when a verdict is wanted). With [`Policy::Continue`] the sweep
+/// follows what a physical robot does quasi-statically: where its
+/// equilibrium is lost it lands on a stable one and goes on from there.
+pub fn sweep_checked(
+    robot: &Robot,
+    inputs: &[Vec<f64>],
+    opts: &SolveOptions,
+    policy: Policy,
+) -> Result<Vec<Checked>> {
+    let loads = Loads::of(robot);
+    let mut out: Vec<Checked> = Vec::with_capacity(inputs.len());
+    for q in inputs {
+        crate::solve::cancel::check()?;
+        let warm = out.last().map(|c| &c.solution);
+        let c = solve_checked(robot, q, &loads, opts, warm, policy)?;
+        out.push(c);
+    }
+    Ok(out)
+}

@@ -41,16 +41,24 @@ fn crosses(a: &crate::rod::Actuator, s: f64, len: f64) -> bool {
     a.s_start <= s + tol && (a.s_end > s + tol || (at_tip && a.s_end >= len - tol))
 }
 
-fn frame(robot: &Robot, tau: &[f64], s: f64, y: &[f64]) -> NodeFrame {
+/// The frame of the node at `s` with state `y`, reusing `strings`' storage.
+fn frame(
+    robot: &Robot,
+    c: &Consts,
+    tau: &[f64],
+    s: f64,
+    y: &[f64],
+    mut strings: Vec<(usize, Vector3<f64>, Vector3<f64>, f64, f64)>,
+) -> NodeFrame {
     let b = &robot.body;
-    let (kse, kbt) = b.stiffness();
+    let (kse, kbt) = (c.kse, c.kbt);
     let q = Quaternion::new(y[3], y[4], y[5], y[6]);
     let rm = rot(&q);
     let v = Vector3::new(y[7], y[8], y[9]);
     let u = Vector3::new(y[10], y[11], y[12]);
     let mut nb = kse * (v - b.nu_star);
     let mut mb = kbt * (u - b.omega_star);
-    let mut strings = Vec::new();
+    strings.clear();
     for (i, a) in robot.actuators.iter().enumerate() {
         if !crosses(a, s, b.length) {
             continue;
@@ -167,8 +175,9 @@ pub(super) fn exact_tangents(robot: &Robot, sol: &Solution, actuators: bool) -> 
         h_tip: DMatrix::zeros(6, nz),
         e: DMatrix::zeros(na, if actuators { nz } else { 0 }),
     };
+    let mut strings = Vec::with_capacity(na);
     for (n, node) in tan.nodes.iter().enumerate() {
-        let f = frame(robot, &tau, node.s, &node.state);
+        let f = frame(robot, &c, &tau, node.s, &node.state, strings);
         let (mut y, mut h) = (Matrix6::zeros(), Matrix6::zeros());
         let tip = n + 1 == k;
         for j in 0..if tip { nz } else { 6 } {
@@ -185,6 +194,7 @@ pub(super) fn exact_tangents(robot: &Robot, sol: &Solution, actuators: bool) -> 
         out.s.push(node.s);
         out.y.push(y);
         out.h.push(h);
+        strings = f.strings;
     }
     if actuators {
         for i in 0..na {

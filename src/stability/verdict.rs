@@ -2,7 +2,7 @@
 //! (determinant (S1), Dirichlet test, positive definiteness of (S2)) and the
 //! margin at the tip ((S2), or (S3) restricted to the free directions).
 
-use nalgebra::{DMatrix, DVector, Matrix6, SymmetricEigen, Vector3};
+use nalgebra::{DMatrix, DVector, SymmetricEigen, Vector3};
 
 use super::tangents::Tangents;
 use super::{Stability, NEUTRAL};
@@ -26,9 +26,10 @@ struct Scan {
     dirichlet: Option<f64>,
 }
 
-/// (S1) normalised at the base, the Dirichlet test and a Cholesky test of
-/// the symmetric part of (S2) at every node (fixed-size 6 x 6 algebra).
-fn scan(t: &Tangents) -> Scan {
+/// (S1) normalised at the base, the Dirichlet test (if `dirichlet`) and a
+/// Cholesky test of the symmetric part of (S2) at every node (fixed-size
+/// 6 x 6 algebra).
+fn scan(t: &Tangents, dirichlet: bool) -> Scan {
     let nodes = t.s.len();
     let det0 = t.y.first().map_or(0.0, |y| y.determinant());
     let mut out = Scan {
@@ -50,20 +51,20 @@ fn scan(t: &Tangents) -> Scan {
             continue;
         }
         let h = &t.h[k];
-        let hd = h.determinant();
-        if hdet_sign == 0.0 {
-            hdet_sign = hd.signum();
-        } else if out.dirichlet.is_none() && hd * hdet_sign <= 0.0 {
-            out.dirichlet = Some(sk);
-        }
-        let pd = match h.try_inverse() {
-            Some(hi) => {
-                let kk = t.y[k] * hi;
-                let sym = (kk + kk.transpose()) * 0.5 + Matrix6::identity() * NEUTRAL;
-                sym.cholesky().is_some()
+        if dirichlet {
+            let hd = h.determinant();
+            if hdet_sign == 0.0 {
+                hdet_sign = hd.signum();
+            } else if out.dirichlet.is_none() && hd * hdet_sign <= 0.0 {
+                out.dirichlet = Some(sk);
             }
-            None => false,
-        };
+        }
+        // sym(K) + NEUTRAL I is positive definite iff its congruent
+        // H^T (sym(K) + NEUTRAL I) H = sym(H^T Y) + NEUTRAL H^T H is (H
+        // invertible): no inverse needed
+        let hty = h.transpose() * t.y[k];
+        let a = (hty + hty.transpose()) * 0.5 + h.transpose() * h * NEUTRAL;
+        let pd = a.cholesky().is_some();
         if out.conjugate.is_none() && !pd {
             out.conjugate = Some(sk);
         }
@@ -82,7 +83,7 @@ pub(super) fn verdict(
     full: bool,
     evaluations: usize,
 ) -> Stability {
-    let sc = scan(t);
+    let sc = scan(t, full);
     let nodes = t.s.len();
     let last = nodes.saturating_sub(1);
     let mut out = Stability {
