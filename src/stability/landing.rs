@@ -171,11 +171,18 @@ fn imperfection(
     let ei = robot.body.youngs_modulus * ix.min(iy);
     let mut w: Option<Solution> = Some(before.clone());
     let mut evals = 0;
-    for eps in [0.5, 0.25, 0.1, 0.04, 0.015, 0.005, 0.0] {
+    for (k, eps) in [0.5, 0.25, 0.1, 0.04, 0.015, 0.005, 0.0].into_iter().enumerate() {
         let mut l = *loads;
         l.tip_force += Vector3::new(mode[0], mode[1], mode[2]) * (sign * eps * ei / (len * len));
         l.tip_moment += Vector3::new(mode[3], mode[4], mode[5]) * (sign * eps * ei / len);
-        let s = solve_loaded(robot, inputs, &l, opts, w.as_ref()).ok()?;
+        let s = match solve_loaded(robot, inputs, &l, opts, w.as_ref()) {
+            Ok(s) => s,
+            // the perturbed robot from its reference configuration (the
+            // solver's load continuation from there follows the branch the
+            // imperfection selects) when the start is too far from it
+            Err(_) if k == 0 => solve_loaded(robot, inputs, &l, opts, None).ok()?,
+            Err(_) => return None,
+        };
         evals += s.evaluations;
         w = Some(s);
     }
