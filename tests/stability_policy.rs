@@ -84,7 +84,10 @@ fn off_skips_and_require_refuses() {
     assert_eq!(off.solution.evaluations, plain.evaluations);
     match solve_checked(&r, &[], &loads, &opts, None, Policy::Require) {
         Err(Error::NoSolution { reason }) => {
-            assert!(reason.contains("unstable") && reason.contains("margin"), "{reason}")
+            assert!(
+                reason.contains("unstable") && reason.contains("margin"),
+                "{reason}"
+            )
         }
         other => panic!("expected NoSolution, got {other:?}"),
     }
@@ -128,7 +131,10 @@ fn continue_lands_on_the_post_buckled_elastica() {
         assert!(c.solution.residual <= opts.tol);
         let d = lateral(c.solution.tip_position()) / 0.5;
         let e = elastica_deflection(ratio);
-        println!("P/P_E = {ratio}: continued tip deflection {d:.5} L, elastica {e:.5} L ({})", cont.route);
+        println!(
+            "P/P_E = {ratio}: continued tip deflection {d:.5} L, elastica {e:.5} L ({})",
+            cont.route
+        );
         // 1e-3 L: shear and extension of an L/r = 100 column (~2e-4) and RK4
         assert!((d - e).abs() < 1e-3, "ratio {ratio}: {d} vs elastica {e}");
     }

@@ -14,7 +14,7 @@ use crate::error::{Error, Result};
 use crate::rod::{
     Actuator, Body, ConstantTension, ForceLaw, LinearTendon, Robot, Routing, Section, TcaLaw,
 };
-use crate::shooting::{solve, Solution, SolveOptions};
+use crate::shooting::{Solution, SolveOptions};
 
 /// What `__reduce__` returns: a rebuilding callable and its arguments.
 type Reduce<'py, A> = PyResult<(Bound<'py, PyAny>, A)>;
@@ -1071,7 +1071,7 @@ pub(crate) fn options(steps: usize, tol: f64, max_iter: usize) -> PyResult<Solve
 /// Every number of a solution is finite (the IVP rejects non-finite
 /// derivatives, so this holds by construction; checked once more at the
 /// boundary so that no getter can hand NaN to Python).
-fn checked_solution(sol: Solution) -> Result<Solution> {
+pub(crate) fn checked_solution(sol: Solution) -> Result<Solution> {
     let vecs = sol
         .positions
         .iter()
@@ -1180,15 +1180,18 @@ impl PyRobot {
     /// Newton tolerance on the dimensionless residual; `max_iter`: Newton
     /// iterations (1 to 100,000); `warm_start`: a nearby `Solution` of this
     /// robot, or of a robot with the same actuators under other loads (load
-    /// continuation); `require_stable`: check the equilibrium's stability
-    /// (one tangent IVP more, cached in `Solution.stable`) and raise
-    /// `UnstableEquilibriumError` (attributes `margin` [-] and `solution`) if it
-    /// is unstable; a stable one is reached with
-    /// `tcarod.stability.follow_branch(..., stable_only=True)` or another
-    /// `warm_start`. Raises `ValueError` on bad input, `TypeError` on wrong types and
+    /// continuation). `stability` (issue 16): `"report"` (default: the
+    /// verdict is part of the solve, one tangent IVP, cached in
+    /// `Solution.stable`; an unstable equilibrium also emits
+    /// `UnstableEquilibriumWarning`), `"require"` (raise
+    /// `UnstableEquilibriumError`, attributes `margin` [-] and `solution`),
+    /// `"continue"` (move from an unstable equilibrium to a stable one at the
+    /// same inputs; `Solution.continued` records how) or `"off"` (no verdict:
+    /// hot loops). `require_stable=True` is `stability="require"`. Raises
+    /// `ValueError` on bad input, `TypeError` on wrong types and
     /// `ConvergenceError` if Newton fails.
-    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, require_stable=false),
-        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, require_stable=False)")]
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, stability="report", require_stable=false),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, stability='report', require_stable=False)")]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         slf: &Bound<'_, Self>,
@@ -1198,43 +1201,31 @@ impl PyRobot {
         tol: Real,
         max_iter: Option<Bound<'_, PyAny>>,
         warm_start: Option<PyRef<'_, PySolution>>,
+        stability: &str,
         require_stable: bool,
     ) -> PyResult<PySolution> {
         let this = slf.get();
         let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+        let mut policy = super::stability::parse_policy(stability)?;
+        if require_stable {
+            policy = crate::stability::Policy::Require;
+        }
         let q = reals("inputs", &inputs, None)?;
         check_ambient(&this.inner, &q)?;
-        let robot = this.inner.clone();
         let warm = warm_start.map(|w| w.inner.clone());
-        let sol = super::errors::detach_interruptible(py, || {
-            solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution)
-        })?;
-        let sol = PySolution::new(sol, slf.clone().unbind());
-        if require_stable {
-            let (stable, margin) = sol.verdict(py)?;
-            if !stable {
-                let tip = sol.inner.tip_position();
-                let err = super::errors::UnstableEquilibriumError::new_err(format!(
-                    "the equilibrium found (tip at {} m) is unstable: stability margin \
-                     {margin:.3e} < 0; continue to a stable one with \
-                     tcarod.stability.follow_branch(..., stable_only=True) or solve from \
-                     another warm_start",
-                    pv(tip.as_slice())
-                ));
-                let value = err.value(py);
-                value.setattr("margin", margin)?;
-                value.setattr("solution", Py::new(py, sol)?)?;
-                return Err(err);
-            }
-        }
-        Ok(sol)
+        super::stability::solve_policy(py, slf, &q, &opts, warm, policy)
     }
 
     /// Solve along rows of `inputs` (shape `(k, n_actuators)`, at most
     /// 10,000,000 rows), each warm-started from the previous one. Returns a
-    /// list of `Solution`. Options as for `solve`.
-    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None),
-        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50)")]
+    /// list of `Solution`. Options as for `solve`; `stability`: `"report"`
+    /// (default: every solution carries its verdict, one warning names the
+    /// unstable rows), `"require"` (raise at the first unstable row),
+    /// `"continue"` (the quasi-static path of the physical robot: where an
+    /// equilibrium is unstable, move to a stable one and go on from it) or
+    /// `"off"`.
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, stability="report"),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, stability='report')")]
     fn sweep(
         slf: &Bound<'_, Self>,
         py: Python<'_>,
@@ -1242,8 +1233,10 @@ impl PyRobot {
         steps: Option<Bound<'_, PyAny>>,
         tol: Real,
         max_iter: Option<Bound<'_, PyAny>>,
+        stability: &str,
     ) -> PyResult<Vec<PySolution>> {
         let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+        let policy = super::stability::parse_policy(stability)?;
         let rows_iter = inputs.try_iter().map_err(|_| {
             pyo3::exceptions::PyTypeError::new_err("inputs: expected a sequence of rows")
         })?;
@@ -1263,17 +1256,7 @@ impl PyRobot {
             check_ambient(&slf.get().inner, &row)?;
             rows.push(row);
         }
-        let robot = slf.get().inner.clone();
-        let sols = super::errors::detach_interruptible(py, || {
-            crate::shooting::sweep(&robot, &rows, &opts)?
-                .into_iter()
-                .map(checked_solution)
-                .collect::<Result<Vec<_>>>()
-        })?;
-        Ok(sols
-            .into_iter()
-            .map(|s| PySolution::new(s, slf.clone().unbind()))
-            .collect())
+        super::stability::sweep_policy(py, slf, &rows, &opts, policy)
     }
 
     fn __repr__(&self) -> String {
@@ -1351,14 +1334,20 @@ fn actuator_list(seq: &Bound<'_, PyAny>) -> PyResult<Vec<PyActuator>> {
 /// `ConvergenceError`), `status` 0, `message`, `nit` (Newton iterations),
 /// `nfev` (IVPs). Naming: `tip_position` [m] per solve, `tip_positions` per
 /// batch (`tcarod.batch.BatchResult`). Picklable (with its robot) and `==`.
-/// Stability: `stable` and `stability_margin`, computed on first access (one
-/// tangent IVP) and cached.
+/// Stability: `stable` and `stability_margin`, computed by the solve (policy
+/// `"report"`, the default) or on first access (one tangent IVP), cached;
+/// `continued` records a `stability="continue"` solve's route.
 #[pyclass(name = "Solution", module = "tcarod._core", frozen)]
 pub struct PySolution {
     pub(crate) inner: Solution,
     pub(crate) robot: Py<PyRobot>,
-    /// Cached free-tip stability verdict `(stable, margin)` (issue 16).
+    /// Cached stability verdict `(stable, margin)` (issue 16).
     pub(crate) verdict: OnceLock<(bool, f64)>,
+    /// World directions along which the tip translation is held (the block
+    /// normal of a blocked-tip solution; empty for a free tip).
+    pub(crate) blocked: Vec<Vector3<f64>>,
+    /// How `stability="continue"` reached this equilibrium, if it moved.
+    pub(crate) continued: Option<Py<super::stability::Continuation>>,
 }
 
 impl PySolution {
@@ -1368,6 +1357,8 @@ impl PySolution {
             inner,
             robot,
             verdict: OnceLock::new(),
+            blocked: Vec::new(),
+            continued: None,
         }
     }
 
@@ -1378,7 +1369,8 @@ impl PySolution {
         }
         let robot = self.robot.bind(py).get().inner.clone();
         let sol = &self.inner;
-        let st = py.detach(|| crate::stability::stability(&robot, sol, &[]))?;
+        let blocked = &self.blocked;
+        let st = py.detach(|| crate::stability::stability(&robot, sol, blocked))?;
         let st = super::stability::finite_margin(st);
         Ok(*self.verdict.get_or_init(|| (st.stable, st.margin)))
     }
@@ -1533,14 +1525,20 @@ impl PySolution {
     }
     /// True if this equilibrium is stable: a strict local minimum of the
     /// potential energy (Till and Rucker's criterion, extended to the
-    /// actuators and dead loads; see `tcarod.stability`). Computed on first
-    /// access from one tangent integration (GIL released) and cached.
-    /// Always the free-tip verdict: for `BlockedResult.solution` the contact
-    /// force counts as a dead tip load; for the verdict with the tip held on
-    /// the plane call `tcarod.stability(robot, solution, blocked=[normal])`.
+    /// actuators and dead loads; see `tcarod.stability`). Computed by the
+    /// solve (default policy `"report"`) or on first access, from one
+    /// tangent integration (GIL released), and cached.
+    /// A `BlockedResult.solution` carries the verdict with the tip held on
+    /// its plane (mixed boundary condition).
     #[getter]
     fn stable(&self, py: Python<'_>) -> PyResult<bool> {
         Ok(self.verdict(py)?.0)
+    }
+    /// How `stability="continue"` reached this equilibrium from the unstable
+    /// one Newton found first (a `Continuation`), or None.
+    #[getter]
+    fn continued(&self, py: Python<'_>) -> Option<Py<super::stability::Continuation>> {
+        self.continued.as_ref().map(|c| c.clone_ref(py))
     }
     /// Stability margin [-] (dimensionless): the smallest eigenvalue of the
     /// dimensionless tip stiffness, `> 0` iff `stable`. Computed and cached
@@ -1623,6 +1621,10 @@ impl PySolution {
             s.iterations,
             s.evaluations,
             jac,
+            self.blocked
+                .iter()
+                .map(|b| [b.x, b.y, b.z])
+                .collect::<Vec<_>>(),
         )
             .into_pyobject(py)?;
         Ok((f, args))
@@ -1662,6 +1664,7 @@ impl PySolution {
 /// support; not public API).
 #[pyfunction]
 #[pyo3(name = "_restore_solution")]
+#[pyo3(signature = (robot, inputs, unknowns, tip_force, tip_moment, steps, iterations, evaluations, jacobian, blocked=None))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn restore_solution(
     py: Python<'_>,
@@ -1674,6 +1677,7 @@ fn restore_solution(
     iterations: usize,
     evaluations: usize,
     jacobian: Option<(usize, usize, Vec<f64>)>,
+    blocked: Option<Vec<[f64; 3]>>,
 ) -> PyResult<PySolution> {
     let r = robot.get().inner.clone();
     let na = r.actuators.len();
@@ -1709,5 +1713,18 @@ fn restore_solution(
         .and_then(checked_solution)
     })?;
     sol.newton_jacobian = jac;
-    Ok(PySolution::new(sol, robot.unbind()))
+    let mut out = PySolution::new(sol, robot.unbind());
+    out.blocked = blocked
+        .unwrap_or_default()
+        .into_iter()
+        .map(Vector3::from)
+        .collect();
+    if out
+        .blocked
+        .iter()
+        .any(|b| !(b.iter().all(|x| x.is_finite()) && b.norm() > 0.0))
+    {
+        return Err(Error::input("state", "blocked directions must be finite and non-zero").into());
+    }
+    Ok(out)
 }

@@ -171,7 +171,10 @@ fn imperfection(
     let ei = robot.body.youngs_modulus * ix.min(iy);
     let mut w: Option<Solution> = Some(before.clone());
     let mut evals = 0;
-    for (k, eps) in [0.5, 0.25, 0.1, 0.04, 0.015, 0.005, 0.0].into_iter().enumerate() {
+    for (k, eps) in [0.5, 0.25, 0.1, 0.04, 0.015, 0.005, 0.0]
+        .into_iter()
+        .enumerate()
+    {
         let mut l = *loads;
         l.tip_force += Vector3::new(mode[0], mode[1], mode[2]) * (sign * eps * ei / (len * len));
         l.tip_moment += Vector3::new(mode[3], mode[4], mode[5]) * (sign * eps * ei / len);
