@@ -163,3 +163,20 @@ def test_buckling_experiment_registered_and_physical() -> None:
     doc = r.to_json()
     assert doc["name"] == "buckling" and "column_branch_gravity_scale" in doc
     assert "Greenhill" in r.table()
+
+
+def test_stability_page_example_runs() -> None:
+    """The ``python`` blocks of docs/stability.md run as doctests (their
+    printed verdicts, warning class and tip positions are checked)."""
+    import doctest
+    import re
+    from pathlib import Path
+
+    page = Path(__file__).resolve().parent.parent / "docs" / "stability.md"
+    blocks = re.findall(r"^```python\n(.*?)^```", page.read_text(encoding="utf-8"), flags=re.MULTILINE | re.DOTALL)
+    assert blocks, "docs/stability.md has no python example"
+    for i, block in enumerate(blocks):
+        test = doctest.DocTestParser().get_doctest(block, {}, f"stability.md:{i}", "docs/stability.md", 0)
+        runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS)
+        runner.run(test)
+        assert runner.summarize(verbose=False).failed == 0
