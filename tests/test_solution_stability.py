@@ -183,3 +183,12 @@ def test_blocked_tip_solution_carries_the_blocked_verdict() -> None:
     assert held.margin >= core.stability(robot, sol).margin - 1e-12
     back = pickle.loads(pickle.dumps(sol))
     assert back.stability_margin == held.margin  # the block normal survives pickle
+
+
+def test_every_listed_policy_is_accepted() -> None:
+    from tcarod.stability import POLICIES
+
+    robot = core._experiment_robot("fig6_square", True)
+    assert POLICIES[0] == "report"  # the default
+    for p in POLICIES:
+        assert robot.solve([100.0, 100.0], stability=p).stable is True  # type: ignore[arg-type]

@@ -125,13 +125,16 @@ fn column(
     )
 }
 
-/// Exact tangents from one recorded tangent IVP along the six base strains
-/// and, if `actuators`, the `N` actuator elongation guesses too.
-pub(super) fn exact_tangents(robot: &Robot, sol: &Solution, actuators: bool) -> Result<Tangents> {
+/// Seeds of the tangent IVP along the scaled unknowns `z_0 .. z_nz`
+/// (`nz` = 6: the base strains only; `6 + N`: the elongation guesses too),
+/// the tensions and `d tau_i / d z_j` (`N x nz`).
+fn seeds(
+    robot: &Robot,
+    sol: &Solution,
+    nz: usize,
+) -> Result<(TangentSeeds, Vec<f64>, DMatrix<f64>)> {
     let na = robot.actuators.len();
-    let nz = if actuators { 6 + na } else { 6 };
     let len = robot.body.length;
-    let x = &sol.unknowns;
     let mut seeds = TangentSeeds::zeros(na, nz);
     for k in 0..3 {
         seeds.nu0[(k, k)] = 1.0;
@@ -140,13 +143,26 @@ pub(super) fn exact_tangents(robot: &Robot, sol: &Solution, actuators: bool) -> 
     let mut tau = Vec::with_capacity(na);
     let mut dtau = DMatrix::zeros(na, nz);
     for (i, a) in robot.actuators.iter().enumerate() {
-        let (t, dt_de, _) = a.law.tension_derivatives(x[6 + i] * len, sol.inputs[i])?;
+        let (t, dt_de, _) = a
+            .law
+            .tension_derivatives(sol.unknowns[6 + i] * len, sol.inputs[i])?;
         tau.push(t);
-        if actuators {
+        if nz > 6 {
             seeds.tensions[(i, 6 + i)] = dt_de * len;
             dtau[(i, 6 + i)] = dt_de * len;
         }
     }
+    Ok((seeds, tau, dtau))
+}
+
+/// Exact tangents from one recorded tangent IVP along the six base strains
+/// and, if `actuators`, the `N` actuator elongation guesses too.
+pub(super) fn exact_tangents(robot: &Robot, sol: &Solution, actuators: bool) -> Result<Tangents> {
+    let na = robot.actuators.len();
+    let nz = if actuators { 6 + na } else { 6 };
+    let len = robot.body.length;
+    let x = &sol.unknowns;
+    let (seeds, tau, dtau) = seeds(robot, sol, nz)?;
     let spec = IvpSpec {
         robot,
         tensions: &tau,
