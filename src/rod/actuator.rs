@@ -31,6 +31,59 @@ pub enum Routing {
 }
 
 impl Routing {
+    /// Parallel to the centre line at body-frame offset `(x, y)` \[m\] (finite).
+    pub fn straight(x: f64, y: f64) -> Result<Routing> {
+        let x = finite("x [m]", x)?;
+        let y = finite("y [m]", y)?;
+        Ok(Routing::Straight { x, y })
+    }
+
+    /// Helix of `radius` \[m\] (>= 0) turning at `rate` \[rad/m\] from angle
+    /// `phase` \[rad\] at `s = 0`.
+    pub fn helix(radius: f64, rate: f64, phase: f64) -> Result<Routing> {
+        let radius = non_negative("radius [m]", radius)?;
+        let rate = finite("rate [rad/m]", rate)?;
+        let phase = finite("phase [rad]", phase)?;
+        Ok(Routing::Helix {
+            radius,
+            rate,
+            phase,
+        })
+    }
+
+    /// The routing built by constructor `kind` (`"straight"`, `"helix"`) from
+    /// the values of [`Routing::parameters`], in order.
+    pub fn from_parameters(kind: &str, values: &[f64]) -> Result<Routing> {
+        match (kind, values) {
+            ("straight", &[x, y]) => Routing::straight(x, y),
+            ("helix", &[r, k, p]) => Routing::helix(r, k, p),
+            _ => Err(Error::input(
+                "kind",
+                format!("{kind:?} with {} values is not a routing", values.len()),
+            )),
+        }
+    }
+
+    /// The constructor's name: `"straight"` or `"helix"`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Routing::Straight { .. } => "straight",
+            Routing::Helix { .. } => "helix",
+        }
+    }
+
+    /// The constructor's arguments by name, in order (SI units).
+    pub fn parameters(&self) -> Vec<(&'static str, f64)> {
+        match *self {
+            Routing::Straight { x, y } => vec![("x", x), ("y", y)],
+            Routing::Helix {
+                radius,
+                rate,
+                phase,
+            } => vec![("radius", radius), ("rate", rate), ("phase", phase)],
+        }
+    }
+
     /// `(r, r', r'')` at arc length `s` \[m\].
     #[inline]
     pub fn eval(&self, s: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {

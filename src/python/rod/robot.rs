@@ -1,0 +1,245 @@
+//! Bindings of the robot and its forward solve.
+
+use std::sync::Arc;
+
+use pyo3::prelude::*;
+
+use super::actuator::PyActuator;
+use super::body::{body_repr, PyBody};
+use super::solution::PySolution;
+use crate::error::Error;
+use crate::python::args::{check_ambient, solve_options};
+use crate::python::to_py::{hash_by_text, positional_args, NewArgs};
+use crate::python::{reals, Real, MAX_SEQUENCE};
+use crate::rod::{Actuator, Robot};
+
+/// A body with its embedded actuators: `Robot(body, actuators=())`.
+///
+/// `body` is a `Body`; `actuators` a sequence of `Actuator` (inputs are given
+/// in this order to `solve`: temperature [C] for TCAs, tension [N] for
+/// tendons, pull [m] for linear tendons). Building checks the layout: anchors
+/// inside the body, routings inside the section, TCAs no longer than their
+/// span (ValueError naming `actuators[i]`). Value object: immutable, `==`
+/// (two identically built robots are equal), picklable, so it travels to
+/// process pools and Dask workers.
+#[pyclass(name = "Robot", module = "tcarod._core", frozen, subclass, eq, hash)]
+#[derive(Clone)]
+pub struct PyRobot {
+    pub(crate) inner: Arc<Robot>,
+    pub(crate) body: PyBody,
+    pub(crate) actuators: Vec<PyActuator>,
+}
+
+#[pymethods]
+impl PyRobot {
+    #[new]
+    #[pyo3(signature = (body, actuators=None), text_signature = "(body, actuators=())")]
+    fn new(body: PyBody, actuators: Option<Bound<'_, PyAny>>) -> PyResult<Self> {
+        let actuators = match actuators {
+            None => Vec::new(),
+            Some(seq) => actuator_list(&seq)?,
+        };
+        let len = body.inner.length;
+        let mut acts: Vec<Actuator> = actuators
+            .iter()
+            .map(|a| {
+                let mut x = a.inner.clone();
+                if x.s_end.is_infinite() {
+                    x.s_end = len;
+                }
+                x
+            })
+            .collect();
+        // anchors first (the core's rules), then geometry and pre-tension
+        Robot::new(body.inner.clone(), acts.clone())?;
+        for (i, (a, x)) in actuators.iter().zip(acts.iter_mut()).enumerate() {
+            let name = format!("actuators[{i}]");
+            crate::validate::routing_in_section(
+                &body.inner.section,
+                &x.routing,
+                &format!("{name}.routing"),
+            )?;
+            if let Some(t) = &a.tca {
+                crate::validate::tca_fits_span(t.inner.coiled_length(), x, &format!("{name}.tca"))?;
+                if let Some(f) = a.pretension {
+                    let stretch = t.inner.displacement(f, t.inner.material().t_ref())?;
+                    x.length_ratio = Some(crate::validate::pretension_length_ratio(
+                        &body.inner,
+                        x,
+                        stretch,
+                        &format!("{name}.pretension_n"),
+                    )?);
+                }
+            }
+        }
+        let robot = Robot::new(body.inner.clone(), acts)?;
+        Ok(PyRobot {
+            inner: Arc::new(robot),
+            body,
+            actuators,
+        })
+    }
+    /// The soft body (`Body`).
+    #[getter]
+    fn body(&self) -> PyBody {
+        self.body.clone()
+    }
+    /// The actuators (list of `Actuator`), in input order.
+    #[getter]
+    fn actuators(&self) -> Vec<PyActuator> {
+        self.actuators.clone()
+    }
+    /// Passive inputs: ambient temperature [C] for TCAs, zero tension [N] / pull [m] for tendons.
+    #[getter]
+    fn reference_inputs(&self) -> Vec<f64> {
+        self.inner.reference_inputs()
+    }
+
+    /// Solve the forward kinetostatics for one input per actuator
+    /// (temperature [C] for TCAs, tension [N] for tendons, pull [m] for linear
+    /// tendons). `steps`: RK4 steps over the body (1 to 100,000); `tol`:
+    /// Newton tolerance on the dimensionless residual; `max_iter`: Newton
+    /// iterations (1 to 100,000); `warm_start`: a nearby `Solution` of this
+    /// robot, or of a robot with the same actuators under other loads (load
+    /// continuation). `stability` (issue 16): `"report"` (default: the
+    /// verdict is part of the solve, one tangent IVP, cached in
+    /// `Solution.stable`; an unstable equilibrium also emits
+    /// `UnstableEquilibriumWarning`), `"require"` (raise
+    /// `UnstableEquilibriumError`, attributes `margin` [-] and `solution`),
+    /// `"continue"` (move from an unstable equilibrium to a stable one at the
+    /// same inputs; `Solution.continued` records how) or `"off"` (no verdict:
+    /// hot loops). `require_stable=True` is `stability="require"`. Raises
+    /// `ValueError` on bad input, `TypeError` on wrong types and
+    /// `ConvergenceError` if Newton fails.
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, stability="report", require_stable=false),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, stability='report', require_stable=False)")]
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        slf: &Bound<'_, Self>,
+        py: Python<'_>,
+        inputs: Bound<'_, PyAny>,
+        steps: Option<Bound<'_, PyAny>>,
+        tol: Real,
+        max_iter: Option<Bound<'_, PyAny>>,
+        warm_start: Option<PyRef<'_, PySolution>>,
+        stability: &str,
+        require_stable: bool,
+    ) -> PyResult<PySolution> {
+        let this = slf.get();
+        let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+        let mut policy = crate::python::stability::parse_policy(stability)?;
+        if require_stable {
+            policy = crate::stability::Policy::Require;
+        }
+        let q = reals("inputs", &inputs, None)?;
+        check_ambient(&this.inner, &q)?;
+        let warm = warm_start.map(|w| w.inner.clone());
+        crate::python::stability::solve_policy(py, slf, &q, &opts, warm, policy)
+    }
+
+    /// Solve along rows of `inputs` (shape `(k, n_actuators)`, at most
+    /// 10,000,000 rows), each warm-started from the previous one. Returns a
+    /// list of `Solution`. Options as for `solve`; `stability`: `"report"`
+    /// (default: every solution carries its verdict, one warning names the
+    /// unstable rows), `"require"` (raise at the first unstable row),
+    /// `"continue"` (the quasi-static path of the physical robot: where an
+    /// equilibrium is unstable, move to a stable one and go on from it) or
+    /// `"off"`.
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, stability="report"),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, stability='report')")]
+    fn sweep(
+        slf: &Bound<'_, Self>,
+        py: Python<'_>,
+        inputs: Bound<'_, PyAny>,
+        steps: Option<Bound<'_, PyAny>>,
+        tol: Real,
+        max_iter: Option<Bound<'_, PyAny>>,
+        stability: &str,
+    ) -> PyResult<Vec<PySolution>> {
+        let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+        let policy = crate::python::stability::parse_policy(stability)?;
+        let rows_iter = inputs.try_iter().map_err(|_| {
+            pyo3::exceptions::PyTypeError::new_err("inputs: expected a sequence of rows")
+        })?;
+        let mut rows: Vec<Vec<f64>> = Vec::new();
+        for (k, row) in rows_iter.enumerate() {
+            if k >= crate::validate::MAX_BATCH_ROWS {
+                return Err(Error::input(
+                    "inputs",
+                    format!(
+                        "more than {} rows per call",
+                        crate::validate::MAX_BATCH_ROWS
+                    ),
+                )
+                .into());
+            }
+            let row = reals(&format!("inputs[{k}]"), &row?, None)?;
+            check_ambient(&slf.get().inner, &row)?;
+            rows.push(row);
+        }
+        crate::python::stability::sweep_policy(py, slf, &rows, &opts, policy)
+    }
+
+    fn __repr__(&self) -> String {
+        let acts: Vec<String> = self.actuators.iter().map(|a| a.__repr__()).collect();
+        format!(
+            "Robot(body={}, actuators=[{}])",
+            body_repr(&self.body.inner),
+            acts.join(", ")
+        )
+    }
+    /// Constructor arguments, for pickle and copy.
+    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> NewArgs<'py> {
+        positional_args((self.body.clone(), self.actuators.clone()), py)
+    }
+}
+
+impl PartialEq for PyRobot {
+    fn eq(&self, other: &Self) -> bool {
+        self.same_as(other)
+    }
+}
+
+hash_by_text!(PyRobot, |r| r.__repr__());
+
+impl PyRobot {
+    /// Built from equal bodies and equal actuators.
+    pub(crate) fn same_as(&self, other: &PyRobot) -> bool {
+        Arc::ptr_eq(&self.inner, &other.inner)
+            || (self.body.inner == other.body.inner
+                && self.actuators.len() == other.actuators.len()
+                && self
+                    .actuators
+                    .iter()
+                    .zip(&other.actuators)
+                    .all(|(a, b)| a.identity() == b.identity()))
+    }
+}
+
+/// `seq` as a list of actuators, at most [`MAX_SEQUENCE`] (never
+/// trusting `__len__`): `TypeError` for anything else.
+fn actuator_list(seq: &Bound<'_, PyAny>) -> PyResult<Vec<PyActuator>> {
+    let iter = seq.try_iter().map_err(|_| {
+        pyo3::exceptions::PyTypeError::new_err("actuators: expected a sequence of Actuator")
+    })?;
+    let mut out = Vec::new();
+    for (k, item) in iter.enumerate() {
+        if k >= MAX_SEQUENCE {
+            return Err(
+                Error::input("actuators", format!("more than {} actuators", MAX_SEQUENCE)).into(),
+            );
+        }
+        let item = item?;
+        let a = item.cast::<PyActuator>().map_err(|_| {
+            pyo3::exceptions::PyTypeError::new_err(format!(
+                "actuators[{k}]: expected an Actuator, not {}",
+                item.get_type()
+                    .name()
+                    .map(|n| n.to_string())
+                    .unwrap_or_default()
+            ))
+        })?;
+        out.push(a.get().clone());
+    }
+    Ok(out)
+}
