@@ -21,6 +21,9 @@ pub(super) struct Tangents {
     pub e: DMatrix<f64>,
 }
 
+/// A string crossing a node: `(actuator, r, unit tangent t, |p_b|, tau)`.
+type Crossing = (usize, Vector3<f64>, Vector3<f64>, f64, f64);
+
 /// What a node's tangent columns need besides the column itself: rotation,
 /// quaternion, total body-frame wrench and each crossing string's geometry.
 struct NodeFrame {
@@ -28,8 +31,8 @@ struct NodeFrame {
     rm: Matrix3<f64>,
     rn: Vector3<f64>,
     rmm: Vector3<f64>,
-    /// `(actuator, r, unit tangent t, |p_b|, tau)` of the strings crossing the node.
-    strings: Vec<(usize, Vector3<f64>, Vector3<f64>, f64, f64)>,
+    /// The strings crossing the node.
+    strings: Vec<Crossing>,
 }
 
 /// True if actuator `a` crosses the section at `s` (at an interior anchor
@@ -48,7 +51,7 @@ fn frame(
     tau: &[f64],
     s: f64,
     y: &[f64],
-    mut strings: Vec<(usize, Vector3<f64>, Vector3<f64>, f64, f64)>,
+    mut strings: Vec<Crossing>,
 ) -> NodeFrame {
     let b = &robot.body;
     let (kse, kbt) = (c.kse, c.kbt);
