@@ -1,22 +1,30 @@
-//! Issue-16 benchmark: a stability verdict for every converged solution of
-//! the seeded random designs of `tcarod::problems`, and warm sweeps against
-//! cold solves (`cargo bench --bench stability_designs`).
+//! Issue-16 benchmark: every converged solution of the seeded random designs
+//! of `tcarod::problems` carries a stability verdict, and warm sweeps that
+//! end elsewhere than cold solves are explained by it
+//! (`cargo bench --bench stability_designs`).
 //!
 //! For each design: a cold solve at its inputs (from the reference guess,
 //! the solver's fallback included) and a warm sweep from the reference
-//! inputs to its inputs in 8 equal steps (`shooting::sweep`), each with its
-//! verdict (`stability::stability`, one tangent IVP). Where the two tips
-//! differ by more than 1 % of the body length, the pair is classified by
-//! the verdicts. Environment: `TCAROD_DESIGNS` (default 1000), `TCAROD_SEED`
-//! (default `problems::DEFAULT_SEED`), `TCAROD_VERBOSE=1` lists each
-//! differing pair. Verdict cost: thread-CPU time of the verdict over that of
-//! one plain IVP at the solution (mean of 5), the "IVP-equivalents", beside
-//! that of one tangent IVP (the solver's Jacobian) without recorded nodes.
+//! inputs to its inputs in 8 equal steps, both under the default policy
+//! `Policy::Report` (`stability::solve_checked`, `stability::sweep_checked`:
+//! the verdict is part of every solve). Where the two tips differ by more
+//! than 1 % of the body length, the pair is classified by the verdicts, and
+//! both are solved again under `Policy::Continue` (an unstable one moves to
+//! a stable equilibrium at the same inputs); the pairs that still differ are
+//! two coexisting stable shapes. Environment: `TCAROD_DESIGNS` (default
+//! 1000), `TCAROD_SEED` (default `problems::DEFAULT_SEED`),
+//! `TCAROD_VERBOSE=1` lists each differing pair.
+//!
+//! Verdict cost, per cold solution: thread-CPU time of the verdict
+//! (`stability::stability`, which integrates one tangent IVP) over that of
+//! one tangent IVP at the solution without recorded nodes
+//! (`shooting::shoot_jacobian` on the full grid: the exact Newton Jacobian),
+//! each the median of 3, interleaved; and the same over one plain IVP.
 use std::time::Instant;
 
-use tcarod::problems::{random_design, DEFAULT_SEED};
-use tcarod::shooting::{shoot, shoot_jacobian, solve, sweep, SolveOptions};
-use tcarod::stability::stability;
+use tcarod::problems::{random_design, Design, DEFAULT_SEED};
+use tcarod::shooting::{shoot, shoot_jacobian, Loads, Solution, SolveOptions};
+use tcarod::stability::{solve_checked, stability, sweep_checked, Checked, Policy};
 
 #[repr(C)]
 struct Timespec {
@@ -51,113 +59,166 @@ fn env(name: &str, default: u64) -> u64 {
         .unwrap_or(default)
 }
 
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// Counts over the designs.
+#[derive(Default)]
+struct Tally {
+    cold_ok: usize,
+    warm_ok: usize,
+    /// Converged solutions (cold, and every sweep point) and those with a verdict.
+    solutions: usize,
+    with_verdict: usize,
+    stable_cold: usize,
+    stable_warm: usize,
+    differ: usize,
+    one_unstable: usize,
+    cold_unstable_warm_stable: usize,
+    both_stable: usize,
+    both_unstable: usize,
+    /// Differing pairs still apart after both are solved with `Continue`.
+    differ_continued: usize,
+    /// Verdict time over one tangent IVP, and over one plain IVP.
+    per_tangent: Vec<f64>,
+    per_ivp: Vec<f64>,
+}
+
+/// Thread-CPU time of the verdict and of one tangent and one plain IVP at `s`.
+fn cost(d: &Design, s: &Solution, t0: Instant, tally: &mut Tally) {
+    let r = &d.robot;
+    let (mut v, mut t, mut p) = (vec![], vec![], vec![]);
+    for _ in 0..3 {
+        let a = cpu(t0);
+        let _ = std::hint::black_box(stability(r, s, &[]));
+        let b = cpu(t0);
+        let _ = std::hint::black_box(shoot_jacobian(
+            r,
+            &s.inputs,
+            &s.loads,
+            &s.unknowns,
+            s.steps,
+            false,
+        ));
+        let c = cpu(t0);
+        let _ = std::hint::black_box(shoot(r, &s.inputs, &s.loads, &s.unknowns, s.steps, false));
+        let e = cpu(t0);
+        v.push(b - a);
+        t.push(c - b);
+        p.push(e - c);
+    }
+    let (v, t, p) = (median(v), median(t), median(p));
+    tally.per_tangent.push(v / t);
+    tally.per_ivp.push(v / p);
+}
+
+fn stable(c: &Checked) -> bool {
+    c.stability.as_ref().is_some_and(|s| s.stable)
+}
+
+fn one(i: usize, d: &Design, opts: &SolveOptions, t0: Instant, verbose: bool, tally: &mut Tally) {
+    let r = &d.robot;
+    let len = r.body.length;
+    let loads = Loads::of(r);
+    let reference = r.reference_inputs();
+    let path: Vec<Vec<f64>> = (1..=8)
+        .map(|k| {
+            let f = k as f64 / 8.0;
+            reference
+                .iter()
+                .zip(&d.inputs)
+                .map(|(a, b)| a + (b - a) * f)
+                .collect()
+        })
+        .collect();
+    let cold = solve_checked(r, &d.inputs, &loads, opts, None, Policy::Report).ok();
+    let warm = sweep_checked(r, &path, opts, Policy::Report).ok();
+    for c in cold.iter().chain(warm.iter().flatten()) {
+        tally.solutions += 1;
+        tally.with_verdict += c.stability.is_some() as usize;
+    }
+    let warm = warm.and_then(|v| v.into_iter().last());
+    if let Some(c) = &cold {
+        tally.cold_ok += 1;
+        tally.stable_cold += stable(c) as usize;
+        cost(d, &c.solution, t0, tally);
+    }
+    if let Some(w) = &warm {
+        tally.warm_ok += 1;
+        tally.stable_warm += stable(w) as usize;
+    }
+    let (Some(c), Some(w)) = (&cold, &warm) else {
+        return;
+    };
+    let dist = (c.solution.tip_position() - w.solution.tip_position()).norm() / len;
+    if dist <= 0.01 {
+        return;
+    }
+    tally.differ += 1;
+    match (stable(c), stable(w)) {
+        (true, true) => tally.both_stable += 1,
+        (false, false) => tally.both_unstable += 1,
+        (false, true) => {
+            tally.one_unstable += 1;
+            tally.cold_unstable_warm_stable += 1
+        }
+        (true, false) => tally.one_unstable += 1,
+    }
+    // both again under `Continue`: the cold solve from scratch, the sweep's
+    // last point from its own warm start
+    let cc = solve_checked(r, &d.inputs, &loads, opts, None, Policy::Continue).ok();
+    let wc = sweep_checked(r, &path, opts, Policy::Continue)
+        .ok()
+        .and_then(|v| v.into_iter().last());
+    let still = match (&cc, &wc) {
+        (Some(a), Some(b)) => {
+            (a.solution.tip_position() - b.solution.tip_position()).norm() / len > 0.01
+        }
+        _ => true,
+    };
+    tally.differ_continued += still as usize;
+    if verbose {
+        let m = |c: &Checked| c.stability.as_ref().map_or(f64::NAN, |s| s.margin);
+        println!(
+            "design {i}: tips differ by {dist:.3} L; cold stable {} (margin {:.3e}), warm stable {} (margin {:.3e}); column ratio {:.2}; after 'continue': {}",
+            stable(c),
+            m(c),
+            stable(w),
+            m(w),
+            d.column_ratio(),
+            if still { "still apart (two stable shapes)" } else { "the same shape" }
+        );
+    }
+}
+
 fn main() {
     let n = env("TCAROD_DESIGNS", 1000) as usize;
     let seed = env("TCAROD_SEED", DEFAULT_SEED);
     let verbose = std::env::var("TCAROD_VERBOSE").is_ok();
     let opts = SolveOptions::default();
-    let (mut cold_ok, mut warm_ok, mut stable_cold, mut stable_warm) = (0, 0, 0, 0);
-    let (mut differ, mut one_unstable, mut both_stable, mut both_unstable) = (0, 0, 0, 0);
-    let mut cold_unstable_warm_stable = 0;
-    let mut ratios: Vec<f64> = vec![];
-    let mut tangent_ratios: Vec<f64> = vec![];
+    let mut t = Tally::default();
     let t0 = Instant::now();
     for i in 0..n {
-        let d = random_design(seed, i);
-        let r = &d.robot;
-        let len = r.body.length;
-        let cold = solve(r, &d.inputs, &opts, None).ok();
-        let reference = r.reference_inputs();
-        let path: Vec<Vec<f64>> = (1..=8)
-            .map(|k| {
-                reference
-                    .iter()
-                    .zip(&d.inputs)
-                    .map(|(a, b)| a + (b - a) * k as f64 / 8.0)
-                    .collect()
-            })
-            .collect();
-        let warm = sweep(r, &path, &opts)
-            .ok()
-            .and_then(|v| v.into_iter().last());
-        let vc = cold.as_ref().and_then(|s| {
-            let a = cpu(t0);
-            let v = stability(r, s, &[]).ok()?;
-            let b = cpu(t0);
-            for _ in 0..5 {
-                let _ = std::hint::black_box(shoot(
-                    r,
-                    &s.inputs,
-                    &s.loads,
-                    &s.unknowns,
-                    s.steps,
-                    false,
-                ));
-            }
-            let c = cpu(t0);
-            let _ = std::hint::black_box(shoot_jacobian(
-                r,
-                &s.inputs,
-                &s.loads,
-                &s.unknowns,
-                s.steps,
-                false,
-            ));
-            let d = cpu(t0);
-            let ivp = (c - b) / 5.0;
-            ratios.push((b - a) / ivp);
-            tangent_ratios.push((d - c) / ivp);
-            Some(v)
-        });
-        let vw = warm.as_ref().and_then(|s| stability(r, s, &[]).ok());
-        cold_ok += cold.is_some() as usize;
-        warm_ok += warm.is_some() as usize;
-        stable_cold += vc.as_ref().map_or(0, |v| v.stable as usize);
-        stable_warm += vw.as_ref().map_or(0, |v| v.stable as usize);
-        if let (Some(c), Some(w), Some(vc), Some(vw)) = (&cold, &warm, &vc, &vw) {
-            let dist = (c.tip_position() - w.tip_position()).norm() / len;
-            if dist > 0.01 {
-                differ += 1;
-                match (vc.stable, vw.stable) {
-                    (true, true) => both_stable += 1,
-                    (false, false) => both_unstable += 1,
-                    (false, true) => {
-                        one_unstable += 1;
-                        cold_unstable_warm_stable += 1
-                    }
-                    (true, false) => one_unstable += 1,
-                }
-                if verbose {
-                    println!(
-                        "design {i}: tips differ by {dist:.3} L; cold stable {} (margin {:.3e}), warm stable {} (margin {:.3e}); column ratio {:.2}",
-                        vc.stable,
-                        vc.margin,
-                        vw.stable,
-                        vw.margin,
-                        d.column_ratio()
-                    );
-                }
-            }
-        }
+        one(i, &random_design(seed, i), &opts, t0, verbose, &mut t);
     }
-    let median = |mut v: Vec<f64>| {
-        v.sort_by(|a, b| a.partial_cmp(b).unwrap());
-        if v.is_empty() {
-            f64::NAN
-        } else {
-            v[v.len() / 2]
-        }
-    };
-    let nr = ratios.len();
-    let med = median(ratios);
-    let med_t = median(tangent_ratios);
+    let samples = t.per_tangent.len();
     println!(
         "designs {n}, seed {seed}, {:.1} s",
         t0.elapsed().as_secs_f64()
     );
-    println!("converged: cold {cold_ok}, warm sweep {warm_ok}; stable: cold {stable_cold}, warm {stable_warm}");
     println!(
-        "cold and warm tips differ by > 1 % L: {differ} (one of the pair unstable: {one_unstable}, of which cold unstable / warm stable: {cold_unstable_warm_stable}; both stable: {both_stable}; both unstable: {both_unstable})"
+        "converged: cold {}, warm sweep {}; solutions {} of which with a verdict {}; stable: cold {}, warm {}",
+        t.cold_ok, t.warm_ok, t.solutions, t.with_verdict, t.stable_cold, t.stable_warm
     );
-    println!("verdict cost: median {med:.2} plain-IVP equivalents; one tangent IVP without recording: {med_t:.2} (thread-CPU ratios, {nr} samples)");
+    println!(
+        "cold and warm tips differ by > 1 % L: {} (one of the pair unstable: {}, of which cold unstable / warm stable: {}; both stable: {}; both unstable: {}); still apart after both continue to stable: {}",
+        t.differ, t.one_unstable, t.cold_unstable_warm_stable, t.both_stable, t.both_unstable, t.differ_continued
+    );
+    println!(
+        "verdict cost: median {:.3} tangent IVPs (full grid, no recording), {:.2} plain IVPs (thread-CPU ratios, median of 3 each, {samples} solutions)",
+        median(t.per_tangent),
+        median(t.per_ivp)
+    );
 }

@@ -49,7 +49,9 @@ def test_verdict_flips_at_the_euler_load() -> None:
     pc = euler_load(column())
     below, above = column(0.98 * pc), column(1.02 * pc)
     s_below = stability(below, below.solve([]))
-    s_above = stability(above, above.solve([]))
+    # the straight column above the load is unstable: solved without the
+    # verdict (no warning) to test the function on its own
+    s_above = stability(above, above.solve([], stability="off"))
     assert s_below.stable and s_below.margin > 0
     assert not s_above.stable and s_above.margin < 0
     assert s_above.conjugate_point is not None and 0 < s_above.conjugate_point <= 0.5
@@ -163,3 +165,20 @@ def test_buckling_experiment_registered_and_physical() -> None:
     doc = r.to_json()
     assert doc["name"] == "buckling" and "column_branch_gravity_scale" in doc
     assert "Greenhill" in r.table()
+
+
+def test_stability_page_example_runs() -> None:
+    """The ``python`` blocks of docs/stability.md run as doctests (their
+    printed verdicts, warning class and tip positions are checked)."""
+    import doctest
+    import re
+    from pathlib import Path
+
+    page = Path(__file__).resolve().parent.parent / "docs" / "stability.md"
+    blocks = re.findall(r"^```python\n(.*?)^```", page.read_text(encoding="utf-8"), flags=re.MULTILINE | re.DOTALL)
+    assert blocks, "docs/stability.md has no python example"
+    for i, block in enumerate(blocks):
+        test = doctest.DocTestParser().get_doctest(block, {}, f"stability.md:{i}", "docs/stability.md", 0)
+        runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS)
+        runner.run(test)
+        assert runner.summarize(verbose=False).failed == 0

@@ -7,7 +7,13 @@ SI units throughout (m, N, Pa, kg, s) except temperatures, in degrees C.
 
 from __future__ import annotations
 
-from ._core import ConvergenceError, UnitsWarning, UnstableEquilibriumError, __version__
+from ._core import (
+    ConvergenceError,
+    UnitsWarning,
+    UnstableEquilibriumError,
+    UnstableEquilibriumWarning,
+    __version__,
+)
 from .rod import Actuator, Body, Robot, Routing, Section, Solution, circle_radius, inner_edge_radius
 from .tca import Material, Tca
 from .grasp import grasp_temperature
@@ -34,6 +40,7 @@ __all__ = [
     "ConvergenceError",
     "UnitsWarning",
     "UnstableEquilibriumError",
+    "UnstableEquilibriumWarning",
     "Material",
     "Tca",
     "__version__",

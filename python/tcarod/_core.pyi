@@ -34,8 +34,8 @@ class ConvergenceError(RuntimeError):
     reason: str
 
 class UnstableEquilibriumError(RuntimeError):
-    """``Robot.solve(..., require_stable=True)`` converged to an unstable
-    equilibrium."""
+    """``Robot.solve(..., stability="require")`` (or ``require_stable=True``)
+    converged to an unstable equilibrium."""
 
     #: Stability margin of the equilibrium found [-] (< 0).
     margin: float
@@ -44,6 +44,12 @@ class UnstableEquilibriumError(RuntimeError):
 
 class UnitsWarning(UserWarning):
     """Sizes that are valid SI numbers but look like millimetres."""
+
+class UnstableEquilibriumWarning(UserWarning):
+    """A solve handed back an unstable equilibrium (``stability="report"``,
+    the default); ``stability="continue"`` moves to a stable one."""
+
+_Policy = Literal["report", "require", "continue", "off"]
 
 @final
 class Material:
@@ -423,6 +429,7 @@ class Robot:
         tol: float = 1e-10,
         max_iter: int = 50,
         warm_start: Solution | None = None,
+        stability: _Policy = "report",
         require_stable: bool = False,
         max_evaluations: int = 20000,
         time_limit: float | None = None,
@@ -430,10 +437,14 @@ class Robot:
         """Forward kinetostatics for one input per actuator (temperature [C] for TCAs);
         ``steps`` RK4 steps over the body; ``max_evaluations`` IVPs and
         ``time_limit`` seconds bound the whole solve (continuation included).
-        Raises ``ValueError`` on bad input, ``ConvergenceError`` if Newton fails
-        (``reason == "budget"`` when the budget ran out) and, with
-        ``require_stable``, ``UnstableEquilibriumError`` if the equilibrium
-        found is unstable."""
+        ``stability``: ``"report"`` (the verdict comes with the solution, one
+        tangent IVP; an unstable one warns ``UnstableEquilibriumWarning``),
+        ``"require"`` (raise ``UnstableEquilibriumError``), ``"continue"`` (move
+        to a stable equilibrium at the same inputs; ``Solution.continued``) or
+        ``"off"`` (no verdict, hot loops); ``require_stable=True`` is
+        ``"require"``. Raises ``ValueError`` on bad input and
+        ``ConvergenceError`` if Newton fails (``reason == "budget"`` when the
+        budget ran out)."""
     def sweep(
         self,
         inputs: Sequence[Sequence[float] | _FloatArray] | _FloatArray,
@@ -441,8 +452,12 @@ class Robot:
         steps: int = 100,
         tol: float = 1e-10,
         max_iter: int = 50,
+        stability: _Policy = "report",
     ) -> list[Solution]:
-        """Solve along rows of ``inputs`` (shape ``(k, n_actuators)``), each warm-started from the previous."""
+        """Solve along rows of ``inputs`` (shape ``(k, n_actuators)``), each
+        warm-started from the previous; ``stability`` as for ``solve`` (one
+        warning names the unstable rows; ``"continue"`` follows the physical
+        robot's quasi-static path)."""
 
 @final
 class Solution:
@@ -543,14 +558,35 @@ class Solution:
     @property
     def stable(self) -> bool:
         """True if the equilibrium is stable (strict local energy minimum);
-        computed on first access (one tangent IVP, GIL released) and cached.
-        Free-tip verdict: for ``BlockedResult.solution`` use
-        ``tcarod.stability(robot, solution, blocked=[normal])``."""
+        computed by the solve (``stability="report"``, the default) or on
+        first access (one tangent IVP, GIL released), and cached. A
+        ``BlockedResult.solution`` carries the verdict with its tip held."""
     @property
     def stability_margin(self) -> float:
         """Smallest eigenvalue of the dimensionless tip stiffness [-], ``> 0``
         iff ``stable``; computed and cached with ``stable``."""
+    @property
+    def continued(self) -> Continuation | None:
+        """How ``stability="continue"`` reached this equilibrium from an
+        unstable one, or None."""
     def __reduce__(self) -> tuple[Any, ...]: ...
+
+@final
+class Continuation:
+    """Route of a ``stability="continue"`` solve from the unstable
+    equilibrium Newton found first to the stable one handed back."""
+
+    @property
+    def route(self) -> str: ...
+    @property
+    def unstable(self) -> Solution: ...
+    @property
+    def margin(self) -> float:
+        """Stability margin of the unstable equilibrium [-] (< 0)."""
+    @property
+    def candidates(self) -> int: ...
+    @property
+    def evaluations(self) -> int: ...
     def __eq__(self, value: object, /) -> bool: ...
 
 def _restore_section(kind: str, values: Sequence[float]) -> Section: ...
@@ -576,6 +612,7 @@ def _restore_solution(
     evaluations: int,
     jacobian: tuple[int, int, Sequence[float]] | None,
     outcome: tuple[int, float, Sequence[float]] | None = None,
+    blocked: Sequence[Sequence[float]] | None = None,
 ) -> Solution: ...
 def _restore_inverse_result(
     solution: Solution,

@@ -13,6 +13,14 @@
 * :func:`plot_branch` -- a tip coordinate against the parameter, stable parts
   solid, unstable dashed (needs the ``plot`` extra).
 
+Every solve carries the verdict: ``Robot.solve(..., stability=...)`` and
+``Robot.sweep`` take a policy, ``"report"`` (default: the verdict is part of
+the solve; an unstable equilibrium warns :class:`UnstableEquilibriumWarning`),
+``"require"`` (raise :class:`UnstableEquilibriumError`), ``"continue"`` (move
+to a stable equilibrium at the same inputs; ``Solution.continued`` is the
+:class:`Continuation`) or ``"off"`` (hot loops). Blocked-tip solutions carry
+the verdict with the tip held.
+
 Units: SI (m, N); temperatures in degrees C; scales dimensionless.
 """
 
@@ -25,10 +33,25 @@ from ._optional import require
 
 Stability = _core.Stability
 Branch = _core.Branch
+Continuation = _core.Continuation
+UnstableEquilibriumWarning = _core.UnstableEquilibriumWarning
+UnstableEquilibriumError = _core.UnstableEquilibriumError
 
-__all__ = ["Branch", "Stability", "follow_branch", "plot_branch", "stability"]
+__all__ = [
+    "POLICIES",
+    "Branch",
+    "Continuation",
+    "Stability",
+    "UnstableEquilibriumError",
+    "UnstableEquilibriumWarning",
+    "follow_branch",
+    "plot_branch",
+    "stability",
+]
 
 Parameter = Literal["inputs", "gravity_scale", "tip_load_scale"]
+#: The ``stability=`` policies of ``Robot.solve`` and ``Robot.sweep``, default first.
+POLICIES: tuple[str, ...] = ("report", "require", "continue", "off")
 
 
 def stability(

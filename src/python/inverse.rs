@@ -177,13 +177,17 @@ fn tip_inverse(
     })
 }
 
+/// The Python result; its solution carries the stability verdict with the
+/// tip held along `normal` (issue 16: one tangent IVP, an unstable one warns).
 fn blocked(
     py: Python<'_>,
     robot: &Bound<'_, PyRobot>,
     b: BlockedResult,
+    normal: nalgebra::Vector3<f64>,
 ) -> PyResult<PyBlockedResult> {
+    let solution = super::stability::blocked_verdict(py, robot, b.solution, normal)?;
     Ok(PyBlockedResult {
-        solution: Py::new(py, wrap(robot, b.solution))?,
+        solution: Py::new(py, solution)?,
         force: b.force,
         variables: b.variables,
         iterations: b.iterations,
@@ -230,7 +234,7 @@ fn blocked_force(
             warm.as_ref().map(|(s, f)| (s, *f)),
         )
     })?;
-    blocked(py, robot, res)
+    blocked(py, robot, res, block.normal)
 }
 
 /// The paper's incremental method (eq 43, `dx = 0`): from `start` (a solution
@@ -265,7 +269,7 @@ fn blocked_temperature(
     let res = super::errors::detach_interruptible(py, || {
         inverse::blocked_temperature(&rr, &g, &block, &st, force.0, increments, &opts)
     })?;
-    blocked(py, robot, res)
+    blocked(py, robot, res, block.normal)
 }
 
 /// Direct solve (independent check of `blocked_temperature`): the actuation
@@ -295,5 +299,5 @@ fn blocked_temperature_direct(
     let res = super::errors::detach_interruptible(py, || {
         inverse::blocked_variable_direct(&rr, &g, &block, force.0, guess.0, &opts, None)
     })?;
-    blocked(py, robot, res)
+    blocked(py, robot, res, block.normal)
 }

@@ -194,7 +194,7 @@ def predict_buckling() -> BucklingResult:
     # stable shape at HEAVY_FACTOR x weight and 25 C: sweep the weight up at 25 C
     up = follow_branch(circle, "gravity_scale", 1.0, HEAVY_FACTOR, inputs=[25.0], stable_only=True)
     heavy = heavy_circle(HEAVY_FACTOR)
-    start = heavy.solve([25.0], warm_start=up.solutions[-1])
+    start = heavy.solve([25.0], warm_start=up.solutions[-1], stability="require")  # the stable sweep ended stable
     planar = follow_branch(heavy, "inputs", 25.0, 160.0, step=0.02, max_step=0.05)
     sweep = follow_branch(heavy, "inputs", 25.0, 160.0, step=0.02, max_step=0.05, warm_start=start, stable_only=True)
     return BucklingResult(q1, column_branch, column_sweep, HEAVY_FACTOR, planar, sweep)

@@ -17,7 +17,7 @@ pub(crate) use actuator::PyActuator;
 pub(crate) use body::PyBody;
 pub(crate) use robot::PyRobot;
 pub(crate) use section::{PyRouting, PySection};
-pub(crate) use solution::PySolution;
+pub(crate) use solution::{checked_solution, PySolution};
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySection>()?;

@@ -6,13 +6,12 @@ use pyo3::prelude::*;
 
 use super::actuator::PyActuator;
 use super::body::{body_repr, PyBody};
-use super::solution::{checked_solution, PySolution};
-use crate::error::{Error, Result};
+use super::solution::PySolution;
+use crate::error::Error;
 use crate::python::args::{budget_options, check_ambient, solve_options};
 use crate::python::to_py::{hash_by_text, positional_args, NewArgs};
-use crate::python::{pv, reals, Real, MAX_SEQUENCE};
+use crate::python::{reals, Real, MAX_SEQUENCE};
 use crate::rod::{Actuator, Robot};
-use crate::shooting::solve;
 
 /// A body with its embedded actuators: `Robot(body, actuators=())`.
 ///
@@ -102,18 +101,21 @@ impl PyRobot {
     /// Newton tolerance on the dimensionless residual; `max_iter`: Newton
     /// iterations (1 to 100,000); `warm_start`: a nearby `Solution` of this
     /// robot, or of a robot with the same actuators under other loads (load
-    /// continuation); `require_stable`: check the equilibrium's stability
-    /// (one tangent IVP more, cached in `Solution.stable`) and raise
-    /// `UnstableEquilibriumError` (attributes `margin` [-] and `solution`) if it
-    /// is unstable; a stable one is reached with
-    /// `tcarod.stability.follow_branch(..., stable_only=True)` or another
-    /// `warm_start`; `max_evaluations`: IVP budget of the solve, continuation
-    /// included (1 to 1e8, default 20,000); `time_limit`: wall-time limit [s]
-    /// (default none); running out of either raises `ConvergenceError` with
+    /// continuation). `stability` (issue 16): `"report"` (default: the
+    /// verdict is part of the solve, one tangent IVP, cached in
+    /// `Solution.stable`; an unstable equilibrium also emits
+    /// `UnstableEquilibriumWarning`), `"require"` (raise
+    /// `UnstableEquilibriumError`, attributes `margin` [-] and `solution`),
+    /// `"continue"` (move from an unstable equilibrium to a stable one at the
+    /// same inputs; `Solution.continued` records how) or `"off"` (no verdict:
+    /// hot loops). `require_stable=True` is `stability="require"`;
+    /// `max_evaluations`: IVP budget of the solve, continuation included (1 to
+    /// 1e8, default 20,000); `time_limit`: wall-time limit [s] (default none);
+    /// running out of either raises `ConvergenceError` with
     /// `reason == "budget"`. Raises `ValueError` on bad input, `TypeError` on
     /// wrong types and `ConvergenceError` if Newton fails.
-    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, require_stable=false, max_evaluations=None, time_limit=None),
-        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, require_stable=False, max_evaluations=20000, time_limit=None)")]
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, stability="report", require_stable=false, max_evaluations=None, time_limit=None),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, stability='report', require_stable=False, max_evaluations=20000, time_limit=None)")]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         slf: &Bound<'_, Self>,
@@ -123,6 +125,7 @@ impl PyRobot {
         tol: Real,
         max_iter: Option<Bound<'_, PyAny>>,
         warm_start: Option<PyRef<'_, PySolution>>,
+        stability: &str,
         require_stable: bool,
         max_evaluations: Option<Bound<'_, PyAny>>,
         time_limit: Option<Real>,
@@ -130,39 +133,26 @@ impl PyRobot {
         let this = slf.get();
         let mut opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
         budget_options(&mut opts, max_evaluations.as_ref(), time_limit)?;
+        let mut policy = crate::python::stability::parse_policy(stability)?;
+        if require_stable {
+            policy = crate::stability::Policy::Require;
+        }
         let q = reals("inputs", &inputs, None)?;
         check_ambient(&this.inner, &q)?;
-        let robot = this.inner.clone();
         let warm = warm_start.map(|w| w.inner.clone());
-        let sol = crate::python::errors::detach_interruptible(py, || {
-            solve(&robot, &q, &opts, warm.as_ref()).and_then(checked_solution)
-        })?;
-        let sol = PySolution::new(sol, slf.clone().unbind());
-        if require_stable {
-            let (stable, margin) = sol.verdict(py)?;
-            if !stable {
-                let tip = sol.inner.tip_position();
-                let err = crate::python::errors::UnstableEquilibriumError::new_err(format!(
-                    "the equilibrium found (tip at {} m) is unstable: stability margin \
-                     {margin:.3e} < 0; continue to a stable one with \
-                     tcarod.stability.follow_branch(..., stable_only=True) or solve from \
-                     another warm_start",
-                    pv(tip.as_slice())
-                ));
-                let value = err.value(py);
-                value.setattr("margin", margin)?;
-                value.setattr("solution", Py::new(py, sol)?)?;
-                return Err(err);
-            }
-        }
-        Ok(sol)
+        crate::python::stability::solve_policy(py, slf, &q, &opts, warm, policy)
     }
 
     /// Solve along rows of `inputs` (shape `(k, n_actuators)`, at most
     /// 10,000,000 rows), each warm-started from the previous one. Returns a
-    /// list of `Solution`. Options as for `solve`.
-    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None),
-        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50)")]
+    /// list of `Solution`. Options as for `solve`; `stability`: `"report"`
+    /// (default: every solution carries its verdict, one warning names the
+    /// unstable rows), `"require"` (raise at the first unstable row),
+    /// `"continue"` (the quasi-static path of the physical robot: where an
+    /// equilibrium is unstable, move to a stable one and go on from it) or
+    /// `"off"`.
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, stability="report"),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, stability='report')")]
     fn sweep(
         slf: &Bound<'_, Self>,
         py: Python<'_>,
@@ -170,8 +160,10 @@ impl PyRobot {
         steps: Option<Bound<'_, PyAny>>,
         tol: Real,
         max_iter: Option<Bound<'_, PyAny>>,
+        stability: &str,
     ) -> PyResult<Vec<PySolution>> {
         let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+        let policy = crate::python::stability::parse_policy(stability)?;
         let rows_iter = inputs.try_iter().map_err(|_| {
             pyo3::exceptions::PyTypeError::new_err("inputs: expected a sequence of rows")
         })?;
@@ -191,17 +183,7 @@ impl PyRobot {
             check_ambient(&slf.get().inner, &row)?;
             rows.push(row);
         }
-        let robot = slf.get().inner.clone();
-        let sols = crate::python::errors::detach_interruptible(py, || {
-            crate::shooting::sweep(&robot, &rows, &opts)?
-                .into_iter()
-                .map(checked_solution)
-                .collect::<Result<Vec<_>>>()
-        })?;
-        Ok(sols
-            .into_iter()
-            .map(|s| PySolution::new(s, slf.clone().unbind()))
-            .collect())
+        crate::python::stability::sweep_policy(py, slf, &rows, &opts, policy)
     }
 
     fn __repr__(&self) -> String {

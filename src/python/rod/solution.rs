@@ -62,14 +62,20 @@ pub(crate) fn checked_solution(sol: Solution) -> Result<Solution> {
 /// `ConvergenceError`), `status` 0, `message`, `nit` (Newton iterations),
 /// `nfev` (IVPs). Naming: `tip_position` [m] per solve, `tip_positions` per
 /// batch (`tcarod.batch.BatchResult`). Picklable (with its robot) and `==`.
-/// Stability: `stable` and `stability_margin`, computed on first access (one
-/// tangent IVP) and cached.
+/// Stability: `stable` and `stability_margin`, computed by the solve (policy
+/// `"report"`, the default) or on first access (one tangent IVP), cached;
+/// `continued` records a `stability="continue"` solve's route.
 #[pyclass(name = "Solution", module = "tcarod._core", frozen, eq)]
 pub struct PySolution {
     pub(crate) inner: Solution,
     pub(crate) robot: Py<PyRobot>,
-    /// Cached free-tip stability verdict `(stable, margin)` (issue 16).
+    /// Cached stability verdict `(stable, margin)` (issue 16).
     pub(crate) verdict: OnceLock<(bool, f64)>,
+    /// World directions along which the tip translation is held (the block
+    /// normal of a blocked-tip solution; empty for a free tip).
+    pub(crate) blocked: Vec<Vector3<f64>>,
+    /// How `stability="continue"` reached this equilibrium, if it moved.
+    pub(crate) continued: Option<Py<crate::python::stability::Continuation>>,
 }
 
 impl PySolution {
@@ -79,6 +85,8 @@ impl PySolution {
             inner,
             robot,
             verdict: OnceLock::new(),
+            blocked: Vec::new(),
+            continued: None,
         }
     }
 
@@ -89,7 +97,8 @@ impl PySolution {
         }
         let robot = self.robot.bind(py).get().inner.clone();
         let sol = &self.inner;
-        let st = py.detach(|| crate::stability::stability(&robot, sol, &[]))?;
+        let blocked = &self.blocked;
+        let st = py.detach(|| crate::stability::stability(&robot, sol, blocked))?;
         let st = crate::python::stability::finite_margin(st);
         Ok(*self.verdict.get_or_init(|| (st.stable, st.margin)))
     }
@@ -300,14 +309,20 @@ impl PySolution {
     }
     /// True if this equilibrium is stable: a strict local minimum of the
     /// potential energy (Till and Rucker's criterion, extended to the
-    /// actuators and dead loads; see `tcarod.stability`). Computed on first
-    /// access from one tangent integration (GIL released) and cached.
-    /// Always the free-tip verdict: for `BlockedResult.solution` the contact
-    /// force counts as a dead tip load; for the verdict with the tip held on
-    /// the plane call `tcarod.stability(robot, solution, blocked=[normal])`.
+    /// actuators and dead loads; see `tcarod.stability`). Computed by the
+    /// solve (default policy `"report"`) or on first access, from one
+    /// tangent integration (GIL released), and cached. A
+    /// `BlockedResult.solution` carries the verdict with the tip held on its
+    /// plane (mixed boundary condition).
     #[getter]
     fn stable(&self, py: Python<'_>) -> PyResult<bool> {
         Ok(self.verdict(py)?.0)
+    }
+    /// How `stability="continue"` reached this equilibrium from the unstable
+    /// one Newton found first (a `Continuation`), or None.
+    #[getter]
+    fn continued(&self, py: Python<'_>) -> Option<Py<crate::python::stability::Continuation>> {
+        self.continued.as_ref().map(|c| c.clone_ref(py))
     }
     /// Stability margin [-] (dimensionless): the smallest eigenvalue of the
     /// dimensionless tip stiffness, `> 0` iff `stable`. Computed and cached
@@ -357,6 +372,10 @@ impl PySolution {
             s.evaluations,
             jac,
             (status_code(s.status), s.floor, s.continuation_steps.clone()),
+            self.blocked
+                .iter()
+                .map(|b| [b.x, b.y, b.z])
+                .collect::<Vec<_>>(),
         )
             .into_pyobject(py)?;
         reduce_with(py, "_restore_solution", args)
@@ -399,7 +418,7 @@ impl PartialEq for PySolution {
 /// support; not public API).
 #[pyfunction]
 #[pyo3(name = "_restore_solution",
-    signature = (robot, inputs, unknowns, tip_force, tip_moment, steps, iterations, evaluations, jacobian, outcome=None))]
+    signature = (robot, inputs, unknowns, tip_force, tip_moment, steps, iterations, evaluations, jacobian, outcome=None, blocked=None))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub(crate) fn restore_solution(
     py: Python<'_>,
@@ -413,6 +432,7 @@ pub(crate) fn restore_solution(
     evaluations: usize,
     jacobian: Option<(usize, usize, Vec<f64>)>,
     outcome: Option<(i64, f64, Vec<f64>)>,
+    blocked: Option<Vec<[f64; 3]>>,
 ) -> PyResult<PySolution> {
     let r = robot.get().inner.clone();
     let na = r.actuators.len();
@@ -460,5 +480,18 @@ pub(crate) fn restore_solution(
         sol.floor = floor;
         sol.continuation_steps = path;
     }
-    Ok(PySolution::new(sol, robot.unbind()))
+    let mut out = PySolution::new(sol, robot.unbind());
+    out.blocked = blocked
+        .unwrap_or_default()
+        .into_iter()
+        .map(Vector3::from)
+        .collect();
+    if out
+        .blocked
+        .iter()
+        .any(|b| !(b.iter().all(|x| x.is_finite()) && b.norm() > 0.0))
+    {
+        return Err(Error::input("state", "blocked directions must be finite and non-zero").into());
+    }
+    Ok(out)
 }

@@ -1,235 +1,29 @@
-//! Bindings of the stability verdict and of branch following (issue 16).
+//! Bindings of branch following and of the stable sweep (issue 16).
 
 use std::sync::Arc;
 
 use nalgebra::Vector3;
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
 
-use super::rod::{solve_options, PyActuator, PyBody, PyRobot, PySolution};
-use super::Real;
-use super::{count_or, counts, reals};
+use super::{arr1, arr3, finite_margin, same, same_vec3, Reduce};
 use crate::branch::{
     follow_branch as follow_core, sweep_stable, BranchOptions, BranchPoint, EventKind, Parameter,
     Problem,
 };
 use crate::error::{Error, Result};
+use crate::python::rod::{solve_options, PyActuator, PyBody, PyRobot, PySolution};
+use crate::python::Real;
+use crate::python::{count_or, counts, reals};
 use crate::rod::Robot;
 use crate::shooting::Solution;
-use crate::stability::{stability as stability_core, Stability};
 
-pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_class::<PyStability>()?;
+pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyBranch>()?;
-    m.add_function(wrap_pyfunction!(stability, m)?)?;
     m.add_function(wrap_pyfunction!(follow_branch, m)?)?;
-    m.add_function(wrap_pyfunction!(restore_stability, m)?)?;
     m.add_function(wrap_pyfunction!(restore_branch, m)?)?;
     Ok(())
-}
-
-/// Stability verdict of one equilibrium (see `tcarod.stability`).
-#[pyclass(name = "Stability", module = "tcarod._core", frozen)]
-pub struct PyStability {
-    inner: Stability,
-}
-
-/// Exact equality of two floats, NaN equal to NaN (pickle support).
-fn same(a: f64, b: f64) -> bool {
-    a == b || (a.is_nan() && b.is_nan())
-}
-
-fn same_all(a: &[f64], b: &[f64]) -> bool {
-    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| same(*x, *y))
-}
-
-fn same_vec3(a: &Vector3<f64>, b: &Vector3<f64>) -> bool {
-    same_all(a.as_slice(), b.as_slice())
-}
-
-/// What `__reduce__` returns: a rebuilding callable and its arguments.
-type Reduce<'py> = PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)>;
-
-fn arr1<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
-    PyArray1::from_slice(py, v)
-}
-
-fn arr3<'py>(py: Python<'py>, v: &[Vector3<f64>]) -> Bound<'py, PyArray2<f64>> {
-    let flat: Vec<f64> = v.iter().flat_map(|x| [x.x, x.y, x.z]).collect();
-    PyArray1::from_vec(py, flat)
-        .reshape([v.len(), 3])
-        .expect("n x 3")
-}
-
-#[pymethods]
-impl PyStability {
-    /// True if the equilibrium is stable (a strict local energy minimum, up
-    /// to neutral symmetry modes).
-    #[getter]
-    fn stable(&self) -> bool {
-        self.inner.stable
-    }
-    /// Smallest eigenvalue of the dimensionless tip stiffness [-]: > 0 iff stable.
-    #[getter]
-    fn margin(&self) -> f64 {
-        self.inner.margin
-    }
-    /// Arc length [m] of the first conjugate point, or None.
-    #[getter]
-    fn conjugate_point(&self) -> Option<f64> {
-        self.inner.conjugate_point
-    }
-    /// Arc length of the nodes [m], shape `(n,)`.
-    #[getter]
-    fn s<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arr1(py, &self.inner.s)
-    }
-    /// Till and Rucker's determinant `det(Y(s) Y(0)^-1)` [-] at the nodes.
-    #[getter]
-    fn determinant<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        let v: Vec<f64> = self
-            .inner
-            .determinant
-            .iter()
-            .map(|x| if x.is_finite() { *x } else { 0.0 })
-            .collect();
-        arr1(py, &v)
-    }
-    /// Smallest eigenvalue of the truncated rod's tip stiffness [-] at the
-    /// nodes (the base node, where it is infinite, carries the largest float).
-    #[getter]
-    fn min_stiffness<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        let v: Vec<f64> = self
-            .inner
-            .min_stiffness
-            .iter()
-            .map(|x| x.clamp(-f64::MAX, f64::MAX))
-            .collect();
-        arr1(py, &v)
-    }
-    /// Softest tip mode `(dp / L, dtheta)` (world frame), shape `(6,)`.
-    #[getter]
-    fn mode<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arr1(py, &self.inner.mode)
-    }
-    /// Integrations spent on the verdict (1 tangent IVP).
-    #[getter]
-    fn evaluations(&self) -> usize {
-        self.inner.evaluations
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "Stability(stable={}, margin={:.6e}, conjugate_point={:?})",
-            if self.inner.stable { "True" } else { "False" },
-            self.inner.margin,
-            self.inner.conjugate_point
-        )
-    }
-    /// Pickle support.
-    fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py> {
-        let f = py.import("tcarod._core")?.getattr("_restore_stability")?;
-        let s = &self.inner;
-        let args = (
-            s.stable,
-            s.margin,
-            s.conjugate_point,
-            s.s.clone(),
-            s.determinant.clone(),
-            s.min_stiffness.clone(),
-            s.evaluations,
-            s.mode.to_vec(),
-        )
-            .into_pyobject(py)?;
-        Ok((f, args))
-    }
-    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
-        let Ok(o) = other.cast::<PyStability>() else {
-            return false;
-        };
-        let (a, b) = (&self.inner, &o.get().inner);
-        a.stable == b.stable
-            && same(a.margin, b.margin)
-            && match (a.conjugate_point, b.conjugate_point) {
-                (Some(x), Some(y)) => same(x, y),
-                (None, None) => true,
-                _ => false,
-            }
-            && same_all(&a.s, &b.s)
-            && same_all(&a.determinant, &b.determinant)
-            && same_all(&a.min_stiffness, &b.min_stiffness)
-            && a.evaluations == b.evaluations
-            && same_all(&a.mode, &b.mode)
-    }
-}
-
-/// Rebuild a `Stability` (pickle support; not public API).
-#[pyfunction]
-#[pyo3(name = "_restore_stability")]
-#[allow(clippy::too_many_arguments)]
-fn restore_stability(
-    stable: bool,
-    margin: f64,
-    conjugate_point: Option<f64>,
-    s: Vec<f64>,
-    determinant: Vec<f64>,
-    min_stiffness: Vec<f64>,
-    evaluations: usize,
-    mode: Vec<f64>,
-) -> PyResult<PyStability> {
-    let mode: [f64; 6] = mode
-        .try_into()
-        .map_err(|_| PyValueError::new_err("mode: expected 6 values"))?;
-    if determinant.len() != s.len() || min_stiffness.len() != s.len() {
-        return Err(PyValueError::new_err(
-            "s, determinant and min_stiffness must have the same length",
-        ));
-    }
-    Ok(PyStability {
-        inner: Stability {
-            stable,
-            margin,
-            conjugate_point,
-            s,
-            determinant,
-            min_stiffness,
-            evaluations,
-            mode,
-        },
-    })
-}
-
-pub(crate) fn finite_margin(mut s: Stability) -> Stability {
-    if !s.margin.is_finite() {
-        s.margin = if s.margin > 0.0 { f64::MAX } else { -f64::MAX };
-    }
-    s
-}
-
-/// Stability of `solution`, an equilibrium of `robot`. `blocked`: world
-/// directions `(k, 3)` along which the tip translation is held (a blocked-tip
-/// solution's block normal). Raises ValueError if the solution is not one of
-/// this robot's.
-#[pyfunction]
-#[pyo3(signature = (robot, solution, *, blocked=None), text_signature = "(robot, solution, *, blocked=None)")]
-fn stability(
-    py: Python<'_>,
-    robot: PyRef<'_, PyRobot>,
-    solution: PyRef<'_, PySolution>,
-    blocked: Option<Vec<[Real; 3]>>,
-) -> PyResult<PyStability> {
-    let r = robot.inner.clone();
-    let sol = solution.inner.clone();
-    let blocked: Vec<Vector3<f64>> = blocked
-        .unwrap_or_default()
-        .into_iter()
-        .map(|b| Vector3::new(b[0].0, b[1].0, b[2].0))
-        .collect();
-    let st = py.detach(|| stability_core(&r, &sol, &blocked))?;
-    Ok(PyStability {
-        inner: finite_margin(st),
-    })
 }
 
 /// A followed branch or a stable sweep: arrays over its points, located
@@ -501,17 +295,8 @@ fn follow_branch(
 ) -> PyResult<PyBranch> {
     let r = robot.inner.clone();
     let acts = robot.actuators.clone();
+    let par = parameter_arg(parameter, actuators.as_ref(), &r)?;
     let n_act = r.actuators.len();
-    let actuators = match actuators.as_ref().filter(|o| !o.is_none()) {
-        Some(o) => {
-            if n_act == 0 {
-                return Err(Error::input("actuators", "the robot has no actuators").into());
-            }
-            Some(counts("actuators", o, n_act - 1)?)
-        }
-        None => None,
-    };
-    let par = parse_parameter(parameter, actuators, &r)?;
     let q = match inputs.as_ref().filter(|o| !o.is_none()) {
         Some(o) => reals("inputs", o, Some(n_act))?,
         None => r.reference_inputs(),
@@ -531,7 +316,7 @@ fn follow_branch(
     let pb = Problem::new(&r, par, &q)?;
     let warm = warm_start.map(|w| w.inner.clone());
     if let Some(w) = &warm {
-        if w.unknowns.len() != 6 + r.actuators.len() {
+        if w.unknowns.len() != 6 + n_act {
             return Err(Error::input(
                 "warm_start",
                 "solution of a robot with a different number of actuators",
@@ -540,38 +325,72 @@ fn follow_branch(
         }
     }
     if stable_only {
-        let sw =
-            super::errors::detach_interruptible(py, || sweep_stable(&pb, &opts, warm.as_ref()))?;
-        let mut out = collect(py, &pb, &acts, sw.points, vec![], sw.evaluations)?;
-        for j in sw.jumps {
-            out.jumps.push((
-                j.parameter,
-                wrap(py, &pb, &acts, j.parameter, j.before)?,
-                wrap(py, &pb, &acts, j.parameter, j.after)?,
-            ));
-        }
-        Ok(out)
+        stable_sweep(py, &pb, &acts, &opts, warm.as_ref())
     } else {
-        let br =
-            super::errors::detach_interruptible(py, || follow_core(&pb, &opts, warm.as_ref()))?;
-        let events = br
-            .events
-            .iter()
-            .map(|e| {
-                (
-                    if e.kind == EventKind::Fold {
-                        "fold"
-                    } else {
-                        "bifurcation"
-                    }
-                    .to_string(),
-                    e.parameter,
-                    e.tip_position,
-                )
-            })
-            .collect();
-        collect(py, &pb, &acts, br.points, events, br.evaluations)
+        branch(py, &pb, &acts, &opts, warm.as_ref())
     }
+}
+
+/// The `parameter` (and `actuators`) arguments.
+fn parameter_arg(
+    parameter: &str,
+    actuators: Option<&Bound<'_, PyAny>>,
+    r: &Robot,
+) -> PyResult<Parameter> {
+    let n_act = r.actuators.len();
+    let actuators = match actuators.filter(|o| !o.is_none()) {
+        Some(o) => {
+            if n_act == 0 {
+                return Err(Error::input("actuators", "the robot has no actuators").into());
+            }
+            Some(counts("actuators", o, n_act - 1)?)
+        }
+        None => None,
+    };
+    Ok(parse_parameter(parameter, actuators, r)?)
+}
+
+/// The stable sweep as a `Branch` with its jumps.
+fn stable_sweep(
+    py: Python<'_>,
+    pb: &Problem<'_>,
+    acts: &[PyActuator],
+    opts: &BranchOptions,
+    warm: Option<&Solution>,
+) -> PyResult<PyBranch> {
+    let sw = super::super::errors::detach_interruptible(py, || sweep_stable(pb, opts, warm))?;
+    let mut out = collect(py, pb, acts, sw.points, vec![], sw.evaluations)?;
+    for j in sw.jumps {
+        out.jumps.push((
+            j.parameter,
+            wrap(py, pb, acts, j.parameter, j.before)?,
+            wrap(py, pb, acts, j.parameter, j.after)?,
+        ));
+    }
+    Ok(out)
+}
+
+/// The followed branch with its located events.
+fn branch(
+    py: Python<'_>,
+    pb: &Problem<'_>,
+    acts: &[PyActuator],
+    opts: &BranchOptions,
+    warm: Option<&Solution>,
+) -> PyResult<PyBranch> {
+    let br = super::super::errors::detach_interruptible(py, || follow_core(pb, opts, warm))?;
+    let events = br
+        .events
+        .iter()
+        .map(|e| {
+            let kind = match e.kind {
+                EventKind::Fold => "fold",
+                EventKind::Bifurcation => "bifurcation",
+            };
+            (kind.to_string(), e.parameter, e.tip_position)
+        })
+        .collect();
+    collect(py, pb, acts, br.points, events, br.evaluations)
 }
 
 fn collect(
@@ -593,8 +412,11 @@ fn collect(
         let st = finite_margin(p.stability);
         out.points
             .push((p.parameter, p.solution.tip_position(), st.stable, st.margin));
-        out.solutions
-            .push(wrap(py, pb, acts, p.parameter, p.solution)?);
+        let robot = robot_at(py, pb, acts, p.parameter)?;
+        let sol = PySolution::new(p.solution, robot);
+        // the point's verdict is the solution's (no second tangent IVP)
+        let _ = sol.verdict.set((st.stable, st.margin));
+        out.solutions.push(Py::new(py, sol)?);
     }
     Ok(out)
 }

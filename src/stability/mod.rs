@@ -1,0 +1,198 @@
+//! Elastic stability of a shooting equilibrium (beyond the paper; issue 16).
+//!
+//! # Criterion
+//!
+//! Till and Rucker ("Elastic Stability of Cosserat Rods and Parallel
+//! Continuum Robots", IEEE T-RO 2017) test an equilibrium of a rod with a
+//! fixed base and a free (natural) tip under conservative loads by Jacobi's
+//! conjugate-point condition: it is stable iff the tangent map from the base
+//! unknowns to the wrench at `s`,
+//!
+//! `Y(s) = d(n, m)(s) / d(n(0), m(0))`                                  (S1)
+//!
+//! is non-singular for every `s` in `(0, L]`: at a zero of `det Y(s)` the
+//! truncated rod `[0, s]` under the same dead loads admits a neutral
+//! perturbation. We carry the positions and rotations along too,
+//! `H(s) = d(p, theta)(s) / d(n(0), m(0))` (`delta R R^T = [theta]x`), and use
+//! the tip stiffness of the truncated rod
+//!
+//! `K(s) = Y(s) H(s)^-1`                                                (S2)
+//!
+//! (dimensionless: forces by `L^2/EI`, moments by `L/EI`, displacements by
+//! `L`). `K(0+)` is positive definite (it grows like `1/s`); an eigenvalue
+//! of `K` passes through zero exactly where `det Y` does. Testing the smallest
+//! eigenvalue of the symmetric part of `K(s)` on the nodes, instead of the
+//! sign of `det Y`, also catches the double roots of symmetric sections
+//! (a round column buckles in two planes at once and `det Y` touches zero
+//! without changing sign).
+//!
+//! # Extensions
+//!
+//! * Strings with a fixed tension (constant-tension tendons) add the
+//!   string-length integrand `tau |p_i'|` to a local Lagrangian: (S1)-(S2)
+//!   hold with the total wrench (body plus the strings crossing `s`). The
+//!   tangent is taken with the tensions frozen.
+//! * Tensions that depend on strain (TCA law, coil contact, linear tendon)
+//!   add `sum_i k_i (d Lambda_i)^2 >= 0` to the second variation, with
+//!   `k_i = d tau_i / d delta_i` and `Lambda_i` the actuator length, a
+//!   non-local term. The Morse index of the second variation is then the
+//!   number of Dirichlet conjugate points of the frozen-tension problem
+//!   (zeros of `det H(s)` in `(0, L)`; none for a stable rod) plus the number
+//!   of negative eigenvalues of the full tip stiffness
+//!
+//!   `K_full = Y_z Z (H_z Z)^-1`                                        (S3)
+//!
+//!   where `z = (v(0), u(0), delta_i)` are all shooting unknowns and the
+//!   columns of `Z` span the `z` that keep every actuator consistent
+//!   (`d(delta_i(L) - delta_i) = 0`): the tip stiffness with the actuator
+//!   springs in. With constant tensions (S3) is `K(L)`.
+//! * Dead loads (gravity, distributed and tip force) enter the wrench
+//!   balance only; a world-fixed tip moment is not conservative in 3-D and
+//!   is treated like a dead load (its non-symmetric part is dropped with the
+//!   antisymmetric part of `K`).
+//! * A blocked tip (mixed boundary condition: tip translation along some
+//!   world directions held, contact force a Lagrange multiplier) restricts
+//!   the tip variations: the index is that of (S3) restricted to the
+//!   complement of the blocked directions.
+//!
+//! # Margin
+//!
+//! The smallest eigenvalue of the symmetric part of the dimensionless tip
+//! stiffness at the tip: (S2) at `s = L` (free tip, no strain-dependent
+//! actuator), or (S3) restricted to the free directions.
+//! Positive iff stable (above `-NEUTRAL`: neutral symmetry modes count as
+//! stable); it passes through zero at a buckling load or a fold.
+//! If a conjugate point lies inside the body it is at most `-(L - s_c)/L`
+//! (continuous at a first conjugate point reaching the tip). Along `s` only
+//! positive definiteness is tested (Cholesky), to keep the verdict cheap.
+//!
+//! # Cost
+//!
+//! One tangent integration (the IVP with its exact variational equations,
+//! [`crate::rod::integrate_tangent`]) gives every node's `Y`, `H` and the
+//! actuator rows: along the six base strains only when the tensions are
+//! frozen and the tip free, along all `6 + N` shooting unknowns otherwise.
+//! The scan along `s` uses fixed-size 6 x 6 algebra (no allocation per
+//! node). [`stability_fd`] does the same from `7 + N` recorded IVPs by
+//! forward differences (a cross-check).
+//!
+//! # Policy
+//!
+//! [`solve_checked`] wraps the forward solve with a [`Policy`]: report the
+//! verdict with the solution (the default), require a stable one, continue
+//! to a stable one at the same inputs ([`land`]), or skip the verdict.
+
+use nalgebra::Vector3;
+
+use crate::error::{Error, Result};
+use crate::rod::Robot;
+use crate::shooting::Solution;
+
+mod landing;
+mod policy;
+mod tangents;
+mod verdict;
+
+pub use landing::land;
+pub use landing::{Landing, Route};
+pub use policy::{solve_checked, sweep_checked, unstable_error, Checked, Continued, Policy};
+
+/// Margins above `-NEUTRAL` count as stable: a symmetry leaves a neutral
+/// mode (a buckled round column can turn about the vertical at no cost, so
+/// its smallest tip stiffness is zero up to the ~1e-10 noise of the
+/// finite-difference tangents).
+pub const NEUTRAL: f64 = 1e-6;
+
+/// Stability verdict of one equilibrium.
+#[derive(Debug, Clone)]
+pub struct Stability {
+    /// True if the equilibrium is a strict local minimum of the energy.
+    pub stable: bool,
+    /// Smallest eigenvalue of the symmetric dimensionless tip stiffness
+    /// (see the module docs); > 0 iff stable.
+    pub margin: f64,
+    /// Arc length \[m\] of the first conjugate point of the frozen-tension
+    /// problem (first node where (S2) is no longer positive definite), if any.
+    pub conjugate_point: Option<f64>,
+    /// Arc length \[m\] of the nodes.
+    pub s: Vec<f64>,
+    /// Till and Rucker's determinant (S1) normalised to 1 at the base,
+    /// `det(Y(s) Y(0)^-1)`, at each node (frozen tensions).
+    pub determinant: Vec<f64>,
+    /// At the tip node, the smallest eigenvalue of the symmetric part of
+    /// (S2); at the other nodes `+1` where it is positive definite (above
+    /// `-NEUTRAL`) and `-1` where not (a Cholesky test: no eigenvalue is
+    /// computed there); the base node, where `K` is infinite, carries `+inf`.
+    pub min_stiffness: Vec<f64>,
+    /// Integrations for the verdict: 1 tangent IVP ([`stability`]) or
+    /// `7 + N` IVPs ([`stability_fd`]).
+    pub evaluations: usize,
+    /// Softest tip mode: unit eigenvector `(p / L, theta)` (world frame) of
+    /// the smallest eigenvalue of the symmetric tip stiffness at `s = L`
+    /// (zeros if the stiffness is undefined).
+    pub mode: [f64; 6],
+}
+
+/// Stiffness of each actuator's law, `d tau / d delta` \[N/m\], at the solution.
+fn actuator_stiffness(robot: &Robot, sol: &Solution) -> Result<Vec<f64>> {
+    let len = robot.body.length;
+    robot
+        .actuators
+        .iter()
+        .enumerate()
+        .map(|(i, a)| {
+            let d = sol.elongations[i];
+            let h = 1e-9 * len;
+            let tp = a.law.tension(d + h, sol.inputs[i])?;
+            let tm = a.law.tension(d - h, sol.inputs[i])?;
+            Ok((tp - tm) / (2.0 * h))
+        })
+        .collect()
+}
+
+/// Validate the arguments; true if the verdict needs the full tip stiffness
+/// (S3): an actuator whose tension depends on strain, or a blocked tip.
+fn check(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<bool> {
+    robot.validate()?;
+    let na = robot.actuators.len();
+    if sol.unknowns.len() != 6 + na || sol.inputs.len() != na {
+        return Err(Error::input(
+            "solution",
+            format!(
+                "solution of a robot with {} actuators, this one has {na}",
+                sol.inputs.len()
+            ),
+        ));
+    }
+    for (j, b) in blocked.iter().enumerate() {
+        if !(b.iter().all(|v| v.is_finite()) && b.norm() > 0.0) {
+            return Err(Error::input(
+                &format!("blocked[{j}]"),
+                "must be a finite non-zero vector",
+            ));
+        }
+    }
+    let springy = actuator_stiffness(robot, sol)?
+        .iter()
+        .any(|k| k.abs() > 0.0);
+    Ok(springy || !blocked.is_empty())
+}
+
+/// Stability of the equilibrium `sol` of `robot` (see the module docs), from
+/// one tangent integration.
+/// `blocked`: world directions along which the tip translation is held (a
+/// blocked-tip solution's block normal); empty for a free tip.
+pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<Stability> {
+    let full = check(robot, sol, blocked)?;
+    let t = tangents::exact_tangents(robot, sol, full)?;
+    Ok(verdict::verdict(&t, robot.body.length, blocked, full, 1))
+}
+
+/// [`stability`] from forward-difference tangents (`7 + N` IVPs); for
+/// cross-checks.
+pub fn stability_fd(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<Stability> {
+    let full = check(robot, sol, blocked)?;
+    let t = tangents::fd_tangents(robot, sol)?;
+    let n = 7 + robot.actuators.len();
+    Ok(verdict::verdict(&t, robot.body.length, blocked, full, n))
+}

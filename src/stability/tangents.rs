@@ -1,0 +1,338 @@
+//! Tangents of one equilibrium at every node, `Y = d w~(s)/d z` and
+//! `H = d (p/L, theta)(s)/d z`: exact from one recorded tangent IVP, or by
+//! forward differences of recorded IVPs (a cross-check).
+
+use nalgebra::{DMatrix, Matrix3, Matrix6, Quaternion, Vector3, Vector6};
+
+use crate::error::Result;
+use crate::rod::{integrate_tangent, rot, IvpSpec, Robot, RodState, TangentSeeds};
+use crate::shooting::{residual_scales, shoot, Loads, Solution};
+
+/// Tangents of one equilibrium: at every node the frozen-tension columns
+/// (the six base strains) `Y_k`, `H_k`; at the tip all `nz` columns when the
+/// actuator directions were integrated, and the actuator consistency rows
+/// `E = d (delta_i(L) - delta_i)/L / d z` (`na x nz`; `na x 0` if not).
+pub(super) struct Tangents {
+    pub s: Vec<f64>,
+    pub y: Vec<Matrix6<f64>>,
+    pub h: Vec<Matrix6<f64>>,
+    pub y_tip: DMatrix<f64>,
+    pub h_tip: DMatrix<f64>,
+    pub e: DMatrix<f64>,
+}
+
+/// A string crossing a node: `(actuator, r, unit tangent t, |p_b|, tau)`.
+type Crossing = (usize, Vector3<f64>, Vector3<f64>, f64, f64);
+
+/// What a node's tangent columns need besides the column itself: rotation,
+/// quaternion, total body-frame wrench and each crossing string's geometry.
+struct NodeFrame {
+    q: Quaternion<f64>,
+    rm: Matrix3<f64>,
+    rn: Vector3<f64>,
+    rmm: Vector3<f64>,
+    /// The strings crossing the node.
+    strings: Vec<Crossing>,
+}
+
+/// True if actuator `a` crosses the section at `s` (at an interior anchor
+/// the recorded state is the one after the anchor loads; at the tip the one
+/// before, so a string ending there still counts).
+fn crosses(a: &crate::rod::Actuator, s: f64, len: f64) -> bool {
+    let tol = 1e-12 * len;
+    let at_tip = s >= len - tol;
+    a.s_start <= s + tol && (a.s_end > s + tol || (at_tip && a.s_end >= len - tol))
+}
+
+/// The frame of the node at `s` with state `y`, reusing `strings`' storage.
+fn frame(
+    robot: &Robot,
+    c: &Consts,
+    tau: &[f64],
+    s: f64,
+    y: &[f64],
+    mut strings: Vec<Crossing>,
+) -> NodeFrame {
+    let b = &robot.body;
+    let (kse, kbt) = (c.kse, c.kbt);
+    let q = Quaternion::new(y[3], y[4], y[5], y[6]);
+    let rm = rot(&q);
+    let v = Vector3::new(y[7], y[8], y[9]);
+    let u = Vector3::new(y[10], y[11], y[12]);
+    let mut nb = kse * (v - b.nu_star);
+    let mut mb = kbt * (u - b.omega_star);
+    strings.clear();
+    for (i, a) in robot.actuators.iter().enumerate() {
+        if !crosses(a, s, b.length) {
+            continue;
+        }
+        let (r, rp, _) = a.routing.eval(s);
+        let pb = v + u.cross(&r) + rp;
+        let nrm = pb.norm();
+        let tt = pb / nrm;
+        nb += tt * tau[i];
+        mb += r.cross(&tt) * tau[i];
+        strings.push((i, r, tt, nrm, tau[i]));
+    }
+    NodeFrame {
+        q,
+        rm,
+        rn: rm * nb,
+        rmm: rm * mb,
+        strings,
+    }
+}
+
+/// Body constants used by every column.
+struct Consts {
+    kse: Matrix3<f64>,
+    kbt: Matrix3<f64>,
+    fs: f64,
+    ms: f64,
+    len: f64,
+}
+
+/// One tangent column: `(d w~, d (p/L, theta))` along direction `j` whose
+/// state tangent is `t` and tension derivative `dtau` (`d tau_i / d z_j`).
+fn column(
+    c: &Consts,
+    f: &NodeFrame,
+    t: nalgebra::DVectorView<'_, f64>,
+    dtau: &DMatrix<f64>,
+    j: usize,
+) -> (Vector6<f64>, Vector6<f64>) {
+    let (kse, kbt) = (c.kse, c.kbt);
+    let dp = Vector3::new(t[0], t[1], t[2]);
+    let dv = Vector3::new(t[7], t[8], t[9]);
+    let du = Vector3::new(t[10], t[11], t[12]);
+    let mut dnb = kse * dv;
+    let mut dmb = kbt * du;
+    for &(i, r, tt, nrm, tau) in &f.strings {
+        // d pb = d v + d u x r; d t = (I - t t^T) d pb / |pb|
+        let dpb = dv + du.cross(&r);
+        let dt = (dpb - tt * tt.dot(&dpb)) / nrm;
+        let df = dt * tau + tt * dtau[(i, j)];
+        dnb += df;
+        dmb += r.cross(&df);
+    }
+    // rotation tangent: d q = (theta/2) (x) q  =>  theta = 2 vec(d q (x) q*)
+    let w = Quaternion::new(t[3], t[4], t[5], t[6]) * f.q.conjugate() * 2.0;
+    let th = Vector3::new(w.i, w.j, w.k);
+    // world wrench w = R (nb, mb): d w = theta x R nb + R d nb
+    let dn = (f.rm * dnb + th.cross(&f.rn)) * c.fs;
+    let dm = (f.rm * dmb + th.cross(&f.rmm)) * c.ms;
+    let dh = dp / c.len;
+    (
+        Vector6::new(dn.x, dn.y, dn.z, dm.x, dm.y, dm.z),
+        Vector6::new(dh.x, dh.y, dh.z, th.x, th.y, th.z),
+    )
+}
+
+/// Seeds of the tangent IVP along the scaled unknowns `z_0 .. z_nz`
+/// (`nz` = 6: the base strains only; `6 + N`: the elongation guesses too),
+/// the tensions and `d tau_i / d z_j` (`N x nz`).
+fn seeds(
+    robot: &Robot,
+    sol: &Solution,
+    nz: usize,
+) -> Result<(TangentSeeds, Vec<f64>, DMatrix<f64>)> {
+    let na = robot.actuators.len();
+    let len = robot.body.length;
+    let mut seeds = TangentSeeds::zeros(na, nz);
+    for k in 0..3 {
+        seeds.nu0[(k, k)] = 1.0;
+        seeds.omega0[(k, 3 + k)] = 1.0 / len;
+    }
+    let mut tau = Vec::with_capacity(na);
+    let mut dtau = DMatrix::zeros(na, nz);
+    for (i, a) in robot.actuators.iter().enumerate() {
+        let (t, dt_de, _) = a
+            .law
+            .tension_derivatives(sol.unknowns[6 + i] * len, sol.inputs[i])?;
+        tau.push(t);
+        if nz > 6 {
+            seeds.tensions[(i, 6 + i)] = dt_de * len;
+            dtau[(i, 6 + i)] = dt_de * len;
+        }
+    }
+    Ok((seeds, tau, dtau))
+}
+
+/// Exact tangents from one recorded tangent IVP along the six base strains
+/// and, if `actuators`, the `N` actuator elongation guesses too.
+pub(super) fn exact_tangents(robot: &Robot, sol: &Solution, actuators: bool) -> Result<Tangents> {
+    let na = robot.actuators.len();
+    let nz = if actuators { 6 + na } else { 6 };
+    let len = robot.body.length;
+    let x = &sol.unknowns;
+    let (seeds, tau, dtau) = seeds(robot, sol, nz)?;
+    let spec = IvpSpec {
+        robot,
+        tensions: &tau,
+        tip_force: sol.loads.tip_force,
+        tip_moment: sol.loads.tip_moment,
+        steps: sol.steps,
+    };
+    let v0 = Vector3::new(x[0], x[1], x[2]);
+    let u0 = Vector3::new(x[3], x[4], x[5]) / len;
+    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, true)?;
+    let (fs, ms) = residual_scales(robot);
+    let (kse, kbt) = robot.body.stiffness();
+    let c = Consts {
+        kse,
+        kbt,
+        fs,
+        ms,
+        len,
+    };
+    let k = tan.nodes.len();
+    let mut out = Tangents {
+        s: Vec::with_capacity(k),
+        y: Vec::with_capacity(k),
+        h: Vec::with_capacity(k),
+        y_tip: DMatrix::zeros(6, nz),
+        h_tip: DMatrix::zeros(6, nz),
+        e: DMatrix::zeros(na, if actuators { nz } else { 0 }),
+    };
+    let mut strings = Vec::with_capacity(na);
+    for (n, node) in tan.nodes.iter().enumerate() {
+        let f = frame(robot, &c, &tau, node.s, &node.state, strings);
+        let (mut y, mut h) = (Matrix6::zeros(), Matrix6::zeros());
+        let tip = n + 1 == k;
+        for j in 0..if tip { nz } else { 6 } {
+            let (dy, dh) = column(&c, &f, node.tangent.column(j), &dtau, j);
+            if j < 6 {
+                y.set_column(j, &dy);
+                h.set_column(j, &dh);
+            }
+            if tip {
+                out.y_tip.set_column(j, &dy);
+                out.h_tip.set_column(j, &dh);
+            }
+        }
+        out.s.push(node.s);
+        out.y.push(y);
+        out.h.push(h);
+        strings = f.strings;
+    }
+    if actuators {
+        for i in 0..na {
+            for j in 0..nz {
+                out.e[(i, j)] = tan.elongation[(i, j)] / len;
+            }
+            out.e[(i, 6 + i)] -= 1.0;
+        }
+    }
+    Ok(out)
+}
+
+/// Data of one recorded IVP at each node: position, rotation, total wrench.
+struct Profile {
+    p: Vec<Vector3<f64>>,
+    r: Vec<Matrix3<f64>>,
+    n: Vec<Vector3<f64>>,
+    m: Vec<Vector3<f64>>,
+    resid: Vec<f64>,
+}
+
+/// Total wrench (world frame) across the section at node `s`: body stress
+/// plus every string crossing `s`.
+fn wrench(robot: &Robot, tau: &[f64], s: f64, st: &RodState) -> (Vector3<f64>, Vector3<f64>) {
+    let b = &robot.body;
+    let (kse, kbt) = b.stiffness();
+    let rm = st.rotation();
+    let mut n = kse * (st.v - b.nu_star);
+    let mut m = kbt * (st.u - b.omega_star);
+    for (i, a) in robot.actuators.iter().enumerate() {
+        if crosses(a, s, b.length) {
+            let (r, rp, _) = a.routing.eval(s);
+            let pb = st.v + st.u.cross(&r) + rp;
+            let t = pb / pb.norm() * tau[i];
+            n += t;
+            m += r.cross(&t);
+        }
+    }
+    (rm * n, rm * m)
+}
+
+fn profile(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    steps: usize,
+) -> Result<Profile> {
+    let (resid, ivp, tau) = shoot(robot, inputs, loads, x, steps, true)?;
+    let k = ivp.nodes.len();
+    let mut pr = Profile {
+        p: Vec::with_capacity(k),
+        r: Vec::with_capacity(k),
+        n: Vec::with_capacity(k),
+        m: Vec::with_capacity(k),
+        resid,
+    };
+    for (s, st) in &ivp.nodes {
+        let (n, m) = wrench(robot, &tau, *s, st);
+        pr.p.push(st.p);
+        pr.r.push(st.rotation());
+        pr.n.push(n);
+        pr.m.push(m);
+    }
+    Ok(pr)
+}
+
+/// Axial vector of the skew part of `a`.
+fn vee_skew(a: &Matrix3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        a[(2, 1)] - a[(1, 2)],
+        a[(0, 2)] - a[(2, 0)],
+        a[(1, 0)] - a[(0, 1)],
+    ) * 0.5
+}
+
+/// Forward-difference tangents from `1 + nz` recorded IVPs (all `6 + N`
+/// directions; a cross-check of [`exact_tangents`]).
+pub(super) fn fd_tangents(robot: &Robot, sol: &Solution) -> Result<Tangents> {
+    let na = robot.actuators.len();
+    let nz = 6 + na;
+    let len = robot.body.length;
+    let (fs, ms) = residual_scales(robot);
+    let x = &sol.unknowns;
+    let base = profile(robot, &sol.inputs, &sol.loads, x, sol.steps)?;
+    let nodes = base.p.len();
+    let mut y = vec![DMatrix::zeros(6, nz); nodes];
+    let mut h = vec![DMatrix::zeros(6, nz); nodes];
+    let mut e = DMatrix::zeros(na, nz);
+    let h0 = f64::EPSILON.sqrt();
+    for j in 0..nz {
+        let mut xp = x.clone();
+        let step = h0 * x[j].abs().max(1.0);
+        xp[j] += step;
+        let step = xp[j] - x[j];
+        let pp = profile(robot, &sol.inputs, &sol.loads, &xp, sol.steps)?;
+        for k in 0..nodes {
+            let dn = (pp.n[k] - base.n[k]) * (fs / step);
+            let dm = (pp.m[k] - base.m[k]) * (ms / step);
+            let dp = (pp.p[k] - base.p[k]) / (len * step);
+            let th = vee_skew(&(pp.r[k] * base.r[k].transpose())) / step;
+            for i in 0..3 {
+                y[k][(i, j)] = dn[i];
+                y[k][(3 + i, j)] = dm[i];
+                h[k][(i, j)] = dp[i];
+                h[k][(3 + i, j)] = th[i];
+            }
+        }
+        for i in 0..na {
+            e[(i, j)] = (pp.resid[6 + i] - base.resid[6 + i]) / step;
+        }
+    }
+    let m6 = |m: &DMatrix<f64>| Matrix6::from_fn(|i, j| m[(i, j)]);
+    Ok(Tangents {
+        s: sol.s.clone(),
+        y: y.iter().map(m6).collect(),
+        h: h.iter().map(m6).collect(),
+        y_tip: y.pop().unwrap_or_else(|| DMatrix::zeros(6, nz)),
+        h_tip: h.pop().unwrap_or_else(|| DMatrix::zeros(6, nz)),
+        e,
+    })
+}

@@ -1,0 +1,199 @@
+//! The verdict from the tangents: the frozen-tension scan along `s`
+//! (determinant (S1), Dirichlet test, positive definiteness of (S2)) and the
+//! margin at the tip ((S2), or (S3) restricted to the free directions).
+
+use nalgebra::{DMatrix, DVector, SymmetricEigen, Vector3};
+
+use super::tangents::Tangents;
+use super::{Stability, NEUTRAL};
+
+/// Smallest eigenvalue of the symmetric part of a square matrix and its unit
+/// eigenvector.
+fn min_sym_pair(k: &DMatrix<f64>) -> (f64, DVector<f64>) {
+    let sym = (k + k.transpose()) * 0.5;
+    let e = SymmetricEigen::new(sym);
+    let i = e.eigenvalues.imin();
+    (e.eigenvalues[i], e.eigenvectors.column(i).into_owned())
+}
+
+/// Result of the frozen-tension scan along `s`.
+struct Scan {
+    determinant: Vec<f64>,
+    min_stiffness: Vec<f64>,
+    /// First node where (S2) is not positive definite.
+    conjugate: Option<f64>,
+    /// First node where `det H` changes sign (Dirichlet conjugate point).
+    dirichlet: Option<f64>,
+}
+
+/// (S1) normalised at the base, the Dirichlet test (if `dirichlet`) and a
+/// Cholesky test of the symmetric part of (S2) at every node (fixed-size
+/// 6 x 6 algebra).
+fn scan(t: &Tangents, dirichlet: bool) -> Scan {
+    let nodes = t.s.len();
+    let det0 = t.y.first().map_or(0.0, |y| y.determinant());
+    let mut out = Scan {
+        determinant: Vec::with_capacity(nodes),
+        min_stiffness: Vec::with_capacity(nodes),
+        conjugate: None,
+        dirichlet: None,
+    };
+    let mut hdet_sign = 0.0;
+    for (k, &sk) in t.s.iter().enumerate() {
+        // det(Y(s) Y(0)^-1) = det Y(s) / det Y(0)
+        out.determinant.push(if det0 != 0.0 {
+            t.y[k].determinant() / det0
+        } else {
+            f64::NAN
+        });
+        if k == 0 || sk <= 0.0 {
+            out.min_stiffness.push(f64::INFINITY);
+            continue;
+        }
+        let h = &t.h[k];
+        if dirichlet {
+            let hd = h.determinant();
+            if hdet_sign == 0.0 {
+                hdet_sign = hd.signum();
+            } else if out.dirichlet.is_none() && hd * hdet_sign <= 0.0 {
+                out.dirichlet = Some(sk);
+            }
+        }
+        // sym(K) + NEUTRAL I is positive definite iff its congruent
+        // H^T (sym(K) + NEUTRAL I) H = sym(H^T Y) + NEUTRAL H^T H is (H
+        // invertible): no inverse needed
+        let hty = h.transpose() * t.y[k];
+        let a = (hty + hty.transpose()) * 0.5 + h.transpose() * h * NEUTRAL;
+        let pd = a.cholesky().is_some();
+        if out.conjugate.is_none() && !pd {
+            out.conjugate = Some(sk);
+        }
+        out.min_stiffness.push(if pd { 1.0 } else { -1.0 });
+    }
+    out
+}
+
+/// The verdict from the tangents `t`: frozen tensions and a free tip
+/// (`full = false`), or the tip stiffness (S3) with the actuator springs in,
+/// restricted to the complement of `blocked`.
+pub(super) fn verdict(
+    t: &Tangents,
+    len: f64,
+    blocked: &[Vector3<f64>],
+    full: bool,
+    evaluations: usize,
+) -> Stability {
+    let sc = scan(t, full);
+    let nodes = t.s.len();
+    let last = nodes.saturating_sub(1);
+    let mut out = Stability {
+        stable: false,
+        margin: f64::NEG_INFINITY,
+        conjugate_point: sc.conjugate,
+        s: t.s.clone(),
+        determinant: sc.determinant,
+        min_stiffness: sc.min_stiffness,
+        evaluations,
+        mode: [0.0; 6],
+    };
+    // the frozen tip stiffness (S2) at s = L: its smallest eigenvalue is the
+    // last node's min_stiffness and, without springs, the margin
+    if nodes > 1 {
+        if let Some(hi) = t.h[last].try_inverse() {
+            let kk = t.y[last] * hi;
+            let e = SymmetricEigen::new((kk + kk.transpose()) * 0.5);
+            let i = e.eigenvalues.imin();
+            out.min_stiffness[last] = e.eigenvalues[i];
+            out.mode
+                .copy_from_slice(e.eigenvectors.column(i).as_slice());
+        }
+    }
+    if !full {
+        let m = out.min_stiffness[last];
+        out.stable = sc.conjugate.is_none();
+        out.margin = match sc.conjugate {
+            Some(s) => m.min(-(len - s) / len),
+            None => m,
+        };
+        return out;
+    }
+    out.mode = [0.0; 6];
+    let Some((m, mode)) = full_tip(t, blocked) else {
+        return out;
+    };
+    out.mode = mode;
+    out.margin = match sc.dirichlet {
+        Some(sd) => m.min(-(len - sd) / len),
+        None => m,
+    };
+    out.stable = sc.dirichlet.is_none() && out.margin > -NEUTRAL;
+    out
+}
+
+/// Smallest eigenvalue and mode of (S3) restricted to tip variations
+/// orthogonal to the `blocked` directions; `None` where undefined.
+fn full_tip(t: &Tangents, blocked: &[Vector3<f64>]) -> Option<(f64, [f64; 6])> {
+    let nz = t.y_tip.ncols();
+    let na = nz - 6;
+    // basis of the consistent z: d delta = -E_d^-1 E_x dx
+    let z = if na == 0 {
+        DMatrix::identity(6, 6)
+    } else {
+        let ex = t.e.columns(0, 6).into_owned();
+        let edi = t.e.columns(6, na).into_owned().try_inverse()?;
+        let mut z = DMatrix::zeros(nz, 6);
+        z.view_mut((0, 0), (6, 6))
+            .copy_from(&DMatrix::identity(6, 6));
+        z.view_mut((6, 0), (na, 6)).copy_from(&(-edi * ex));
+        z
+    };
+    let hi = (&t.h_tip * &z).try_inverse()?;
+    let kfull = &t.y_tip * &z * hi;
+    let basis: Vec<DVector<f64>> = blocked
+        .iter()
+        .map(|b| {
+            let mut v = DVector::zeros(6);
+            v.rows_mut(0, 3).copy_from(&(b / b.norm()));
+            v
+        })
+        .collect();
+    let q = complement(&basis);
+    let (m, v) = min_sym_pair(&(q.transpose() * kfull * &q));
+    let mut mode = [0.0; 6];
+    mode.copy_from_slice((&q * v).as_slice());
+    Some((m, mode))
+}
+
+/// Orthonormal basis (columns) of the complement in R^6 of the span of `vs`.
+fn complement(vs: &[DVector<f64>]) -> DMatrix<f64> {
+    if vs.is_empty() {
+        return DMatrix::identity(6, 6);
+    }
+    let a = DMatrix::from_columns(vs);
+    let svd = a.svd(true, false);
+    let Some(u) = svd.u else {
+        return DMatrix::identity(6, 6);
+    };
+    let rank = svd.singular_values.iter().filter(|&&x| x > 1e-12).count();
+    // complete the basis by Gram-Schmidt on the unit vectors
+    let mut cols: Vec<DVector<f64>> = (0..rank).map(|j| u.column(j).into_owned()).collect();
+    let mut out = Vec::new();
+    for e in 0..6 {
+        let mut v = DVector::zeros(6);
+        v[e] = 1.0;
+        for c in &cols {
+            let d = c.dot(&v);
+            v -= c * d;
+        }
+        let n = v.norm();
+        if n > 1e-8 {
+            v /= n;
+            cols.push(v.clone());
+            out.push(v);
+        }
+        if cols.len() == 6 {
+            break;
+        }
+    }
+    DMatrix::from_columns(&out)
+}
