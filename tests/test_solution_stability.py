@@ -1,6 +1,6 @@
 """`Solution.stable` and `Solution.stability_margin` (issue 16): the verdict
 is computed on first access with the solution's own robot, cached, equal to
-`tcarod.stability`, and survives pickle."""
+`tcarod.models.stability`, and survives pickle."""
 
 from __future__ import annotations
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 from ._core import ConvergenceError, UnitsWarning, UnstableEquilibriumError, __version__
 from .rod import Actuator, Body, Robot, Routing, Section, Solution, circle_radius, inner_edge_radius
 from .tca import Material, Tca
-from .grasp import grasp_temperature
+from .models.grasp import grasp_temperature
 from .inverse import (
     BlockedResult,
     InverseResult,

@@ -46,7 +46,7 @@ def _solution_png(sol: Any) -> bytes | None:
 
 
 def _workspace_png(ws: Any) -> bytes | None:
-    from .workspace import plot_workspace
+    from .plotting import plot_workspace
 
     return figure_png(plot_workspace(ws))
 
@@ -127,7 +127,7 @@ def register(shell: Any | None = None) -> bool:
     if not formatters:
         return False
     from .rod import Robot, Solution
-    from .workspace import Workspace
+    from .models.workspace import Workspace
 
     png = formatters.get("image/png")
     htm = formatters.get("text/html")

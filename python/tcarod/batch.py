@@ -378,6 +378,6 @@ def fig6_square_robot(gravity: bool = True) -> Robot:
     turns reading: :func:`tcarod.manipulators.square_manipulator` at 40 mm,
     standing upright (gravity ``-z``) if ``gravity``. A named module-level
     function, so Dask and process pools can ship it as a robot factory."""
-    from .manipulators import UPRIGHT, square_manipulator  # deferred: manipulators builds on this API
+    from .models.manipulators import UPRIGHT, square_manipulator  # deferred: manipulators builds on this API
 
     return square_manipulator(0.040, gravity_m_per_s2=UPRIGHT if gravity else None)

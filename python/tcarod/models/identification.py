@@ -36,8 +36,8 @@ from typing import Any, Final, Literal, Sequence
 
 import numpy as np
 
-from ._core import ConvergenceError
-from ._optional import require
+from .._core import ConvergenceError
+from .._optional import require
 from .grasp import (
     TABLE1_EXPERIMENT_C,
     TABLE1_MASSES_KG,
@@ -46,7 +46,7 @@ from .grasp import (
     table1_finger,
 )
 from .manipulators import TurnsReading, material_preset
-from .tca import Material
+from ..tca import Material
 
 __all__ = [
     "CTE_CHECK_TEMPERATURES_C",

@@ -22,7 +22,7 @@ keep it straight, but shapes are sensitive to loads and to asymmetry (one
 eccentric TCA alone makes a hard, near-buckling problem). Use
 ``gravity=False`` or a shorter body for gentler cases.
 
-``register("fig1b")`` adds a workspace map (a ``k^3`` temperature grid) to
+The registry entry ``fig1b`` (:func:`predict_fig1b`) adds a workspace map (a ``k^3`` temperature grid) to
 ``tcarod reproduce``.
 """
 
@@ -38,9 +38,8 @@ import numpy as np
 import numpy.typing as npt
 
 from ..rod import Actuator, Body, Robot, Routing, Section
-from ..segmented import segmented_actuators
+from ..models.segmented import segmented_actuators
 from ..tca import Tca
-from . import register
 
 __all__ = [
     "FIG1B",
@@ -148,7 +147,7 @@ FIG1B: Final[Fig1bManipulator] = Fig1bManipulator()
 class Fig1bWorkspaceResult:
     """A workspace map of :data:`FIG1B` for ``tcarod reproduce fig1b``."""
 
-    workspace: Any  # tcarod.workspace.Workspace
+    workspace: Any  # tcarod.models.workspace.Workspace
     name: str = "fig1b"
 
     def table(self) -> str:
@@ -181,16 +180,15 @@ class Fig1bWorkspaceResult:
         }
 
     def plot(self, path: str | os.PathLike[str]) -> Path:
-        """3-D scatter of the tip positions (see :func:`tcarod.workspace.plot_workspace`)."""
-        from ..plotting import save_png
-        from ..workspace import plot_workspace
+        """3-D scatter of the tip positions (see :func:`tcarod.plotting.plot_workspace`)."""
+        from ..plotting import plot_workspace, save_png  # matplotlib only when plotting
 
         return save_png(plot_workspace(self.workspace), path)
 
 
-@register("fig1b")
-def _fig1b() -> Fig1bWorkspaceResult:
-    from ..workspace import workspace_map
+def predict_fig1b() -> Fig1bWorkspaceResult:
+    """Workspace map of :data:`FIG1B` over a 5 x 5 x 5 temperature grid (25-160 C)."""
+    from ..models.workspace import workspace_map
 
     grid = np.linspace(25.0, 160.0, 5)
     return Fig1bWorkspaceResult(workspace_map(FIG1B.robot(), grid))

@@ -34,8 +34,8 @@ from __future__ import annotations
 import math
 from typing import Final, Literal, Sequence, get_args
 
-from .rod import Actuator, Body, Robot, Routing, Section
-from .tca import Material, Tca
+from ..rod import Actuator, Body, Robot, Routing, Section
+from ..tca import Material, Tca
 
 __all__ = [
     "DEFAULT_TURNS_READING",

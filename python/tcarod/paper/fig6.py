@@ -42,7 +42,7 @@ from typing import Any, Final, Literal
 import numpy as np
 import numpy.typing as npt
 
-from ..manipulators import (
+from ..models.manipulators import (
     DEFAULT_TURNS_READING,
     TURNS_READINGS,
     TurnsReading,
@@ -55,7 +55,7 @@ from ..manipulators import (
     manipulator_tca,
 )
 from ..rod import Actuator, Body, Robot, Routing, Section, Solution, inner_edge_radius
-from . import GRAVITY_M_PER_S2, PublishedCurve, register
+from ._common import GRAVITY_M_PER_S2, PublishedCurve
 
 __all__ = [
     "CIRCLE_PRECURVATURE_RADIUS_M",
@@ -443,8 +443,3 @@ def predict_fig6(experiment: Fig6Experiment = FIG6, *, readings: bool = True) ->
                 )
                 rd[(m.label, reading)] = tuple(float(inner_edge_radius(s)) for s in sols)
     return Fig6Result(experiment=experiment, curves=curves, readings=rd)
-
-
-@register("fig6")
-def _fig6() -> Fig6Result:
-    return FIG6.predict()

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Final
 
-from ..grasp import (
+from ..models.grasp import (
     FRICTION_COEFFICIENT,
     TABLE1_CONTACT_TEMPERATURE_C,
     TABLE1_EXPERIMENT_C,
@@ -43,11 +43,10 @@ from ..grasp import (
     grasp,
     table1_finger,
 )
-from ..identification import IDENTIFICATION_READINGS, Identification, identify
-from ..manipulators import DEFAULT_TURNS_READING, MATERIAL_PRESETS, TURNS_READINGS, TurnsReading, material_preset
-from ..studies import Sensitivity, table1_sensitivity
+from ..models.identification import IDENTIFICATION_READINGS, Identification, identify
+from ..models.manipulators import DEFAULT_TURNS_READING, MATERIAL_PRESETS, TURNS_READINGS, TurnsReading, material_preset
+from ..models.studies import Sensitivity, table1_sensitivity
 from ..tca import Material
-from . import register
 from .fig8 import fig8_forces
 
 __all__ = ["TABLE1", "Table1Experiment", "Table1Reading", "Table1Result", "Table1Row", "predict_table1"]
@@ -272,30 +271,10 @@ class Table1Result:
         }
 
     def plot(self, path: str | os.PathLike[str]) -> Path:
-        """Write grip temperature [C] against mass [g] (tcarod, experiment, paper's model) as PNG."""
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
+        """Write grip temperature [C] against mass [g] (:func:`tcarod.plotting.plot_table1`) as PNG."""
+        from ..plotting import plot_table1, save_png  # matplotlib only when plotting
 
-        from ..plotting import save_png
-
-        fig = Figure(figsize=(4.8, 3.6), layout="constrained")
-        FigureCanvasAgg(fig)
-        ax = fig.add_subplot()
-        grams = [r.mass_kg * 1e3 for r in self.rows]
-        ax.plot(grams, [r.experiment_c for r in self.rows], "ks", label="experiment (firm grip)")
-        ax.plot(grams, [r.paper_prediction_c for r in self.rows], "k^--", markerfacecolor="none", label="paper's model")
-        ax.plot(grams, [r.predicted_c for r in self.rows], "o-", color="tab:red", label="tcarod (defaults)")
-        for i in self.identifications:
-            if i.fitted_to == "paper_model" and i.all_plausible and len(i.parameters) == 2:
-                ax.plot(grams, i.fitted_c, ":", label=f"identified ({i.reading.turns_reading}, {i.reading.material})")
-                break
-        ax.set_xlabel("Grasped mass [g]")
-        ax.set_ylabel("Grip temperature [°C]")
-        ax.set_xticks(grams)
-        ax.set_title("Table I: grip temperature", fontsize="medium")
-        ax.grid(True, linewidth=0.3)
-        ax.legend(fontsize="small", loc="lower right")
-        return save_png(fig, path)
+        return save_png(plot_table1(self), path)
 
 
 def _grips(exp: Table1Experiment, finger: Any, method: str) -> list[Grasp]:
@@ -354,8 +333,3 @@ def predict_table1(
         identifications=tuple(idents),
         identification_fig8_n=tuple(fig8),
     )
-
-
-@register("table1")
-def _table1() -> Table1Result:
-    return TABLE1.predict(study=True, identification=True)

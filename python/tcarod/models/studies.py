@@ -31,7 +31,7 @@ from typing import Any, Final, Sequence
 
 import numpy as np
 
-from ._core import ConvergenceError
+from .._core import ConvergenceError
 from .manipulators import TCA_COIL_DIAMETER_M, TCA_OFFSET_M, ECOFLEX10_YOUNGS_MODULUS_PA
 from .grasp import (
     TABLE1_CONTACT_TEMPERATURE_C,
@@ -40,9 +40,9 @@ from .grasp import (
     grasp_temperature,
     table1_finger,
 )
-from .rod import Robot
-from . import _validate as V
-from .tca import Material
+from ..rod import Robot
+from .. import _validate as V
+from ..tca import Material
 
 __all__ = [
     "PAPER_TABLE1_PREDICTIONS_C",

@@ -35,7 +35,7 @@ from typing import Any, Final
 
 import numpy as np
 
-from ..manipulators import (
+from ..models.manipulators import (
     DEFAULT_TURNS_READING,
     MATERIAL_PRESETS,
     TURNS_READINGS,
@@ -47,7 +47,7 @@ from ..manipulators import (
 from ..inverse import blocked_force, blocked_temperature
 from ..rod import Robot
 from ..tca import Material
-from . import FloatArray, register
+from ._common import FloatArray
 
 __all__ = ["FIG8", "Fig8CrossCheck", "Fig8Experiment", "Fig8Reading", "Fig8Result", "fig8_forces", "predict_fig8"]
 
@@ -253,35 +253,10 @@ class Fig8Result:
         }
 
     def plot(self, path: str | os.PathLike[str]) -> Path:
-        """Write force [mN] against temperature [C] as PNG to ``path``."""
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
+        """Write force [mN] against temperature [C] (:func:`tcarod.plotting.plot_fig8`) as PNG to ``path``."""
+        from ..plotting import plot_fig8, save_png  # matplotlib only when plotting
 
-        from ..plotting import save_png
-
-        exp = self.experiment
-        fig = Figure(figsize=(4.5, 3.4), layout="constrained")
-        FigureCanvasAgg(fig)
-        ax = fig.add_subplot()
-        ax.plot(self.temperatures_c, self.forces_n * 1e3, "k-", marker=".", label="model (direct solve)")
-        ax.plot(
-            [c.temperature_c for c in self.cross_checks],
-            [c.force_n * 1e3 for c in self.cross_checks],
-            "o",
-            markerfacecolor="none",
-            color="tab:red",
-            label="incremental eq 43 check",
-        )
-        ax.axvline(
-            exp.taut_temperature_c, color="0.6", linestyle=":", label=f"wire taut ({exp.taut_temperature_c:g} °C)"
-        )
-        ax.set_xlabel("Temperature [°C]")
-        ax.set_ylabel("Tip force [mN]")
-        ax.set_title("Fig. 8: blocked-tip force, 26 mm manipulator", fontsize="medium")
-        ax.grid(True, linewidth=0.3)
-        ax.legend(fontsize="small", loc="upper left")
-        fig.suptitle("Model prediction (the paper prints no data points; its rms: 0.74 mN)", fontsize="small")
-        return save_png(fig, path)
+        return save_png(plot_fig8(self), path)
 
 
 def predict_fig8(
@@ -336,8 +311,3 @@ def predict_fig8(
         cross_checks=tuple(checks),
         readings=tuple(rd),
     )
-
-
-@register("fig8")
-def _fig8() -> Fig8Result:
-    return FIG8.predict()

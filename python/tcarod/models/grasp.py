@@ -26,10 +26,10 @@ from dataclasses import dataclass
 from typing import Any, Final, Literal, Sequence
 
 from .manipulators import DEFAULT_TURNS_READING, HANGING, TurnsReading, square_manipulator
-from .inverse import BlockedResult, blocked_force, blocked_temperature, blocked_temperature_direct
-from .rod import Robot
-from . import _validate as V
-from .tca import Material
+from ..inverse import BlockedResult, blocked_force, blocked_temperature, blocked_temperature_direct
+from ..rod import Robot
+from .. import _validate as V
+from ..tca import Material
 
 __all__ = [
     "FRICTION_COEFFICIENT",
