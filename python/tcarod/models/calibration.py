@@ -46,6 +46,7 @@ import numpy.typing as npt
 from .. import _validate as V
 from .._optional import require
 from ..tca import Material, Tca
+from .manipulators import GRAVITY_M_PER_S2
 
 __all__ = ["PARAMETERS", "CalibrationResult", "TcaExperiment", "calibrate"]
 
@@ -72,7 +73,7 @@ class TcaExperiment:
     turns: float
     mass_kg: float
     load_share: float = 1.0
-    gravity_m_per_s2: float = 9.81
+    gravity_m_per_s2: float = GRAVITY_M_PER_S2
     chirality: str = "extension"
 
     def __post_init__(self) -> None:

@@ -25,7 +25,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Final, Literal, Sequence
 
-from .manipulators import DEFAULT_TURNS_READING, HANGING, TurnsReading, square_manipulator
+from .manipulators import DEFAULT_TURNS_READING, GRAVITY_M_PER_S2, HANGING, TurnsReading, square_manipulator
 from ..inverse import BlockedResult, blocked_force, blocked_temperature, blocked_temperature_direct
 from ..rod import Robot
 from .. import _validate as V
@@ -110,7 +110,7 @@ def grasp(
     finger: Robot | None = None,
     mu: float = FRICTION_COEFFICIENT,
     fingers: int = 2,
-    gravity: float = 9.81,
+    gravity: float = GRAVITY_M_PER_S2,
     *,
     normal: Sequence[float] = GRASP_NORMAL,
     groups: Sequence[int] | None = None,
@@ -184,7 +184,7 @@ def force_line(
     temperatures_c: Sequence[float],
     mu: float = FRICTION_COEFFICIENT,
     fingers: int = 2,
-    gravity: float = 9.81,
+    gravity: float = GRAVITY_M_PER_S2,
 ) -> tuple[float, float]:
     """Least-squares line through grip temperatures: the force per finger
     ``m g / (mu n)`` [N] against temperature [C]. Returns ``(slope [N/C],
@@ -242,7 +242,7 @@ def grasp_temperature(
     finger: Robot | None = None,
     mu: float = FRICTION_COEFFICIENT,
     fingers: int = 2,
-    gravity: float = 9.81,
+    gravity: float = GRAVITY_M_PER_S2,
     *,
     normal: Sequence[float] = GRASP_NORMAL,
     groups: Sequence[int] | None = None,

@@ -12,11 +12,12 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Final, Literal, Protocol
+from typing import Any, Literal, Protocol
 
 import numpy as np
 import numpy.typing as npt
 
+from ..models.manipulators import GRAVITY_M_PER_S2
 from ..tca import Material, Tca
 
 __all__ = [
@@ -30,9 +31,6 @@ __all__ = [
 ]
 
 FloatArray = npt.NDArray[np.float64]
-
-#: Acceleration of gravity [m/s^2] used to turn the paper's masses into forces.
-GRAVITY_M_PER_S2: Final[float] = 9.81
 
 
 class ExperimentResult(Protocol):

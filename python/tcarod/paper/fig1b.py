@@ -38,6 +38,16 @@ import numpy as np
 import numpy.typing as npt
 
 from ..rod import Actuator, Body, Robot, Routing, Section
+from ..models.manipulators import (
+    ECOFLEX10_DENSITY_KG_PER_M3,
+    ECOFLEX10_POISSON,
+    ECOFLEX10_YOUNGS_MODULUS_PA,
+    TCA_COIL_DIAMETER_M,
+    TCA_PITCH_ANGLE_RAD,
+    TCA_TURNS,
+    TURNS_ANCHOR_LENGTH_M,
+    UPRIGHT,
+)
 from ..models.segmented import segmented_actuators
 from ..tca import Tca
 
@@ -49,19 +59,15 @@ __all__ = [
 
 FloatArray = npt.NDArray[np.float64]
 
-#: EcoFlex 10 (Section V): density [kg/m^3], Young's modulus [Pa], Poisson ratio [-].
-ECOFLEX10_DENSITY_KG_PER_M3: Final[float] = 1040.0
-ECOFLEX10_YOUNGS_MODULUS_PA: Final[float] = 37.8e3
-ECOFLEX10_POISSON: Final[float] = 0.5
 #: Twist density of the paper's manipulator TCAs: 76.4 turns per 40 mm [turns/m].
-MANIPULATOR_TWIST_PER_M: Final[float] = 76.4 / 0.040
+MANIPULATOR_TWIST_PER_M: Final[float] = TCA_TURNS / TURNS_ANCHOR_LENGTH_M
 
 
 @dataclass(frozen=True)
 class Fig1bManipulator:
     """An illustrative Fig. 1(b) manipulator (see the module docstring).
 
-    Lengths in m, angles in degrees. ``segments`` divides TCA 0 (the
+    Lengths in m, ``angles_deg`` in degrees, ``alpha0_rad`` in rad. ``segments`` divides TCA 0 (the
     "leftmost" TCA of the figure) into that many equal segments in series,
     each anchored to the body at its ends and driven by its own temperature;
     1 keeps it whole.
@@ -71,15 +77,15 @@ class Fig1bManipulator:
     diameter_m: float = 12e-3
     offset_m: float = 4e-3
     angles_deg: tuple[float, ...] = (0.0, 120.0, 240.0)
-    coil_diameter_m: float = 1.7e-3
-    alpha0_deg: float = 15.0
+    coil_diameter_m: float = TCA_COIL_DIAMETER_M
+    alpha0_rad: float = TCA_PITCH_ANGLE_RAD
     segments: int = 1
 
     def tca(self) -> Tca:
         """One whole TCA spanning the body (coiled length = body length)."""
         return Tca.from_pitch_angle(
             self.length_m,
-            math.radians(self.alpha0_deg),
+            self.alpha0_rad,
             self.coil_diameter_m,
             MANIPULATOR_TWIST_PER_M * self.length_m,
         )
@@ -97,7 +103,7 @@ class Fig1bManipulator:
             ECOFLEX10_YOUNGS_MODULUS_PA,
             poisson=ECOFLEX10_POISSON,
             density=ECOFLEX10_DENSITY_KG_PER_M3,
-            gravity=[0.0, 0.0, -9.81] if gravity else [0.0, 0.0, 0.0],
+            gravity=list(UPRIGHT) if gravity else [0.0, 0.0, 0.0],
         )
 
     def actuators(self) -> list[Any]:

@@ -44,7 +44,14 @@ from ..models.grasp import (
     table1_finger,
 )
 from ..models.identification import IDENTIFICATION_READINGS, Identification, identify
-from ..models.manipulators import DEFAULT_TURNS_READING, MATERIAL_PRESETS, TURNS_READINGS, TurnsReading, material_preset
+from ..models.manipulators import (
+    GRAVITY_M_PER_S2,
+    DEFAULT_TURNS_READING,
+    MATERIAL_PRESETS,
+    TURNS_READINGS,
+    TurnsReading,
+    material_preset,
+)
 from ..models.studies import Sensitivity, table1_sensitivity
 from ..tca import Material
 from .fig8 import fig8_forces
@@ -70,7 +77,7 @@ class Table1Experiment:
     paper_prediction_c: tuple[float, ...] = TABLE1_PAPER_PREDICTIONS_C
     mu: float = FRICTION_COEFFICIENT
     fingers: int = 2
-    gravity_m_per_s2: float = 9.81
+    gravity_m_per_s2: float = GRAVITY_M_PER_S2
     #: Temperature [C] at which the fingertip touches the object (see ``blocking``).
     contact_temperature_c: float = TABLE1_CONTACT_TEMPERATURE_C
     turns_reading: TurnsReading = DEFAULT_TURNS_READING
