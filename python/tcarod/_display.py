@@ -10,7 +10,7 @@ display formatters, from Python, for
 * :class:`tcarod.Solution`: ``image/png`` (its 3-D plot) and ``text/html``
   (tip pose, inputs, tensions, iterations);
 * :class:`tcarod.Robot`: ``text/html`` (body and actuators);
-* :class:`tcarod.workspace.Workspace`: ``image/png`` (its scatter plot).
+* :class:`tcarod.models.workspace.Workspace`: ``image/png`` (its scatter plot).
 
 A class that defines its own ``_repr_png_`` / ``_repr_html_`` keeps it (a
 type formatter would override the method, so none is registered for it).

@@ -375,7 +375,7 @@ def _solve_dask(
 
 def fig6_square_robot(gravity: bool = True) -> Robot:
     """The paper's Fig. 6 square manipulator (Section V-B) with the default
-    turns reading: :func:`tcarod.manipulators.square_manipulator` at 40 mm,
+    turns reading: :func:`tcarod.models.manipulators.square_manipulator` at 40 mm,
     standing upright (gravity ``-z``) if ``gravity``. A named module-level
     function, so Dask and process pools can ship it as a robot factory."""
     from .models.manipulators import UPRIGHT, square_manipulator  # deferred: manipulators builds on this API

@@ -3,7 +3,7 @@
 
 ``tcarod reproduce fig5`` prints the predicted table of the paper's Fig. 5 and
 writes ``DIR/fig5.png`` (default ``DIR`` = ``tcarod-output``). Without a name,
-every registered experiment (:data:`tcarod.experiments.REGISTRY`) is run.
+every registered experiment (:data:`tcarod.paper.REGISTRY`) is run.
 
 With ``--json`` the only output on stdout is one JSON document::
 
@@ -85,11 +85,11 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _add_solve_parser(sub: Any) -> None:
-    """``tcarod solve DESIGN.toml --temperature T [T ...]`` (see :mod:`tcarod.design`)."""
+    """``tcarod solve DESIGN.toml --temperature T [T ...]`` (see :mod:`tcarod.io.design`)."""
     sol = sub.add_parser(
         "solve",
         help="solve a robot design file (TOML) at given temperatures: print the tip pose, write a plot",
-        description="Load DESIGN.toml (see tcarod.design), solve the forward kinetostatics at the "
+        description="Load DESIGN.toml (see tcarod.io.design), solve the forward kinetostatics at the "
         "given temperatures [C] (one per actuator, or one for all; default: the file's "
         "temperatures_c), print the tip pose and write DIR/<design name>.png.",
     )

@@ -335,7 +335,7 @@ def dumps_design(robot: Any, temperatures_c: Sequence[float] | None = None) -> s
     doc["body"] = body
     doc["actuators"] = acts
     toml_text: str = tomli_w.dumps(doc)
-    return "# tcarod robot design (SI units; see tcarod.design)\n" + toml_text
+    return "# tcarod robot design (SI units; see tcarod.io.design)\n" + toml_text
 
 
 def save_design(path: str | os.PathLike[str], robot: Any, temperatures_c: Sequence[float] | None = None) -> Path:

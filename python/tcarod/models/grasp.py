@@ -70,7 +70,7 @@ def table1_finger(
 ) -> Robot:
     """The Table I gripper finger (see the module docstring), hanging down.
     Keywords replace one design parameter (default: the paper's / the
-    documented default material; turns per :mod:`tcarod.manipulators`)."""
+    documented default material; turns per :mod:`tcarod.models.manipulators`)."""
     kw: dict[str, Any] = {"turns_reading": turns_reading}
     if body_youngs_modulus_pa is not None:
         kw["body_youngs_modulus_pa"] = body_youngs_modulus_pa

@@ -3,8 +3,8 @@ parameters, fitted separately to the paper's model predictions and to the
 experiment, each with leave-one-out errors and a plausibility check.
 
 A *reading* fixes what the paper leaves open -- how its "N = 76.4 rotations"
-apply to a U-shaped TCA (:data:`tcarod.manipulators.TURNS_READINGS`) and the
-shape of ``rho(T)`` (:data:`tcarod.manipulators.MATERIAL_PRESETS`) -- and
+apply to a U-shaped TCA (:data:`tcarod.models.manipulators.TURNS_READINGS`) and the
+shape of ``rho(T)`` (:data:`tcarod.models.manipulators.MATERIAL_PRESETS`) -- and
 names the free parameters:
 
 * ``contact_temperature_c`` [C]: the freely closing fingertip touches the

@@ -82,7 +82,7 @@ _ASSUMPTIONS: Final[tuple[str, ...]] = (
     "(the leg spacing is not printed; any symmetric spacing gives the same planar bending).",
     "Each TCA (and each U leg) runs the whole body length, anchored at base and tip.",
     "Turns: 76.4 per fabricated TCA (default reading 'per_tca'): the circle's single TCA has 76.4, each "
-    "leg of the square's U-shaped TCA 38.2 (tcarod.manipulators; the other readings are shown beside).",
+    "leg of the square's U-shaped TCA 38.2 (tcarod.models.manipulators; the other readings are shown beside).",
     "TCA material: Material.silver_coated_nylon() (values the paper does not print; see README).",
 )
 
@@ -110,7 +110,7 @@ class Fig6Manipulator:
     def robot(self, gravity: bool = True, turns_reading: TurnsReading = DEFAULT_TURNS_READING) -> Robot:
         """The manipulator as a :class:`Robot`; upright (base down, gravity
         ``(0, 0, -9.81) m/s^2``) if ``gravity``, weightless otherwise; each
-        leg with :func:`tcarod.manipulators.leg_turns` turns under ``turns_reading``."""
+        leg with :func:`tcarod.models.manipulators.leg_turns` turns under ``turns_reading``."""
         section = (
             Section.circle(self.size_m) if self.section == "circle" else Section.rectangle(self.size_m, self.size_m)
         )
@@ -147,7 +147,7 @@ class Fig6Experiment:
     source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-B, Fig. 6"
     #: RK4 steps over the body length.
     steps: int = 100
-    #: How the printed 76.4 turns apply to a U's legs (:mod:`tcarod.manipulators`).
+    #: How the printed 76.4 turns apply to a U's legs (:mod:`tcarod.models.manipulators`).
     turns_reading: TurnsReading = DEFAULT_TURNS_READING
     #: Temperatures [C] at which every reading's radius (with gravity) is reported.
     reading_temperatures_c: tuple[float, ...] = (60.0, 100.0, 140.0)

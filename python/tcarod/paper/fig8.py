@@ -87,13 +87,13 @@ class Fig8Experiment:
     title: str = "Fig. 8: blocked-tip force of the 26 mm square manipulator"
     source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-C, Fig. 8"
 
-    #: How the printed 76.4 turns apply to the U's legs (:mod:`tcarod.manipulators`).
+    #: How the printed 76.4 turns apply to the U's legs (:mod:`tcarod.models.manipulators`).
     turns_reading: TurnsReading = DEFAULT_TURNS_READING
     #: Temperatures [C] at which every reading's force is reported.
     reading_temperatures_c: tuple[float, ...] = (100.0, 140.0)
 
     def robot(self, material: Material | None = None, turns_reading: TurnsReading | None = None) -> Robot:
-        """The manipulator: :func:`tcarod.manipulators.square_manipulator` of ``length_m``, upright."""
+        """The manipulator: :func:`tcarod.models.manipulators.square_manipulator` of ``length_m``, upright."""
         reading = self.turns_reading if turns_reading is None else turns_reading
         return square_manipulator(
             self.length_m, gravity_m_per_s2=self.gravity_m_per_s2, material=material, turns_reading=reading
@@ -213,7 +213,7 @@ class Fig8Result:
                 f"  {c.temperature_c:.0f} C: {c.force_n * 1e3:.3f} mN -> {c.incremental_temperature_c:.6f} C "
                 f"(difference {c.difference_c:.2e} C)"
             )
-        lines.append(f"Turns read {exp.turns_reading!r} (default; see tcarod.manipulators). Every reading [mN]:")
+        lines.append(f"Turns read {exp.turns_reading!r} (default; see tcarod.models.manipulators). Every reading [mN]:")
         for r in self.readings:
             vals = ", ".join(f"{f * 1e3:.2f} at {t:g} C" for t, f in zip(r.temperatures_c, r.forces_n))
             lines.append(f"  {r.turns_reading:>10} / {r.material:<12}: {vals}")

@@ -6,21 +6,21 @@ TCA at body ``x = +3 mm``, hanging down. The gripper holds a mass ``m`` when
 finger's contact force: the free fingertip closes as the TCA heats until it
 touches the object at the *contact temperature*; below it the force is zero,
 above it the tip is blocked at its position at contact and presses along
-``-x`` (:func:`tcarod.grasp.blocked_force_curve`).
+``-x`` (:func:`tcarod.models.grasp.blocked_force_curve`).
 
 Defaults (documented, not tuned; ``docs/table1.md``):
 
 * contact at 72.33 C, the zero-force intercept of the paper's own
   predictions, which are linear in the force (0.209 mN/C); the paper prints
   no gap between fingertip and object;
-* turns read per U-shaped TCA (38.2 per 20 mm leg; :mod:`tcarod.manipulators`);
+* turns read per U-shaped TCA (38.2 per 20 mm leg; :mod:`tcarod.models.manipulators`);
 * the documented default material (Sun & Zhao's ``rho(T)``).
 
 With them the finger's force rises several times faster than the paper's
 (see the force slope in the table), so the grip temperatures are far below
 the paper's. The readings (turns x ``rho(T)`` preset) and the
 *identification* of at most two parameters per reading
-(:mod:`tcarod.identification`) are reported beside them, never used as
+(:mod:`tcarod.models.identification`) are reported beside them, never used as
 defaults.
 """
 
@@ -212,7 +212,7 @@ class Table1Result:
                 el = ", ".join(f"{e:+.3f}" for e in s.elasticity)
                 lines.append(f"  {s.parameter.key:>14}: {el}")
         if self.identifications:
-            lines += [rule, "IDENTIFICATION (identified, not defaults; tcarod.identification):"]
+            lines += [rule, "IDENTIFICATION (identified, not defaults; tcarod.models.identification):"]
             for i, f8 in zip(self.identifications, self.identification_fig8_n or [()] * len(self.identifications)):
                 ps = ", ".join(
                     f"{k} = {p.value:.4g} [{p.plausible_range[0]:.3g}, {p.plausible_range[1]:.3g}] "
@@ -304,7 +304,7 @@ def predict_table1(
     each checked by the direct solve; every turns reading x material preset
     at the same contact. ``study``: the sensitivity ranking (default material
     only, ~1 s); ``identification``: the fits of
-    :data:`tcarod.identification.IDENTIFICATION_READINGS` to the paper's
+    :data:`tcarod.models.identification.IDENTIFICATION_READINGS` to the paper's
     model and to the experiment (about a minute), each applied to Fig. 8."""
     finger = table1_finger(material=material, turns_reading=experiment.turns_reading)
     inc, direct = _grips(experiment, finger, "incremental"), _grips(experiment, finger, "direct")
