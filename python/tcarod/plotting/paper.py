@@ -19,6 +19,19 @@ __all__ = ["plot_fig5", "plot_fig6", "plot_fig8", "plot_table1"]
 _LOAD_STYLES = ("-", "--", "-.", ":")
 
 
+def _shade_published(ax: Any, published: Any, prefix: str) -> None:
+    """Shade the measured mean +- standard deviation [mm] of each published
+    curve whose label starts with ``prefix`` (``published``: ``None`` or
+    :class:`tcarod.paper._common.PublishedCurve` objects, values in m)."""
+    for p in published or ():
+        if p.label.startswith(prefix):
+            mean = [v * 1e3 for v in p.mean]
+            std = [v * 1e3 for v in p.std]
+            low = [a - b for a, b in zip(mean, std)]
+            high = [a + b for a, b in zip(mean, std)]
+            ax.fill_between(p.temperatures_c, low, high, color="0.8", label=f"experiment {p.label}")
+
+
 def plot_fig5(result: Any) -> Figure:
     """``result``: a :class:`tcarod.paper.fig5.Fig5Result`.
     Fig. 5: displacement [mm] against temperature [C], one panel per TCA
@@ -63,19 +76,7 @@ def plot_fig5(result: Any) -> Figure:
                     linestyle="none",
                     label=f"onset {c.onset_temperature_c:.1f} °C",
                 )
-        published = result.experiment.published_data
-        if published is not None:
-            for p in published:
-                if p.label.startswith(tca_label):
-                    mean = [m * 1e3 for m in p.mean]
-                    std = [s * 1e3 for s in p.std]
-                    ax.fill_between(
-                        p.temperatures_c,
-                        [m - s for m, s in zip(mean, std)],
-                        [m + s for m, s in zip(mean, std)],
-                        color="0.8",
-                        label=f"experiment {p.label}",
-                    )
+        _shade_published(ax, result.experiment.published_data, tca_label)
         ax.set_title(f"Extension TCA, {tca_label}")
         ax.set_xlabel("Temperature [°C]")
         ax.grid(True, linewidth=0.3)
@@ -106,19 +107,7 @@ def plot_fig6(result: Any) -> Figure:
             ax.plot(
                 curve.temperatures_c, radii_mm, linestyle=style, color="black", marker=".", markersize=3, label=label
             )
-        published = result.experiment.published_data
-        if published is not None:
-            for p in published:
-                if p.label.startswith(m.section):
-                    mean = [v * 1e3 for v in p.mean]
-                    std = [v * 1e3 for v in p.std]
-                    ax.fill_between(
-                        p.temperatures_c,
-                        [a - b for a, b in zip(mean, std)],
-                        [a + b for a, b in zip(mean, std)],
-                        color="0.8",
-                        label=f"experiment {p.label}",
-                    )
+        _shade_published(ax, result.experiment.published_data, m.section)
         ax.set_yscale("log")
         title = m.label
         if m.precurvature_is_assumption and m.precurvature_radius_m is not None:
