@@ -5,7 +5,6 @@ use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyByteArray, PyBytes, PyString};
 
-use crate::rod::Robot;
 use crate::shooting::SolveOptions;
 
 /// A real-number argument with the strict contract of issue 12: `float`,
@@ -253,22 +252,10 @@ pub(crate) fn solve_options(
     tol: Real,
     max_iter: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<SolveOptions> {
-    use crate::validate::{MAX_ITER, MAX_STEPS};
+    use crate::limits::{MAX_ITER, MAX_STEPS};
     let steps = count_or("steps", steps, 100, 1, MAX_STEPS)?;
     let max_iter = count_or("max_iter", max_iter, 50, 1, MAX_ITER)?;
     options(steps, tol.0, max_iter)
-}
-
-/// Error naming `inputs[i]` if a TCA input lies below its material's range,
-/// with the way to a colder ambient (a custom `Material`).
-pub(crate) fn check_ambient(robot: &Robot, inputs: &[f64]) -> PyResult<()> {
-    for (i, (a, &x)) in robot.actuators.iter().zip(inputs).enumerate() {
-        if a.law.kind() == "tca" {
-            let (lo, hi) = a.law.input_bounds();
-            crate::validate::ambient_hint(x, lo, hi, &format!("inputs[{i}] (temperature [C])"))?;
-        }
-    }
-    Ok(())
 }
 
 pub(crate) fn options(steps: usize, tol: f64, max_iter: usize) -> PyResult<SolveOptions> {

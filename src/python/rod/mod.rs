@@ -7,8 +7,6 @@ mod robot;
 mod section;
 mod solution;
 
-use std::sync::Arc;
-
 use pyo3::prelude::*;
 
 use crate::error::Error;
@@ -51,17 +49,5 @@ fn experiment_robot(name: &str, gravity: bool) -> PyResult<PyRobot> {
             .into())
         }
     };
-    let body = PyBody {
-        inner: robot.body.clone(),
-    };
-    let actuators = robot
-        .actuators
-        .iter()
-        .map(|a| PyActuator::plain(a.clone(), true))
-        .collect();
-    Ok(PyRobot {
-        inner: Arc::new(robot),
-        body,
-        actuators,
-    })
+    Ok(crate::python::fixtures::py_robot(robot))
 }

@@ -370,7 +370,7 @@ pub(crate) fn restore_solution(
     if inputs.len() != na
         || unknowns.len() != 6 + na
         || steps == 0
-        || steps > crate::validate::MAX_STEPS
+        || steps > crate::limits::MAX_STEPS
     {
         return Err(Error::input("state", "does not belong to this robot").into());
     }
