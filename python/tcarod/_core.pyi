@@ -737,6 +737,24 @@ def blocked_temperature_direct(
 
 # --- batch solves and bench timings (src/python/batch.rs; see tcarod.batch) ---
 
+def grasp_temperature(
+    robot: Robot,
+    normal: Sequence[float] | _FloatArray,
+    mass: float,
+    mu: float,
+    fingers: int,
+    *,
+    gravity: float = 9.81,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    increments: int = 8,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> BlockedResult:
+    """Grasp temperature (eq 44): the actuation variable at which ``fingers``
+    fingers with friction ``mu`` hold ``mass`` [kg], ``mu n F(T) = m g``, each
+    tip blocked where it rests at the reference inputs, pressing along ``normal``."""
+
 def solve_batch(
     robot: Robot,
     inputs: _FloatArray,
@@ -861,3 +879,33 @@ def follow_branch(
 ) -> Branch:
     """Pseudo-arclength continuation in ``parameter`` (``"inputs"``,
     ``"gravity_scale"``, ``"tip_load_scale"``) from ``start`` to ``end``."""
+
+# The paper's fixtures, defined once in the core (src/experiments.rs).
+
+_Manipulator = Literal["square", "fig6_circle", "fig6_square", "fig8", "table1_finger"]
+_TurnsReading = Literal["per_tca", "per_leg", "per_length"]
+
+def fixture_constants() -> dict[str, Any]:
+    """The paper's constants by name, SI units (temperatures in C)."""
+
+def fixture_manipulator(
+    name: _Manipulator,
+    *,
+    length: float | None = None,
+    gravity: Sequence[float] | _FloatArray | None = None,
+    material: Material | None = None,
+    youngs_modulus: float | None = None,
+    tca_offset: float | None = None,
+    coil_diameter: float | None = None,
+    turns_reading: _TurnsReading = "per_tca",
+) -> Robot:
+    """The paper's manipulator ``name`` with any of its parameters replaced."""
+
+def fixture_leg_turns(length: float, legs: int, reading: _TurnsReading = "per_tca") -> float:
+    """Turns [-] of one leg of a manipulator TCA of coiled length ``length`` [m]."""
+
+def fixture_fig5_tca(threads: Literal[3, 4]) -> Tca:
+    """The whole Fig. 5 TCA of 3 or 4 threads."""
+
+def fixture_fig5_half_tca(threads: Literal[3, 4]) -> Tca:
+    """One folded half of the Fig. 5 TCA: ``Tca.segment(0.5)`` of the whole."""

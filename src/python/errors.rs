@@ -11,41 +11,16 @@
 //!   pickling (they live in the instance `__dict__`);
 //! * `Error::Interrupted` -> `KeyboardInterrupt` (see [`detach_interruptible`]).
 //!
-//! Scalar arguments are taken as [`Real`] rather than `f64`, so that a Python
-//! `int` too large for a double becomes `+-inf` (which the core rejects with a
-//! `ValueError` naming the argument) instead of an `OverflowError`. Wrong
-//! Python types (`str`, `None`, `complex`, arrays) stay `TypeError`, as for
-//! any Python function taking a `float`. [`finite_output`] guards every value
+//! Arguments are read in `args.rs` ([`super::Real`]: a Python `int` too
+//! large for a double becomes `+-inf`, which the core rejects with a
+//! `ValueError` naming the argument, instead of an `OverflowError`; wrong
+//! Python types stay `TypeError`). [`finite_output`] guards every value
 //! handed back to Python: no binding returns NaN or inf.
 
-use pyo3::exceptions::{PyKeyboardInterrupt, PyOverflowError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::error::{Error, Result};
-
-/// A real-number argument: `f64`, except that an `int` beyond the double
-/// range saturates to `+-inf` instead of raising `OverflowError`.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Real(pub f64);
-
-impl<'py> FromPyObject<'_, 'py> for Real {
-    type Error = PyErr;
-
-    fn extract(obj: Borrowed<'_, 'py, PyAny>) -> PyResult<Self> {
-        match obj.extract::<f64>() {
-            Ok(v) => Ok(Real(v)),
-            Err(e) if e.is_instance_of::<PyOverflowError>(obj.py()) => {
-                let positive = obj.gt(0)?;
-                Ok(Real(if positive {
-                    f64::INFINITY
-                } else {
-                    f64::NEG_INFINITY
-                }))
-            }
-            Err(e) => Err(e),
-        }
-    }
-}
 
 /// Error unless `value` (a result about to be returned to Python) is finite.
 /// Finite inputs that pass validation can still overflow or underflow inside

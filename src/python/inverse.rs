@@ -1,30 +1,25 @@
-//! Bindings of the inverse kinetostatics.
-//!
-//! Results read like SciPy's `OptimizeResult`: `success`, `status`,
-//! `message`, `nit`, `nfev`, besides the physical fields. They are value
-//! objects: `==`, picklable (with their `Solution` and its robot).
+//! Bindings of the inverse kinetostatics: J and C (eqs 41-42), the
+//! tip-position inverse and the blocked tip (eq 43). Results in `results.rs`.
 
 use nalgebra::{Matrix3, Vector3};
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use numpy::PyArray2;
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
 
+use super::results::{PyBlockedResult, PyInverseResult};
 use super::rod::{solve_options, PyRobot, PySolution};
-use super::{count_or, counts, pb, pf, ps, pv, reals, vec3_arg, Real};
+use super::to_py::dmat;
+use super::{count_or, counts, reals, vec3_arg, Real};
 use crate::error::Error;
 use crate::inverse::{self, Block, BlockedResult, Groups, InverseOptions, Scheme};
-use crate::validate::{MAX_INCREMENTS, MAX_ITER};
+use crate::limits::{MAX_INCREMENTS, MAX_ITER};
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_class::<PyInverseResult>()?;
-    m.add_class::<PyBlockedResult>()?;
     m.add_function(wrap_pyfunction!(sensitivities, m)?)?;
     m.add_function(wrap_pyfunction!(tip_inverse, m)?)?;
     m.add_function(wrap_pyfunction!(blocked_force, m)?)?;
     m.add_function(wrap_pyfunction!(blocked_temperature, m)?)?;
     m.add_function(wrap_pyfunction!(blocked_temperature_direct, m)?)?;
-    m.add_function(wrap_pyfunction!(restore_inverse_result, m)?)?;
-    m.add_function(wrap_pyfunction!(restore_blocked_result, m)?)?;
+    m.add_function(wrap_pyfunction!(grasp_temperature, m)?)?;
     Ok(())
 }
 
@@ -37,15 +32,6 @@ fn groups_for(robot: &PyRobot, groups: Option<&Bound<'_, PyAny>>) -> PyResult<Gr
     };
     g.validate(&robot.inner)?;
     Ok(g)
-}
-
-fn dmat<'py>(py: Python<'py>, m: &nalgebra::DMatrix<f64>) -> Bound<'py, PyArray2<f64>> {
-    let flat: Vec<f64> = (0..m.nrows())
-        .flat_map(|i| (0..m.ncols()).map(move |j| m[(i, j)]))
-        .collect();
-    PyArray1::from_vec(py, flat)
-        .reshape([m.nrows(), m.ncols()])
-        .expect("shape")
 }
 
 fn vec3(name: &str, a: &Bound<'_, PyAny>) -> PyResult<Vector3<f64>> {
@@ -99,185 +85,6 @@ fn sensitivities<'py>(
     let s =
         py.detach(|| inverse::sensitivities(&robot.inner, &sol, &sol.loads, &g, sol.steps, sch))?;
     Ok((dmat(py, &s.jacobian), dmat(py, &s.compliance)))
-}
-
-/// Result of a tip-position inverse (SciPy `OptimizeResult` naming).
-///
-/// * `success` / `reached`: the tip is within `tol` [m] of the target;
-/// * `status`: 0 reached; 1 unreachable: no descent left and a variable rests
-///   on its bound (the closest configuration within the temperature range);
-///   2 out of budget: `max_iter` iterations without reaching (call again with
-///   `start=result.variables` or a larger `max_iter`); 3 stalled: no descent
-///   and no variable on a bound (a local minimum of the tip error, or `tol`
-///   below the forward solver's accuracy);
-/// * `message`: the same in words; `nit`: iterations (Jacobian evaluations);
-///   `nfev`: IVPs integrated;
-/// * `variables` (temperatures [C] per group), `error` [m] (plus weighted angle
-///   if an orientation was asked), `at_bound`, `solution` (the final forward
-///   `Solution`), `tip_position` [m].
-#[pyclass(name = "InverseResult", module = "tcarod._core", frozen)]
-pub struct PyInverseResult {
-    /// The forward `Solution` at `variables` (the closest one found if not reached).
-    #[pyo3(get)]
-    solution: Py<PySolution>,
-    /// Final actuation variables (temperature [C] per group for TCAs).
-    #[pyo3(get)]
-    variables: Vec<f64>,
-    /// Remaining tip error [m] (plus weighted angle if orientation was asked).
-    #[pyo3(get)]
-    error: f64,
-    /// Iterations (Jacobian evaluations) used (`nit`).
-    #[pyo3(get)]
-    iterations: usize,
-    /// Whether the target was reached to `tol`.
-    #[pyo3(get)]
-    reached: bool,
-    /// Whether each variable rests on a bound of its range at the end (`list[bool]`).
-    #[pyo3(get)]
-    at_bound: Vec<bool>,
-    /// IVPs integrated in total (`nfev`).
-    #[pyo3(get)]
-    evaluations: usize,
-    /// The iteration budget the solve had (`max_iter` argument).
-    #[pyo3(get)]
-    max_iter: usize,
-}
-
-impl PyInverseResult {
-    fn code(&self) -> i64 {
-        if self.reached {
-            0
-        } else if self.iterations >= self.max_iter {
-            2
-        } else if self.at_bound.iter().any(|b| *b) {
-            1
-        } else {
-            3
-        }
-    }
-}
-
-#[pymethods]
-impl PyInverseResult {
-    /// `True` if the target was reached (same as `reached`).
-    #[getter]
-    fn success(&self) -> bool {
-        self.reached
-    }
-    /// `0` reached, `1` unreachable (closest point at the bounds), `2` out of budget, `3` stalled.
-    #[getter]
-    fn status(&self) -> i64 {
-        self.code()
-    }
-    /// Why the solve stopped, in words (`str`).
-    #[getter]
-    fn message(&self) -> String {
-        match self.code() {
-            0 => format!("target reached: error {:.3e} m", self.error),
-            1 => format!(
-                "target unreachable: the closest configuration found (error {:.3e} m) has variables {:?} at their bounds",
-                self.error,
-                self.at_bound.iter().enumerate().filter(|(_, b)| **b).map(|(k, _)| k).collect::<Vec<_>>()
-            ),
-            2 => format!(
-                "iteration budget exhausted: max_iter = {} iterations, error {:.3e} m; continue with start=result.variables or a larger max_iter",
-                self.max_iter, self.error
-            ),
-            _ => format!("stalled: no descent from error {:.3e} m with no variable at a bound (local minimum, or tol below the solver's accuracy)", self.error),
-        }
-    }
-    /// Iterations (same as `iterations`), SciPy naming.
-    #[getter]
-    fn nit(&self) -> usize {
-        self.iterations
-    }
-    /// IVPs integrated (same as `evaluations`), SciPy naming.
-    #[getter]
-    fn nfev(&self) -> usize {
-        self.evaluations
-    }
-    /// Tip position [m] of `solution`, shape `(3,)`.
-    #[getter]
-    fn tip_position<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(
-            py,
-            self.solution.bind(py).get().inner.tip_position().as_slice(),
-        )
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "<InverseResult success={} status={} message={} variables={} error={} nit={} nfev={} at_bound=[{}]>",
-            pb(self.reached),
-            self.code(),
-            ps(&self.message()),
-            pv(&self.variables),
-            pf(self.error),
-            self.iterations,
-            self.evaluations,
-            self.at_bound.iter().map(|b| pb(*b)).collect::<Vec<_>>().join(", ")
-        )
-    }
-    /// Pickle support (the solution travels with its robot).
-    fn __reduce__<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
-        let f = py
-            .import("tcarod._core")?
-            .getattr("_restore_inverse_result")?;
-        let args = (
-            self.solution.clone_ref(py),
-            self.variables.clone(),
-            self.error,
-            self.iterations,
-            self.reached,
-            self.at_bound.clone(),
-            self.evaluations,
-            self.max_iter,
-        )
-            .into_pyobject(py)?;
-        Ok((f, args))
-    }
-    fn __eq__(&self, py: Python<'_>, other: &Bound<'_, PyAny>) -> PyResult<bool> {
-        let Ok(o) = other.cast::<PyInverseResult>() else {
-            return Ok(false);
-        };
-        let o = o.get();
-        let same = self.variables == o.variables
-            && self.error.to_bits() == o.error.to_bits()
-            && self.iterations == o.iterations
-            && self.reached == o.reached
-            && self.at_bound == o.at_bound
-            && self.evaluations == o.evaluations
-            && self.max_iter == o.max_iter;
-        Ok(same && self.solution.bind(py).eq(o.solution.bind(py))?)
-    }
-}
-
-/// Rebuild an `InverseResult` (pickle support; not public API).
-#[pyfunction]
-#[pyo3(name = "_restore_inverse_result")]
-#[allow(clippy::too_many_arguments)]
-fn restore_inverse_result(
-    solution: Py<PySolution>,
-    variables: Vec<f64>,
-    error: f64,
-    iterations: usize,
-    reached: bool,
-    at_bound: Vec<bool>,
-    evaluations: usize,
-    max_iter: usize,
-) -> PyInverseResult {
-    PyInverseResult {
-        solution,
-        variables,
-        error,
-        iterations,
-        reached,
-        at_bound,
-        evaluations,
-        max_iter,
-    }
 }
 
 /// A 3x3 rotation matrix from Python (rows of 3 reals).
@@ -369,128 +176,6 @@ fn tip_inverse(
         evaluations: res.evaluations,
         max_iter,
     })
-}
-
-/// A blocked-tip solution (SciPy naming): contact `force` [N] (the tip
-/// presses along the plane's normal), actuation `variables` (temperature [C]
-/// per group), the forward `solution` with the contact force as tip load,
-/// `tip_position` [m]. `success` is always `True` and `status` 0 (a failed
-/// solve raises `ConvergenceError`); `nit` Newton iterations or eq-43
-/// increments, `nfev` IVPs integrated.
-#[pyclass(name = "BlockedResult", module = "tcarod._core", frozen)]
-pub struct PyBlockedResult {
-    /// The forward `Solution` with the contact force applied at the tip.
-    #[pyo3(get)]
-    solution: Py<PySolution>,
-    /// Contact force [N] the tip presses with along the plane's normal.
-    #[pyo3(get)]
-    force: f64,
-    /// Actuation variables (temperature [C] per group for TCAs).
-    #[pyo3(get)]
-    variables: Vec<f64>,
-    /// Iterations (Newton iterations or eq-43 increments; `nit`).
-    #[pyo3(get)]
-    iterations: usize,
-    /// IVPs integrated in total (`nfev`).
-    #[pyo3(get)]
-    evaluations: usize,
-}
-
-#[pymethods]
-impl PyBlockedResult {
-    /// Always `True` (a failed solve raises `ConvergenceError`).
-    #[getter]
-    fn success(&self) -> bool {
-        true
-    }
-    /// Always `0` (converged).
-    #[getter]
-    fn status(&self) -> i64 {
-        0
-    }
-    /// Why the solve stopped, in words (`str`).
-    #[getter]
-    fn message(&self) -> String {
-        format!(
-            "converged: contact force {:.6e} N after {} iterations",
-            self.force, self.iterations
-        )
-    }
-    /// Iterations (same as `iterations`), SciPy naming.
-    #[getter]
-    fn nit(&self) -> usize {
-        self.iterations
-    }
-    /// IVPs integrated (same as `evaluations`), SciPy naming.
-    #[getter]
-    fn nfev(&self) -> usize {
-        self.evaluations
-    }
-    /// Tip position [m] of `solution`, shape `(3,)`.
-    #[getter]
-    fn tip_position<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(
-            py,
-            self.solution.bind(py).get().inner.tip_position().as_slice(),
-        )
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "<BlockedResult success=True status=0 force={} variables={} nit={} nfev={}>",
-            pf(self.force),
-            pv(&self.variables),
-            self.iterations,
-            self.evaluations
-        )
-    }
-    /// Pickle support (the solution travels with its robot).
-    fn __reduce__<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
-        let f = py
-            .import("tcarod._core")?
-            .getattr("_restore_blocked_result")?;
-        let args = (
-            self.solution.clone_ref(py),
-            self.force,
-            self.variables.clone(),
-            self.iterations,
-            self.evaluations,
-        )
-            .into_pyobject(py)?;
-        Ok((f, args))
-    }
-    fn __eq__(&self, py: Python<'_>, other: &Bound<'_, PyAny>) -> PyResult<bool> {
-        let Ok(o) = other.cast::<PyBlockedResult>() else {
-            return Ok(false);
-        };
-        let o = o.get();
-        let same = self.force.to_bits() == o.force.to_bits()
-            && self.variables == o.variables
-            && self.iterations == o.iterations
-            && self.evaluations == o.evaluations;
-        Ok(same && self.solution.bind(py).eq(o.solution.bind(py))?)
-    }
-}
-
-/// Rebuild a `BlockedResult` (pickle support; not public API).
-#[pyfunction]
-#[pyo3(name = "_restore_blocked_result")]
-fn restore_blocked_result(
-    solution: Py<PySolution>,
-    force: f64,
-    variables: Vec<f64>,
-    iterations: usize,
-    evaluations: usize,
-) -> PyBlockedResult {
-    PyBlockedResult {
-        solution,
-        force,
-        variables,
-        iterations,
-        evaluations,
-    }
 }
 
 fn blocked(
@@ -610,6 +295,47 @@ fn blocked_temperature_direct(
     let rr = r.inner.clone();
     let res = super::errors::detach_interruptible(py, || {
         inverse::blocked_variable_direct(&rr, &g, &block, force.0, guess.0, &opts, None)
+    })?;
+    blocked(py, robot, res)
+}
+
+/// Grasp temperature (eq 44): the actuation variable at which `fingers`
+/// identical fingers (this `robot`) with friction coefficient `mu` [-] hold
+/// a mass `mass` [kg] under `gravity` [m/s^2], `mu n F(T) = m g`, each
+/// finger's tip blocked where it rests at the reference inputs and pressing
+/// along `normal`; `increments` eq-43 steps (1 to 10,000). Returns the
+/// blocked result of one finger (`force` [N] = `m g / (mu n)`).
+#[pyfunction]
+#[pyo3(signature = (robot, normal, mass, mu, fingers, *, gravity=Real(9.81), groups=None, increments=None, steps=None,
+    tol=Real(1e-10), max_iter=None),
+    text_signature = "(robot, normal, mass, mu, fingers, *, gravity=9.81, groups=None, increments=8, steps=100, \
+        tol=1e-10, max_iter=50)")]
+#[allow(clippy::too_many_arguments)]
+fn grasp_temperature(
+    py: Python<'_>,
+    robot: &Bound<'_, PyRobot>,
+    normal: Bound<'_, PyAny>,
+    mass: Real,
+    mu: Real,
+    fingers: Bound<'_, PyAny>,
+    gravity: Real,
+    groups: Option<Bound<'_, PyAny>>,
+    increments: Option<Bound<'_, PyAny>>,
+    steps: Option<Bound<'_, PyAny>>,
+    tol: Real,
+    max_iter: Option<Bound<'_, PyAny>>,
+) -> PyResult<PyBlockedResult> {
+    let r = robot.get();
+    let g = groups_for(r, groups.as_ref())?;
+    let normal = vec3("normal", &normal)?;
+    let fingers = super::args::count("fingers", &fingers, 1, super::MAX_SEQUENCE)?;
+    let increments = count_or("increments", increments.as_ref(), 8, 1, MAX_INCREMENTS)?;
+    let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+    let rr = r.inner.clone();
+    let res = super::errors::detach_interruptible(py, || {
+        inverse::grasp(
+            &rr, &g, &normal, mass.0, mu.0, fingers, gravity.0, increments, &opts,
+        )
     })?;
     blocked(py, robot, res)
 }

@@ -2,7 +2,7 @@
 
 use std::f64::consts::PI;
 
-use crate::error::{positive, Result};
+use crate::error::{positive, Error, Result};
 
 /// Cross-section of the body.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,6 +33,96 @@ pub enum Section {
 }
 
 impl Section {
+    /// Solid circle of `diameter` \[m\] (> 0, with derived properties in double range).
+    pub fn circle(diameter: f64) -> Result<Section> {
+        let diameter = positive("diameter [m]", diameter)?;
+        Section::Circle { diameter }.checked("diameter [m]")
+    }
+
+    /// Solid rectangle: `width` \[m\] along body x, `height` \[m\] along body y (both > 0).
+    pub fn rectangle(width: f64, height: f64) -> Result<Section> {
+        let width = positive("width [m]", width)?;
+        let height = positive("height [m]", height)?;
+        Section::Rectangle { width, height }.checked("width [m] / height [m]")
+    }
+
+    /// User-given area \[m^2\], second moments about body x and y \[m^4\] and
+    /// torsion constant \[m^4\] (all > 0).
+    pub fn custom(area: f64, ix: f64, iy: f64, j: f64) -> Result<Section> {
+        let area = positive("area [m^2]", area)?;
+        let ix = positive("ix [m^4]", ix)?;
+        let iy = positive("iy [m^4]", iy)?;
+        let j = positive("j [m^4]", j)?;
+        Section::Custom { area, ix, iy, j }.checked("area [m^2]")
+    }
+
+    /// The section built by constructor `kind` (`"circle"`, `"rectangle"`,
+    /// `"custom"`) from the values of [`Section::parameters`], in order.
+    pub fn from_parameters(kind: &str, values: &[f64]) -> Result<Section> {
+        match (kind, values) {
+            ("circle", &[d]) => Section::circle(d),
+            ("rectangle", &[w, h]) => Section::rectangle(w, h),
+            ("custom", &[a, ix, iy, j]) => Section::custom(a, ix, iy, j),
+            _ => Err(Error::input(
+                "kind",
+                format!("{kind:?} with {} values is not a section", values.len()),
+            )),
+        }
+    }
+
+    /// The constructor's name: `"circle"`, `"rectangle"` or `"custom"`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Section::Circle { .. } => "circle",
+            Section::Rectangle { .. } => "rectangle",
+            Section::Custom { .. } => "custom",
+        }
+    }
+
+    /// The constructor's arguments by name, in order (SI units).
+    pub fn parameters(&self) -> Vec<(&'static str, f64)> {
+        match *self {
+            Section::Circle { diameter } => vec![("diameter", diameter)],
+            Section::Rectangle { width, height } => vec![("width", width), ("height", height)],
+            Section::Custom { area, ix, iy, j } => {
+                vec![("area", area), ("ix", ix), ("iy", iy), ("j", j)]
+            }
+        }
+    }
+
+    /// This section if its derived properties (area, second moments, edge
+    /// distance) are finite and positive in double precision: a size so small
+    /// or large that they under- or overflow is rejected, naming `name`.
+    fn checked(self, name: &str) -> Result<Section> {
+        let (a, ix, iy, j) = self.properties();
+        for v in [a, ix, iy, j, self.edge_distance(0.0)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(Error::input(
+                    name,
+                    format!(
+                        "derived section property {v} (area, second moment or edge distance) \
+                         is not finite and > 0 in double precision"
+                    ),
+                ));
+            }
+        }
+        Ok(self)
+    }
+
+    /// Width and height [m] of the section's bounding box (custom sections:
+    /// the edge distances along x and y, twice).
+    pub fn extent(&self) -> (f64, f64) {
+        let s = self;
+        match *s {
+            Section::Circle { diameter } => (diameter, diameter),
+            Section::Rectangle { width, height } => (width, height),
+            Section::Custom { .. } => (
+                2.0 * s.edge_distance(0.0),
+                2.0 * s.edge_distance(std::f64::consts::FRAC_PI_2),
+            ),
+        }
+    }
+
     /// `(A, I_x, I_y, J)` in m^2 and m^4. For a rectangle `J` is Saint-Venant's
     /// torsion constant `a b^3 (1/3 - 0.21 (b/a) (1 - b^4 / (12 a^4)))`
     /// (`a >= b`), not the polar moment, which overstates a square's torsional

@@ -1,0 +1,71 @@
+//! The SciPy `OptimizeResult` fields (`success`, `status`, `message`, `nit`,
+//! `nfev`) shared by every result class: one trait, one macro that adds the
+//! getters (pyo3's `multiple-pymethods` lets a class have this second
+//! `#[pymethods]` block).
+
+/// What a result class knows about how its solve ended.
+pub(crate) trait Outcome {
+    /// `0` success; other codes as listed in the class docstring.
+    fn status_code(&self) -> i64;
+    /// Why the solve stopped, in words.
+    fn status_message(&self) -> String;
+    /// Iterations (Newton iterations, inverse iterations or eq-43 increments).
+    fn iteration_count(&self) -> usize;
+    /// IVPs integrated (function evaluations).
+    fn ivp_count(&self) -> usize;
+}
+
+/// Adds the getters `success`, `status`, `message`, `nit` and `nfev` to a
+/// `#[pyclass]` that implements [`Outcome`].
+macro_rules! scipy_fields {
+    ($ty:ty) => {
+        #[pyo3::pymethods]
+        impl $ty {
+            /// `True` if the solve succeeded (`status == 0`), SciPy naming.
+            #[getter]
+            fn success(&self) -> bool {
+                $crate::python::outcome::Outcome::status_code(self) == 0
+            }
+            /// `0` success; other codes as listed in the class docstring (SciPy naming).
+            #[getter]
+            fn status(&self) -> i64 {
+                $crate::python::outcome::Outcome::status_code(self)
+            }
+            /// Why the solve stopped, in words (`str`).
+            #[getter]
+            fn message(&self) -> String {
+                $crate::python::outcome::Outcome::status_message(self)
+            }
+            /// Iterations (same as `iterations`), SciPy naming.
+            #[getter]
+            fn nit(&self) -> usize {
+                $crate::python::outcome::Outcome::iteration_count(self)
+            }
+            /// IVPs integrated, i.e. function evaluations (same as `evaluations`), SciPy naming.
+            #[getter]
+            fn nfev(&self) -> usize {
+                $crate::python::outcome::Outcome::ivp_count(self)
+            }
+        }
+    };
+}
+pub(crate) use scipy_fields;
+
+/// Adds the getter `tip_position` (of the result's `solution`) to a result class.
+macro_rules! tip_of_solution {
+    ($ty:ty) => {
+        #[pyo3::pymethods]
+        impl $ty {
+            /// Tip position [m] of `solution`, shape `(3,)`.
+            #[getter]
+            fn tip_position<'py>(
+                &self,
+                py: pyo3::Python<'py>,
+            ) -> pyo3::Bound<'py, numpy::PyArray1<f64>> {
+                let tip = self.solution.get().inner.tip_position();
+                $crate::python::to_py::vec3(py, &tip)
+            }
+        }
+    };
+}
+pub(crate) use tip_of_solution;

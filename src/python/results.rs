@@ -1,0 +1,290 @@
+//! Result objects of the inverse kinetostatics.
+//!
+//! They read like SciPy's `OptimizeResult`: `success`, `status`, `message`,
+//! `nit`, `nfev`, besides the physical fields. They are value objects: `==`,
+//! picklable (with their `Solution` and its robot).
+
+use pyo3::prelude::*;
+
+use super::outcome::{scipy_fields, tip_of_solution, Outcome};
+use super::rod::PySolution;
+use super::to_py::{reduce_with, Reduce};
+use super::{pb, pf, ps, pv};
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyInverseResult>()?;
+    m.add_class::<PyBlockedResult>()?;
+    m.add_function(wrap_pyfunction!(restore_inverse_result, m)?)?;
+    m.add_function(wrap_pyfunction!(restore_blocked_result, m)?)?;
+    Ok(())
+}
+
+/// Result of a tip-position inverse (SciPy `OptimizeResult` naming).
+///
+/// * `success` / `reached`: the tip is within `tol` [m] of the target;
+/// * `status`: 0 reached; 1 unreachable: no descent left and a variable rests
+///   on its bound (the closest configuration within the temperature range);
+///   2 out of budget: `max_iter` iterations without reaching (call again with
+///   `start=result.variables` or a larger `max_iter`); 3 stalled: no descent
+///   and no variable on a bound (a local minimum of the tip error, or `tol`
+///   below the forward solver's accuracy);
+/// * `message`: the same in words; `nit`: iterations (Jacobian evaluations);
+///   `nfev`: IVPs integrated;
+/// * `variables` (temperatures [C] per group), `error` [m] (plus weighted angle
+///   if an orientation was asked), `at_bound`, `solution` (the final forward
+///   `Solution`), `tip_position` [m].
+#[pyclass(name = "InverseResult", module = "tcarod._core", frozen, eq)]
+pub struct PyInverseResult {
+    /// The forward `Solution` at `variables` (the closest one found if not reached).
+    #[pyo3(get)]
+    pub(crate) solution: Py<PySolution>,
+    /// Final actuation variables (temperature [C] per group for TCAs).
+    #[pyo3(get)]
+    pub(crate) variables: Vec<f64>,
+    /// Remaining tip error [m] (plus weighted angle if orientation was asked).
+    #[pyo3(get)]
+    pub(crate) error: f64,
+    /// Iterations (Jacobian evaluations) used (`nit`).
+    #[pyo3(get)]
+    pub(crate) iterations: usize,
+    /// Whether the target was reached to `tol`.
+    #[pyo3(get)]
+    pub(crate) reached: bool,
+    /// Whether each variable rests on a bound of its range at the end (`list[bool]`).
+    #[pyo3(get)]
+    pub(crate) at_bound: Vec<bool>,
+    /// IVPs integrated in total (`nfev`).
+    #[pyo3(get)]
+    pub(crate) evaluations: usize,
+    /// The iteration budget the solve had (`max_iter` argument).
+    #[pyo3(get)]
+    pub(crate) max_iter: usize,
+}
+
+impl Outcome for PyInverseResult {
+    fn status_code(&self) -> i64 {
+        self.code()
+    }
+    fn status_message(&self) -> String {
+        match self.code() {
+        0 => format!("target reached: error {:.3e} m", self.error),
+        1 => format!(
+            "target unreachable: the closest configuration found (error {:.3e} m) has variables {:?} at their bounds",
+            self.error,
+            self.at_bound.iter().enumerate().filter(|(_, b)| **b).map(|(k, _)| k).collect::<Vec<_>>()
+        ),
+        2 => format!(
+            "iteration budget exhausted: max_iter = {} iterations, error {:.3e} m; continue with start=result.variables or a larger max_iter",
+            self.max_iter, self.error
+        ),
+        _ => format!("stalled: no descent from error {:.3e} m with no variable at a bound (local minimum, or tol below the solver's accuracy)", self.error),
+    }
+    }
+    fn iteration_count(&self) -> usize {
+        self.iterations
+    }
+    fn ivp_count(&self) -> usize {
+        self.evaluations
+    }
+}
+
+scipy_fields!(PyInverseResult);
+tip_of_solution!(PyInverseResult);
+
+impl PyInverseResult {
+    fn code(&self) -> i64 {
+        if self.reached {
+            0
+        } else if self.iterations >= self.max_iter {
+            2
+        } else if self.at_bound.iter().any(|b| *b) {
+            1
+        } else {
+            3
+        }
+    }
+}
+
+#[pymethods]
+impl PyInverseResult {
+    fn __repr__(&self) -> String {
+        format!(
+            "<InverseResult success={} status={} message={} variables={} error={} nit={} nfev={} at_bound=[{}]>",
+            pb(self.reached),
+            self.code(),
+            ps(&self.status_message()),
+            pv(&self.variables),
+            pf(self.error),
+            self.iterations,
+            self.evaluations,
+            self.at_bound.iter().map(|b| pb(*b)).collect::<Vec<_>>().join(", ")
+        )
+    }
+    /// Pickle support (the solution travels with its robot).
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py, InverseArgs> {
+        let args = (
+            self.solution.clone_ref(py),
+            self.variables.clone(),
+            self.error,
+            self.iterations,
+            self.reached,
+            self.at_bound.clone(),
+            self.evaluations,
+            self.max_iter,
+        );
+        reduce_with(py, "_restore_inverse_result", args)
+    }
+}
+
+impl PartialEq for PyInverseResult {
+    fn eq(&self, o: &Self) -> bool {
+        self.variables == o.variables
+            && self.error.to_bits() == o.error.to_bits()
+            && self.iterations == o.iterations
+            && self.reached == o.reached
+            && self.at_bound == o.at_bound
+            && self.evaluations == o.evaluations
+            && self.max_iter == o.max_iter
+            && self.solution.get() == o.solution.get()
+    }
+}
+
+/// `_restore_inverse_result` arguments (the fields in declaration order).
+type InverseArgs = (
+    Py<PySolution>,
+    Vec<f64>,
+    f64,
+    usize,
+    bool,
+    Vec<bool>,
+    usize,
+    usize,
+);
+
+/// Rebuild an `InverseResult` (pickle support; not public API).
+#[pyfunction]
+#[pyo3(name = "_restore_inverse_result")]
+#[allow(clippy::too_many_arguments)]
+fn restore_inverse_result(
+    solution: Py<PySolution>,
+    variables: Vec<f64>,
+    error: f64,
+    iterations: usize,
+    reached: bool,
+    at_bound: Vec<bool>,
+    evaluations: usize,
+    max_iter: usize,
+) -> PyInverseResult {
+    PyInverseResult {
+        solution,
+        variables,
+        error,
+        iterations,
+        reached,
+        at_bound,
+        evaluations,
+        max_iter,
+    }
+}
+
+/// A blocked-tip solution (SciPy naming): contact `force` [N] (the tip
+/// presses along the plane's normal), actuation `variables` (temperature [C]
+/// per group), the forward `solution` with the contact force as tip load,
+/// `tip_position` [m]. `success` is always `True` and `status` 0 (a failed
+/// solve raises `ConvergenceError`); `nit` Newton iterations or eq-43
+/// increments, `nfev` IVPs integrated.
+#[pyclass(name = "BlockedResult", module = "tcarod._core", frozen, eq)]
+pub struct PyBlockedResult {
+    /// The forward `Solution` with the contact force applied at the tip.
+    #[pyo3(get)]
+    pub(crate) solution: Py<PySolution>,
+    /// Contact force [N] the tip presses with along the plane's normal.
+    #[pyo3(get)]
+    pub(crate) force: f64,
+    /// Actuation variables (temperature [C] per group for TCAs).
+    #[pyo3(get)]
+    pub(crate) variables: Vec<f64>,
+    /// Iterations (Newton iterations or eq-43 increments; `nit`).
+    #[pyo3(get)]
+    pub(crate) iterations: usize,
+    /// IVPs integrated in total (`nfev`).
+    #[pyo3(get)]
+    pub(crate) evaluations: usize,
+}
+
+impl Outcome for PyBlockedResult {
+    fn status_code(&self) -> i64 {
+        0
+    }
+    fn status_message(&self) -> String {
+        format!(
+            "converged: contact force {:.6e} N after {} iterations",
+            self.force, self.iterations
+        )
+    }
+    fn iteration_count(&self) -> usize {
+        self.iterations
+    }
+    fn ivp_count(&self) -> usize {
+        self.evaluations
+    }
+}
+
+scipy_fields!(PyBlockedResult);
+tip_of_solution!(PyBlockedResult);
+
+#[pymethods]
+impl PyBlockedResult {
+    fn __repr__(&self) -> String {
+        format!(
+            "<BlockedResult success=True status=0 force={} variables={} nit={} nfev={}>",
+            pf(self.force),
+            pv(&self.variables),
+            self.iterations,
+            self.evaluations
+        )
+    }
+    /// Pickle support (the solution travels with its robot).
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py, BlockedArgs> {
+        let args = (
+            self.solution.clone_ref(py),
+            self.force,
+            self.variables.clone(),
+            self.iterations,
+            self.evaluations,
+        );
+        reduce_with(py, "_restore_blocked_result", args)
+    }
+}
+
+impl PartialEq for PyBlockedResult {
+    fn eq(&self, o: &Self) -> bool {
+        self.force.to_bits() == o.force.to_bits()
+            && self.variables == o.variables
+            && self.iterations == o.iterations
+            && self.evaluations == o.evaluations
+            && self.solution.get() == o.solution.get()
+    }
+}
+
+/// `_restore_blocked_result` arguments (the fields in declaration order).
+type BlockedArgs = (Py<PySolution>, f64, Vec<f64>, usize, usize);
+
+/// Rebuild a `BlockedResult` (pickle support; not public API).
+#[pyfunction]
+#[pyo3(name = "_restore_blocked_result")]
+fn restore_blocked_result(
+    solution: Py<PySolution>,
+    force: f64,
+    variables: Vec<f64>,
+    iterations: usize,
+    evaluations: usize,
+) -> PyBlockedResult {
+    PyBlockedResult {
+        solution,
+        force,
+        variables,
+        iterations,
+        evaluations,
+    }
+}

@@ -1,0 +1,403 @@
+//! Bindings of a converged forward solution.
+
+use std::sync::OnceLock;
+
+use nalgebra::Vector3;
+use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+
+use super::robot::PyRobot;
+use crate::error::{Error, Result};
+use crate::python::outcome::{scipy_fields, Outcome};
+use crate::python::to_py::{mat3, reduce_with, stack3, vec3, Reduce};
+use crate::python::{pb, pv};
+use crate::shooting::Solution;
+
+/// Every number of a solution is finite (the IVP rejects non-finite
+/// derivatives, so this holds by construction; checked once more at the
+/// boundary so that no getter can hand NaN to Python).
+pub(crate) fn checked_solution(sol: Solution) -> Result<Solution> {
+    let vecs = sol
+        .positions
+        .iter()
+        .chain(&sol.nu)
+        .chain(&sol.omega)
+        .chain(&sol.internal_force)
+        .chain(&sol.internal_moment)
+        .chain(sol.actuator_paths.iter().flatten())
+        .chain([&sol.base_force, &sol.base_moment]);
+    let ok = vecs.flat_map(|v| v.iter()).all(|x| x.is_finite())
+        && sol
+            .rotations
+            .iter()
+            .all(|r| r.iter().all(|x| x.is_finite()))
+        && sol
+            .s
+            .iter()
+            .chain(&sol.tensions)
+            .chain(&sol.elongations)
+            .chain(&sol.unknowns)
+            .all(|x| x.is_finite())
+        && sol
+            .elongation_profile
+            .iter()
+            .flatten()
+            .all(|x| x.is_finite())
+        && sol.residual.is_finite();
+    if ok {
+        Ok(sol)
+    } else {
+        Err(Error::Integration {
+            s: sol.s.last().copied().unwrap_or(0.0),
+            reason: "the solution holds a non-finite value".into(),
+        })
+    }
+}
+
+/// A converged forward solution. Arrays are NumPy, SI units, world frame
+/// unless noted; `n` nodes along the body.
+///
+/// SciPy-style fields: `success` (always `True`: a failed solve raises
+/// `ConvergenceError`), `status` 0, `message`, `nit` (Newton iterations),
+/// `nfev` (IVPs). Naming: `tip_position` [m] per solve, `tip_positions` per
+/// batch (`tcarod.batch.BatchResult`). Picklable (with its robot) and `==`.
+/// Stability: `stable` and `stability_margin`, computed on first access (one
+/// tangent IVP) and cached.
+#[pyclass(name = "Solution", module = "tcarod._core", frozen, eq)]
+pub struct PySolution {
+    pub(crate) inner: Solution,
+    pub(crate) robot: Py<PyRobot>,
+    /// Cached free-tip stability verdict `(stable, margin)` (issue 16).
+    pub(crate) verdict: OnceLock<(bool, f64)>,
+}
+
+impl PySolution {
+    /// A solution of `robot`; its stability verdict is computed lazily.
+    pub(crate) fn new(inner: Solution, robot: Py<PyRobot>) -> Self {
+        PySolution {
+            inner,
+            robot,
+            verdict: OnceLock::new(),
+        }
+    }
+
+    /// The cached verdict, computing it (GIL released) on first use.
+    pub(crate) fn verdict(&self, py: Python<'_>) -> PyResult<(bool, f64)> {
+        if let Some(v) = self.verdict.get() {
+            return Ok(*v);
+        }
+        let robot = self.robot.bind(py).get().inner.clone();
+        let sol = &self.inner;
+        let st = py.detach(|| crate::stability::stability(&robot, sol, &[]))?;
+        let st = crate::python::stability::finite_margin(st);
+        Ok(*self.verdict.get_or_init(|| (st.stable, st.margin)))
+    }
+}
+
+impl Outcome for PySolution {
+    fn status_code(&self) -> i64 {
+        0
+    }
+    fn status_message(&self) -> String {
+        format!(
+            "converged: residual {:.3e} after {} Newton iterations",
+            self.inner.residual, self.inner.iterations
+        )
+    }
+    fn iteration_count(&self) -> usize {
+        self.inner.iterations
+    }
+    fn ivp_count(&self) -> usize {
+        self.inner.evaluations
+    }
+}
+
+scipy_fields!(PySolution);
+
+#[pymethods]
+impl PySolution {
+    /// The `Robot` solved.
+    #[getter]
+    fn robot(&self, py: Python<'_>) -> Py<PyRobot> {
+        self.robot.clone_ref(py)
+    }
+    /// Arc length of each node [m], shape `(n,)`.
+    #[getter]
+    fn s<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.inner.s)
+    }
+    /// Centre-line positions [m], shape `(n, 3)`.
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        stack3(py, &self.inner.positions)
+    }
+    /// Rotation matrices (body to world), shape `(n, 3, 3)`.
+    #[getter]
+    fn rotations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
+        let flat: Vec<f64> = self
+            .inner
+            .rotations
+            .iter()
+            .flat_map(|r| (0..3).flat_map(move |i| (0..3).map(move |j| r[(i, j)])))
+            .collect();
+        PyArray1::from_vec(py, flat)
+            .reshape([self.inner.rotations.len(), 3, 3])
+            .expect("n x 3 x 3")
+    }
+    /// Linear strain `nu` [-] (body frame), shape `(n, 3)`.
+    #[getter]
+    fn nu<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        stack3(py, &self.inner.nu)
+    }
+    /// Angular strain `omega` [1/m] (body frame), shape `(n, 3)`.
+    #[getter]
+    fn omega<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        stack3(py, &self.inner.omega)
+    }
+    /// Internal force `n` [N], shape `(n, 3)`.
+    #[getter]
+    fn internal_force<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        stack3(py, &self.inner.internal_force)
+    }
+    /// Internal moment `m` [N m], shape `(n, 3)`.
+    #[getter]
+    fn internal_moment<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        stack3(py, &self.inner.internal_moment)
+    }
+    /// Elongation of each actuator accumulated up to each node [m], shape `(n, n_actuators)`.
+    #[getter]
+    fn elongation_profile<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let na = self.inner.tensions.len();
+        let flat: Vec<f64> = self
+            .inner
+            .elongation_profile
+            .iter()
+            .flatten()
+            .copied()
+            .collect();
+        PyArray1::from_vec(py, flat)
+            .reshape([self.inner.s.len(), na])
+            .expect("n x na")
+    }
+    /// Path of each actuator `p + R r_i` [m] over its span: list of `(k_i, 3)` arrays.
+    #[getter]
+    fn actuator_paths<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray2<f64>>> {
+        self.inner
+            .actuator_paths
+            .iter()
+            .map(|p| stack3(py, p))
+            .collect()
+    }
+    /// Actuator tensions [N] (negative: the actuator pushes), shape `(n_actuators,)`.
+    #[getter]
+    fn tensions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.inner.tensions)
+    }
+    /// Actuator total elongations [m], shape `(n_actuators,)`.
+    #[getter]
+    fn elongations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.inner.elongations)
+    }
+    /// Inputs solved for (temperature [C] for TCAs).
+    #[getter]
+    fn inputs<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.inner.inputs)
+    }
+    /// Force [N] transmitted to the base by body and actuators (the base reaction is its negative).
+    #[getter]
+    fn base_force<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        vec3(py, &self.inner.base_force)
+    }
+    /// Moment [N m] about the origin transmitted to the base.
+    #[getter]
+    fn base_moment<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        vec3(py, &self.inner.base_moment)
+    }
+    /// Tip position [m], shape `(3,)`.
+    #[getter]
+    fn tip_position<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        vec3(py, &self.inner.tip_position())
+    }
+    /// Tip rotation, shape `(3, 3)`.
+    #[getter]
+    fn tip_rotation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        mat3(py, &self.inner.tip_rotation())
+    }
+    /// Newton iterations used (`nit`).
+    #[getter]
+    fn iterations(&self) -> usize {
+        self.inner.iterations
+    }
+    /// IVPs integrated (`nfev`).
+    #[getter]
+    fn evaluations(&self) -> usize {
+        self.inner.evaluations
+    }
+    /// Final residual: max-norm of the dimensionless shooting residual [-].
+    #[getter]
+    fn residual(&self) -> f64 {
+        self.inner.residual
+    }
+    /// Scaled shooting unknowns `[nu(0), L omega(0), delta_i / L]`.
+    #[getter]
+    fn unknowns<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.inner.unknowns)
+    }
+    /// 3-D plot of the shape with the actuators (see `tcarod.plotting.plot_solution`).
+    #[pyo3(signature = (**kwargs))]
+    fn plot<'py>(
+        slf: &Bound<'py, Self>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        py.import("tcarod.plotting")?
+            .getattr("plot_solution")?
+            .call((slf,), kwargs)
+    }
+    /// True if this equilibrium is stable: a strict local minimum of the
+    /// potential energy (Till and Rucker's criterion, extended to the
+    /// actuators and dead loads; see `tcarod.stability`). Computed on first
+    /// access from one tangent integration (GIL released) and cached.
+    /// Always the free-tip verdict: for `BlockedResult.solution` the contact
+    /// force counts as a dead tip load; for the verdict with the tip held on
+    /// the plane call `tcarod.stability(robot, solution, blocked=[normal])`.
+    #[getter]
+    fn stable(&self, py: Python<'_>) -> PyResult<bool> {
+        Ok(self.verdict(py)?.0)
+    }
+    /// Stability margin [-] (dimensionless): the smallest eigenvalue of the
+    /// dimensionless tip stiffness, `> 0` iff `stable`. Computed and cached
+    /// with `stable`.
+    #[getter]
+    fn stability_margin(&self, py: Python<'_>) -> PyResult<f64> {
+        Ok(self.verdict(py)?.1)
+    }
+    fn __repr__(&self) -> String {
+        let p = self.inner.tip_position();
+        let stable = match self.verdict.get() {
+            Some((s, _)) => format!(" stable={}", pb(*s)),
+            None => String::new(),
+        };
+        format!(
+            "<Solution success=True nit={} nfev={} residual={:.2e} inputs={} tip_position={}{}>",
+            self.inner.iterations,
+            self.inner.evaluations,
+            self.inner.residual,
+            pv(&self.inner.inputs),
+            pv(p.as_slice()),
+            stable
+        )
+    }
+    /// RK4 steps over the body used by the solve (`steps` argument).
+    #[getter]
+    fn steps(&self) -> usize {
+        self.inner.steps
+    }
+    /// Pickle support: the robot and the converged shooting unknowns; the
+    /// profile is rebuilt by one IVP from them (bit-identical: the IVP is
+    /// deterministic), the Newton Jacobian kept for warm starts.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py, Bound<'py, PyTuple>> {
+        let s = &self.inner;
+        let jac = s
+            .newton_jacobian
+            .as_ref()
+            .map(|j| (j.nrows(), j.ncols(), j.as_slice().to_vec()));
+        let args = (
+            self.robot.clone_ref(py),
+            s.inputs.clone(),
+            s.unknowns.clone(),
+            s.loads.tip_force.as_slice().to_vec(),
+            s.loads.tip_moment.as_slice().to_vec(),
+            s.steps,
+            s.iterations,
+            s.evaluations,
+            jac,
+        )
+            .into_pyobject(py)?;
+        reduce_with(py, "_restore_solution", args)
+    }
+}
+
+impl PartialEq for PySolution {
+    /// Same robot, same inputs and loads, and bit-identical results.
+    fn eq(&self, o: &Self) -> bool {
+        let (a, b) = (&self.inner, &o.inner);
+        self.robot.get().same_as(o.robot.get())
+            && a.inputs == b.inputs
+            && a.unknowns == b.unknowns
+            && a.loads == b.loads
+            && a.steps == b.steps
+            && a.iterations == b.iterations
+            && a.evaluations == b.evaluations
+            && a.residual.to_bits() == b.residual.to_bits()
+            && a.s == b.s
+            && a.positions == b.positions
+            && a.rotations == b.rotations
+            && a.nu == b.nu
+            && a.omega == b.omega
+            && a.internal_force == b.internal_force
+            && a.internal_moment == b.internal_moment
+            && a.tensions == b.tensions
+            && a.elongations == b.elongations
+            && a.elongation_profile == b.elongation_profile
+            && a.actuator_paths == b.actuator_paths
+            && a.base_force == b.base_force
+            && a.base_moment == b.base_moment
+            && a.newton_jacobian == b.newton_jacobian
+    }
+}
+
+/// Rebuild a `Solution` from its robot and converged unknowns (pickle
+/// support; not public API).
+#[pyfunction]
+#[pyo3(name = "_restore_solution")]
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+pub(crate) fn restore_solution(
+    py: Python<'_>,
+    robot: Bound<'_, PyRobot>,
+    inputs: Vec<f64>,
+    unknowns: Vec<f64>,
+    tip_force: [f64; 3],
+    tip_moment: [f64; 3],
+    steps: usize,
+    iterations: usize,
+    evaluations: usize,
+    jacobian: Option<(usize, usize, Vec<f64>)>,
+) -> PyResult<PySolution> {
+    let r = robot.get().inner.clone();
+    let na = r.actuators.len();
+    if inputs.len() != na
+        || unknowns.len() != 6 + na
+        || steps == 0
+        || steps > crate::limits::MAX_STEPS
+    {
+        return Err(Error::input("state", "does not belong to this robot").into());
+    }
+    r.check_inputs(&inputs)?;
+    let loads = crate::shooting::Loads {
+        tip_force: Vector3::from(tip_force),
+        tip_moment: Vector3::from(tip_moment),
+    };
+    let jac = match jacobian {
+        Some((m, n, v)) if m * n == v.len() && m == unknowns.len() && n == unknowns.len() => {
+            Some(nalgebra::DMatrix::from_vec(m, n, v))
+        }
+        Some(_) => return Err(Error::input("state", "Jacobian of the wrong size").into()),
+        None => None,
+    };
+    let mut sol = py.detach(|| {
+        crate::shooting::assemble(
+            &r,
+            &inputs,
+            &loads,
+            &unknowns,
+            steps,
+            iterations,
+            evaluations,
+        )
+        .and_then(checked_solution)
+    })?;
+    sol.newton_jacobian = jac;
+    Ok(PySolution::new(sol, robot.unbind()))
+}
