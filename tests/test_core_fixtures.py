@@ -8,7 +8,7 @@ import pickle
 import pytest
 
 from tcarod import _core
-from tcarod.manipulators import HANGING, square_manipulator
+from tcarod.models.manipulators import HANGING, square_manipulator
 
 
 def test_fixture_manipulators_equal_the_python_builders() -> None:

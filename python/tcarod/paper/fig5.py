@@ -12,10 +12,11 @@ import os
 import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Final
+from typing import Any, Final, Literal
 
 import numpy as np
 
+from .. import _core
 from ..tca import Material, Tca
 from ._common import GRAVITY_M_PER_S2, DeadWeight, FloatArray, PublishedCurve, TcaSpec, onset_temperature_c
 
@@ -89,28 +90,17 @@ class Fig5Experiment:
         return predict_fig5(self, material)
 
 
+def _paper_tca(threads: Literal[3, 4]) -> TcaSpec:
+    """The Fig. 5 TCA of ``threads`` threads as the core defines it (``fig5_tca`` in ``src/experiments.rs``)."""
+    t = _core.fixture_fig5_tca(threads)
+    return TcaSpec(f"{threads} threads", threads, t.fibre_length, t.coiled_length, t.coil_diameter, t.turns)
+
+
 #: The paper's Fig. 5 experiment (Section V-A; ``l`` and ``L`` un-swapped per
-#: NOTES.md 1: coiled length ``L = 110 mm``, fibre length ``l = 497 / 471 mm``).
-#: Friction equivalents 2.5 g (5 g case) and 5 g (10 g case).
+#: NOTES.md 1: coiled length ``L = 110 mm``, fibre length ``l = 497 / 471 mm``;
+#: the TCAs from the core). Friction equivalents 2.5 g (5 g case) and 5 g (10 g case).
 FIG5: Final[Fig5Experiment] = Fig5Experiment(
-    tcas=(
-        TcaSpec(
-            label="3 threads",
-            threads=3,
-            fibre_length_m=0.497,
-            coiled_length_m=0.110,
-            coil_diameter_m=2.0e-3,
-            turns=300.0,
-        ),
-        TcaSpec(
-            label="4 threads",
-            threads=4,
-            fibre_length_m=0.471,
-            coiled_length_m=0.110,
-            coil_diameter_m=2.13e-3,
-            turns=259.0,
-        ),
-    ),
+    tcas=(_paper_tca(3), _paper_tca(4)),
     loads=(
         DeadWeight(mass_kg=5e-3, friction_equivalent_kg=2.5e-3),
         DeadWeight(mass_kg=10e-3, friction_equivalent_kg=5e-3),

@@ -36,6 +36,7 @@ from typing import Any, Final
 import numpy as np
 
 from ..models.manipulators import (
+    PAPER_CONSTANTS,
     DEFAULT_TURNS_READING,
     MATERIAL_PRESETS,
     TURNS_READINGS,
@@ -64,7 +65,7 @@ _BLOCKING: Final[str] = (
 class Fig8Experiment:
     """The Fig. 8 set-up; see the module docstring for the blocking geometry."""
 
-    length_m: float = 0.026
+    length_m: float = PAPER_CONSTANTS["fig8_length"]
     #: Temperature [C] at which the wire becomes taut (the paper: about 55 C).
     taut_temperature_c: float = 55.0
     temperatures_c: tuple[float, ...] = tuple(float(t) for t in range(25, 161, 5))
