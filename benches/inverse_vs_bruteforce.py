@@ -6,16 +6,16 @@ times faster" than a brute-force optimisation over the same forward model.
 Two problems, each solved both ways to the same answer:
 
 (a) one grasp temperature (Table I finger, 2 g, eq 44): the paper's
-    incremental eq-43 method (:func:`tcarod.grasp.grasp`, 10 increments;
+    incremental eq-43 method (:func:`tcarod.models.grasp.grasp`, 10 increments;
     ``12 + 2N`` IVPs per increment plus one BVP) against bounded Brent on the
     tip gap over full BVP solves with the contact force as a dead tip load
-    (:func:`tcarod.bruteforce.brute_force_blocked_temperature`). The direct
+    (:func:`tcarod.models.bruteforce.brute_force_blocked_temperature`). The direct
     mixed solve (temperature as a shooting unknown) is timed too.
 (b) one tip-position solve (Fig. 6 square manipulator, 40 mm, upright, the
     two TCA legs as two variables, target = the tip at 90 / 140 C, start
     25 / 25 C): :func:`tcarod.inverse.tip_position` against Nelder-Mead on
     the tip distance over full BVP solves
-    (:func:`tcarod.bruteforce.brute_force_tip_position`).
+    (:func:`tcarod.models.bruteforce.brute_force_tip_position`).
 
 Prints the median wall time of ``--repeats`` runs of each, the ratio, and
 the answers' agreement. Timings depend on the machine; no test asserts them.
@@ -30,10 +30,10 @@ from typing import Callable, TypeVar
 
 import numpy as np
 
-from tcarod.bruteforce import brute_force_blocked_temperature, brute_force_tip_position
-from tcarod.grasp import grasp, table1_finger
+from tcarod.models.bruteforce import brute_force_blocked_temperature, brute_force_tip_position
+from tcarod.models.grasp import grasp, table1_finger
 from tcarod.inverse import tip_position
-from tcarod.manipulators import square_manipulator
+from tcarod.models.manipulators import square_manipulator
 
 T = TypeVar("T")
 

@@ -50,7 +50,7 @@ class Fig6Square:
         self.kse = np.array([g * a, g * a, YOUNGS * a])
         self.kbt = np.array([YOUNGS * i, YOUNGS * i, g * j])
         self.fe = DENSITY * a * np.array([0.0, 0.0, -G0 if self.gravity else 0.0])
-        # 38.2 turns per leg: 76.4 per U-shaped TCA, the default turns reading (tcarod.manipulators)
+        # 38.2 turns per leg: 76.4 per U-shaped TCA, the default turns reading (tcarod.models.manipulators)
         self.tca = Tca.from_pitch_angle(
             LENGTH, math.radians(15.0), 1.7e-3, 38.2, "extension", _core.Material.silver_coated_nylon()
         )

@@ -1,10 +1,14 @@
 //! Criterion benches of the rod model: one per row of the performance table
-//! (`tcarod::bench::ROWS`), on the problems of `tcarod::bench` (Fig. 6 square
+//! (`rows::ROWS`), on the problems of `rows/mod.rs` (Fig. 6 square
 //! manipulator, shared with the tests through `tcarod::experiments`), plus
 //! batch throughput on 1 and 2 threads.
+// the rows' descriptions and targets are read by `tcarod bench` (src/python/bench.rs)
+#[allow(dead_code)]
+mod rows;
+
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use rows::{operation, ROWS, SOLVER_ROWS};
 use tcarod::batch::{solve_batch, BatchOptions};
-use tcarod::bench::{operation, ROWS, SOLVER_ROWS};
 use tcarod::experiments::fig6_square;
 
 fn rows(c: &mut Criterion) {

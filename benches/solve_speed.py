@@ -43,9 +43,9 @@ import time
 from typing import Any, Callable
 
 from tcarod import Actuator, Body, Robot, Routing, Section, Solution, _core
-from tcarod.grasp import grasp
+from tcarod.models.grasp import grasp
 from tcarod.inverse import jacobian_and_compliance
-from tcarod.manipulators import square_manipulator
+from tcarod.models.manipulators import square_manipulator
 
 #: Temperature [C] of the Fig. 6 cases and the warm start's offset [C].
 FIG6_TEMPERATURE_C = 100.0

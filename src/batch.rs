@@ -7,10 +7,12 @@
 //! on the number of threads or on how chunks are spread over machines.
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use nalgebra::Vector3;
 
 use crate::error::{Error, Result};
+use crate::limits::{MAX_BATCH_ROWS, MAX_CHUNK, MAX_THREADS};
 use crate::rod::Robot;
 use crate::shooting::{solve_tip, Loads, SolveOptions, TipSolution};
 use crate::solve::cancel;
@@ -90,6 +92,29 @@ pub fn thread_count(requested: usize) -> usize {
     }
 }
 
+impl BatchOptions {
+    /// Error unless the options are in range: the solve options,
+    /// `1 <= chunk_size <= MAX_CHUNK`, `threads <= MAX_THREADS` (see [`crate::limits`]).
+    pub fn validate(&self) -> Result<()> {
+        self.solve.validate()?;
+        if !(1..=MAX_CHUNK).contains(&self.chunk_size) {
+            return Err(Error::param(
+                "chunk_size",
+                self.chunk_size as f64,
+                format!("1 <= chunk_size <= {MAX_CHUNK}"),
+            ));
+        }
+        if self.threads > MAX_THREADS {
+            return Err(Error::param(
+                "threads",
+                self.threads as f64,
+                format!("0 <= threads <= {MAX_THREADS}"),
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// Solve `n = inputs.len() / n_actuators` forward problems: row `k` has
 /// inputs `inputs[k * na..(k + 1) * na]` and, if `wrenches` is given, tip
 /// force and moment `wrenches[k * 6..(k + 1) * 6]` (world frame, N and N m;
@@ -105,11 +130,47 @@ pub fn solve_batch(
     opts: &BatchOptions,
 ) -> Result<BatchOutput> {
     robot.validate()?;
-    opts.solve.validate()?;
+    opts.validate()?;
     let na = robot.actuators.len();
-    if opts.chunk_size == 0 {
-        return Err(Error::param("chunk_size", 0.0, ">= 1"));
+    let n = batch_rows(robot, inputs, wrenches)?;
+    let mut out = BatchOutput::with_len(n, na);
+    let items = chunk_items(&mut out, opts.chunk_size, na);
+    let stop = AtomicBool::new(false);
+    let next = AtomicUsize::new(0);
+    let work = || loop {
+        if stop.load(Ordering::Relaxed) {
+            break;
+        }
+        let c = next.fetch_add(1, Ordering::Relaxed);
+        if c >= items.len() {
+            break;
+        }
+        let (c, chunk) = items[c]
+            .lock()
+            .expect("no panics while held")
+            .take()
+            .expect("each chunk once");
+        let first = c * opts.chunk_size;
+        if solve_chunk(robot, inputs, wrenches, opts, first, chunk).is_err() {
+            stop.store(true, Ordering::Relaxed);
+        }
+    };
+    run_workers(
+        thread_count(opts.threads).min(items.len().max(1)),
+        &stop,
+        work,
+    );
+    if stop.load(Ordering::Relaxed) {
+        return Err(Error::Interrupted);
     }
+    Ok(out)
+}
+
+/// The number of rows of a batch, after checking every row: inputs in whole
+/// rows (at most [`MAX_BATCH_ROWS`]), each valid for the robot; wrenches (if
+/// given) 6 finite values per row.
+fn batch_rows(robot: &Robot, inputs: &[f64], wrenches: Option<&[f64]>) -> Result<usize> {
+    let na = robot.actuators.len();
     let n = if na == 0 {
         match wrenches {
             Some(w) => w.len() / 6,
@@ -132,6 +193,14 @@ pub fn solve_batch(
         }
         inputs.len() / na
     };
+    if n > MAX_BATCH_ROWS {
+        return Err(Error::input(
+            "inputs",
+            format!(
+                "{n} rows: at most {MAX_BATCH_ROWS} rows per call (use tcarod.batch.iter_batches)"
+            ),
+        ));
+    }
     if let Some(w) = wrenches {
         if w.len() != 6 * n {
             return Err(Error::input(
@@ -148,18 +217,23 @@ pub fn solve_batch(
             .check_inputs(&inputs[k * na..(k + 1) * na])
             .map_err(|e| e.renamed(|name| format!("row {k}: {name}")))?;
     }
-    let mut out = BatchOutput::with_len(n, na);
-    let cs = opts.chunk_size;
-    let n_chunks = n.div_ceil(cs);
+    Ok(n)
+}
+
+/// One work item per chunk of `chunk_size` rows: its index and its disjoint
+/// slices of `out`.
+type ChunkItem<'a> = Mutex<Option<(usize, ChunkOut<'a>)>>;
+
+fn chunk_items(out: &mut BatchOutput, chunk_size: usize, na: usize) -> Vec<ChunkItem<'_>> {
+    let cs = chunk_size;
+    let n_chunks = out.converged.len().div_ceil(cs);
     // the tensions of each chunk (empty slices without actuators)
     let tensions: Vec<&mut [f64]> = if na == 0 {
         (0..n_chunks).map(|_| Default::default()).collect()
     } else {
         out.tensions.chunks_mut(cs * na).collect()
     };
-    // One work item per chunk: its index and its disjoint slices of the output.
-    let items: Vec<std::sync::Mutex<Option<(usize, ChunkOut<'_>)>>> = out
-        .tip_positions
+    out.tip_positions
         .chunks_mut(cs)
         .zip(out.tip_rotations.chunks_mut(cs))
         .zip(tensions)
@@ -176,57 +250,37 @@ pub fn solve_batch(
                 evals,
                 ok,
             };
-            std::sync::Mutex::new(Some((c, chunk)))
+            Mutex::new(Some((c, chunk)))
         })
-        .collect();
-    let next = AtomicUsize::new(0);
-    // cancellation: workers poll `stop` (set by whoever sees the caller's
-    // cancel check fire, see `crate::solve::cancel`)
-    let stop = AtomicBool::new(false);
-    let running = AtomicUsize::new(0);
-    let work = || loop {
-        if stop.load(Ordering::Relaxed) {
-            break;
-        }
-        let c = next.fetch_add(1, Ordering::Relaxed);
-        if c >= n_chunks {
-            break;
-        }
-        let (c, chunk) = items[c]
-            .lock()
-            .expect("no panics while held")
-            .take()
-            .expect("each chunk once");
-        if solve_chunk(robot, inputs, wrenches, opts, c * cs, chunk).is_err() {
-            stop.store(true, Ordering::Relaxed);
-        }
-    };
-    let threads = thread_count(opts.threads).min(n_chunks.max(1));
+        .collect()
+}
+
+/// Run `work` on `threads` threads (inline for one). Workers poll `stop`,
+/// which the calling thread sets when its own cancel check fires (see
+/// [`crate::solve::cancel`]).
+fn run_workers(threads: usize, stop: &AtomicBool, work: impl Fn() + Sync) {
     if threads <= 1 {
         work();
-    } else {
-        let flag = || stop.load(Ordering::Relaxed);
-        std::thread::scope(|s| {
-            for _ in 0..threads {
-                running.fetch_add(1, Ordering::SeqCst);
-                s.spawn(|| {
-                    cancel::interruptible(&flag, work);
-                    running.fetch_sub(1, Ordering::SeqCst);
-                });
-            }
-            // the calling thread polls its own cancel check for the workers
-            while running.load(Ordering::SeqCst) > 0 {
-                if cancel::check().is_err() {
-                    stop.store(true, Ordering::Relaxed);
-                }
-                std::thread::sleep(std::time::Duration::from_millis(5));
-            }
-        });
+        return;
     }
-    if stop.load(Ordering::Relaxed) {
-        return Err(Error::Interrupted);
-    }
-    Ok(out)
+    let running = AtomicUsize::new(0);
+    let flag = || stop.load(Ordering::Relaxed);
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            running.fetch_add(1, Ordering::SeqCst);
+            s.spawn(|| {
+                cancel::interruptible(&flag, &work);
+                running.fetch_sub(1, Ordering::SeqCst);
+            });
+        }
+        // the calling thread polls its own cancel check for the workers
+        while running.load(Ordering::SeqCst) > 0 {
+            if cancel::check().is_err() {
+                stop.store(true, Ordering::Relaxed);
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+    });
 }
 
 fn solve_chunk(

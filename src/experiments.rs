@@ -1,8 +1,14 @@
 //! The paper's experiments (Section V) as test problems, shared by the unit
 //! tests and the criterion benches. The Python package's
-//! `tcarod.experiments` holds the same fixtures with their published data.
+//! `tcarod.paper` holds the same fixtures with their published data.
 
+use std::sync::Arc;
+
+use nalgebra::Vector3;
+
+use crate::error::Result;
 use crate::material::Material;
+use crate::rod::{Actuator, Body, Robot, Routing, Section, TcaLaw};
 use crate::tca::{Chirality, Tca};
 
 /// Fig. 5 TCA, `threads` = 3 or 4 (NOTES.md section 1: `l` and `L` swapped in
@@ -24,11 +30,12 @@ pub fn fig5_tca(threads: u32) -> Tca {
     .expect("Fig. 5 TCA is valid")
 }
 
-use std::sync::Arc;
-
-use nalgebra::Vector3;
-
-use crate::rod::{Actuator, Body, Robot, Routing, Section, TcaLaw};
+/// One folded half of the Fig. 5 TCA (the displacement is one half's
+/// elongation): [`Tca::segment`]`(0.5)` of [`fig5_tca`], i.e. `Tca(l/2, L/2,
+/// D, N/2)` with the whole TCA's `alpha0` and `d0`.
+pub fn fig5_half_tca(threads: u32) -> Tca {
+    fig5_tca(threads).segment(0.5).expect("half of a valid TCA")
+}
 
 /// EcoFlex 10 (Section V): density \[kg/m^3\], Young's modulus \[Pa\], Poisson ratio.
 pub const ECOFLEX10: (f64, f64, f64) = (1040.0, 37.8e3, 0.5);
@@ -84,8 +91,8 @@ pub const DEFAULT_TURNS_READING: TurnsReading = TurnsReading::PerTca;
 pub fn manipulator_tca(length: f64, turns: f64) -> Tca {
     Tca::from_pitch_angle(
         length,
-        15f64.to_radians(),
-        1.7e-3,
+        MANIPULATOR_PITCH_DEG.to_radians(),
+        MANIPULATOR_COIL_DIAMETER,
         turns,
         Chirality::Extension,
         Material::silver_coated_nylon(),
@@ -93,74 +100,180 @@ pub fn manipulator_tca(length: f64, turns: f64) -> Tca {
     .expect("manipulator TCA is valid")
 }
 
+/// Side \[m\] of the manipulators' square section (Section V-B).
+pub const SQUARE_SIDE: f64 = 10e-3;
+/// Diameter \[m\] of the Fig. 6 circular manipulator.
+pub const CIRCLE_DIAMETER: f64 = 8e-3;
+/// Coil diameter `D` \[m\] of the manipulators' TCA (Section V-B).
+pub const MANIPULATOR_COIL_DIAMETER: f64 = 1.7e-3;
+/// Pitch angle `alpha0` \[deg\] of the manipulators' TCA (Section V-B).
+pub const MANIPULATOR_PITCH_DEG: f64 = 15.0;
+/// Length \[m\] of the Fig. 6 manipulators.
+pub const FIG6_LENGTH: f64 = 0.040;
+/// Length \[m\] of the Fig. 8 square manipulator.
+pub const FIG8_LENGTH: f64 = 0.026;
+/// Length \[m\] of a Table I finger.
+pub const TABLE1_LENGTH: f64 = 0.020;
+
+/// Shape of a manipulator's cross-section.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shape {
+    /// Solid circle of diameter [`Manipulator::size`].
+    Circle,
+    /// Square of side [`Manipulator::size`].
+    Square,
+}
+
+/// The design of the paper's EcoFlex manipulators (Section V): a body with
+/// one extension TCA whose legs run straight at body `x = tca_offset`,
+/// `y = tca_y[k]`, base to tip. [`Manipulator::square`] gives the paper's
+/// values; the fields are the knobs of sensitivity studies.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Manipulator {
+    /// Body length \[m\] (= the TCA's coiled length).
+    pub length: f64,
+    /// Section shape.
+    pub shape: Shape,
+    /// Side or diameter \[m\].
+    pub size: f64,
+    /// Offset \[m\] of the legs along body x.
+    pub tca_offset: f64,
+    /// Body-frame y \[m\] of each leg (two for a U-shaped TCA).
+    pub tca_y: Vec<f64>,
+    /// Radius \[m\] of the reference shape, bent toward `-x` (`None`: straight).
+    pub precurvature_radius: Option<f64>,
+    /// Gravity \[m/s^2\] in the body-aligned frame ([`UPRIGHT`], [`HANGING`], or zero).
+    pub gravity: [f64; 3],
+    /// Young's modulus of the body \[Pa\] (EcoFlex 10: [`ECOFLEX10`]).
+    pub youngs_modulus: f64,
+    /// The TCA's fibre material.
+    pub material: Material,
+    /// The TCA's coil diameter \[m\].
+    pub coil_diameter: f64,
+    /// How the printed turns apply to the legs.
+    pub turns_reading: TurnsReading,
+}
+
+/// Gravity \[m/s^2\] of a body standing upright (base down) in its body-aligned frame.
+pub const UPRIGHT: [f64; 3] = [0.0, 0.0, -G0];
+/// Gravity \[m/s^2\] of a finger hanging tip-down (the gripper of Section V-D).
+pub const HANGING: [f64; 3] = [0.0, 0.0, G0];
+
+impl Manipulator {
+    /// The square manipulator of `length` \[m\]: 10 mm EcoFlex square, a
+    /// U-shaped TCA (legs at `x = +3 mm`, `y = +-2.5 mm`), upright, turns per
+    /// [`DEFAULT_TURNS_READING`].
+    pub fn square(length: f64) -> Self {
+        Manipulator {
+            length,
+            shape: Shape::Square,
+            size: SQUARE_SIDE,
+            tca_offset: TCA_OFFSET,
+            tca_y: vec![U_LEG_HALF_SPACING, -U_LEG_HALF_SPACING],
+            precurvature_radius: None,
+            gravity: UPRIGHT,
+            youngs_modulus: ECOFLEX10.1,
+            material: Material::silver_coated_nylon(),
+            coil_diameter: MANIPULATOR_COIL_DIAMETER,
+            turns_reading: DEFAULT_TURNS_READING,
+        }
+    }
+
+    /// Fig. 6 top: 8 mm circle, 40 mm, one TCA at `x = +3 mm`, pre-curved
+    /// toward `-x` with radius [`CIRCLE_PRECURVATURE_RADIUS`], upright.
+    pub fn fig6_circle() -> Self {
+        Manipulator {
+            shape: Shape::Circle,
+            size: CIRCLE_DIAMETER,
+            tca_y: vec![0.0],
+            precurvature_radius: Some(CIRCLE_PRECURVATURE_RADIUS),
+            ..Manipulator::square(FIG6_LENGTH)
+        }
+    }
+
+    /// Table I finger: the 20 mm square manipulator hanging tip-down.
+    pub fn table1_finger() -> Self {
+        Manipulator {
+            gravity: HANGING,
+            ..Manipulator::square(TABLE1_LENGTH)
+        }
+    }
+
+    /// The TCA of one leg: coiled length = body length, turns per
+    /// [`Manipulator::turns_reading`].
+    pub fn tca(&self) -> Result<Tca> {
+        let turns = self.turns_reading.leg_turns(self.length, self.tca_y.len());
+        Tca::from_pitch_angle(
+            self.length,
+            MANIPULATOR_PITCH_DEG.to_radians(),
+            self.coil_diameter,
+            turns,
+            Chirality::Extension,
+            self.material.clone(),
+        )
+    }
+
+    /// The body: EcoFlex 10 (density, Poisson 0.5) of this size and stiffness.
+    pub fn body(&self) -> Result<Body> {
+        let (psi, _, nu) = ECOFLEX10;
+        let section = match self.shape {
+            Shape::Circle => Section::circle(self.size)?,
+            Shape::Square => Section::rectangle(self.size, self.size)?,
+        };
+        let mut body = Body::new(self.length, section, self.youngs_modulus, nu, psi)?;
+        if let Some(r) = self.precurvature_radius {
+            // curvature about body -y turns the tangent toward -x
+            body.omega_star = Vector3::new(0.0, -1.0 / r, 0.0);
+        }
+        body.gravity = Vector3::from(self.gravity);
+        body.validate()?;
+        Ok(body)
+    }
+
+    /// The robot: [`Manipulator::body`] with one actuator per leg, all sharing
+    /// one TCA law (one temperature drives a U's legs: `groups = [0, 0]`).
+    pub fn build(&self) -> Result<Robot> {
+        let law = Arc::new(TcaLaw(self.tca()?));
+        let legs = self
+            .tca_y
+            .iter()
+            .map(|&y| {
+                let routing = Routing::straight(self.tca_offset, y)?;
+                Ok(Actuator::new(routing, 0.0, self.length, law.clone()))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Robot::new(self.body()?, legs)
+    }
+}
+
 /// A square EcoFlex body of side 10 mm with a U-shaped TCA (two legs at
 /// `x = +3 mm`, `y = +-2.5 mm`; turns per [`DEFAULT_TURNS_READING`]),
 /// standing upright (gravity `-z`) if `gravity`.
 pub fn square_manipulator(length: f64, gravity: bool) -> Robot {
-    let (psi, e, nu) = ECOFLEX10;
-    let mut body = Body::new(
-        length,
-        Section::Rectangle {
-            width: 10e-3,
-            height: 10e-3,
-        },
-        e,
-        nu,
-        psi,
-    )
-    .expect("valid");
-    if gravity {
-        body.gravity = Vector3::new(0.0, 0.0, -G0);
+    let gravity = if gravity { UPRIGHT } else { [0.0; 3] };
+    Manipulator {
+        gravity,
+        ..Manipulator::square(length)
     }
-    let turns = DEFAULT_TURNS_READING.leg_turns(length, 2);
-    let law = Arc::new(TcaLaw(manipulator_tca(length, turns)));
-    let legs = [U_LEG_HALF_SPACING, -U_LEG_HALF_SPACING]
-        .iter()
-        .map(|&y| {
-            Actuator::new(
-                Routing::Straight { x: TCA_OFFSET, y },
-                0.0,
-                length,
-                law.clone(),
-            )
-        })
-        .collect();
-    Robot::new(body, legs).expect("valid")
+    .build()
+    .expect("valid")
 }
 
 /// Fig. 6 top: circular EcoFlex body, 8 mm diameter, 40 mm long, one TCA at
 /// `x = +3 mm`, pre-curved toward `-x` with radius [`CIRCLE_PRECURVATURE_RADIUS`].
 pub fn fig6_circle(gravity: bool) -> Robot {
-    let (psi, e, nu) = ECOFLEX10;
-    let length = 0.040;
-    let mut body =
-        Body::new(length, Section::Circle { diameter: 8e-3 }, e, nu, psi).expect("valid");
-    body.omega_star = Vector3::new(0.0, -1.0 / CIRCLE_PRECURVATURE_RADIUS, 0.0);
-    if gravity {
-        body.gravity = Vector3::new(0.0, 0.0, -G0);
+    let gravity = if gravity { UPRIGHT } else { [0.0; 3] };
+    Manipulator {
+        gravity,
+        ..Manipulator::fig6_circle()
     }
-    let law = Arc::new(TcaLaw(manipulator_tca(
-        length,
-        DEFAULT_TURNS_READING.leg_turns(length, 1),
-    )));
-    Robot::new(
-        body,
-        vec![Actuator::new(
-            Routing::Straight {
-                x: TCA_OFFSET,
-                y: 0.0,
-            },
-            0.0,
-            length,
-            law,
-        )],
-    )
+    .build()
     .expect("valid")
 }
 
 /// Fig. 6 bottom: square manipulator, 40 mm long.
 pub fn fig6_square(gravity: bool) -> Robot {
-    square_manipulator(0.040, gravity)
+    square_manipulator(FIG6_LENGTH, gravity)
 }
 
 /// Table I finger: square manipulator 20 mm long, hanging tip-down (gravity
@@ -168,9 +281,7 @@ pub fn fig6_square(gravity: bool) -> Robot {
 /// temperature; it closes freely until its tip touches the grasped mass at
 /// [`table1_contact_temperature`], then presses along `-x`.
 pub fn table1_finger() -> Robot {
-    let mut finger = square_manipulator(0.020, false);
-    finger.body.gravity = Vector3::new(0.0, 0.0, G0);
-    finger
+    Manipulator::table1_finger().build().expect("valid")
 }
 
 /// Table I grasp constants: friction coefficient, fingers, the direction a
@@ -217,7 +328,7 @@ pub fn steel_tendon_robot() -> Robot {
             )
         })
         .collect();
-    Robot::new(body, tendons).expect("valid")
+    Robot::with_spacer_disks(body, tendons).expect("valid")
 }
 
 /// Tendon tensions \[N\] of [`steel_tendon_robot`]'s benchmark case.

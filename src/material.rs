@@ -71,6 +71,12 @@ pub fn nylon66_radial_cte(t: f64) -> Result<f64> {
 }
 
 impl Material {
+    /// The shear-modulus slope \[Pa/C\] that keeps `G/E` constant, the default
+    /// when only the Young's modulus slope is known: `dG/dT = dE/dT G_ref / E_ref`.
+    pub fn proportional_shear_slope(e_ref: f64, e_slope: f64, g_ref: f64) -> f64 {
+        e_slope * g_ref / e_ref
+    }
+
     /// Build a material, validating every field.
     ///
     /// Errors if any value is non-finite, `t_min >= t_max`, `t_ref` lies outside

@@ -169,6 +169,18 @@ impl Tca {
         )
     }
 
+    /// A warning text if the coil diameter looks like millimetres given as
+    /// metres (above 0.1 m): a valid SI number, so not an error.
+    pub fn units_warning(&self) -> Option<String> {
+        let d = self.coil_diameter;
+        (d > 0.1).then(|| {
+            format!(
+                "Tca: coil_diameter = {d} m: sizes are in metres (SI); did you give millimetres? \
+                 (1.7 mm is 1.7e-3)"
+            )
+        })
+    }
+
     /// Twisted-fibre length `l` \[m\].
     pub fn fibre_length(&self) -> f64 {
         self.fibre_length

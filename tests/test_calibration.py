@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from tcarod import Material
-from tcarod.calibration import TcaExperiment, calibrate
+from tcarod.models.calibration import TcaExperiment, calibrate
 
 # one folded half of the paper's 3-thread Fig. 5 TCA under a 10 g weight
 EXP = TcaExperiment(0.5 * 0.497, 0.5 * 0.110, 2e-3, 150.0, mass_kg=10e-3, load_share=0.5)

@@ -12,7 +12,8 @@ import pytest
 
 import tcarod
 from tcarod import cli
-from tcarod.experiments import FIG5, REGISTRY, ExperimentResult
+from tcarod.paper import REGISTRY, ExperimentResult
+from tcarod.paper.fig5 import FIG5
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from tcarod.cli import main
-from tcarod.design import DesignError, dumps_design, load_design, loads_design, save_design
-from tcarod.experiments.fig1b import FIG1B
+from tcarod.io.design import DesignError, dumps_design, load_design, loads_design, save_design
+from tcarod.paper.fig1b import FIG1B
 
 ROOT = Path(__file__).resolve().parent.parent
 DESIGNS = ROOT / "examples" / "designs"
@@ -187,7 +187,7 @@ def test_long_blank_run_error_names_its_line() -> None:
 
 
 def test_too_large_file_is_a_design_error(tmp_path: Path) -> None:
-    from tcarod.design import MAX_DESIGN_CHARS
+    from tcarod.io.design import MAX_DESIGN_CHARS
 
     with pytest.raises(DesignError, match="too large"):
         loads_design("#" * (MAX_DESIGN_CHARS + 1))

@@ -10,9 +10,10 @@ import numpy as np
 import pytest
 
 from tcarod import _core
-from tcarod.experiments import REGISTRY
-from tcarod.experiments.fig1b import FIG1B
-from tcarod.workspace import plot_workspace, snake_grid, workspace_map
+from tcarod.paper import REGISTRY
+from tcarod.paper.fig1b import FIG1B
+from tcarod.plotting import plot_workspace
+from tcarod.models.workspace import snake_grid, workspace_map
 
 ROBOT = FIG1B.robot()  # standing base-down, gravity -z
 

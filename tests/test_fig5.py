@@ -9,7 +9,9 @@ import numpy as np
 import pytest
 
 from tcarod import Tca
-from tcarod.experiments import FIG5, GRAVITY_M_PER_S2, REGISTRY, Fig5Result, onset_temperature_c, predict_fig5
+from tcarod.paper import REGISTRY
+from tcarod.paper._common import GRAVITY_M_PER_S2, onset_temperature_c
+from tcarod.paper.fig5 import FIG5, Fig5Result, predict_fig5
 
 RESULT = predict_fig5()
 

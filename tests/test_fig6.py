@@ -15,8 +15,8 @@ from matplotlib.figure import Figure
 from tcarod import Robot, inner_edge_radius
 from tcarod._core import _experiment_robot
 from tcarod.cli import main
-from tcarod.experiments import REGISTRY
-from tcarod.experiments.fig6 import CIRCLE_PRECURVATURE_RADIUS_M, FIG6, Fig6Result
+from tcarod.paper import REGISTRY
+from tcarod.paper.fig6 import CIRCLE_PRECURVATURE_RADIUS_M, FIG6, Fig6Result
 from tcarod.plotting import plot_solution
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"

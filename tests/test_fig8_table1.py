@@ -1,6 +1,6 @@
 """Fig. 8 (blocked-tip force) and Table I (grip temperatures) fixtures: the
 contact temperature, the force slope, the turns readings, and the Table I
-sensitivity study (tcarod.studies). The identification is in
+sensitivity study (tcarod.models.studies). The identification is in
 tests/test_identification.py."""
 
 from __future__ import annotations
@@ -11,10 +11,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tcarod.experiments import REGISTRY
-from tcarod.experiments.fig8 import FIG8, Fig8Result, fig8_forces
-from tcarod.experiments.table1 import TABLE1, Table1Result
-from tcarod.grasp import (
+from tcarod.paper import REGISTRY
+from tcarod.paper.fig8 import FIG8, Fig8Result, fig8_forces
+from tcarod.paper.table1 import TABLE1, Table1Result
+from tcarod.models.grasp import (
     TABLE1_CONTACT_TEMPERATURE_C,
     blocked_force_curve,
     force_line,
@@ -22,7 +22,7 @@ from tcarod.grasp import (
     grasp_temperature,
     table1_finger,
 )
-from tcarod.studies import PARAMETERS, perturbed_finger, table1_sensitivity
+from tcarod.models.studies import PARAMETERS, perturbed_finger, table1_sensitivity
 from tcarod.tca import Material
 
 

@@ -1,5 +1,5 @@
 """Issue 13: the measured-CTE material option, like-with-like plausibility
-checks, and the Table I identification (tcarod.identification)."""
+checks, and the Table I identification (tcarod.models.identification)."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ import math
 
 import pytest
 
-from tcarod.experiments.table1 import TABLE1, Table1Result
-from tcarod.identification import (
+from tcarod.paper.table1 import TABLE1, Table1Result
+from tcarod.models.identification import (
     CTE_CHECK_TEMPERATURES_C,
     CTE_FACTOR_RANGE,
     Identification,

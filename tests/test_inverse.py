@@ -1,5 +1,5 @@
-"""Inverse kinetostatics from Python (tcarod.inverse, tcarod.grasp,
-tcarod.bruteforce): wrappers, physics signs, agreement of the paper's
+"""Inverse kinetostatics from Python (tcarod.inverse, tcarod.models.grasp,
+tcarod.models.bruteforce): wrappers, physics signs, agreement of the paper's
 finite-difference method with a brute-force optimiser, bad input."""
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tcarod import ConvergenceError
-from tcarod.bruteforce import brute_force_blocked_temperature, brute_force_tip_position
-from tcarod.grasp import grasp, grasp_temperature, table1_finger
+from tcarod.models.bruteforce import brute_force_blocked_temperature, brute_force_tip_position
+from tcarod.models.grasp import grasp, grasp_temperature, table1_finger
 from tcarod.inverse import (
     blocked_force,
     blocked_temperature,
@@ -22,7 +22,7 @@ from tcarod.inverse import (
     tip_position,
 )
 from tcarod.batch import fig6_square_robot
-from tcarod.manipulators import square_manipulator
+from tcarod.models.manipulators import square_manipulator
 
 MINUS_X = (-1.0, 0.0, 0.0)
 

@@ -86,7 +86,7 @@ def test_plotting_without_matplotlib_names_the_plot_extra(monkeypatch: pytest.Mo
 
 
 def test_calibration_without_scipy_names_the_fit_extra(monkeypatch: pytest.MonkeyPatch) -> None:
-    from tcarod.calibration import TcaExperiment, calibrate
+    from tcarod.models.calibration import TcaExperiment, calibrate
 
     _hide(monkeypatch, "scipy")
     half = TcaExperiment(0.497 / 2, 0.110 / 2, 2e-3, 150.0, mass_kg=10e-3, load_share=0.5)
@@ -111,7 +111,7 @@ def test_core_works_with_numpy_only() -> None:
         import sys
         for name in {OPTIONAL!r}:
             sys.modules[name] = None  # import name -> ImportError
-        import tcarod, tcarod.batch, tcarod.design, tcarod.cli, tcarod.inverse
+        import tcarod, tcarod.batch, tcarod.io.design, tcarod.cli, tcarod.inverse
         from tcarod.batch import fig6_square_robot, solve_batch
         robot = fig6_square_robot()
         sol = robot.solve([100.0, 100.0])

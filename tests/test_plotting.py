@@ -54,7 +54,7 @@ def test_figures_and_results_display_as_png_and_html_in_ipython() -> None:
     """The formatters tcarod registers in an IPython shell (no %matplotlib)."""
     globalipapp = pytest.importorskip("IPython.testing.globalipapp")
     from tcarod import _display
-    from tcarod.workspace import workspace_map
+    from tcarod.models.workspace import workspace_map
 
     shell = globalipapp.start_ipython()
     assert _display.register(shell)

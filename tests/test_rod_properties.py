@@ -31,7 +31,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from tcarod import Actuator, Body, ConvergenceError, Robot, Routing, Section, Solution, Tca
-from tcarod.experiments.fig6 import FIG6, manipulator_tca
+from tcarod.paper.fig6 import FIG6, manipulator_tca
 
 FloatArray = npt.NDArray[np.float64]
 G0 = 9.81

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from tcarod import Robot, Routing, _core
-from tcarod.experiments.fig1b import FIG1B
-from tcarod.segmented import segment_bounds, segmented_actuators
+from tcarod.paper.fig1b import FIG1B
+from tcarod.models.segmented import segment_bounds, segmented_actuators
 
 LENGTH = FIG1B.length_m
 

@@ -1,7 +1,7 @@
 """`Solution.stable` and `Solution.stability_margin` (issue 16): the verdict
 is computed by the solve (policy ``stability="report"``, the default) or, with
 ``stability="off"``, on first access with the solution's own robot; cached,
-equal to `tcarod.stability`, and survives pickle. The policies ``report``,
+equal to `tcarod.models.stability`, and survives pickle. The policies ``report``,
 ``require``, ``continue`` and ``off`` of `Robot.solve` and `Robot.sweep`, and
 the blocked-tip verdict."""
 
@@ -166,7 +166,7 @@ def test_sweep_policies() -> None:
 
 def test_blocked_tip_solution_carries_the_blocked_verdict() -> None:
     from tcarod.inverse import blocked_force
-    from tcarod.manipulators import square_manipulator
+    from tcarod.models.manipulators import square_manipulator
 
     robot = square_manipulator(0.06)  # a picklable TCA robot (built from Python)
     free = robot.solve([100.0, 100.0])
@@ -186,7 +186,7 @@ def test_blocked_tip_solution_carries_the_blocked_verdict() -> None:
 
 
 def test_every_listed_policy_is_accepted() -> None:
-    from tcarod.stability import POLICIES
+    from tcarod.models.stability import POLICIES
 
     robot = core._experiment_robot("fig6_square", True)
     assert POLICIES[0] == "report"  # the default

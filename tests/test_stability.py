@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import tcarod._core as core
-from tcarod.stability import follow_branch, stability
+from tcarod.models.stability import follow_branch, stability
 
 
 def column(tip_force_n: float = 0.0, rectangular: bool = False) -> core.Robot:
@@ -142,8 +142,8 @@ def test_stable_sweep_jumps_at_buckling() -> None:
 
 
 def test_buckling_experiment_registered_and_physical() -> None:
-    from tcarod.experiments import REGISTRY
-    from tcarod.experiments.buckling import GREENHILL, predict_buckling
+    from tcarod.paper import REGISTRY
+    from tcarod.paper.buckling import GREENHILL, predict_buckling
 
     assert "buckling" in REGISTRY
     r = predict_buckling()

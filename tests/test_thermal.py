@@ -12,17 +12,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tcarod.experiments.fig1b import FIG1B
-from tcarod.thermal import (
-    LinearResistance,
-    ThermalModel,
-    VoltageProfile,
-    plot_shape_trajectory,
-    plot_step_response,
-    quasi_static_trajectory,
-    save_trajectory_frames,
-    solve_with_voltages,
-)
+from tcarod.paper.fig1b import FIG1B
+from tcarod.models.thermal import LinearResistance, ThermalModel, VoltageProfile
+from tcarod.models.trajectory import quasi_static_trajectory, solve_with_voltages
+from tcarod.plotting import plot_shape_trajectory, plot_step_response, save_trajectory_frames
 
 L_FIBRE = FIG1B.tca().fibre_length  # ~0.232 m
 MODEL = ThermalModel(fibre_length_m=L_FIBRE, threads=3, resistance=60.0)

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from tcarod.batch import fig6_square_robot
-from tcarod.workspace import plot_workspace, snake_grid, solve_rows, workspace_map
+from tcarod.plotting import plot_workspace
+from tcarod.models.workspace import snake_grid, solve_rows, workspace_map
 
 ROBOT = fig6_square_robot(gravity=False)
 

@@ -3,6 +3,12 @@
 Implements Pawlowski et al., "Modeling of Soft Robots Actuated by
 Twisted-and-Coiled Actuators", IEEE/ASME T-Mech 24(1), 2019, on a Rust core.
 SI units throughout (m, N, Pa, kg, s) except temperatures, in degrees C.
+
+Layers (imports run one way, cli -> paper / models -> API -> _core): the API
+over the Rust core here (``tca``, ``rod``, ``inverse``, ``batch``);
+:mod:`tcarod.models` built on it; :mod:`tcarod.paper`, one module per
+experiment of the paper; :mod:`tcarod.io`, design files and JSON;
+:mod:`tcarod.plotting`, every plot; :mod:`tcarod.cli`, the command line.
 """
 
 from __future__ import annotations
@@ -16,7 +22,8 @@ from ._core import (
 )
 from .rod import Actuator, Body, Robot, Routing, Section, Solution, circle_radius, inner_edge_radius
 from .tca import Material, Tca
-from .grasp import grasp_temperature
+from .batch import BatchResult, solve_batch
+from .models.grasp import grasp_temperature
 from .inverse import (
     BlockedResult,
     InverseResult,
@@ -44,6 +51,7 @@ __all__ = [
     "Material",
     "Tca",
     "__version__",
+    "BatchResult",
     "BlockedResult",
     "InverseResult",
     "blocked_force",
@@ -51,5 +59,6 @@ __all__ = [
     "blocked_temperature_direct",
     "grasp_temperature",
     "jacobian_and_compliance",
+    "solve_batch",
     "tip_position",
 ]

@@ -791,6 +791,24 @@ def blocked_temperature_direct(
 
 # --- batch solves and bench timings (src/python/batch.rs; see tcarod.batch) ---
 
+def grasp_temperature(
+    robot: Robot,
+    normal: Sequence[float] | _FloatArray,
+    mass: float,
+    mu: float,
+    fingers: int,
+    *,
+    gravity: float = 9.81,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    increments: int = 8,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> BlockedResult:
+    """Grasp temperature (eq 44): the actuation variable at which ``fingers``
+    fingers with friction ``mu`` hold ``mass`` [kg], ``mu n F(T) = m g``, each
+    tip blocked where it rests at the reference inputs, pressing along ``normal``."""
+
 def solve_batch(
     robot: Robot,
     inputs: _FloatArray,
@@ -816,11 +834,11 @@ def bench_rows() -> list[tuple[str, str, float]]:
 def bench_time(name: str, repeats: int = 7, min_time: float = 0.05) -> list[float]:
     """Seconds per operation of row ``name``, one value per run (timed in Rust)."""
 
-# --- stability and branch following (src/python/stability.rs; see tcarod.stability) ---
+# --- stability and branch following (src/python/stability.rs; see tcarod.models.stability) ---
 
 @final
 class Stability:
-    """Stability verdict of one equilibrium (see ``tcarod.stability``)."""
+    """Stability verdict of one equilibrium (see ``tcarod.models.stability``)."""
 
     @property
     def stable(self) -> bool: ...
@@ -847,7 +865,7 @@ class Stability:
 
 @final
 class Branch:
-    """A followed branch or a stable sweep (see ``tcarod.stability.follow_branch``)."""
+    """A followed branch or a stable sweep (see ``tcarod.models.stability.follow_branch``)."""
 
     @property
     def parameter(self) -> _FloatArray: ...
@@ -915,3 +933,33 @@ def follow_branch(
 ) -> Branch:
     """Pseudo-arclength continuation in ``parameter`` (``"inputs"``,
     ``"gravity_scale"``, ``"tip_load_scale"``) from ``start`` to ``end``."""
+
+# The paper's fixtures, defined once in the core (src/experiments.rs).
+
+_Manipulator = Literal["square", "fig6_circle", "fig6_square", "fig8", "table1_finger"]
+_TurnsReading = Literal["per_tca", "per_leg", "per_length"]
+
+def fixture_constants() -> dict[str, Any]:
+    """The paper's constants by name, SI units (temperatures in C)."""
+
+def fixture_manipulator(
+    name: _Manipulator,
+    *,
+    length: float | None = None,
+    gravity: Sequence[float] | _FloatArray | None = None,
+    material: Material | None = None,
+    youngs_modulus: float | None = None,
+    tca_offset: float | None = None,
+    coil_diameter: float | None = None,
+    turns_reading: _TurnsReading = "per_tca",
+) -> Robot:
+    """The paper's manipulator ``name`` with any of its parameters replaced."""
+
+def fixture_leg_turns(length: float, legs: int, reading: _TurnsReading = "per_tca") -> float:
+    """Turns [-] of one leg of a manipulator TCA of coiled length ``length`` [m]."""
+
+def fixture_fig5_tca(threads: Literal[3, 4]) -> Tca:
+    """The whole Fig. 5 TCA of 3 or 4 threads."""
+
+def fixture_fig5_half_tca(threads: Literal[3, 4]) -> Tca:
+    """One folded half of the Fig. 5 TCA: ``Tca.segment(0.5)`` of the whole."""

@@ -10,7 +10,7 @@ display formatters, from Python, for
 * :class:`tcarod.Solution`: ``image/png`` (its 3-D plot) and ``text/html``
   (tip pose, inputs, tensions, iterations);
 * :class:`tcarod.Robot`: ``text/html`` (body and actuators);
-* :class:`tcarod.workspace.Workspace`: ``image/png`` (its scatter plot).
+* :class:`tcarod.models.workspace.Workspace`: ``image/png`` (its scatter plot).
 
 A class that defines its own ``_repr_png_`` / ``_repr_html_`` keeps it (a
 type formatter would override the method, so none is registered for it).
@@ -46,7 +46,7 @@ def _solution_png(sol: Any) -> bytes | None:
 
 
 def _workspace_png(ws: Any) -> bytes | None:
-    from .workspace import plot_workspace
+    from .plotting import plot_workspace
 
     return figure_png(plot_workspace(ws))
 
@@ -127,7 +127,7 @@ def register(shell: Any | None = None) -> bool:
     if not formatters:
         return False
     from .rod import Robot, Solution
-    from .workspace import Workspace
+    from .models.workspace import Workspace
 
     png = formatters.get("image/png")
     htm = formatters.get("text/html")

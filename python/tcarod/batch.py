@@ -375,9 +375,9 @@ def _solve_dask(
 
 def fig6_square_robot(gravity: bool = True) -> Robot:
     """The paper's Fig. 6 square manipulator (Section V-B) with the default
-    turns reading: :func:`tcarod.manipulators.square_manipulator` at 40 mm,
-    standing upright (gravity ``-z``) if ``gravity``. A named module-level
-    function, so Dask and process pools can ship it as a robot factory."""
-    from .manipulators import UPRIGHT, square_manipulator  # deferred: manipulators builds on this API
-
-    return square_manipulator(0.040, gravity_m_per_s2=UPRIGHT if gravity else None)
+    turns reading, from the core's fixtures (``src/experiments.rs``), standing
+    upright (gravity ``-z``) if ``gravity``. A named module-level function, so
+    Dask and process pools can ship it as a robot factory."""
+    return (
+        _c.fixture_manipulator("fig6_square") if gravity else _c.fixture_manipulator("fig6_square", gravity=(0, 0, 0))
+    )

@@ -3,7 +3,7 @@
 
 ``tcarod reproduce fig5`` prints the predicted table of the paper's Fig. 5 and
 writes ``DIR/fig5.png`` (default ``DIR`` = ``tcarod-output``). Without a name,
-every registered experiment (:data:`tcarod.experiments.REGISTRY`) is run.
+every registered experiment (:data:`tcarod.paper.REGISTRY`) is run.
 
 With ``--json`` the only output on stdout is one JSON document::
 
@@ -29,7 +29,6 @@ ends the command quietly with status 1, as other Unix tools do.
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 from pathlib import Path
@@ -38,7 +37,8 @@ from typing import Any, Sequence
 from . import __version__
 from ._core import ConvergenceError
 from ._optional import MissingDependencyError, require
-from .experiments import REGISTRY, ExperimentResult
+from .io.results import dumps_json, solution_json
+from .paper import REGISTRY, ExperimentResult
 
 __all__ = ["main"]
 
@@ -85,11 +85,11 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _add_solve_parser(sub: Any) -> None:
-    """``tcarod solve DESIGN.toml --temperature T [T ...]`` (see :mod:`tcarod.design`)."""
+    """``tcarod solve DESIGN.toml --temperature T [T ...]`` (see :mod:`tcarod.io.design`)."""
     sol = sub.add_parser(
         "solve",
         help="solve a robot design file (TOML) at given temperatures: print the tip pose, write a plot",
-        description="Load DESIGN.toml (see tcarod.design), solve the forward kinetostatics at the "
+        description="Load DESIGN.toml (see tcarod.io.design), solve the forward kinetostatics at the "
         "given temperatures [C] (one per actuator, or one for all; default: the file's "
         "temperatures_c), print the tip pose and write DIR/<design name>.png.",
     )
@@ -115,14 +115,14 @@ def _solve_designs(paths: Sequence[str], temperatures: Sequence[float] | None, o
     require("matplotlib")  # the PNG needs the plot extra: say so before any work
     docs = [_solve_design(p, temperatures, out_dir, as_json, emit=not as_json or len(paths) == 1) for p in paths]
     if as_json and len(paths) > 1:
-        print(json.dumps({"tcarod_version": __version__, "designs": docs}, indent=2, allow_nan=False))
+        print(dumps_json({"tcarod_version": __version__, "designs": docs}))
     return 0
 
 
 def _solve_design(
     design_path: str, temperatures: Sequence[float] | None, out_dir: Path, as_json: bool, emit: bool = True
 ) -> dict[str, Any]:
-    from .design import load_design
+    from .io.design import load_design
 
     design = load_design(design_path)
     n = len(design.robot.actuators)
@@ -141,29 +141,21 @@ def _solve_design(
         raise ValueError(f"--temperature: expected 1 or {n} values (one per actuator), got {len(temperatures)}")
     solution = design.solve(temps)
     png = out_dir / f"{Path(design_path).stem}.png"
-    from . import plotting
+    from .plotting import plot_solution, save_png
 
-    plot = getattr(plotting, "plot_solution", None)
-    if plot is not None:
-        fig = plot(solution)
-    else:  # pragma: no cover - plot_solution is part of tcarod.plotting
-        raise RuntimeError("tcarod.plotting.plot_solution is missing")
-    plotting.save_png(fig, png)
-    tip = [float(x) for x in solution.tip_position]
-    rot = [[float(x) for x in row] for row in solution.tip_rotation]
+    save_png(plot_solution(solution), png)
+    result = solution_json(solution)
     doc: dict[str, Any] = {
         "tcarod_version": __version__,
         "design": str(design_path),
         "temperature_c": temps,
-        "tip_position_m": tip,
-        "tip_rotation": rot,
-        "tensions_n": [float(x) for x in solution.tensions],
-        "iterations": int(solution.iterations),
+        **result,
         "png_path": str(png),
     }
+    tip, rot = result["tip_position_m"], result["tip_rotation"]
     if as_json:
         if emit:
-            print(json.dumps(doc, indent=2, allow_nan=False))
+            print(dumps_json(doc))
     else:
         print(f"design: {design_path} ({n} actuators)")
         print("temperatures [C]: " + ", ".join(f"{t:g}" for t in temps))
@@ -188,8 +180,7 @@ def _reproduce(names: Sequence[str], out_dir: Path, as_json: bool) -> int:
                 name: {**result.to_json(), "png_path": str(png)} for name, (result, png) in results.items()
             },
         }
-        # allow_nan=False: a NaN would make the document invalid JSON; fail loudly instead.
-        print(json.dumps(doc, indent=2, allow_nan=False))
+        print(dumps_json(doc))
     else:
         for result, png in results.values():
             print(result.table())

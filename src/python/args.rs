@@ -5,7 +5,6 @@ use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyByteArray, PyBytes, PyString};
 
-use crate::rod::Robot;
 use crate::shooting::SolveOptions;
 
 /// A real-number argument with the strict contract of issue 12: `float`,
@@ -253,7 +252,7 @@ pub(crate) fn solve_options(
     tol: Real,
     max_iter: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<SolveOptions> {
-    use crate::validate::{MAX_ITER, MAX_STEPS};
+    use crate::limits::{MAX_ITER, MAX_STEPS};
     let steps = count_or("steps", steps, 100, 1, MAX_STEPS)?;
     let max_iter = count_or("max_iter", max_iter, 50, 1, MAX_ITER)?;
     options(steps, tol.0, max_iter)
@@ -281,18 +280,6 @@ pub(crate) fn budget_options(
             );
         }
         opts.time_limit = Some(std::time::Duration::from_secs_f64(t));
-    }
-    Ok(())
-}
-
-/// Error naming `inputs[i]` if a TCA input lies below its material's range,
-/// with the way to a colder ambient (a custom `Material`).
-pub(crate) fn check_ambient(robot: &Robot, inputs: &[f64]) -> PyResult<()> {
-    for (i, (a, &x)) in robot.actuators.iter().zip(inputs).enumerate() {
-        if a.law.kind() == "tca" {
-            let (lo, hi) = a.law.input_bounds();
-            crate::validate::ambient_hint(x, lo, hi, &format!("inputs[{i}] (temperature [C])"))?;
-        }
     }
     Ok(())
 }

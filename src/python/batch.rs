@@ -1,5 +1,4 @@
-//! Bindings of the batch solver and of the bench timings (`tcarod.batch`,
-//! `tcarod bench`).
+//! Bindings of the batch solver (`tcarod.batch`).
 
 use numpy::{
     PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods,
@@ -14,8 +13,6 @@ use crate::error::Error;
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solve_batch, m)?)?;
     m.add_function(wrap_pyfunction!(default_threads, m)?)?;
-    m.add_function(wrap_pyfunction!(bench_rows, m)?)?;
-    m.add_function(wrap_pyfunction!(bench_time, m)?)?;
     Ok(())
 }
 
@@ -54,7 +51,7 @@ fn solve_batch<'py>(
     threads: Option<Bound<'py, PyAny>>,
     warm: bool,
 ) -> PyResult<BatchArrays<'py>> {
-    use crate::validate::{MAX_BATCH_ROWS, MAX_CHUNK, MAX_THREADS};
+    use crate::limits::{MAX_CHUNK, MAX_THREADS};
     let solve = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
     let chunk_size = count_or("chunk_size", chunk_size.as_ref(), 256, 1, MAX_CHUNK)?;
     let threads = count_or("threads", threads.as_ref(), 0, 0, MAX_THREADS)?;
@@ -69,15 +66,6 @@ fn solve_batch<'py>(
         .into());
     }
     let n = shape[0];
-    if n > MAX_BATCH_ROWS {
-        return Err(Error::input(
-            "inputs",
-            format!(
-                "{n} rows: at most {MAX_BATCH_ROWS} rows per call (use tcarod.batch.iter_batches)"
-            ),
-        )
-        .into());
-    }
     let q: Vec<f64> = inputs.as_array().iter().copied().collect(); // row-major
     let w: Option<Vec<f64>> = match wrenches {
         Some(w) => {
@@ -116,33 +104,4 @@ fn solve_batch<'py>(
 #[pyfunction]
 fn default_threads() -> usize {
     thread_count(0)
-}
-
-/// Rows of the performance table: `(name, description, target [s])`.
-#[pyfunction]
-fn bench_rows() -> Vec<(&'static str, &'static str, f64)> {
-    crate::bench::ROWS
-        .iter()
-        .map(|r| (r.name, r.description, r.target))
-        .collect()
-}
-
-/// Time row `name` in Rust: `repeats` runs, each a loop of at least
-/// `min_time` [s]; returns seconds per operation of each run. The GIL is
-/// released while timing.
-#[pyfunction]
-#[pyo3(signature = (name, repeats=None, min_time=Real(0.05)), text_signature = "(name, repeats=7, min_time=0.05)")]
-fn bench_time(
-    py: Python<'_>,
-    name: &str,
-    repeats: Option<Bound<'_, PyAny>>,
-    min_time: Real,
-) -> PyResult<Vec<f64>> {
-    let repeats = count_or("repeats", repeats.as_ref(), 7, 1, 1000)?;
-    let min_time = crate::error::non_negative("min_time [s]", min_time.0)?;
-    if min_time > 60.0 {
-        return Err(Error::param("min_time [s]", min_time, "0 <= min_time <= 60 s").into());
-    }
-    let name = name.to_owned();
-    Ok(py.detach(move || crate::bench::time_row(&name, repeats, min_time))?)
 }

@@ -11,7 +11,7 @@ use super::to_py::dmat;
 use super::{count_or, counts, reals, vec3_arg, Real};
 use crate::error::Error;
 use crate::inverse::{self, Block, BlockedResult, Groups, InverseOptions, Scheme};
-use crate::validate::{MAX_INCREMENTS, MAX_ITER};
+use crate::limits::{MAX_INCREMENTS, MAX_ITER};
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sensitivities, m)?)?;
@@ -19,6 +19,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(blocked_force, m)?)?;
     m.add_function(wrap_pyfunction!(blocked_temperature, m)?)?;
     m.add_function(wrap_pyfunction!(blocked_temperature_direct, m)?)?;
+    m.add_function(wrap_pyfunction!(grasp_temperature, m)?)?;
     Ok(())
 }
 
@@ -300,4 +301,45 @@ fn blocked_temperature_direct(
         inverse::blocked_variable_direct(&rr, &g, &block, force.0, guess.0, &opts, None)
     })?;
     blocked(py, robot, res, block.normal)
+}
+
+/// Grasp temperature (eq 44): the actuation variable at which `fingers`
+/// identical fingers (this `robot`) with friction coefficient `mu` [-] hold
+/// a mass `mass` [kg] under `gravity` [m/s^2], `mu n F(T) = m g`, each
+/// finger's tip blocked where it rests at the reference inputs and pressing
+/// along `normal`; `increments` eq-43 steps (1 to 10,000). Returns the
+/// blocked result of one finger (`force` [N] = `m g / (mu n)`).
+#[pyfunction]
+#[pyo3(signature = (robot, normal, mass, mu, fingers, *, gravity=Real(9.81), groups=None, increments=None, steps=None,
+    tol=Real(1e-10), max_iter=None),
+    text_signature = "(robot, normal, mass, mu, fingers, *, gravity=9.81, groups=None, increments=8, steps=100, \
+        tol=1e-10, max_iter=50)")]
+#[allow(clippy::too_many_arguments)]
+fn grasp_temperature(
+    py: Python<'_>,
+    robot: &Bound<'_, PyRobot>,
+    normal: Bound<'_, PyAny>,
+    mass: Real,
+    mu: Real,
+    fingers: Bound<'_, PyAny>,
+    gravity: Real,
+    groups: Option<Bound<'_, PyAny>>,
+    increments: Option<Bound<'_, PyAny>>,
+    steps: Option<Bound<'_, PyAny>>,
+    tol: Real,
+    max_iter: Option<Bound<'_, PyAny>>,
+) -> PyResult<PyBlockedResult> {
+    let r = robot.get();
+    let g = groups_for(r, groups.as_ref())?;
+    let normal = vec3("normal", &normal)?;
+    let fingers = super::args::count("fingers", &fingers, 1, super::MAX_SEQUENCE)?;
+    let increments = count_or("increments", increments.as_ref(), 8, 1, MAX_INCREMENTS)?;
+    let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+    let rr = r.inner.clone();
+    let res = super::errors::detach_interruptible(py, || {
+        inverse::grasp(
+            &rr, &g, &normal, mass.0, mu.0, fingers, gravity.0, increments, &opts,
+        )
+    })?;
+    blocked(py, robot, res)
 }

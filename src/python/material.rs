@@ -56,8 +56,9 @@ impl PyMaterial {
             (youngs_modulus_slope, expansion_slope);
         let shear_modulus_slope = shear_modulus_slope.map(|r| r.0);
         let (Real(t_ref), Real(t_min), Real(t_max)) = (t_ref, t_min, t_max);
-        let g_slope =
-            shear_modulus_slope.unwrap_or(youngs_modulus_slope * shear_modulus / youngs_modulus);
+        let g_slope = shear_modulus_slope.unwrap_or_else(|| {
+            Material::proportional_shear_slope(youngs_modulus, youngs_modulus_slope, shear_modulus)
+        });
         Ok(PyMaterial {
             inner: Material::new(
                 name,

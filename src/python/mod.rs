@@ -5,7 +5,9 @@
 
 mod args;
 mod batch;
+mod bench;
 mod errors;
+mod fixtures;
 mod inverse;
 mod material;
 mod outcome;
@@ -54,6 +56,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     inverse::register(m)?;
     results::register(m)?;
     batch::register(m)?;
+    bench::register(m)?;
     stability::register(m)?;
+    fixtures::register(m)?;
     Ok(())
 }

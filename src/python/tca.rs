@@ -112,7 +112,7 @@ impl PyTca {
             )?,
         };
         // valid, but perhaps in mm: warn (after validation, so bad values raise first)
-        if let Some(msg) = crate::validate::coil_diameter_looks_like_mm(tca.inner.coil_diameter()) {
+        if let Some(msg) = tca.inner.units_warning() {
             Python::attach(|py| super::warn_units(py, msg))?;
         }
         Ok(tca)

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use nalgebra::Vector3;
 
-use crate::error::{finite, non_negative, Error, Result};
+use crate::error::{finite, non_negative, positive, Error, Result};
 use crate::tca::Tca;
 
 /// Path of an actuator in the body frame, with exact derivatives in `s`.
@@ -158,6 +158,11 @@ pub trait ForceLaw: Send + Sync + Debug {
     }
     /// Short name of the law.
     fn kind(&self) -> &'static str;
+    /// The TCA of a TCA law (its coiled length must fit the anchored span,
+    /// its pre-tension sets the length ratio), else `None`.
+    fn tca(&self) -> Option<&Tca> {
+        None
+    }
     /// Inverse law: the elongation \[m\] at which the actuator carries
     /// `tension` \[N\] at `input`, where that is unique. Used only to build
     /// initial guesses (a warm start keeps the tension, a cold start begins at
@@ -210,6 +215,34 @@ impl ForceLaw for TcaLaw {
     }
     fn kind(&self) -> &'static str {
         "tca"
+    }
+    fn tca(&self) -> Option<&Tca> {
+        Some(&self.0)
+    }
+    /// The default check, except that a temperature below the material's
+    /// range points to the way out: a custom `Material` valid at that ambient.
+    fn check_input(&self, input: f64) -> Result<()> {
+        let (lo, hi) = self.input_bounds();
+        if input.is_finite() && input < lo {
+            return Err(Error::param(
+                self.input_name(),
+                input,
+                format!(
+                    "{lo} <= T <= {hi} C, the material's valid range (the preset's fits start at 25 C and \
+                     are not extrapolated). For a colder ambient build Material(..., t_ref=<ambient>, \
+                     t_min=<ambient>) with coefficients valid there and pass it to Tca(..., material=...)"
+                ),
+            ));
+        }
+        if input.is_finite() && input <= hi {
+            Ok(())
+        } else {
+            Err(Error::param(
+                self.input_name(),
+                input,
+                format!("{lo} <= input <= {hi}"),
+            ))
+        }
     }
     /// Exact in the elongation ([`crate::tca::TcaAt::tension_slope`]);
     /// differenced in the temperature, whose effect runs through the
@@ -314,10 +347,18 @@ pub struct Actuator {
     pub length_ratio: Option<f64>,
     /// Force law.
     pub law: Arc<dyn ForceLaw>,
+    /// Tension \[N\] a TCA carries at the reference temperature in the
+    /// body's undeformed reference shape; [`crate::rod::Robot::new`] turns it
+    /// into `length_ratio`. `None`: not pre-tensioned.
+    pub pretension: Option<f64>,
 }
 
 impl Actuator {
-    /// An actuator from `s_start` to `s_end` \[m\].
+    /// Distal anchor meaning "the tip": [`crate::rod::Robot::new`] replaces it
+    /// with the body length.
+    pub const TIP: f64 = f64::INFINITY;
+
+    /// An actuator from `s_start` to `s_end` \[m\] (unchecked; see [`Actuator::anchored`]).
     pub fn new(routing: Routing, s_start: f64, s_end: f64, law: Arc<dyn ForceLaw>) -> Self {
         Actuator {
             routing,
@@ -325,6 +366,59 @@ impl Actuator {
             s_end,
             length_ratio: None,
             law,
+            pretension: None,
         }
+    }
+
+    /// An actuator anchored from `s_start` \[m\] (>= 0) to `s_end` \[m\] (> 0;
+    /// `None`: the tip, [`Actuator::TIP`]) with the paper's constant length
+    /// ratio `length_ratio` \[-\] (eq 18; > 0; `None`: pointwise from the
+    /// reference shape). The robot checks the anchors against the body.
+    pub fn anchored(
+        routing: Routing,
+        s_start: f64,
+        s_end: Option<f64>,
+        length_ratio: Option<f64>,
+        law: Arc<dyn ForceLaw>,
+    ) -> Result<Self> {
+        non_negative("s_start [m]", s_start)?;
+        if let Some(e) = s_end {
+            positive("s_end [m]", e)?;
+        }
+        if let Some(l) = length_ratio {
+            positive("length_ratio [-]", l)?;
+        }
+        let mut a = Actuator::new(routing, s_start, s_end.unwrap_or(Actuator::TIP), law);
+        a.length_ratio = length_ratio;
+        Ok(a)
+    }
+
+    /// A TCA actuator ([`Actuator::anchored`]) whose input is its temperature
+    /// \[C\], optionally installed with `pretension` \[N\] (>= 0) at the
+    /// reference temperature (not together with `length_ratio`, which it sets).
+    pub fn tca(
+        tca: Tca,
+        routing: Routing,
+        s_start: f64,
+        s_end: Option<f64>,
+        length_ratio: Option<f64>,
+        pretension: Option<f64>,
+    ) -> Result<Self> {
+        if let Some(f) = pretension {
+            if length_ratio.is_some() {
+                return Err(Error::input(
+                    "pretension_n / length_ratio",
+                    "give one of them, not both",
+                ));
+            }
+            let f = non_negative("pretension_n [N]", f)?;
+            // the pre-stretch it implies must exist (below the straight-fibre limit)
+            tca.displacement(f, tca.material().t_ref())
+                .map_err(|e| e.renamed(|n| format!("pretension_n ({n})")))?;
+        }
+        let law = Arc::new(TcaLaw(tca));
+        let mut a = Actuator::anchored(routing, s_start, s_end, length_ratio, law)?;
+        a.pretension = pretension;
+        Ok(a)
     }
 }

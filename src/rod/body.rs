@@ -5,6 +5,34 @@ use nalgebra::{Matrix3, Vector3};
 use super::Section;
 use crate::error::{finite, non_negative, positive, Error, Result};
 
+/// Poisson's ratio \[-\] of a body given neither `poisson` nor
+/// `shear_modulus`: 0.5, incompressible silicone (the paper's EcoFlex).
+pub const DEFAULT_POISSON: f64 = 0.5;
+
+/// How a body's shear modulus `G_B` is given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shear {
+    /// Isotropic material: `G_B = E_B / (2 (1 + poisson))`, `-1 < poisson <= 0.5`.
+    Poisson(f64),
+    /// `G_B` \[Pa\] directly (> 0).
+    Modulus(f64),
+}
+
+impl Shear {
+    /// The rule of the keyword constructor: `poisson` \[-\] or `shear_modulus`
+    /// \[Pa\], not both; neither means [`DEFAULT_POISSON`].
+    pub fn from_options(poisson: Option<f64>, shear_modulus: Option<f64>) -> Result<Shear> {
+        match (poisson, shear_modulus) {
+            (Some(_), Some(_)) => Err(Error::input(
+                "poisson / shear_modulus",
+                "give one of them, not both",
+            )),
+            (p, None) => Ok(Shear::Poisson(p.unwrap_or(DEFAULT_POISSON))),
+            (None, Some(g)) => Ok(Shear::Modulus(g)),
+        }
+    }
+}
+
 /// The soft body: geometry, material, reference strains and external loads.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
@@ -46,15 +74,40 @@ impl Body {
         poisson: f64,
         density: f64,
     ) -> Result<Self> {
-        if !(poisson.is_finite() && poisson > -1.0 && poisson <= 0.5) {
-            return Err(Error::param("poisson [-]", poisson, "-1 < poisson <= 0.5"));
-        }
-        let e = positive("youngs_modulus E_B [Pa]", youngs_modulus)?;
+        Body::with_shear(
+            length,
+            section,
+            youngs_modulus,
+            Shear::Poisson(poisson),
+            density,
+        )
+    }
+
+    /// A straight, unloaded body of `length` \[m\], Young's modulus
+    /// \[Pa\], shear modulus given by `shear` and `density` \[kg/m^3\].
+    pub fn with_shear(
+        length: f64,
+        section: Section,
+        youngs_modulus: f64,
+        shear: Shear,
+        density: f64,
+    ) -> Result<Self> {
+        positive("length [m]", length)?;
+        let shear_modulus = match shear {
+            Shear::Poisson(poisson) => {
+                if !(poisson.is_finite() && poisson > -1.0 && poisson <= 0.5) {
+                    return Err(Error::param("poisson [-]", poisson, "-1 < poisson <= 0.5"));
+                }
+                let e = positive("youngs_modulus E_B [Pa]", youngs_modulus)?;
+                e / (2.0 * (1.0 + poisson))
+            }
+            Shear::Modulus(g) => g,
+        };
         let b = Body {
             length,
             section,
-            youngs_modulus: e,
-            shear_modulus: e / (2.0 * (1.0 + poisson)),
+            youngs_modulus,
+            shear_modulus,
             density,
             shear_coefficient: 1.0,
             nu_star: Vector3::z(),
@@ -98,7 +151,54 @@ impl Body {
                 "> 0 (the body must not fold back)",
             ));
         }
+        self.check_derived()
+    }
+
+    /// Error unless the derived quantities (stiffnesses, weight per length)
+    /// are finite and the stiffnesses positive in double precision.
+    fn check_derived(&self) -> Result<()> {
+        let (kv, kw) = self.stiffness();
+        for k in 0..3 {
+            for (name, v) in [
+                ("stiffness K_nu [N]", kv[(k, k)]),
+                ("stiffness K_omega [N m^2]", kw[(k, k)]),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(Error::input(
+                        name,
+                        format!(
+                            "is {v}: youngs_modulus / shear_modulus times the section \
+                             properties leave double range"
+                        ),
+                    ));
+                }
+            }
+        }
+        for (k, x) in self.distributed_load().iter().enumerate() {
+            if !x.is_finite() {
+                return Err(Error::input(
+                    &format!("distributed_load [N/m][{k}] (density x area x gravity)"),
+                    format!("is {x}: the inputs leave double range"),
+                ));
+            }
+        }
         Ok(())
+    }
+
+    /// A warning text if the sizes look like millimetres given as metres (length
+    /// above 10 m, section size above 1 m): valid SI numbers, so not an error.
+    pub fn units_warning(&self) -> Option<String> {
+        let b = self;
+        let (w, h) = b.section.extent();
+        if b.length > 10.0 || w.max(h) > 1.0 {
+            Some(format!(
+                "Body: length = {} m, section {} m x {} m: sizes are in metres (SI); \
+                 did you give millimetres? (40 mm is length=0.04)",
+                b.length, w, h
+            ))
+        } else {
+            None
+        }
     }
 
     /// `K_nu = diag(k G A, k G A, E A)` \[N\] and `K_omega = diag(E I_x, E I_y, G J)` \[N m^2\].

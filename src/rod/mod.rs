@@ -32,7 +32,7 @@ mod section;
 mod tangent;
 
 pub use actuator::{Actuator, ConstantTension, ForceLaw, LinearTendon, Routing, TcaLaw};
-pub use body::Body;
+pub use body::{Body, Shear, DEFAULT_POISSON};
 pub use ivp::{integrate, IvpResult, IvpSpec};
 pub use robot::{Robot, BASE_STATES};
 pub use section::Section;

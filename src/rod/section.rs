@@ -109,6 +109,20 @@ impl Section {
         Ok(self)
     }
 
+    /// Width and height [m] of the section's bounding box (custom sections:
+    /// the edge distances along x and y, twice).
+    pub fn extent(&self) -> (f64, f64) {
+        let s = self;
+        match *s {
+            Section::Circle { diameter } => (diameter, diameter),
+            Section::Rectangle { width, height } => (width, height),
+            Section::Custom { .. } => (
+                2.0 * s.edge_distance(0.0),
+                2.0 * s.edge_distance(std::f64::consts::FRAC_PI_2),
+            ),
+        }
+    }
+
     /// `(A, I_x, I_y, J)` in m^2 and m^4. For a rectangle `J` is Saint-Venant's
     /// torsion constant `a b^3 (1/3 - 0.21 (b/a) (1 - b^4 / (12 a^4)))`
     /// (`a >= b`), not the polar moment, which overstates a square's torsional

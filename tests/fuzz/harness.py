@@ -57,7 +57,9 @@ class Hang(BaseException):
 @lru_cache(maxsize=1)
 def targets() -> dict[str, Callable[..., Any]]:
     import tcarod as t
-    from tcarod import batch, bruteforce, calibration, cli, design, segmented, studies, thermal, workspace
+    from tcarod import batch, cli
+    from tcarod.io import design
+    from tcarod.models import bruteforce, calibration, segmented, studies, thermal, trajectory, workspace
 
     return {
         "Tca": t.Tca,
@@ -106,9 +108,9 @@ def targets() -> dict[str, Callable[..., Any]]:
         "ThermalModel.steady_temperature": thermal.ThermalModel.steady_temperature,
         "ThermalModel.steady_voltage": thermal.ThermalModel.steady_voltage,
         "ThermalModel.transient": thermal.ThermalModel.transient,
-        "steady_temperatures": thermal.steady_temperatures,
-        "solve_with_voltages": thermal.solve_with_voltages,
-        "quasi_static_trajectory": thermal.quasi_static_trajectory,
+        "steady_temperatures": trajectory.steady_temperatures,
+        "solve_with_voltages": trajectory.solve_with_voltages,
+        "quasi_static_trajectory": trajectory.quasi_static_trajectory,
         "segment_bounds": segmented.segment_bounds,
         "segmented_actuators": segmented.segmented_actuators,
         "snake_grid": workspace.snake_grid,
@@ -144,9 +146,9 @@ def _tmpdir() -> Path:
 @lru_cache(maxsize=None)
 def _static(name: str) -> Any:  # noqa: C901 - one table of fixtures
     import tcarod as t
-    from tcarod import calibration, thermal
+    from tcarod.models import calibration, thermal
     from tcarod.batch import fig6_square_robot
-    from tcarod.grasp import table1_finger
+    from tcarod.models.grasp import table1_finger
 
     if name == "TCA":
         return t.Tca(0.497, 0.110, 2e-3, 300.0)
@@ -213,7 +215,7 @@ def _static(name: str) -> Any:  # noqa: C901 - one table of fixtures
 
 def fixture(f: Fix) -> Any:
     if f.name == "PROFILE_AT":
-        from tcarod import thermal
+        from tcarod.models import thermal
 
         t, v = f.args
         return thermal.VoltageProfile((t, 0.0) if t < 0.0 else (t,), (0.0, v) if t < 0.0 else (v,))

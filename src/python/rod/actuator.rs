@@ -10,7 +10,7 @@ use crate::python::errors::finite_output;
 use crate::python::tca::PyTca;
 use crate::python::to_py::{hash_by_text, reduce_with, Reduce};
 use crate::python::{pf, ps, Real};
-use crate::rod::{Actuator, ConstantTension, ForceLaw, LinearTendon, TcaLaw};
+use crate::rod::{Actuator, ConstantTension, LinearTendon};
 
 /// `_restore_actuator` arguments: kind, TCA, stiffness [N/m], routing,
 /// s_start [m], s_end [m] (`None`: the tip), length ratio [-], pre-tension [N].
@@ -45,56 +45,27 @@ type ActuatorArgs = (
 #[pyclass(name = "Actuator", module = "tcarod._core", frozen, eq, hash)]
 #[derive(Clone)]
 pub struct PyActuator {
+    /// The core actuator as given (`s_end` [`Actuator::TIP`] if not given;
+    /// the robot resolves it and the pre-tension).
     pub(crate) inner: Actuator,
-    pub(crate) tca: Option<PyTca>,
-    /// Pre-tension [N] at the reference temperature (TCAs), resolved to a
-    /// length ratio when the robot is assembled.
-    pub(crate) pretension: Option<f64>,
     /// Stiffness [N/m] of a linear tendon.
     stiffness: Option<f64>,
-    /// Whether `s_end` was given (otherwise: anchored at the tip).
-    s_end_given: bool,
-}
-
-fn make_actuator(
-    routing: PyRouting,
-    s_start: Real,
-    s_end: Option<Real>,
-    length_ratio: Option<Real>,
-    law: Arc<dyn ForceLaw>,
-) -> PyResult<Actuator> {
-    let (s_start, s_end, length_ratio) = (s_start.0, s_end.map(|r| r.0), length_ratio.map(|r| r.0));
-    crate::error::non_negative("s_start [m]", s_start)?;
-    let mut a = Actuator::new(routing.inner, s_start, s_end.unwrap_or(f64::INFINITY), law);
-    if let Some(e) = s_end {
-        crate::error::positive("s_end [m]", e)?;
-    }
-    if let Some(l) = length_ratio {
-        crate::error::positive("length_ratio [-]", l)?;
-    }
-    a.length_ratio = length_ratio;
-    Ok(a)
 }
 
 impl PyActuator {
-    pub(crate) fn plain(inner: Actuator, s_end_given: bool) -> Self {
+    pub(crate) fn plain(inner: Actuator) -> Self {
         PyActuator {
             inner,
-            tca: None,
-            pretension: None,
             stiffness: None,
-            s_end_given,
         }
     }
     /// Everything that defines the actuator, as text (for `==` and hash).
     pub(crate) fn identity(&self) -> String {
-        format!(
-            "{:?} {:?} {:?} {}",
-            self.inner, self.pretension, self.stiffness, self.s_end_given
-        )
+        format!("{:?} {:?}", self.inner, self.stiffness)
     }
+    /// `s_end` as given (`None`: the tip).
     fn s_end_arg(&self) -> Option<f64> {
-        self.s_end_given.then_some(self.inner.s_end)
+        (self.inner.s_end != Actuator::TIP).then_some(self.inner.s_end)
     }
 }
 
@@ -125,33 +96,14 @@ impl PyActuator {
         length_ratio: Option<Real>,
         pretension_n: Option<Real>,
     ) -> PyResult<Self> {
-        let given = s_end.is_some();
-        let law = Arc::new(TcaLaw(tca.inner.clone()));
-        let pretension = match pretension_n {
-            None => None,
-            Some(f) => {
-                if length_ratio.is_some() {
-                    return Err(Error::input(
-                        "pretension_n / length_ratio",
-                        "give one of them, not both",
-                    )
-                    .into());
-                }
-                let f = crate::error::non_negative("pretension_n [N]", f.0)?;
-                // the pre-stretch it implies must exist (below the straight-fibre limit)
-                tca.inner
-                    .displacement(f, tca.inner.material().t_ref())
-                    .map_err(|e| e.renamed(|n| format!("pretension_n ({n})")))?;
-                Some(f)
-            }
-        };
-        Ok(PyActuator {
-            inner: make_actuator(routing, s_start, s_end, length_ratio, law)?,
-            tca: Some(tca),
-            pretension,
-            stiffness: None,
-            s_end_given: given,
-        })
+        Ok(PyActuator::plain(Actuator::tca(
+            tca.inner,
+            routing.inner,
+            s_start.0,
+            s_end.map(|r| r.0),
+            length_ratio.map(|r| r.0),
+            pretension_n.map(|r| r.0),
+        )?))
     }
     /// A tendon whose input is its tension [N] (>= 0), anchored from
     /// `s_start` [m] to `s_end` [m] (`None`: the tip); `length_ratio` [-] as
@@ -165,16 +117,13 @@ impl PyActuator {
         s_end: Option<Real>,
         length_ratio: Option<Real>,
     ) -> PyResult<Self> {
-        Ok(PyActuator::plain(
-            make_actuator(
-                routing,
-                s_start,
-                s_end,
-                length_ratio,
-                Arc::new(ConstantTension),
-            )?,
-            s_end.is_some(),
-        ))
+        Ok(PyActuator::plain(Actuator::anchored(
+            routing.inner,
+            s_start.0,
+            s_end.map(|r| r.0),
+            length_ratio.map(|r| r.0),
+            Arc::new(ConstantTension),
+        )?))
     }
     /// An elastic tendon of `stiffness` [N/m] whose input is the length [m]
     /// pulled in at the base; anchors and `length_ratio` as for `Actuator.tca`.
@@ -189,23 +138,22 @@ impl PyActuator {
         length_ratio: Option<Real>,
     ) -> PyResult<Self> {
         let stiffness = crate::error::positive("stiffness [N/m]", stiffness.0)?;
-        let mut a = PyActuator::plain(
-            make_actuator(
-                routing,
-                s_start,
-                s_end,
-                length_ratio,
-                Arc::new(LinearTendon { stiffness }),
-            )?,
-            s_end.is_some(),
-        );
-        a.stiffness = Some(stiffness);
-        Ok(a)
+        let inner = Actuator::anchored(
+            routing.inner,
+            s_start.0,
+            s_end.map(|r| r.0),
+            length_ratio.map(|r| r.0),
+            Arc::new(LinearTendon { stiffness }),
+        )?;
+        Ok(PyActuator {
+            inner,
+            stiffness: Some(stiffness),
+        })
     }
     /// Pre-tension [N] at the reference temperature (`Actuator.tca(..., pretension_n=...)`), or `None`.
     #[getter]
     fn pretension_n(&self) -> Option<f64> {
-        self.pretension
+        self.inner.pretension
     }
     /// Tendon stiffness [N/m] of a linear tendon, else `None`.
     #[getter]
@@ -214,24 +162,17 @@ impl PyActuator {
     }
     /// Pickle support: rebuilt by the same static constructor.
     fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py, ActuatorArgs> {
-        if self.kind() == "tca" && self.tca.is_none() {
-            return Err(pyo3::exceptions::PyTypeError::new_err(
-                "cannot pickle an Actuator built in Rust without its Tca",
-            ));
-        }
-        let routing = PyRouting {
-            inner: self.inner.routing,
-        };
-        let (a, s_end) = (&self.inner, self.s_end_arg());
+        let a = &self.inner;
+        let routing = PyRouting { inner: a.routing };
         let args = (
             self.kind(),
-            self.tca.clone(),
+            self.tca_model(),
             self.stiffness,
             routing,
             a.s_start,
-            s_end,
+            self.s_end_arg(),
             a.length_ratio,
-            self.pretension,
+            a.pretension,
         );
         reduce_with(py, "_restore_actuator", args)
     }
@@ -280,7 +221,7 @@ impl PyActuator {
     /// The TCA (`Tca`) of a TCA actuator, else `None`.
     #[getter]
     fn tca_model(&self) -> Option<PyTca> {
-        self.tca.clone()
+        self.inner.law.tca().map(|t| PyTca { inner: t.clone() })
     }
     /// Tension [N] at total elongation `elongation` [m] and `input`.
     fn tension(&self, elongation: Real, input: Real) -> PyResult<f64> {
@@ -300,13 +241,12 @@ impl PyActuator {
         if let Some(l) = self.inner.length_ratio {
             tail += &format!(", length_ratio={}", pf(l));
         }
-        match (self.kind(), &self.tca, self.stiffness) {
+        match (self.kind(), self.tca_model(), self.stiffness) {
             ("tca", Some(t), _) => {
-                let tca = Python::attach(|py| {
-                    Bound::new(py, t.clone()).and_then(|b| PyTca::__repr__(&b))
-                })
-                .unwrap_or_else(|_| "Tca(...)".into());
+                let tca = Python::attach(|py| Bound::new(py, t).and_then(|b| PyTca::__repr__(&b)))
+                    .unwrap_or_else(|_| "Tca(...)".into());
                 let pre = self
+                    .inner
                     .pretension
                     .map(|f| format!(", pretension_n={}", pf(f)))
                     .unwrap_or_default();

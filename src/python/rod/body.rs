@@ -6,35 +6,10 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::section::{section_repr, PySection};
-use crate::error::{Error, Result};
-use crate::python::errors::finite_output;
+use crate::error::Error;
 use crate::python::to_py::{hash_by_text, keyword_args, mat3, vec3, vec3_getters, NewArgs};
 use crate::python::{pf, pv, vec3_arg, Real};
-use crate::rod::Body;
-
-/// Error unless the body's derived quantities (stiffnesses, weight per
-/// length) are finite and the stiffnesses positive, so that no getter can
-/// return inf or NaN.
-fn check_derived(b: &Body) -> Result<()> {
-    let (kv, kw) = b.stiffness();
-    for k in 0..3 {
-        for (name, v) in [
-            ("stiffness K_nu [N]", kv[(k, k)]),
-            ("stiffness K_omega [N m^2]", kw[(k, k)]),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(Error::input(name, format!("is {v}: youngs_modulus / shear_modulus times the section properties leave double range")));
-            }
-        }
-    }
-    for (k, x) in b.distributed_load().iter().enumerate() {
-        finite_output(
-            &format!("distributed_load [N/m][{k}] (density x area x gravity)"),
-            *x,
-        )?;
-    }
-    Ok(())
-}
+use crate::rod::{Body, Shear};
 
 /// The soft body (Cosserat rod): geometry, material, reference strains, loads.
 ///
@@ -89,33 +64,12 @@ impl PyBody {
         tip_force: Option<Bound<'_, PyAny>>,
         tip_moment: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let (length, youngs_modulus, density, shear_coefficient) =
-            (length.0, youngs_modulus.0, density.0, shear_coefficient.0);
-        let (poisson, shear_modulus) = (poisson.map(|r| r.0), shear_modulus.map(|r| r.0));
-        crate::error::positive("length [m]", length)?;
-        let mut b = match (poisson, shear_modulus) {
-            (Some(_), Some(_)) => {
-                return Err(
-                    Error::input("poisson / shear_modulus", "give one of them, not both").into(),
-                )
-            }
-            (p, None) => Body::new(
-                length,
-                section.inner,
-                youngs_modulus,
-                p.unwrap_or(0.5),
-                density,
-            )?,
-            (None, Some(g)) => {
-                let mut b = Body::new(length, section.inner, youngs_modulus, 0.0, density)?;
-                b.shear_modulus = g;
-                b
-            }
-        };
+        let shear = Shear::from_options(poisson.map(|r| r.0), shear_modulus.map(|r| r.0))?;
+        let mut b = Body::with_shear(length.0, section.inner, youngs_modulus.0, shear, density.0)?;
         let v = |name: &str, o: &Option<Bound<'_, PyAny>>, d: [f64; 3]| {
             vec3_arg(name, o.as_ref(), d).map(Vector3::from)
         };
-        b.shear_coefficient = shear_coefficient;
+        b.shear_coefficient = shear_coefficient.0;
         b.nu_star = v("nu_star", &nu_star, [0.0, 0.0, 1.0])?;
         b.omega_star = v("omega_star", &omega_star, [0.0; 3])?;
         b.gravity = v("gravity", &gravity, [0.0; 3])?;
@@ -124,8 +78,7 @@ impl PyBody {
         b.tip_force = v("tip_force", &tip_force, [0.0; 3])?;
         b.tip_moment = v("tip_moment", &tip_moment, [0.0; 3])?;
         b.validate()?;
-        check_derived(&b)?;
-        if let Some(msg) = crate::validate::body_looks_like_mm(&b) {
+        if let Some(msg) = b.units_warning() {
             crate::python::warn_units(py, msg)?;
         }
         Ok(PyBody { inner: b })

@@ -7,8 +7,6 @@ mod robot;
 mod section;
 mod solution;
 
-use std::sync::Arc;
-
 use pyo3::prelude::*;
 
 use crate::error::Error;
@@ -35,7 +33,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 }
 /// The Rust fixture `name` of `src/experiments.rs` (`"fig6_circle"`,
 /// `"fig6_square"`), standing upright under gravity if `gravity`. For tests
-/// that check the Python fixtures of `tcarod.experiments` against the Rust
+/// that check the Python fixtures of `tcarod.paper` against the Rust
 /// ones; not public API.
 #[pyfunction]
 #[pyo3(name = "_experiment_robot")]
@@ -51,17 +49,5 @@ fn experiment_robot(name: &str, gravity: bool) -> PyResult<PyRobot> {
             .into())
         }
     };
-    let body = PyBody {
-        inner: robot.body.clone(),
-    };
-    let actuators = robot
-        .actuators
-        .iter()
-        .map(|a| PyActuator::plain(a.clone(), true))
-        .collect();
-    Ok(PyRobot {
-        inner: Arc::new(robot),
-        body,
-        actuators,
-    })
+    Ok(crate::python::fixtures::py_robot(robot))
 }

@@ -8,7 +8,7 @@ use super::actuator::PyActuator;
 use super::body::{body_repr, PyBody};
 use super::solution::PySolution;
 use crate::error::Error;
-use crate::python::args::{budget_options, check_ambient, solve_options};
+use crate::python::args::{budget_options, solve_options};
 use crate::python::to_py::{hash_by_text, positional_args, NewArgs};
 use crate::python::{reals, Real, MAX_SEQUENCE};
 use crate::rod::{Actuator, Robot};
@@ -39,39 +39,7 @@ impl PyRobot {
             None => Vec::new(),
             Some(seq) => actuator_list(&seq)?,
         };
-        let len = body.inner.length;
-        let mut acts: Vec<Actuator> = actuators
-            .iter()
-            .map(|a| {
-                let mut x = a.inner.clone();
-                if x.s_end.is_infinite() {
-                    x.s_end = len;
-                }
-                x
-            })
-            .collect();
-        // anchors first (the core's rules), then geometry and pre-tension
-        Robot::new(body.inner.clone(), acts.clone())?;
-        for (i, (a, x)) in actuators.iter().zip(acts.iter_mut()).enumerate() {
-            let name = format!("actuators[{i}]");
-            crate::validate::routing_in_section(
-                &body.inner.section,
-                &x.routing,
-                &format!("{name}.routing"),
-            )?;
-            if let Some(t) = &a.tca {
-                crate::validate::tca_fits_span(t.inner.coiled_length(), x, &format!("{name}.tca"))?;
-                if let Some(f) = a.pretension {
-                    let stretch = t.inner.displacement(f, t.inner.material().t_ref())?;
-                    x.length_ratio = Some(crate::validate::pretension_length_ratio(
-                        &body.inner,
-                        x,
-                        stretch,
-                        &format!("{name}.pretension_n"),
-                    )?);
-                }
-            }
-        }
+        let acts: Vec<Actuator> = actuators.iter().map(|a| a.inner.clone()).collect();
         let robot = Robot::new(body.inner.clone(), acts)?;
         Ok(PyRobot {
             inner: Arc::new(robot),
@@ -138,7 +106,7 @@ impl PyRobot {
             policy = crate::stability::Policy::Require;
         }
         let q = reals("inputs", &inputs, None)?;
-        check_ambient(&this.inner, &q)?;
+        this.inner.check_inputs(&q)?;
         let warm = warm_start.map(|w| w.inner.clone());
         crate::python::stability::solve_policy(py, slf, &q, &opts, warm, policy)
     }
@@ -169,18 +137,15 @@ impl PyRobot {
         })?;
         let mut rows: Vec<Vec<f64>> = Vec::new();
         for (k, row) in rows_iter.enumerate() {
-            if k >= crate::validate::MAX_BATCH_ROWS {
+            if k >= crate::limits::MAX_BATCH_ROWS {
                 return Err(Error::input(
                     "inputs",
-                    format!(
-                        "more than {} rows per call",
-                        crate::validate::MAX_BATCH_ROWS
-                    ),
+                    format!("more than {} rows per call", crate::limits::MAX_BATCH_ROWS),
                 )
                 .into());
             }
             let row = reals(&format!("inputs[{k}]"), &row?, None)?;
-            check_ambient(&slf.get().inner, &row)?;
+            slf.get().inner.check_inputs(&row)?;
             rows.push(row);
         }
         crate::python::stability::sweep_policy(py, slf, &rows, &opts, policy)

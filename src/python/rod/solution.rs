@@ -309,7 +309,7 @@ impl PySolution {
     }
     /// True if this equilibrium is stable: a strict local minimum of the
     /// potential energy (Till and Rucker's criterion, extended to the
-    /// actuators and dead loads; see `tcarod.stability`). Computed by the
+    /// actuators and dead loads; see `tcarod.models.stability`). Computed by the
     /// solve (default policy `"report"`) or on first access, from one
     /// tangent integration (GIL released), and cached. A
     /// `BlockedResult.solution` carries the verdict with the tip held on its
@@ -439,7 +439,7 @@ pub(crate) fn restore_solution(
     if inputs.len() != na
         || unknowns.len() != 6 + na
         || steps == 0
-        || steps > crate::validate::MAX_STEPS
+        || steps > crate::limits::MAX_STEPS
     {
         return Err(Error::input("state", "does not belong to this robot").into());
     }

@@ -265,7 +265,7 @@ fn wrap(
 
 /// Follow the equilibria of `robot` in one scalar `parameter` from `start`
 /// to `end` by pseudo-arclength continuation, through folds, with the
-/// stability of every point (see `tcarod.stability.follow_branch`).
+/// stability of every point (see `tcarod.models.stability.follow_branch`).
 /// `parameter`: `"inputs"` (the inputs of `actuators`, default all: a
 /// temperature [C], tension [N] or pull [m]), `"gravity_scale"` or
 /// `"tip_load_scale"` [-]. `inputs`: the other actuators' inputs (default

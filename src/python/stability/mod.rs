@@ -23,7 +23,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     policy::register(m)
 }
 
-/// Stability verdict of one equilibrium (see `tcarod.stability`).
+/// Stability verdict of one equilibrium (see `tcarod.models.stability`).
 #[pyclass(name = "Stability", module = "tcarod._core", frozen)]
 pub struct PyStability {
     inner: Stability,

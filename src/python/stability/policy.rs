@@ -140,7 +140,7 @@ fn checked(mut c: Checked) -> Result<Checked> {
     Ok(c)
 }
 
-/// `Robot.solve` under `policy` (see `tcarod.stability`).
+/// `Robot.solve` under `policy` (see `tcarod.models.stability`).
 pub(crate) fn solve_policy(
     py: Python<'_>,
     robot: &Bound<'_, PyRobot>,

@@ -34,8 +34,7 @@ from typing import Any, Final
 import numpy as np
 
 from .. import _core
-from ..stability import Branch, follow_branch, plot_branch
-from . import register
+from ..models.stability import Branch, follow_branch, plot_branch
 
 #: EcoFlex 10 (Section V): density [kg/m^3], Young's modulus [Pa], Poisson ratio [-].
 ECOFLEX10: Final[tuple[float, float, float]] = (1040.0, 37.8e3, 0.5)
@@ -198,8 +197,3 @@ def predict_buckling() -> BucklingResult:
     planar = follow_branch(heavy, "inputs", 25.0, 160.0, step=0.02, max_step=0.05)
     sweep = follow_branch(heavy, "inputs", 25.0, 160.0, step=0.02, max_step=0.05, warm_start=start, stable_only=True)
     return BucklingResult(q1, column_branch, column_sweep, HEAVY_FACTOR, planar, sweep)
-
-
-@register("buckling")
-def _buckling() -> BucklingResult:
-    return predict_buckling()

@@ -1,7 +1,7 @@
-"""The paper's soft bodies (Section V) as :class:`tcarod.Robot` builders.
-
-The same designs as ``src/experiments.rs`` (shared by the Rust tests and
-benches): EcoFlex 10 bodies (``psi = 1040 kg/m^3``, ``E_B = 37.8 kPa``,
+"""The paper's soft bodies (Section V) as :class:`tcarod.Robot` builders,
+presented from the core: the designs and constants are defined once, in
+``src/experiments.rs`` (shared by the Rust tests and benches), and reach
+Python through ``tcarod._core.fixture_*``: EcoFlex 10 bodies (``psi = 1040 kg/m^3``, ``E_B = 37.8 kPa``,
 Poisson 0.5) of square section, 10 mm side, with a U-shaped extension TCA
 whose two legs run straight at body ``x = +3 mm``, ``y = +-2.5 mm`` (the leg
 spacing is not printed in the paper; any symmetric spacing gives the same
@@ -32,12 +32,14 @@ finger hanging down (the gripper of Section V-D).
 from __future__ import annotations
 
 import math
-from typing import Final, Literal, Sequence, get_args
+from typing import Any, Final, Literal, Sequence, get_args
 
-from .rod import Actuator, Body, Robot, Routing, Section
-from .tca import Material, Tca
+from .. import _core
+from ..rod import Robot
+from ..tca import Material, Tca
 
 __all__ = [
+    "PAPER_CONSTANTS",
     "DEFAULT_TURNS_READING",
     "MATERIAL_PRESETS",
     "TURNS_ANCHOR_LENGTH_M",
@@ -61,27 +63,29 @@ __all__ = [
     "square_manipulator",
 ]
 
+#: The paper's constants, defined once in the core (``src/experiments.rs``), SI units.
+PAPER_CONSTANTS: Final[dict[str, Any]] = _core.fixture_constants()
 #: EcoFlex 10 (Section V): density [kg/m^3], Young's modulus [Pa], Poisson ratio [-].
-ECOFLEX10_DENSITY_KG_PER_M3: Final[float] = 1040.0
-ECOFLEX10_YOUNGS_MODULUS_PA: Final[float] = 37.8e3
-ECOFLEX10_POISSON: Final[float] = 0.5
+ECOFLEX10_DENSITY_KG_PER_M3: Final[float] = PAPER_CONSTANTS["ecoflex10_density"]
+ECOFLEX10_YOUNGS_MODULUS_PA: Final[float] = PAPER_CONSTANTS["ecoflex10_youngs_modulus"]
+ECOFLEX10_POISSON: Final[float] = PAPER_CONSTANTS["ecoflex10_poisson"]
 #: Standard gravity [m/s^2].
-GRAVITY_M_PER_S2: Final[float] = 9.81
+GRAVITY_M_PER_S2: Final[float] = PAPER_CONSTANTS["gravity"]
 #: Gravity [m/s^2] in the body-aligned frame for an upright body / a hanging finger.
 UPRIGHT: Final[tuple[float, float, float]] = (0.0, 0.0, -GRAVITY_M_PER_S2)
 HANGING: Final[tuple[float, float, float]] = (0.0, 0.0, GRAVITY_M_PER_S2)
 #: Side of the square section [m].
-SIDE_M: Final[float] = 10e-3
+SIDE_M: Final[float] = PAPER_CONSTANTS["square_side"]
 #: Offset of the TCA legs from the neutral axis along body x [m] (Section V-B).
-TCA_OFFSET_M: Final[float] = 3e-3
+TCA_OFFSET_M: Final[float] = PAPER_CONSTANTS["tca_offset"]
 #: Half the spacing of the two legs along body y [m] (not printed in the paper).
-U_LEG_HALF_SPACING_M: Final[float] = 2.5e-3
+U_LEG_HALF_SPACING_M: Final[float] = PAPER_CONSTANTS["u_leg_half_spacing"]
 #: The manipulators' TCA (Section V-B): coil diameter [m], pitch angle [rad], turns [-].
-TCA_COIL_DIAMETER_M: Final[float] = 1.7e-3
-TCA_PITCH_ANGLE_RAD: Final[float] = math.radians(15.0)
-TCA_TURNS: Final[float] = 76.4
+TCA_COIL_DIAMETER_M: Final[float] = PAPER_CONSTANTS["manipulator_coil_diameter"]
+TCA_PITCH_ANGLE_RAD: Final[float] = math.radians(PAPER_CONSTANTS["manipulator_pitch_deg"])
+TCA_TURNS: Final[float] = PAPER_CONSTANTS["manipulator_turns"]
 #: Coiled length [m] of the circle's single TCA, the anchor of the ``"per_length"`` reading.
-TURNS_ANCHOR_LENGTH_M: Final[float] = 0.040
+TURNS_ANCHOR_LENGTH_M: Final[float] = PAPER_CONSTANTS["turns_anchor_length"]
 
 TurnsReading = Literal["per_tca", "per_leg", "per_length"]
 #: The readings of the printed turns, default first (see the module docstring).
@@ -108,14 +112,8 @@ def material_preset(name: str) -> Material:
 
 def leg_turns(length_m: float, legs: int, reading: TurnsReading = DEFAULT_TURNS_READING) -> float:
     """Turns [-] of one leg of coiled length ``length_m`` [m] of a manipulator
-    TCA with ``legs`` legs (1 straight, 2 U-shaped) under ``reading``."""
-    if reading == "per_tca":
-        return TCA_TURNS / legs
-    if reading == "per_leg":
-        return TCA_TURNS
-    if reading == "per_length":
-        return TCA_TURNS * length_m / TURNS_ANCHOR_LENGTH_M
-    raise ValueError(f"invalid turns reading = {reading!r}: choose from {list(TURNS_READINGS)}")
+    TCA with ``legs`` legs (1 straight, 2 U-shaped) under ``reading`` (the core's rule)."""
+    return float(_core.fixture_leg_turns(length_m, legs, reading))
 
 
 def manipulator_tca(
@@ -152,18 +150,15 @@ def square_manipulator(
     ``gravity_m_per_s2``: gravity in the body-aligned frame (default
     :data:`UPRIGHT`; :data:`HANGING` for a finger hanging down; ``None`` for
     none). The other keywords replace one parameter for sensitivity studies.
-    Same design as ``square_manipulator`` in ``src/experiments.rs``.
+    Built by the core (``Manipulator::square`` in ``src/experiments.rs``).
     """
-    gravity = None if gravity_m_per_s2 is None else [float(g) for g in gravity_m_per_s2]
-    body = Body(
-        length_m,
-        Section.rectangle(SIDE_M, SIDE_M),
-        body_youngs_modulus_pa,
-        poisson=ECOFLEX10_POISSON,
-        density=ECOFLEX10_DENSITY_KG_PER_M3,
-        gravity=gravity,
+    return _core.fixture_manipulator(
+        "square",
+        length=length_m,
+        gravity=(0.0, 0.0, 0.0) if gravity_m_per_s2 is None else gravity_m_per_s2,
+        material=material,
+        youngs_modulus=body_youngs_modulus_pa,
+        tca_offset=tca_offset_m,
+        coil_diameter=coil_diameter_m,
+        turns_reading=turns_reading,
     )
-    turns = leg_turns(length_m, 2, turns_reading)
-    tca = manipulator_tca(length_m, turns=turns, coil_diameter_m=coil_diameter_m, material=material)
-    legs = [Actuator.tca(tca, Routing.straight(tca_offset_m, y)) for y in (U_LEG_HALF_SPACING_M, -U_LEG_HALF_SPACING_M)]
-    return Robot(body, legs)

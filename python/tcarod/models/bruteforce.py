@@ -28,9 +28,9 @@ from typing import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from . import _validate as V
-from ._optional import require
-from .rod import Robot, Solution
+from .. import _validate as V
+from .._optional import require
+from ..rod import Robot, Solution
 
 __all__ = ["BruteForceResult", "brute_force_blocked_temperature", "brute_force_tip_position"]
 

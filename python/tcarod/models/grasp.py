@@ -23,13 +23,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Final, Literal, Sequence
+from typing import Final, Literal, Sequence
 
-from .manipulators import DEFAULT_TURNS_READING, HANGING, TurnsReading, square_manipulator
-from .inverse import BlockedResult, blocked_force, blocked_temperature, blocked_temperature_direct
-from .rod import Robot
-from . import _validate as V
-from .tca import Material
+from .. import _core
+from .manipulators import DEFAULT_TURNS_READING, GRAVITY_M_PER_S2, PAPER_CONSTANTS, TurnsReading
+from ..inverse import BlockedResult, blocked_force, blocked_temperature, blocked_temperature_direct
+from ..rod import Robot
+from .. import _validate as V
+from ..tca import Material
 
 __all__ = [
     "FRICTION_COEFFICIENT",
@@ -47,17 +48,17 @@ __all__ = [
     "TABLE1_PAPER_PREDICTIONS_C",
 ]
 
-#: Length of each gripper finger [m] (Section V-D).
-TABLE1_FINGER_LENGTH_M: Final[float] = 0.020
+#: Length of each gripper finger [m] (Section V-D; from the core, as the rest but the measurements).
+TABLE1_FINGER_LENGTH_M: Final[float] = PAPER_CONSTANTS["table1_length"]
 #: Friction coefficient between VeroClear RGD810 and EcoFlex 10 [-] (Section V-D).
-FRICTION_COEFFICIENT: Final[float] = 1.1
+FRICTION_COEFFICIENT: Final[float] = PAPER_CONSTANTS["table1_mu"]
 #: Direction [-] (body-aligned frame) in which the fingertip presses on the object.
-GRASP_NORMAL: Final[tuple[float, float, float]] = (-1.0, 0.0, 0.0)
+GRASP_NORMAL: Final[tuple[float, float, float]] = tuple(PAPER_CONSTANTS["table1_normal"])
 #: Table I masses [kg], measured firm-grip temperatures [C] (oven steps of 5 C)
 #: and the paper's own model predictions [C] (Section V-D).
-TABLE1_MASSES_KG: Final[tuple[float, ...]] = (1e-3, 2e-3, 3e-3)
+TABLE1_MASSES_KG: Final[tuple[float, ...]] = tuple(PAPER_CONSTANTS["table1_masses"])
 TABLE1_EXPERIMENT_C: Final[tuple[float, ...]] = (95.0, 120.0, 135.0)
-TABLE1_PAPER_PREDICTIONS_C: Final[tuple[float, ...]] = (93.7, 114.8, 136.3)
+TABLE1_PAPER_PREDICTIONS_C: Final[tuple[float, ...]] = tuple(PAPER_CONSTANTS["table1_paper_predictions"])
 
 
 def table1_finger(
@@ -70,15 +71,15 @@ def table1_finger(
 ) -> Robot:
     """The Table I gripper finger (see the module docstring), hanging down.
     Keywords replace one design parameter (default: the paper's / the
-    documented default material; turns per :mod:`tcarod.manipulators`)."""
-    kw: dict[str, Any] = {"turns_reading": turns_reading}
-    if body_youngs_modulus_pa is not None:
-        kw["body_youngs_modulus_pa"] = body_youngs_modulus_pa
-    if tca_offset_m is not None:
-        kw["tca_offset_m"] = tca_offset_m
-    if coil_diameter_m is not None:
-        kw["coil_diameter_m"] = coil_diameter_m
-    return square_manipulator(TABLE1_FINGER_LENGTH_M, gravity_m_per_s2=HANGING, material=material, **kw)
+    documented default material; turns per :mod:`tcarod.models.manipulators`)."""
+    return _core.fixture_manipulator(
+        "table1_finger",
+        material=material,
+        youngs_modulus=body_youngs_modulus_pa,
+        tca_offset=tca_offset_m,
+        coil_diameter=coil_diameter_m,
+        turns_reading=turns_reading,
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,7 +111,7 @@ def grasp(
     finger: Robot | None = None,
     mu: float = FRICTION_COEFFICIENT,
     fingers: int = 2,
-    gravity: float = 9.81,
+    gravity: float = GRAVITY_M_PER_S2,
     *,
     normal: Sequence[float] = GRASP_NORMAL,
     groups: Sequence[int] | None = None,
@@ -184,7 +185,7 @@ def force_line(
     temperatures_c: Sequence[float],
     mu: float = FRICTION_COEFFICIENT,
     fingers: int = 2,
-    gravity: float = 9.81,
+    gravity: float = GRAVITY_M_PER_S2,
 ) -> tuple[float, float]:
     """Least-squares line through grip temperatures: the force per finger
     ``m g / (mu n)`` [N] against temperature [C]. Returns ``(slope [N/C],
@@ -206,9 +207,9 @@ def force_line(
 
 #: Default contact temperature [C] of the Table I fingers: the zero-force
 #: intercept of the paper's predictions, linear in the force per finger
-#: (:func:`force_line`; 72.33 C, as ``table1_contact_temperature()`` in
-#: ``src/experiments.rs``). The paper prints no gap between fingertip and object.
-TABLE1_CONTACT_TEMPERATURE_C: Final[float] = force_line(TABLE1_MASSES_KG, TABLE1_PAPER_PREDICTIONS_C)[1]
+#: (72.33 C, ``table1_contact_temperature()`` in ``src/experiments.rs``; the
+#: same line as :func:`force_line`). The paper prints no gap between fingertip and object.
+TABLE1_CONTACT_TEMPERATURE_C: Final[float] = PAPER_CONSTANTS["table1_contact_temperature"]
 
 
 def blocked_force_curve(
@@ -242,7 +243,7 @@ def grasp_temperature(
     finger: Robot | None = None,
     mu: float = FRICTION_COEFFICIENT,
     fingers: int = 2,
-    gravity: float = 9.81,
+    gravity: float = GRAVITY_M_PER_S2,
     *,
     normal: Sequence[float] = GRASP_NORMAL,
     groups: Sequence[int] | None = None,

@@ -17,11 +17,10 @@ from typing import Any, Sequence
 import numpy as np
 import numpy.typing as npt
 
-from . import _validate as V
-from ._core import ConvergenceError
-from ._optional import require
+from .. import _validate as V
+from .._core import ConvergenceError
 
-__all__ = ["Workspace", "plot_workspace", "snake_grid", "solve_rows", "workspace_map"]
+__all__ = ["Workspace", "snake_grid", "solve_rows", "workspace_map"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -148,40 +147,6 @@ def workspace_map(robot: Any, grid_c: Sequence[float] | FloatArray, steps: int =
 
 
 def _check_robot(robot: Any) -> None:
-    from .rod import Robot
+    from ..rod import Robot
 
     V.instance("robot", robot, Robot, "a tcarod.Robot")
-
-
-def plot_workspace(ws: Workspace, colour_by: str = "bending") -> Any:
-    """3-D scatter of the reachable tip positions [mm], coloured by the
-    bending angle [deg] (``colour_by="bending"``) or by the hottest input [C]
-    (``"max_temperature"``). Returns a matplotlib ``Figure`` (Agg, no display)."""
-    require("matplotlib")  # optional: the `plot` extra
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    V.instance("ws", ws, Workspace, "a Workspace")
-    if not isinstance(colour_by, str):
-        raise TypeError(f"colour_by must be a str, not {type(colour_by).__name__}")
-    ok = np.all(np.isfinite(ws.tip_positions_m), axis=1)
-    p = ws.tip_positions_m[ok] * 1e3
-    if colour_by == "bending":
-        c = np.degrees(ws.bending_angle_rad[ok])
-        label = "bending angle of the tip [deg]"
-    elif colour_by == "max_temperature":
-        c = ws.temperatures_c[ok].max(axis=1)
-        label = "hottest actuator [°C]"
-    else:
-        raise ValueError(f"colour_by = {colour_by!r}: use 'bending' or 'max_temperature'")
-    fig = Figure(figsize=(6.0, 5.0), layout="constrained")
-    FigureCanvasAgg(fig)
-    ax: Any = fig.add_subplot(projection="3d")
-    sc = ax.scatter(p[:, 0], p[:, 1], p[:, 2], c=c, cmap="viridis", s=14)
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    ax.set_zlabel("z [mm]")
-    n_in = ws.temperatures_c.shape[1]
-    ax.set_title(f"Reachable tip positions: {len(ws.grid_c)}^{n_in} = {ws.temperatures_c.shape[0]} input combinations")
-    fig.colorbar(sc, ax=ax, shrink=0.7, label=label)
-    return fig

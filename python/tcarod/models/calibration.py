@@ -43,9 +43,10 @@ from typing import Any, Final, Sequence
 import numpy as np
 import numpy.typing as npt
 
-from . import _validate as V
-from ._optional import require
-from .tca import Material, Tca
+from .. import _validate as V
+from .._optional import require
+from ..tca import Material, Tca
+from .manipulators import GRAVITY_M_PER_S2
 
 __all__ = ["PARAMETERS", "CalibrationResult", "TcaExperiment", "calibrate"]
 
@@ -72,7 +73,7 @@ class TcaExperiment:
     turns: float
     mass_kg: float
     load_share: float = 1.0
-    gravity_m_per_s2: float = 9.81
+    gravity_m_per_s2: float = GRAVITY_M_PER_S2
     chirality: str = "extension"
 
     def __post_init__(self) -> None:
@@ -169,6 +170,35 @@ def calibrate(
 
     mat = Material.silver_coated_nylon() if base is None else V.instance("base", base, Material, "a tcarod.Material")
     confidence = V.real("confidence", confidence, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+    exps, ts, ys = _data(experiment, temperatures_c, displacements_m)
+    y = np.concatenate(ys)
+    names = _fit_names(fit, y.size)
+    values = _initial_values(initial, mat)
+    scale = np.array([PARAMETERS[n] for n in names])
+    x0 = np.array([values[n] for n in names]) / scale
+
+    def params_of(x: FloatArray) -> dict[str, float]:
+        d = dict(values)
+        d.update({n: float(v) for n, v in zip(names, x * scale)})
+        return d
+
+    def residual(x: FloatArray) -> FloatArray:
+        try:
+            p_ = params_of(x)
+            return np.concatenate([e.predict(tk, mat, p_) for e, tk in zip(exps, ts)]) - y
+        except ValueError:  # e.g. a material with E_T <= 0 in range: far from the data
+            return np.full_like(y, 1.0)
+
+    # Unbounded: a bound at the start (friction 0) stalls the trust region,
+    # and the linearised interval assumes an interior optimum anyway.
+    sol: Any = optimize.least_squares(residual, x0, x_scale="jac", diff_step=1e-6)
+    return _result(sol, names, scale, y.size, confidence, stats)
+
+
+def _data(
+    experiment: Any, temperatures_c: Any, displacements_m: Any
+) -> tuple[list[TcaExperiment], list[FloatArray], list[FloatArray]]:
+    """The experiments and one 1-D temperature [C] and displacement [m] array each, checked."""
     if isinstance(experiment, TcaExperiment):
         exps: list[TcaExperiment] = [experiment]
         ts = [V.real_array("temperatures_c", temperatures_c, max_size=100_000, unit="C")]
@@ -193,8 +223,11 @@ def calibrate(
             raise ValueError(
                 f"experiment {k}: temperatures_c {tk.shape} and displacements_m {yk.shape} must be 1-D of one length"
             )
-    t = np.concatenate(ts)
-    y = np.concatenate(ys)
+    return exps, ts, ys
+
+
+def _fit_names(fit: Sequence[str], n_points: int) -> tuple[str, ...]:
+    """The names of the fitted parameters, checked against :data:`PARAMETERS` and the data size."""
     names = tuple(V.sequence("fit", fit, len(PARAMETERS) + 1))
     for n in names:
         if not isinstance(n, str):
@@ -205,8 +238,13 @@ def calibrate(
     if unknown or not names:
         raise ValueError(f"fit: unknown parameter(s) {unknown}; choose from {list(PARAMETERS)}")
     p = len(names)
-    if t.size < p + 1:
-        raise ValueError(f"need at least {p + 1} data points to fit {p} parameters, got {t.size}")
+    if n_points < p + 1:
+        raise ValueError(f"need at least {p + 1} data points to fit {p} parameters, got {n_points}")
+    return names
+
+
+def _initial_values(initial: dict[str, float] | None, mat: Material) -> dict[str, float]:
+    """Every parameter's starting (or fixed) value: the defaults, overridden by ``initial``."""
     values: dict[str, float] = {
         "youngs_modulus_slope_pa_per_c": mat.coefficients[1],
         "expansion_scale": 1.0,
@@ -219,26 +257,16 @@ def calibrate(
         if key not in PARAMETERS:
             raise ValueError(f"initial: unknown parameter {key!r}; choose from {list(PARAMETERS)}")
         values[key] = V.real(f"initial[{key!r}]", v)
-    scale = np.array([PARAMETERS[n] for n in names])
-    x0 = np.array([values[n] for n in names]) / scale
+    return values
 
-    def params_of(x: FloatArray) -> dict[str, float]:
-        d = dict(values)
-        d.update({n: float(v) for n, v in zip(names, x * scale)})
-        return d
 
-    def residual(x: FloatArray) -> FloatArray:
-        try:
-            p_ = params_of(x)
-            return np.concatenate([e.predict(tk, mat, p_) for e, tk in zip(exps, ts)]) - y
-        except ValueError:  # e.g. a material with E_T <= 0 in range: far from the data
-            return np.full_like(y, 1.0)
-
-    # Unbounded: a bound at the start (friction 0) stalls the trust region,
-    # and the linearised interval assumes an interior optimum anyway.
-    sol: Any = optimize.least_squares(residual, x0, x_scale="jac", diff_step=1e-6)
+def _result(
+    sol: Any, names: tuple[str, ...], scale: FloatArray, n_points: int, confidence: float, stats: Any
+) -> CalibrationResult:
+    """Estimates, standard errors and ``confidence`` intervals from the linearised least-squares fit."""
+    p = len(names)
     j = np.asarray(sol.jac, dtype=np.float64)
-    dof = max(t.size - p, 1)
+    dof = max(n_points - p, 1)
     ssr = float(np.sum(np.asarray(sol.fun) ** 2))
     s2 = ssr / dof
     jtj_inv = np.linalg.pinv(j.T @ j)
@@ -260,7 +288,7 @@ def calibrate(
         ci_high=est + q * se,
         covariance=cov,
         residual_std_m=math.sqrt(s2),
-        n_points=int(t.size),
+        n_points=int(n_points),
         success=bool(sol.success),
         message=str(sol.message),
     )

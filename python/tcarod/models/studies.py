@@ -12,13 +12,13 @@ default material (README, NOTES.md section 5) the same model predicts about
    and mass: ``dT/dln p`` [C per unit relative change] (central difference)
    and the elasticity of the temperature *rise* above contact,
    ``d ln(T - T_contact) / d ln p`` [-] (the rise has a meaningful zero).
-2. :mod:`tcarod.identification`: an *identification*, not a default: at
+2. :mod:`tcarod.models.identification`: an *identification*, not a default: at
    most two parameters (contact temperature, one ``rho`` scale) fitted to
    the paper's predictions and, separately, to the experiment, with
    leave-one-out errors and plausibility checks.
 
 The sensitivity uses the default finger (turns read per TCA) touching the
-object at :data:`tcarod.grasp.TABLE1_CONTACT_TEMPERATURE_C`, and the direct
+object at :data:`tcarod.models.grasp.TABLE1_CONTACT_TEMPERATURE_C`, and the direct
 blocked-tip solve (:func:`tcarod.inverse.blocked_temperature_direct`,
 falling back on the incremental eq-43 method if Newton fails); the two agree
 to ~1e-9 C. Nothing here changes a default.
@@ -31,7 +31,7 @@ from typing import Any, Final, Sequence
 
 import numpy as np
 
-from ._core import ConvergenceError
+from .._core import ConvergenceError
 from .manipulators import TCA_COIL_DIAMETER_M, TCA_OFFSET_M, ECOFLEX10_YOUNGS_MODULUS_PA
 from .grasp import (
     TABLE1_CONTACT_TEMPERATURE_C,
@@ -40,9 +40,9 @@ from .grasp import (
     grasp_temperature,
     table1_finger,
 )
-from .rod import Robot
-from . import _validate as V
-from .tca import Material
+from ..rod import Robot
+from .. import _validate as V
+from ..tca import Material
 
 __all__ = [
     "PAPER_TABLE1_PREDICTIONS_C",
@@ -55,7 +55,7 @@ __all__ = [
     "table1_sensitivity",
 ]
 
-#: The paper's own Table I predictions [C] (alias of :data:`tcarod.grasp.TABLE1_PAPER_PREDICTIONS_C`).
+#: The paper's own Table I predictions [C] (alias of :data:`tcarod.models.grasp.TABLE1_PAPER_PREDICTIONS_C`).
 PAPER_TABLE1_PREDICTIONS_C: Final[tuple[float, ...]] = TABLE1_PAPER_PREDICTIONS_C
 
 

@@ -1,24 +1,9 @@
-"""The paper's experiments (Section V) as typed fixtures, and their predictions.
+"""Fig. 5 of the paper (Section V-A): extension TCAs under dead weights.
 
-Each experiment is a frozen dataclass holding what the paper specifies: the
-actuators, the loads, the temperatures, and the published data (``None`` where
-the paper prints none -- numbers are never invented). Its ``predict()`` runs the
-model and returns a result object with the :class:`ExperimentResult` interface
+The fixture :data:`FIG5` holds what the paper specifies (TCAs, loads,
+temperatures; no published numbers, NOTES.md 4); :func:`predict_fig5` runs the
+TCA law on one folded half of each TCA and returns a :class:`Fig5Result`
 (``table()``, ``to_json()``, ``plot(path)``).
-
-:data:`REGISTRY` maps the names used by ``tcarod reproduce NAME`` to
-zero-argument callables returning such results. A new experiment (Fig. 6,
-Fig. 8, Table I) slots in beside Fig. 5 by defining its fixture and result
-classes and registering a callable::
-
-    @register("fig6")
-    def _fig6() -> Fig6Result:
-        return FIG6.predict()
-
-Units: SI inside (m, N, kg), temperatures in degrees C; every name says its
-unit. Sign convention (paper eq 2): force > 0 is tension (pulls the TCA
-longer), displacement > 0 is extension; a compressive dead weight is a
-negative force.
 """
 
 from __future__ import annotations
@@ -27,164 +12,15 @@ import os
 import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Final, Literal, Protocol, TypeVar
+from typing import Any, Final, Literal
 
 import numpy as np
-import numpy.typing as npt
 
+from .. import _core
 from ..tca import Material, Tca
+from ._common import GRAVITY_M_PER_S2, DeadWeight, FloatArray, PublishedCurve, TcaSpec, onset_temperature_c
 
-__all__ = [
-    "FIG5",
-    "GRAVITY_M_PER_S2",
-    "REGISTRY",
-    "DeadWeight",
-    "ExperimentResult",
-    "Fig5Case",
-    "Fig5Curve",
-    "Fig5Experiment",
-    "Fig5Result",
-    "PublishedCurve",
-    "TcaSpec",
-    "onset_temperature_c",
-    "predict_fig5",
-    "register",
-]
-
-FloatArray = npt.NDArray[np.float64]
-
-#: Acceleration of gravity [m/s^2] used to turn the paper's masses into forces.
-GRAVITY_M_PER_S2: Final[float] = 9.81
-
-
-# --------------------------------------------------------------------------
-# Registry
-# --------------------------------------------------------------------------
-
-
-class ExperimentResult(Protocol):
-    """What ``tcarod reproduce`` needs from an experiment's prediction."""
-
-    @property
-    def name(self) -> str:
-        """Registry name, e.g. ``"fig5"``."""
-        ...
-
-    def table(self) -> str:
-        """Human-readable table of the prediction (units in the headers)."""
-        ...
-
-    def to_json(self) -> dict[str, Any]:
-        """JSON-serialisable dict; every key names its unit (``temperature_c``, ``displacement_m``)."""
-        ...
-
-    def plot(self, path: str | os.PathLike[str]) -> Path:
-        """Write the figure as PNG to ``path``; return the path written."""
-        ...
-
-
-#: Experiment name -> zero-argument callable returning its predicted result.
-REGISTRY: dict[str, Callable[[], ExperimentResult]] = {}
-
-_F = TypeVar("_F", bound=Callable[[], ExperimentResult])
-
-
-def register(name: str) -> Callable[[_F], _F]:
-    """Decorator adding a zero-argument result factory to :data:`REGISTRY` as ``name``."""
-
-    def deco(fn: _F) -> _F:
-        if name in REGISTRY:
-            raise ValueError(f"experiment {name!r} is already registered")
-        REGISTRY[name] = fn
-        return fn
-
-    return deco
-
-
-# --------------------------------------------------------------------------
-# Building blocks shared by experiments
-# --------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class TcaSpec:
-    """A TCA as fabricated, described by what a user measures.
-
-    Lengths in m; ``turns`` is the inserted twist ``N`` [turns].
-    """
-
-    label: str
-    threads: int
-    fibre_length_m: float
-    coiled_length_m: float
-    coil_diameter_m: float
-    turns: float
-    chirality: Literal["extension", "contraction"] = "extension"
-
-    def build(self, material: Material | None = None) -> Tca:
-        """The whole TCA (default material: :meth:`Material.silver_coated_nylon`)."""
-        return Tca(
-            self.fibre_length_m,
-            self.coiled_length_m,
-            self.coil_diameter_m,
-            self.turns,
-            self.chirality,
-            material,
-        )
-
-
-@dataclass(frozen=True)
-class DeadWeight:
-    """A hanging mass [kg] plus the paper's friction-equivalent mass [kg]."""
-
-    mass_kg: float
-    friction_equivalent_kg: float = 0.0
-
-    @property
-    def effective_mass_kg(self) -> float:
-        """Mass [kg] whose weight the actuator carries: hanging mass + friction equivalent."""
-        return self.mass_kg + self.friction_equivalent_kg
-
-    @property
-    def weight_n(self) -> float:
-        """Weight [N] of the effective mass, ``effective_mass_kg * GRAVITY_M_PER_S2`` (> 0)."""
-        return self.effective_mass_kg * GRAVITY_M_PER_S2
-
-    @property
-    def label(self) -> str:
-        """E.g. ``"5 g"`` (the hanging mass, as the paper labels its curves)."""
-        return f"{self.mass_kg * 1e3:g} g"
-
-
-@dataclass(frozen=True)
-class PublishedCurve:
-    """Digitised experimental data of one curve: mean and standard deviation
-    of the measured quantity [SI unit of the experiment] at each temperature [C]."""
-
-    label: str
-    temperatures_c: tuple[float, ...]
-    mean: tuple[float, ...]
-    std: tuple[float, ...]
-
-
-def onset_temperature_c(tca: Tca, force_n: float) -> float | None:
-    """Temperature [C] at which the coils of ``tca`` separate under ``force_n``
-    [N] (< 0: compressive), or ``None`` if that does not happen inside the
-    material's temperature range (never opens, or already open at its lowest
-    temperature). Computed with :meth:`Tca.onset_temperature`."""
-    material = tca.material
-    t_lo, t_hi = material.t_min, material.t_max
-    if tca.displacement(force_n, t_hi) == 0.0:
-        return None  # coils still touching at the top of the range
-    if tca.displacement(force_n, t_lo) > 0.0:
-        return None  # already open at the bottom of the range: no onset inside it
-    # Coils closed at t_lo and open at t_hi: the onset is bracketed.
-    return tca.onset_temperature(force_n)
-
-
-# --------------------------------------------------------------------------
-# Fig. 5: extension TCAs under dead weights (Section V-A)
-# --------------------------------------------------------------------------
+__all__ = ["FIG5", "Fig5Case", "Fig5Curve", "Fig5Experiment", "Fig5Result", "predict_fig5"]
 
 _FIG5_LOAD_SHARING: Final[str] = (
     "The TCA is folded into two halves (55 mm coiled each) standing side by side on "
@@ -222,16 +58,8 @@ class Fig5Case:
         return -0.5 * self.load.weight_n
 
     def half_tca(self, material: Material | None = None) -> Tca:
-        """One folded half, ``Tca(l/2, L/2, D, N/2)``."""
-        s = self.tca
-        return Tca(
-            0.5 * s.fibre_length_m,
-            0.5 * s.coiled_length_m,
-            s.coil_diameter_m,
-            0.5 * s.turns,
-            s.chirality,
-            material,
-        )
+        """One folded half, ``Tca(l/2, L/2, D, N/2)``: :meth:`Tca.segment` of the whole TCA at 0.5."""
+        return self.tca.build(material).segment(0.5)
 
 
 @dataclass(frozen=True)
@@ -262,28 +90,17 @@ class Fig5Experiment:
         return predict_fig5(self, material)
 
 
+def _paper_tca(threads: Literal[3, 4]) -> TcaSpec:
+    """The Fig. 5 TCA of ``threads`` threads as the core defines it (``fig5_tca`` in ``src/experiments.rs``)."""
+    t = _core.fixture_fig5_tca(threads)
+    return TcaSpec(f"{threads} threads", threads, t.fibre_length, t.coiled_length, t.coil_diameter, t.turns)
+
+
 #: The paper's Fig. 5 experiment (Section V-A; ``l`` and ``L`` un-swapped per
-#: NOTES.md 1: coiled length ``L = 110 mm``, fibre length ``l = 497 / 471 mm``).
-#: Friction equivalents 2.5 g (5 g case) and 5 g (10 g case).
+#: NOTES.md 1: coiled length ``L = 110 mm``, fibre length ``l = 497 / 471 mm``;
+#: the TCAs from the core). Friction equivalents 2.5 g (5 g case) and 5 g (10 g case).
 FIG5: Final[Fig5Experiment] = Fig5Experiment(
-    tcas=(
-        TcaSpec(
-            label="3 threads",
-            threads=3,
-            fibre_length_m=0.497,
-            coiled_length_m=0.110,
-            coil_diameter_m=2.0e-3,
-            turns=300.0,
-        ),
-        TcaSpec(
-            label="4 threads",
-            threads=4,
-            fibre_length_m=0.471,
-            coiled_length_m=0.110,
-            coil_diameter_m=2.13e-3,
-            turns=259.0,
-        ),
-    ),
+    tcas=(_paper_tca(3), _paper_tca(4)),
     loads=(
         DeadWeight(mass_kg=5e-3, friction_equivalent_kg=2.5e-3),
         DeadWeight(mass_kg=10e-3, friction_equivalent_kg=5e-3),
@@ -455,14 +272,3 @@ def predict_fig5(experiment: Fig5Experiment = FIG5, material: Material | None = 
             )
         )
     return Fig5Result(experiment=experiment, curves=tuple(curves))
-
-
-@register("fig5")
-def _fig5() -> Fig5Result:
-    return FIG5.predict()
-
-
-# Further experiments live in their own modules and register themselves on
-# import. Keep this import list at the bottom: the modules use `register`.
-# (One module per experiment so that they can be developed independently.)
-from . import _extra  # noqa: E402,F401

@@ -1,5 +1,6 @@
-"""Voltage to temperature: a lumped electro-thermal model of a Joule-heated TCA,
-and quasi-static shape trajectories of a robot driven by voltages.
+"""Voltage to temperature: a lumped electro-thermal model of a Joule-heated TCA.
+Robots driven by voltages (steady states, quasi-static shape trajectories) are
+in :mod:`tcarod.models.trajectory`; the plots in :mod:`tcarod.plotting`.
 
 Model (Sun & Zhao, T-RO 2022 code, ``thermal_model.m``; NOTES.md section 5)::
 
@@ -39,16 +40,13 @@ from __future__ import annotations
 
 import math
 import numbers
-import os
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any, Callable, Final, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
 
-from . import _validate as V
-from ._optional import require
+from .. import _validate as V
 
 __all__ = [
     "DENSITY_KG_PER_M3",
@@ -56,16 +54,9 @@ __all__ = [
     "SPECIFIC_HEAT_J_PER_KGK",
     "THREAD_RADIUS_M",
     "LinearResistance",
-    "ShapeTrajectory",
     "TemperatureTrajectory",
     "ThermalModel",
     "VoltageProfile",
-    "plot_shape_trajectory",
-    "plot_step_response",
-    "save_trajectory_frames",
-    "quasi_static_trajectory",
-    "solve_with_voltages",
-    "steady_temperatures",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -421,227 +412,3 @@ class ThermalModel:
         volts = np.array([profile(float(t)) for t in t_out])
         power = np.array([self.power_w(v, float(tc), strain) for v, tc in zip(volts, out)])
         return TemperatureTrajectory(t_out, out, volts, power, self.t_max_c, method)
-
-
-# --------------------------------------------------------------------------
-# Robots driven by voltages
-# --------------------------------------------------------------------------
-
-
-def steady_temperatures(models: Sequence[ThermalModel], voltages_v: Sequence[float]) -> list[float]:
-    """Steady temperature [C] of each actuator under its voltage [V]."""
-    models = _models(models)
-    voltages_v = V.sequence("voltages_v", voltages_v, V.MAX_SEGMENTS)
-    if len(models) != len(voltages_v):
-        raise ValueError(f"voltages_v: expected {len(models)} values (one per thermal model), got {len(voltages_v)}")
-    return [m.steady_temperature(v) for m, v in zip(models, voltages_v)]
-
-
-def solve_with_voltages(
-    robot: Any, models: Sequence[ThermalModel], voltages_v: Sequence[float], **solve_kwargs: Any
-) -> Any:
-    """Forward solution of ``robot`` with each actuator at the steady
-    temperature of its voltage [V] (one :class:`ThermalModel` per actuator)."""
-    _robot(robot)
-    models = _models(models)
-    if len(models) != len(robot.actuators):
-        raise ValueError(f"models: expected {len(robot.actuators)} (one per actuator), got {len(models)}")
-    return robot.solve(steady_temperatures(models, voltages_v), **solve_kwargs)
-
-
-@dataclass(frozen=True, eq=False)
-class ShapeTrajectory:
-    """Quasi-static shapes along a heating transient: at each ``time_s`` [s],
-    the actuator temperatures [C] (``(n_t, n_actuators)``), the tip position [m]
-    (``(n_t, 3)``) and the forward solution."""
-
-    time_s: FloatArray
-    temperatures_c: FloatArray
-    tip_positions_m: FloatArray
-    solutions: list[Any]
-
-
-def quasi_static_trajectory(
-    robot: Any,
-    models: Sequence[ThermalModel],
-    profiles: Sequence[VoltageProfile],
-    times_s: Sequence[float] | FloatArray,
-    steps: int = 100,
-) -> ShapeTrajectory:
-    """Temperatures from each actuator's voltage profile, then the quasi-static
-    shape at every time (heating takes seconds, the body settles in far less),
-    each solve warm-started from the previous one.
-
-    With constant or temperature-dependent resistance the temperature
-    trajectories are computed first (:meth:`ThermalModel.transient`). If a
-    resistance depends on strain, heating and mechanics are coupled: between
-    output times the temperatures advance by RK4 with each TCA's strain
-    (elongation / coiled length) frozen at the last solved shape.
-
-    Raises ``ValueError`` naming the time [s] at which a temperature first
-    exceeds ``t_max`` (the mechanics is not defined there).
-    """
-    _robot(robot)
-    models = _models(models)
-    profiles = [
-        V.instance("profiles", p, VoltageProfile, "a sequence of VoltageProfile")
-        for p in V.sequence("profiles", profiles, V.MAX_SEGMENTS)
-    ]
-    steps = V.integer("steps", steps, 1, 100_000)
-    n = len(robot.actuators)
-    if len(models) != n or len(profiles) != n:
-        raise ValueError(
-            f"models and profiles: expected {n} each (one per actuator), got {len(models)} and {len(profiles)}"
-        )
-    t = V.real_array("times_s", times_s, ndim=1, max_size=10_000, unit="s")
-    coupled = any(not _temperature_only(m) for m in models)
-    temps = np.empty((t.size, n))
-    if not coupled:
-        for i, (m, p) in enumerate(zip(models, profiles)):
-            temps[:, i] = m.transient(p, t).temperature_c
-    over = (
-        np.nonzero(np.any(temps > np.array([m.t_max_c for m in models]), axis=1))[0]
-        if not coupled
-        else np.array([], int)
-    )
-    if over.size:
-        raise ValueError(f"the temperature exceeds t_max at t = {t[over[0]]:.3f} s: lower the voltage")
-    coiled = [_coiled_length(a) for a in robot.actuators]
-    sols: list[Any] = []
-    tips = np.empty((t.size, 3))
-    state = [m.ambient_c for m in models]
-    for k in range(t.size):
-        if coupled:
-            if k == 0:
-                state = [m.transient(p, t[:1]).temperature_c[0] for m, p in zip(models, profiles)]
-            else:
-                strains = [float(e) / c for e, c in zip(sols[-1].elongations, coiled)]
-                state = [
-                    float(
-                        m.transient(_shifted(p, t[k - 1]), [t[k - 1], t[k]], initial_c=s0, strain=e).temperature_c[-1]
-                    )
-                    for m, p, s0, e in zip(models, profiles, state, strains)
-                ]
-            for m, s0 in zip(models, state):
-                if s0 > m.t_max_c:
-                    raise ValueError(f"the temperature exceeds t_max at t = {t[k]:.3f} s: lower the voltage")
-            temps[k] = state
-        sol = robot.solve([float(x) for x in temps[k]], steps=steps, warm_start=sols[-1] if sols else None)
-        sols.append(sol)
-        tips[k] = np.asarray(sol.tip_position, dtype=np.float64)
-    return ShapeTrajectory(t, temps, tips, sols)
-
-
-def _robot(robot: Any) -> Any:
-    from .rod import Robot
-
-    return V.instance("robot", robot, Robot, "a tcarod.Robot")
-
-
-def _models(models: Any) -> list[ThermalModel]:
-    return [
-        V.instance("models", m, ThermalModel, "a sequence of ThermalModel")
-        for m in V.sequence("models", models, V.MAX_SEGMENTS)
-    ]
-
-
-def _temperature_only(m: ThermalModel) -> bool:
-    r = m.resistance
-    return isinstance(r, (int, float)) or (isinstance(r, LinearResistance) and r.strain_coefficient == 0.0)
-
-
-def _coiled_length(actuator: Any) -> float:
-    tca = actuator.tca_model
-    return float(tca.coiled_length) if tca is not None else 1.0
-
-
-def _shifted(p: VoltageProfile, start: float) -> VoltageProfile:
-    """The profile restricted to ``t >= start`` (a new first knot at ``start``)."""
-    times = [start] + [s for s in p.times_s if s > start]
-    return VoltageProfile(tuple(times), tuple(p(s) for s in times))
-
-
-# --------------------------------------------------------------------------
-# Plots
-# --------------------------------------------------------------------------
-
-
-def plot_step_response(model: ThermalModel, voltage_v: float, duration_s: float | None = None) -> Any:
-    """Temperature [C] after a voltage step ``voltage_v`` [V] at t = 0, with the
-    steady state and the time constant marked. Returns a matplotlib ``Figure``."""
-    require("matplotlib")  # optional: the `plot` extra
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    V.instance("model", model, ThermalModel, "a ThermalModel")
-    voltage_v = V.real("voltage_v", voltage_v, unit="V")
-    tau = model.time_constant_s
-    dur = 5.0 * tau if duration_s is None else V.positive("duration_s", duration_s, "s")
-    t = np.linspace(0.0, dur, 400)
-    traj = model.transient(VoltageProfile.step(voltage_v), t)
-    fig = Figure(figsize=(5.0, 3.4), layout="constrained")
-    FigureCanvasAgg(fig)
-    ax = fig.subplots()
-    ax.plot(t, traj.temperature_c, color="black", label=f"{voltage_v:g} V step ({traj.method})")
-    try:
-        tss = model.steady_temperature(voltage_v)
-        ax.axhline(tss, color="0.5", linestyle="--", label=f"steady state {tss:.1f} °C")
-        t63 = model.ambient_c + (1.0 - math.exp(-1.0)) * (tss - model.ambient_c)
-        ax.plot([tau], [t63], "o", color="black", markerfacecolor="white", label=f"tau = {tau:.2f} s")
-    except ValueError:
-        pass
-    ax.axhline(model.t_max_c, color="red", linewidth=0.8, label=f"t_max {model.t_max_c:g} °C")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("temperature [°C]")
-    ax.grid(True, linewidth=0.3)
-    ax.legend(fontsize="small")
-    return fig
-
-
-def plot_shape_trajectory(traj: ShapeTrajectory) -> Any:
-    """Tip position [mm] and actuator temperatures [C] against time [s]. Returns a ``Figure``."""
-    require("matplotlib")  # optional: the `plot` extra
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    V.instance("traj", traj, ShapeTrajectory, "a ShapeTrajectory")
-    fig = Figure(figsize=(6.0, 5.0), layout="constrained")
-    FigureCanvasAgg(fig)
-    ax1, ax2 = fig.subplots(2, 1, sharex=True)
-    for k, name in enumerate("xyz"):
-        ax1.plot(traj.time_s, traj.tip_positions_m[:, k] * 1e3, label=f"tip {name}")
-    ax1.set_ylabel("tip position [mm]")
-    ax1.grid(True, linewidth=0.3)
-    ax1.legend(fontsize="small")
-    for i in range(traj.temperatures_c.shape[1]):
-        ax2.plot(traj.time_s, traj.temperatures_c[:, i], label=f"actuator {i}")
-    ax2.set_xlabel("time [s]")
-    ax2.set_ylabel("temperature [°C]")
-    ax2.grid(True, linewidth=0.3)
-    ax2.legend(fontsize="small")
-    return fig
-
-
-def save_trajectory_frames(traj: ShapeTrajectory, directory: str | os.PathLike[str], every: int = 1) -> list[Path]:
-    """Animation frames: one PNG of the 3-D shape (:func:`tcarod.plotting.plot_solution`)
-    per ``every``-th time of ``traj``, on fixed axes, titled with the time [s] and
-    temperatures [C]. Returns the paths written (``frame_0000.png``, ...)."""
-    from .plotting import plot_solution, save_png
-
-    V.instance("traj", traj, ShapeTrajectory, "a ShapeTrajectory")
-    every = V.integer("every", every, 1, 2**31)
-    out = Path(directory)
-    tips = traj.tip_positions_m * 1e3
-    lo = np.minimum(tips.min(axis=0), 0.0)
-    hi = np.maximum(tips.max(axis=0), 0.0)
-    centre, half = 0.5 * (lo + hi), 0.55 * float(np.max(hi - lo)) + 5.0
-    paths = []
-    for k in range(0, len(traj.solutions), every):
-        temps = ", ".join(f"{t:.0f}" for t in traj.temperatures_c[k])
-        fig = plot_solution(traj.solutions[k], title=f"t = {traj.time_s[k]:.1f} s, T = [{temps}] °C")
-        ax: Any = fig.axes[0]
-        ax.set_xlim(centre[0] - half, centre[0] + half)
-        ax.set_ylim(centre[1] - half, centre[1] + half)
-        ax.set_zlim(centre[2] - half, centre[2] + half)
-        paths.append(save_png(fig, out / f"frame_{k:04d}.png", dpi=80))
-    return paths

@@ -22,7 +22,7 @@ keep it straight, but shapes are sensitive to loads and to asymmetry (one
 eccentric TCA alone makes a hard, near-buckling problem). Use
 ``gravity=False`` or a shorter body for gentler cases.
 
-``register("fig1b")`` adds a workspace map (a ``k^3`` temperature grid) to
+The registry entry ``fig1b`` (:func:`predict_fig1b`) adds a workspace map (a ``k^3`` temperature grid) to
 ``tcarod reproduce``.
 """
 
@@ -38,9 +38,18 @@ import numpy as np
 import numpy.typing as npt
 
 from ..rod import Actuator, Body, Robot, Routing, Section
-from ..segmented import segmented_actuators
+from ..models.manipulators import (
+    ECOFLEX10_DENSITY_KG_PER_M3,
+    ECOFLEX10_POISSON,
+    ECOFLEX10_YOUNGS_MODULUS_PA,
+    TCA_COIL_DIAMETER_M,
+    TCA_PITCH_ANGLE_RAD,
+    TCA_TURNS,
+    TURNS_ANCHOR_LENGTH_M,
+    UPRIGHT,
+)
+from ..models.segmented import segmented_actuators
 from ..tca import Tca
-from . import register
 
 __all__ = [
     "FIG1B",
@@ -50,19 +59,15 @@ __all__ = [
 
 FloatArray = npt.NDArray[np.float64]
 
-#: EcoFlex 10 (Section V): density [kg/m^3], Young's modulus [Pa], Poisson ratio [-].
-ECOFLEX10_DENSITY_KG_PER_M3: Final[float] = 1040.0
-ECOFLEX10_YOUNGS_MODULUS_PA: Final[float] = 37.8e3
-ECOFLEX10_POISSON: Final[float] = 0.5
 #: Twist density of the paper's manipulator TCAs: 76.4 turns per 40 mm [turns/m].
-MANIPULATOR_TWIST_PER_M: Final[float] = 76.4 / 0.040
+MANIPULATOR_TWIST_PER_M: Final[float] = TCA_TURNS / TURNS_ANCHOR_LENGTH_M
 
 
 @dataclass(frozen=True)
 class Fig1bManipulator:
     """An illustrative Fig. 1(b) manipulator (see the module docstring).
 
-    Lengths in m, angles in degrees. ``segments`` divides TCA 0 (the
+    Lengths in m, ``angles_deg`` in degrees, ``alpha0_rad`` in rad. ``segments`` divides TCA 0 (the
     "leftmost" TCA of the figure) into that many equal segments in series,
     each anchored to the body at its ends and driven by its own temperature;
     1 keeps it whole.
@@ -72,15 +77,15 @@ class Fig1bManipulator:
     diameter_m: float = 12e-3
     offset_m: float = 4e-3
     angles_deg: tuple[float, ...] = (0.0, 120.0, 240.0)
-    coil_diameter_m: float = 1.7e-3
-    alpha0_deg: float = 15.0
+    coil_diameter_m: float = TCA_COIL_DIAMETER_M
+    alpha0_rad: float = TCA_PITCH_ANGLE_RAD
     segments: int = 1
 
     def tca(self) -> Tca:
         """One whole TCA spanning the body (coiled length = body length)."""
         return Tca.from_pitch_angle(
             self.length_m,
-            math.radians(self.alpha0_deg),
+            self.alpha0_rad,
             self.coil_diameter_m,
             MANIPULATOR_TWIST_PER_M * self.length_m,
         )
@@ -98,7 +103,7 @@ class Fig1bManipulator:
             ECOFLEX10_YOUNGS_MODULUS_PA,
             poisson=ECOFLEX10_POISSON,
             density=ECOFLEX10_DENSITY_KG_PER_M3,
-            gravity=[0.0, 0.0, -9.81] if gravity else [0.0, 0.0, 0.0],
+            gravity=list(UPRIGHT) if gravity else [0.0, 0.0, 0.0],
         )
 
     def actuators(self) -> list[Any]:
@@ -148,7 +153,7 @@ FIG1B: Final[Fig1bManipulator] = Fig1bManipulator()
 class Fig1bWorkspaceResult:
     """A workspace map of :data:`FIG1B` for ``tcarod reproduce fig1b``."""
 
-    workspace: Any  # tcarod.workspace.Workspace
+    workspace: Any  # tcarod.models.workspace.Workspace
     name: str = "fig1b"
 
     def table(self) -> str:
@@ -181,16 +186,15 @@ class Fig1bWorkspaceResult:
         }
 
     def plot(self, path: str | os.PathLike[str]) -> Path:
-        """3-D scatter of the tip positions (see :func:`tcarod.workspace.plot_workspace`)."""
-        from ..plotting import save_png
-        from ..workspace import plot_workspace
+        """3-D scatter of the tip positions (see :func:`tcarod.plotting.plot_workspace`)."""
+        from ..plotting import plot_workspace, save_png  # matplotlib only when plotting
 
         return save_png(plot_workspace(self.workspace), path)
 
 
-@register("fig1b")
-def _fig1b() -> Fig1bWorkspaceResult:
-    from ..workspace import workspace_map
+def predict_fig1b() -> Fig1bWorkspaceResult:
+    """Workspace map of :data:`FIG1B` over a 5 x 5 x 5 temperature grid (25-160 C)."""
+    from ..models.workspace import workspace_map
 
     grid = np.linspace(25.0, 160.0, 5)
     return Fig1bWorkspaceResult(workspace_map(FIG1B.robot(), grid))

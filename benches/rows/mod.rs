@@ -1,22 +1,22 @@
-//! The performance table's operations, shared by the criterion benches
-//! (`benches/rod.rs`) and `tcarod bench` (through `_core.bench_*`): each row
-//! is a prepared problem with a closure that runs the timed operation once.
+//! The performance table's rows, shared by the criterion benches
+//! (`benches/rod.rs`) and `tcarod bench` (the bindings include this file as
+//! `src/python/bench.rs`'s module `rows`): each row is a prepared problem with
+//! a closure that runs the timed operation once. Not library API: the paths
+//! are `tcarod::...` so that the file compiles in both places.
 //!
 //! Problem: Fig. 6 square manipulator ([`fig6_square`]`(true)`: 2 TCAs,
 //! gravity), both TCAs at [`BENCH_TEMPERATURE`], 100 RK4 steps unless a row
 //! says otherwise.
 
-use std::time::Instant;
-
 use nalgebra::Vector3;
 
-use crate::error::Result;
-use crate::experiments::{
+use tcarod::error::Result;
+use tcarod::experiments::{
     fig6_square, table1_finger, G0, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL,
 };
-use crate::experiments::{steel_tendon_robot, STEEL_TENDON_TENSIONS};
-use crate::inverse::{grasp, sensitivities_exact, sensitivities_fast, Groups, Scheme};
-use crate::shooting::{shoot, shoot_jacobian, solve, Loads, SolveOptions};
+use tcarod::experiments::{steel_tendon_robot, STEEL_TENDON_TENSIONS};
+use tcarod::inverse::{grasp, sensitivities_exact, sensitivities_fast, Groups, Scheme};
+use tcarod::shooting::{shoot, shoot_jacobian, solve, Loads, SolveOptions};
 
 /// Temperature \[C\] of both TCAs in the benches.
 pub const BENCH_TEMPERATURE: f64 = 100.0;
@@ -216,47 +216,10 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
             Box::new(move || solve(&robot, std::hint::black_box(&t), &o, None).map(|_| ()))
         }
         other => {
-            return Err(crate::error::Error::input(
+            return Err(tcarod::error::Error::input(
                 "row",
                 format!("unknown bench row {other:?}"),
             ))
         }
     })
-}
-
-/// Time `repeats` runs of row `name` (after one warm-up run), each run
-/// repeated in a loop for at least `min_time` \[s\]; returns seconds per
-/// operation of each run.
-pub fn time_row(name: &str, repeats: usize, min_time: f64) -> Result<Vec<f64>> {
-    let mut op = operation(name)?;
-    op()?;
-    // inner loop length: enough calls for min_time
-    let t0 = Instant::now();
-    op()?;
-    let one = t0.elapsed().as_secs_f64().max(1e-9);
-    let inner = ((min_time / one).ceil() as usize).max(1);
-    let mut out = Vec::with_capacity(repeats);
-    for _ in 0..repeats {
-        let t = Instant::now();
-        for _ in 0..inner {
-            op()?;
-        }
-        out.push(t.elapsed().as_secs_f64() / inner as f64);
-    }
-    Ok(out)
-}
-
-/// Median of a sample (NaN if empty).
-pub fn median(x: &[f64]) -> f64 {
-    if x.is_empty() {
-        return f64::NAN;
-    }
-    let mut v = x.to_vec();
-    v.sort_by(|a, b| a.total_cmp(b));
-    let m = v.len() / 2;
-    if v.len() % 2 == 1 {
-        v[m]
-    } else {
-        0.5 * (v[m - 1] + v[m])
-    }
 }

@@ -42,20 +42,19 @@ from typing import Any, Final, Literal
 import numpy as np
 import numpy.typing as npt
 
-from ..manipulators import (
+from .. import _core
+from ..models.manipulators import (
     DEFAULT_TURNS_READING,
-    TURNS_READINGS,
-    TurnsReading,
-    leg_turns,
-    ECOFLEX10_DENSITY_KG_PER_M3,
-    ECOFLEX10_POISSON,
-    ECOFLEX10_YOUNGS_MODULUS_PA,
+    PAPER_CONSTANTS,
     TCA_OFFSET_M,
+    TURNS_READINGS,
     U_LEG_HALF_SPACING_M,
+    UPRIGHT,
+    TurnsReading,
     manipulator_tca,
 )
-from ..rod import Actuator, Body, Robot, Routing, Section, Solution, inner_edge_radius
-from . import GRAVITY_M_PER_S2, PublishedCurve, register
+from ..rod import Robot, Solution, inner_edge_radius
+from ._common import PublishedCurve
 
 __all__ = [
     "CIRCLE_PRECURVATURE_RADIUS_M",
@@ -73,7 +72,7 @@ FloatArray = npt.NDArray[np.float64]
 
 #: ASSUMPTION: pre-curvature radius of the circular manipulator [m]; the paper
 #: says it was initially bent but prints no value.
-CIRCLE_PRECURVATURE_RADIUS_M: Final[float] = 0.2
+CIRCLE_PRECURVATURE_RADIUS_M: Final[float] = PAPER_CONSTANTS["circle_precurvature_radius"]
 
 _ASSUMPTIONS: Final[tuple[str, ...]] = (
     f"The circular manipulator's pre-curvature radius is {CIRCLE_PRECURVATURE_RADIUS_M} m (bent toward "
@@ -82,7 +81,7 @@ _ASSUMPTIONS: Final[tuple[str, ...]] = (
     "(the leg spacing is not printed; any symmetric spacing gives the same planar bending).",
     "Each TCA (and each U leg) runs the whole body length, anchored at base and tip.",
     "Turns: 76.4 per fabricated TCA (default reading 'per_tca'): the circle's single TCA has 76.4, each "
-    "leg of the square's U-shaped TCA 38.2 (tcarod.manipulators; the other readings are shown beside).",
+    "leg of the square's U-shaped TCA 38.2 (tcarod.models.manipulators; the other readings are shown beside).",
     "TCA material: Material.silver_coated_nylon() (values the paper does not print; see README).",
 )
 
@@ -98,6 +97,8 @@ class Fig6Manipulator:
     """
 
     label: str
+    #: The core's fixture (``src/experiments.rs``) that builds the robot.
+    fixture: Literal["fig6_circle", "fig6_square"]
     section: Literal["circle", "square"]
     size_m: float
     length_m: float
@@ -108,27 +109,12 @@ class Fig6Manipulator:
     precurvature_is_assumption: bool = False
 
     def robot(self, gravity: bool = True, turns_reading: TurnsReading = DEFAULT_TURNS_READING) -> Robot:
-        """The manipulator as a :class:`Robot`; upright (base down, gravity
-        ``(0, 0, -9.81) m/s^2``) if ``gravity``, weightless otherwise; each
-        leg with :func:`tcarod.manipulators.leg_turns` turns under ``turns_reading``."""
-        section = (
-            Section.circle(self.size_m) if self.section == "circle" else Section.rectangle(self.size_m, self.size_m)
-        )
-        omega_star = (0.0, 0.0, 0.0)
-        if self.precurvature_radius_m is not None:
-            # curvature about body -y turns the tangent toward -x
-            omega_star = (0.0, -1.0 / self.precurvature_radius_m, 0.0)
-        body = Body(
-            self.length_m,
-            section,
-            ECOFLEX10_YOUNGS_MODULUS_PA,
-            poisson=ECOFLEX10_POISSON,
-            density=ECOFLEX10_DENSITY_KG_PER_M3,
-            omega_star=omega_star,
-            gravity=(0.0, 0.0, -GRAVITY_M_PER_S2) if gravity else None,
-        )
-        tca = manipulator_tca(self.length_m, turns=leg_turns(self.length_m, len(self.tca_y_m), turns_reading))
-        return Robot(body, [Actuator.tca(tca, Routing.straight(self.tca_offset_m, y)) for y in self.tca_y_m])
+        """The manipulator as a :class:`Robot`, built by the core's fixture;
+        upright (base down, gravity ``(0, 0, -9.81) m/s^2``) if ``gravity``,
+        weightless otherwise; each leg with :func:`tcarod.models.manipulators.leg_turns`
+        turns under ``turns_reading``."""
+        g = UPRIGHT if gravity else (0.0, 0.0, 0.0)
+        return _core.fixture_manipulator(self.fixture, gravity=g, turns_reading=turns_reading)
 
 
 @dataclass(frozen=True)
@@ -147,7 +133,7 @@ class Fig6Experiment:
     source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-B, Fig. 6"
     #: RK4 steps over the body length.
     steps: int = 100
-    #: How the printed 76.4 turns apply to a U's legs (:mod:`tcarod.manipulators`).
+    #: How the printed 76.4 turns apply to a U's legs (:mod:`tcarod.models.manipulators`).
     turns_reading: TurnsReading = DEFAULT_TURNS_READING
     #: Temperatures [C] at which every reading's radius (with gravity) is reported.
     reading_temperatures_c: tuple[float, ...] = (60.0, 100.0, 140.0)
@@ -162,9 +148,10 @@ FIG6: Final[Fig6Experiment] = Fig6Experiment(
     manipulators=(
         Fig6Manipulator(
             label="circle (8 mm, pre-curved)",
+            fixture="fig6_circle",
             section="circle",
-            size_m=8e-3,
-            length_m=0.040,
+            size_m=PAPER_CONSTANTS["circle_diameter"],
+            length_m=PAPER_CONSTANTS["fig6_length"],
             tca_offset_m=TCA_OFFSET_M,
             tca_y_m=(0.0,),
             precurvature_radius_m=CIRCLE_PRECURVATURE_RADIUS_M,
@@ -172,9 +159,10 @@ FIG6: Final[Fig6Experiment] = Fig6Experiment(
         ),
         Fig6Manipulator(
             label="square (10 mm, U-shaped TCA)",
+            fixture="fig6_square",
             section="square",
-            size_m=10e-3,
-            length_m=0.040,
+            size_m=PAPER_CONSTANTS["square_side"],
+            length_m=PAPER_CONSTANTS["fig6_length"],
             tca_offset_m=TCA_OFFSET_M,
             tca_y_m=(U_LEG_HALF_SPACING_M, -U_LEG_HALF_SPACING_M),
         ),
@@ -309,7 +297,7 @@ class Fig6Result:
 
             def case(c: Fig6Curve) -> dict[str, Any]:
                 return {
-                    "gravity_m_per_s2": [0.0, 0.0, -GRAVITY_M_PER_S2] if c.gravity else [0.0, 0.0, 0.0],
+                    "gravity_m_per_s2": list(UPRIGHT) if c.gravity else [0.0, 0.0, 0.0],
                     "radius_m": [_finite_or_none(r) for r in c.radii_m],
                     "tip_position_m": [[float(x) for x in p] for p in c.tip_positions_m],
                     "tension_n": [[float(x) for x in row] for row in c.tensions_n],
@@ -443,8 +431,3 @@ def predict_fig6(experiment: Fig6Experiment = FIG6, *, readings: bool = True) ->
                 )
                 rd[(m.label, reading)] = tuple(float(inner_edge_radius(s)) for s in sols)
     return Fig6Result(experiment=experiment, curves=curves, readings=rd)
-
-
-@register("fig6")
-def _fig6() -> Fig6Result:
-    return FIG6.predict()

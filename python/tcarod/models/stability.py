@@ -28,8 +28,8 @@ from __future__ import annotations
 
 from typing import Any, Literal, Sequence
 
-from . import _core
-from ._optional import require
+from .. import _core
+from .._optional import require
 
 Stability = _core.Stability
 Branch = _core.Branch

@@ -6,21 +6,21 @@ TCA at body ``x = +3 mm``, hanging down. The gripper holds a mass ``m`` when
 finger's contact force: the free fingertip closes as the TCA heats until it
 touches the object at the *contact temperature*; below it the force is zero,
 above it the tip is blocked at its position at contact and presses along
-``-x`` (:func:`tcarod.grasp.blocked_force_curve`).
+``-x`` (:func:`tcarod.models.grasp.blocked_force_curve`).
 
 Defaults (documented, not tuned; ``docs/table1.md``):
 
 * contact at 72.33 C, the zero-force intercept of the paper's own
   predictions, which are linear in the force (0.209 mN/C); the paper prints
   no gap between fingertip and object;
-* turns read per U-shaped TCA (38.2 per 20 mm leg; :mod:`tcarod.manipulators`);
+* turns read per U-shaped TCA (38.2 per 20 mm leg; :mod:`tcarod.models.manipulators`);
 * the documented default material (Sun & Zhao's ``rho(T)``).
 
 With them the finger's force rises several times faster than the paper's
 (see the force slope in the table), so the grip temperatures are far below
 the paper's. The readings (turns x ``rho(T)`` preset) and the
 *identification* of at most two parameters per reading
-(:mod:`tcarod.identification`) are reported beside them, never used as
+(:mod:`tcarod.models.identification`) are reported beside them, never used as
 defaults.
 """
 
@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Final
 
-from ..grasp import (
+from ..models.grasp import (
     FRICTION_COEFFICIENT,
     TABLE1_CONTACT_TEMPERATURE_C,
     TABLE1_EXPERIMENT_C,
@@ -43,11 +43,17 @@ from ..grasp import (
     grasp,
     table1_finger,
 )
-from ..identification import IDENTIFICATION_READINGS, Identification, identify
-from ..manipulators import DEFAULT_TURNS_READING, MATERIAL_PRESETS, TURNS_READINGS, TurnsReading, material_preset
-from ..studies import Sensitivity, table1_sensitivity
+from ..models.identification import IDENTIFICATION_READINGS, Identification, identify
+from ..models.manipulators import (
+    GRAVITY_M_PER_S2,
+    DEFAULT_TURNS_READING,
+    MATERIAL_PRESETS,
+    TURNS_READINGS,
+    TurnsReading,
+    material_preset,
+)
+from ..models.studies import Sensitivity, table1_sensitivity
 from ..tca import Material
-from . import register
 from .fig8 import fig8_forces
 
 __all__ = ["TABLE1", "Table1Experiment", "Table1Reading", "Table1Result", "Table1Row", "predict_table1"]
@@ -71,7 +77,7 @@ class Table1Experiment:
     paper_prediction_c: tuple[float, ...] = TABLE1_PAPER_PREDICTIONS_C
     mu: float = FRICTION_COEFFICIENT
     fingers: int = 2
-    gravity_m_per_s2: float = 9.81
+    gravity_m_per_s2: float = GRAVITY_M_PER_S2
     #: Temperature [C] at which the fingertip touches the object (see ``blocking``).
     contact_temperature_c: float = TABLE1_CONTACT_TEMPERATURE_C
     turns_reading: TurnsReading = DEFAULT_TURNS_READING
@@ -206,7 +212,7 @@ class Table1Result:
                 el = ", ".join(f"{e:+.3f}" for e in s.elasticity)
                 lines.append(f"  {s.parameter.key:>14}: {el}")
         if self.identifications:
-            lines += [rule, "IDENTIFICATION (identified, not defaults; tcarod.identification):"]
+            lines += [rule, "IDENTIFICATION (identified, not defaults; tcarod.models.identification):"]
             for i, f8 in zip(self.identifications, self.identification_fig8_n or [()] * len(self.identifications)):
                 ps = ", ".join(
                     f"{k} = {p.value:.4g} [{p.plausible_range[0]:.3g}, {p.plausible_range[1]:.3g}] "
@@ -272,30 +278,10 @@ class Table1Result:
         }
 
     def plot(self, path: str | os.PathLike[str]) -> Path:
-        """Write grip temperature [C] against mass [g] (tcarod, experiment, paper's model) as PNG."""
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
+        """Write grip temperature [C] against mass [g] (:func:`tcarod.plotting.plot_table1`) as PNG."""
+        from ..plotting import plot_table1, save_png  # matplotlib only when plotting
 
-        from ..plotting import save_png
-
-        fig = Figure(figsize=(4.8, 3.6), layout="constrained")
-        FigureCanvasAgg(fig)
-        ax = fig.add_subplot()
-        grams = [r.mass_kg * 1e3 for r in self.rows]
-        ax.plot(grams, [r.experiment_c for r in self.rows], "ks", label="experiment (firm grip)")
-        ax.plot(grams, [r.paper_prediction_c for r in self.rows], "k^--", markerfacecolor="none", label="paper's model")
-        ax.plot(grams, [r.predicted_c for r in self.rows], "o-", color="tab:red", label="tcarod (defaults)")
-        for i in self.identifications:
-            if i.fitted_to == "paper_model" and i.all_plausible and len(i.parameters) == 2:
-                ax.plot(grams, i.fitted_c, ":", label=f"identified ({i.reading.turns_reading}, {i.reading.material})")
-                break
-        ax.set_xlabel("Grasped mass [g]")
-        ax.set_ylabel("Grip temperature [°C]")
-        ax.set_xticks(grams)
-        ax.set_title("Table I: grip temperature", fontsize="medium")
-        ax.grid(True, linewidth=0.3)
-        ax.legend(fontsize="small", loc="lower right")
-        return save_png(fig, path)
+        return save_png(plot_table1(self), path)
 
 
 def _grips(exp: Table1Experiment, finger: Any, method: str) -> list[Grasp]:
@@ -318,7 +304,7 @@ def predict_table1(
     each checked by the direct solve; every turns reading x material preset
     at the same contact. ``study``: the sensitivity ranking (default material
     only, ~1 s); ``identification``: the fits of
-    :data:`tcarod.identification.IDENTIFICATION_READINGS` to the paper's
+    :data:`tcarod.models.identification.IDENTIFICATION_READINGS` to the paper's
     model and to the experiment (about a minute), each applied to Fig. 8."""
     finger = table1_finger(material=material, turns_reading=experiment.turns_reading)
     inc, direct = _grips(experiment, finger, "incremental"), _grips(experiment, finger, "direct")
@@ -354,8 +340,3 @@ def predict_table1(
         identifications=tuple(idents),
         identification_fig8_n=tuple(fig8),
     )
-
-
-@register("table1")
-def _table1() -> Table1Result:
-    return TABLE1.predict(study=True, identification=True)

@@ -17,10 +17,10 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from . import _core
-from . import _validate as V
-from .rod import Actuator, Routing
-from .tca import Tca
+from .. import _core
+from .. import _validate as V
+from ..rod import Actuator, Routing
+from ..tca import Tca
 
 __all__ = ["segment_bounds", "segmented_actuators"]
 

@@ -35,7 +35,8 @@ from typing import Any, Final
 
 import numpy as np
 
-from ..manipulators import (
+from ..models.manipulators import (
+    PAPER_CONSTANTS,
     DEFAULT_TURNS_READING,
     MATERIAL_PRESETS,
     TURNS_READINGS,
@@ -47,7 +48,7 @@ from ..manipulators import (
 from ..inverse import blocked_force, blocked_temperature
 from ..rod import Robot
 from ..tca import Material
-from . import FloatArray, register
+from ._common import FloatArray
 
 __all__ = ["FIG8", "Fig8CrossCheck", "Fig8Experiment", "Fig8Reading", "Fig8Result", "fig8_forces", "predict_fig8"]
 
@@ -64,7 +65,7 @@ _BLOCKING: Final[str] = (
 class Fig8Experiment:
     """The Fig. 8 set-up; see the module docstring for the blocking geometry."""
 
-    length_m: float = 0.026
+    length_m: float = PAPER_CONSTANTS["fig8_length"]
     #: Temperature [C] at which the wire becomes taut (the paper: about 55 C).
     taut_temperature_c: float = 55.0
     temperatures_c: tuple[float, ...] = tuple(float(t) for t in range(25, 161, 5))
@@ -87,13 +88,13 @@ class Fig8Experiment:
     title: str = "Fig. 8: blocked-tip force of the 26 mm square manipulator"
     source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-C, Fig. 8"
 
-    #: How the printed 76.4 turns apply to the U's legs (:mod:`tcarod.manipulators`).
+    #: How the printed 76.4 turns apply to the U's legs (:mod:`tcarod.models.manipulators`).
     turns_reading: TurnsReading = DEFAULT_TURNS_READING
     #: Temperatures [C] at which every reading's force is reported.
     reading_temperatures_c: tuple[float, ...] = (100.0, 140.0)
 
     def robot(self, material: Material | None = None, turns_reading: TurnsReading | None = None) -> Robot:
-        """The manipulator: :func:`tcarod.manipulators.square_manipulator` of ``length_m``, upright."""
+        """The manipulator: :func:`tcarod.models.manipulators.square_manipulator` of ``length_m``, upright."""
         reading = self.turns_reading if turns_reading is None else turns_reading
         return square_manipulator(
             self.length_m, gravity_m_per_s2=self.gravity_m_per_s2, material=material, turns_reading=reading
@@ -213,7 +214,7 @@ class Fig8Result:
                 f"  {c.temperature_c:.0f} C: {c.force_n * 1e3:.3f} mN -> {c.incremental_temperature_c:.6f} C "
                 f"(difference {c.difference_c:.2e} C)"
             )
-        lines.append(f"Turns read {exp.turns_reading!r} (default; see tcarod.manipulators). Every reading [mN]:")
+        lines.append(f"Turns read {exp.turns_reading!r} (default; see tcarod.models.manipulators). Every reading [mN]:")
         for r in self.readings:
             vals = ", ".join(f"{f * 1e3:.2f} at {t:g} C" for t, f in zip(r.temperatures_c, r.forces_n))
             lines.append(f"  {r.turns_reading:>10} / {r.material:<12}: {vals}")
@@ -253,35 +254,10 @@ class Fig8Result:
         }
 
     def plot(self, path: str | os.PathLike[str]) -> Path:
-        """Write force [mN] against temperature [C] as PNG to ``path``."""
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
+        """Write force [mN] against temperature [C] (:func:`tcarod.plotting.plot_fig8`) as PNG to ``path``."""
+        from ..plotting import plot_fig8, save_png  # matplotlib only when plotting
 
-        from ..plotting import save_png
-
-        exp = self.experiment
-        fig = Figure(figsize=(4.5, 3.4), layout="constrained")
-        FigureCanvasAgg(fig)
-        ax = fig.add_subplot()
-        ax.plot(self.temperatures_c, self.forces_n * 1e3, "k-", marker=".", label="model (direct solve)")
-        ax.plot(
-            [c.temperature_c for c in self.cross_checks],
-            [c.force_n * 1e3 for c in self.cross_checks],
-            "o",
-            markerfacecolor="none",
-            color="tab:red",
-            label="incremental eq 43 check",
-        )
-        ax.axvline(
-            exp.taut_temperature_c, color="0.6", linestyle=":", label=f"wire taut ({exp.taut_temperature_c:g} °C)"
-        )
-        ax.set_xlabel("Temperature [°C]")
-        ax.set_ylabel("Tip force [mN]")
-        ax.set_title("Fig. 8: blocked-tip force, 26 mm manipulator", fontsize="medium")
-        ax.grid(True, linewidth=0.3)
-        ax.legend(fontsize="small", loc="upper left")
-        fig.suptitle("Model prediction (the paper prints no data points; its rms: 0.74 mN)", fontsize="small")
-        return save_png(fig, path)
+        return save_png(plot_fig8(self), path)
 
 
 def predict_fig8(
@@ -336,8 +312,3 @@ def predict_fig8(
         cross_checks=tuple(checks),
         readings=tuple(rd),
     )
-
-
-@register("fig8")
-def _fig8() -> Fig8Result:
-    return FIG8.predict()

@@ -3,8 +3,8 @@ parameters, fitted separately to the paper's model predictions and to the
 experiment, each with leave-one-out errors and a plausibility check.
 
 A *reading* fixes what the paper leaves open -- how its "N = 76.4 rotations"
-apply to a U-shaped TCA (:data:`tcarod.manipulators.TURNS_READINGS`) and the
-shape of ``rho(T)`` (:data:`tcarod.manipulators.MATERIAL_PRESETS`) -- and
+apply to a U-shaped TCA (:data:`tcarod.models.manipulators.TURNS_READINGS`) and the
+shape of ``rho(T)`` (:data:`tcarod.models.manipulators.MATERIAL_PRESETS`) -- and
 names the free parameters:
 
 * ``contact_temperature_c`` [C]: the freely closing fingertip touches the
@@ -36,8 +36,8 @@ from typing import Any, Final, Literal, Sequence
 
 import numpy as np
 
-from ._core import ConvergenceError
-from ._optional import require
+from .._core import ConvergenceError
+from .._optional import require
 from .grasp import (
     TABLE1_EXPERIMENT_C,
     TABLE1_MASSES_KG,
@@ -46,7 +46,7 @@ from .grasp import (
     table1_finger,
 )
 from .manipulators import TurnsReading, material_preset
-from .tca import Material
+from ..tca import Material
 
 __all__ = [
     "CTE_CHECK_TEMPERATURES_C",

@@ -1,0 +1,54 @@
+"""The paper's fixtures bound from the core (issue 11): the same objects as
+the Python builders, and eq 44 (``grasp_temperature``) bound."""
+
+from __future__ import annotations
+
+import pickle
+
+import pytest
+
+from tcarod import _core
+from tcarod.models.manipulators import HANGING, square_manipulator
+
+
+def test_fixture_manipulators_equal_the_python_builders() -> None:
+    assert _core.fixture_manipulator("fig6_square") == square_manipulator(0.040)
+    assert _core.fixture_manipulator("fig8") == square_manipulator(0.026)
+    assert _core.fixture_manipulator("table1_finger") == square_manipulator(0.020, gravity_m_per_s2=HANGING)
+    per_leg = _core.fixture_manipulator("square", length=0.026, turns_reading="per_leg")
+    assert per_leg == square_manipulator(0.026, turns_reading="per_leg")
+    robot = _core.fixture_manipulator("fig6_circle")
+    assert pickle.loads(pickle.dumps(robot)) == robot
+
+
+def test_fixture_constants_and_tcas() -> None:
+    k = _core.fixture_constants()
+    assert k["gravity"] == 9.81 and k["ecoflex10_youngs_modulus"] == 37.8e3
+    # the zero-force intercept of the paper's Table I predictions (by hand: 72.333 C)
+    assert k["table1_contact_temperature"] == pytest.approx(72.3333333333, abs=1e-9)
+    whole, half = _core.fixture_fig5_tca(3), _core.fixture_fig5_half_tca(3)
+    assert half == whole.segment(0.5)
+    assert _core.fixture_leg_turns(0.026, 2, "per_length") == pytest.approx(49.66, abs=1e-12)
+
+
+def test_bad_fixture_arguments_raise_value_error() -> None:
+    with pytest.raises(ValueError, match="name"):
+        _core.fixture_manipulator("fig9")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="turns_reading"):
+        _core.fixture_manipulator("fig8", turns_reading="per_thread")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="threads"):
+        _core.fixture_fig5_tca(5)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="legs"):
+        _core.fixture_leg_turns(0.02, -1)
+
+
+def test_grasp_temperature_presses_with_the_eq_44_force() -> None:
+    finger = _core.fixture_manipulator("table1_finger")
+    k = _core.fixture_constants()
+    res = _core.grasp_temperature(finger, k["table1_normal"], 1e-3, k["table1_mu"], 2, groups=[0, 0])
+    # eq 44: mu n F = m g, so F = 1e-3 * 9.81 / (1.1 * 2) N, exactly
+    assert res.force == pytest.approx(1e-3 * 9.81 / 2.2, rel=1e-12)
+    lo, hi = finger.actuators[0].input_bounds
+    assert lo < res.variables[0] < hi
+    with pytest.raises(ValueError, match="mass"):
+        _core.grasp_temperature(finger, k["table1_normal"], -1.0, 1.1, 2, groups=[0, 0])

@@ -1,0 +1,161 @@
+"""The Python package's layout (issue 11): imports run one way,
+cli -> paper / models -> API -> _core, and no file or function is too long.
+
+The import graph is read from the source with ``ast`` (nothing is imported):
+every ``import`` and ``from ... import`` of a tcarod module counts, at module
+level, inside functions (deferred imports) and under ``if TYPE_CHECKING``
+alike, so that a cycle cannot hide behind a lazy import.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parents[1] / "python" / "tcarod"
+
+#: The API over the core: thin wrappers, nothing built on top of them.
+API = ("tcarod.tca", "tcarod.rod", "tcarod.inverse", "tcarod.batch", "tcarod._validate", "tcarod._optional")
+#: Layers the API and the models must never reach, even lazily.
+ABOVE_MODELS = ("tcarod.paper", "tcarod.plotting", "tcarod.cli", "tcarod.io")
+
+MAX_FILE_LINES = 500  # issue 11: "no source file over 500 lines"
+MAX_FUNCTION_LINES = 80  # issue 11: "no function over 80 lines"
+
+
+def _module_name(path: Path) -> str:
+    parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+#: Every module: the .py sources and the compiled core (read from its stub).
+MODULES: dict[str, Path] = {_module_name(p): p for p in sorted(PACKAGE.rglob("*.py"))}
+MODULES["tcarod._core"] = PACKAGE / "_core.pyi"
+#: The hand-written Python (the stub mirrors the Rust bindings and is checked by stubtest instead).
+SOURCES = sorted(m for m, p in MODULES.items() if p.suffix == ".py")
+
+
+def _resolve(module: str, path: Path, node: ast.ImportFrom) -> str:
+    """The absolute module name ``from <node.module> import ...`` refers to."""
+    if node.level == 0:
+        return node.module or ""
+    package = module.split(".") if path.name == "__init__.py" else module.split(".")[:-1]
+    base = package[: len(package) - (node.level - 1)]
+    return ".".join(base + ([node.module] if node.module else []))
+
+
+def _imports(module: str) -> set[str]:
+    """tcarod modules imported anywhere in ``module``'s source (parent packages
+    that Python imports implicitly are not counted)."""
+    path = MODULES[module]
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            found.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            target = _resolve(module, path, node)
+            for a in node.names:  # `from pkg import submodule` imports the submodule
+                sub = f"{target}.{a.name}"
+                found.add(sub if sub in MODULES else target)
+    return {m for m in found if m in MODULES and m != module}
+
+
+GRAPH: dict[str, set[str]] = {m: _imports(m) for m in MODULES}
+
+
+def _reachable(start: str) -> set[str]:
+    seen: set[str] = set()
+    stack = [start]
+    while stack:
+        for nxt in GRAPH[stack.pop()]:
+            if nxt not in seen:
+                seen.add(nxt)
+                stack.append(nxt)
+    return seen
+
+
+def _cycle() -> list[str] | None:
+    """One import cycle as a list of modules, or ``None`` (depth-first search)."""
+    state: dict[str, int] = {}  # 1: on the stack, 2: done
+    stack: list[str] = []
+
+    def visit(m: str) -> list[str] | None:
+        state[m] = 1
+        stack.append(m)
+        for n in sorted(GRAPH[m]):
+            if state.get(n) == 1:
+                return stack[stack.index(n) :] + [n]
+            if n not in state and (found := visit(n)) is not None:
+                return found
+        stack.pop()
+        state[m] = 2
+        return None
+
+    for m in sorted(GRAPH):
+        if m not in state and (found := visit(m)) is not None:
+            return found
+    return None
+
+
+def test_the_graph_sees_the_known_arrows() -> None:
+    # guards the parser itself: a graph that lost its edges would pass every test below
+    assert "tcarod._core" in GRAPH["tcarod.rod"]
+    assert "tcarod.paper" in GRAPH["tcarod.cli"]
+    assert "tcarod.plotting" in GRAPH["tcarod.paper.fig5"]  # deferred import inside plot()
+    assert "tcarod.models.manipulators" in GRAPH["tcarod.paper.fig6"]
+
+
+def test_no_import_cycle() -> None:
+    assert _cycle() is None, " -> ".join(_cycle() or [])
+
+
+def test_a_cycle_would_be_found() -> None:
+    saved = GRAPH["tcarod._core"]
+    GRAPH["tcarod._core"] = {"tcarod.rod"}  # a fake back edge: rod -> _core -> rod
+    try:
+        assert _cycle() is not None
+    finally:
+        GRAPH["tcarod._core"] = saved
+
+
+@pytest.mark.parametrize("module", API)
+def test_api_does_not_import_models_paper_plotting_io_or_cli(module: str) -> None:
+    bad = sorted(m for m in _reachable(module) if m.startswith((*ABOVE_MODELS, "tcarod.models")))
+    assert not bad, f"{module} reaches {bad}"
+
+
+@pytest.mark.parametrize("module", sorted(m for m in MODULES if m.startswith("tcarod.models")))
+def test_models_do_not_import_paper_plotting_io_or_cli(module: str) -> None:
+    bad = sorted(m for m in _reachable(module) if m.startswith(ABOVE_MODELS))
+    assert not bad, f"{module} reaches {bad}"
+
+
+def test_plotting_does_not_import_the_paper() -> None:
+    # the paper's results call plotting from plot(path); the reverse arrow would be a cycle
+    bad = sorted(
+        m for m in MODULES if m.startswith("tcarod.plotting") for n in GRAPH[m] if n.startswith("tcarod.paper")
+    )
+    assert not bad
+
+
+@pytest.mark.parametrize("module", SOURCES)
+def test_no_file_over_500_lines(module: str) -> None:
+    n = MODULES[module].read_text(encoding="utf-8").count("\n")
+    assert n <= MAX_FILE_LINES, f"{MODULES[module]}: {n} lines"
+
+
+@pytest.mark.parametrize("module", SOURCES)
+def test_no_function_over_80_lines(module: str) -> None:
+    tree = ast.parse(MODULES[module].read_text(encoding="utf-8"))
+    long = [
+        f"{node.name} ({node.end_lineno - node.lineno + 1} lines, line {node.lineno})"
+        for node in ast.walk(tree)
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))
+        and node.end_lineno is not None
+        and node.end_lineno - node.lineno + 1 > MAX_FUNCTION_LINES
+    ]
+    assert not long, f"{MODULES[module]}: {long}"
