@@ -216,7 +216,12 @@ pub fn sensitivities_exact(
     let nz = groups.n_vars();
     let x = &sol.unknowns;
     let mut tau = Vec::with_capacity(na);
-    let mut seeds = TangentSeeds::zeros(na, nx + nz);
+    // The elongation unknowns and the actuation variables move the state
+    // only through the tensions, so the 6 + N directions (initial strains,
+    // unit tension of each actuator) give every column: the tangent IVP is
+    // linear in its seeds. `chain[(i, c)]`: d tau_i / d column c.
+    let mut seeds = TangentSeeds::zeros(na, nx);
+    let mut chain = DMatrix::<f64>::zeros(na, nx + nz);
     for k in 0..3 {
         seeds.nu0[(k, k)] = 1.0;
         seeds.omega0[(k, 3 + k)] = 1.0 / len;
@@ -224,8 +229,9 @@ pub fn sensitivities_exact(
     for (i, a) in robot.actuators.iter().enumerate() {
         let (t, dt_de, dt_dq) = a.law.tension_derivatives(x[6 + i] * len, sol.inputs[i])?;
         tau.push(t);
-        seeds.tensions[(i, 6 + i)] = dt_de * len;
-        seeds.tensions[(i, nx + groups.0[i])] = dt_dq;
+        seeds.tensions[(i, 6 + i)] = 1.0;
+        chain[(i, 6 + i)] = dt_de * len;
+        chain[(i, nx + groups.0[i])] = dt_dq;
     }
     let spec = IvpSpec {
         robot,
@@ -236,8 +242,21 @@ pub fn sensitivities_exact(
     };
     let v0 = Vector3::new(x[0], x[1], x[2]);
     let u0 = Vector3::new(x[3], x[4], x[5]) / len;
-    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, false)?;
+    let mut tan = integrate_tangent(&spec, &v0, &u0, &seeds, false)?;
     let ncol = nx + nz;
+    // columns per unknown and variable: strain columns as seeded, the
+    // others through the tensions
+    let expand = |m: &DMatrix<f64>| {
+        let mut out = DMatrix::<f64>::zeros(m.nrows(), ncol);
+        out.columns_mut(0, 6).copy_from(&m.columns(0, 6));
+        out.columns_mut(6, ncol - 6)
+            .copy_from(&(m.columns(6, na) * chain.columns(6, ncol - 6)));
+        out
+    };
+    tan.tip = expand(&tan.tip);
+    tan.elongation = expand(&tan.elongation);
+    tan.tip_force_residual = expand(&tan.tip_force_residual);
+    tan.tip_moment_residual = expand(&tan.tip_moment_residual);
     // pose tangents: dp, and dtheta = 2 vec(dq conj(q)) for a unit q
     let q = tan.ivp.tip.q;
     let mut e = DMatrix::<f64>::zeros(6, ncol + 6);
