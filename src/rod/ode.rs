@@ -357,3 +357,7 @@ impl<'a> RodRhs<'a> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+#[path = "ode_reference.rs"]
+mod reference;
