@@ -129,4 +129,36 @@ fn main() {
             );
         }
     }
+    // Table I grasp temperature (1 g, 8 eq-43 increments), in IVP times of the finger
+    use tcarod::experiments::{
+        table1_finger, G0, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL,
+    };
+    use tcarod::inverse::{grasp, Groups};
+    let finger = table1_finger();
+    let normal = nalgebra::Vector3::from(TABLE1_NORMAL);
+    let g = Groups(vec![0, 0]);
+    let run_grasp = || {
+        grasp(
+            &finger, &g, &normal, TABLE1_MASSES[0], TABLE1_MU, TABLE1_FINGERS, G0, 8, &o,
+        )
+    };
+    let mut times: Vec<f64> = (0..11)
+        .map(|_| {
+            let t = Instant::now();
+            run_grasp().unwrap();
+            t.elapsed().as_secs_f64()
+        })
+        .collect();
+    times.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    let r = run_grasp().unwrap();
+    let unit = ivp_time(&finger, &finger.reference_inputs(), 100);
+    println!(
+        "{:<28} {:>9.1} us = {:>6.1} IVP times (one IVP {:.1} us), IVPs {}, temperature {:.9} C",
+        "grasp 1 g",
+        times[5] * 1e6,
+        times[5] / unit,
+        unit * 1e6,
+        r.evaluations,
+        r.variables[0]
+    );
 }

@@ -1,104 +1,135 @@
 //! Point loads and strain jumps at interior actuator anchors.
+//!
+//! With `P` the total point force on the body at an interior breakpoint `s`
+//! where strings are anchored, `n(s+) = n(s-) - P` and
+//! `m(s+) = m(s-) - sum r_i x P_i`, where a string ending at `s` contributes
+//! `P_i = -tau_i t_i(s-)` (it pulls toward the base), one starting at `s`
+//! contributes `+tau_i t_i(s+)`, and one passing `s` contributes
+//! `tau_i (t_i(s+) - t_i(s-))`: the strains jump at an anchor, so every
+//! string passing it has a kink there and presses on the body. `t(s+)`
+//! depends on the post-jump strains, so the jump is solved by Newton's
+//! method on the six strains, with the exact Jacobian of the jump residual
+//! (6-direction dual numbers); its tangents follow by the implicit function
+//! theorem.
 
-use nalgebra::Vector3;
+use nalgebra::{Matrix6, Vector6};
 
+use super::dual::{c_cross, cross_c, dot, Dual, Real, V3};
 use super::ode::RodRhs;
 use crate::error::{Error, Result};
 
+/// `(index, before-side weight, after-side weight)` of a string at an
+/// anchor: `P_i = tau_i (a t_i(s+) - b t_i(s-))`.
+type Term = (usize, f64, f64);
+
+/// A 6-vector of dual numbers seeded with the unit directions at `w`.
+fn seeded(w: &[f64; 6]) -> [Dual<6>; 6] {
+    std::array::from_fn(|k| {
+        let mut e = [0.0; 6];
+        e[k] = 1.0;
+        Dual::new(w[k], e)
+    })
+}
+
 impl RodRhs<'_> {
-    /// Point loads on the body at an interior breakpoint `s` where strings
-    /// are anchored. With `P` the total point force on the body,
-    /// `n(s+) = n(s-) - P` and `m(s+) = m(s-) - sum r_i x P_i`, where a string
-    /// ending at `s` contributes `P_i = -tau_i t_i(s-)` (it pulls toward the
-    /// base), one starting at `s` contributes `+tau_i t_i(s+)`, and one passing
-    /// `s` contributes `tau_i (t_i(s+) - t_i(s-))`: the strains jump at an
-    /// anchor, so every string passing it has a kink there and presses on the
-    /// body. `t(s+)` depends on the post-jump strains, so the jump is solved
-    /// by Newton's method on the six strains (a 6x6 system; converges in a
-    /// few iterations even where plain fixed-point iteration diverges).
-    pub(crate) fn anchor_loads(&self, s: f64, y: &mut [f64]) -> Result<()> {
-        let len = self.robot.body.length;
-        let tol = 1e-12 * len;
-        let v0 = Vector3::new(y[7], y[8], y[9]);
-        let u0 = Vector3::new(y[10], y[11], y[12]);
-        // (index, before-side weight, after-side weight): P_i = tau (a t+ - b t-)
-        let mut terms: Vec<(usize, f64, f64)> = Vec::new();
+    /// The strings anchored at or passing `s`; zero tensions left out unless `with_zero`.
+    fn anchor_terms(&self, s: f64, with_zero: bool) -> Vec<Term> {
+        let tol = 1e-12 * self.robot.body.length;
+        let mut terms = Vec::new();
         for (i, act) in self.robot.actuators.iter().enumerate() {
-            if self.tensions[i] == 0.0 {
+            if !with_zero && self.tensions[i] == 0.0 {
                 continue;
             }
             let ends = (act.s_end - s).abs() <= tol;
             let starts = (act.s_start - s).abs() <= tol;
             let passes = act.s_start < s - tol && act.s_end > s + tol;
-            let before = if ends || passes { 1.0 } else { 0.0 };
-            let after = if starts || passes { 1.0 } else { 0.0 };
-            if before != 0.0 || after != 0.0 {
-                terms.push((i, before, after));
+            let b = if ends || passes { 1.0 } else { 0.0 };
+            let a = if starts || passes { 1.0 } else { 0.0 };
+            if b != 0.0 || a != 0.0 {
+                terms.push((i, b, a));
             }
         }
+        terms
+    }
+
+    /// Residual of the anchor jump at `s` for post-jump strains `w = (v, u)`,
+    /// pre-jump strains `w0` and tensions `tau`: `v - v0 + K_nu^-1 P` and
+    /// `(u - u0 + K_omega^-1 sum r_i x P_i) L` (dimensionless).
+    fn anchor_residual<T: Real>(
+        &self,
+        s: f64,
+        terms: &[Term],
+        w: &[T; 6],
+        w0: &[T; 6],
+        tau: &[T],
+    ) -> [T; 6] {
+        let len = self.robot.body.length;
+        let zero = T::cst(0.0);
+        let (mut f, mut m) = ([zero; 3], [zero; 3]);
+        let mut add = |i: usize, weight: f64, st: &[T; 6]| {
+            let (r, rp, _) = self.robot.actuators[i].routing.eval(s);
+            let (r, rp): (V3<f64>, V3<f64>) = (r.into(), rp.into());
+            let (v, u) = ([st[0], st[1], st[2]], [st[3], st[4], st[5]]);
+            let ucr = cross_c(&u, &r);
+            let pb: V3<T> = std::array::from_fn(|k| v[k] + ucr[k] + rp[k]); // eq (19)
+            let nrm = dot(&pb, &pb).sqrt();
+            let p: V3<T> = std::array::from_fn(|k| pb[k] / nrm * tau[i] * weight);
+            let rxp = c_cross(&r, &p);
+            for k in 0..3 {
+                f[k] += p[k];
+                m[k] += rxp[k];
+            }
+        };
+        for &(i, b, a) in terms {
+            if b != 0.0 {
+                add(i, -b, w0);
+            }
+            if a != 0.0 {
+                add(i, a, w);
+            }
+        }
+        std::array::from_fn(|k| {
+            if k < 3 {
+                w[k] - w0[k] + f[k] * self.kse_inv[k]
+            } else {
+                (w[k] - w0[k] + m[k - 3] * self.kbt_inv[k - 3]) * len
+            }
+        })
+    }
+
+    /// The post-jump strains at the anchor node `s`: Newton's method on
+    /// [`RodRhs::anchor_residual`] with its exact Jacobian, backtracking
+    /// when a full step does not reduce the residual (converges in a few
+    /// iterations even where plain fixed-point iteration diverges).
+    pub(crate) fn anchor_loads(&self, s: f64, y: &mut [f64]) -> Result<()> {
+        let terms = self.anchor_terms(s, false);
         if terms.is_empty() {
             return Ok(());
         }
-        let tangent =
-            |i: usize, v: &Vector3<f64>, u: &Vector3<f64>| -> (Vector3<f64>, Vector3<f64>) {
-                let (pb, r) = self.pb(i, s, v, u);
-                (pb / pb.norm(), r)
-            };
-        // explicit part (from s-)
-        let mut f_minus = Vector3::zeros();
-        let mut m_minus = Vector3::zeros();
-        for &(i, b, _) in &terms {
-            if b != 0.0 {
-                let (t, r) = tangent(i, &v0, &u0);
-                let p = t * (-b * self.tensions[i]);
-                f_minus += p;
-                m_minus += r.cross(&p);
-            }
-        }
-        // residual of the jump for post-jump strains w = (v, u)
-        let resid = |w: &nalgebra::Vector6<f64>| -> nalgebra::Vector6<f64> {
-            let v = Vector3::new(w[0], w[1], w[2]);
-            let u = Vector3::new(w[3], w[4], w[5]);
-            let mut f = f_minus;
-            let mut m = m_minus;
-            for &(i, _, a) in &terms {
-                if a != 0.0 {
-                    let (t, r) = tangent(i, &v, &u);
-                    let p = t * (a * self.tensions[i]);
-                    f += p;
-                    m += r.cross(&p);
-                }
-            }
-            let dv = v - v0 + self.kse_inv.component_mul(&f);
-            let du = (u - u0 + self.kbt_inv.component_mul(&m)) * len;
-            nalgebra::Vector6::new(dv.x, dv.y, dv.z, du.x, du.y, du.z)
-        };
-        let mut w = nalgebra::Vector6::new(v0.x, v0.y, v0.z, u0.x, u0.y, u0.z);
-        let mut r = resid(&w);
+        let w0: [f64; 6] = std::array::from_fn(|k| y[7 + k]);
+        let w0d: [Dual<6>; 6] = w0.map(Dual::cst);
+        let taud: Vec<Dual<6>> = self.tensions.iter().map(|&t| Dual::cst(t)).collect();
+        let amax = |r: &[f64; 6]| r.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let mut w = w0;
+        let mut r = self.anchor_residual(s, &terms, &w, &w0, self.tensions);
         let mut done = false;
         for _ in 0..50 {
-            if r.amax() < 1e-14 {
+            if amax(&r) < 1e-14 {
                 done = true;
                 break;
             }
-            let mut jac = nalgebra::Matrix6::zeros();
-            for k in 0..6 {
-                let scale = if k < 3 { 1.0 } else { 1.0 / len };
-                let h = 1e-8 * w[k].abs().max(scale);
-                let mut wp = w;
-                wp[k] += h;
-                jac.set_column(k, &((resid(&wp) - r) / h));
-            }
-            let dw = jac.lu().solve(&(-r)).ok_or_else(|| Error::Integration {
+            let g = self.anchor_residual(s, &terms, &seeded(&w), &w0d, &taud);
+            let jac = Matrix6::from_fn(|i, j| g[i].eps[j]);
+            let rhs = -Vector6::from_column_slice(&r);
+            let dw = jac.lu().solve(&rhs).ok_or_else(|| Error::Integration {
                 s,
                 reason: "singular anchor-load system".into(),
             })?;
-            // backtrack if the full step does not reduce the residual
             let mut t = 1.0;
             loop {
-                let wt = w + dw * t;
-                let rt = resid(&wt);
-                if rt.amax() < r.amax() || t < 1e-4 {
+                let wt: [f64; 6] = std::array::from_fn(|k| w[k] + dw[k] * t);
+                let rt = self.anchor_residual(s, &terms, &wt, &w0, self.tensions);
+                if amax(&rt) < amax(&r) || t < 1e-4 {
                     w = wt;
                     r = rt;
                     break;
@@ -106,10 +137,10 @@ impl RodRhs<'_> {
                 t *= 0.5;
             }
         }
-        if !done && r.amax() > 1e-12 {
+        if !done && amax(&r) > 1e-12 {
             return Err(Error::Integration {
                 s,
-                reason: format!("anchor loads did not converge (residual {:.3e})", r.amax()),
+                reason: format!("anchor loads did not converge (residual {:.3e})", amax(&r)),
             });
         }
         if w.iter().any(|x| !x.is_finite()) {
@@ -118,8 +149,48 @@ impl RodRhs<'_> {
                 reason: "non-finite strains after anchor loads".into(),
             });
         }
-        y[7..10].copy_from_slice(&[w[0], w[1], w[2]]);
-        y[10..13].copy_from_slice(&[w[3], w[4], w[5]]);
+        y[7..13].copy_from_slice(&w);
+        Ok(())
+    }
+
+    /// The anchor jump at `s` on a dual state: the real part by
+    /// [`RodRhs::anchor_loads`], the tangents by the implicit function
+    /// theorem, `dw = -G_w^-1 (G_w0 dw0 + G_tau dtau)`, with `G_w` exact
+    /// (6-direction duals) and every string at `s` counted (zero tensions
+    /// too, so that the derivative with respect to a tension is right).
+    pub(crate) fn anchor_tangent<const N: usize>(
+        &self,
+        s: f64,
+        y: &mut [Dual<N>],
+        tau: &[Dual<N>],
+    ) -> Result<()> {
+        let terms = self.anchor_terms(s, true);
+        let mut yr: Vec<f64> = y.iter().map(|d| d.re).collect();
+        self.anchor_loads(s, &mut yr)?;
+        if terms.is_empty() {
+            return Ok(());
+        }
+        let ws: [f64; 6] = std::array::from_fn(|k| yr[7 + k]);
+        let w06: [Dual<6>; 6] = std::array::from_fn(|k| Dual::cst(y[7 + k].re));
+        let tau6: Vec<Dual<6>> = tau.iter().map(|t| Dual::cst(t.re)).collect();
+        let g6 = self.anchor_residual(s, &terms, &seeded(&ws), &w06, &tau6);
+        let lu = Matrix6::from_fn(|r, c| g6[r].eps[c]).lu();
+        // G_w0 dw0 + G_tau dtau at fixed w
+        let wn: [Dual<N>; 6] = ws.map(Dual::cst);
+        let w0n: [Dual<N>; 6] = std::array::from_fn(|k| y[7 + k]);
+        let gn = self.anchor_residual(s, &terms, &wn, &w0n, tau);
+        let mut out: [Dual<N>; 6] = wn;
+        for d in 0..N {
+            let rhs = Vector6::from_fn(|r, _| -gn[r].eps[d]);
+            let dw = lu.solve(&rhs).ok_or_else(|| Error::Integration {
+                s,
+                reason: "singular anchor-load system".into(),
+            })?;
+            for k in 0..6 {
+                out[k].eps[d] = dw[k];
+            }
+        }
+        y[7..13].copy_from_slice(&out);
         Ok(())
     }
 }

@@ -10,6 +10,8 @@
 
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
+use super::ode::Eq25;
+
 /// Scalar arithmetic shared by `f64` and [`Dual`]: what the generic twin of
 /// the right-hand side needs.
 pub trait Real:
@@ -32,9 +34,22 @@ pub trait Real:
     fn re(&self) -> f64;
     /// Square root.
     fn sqrt(self) -> Self;
-    /// `true` if value and derivatives are finite.
+    /// `true` if the value is finite (derivatives are checked once, at the
+    /// end of a tangent pass).
     fn is_finite(&self) -> bool;
+    /// Solve the eq-25 system `[[M11, M12], [M12^T, M22]] [v'; u'] = [e; f]`
+    /// (symmetric blocks stored whole): in `f64` by block elimination; for a
+    /// [`Dual`], the real part is factored ONCE in `f64` and every direction's
+    /// derivative solved with that factorisation, `d x = M^-1 (d b - dM x)`.
+    /// `None` if singular.
+    fn solve_eq25(m: &Blocks<Self>, e: &V3<Self>, f: &V3<Self>) -> Option<(V3<Self>, V3<Self>)>;
 }
+
+/// A 3-vector of scalars.
+pub type V3<T> = [T; 3];
+
+/// The three 3x3 blocks `M11, M12, M22` of the eq-25 matrix.
+pub type Blocks<T> = [[[T; 3]; 3]; 3];
 
 impl Real for f64 {
     #[inline(always)]
@@ -52,6 +67,10 @@ impl Real for f64 {
     #[inline(always)]
     fn is_finite(&self) -> bool {
         f64::is_finite(*self)
+    }
+    #[inline(always)]
+    fn solve_eq25(m: &Blocks<f64>, e: &V3<f64>, f: &V3<f64>) -> Option<(V3<f64>, V3<f64>)> {
+        Some(Eq25::factor(m)?.solve(e, f))
     }
 }
 
@@ -100,7 +119,34 @@ impl<const N: usize> Real for Dual<N> {
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
-        self.re.is_finite() && self.eps.iter().all(|e| e.is_finite())
+        self.re.is_finite()
+    }
+    #[inline(always)]
+    fn solve_eq25(m: &Blocks<Self>, e: &V3<Self>, f: &V3<Self>) -> Option<(V3<Self>, V3<Self>)> {
+        let fac = Eq25::factor(&m.map(|b| b.map(|r| r.map(|x| x.re))))?;
+        let (v, u) = fac.solve(&e.map(|x| x.re), &f.map(|x| x.re));
+        // each direction's right-hand side d b - dM x, all directions at once
+        let (m11, m12, m22) = (&m[0], &m[1], &m[2]);
+        let mut bv = [[0.0; N]; 3];
+        let mut bu = [[0.0; N]; 3];
+        for p in 0..3 {
+            let (mut av, mut au) = (e[p].eps, f[p].eps);
+            for q in 0..3 {
+                let (a, b) = (&m11[p][q].eps, &m12[p][q].eps);
+                let (c, d) = (&m12[q][p].eps, &m22[p][q].eps);
+                for k in 0..N {
+                    av[k] -= a[k] * v[q] + b[k] * u[q];
+                    au[k] -= c[k] * v[q] + d[k] * u[q];
+                }
+            }
+            bv[p] = av;
+            bu[p] = au;
+        }
+        let (dv, du) = fac.solve_n(&bv, &bu);
+        Some((
+            std::array::from_fn(|p| Dual::new(v[p], dv[p])),
+            std::array::from_fn(|p| Dual::new(u[p], du[p])),
+        ))
     }
 }
 
@@ -202,6 +248,74 @@ impl<const N: usize> SubAssign for Dual<N> {
     fn sub_assign(&mut self, o: Self) {
         *self = *self - o;
     }
+}
+
+/// `a x b`.
+#[inline(always)]
+pub(crate) fn cross<T: Real>(a: &V3<T>, b: &V3<T>) -> V3<T> {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// `a x b` for a constant `b`.
+#[inline(always)]
+pub(crate) fn cross_c<T: Real>(a: &V3<T>, b: &V3<f64>) -> V3<T> {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// `a x b` for a constant `a`.
+#[inline(always)]
+pub(crate) fn c_cross<T: Real>(a: &V3<f64>, b: &V3<T>) -> V3<T> {
+    [
+        b[2] * a[1] - b[1] * a[2],
+        b[0] * a[2] - b[2] * a[0],
+        b[1] * a[0] - b[0] * a[1],
+    ]
+}
+
+/// `a . b`.
+#[inline(always)]
+pub(crate) fn dot<T: Real>(a: &V3<T>, b: &V3<T>) -> T {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Rotation matrix of a unit quaternion `[w, x, y, z]` (as `rod::rot`).
+#[inline(always)]
+pub(crate) fn rot_t<T: Real>(q: &[T; 4]) -> [[T; 3]; 3] {
+    let (w, x, y, z) = (q[0], q[1], q[2], q[3]);
+    let (xx, yy, zz) = (x * x, y * y, z * z);
+    let (xy, xz, yz) = (x * y, x * z, y * z);
+    let (wx, wy, wz) = (w * x, w * y, w * z);
+    [
+        [
+            T::cst(1.0) - (yy + zz) * 2.0,
+            (xy - wz) * 2.0,
+            (xz + wy) * 2.0,
+        ],
+        [
+            (xy + wz) * 2.0,
+            T::cst(1.0) - (xx + zz) * 2.0,
+            (yz - wx) * 2.0,
+        ],
+        [
+            (xz - wy) * 2.0,
+            (yz + wx) * 2.0,
+            T::cst(1.0) - (xx + yy) * 2.0,
+        ],
+    ]
+}
+
+/// `R^T a` for a constant `a`.
+#[inline(always)]
+pub(crate) fn rt_mul<T: Real>(r: &[[T; 3]; 3], a: &V3<f64>) -> V3<T> {
+    std::array::from_fn(|k| r[0][k] * a[0] + r[1][k] * a[1] + r[2][k] * a[2])
 }
 
 #[cfg(test)]

@@ -1,9 +1,10 @@
 //! The right-hand side of the rod's ODE, eqs 22-31, with the actuator
 //! tensions frozen for one IVP.
 
-use nalgebra::{Matrix3, Quaternion, Vector3};
+use nalgebra::{Matrix3, Vector3};
 
-use super::{rot, Robot, Routing, BASE_STATES};
+use super::dual::{c_cross, cross, cross_c, dot, rot_t, rt_mul, Blocks, Real, V3};
+use super::{Robot, Routing, BASE_STATES};
 use crate::error::{Error, Result};
 
 /// Per-actuator constants of one IVP: a straight actuator's offset, its
@@ -48,6 +49,99 @@ fn inv_sym3_upper(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
     let c22 = (a * d - b * b) * id;
     let (c00, c01, c02) = (c00 * id, c01 * id, c02 * id);
     Some([[c00, c01, c02], [c01, c11, c12], [c02, c12, c22]])
+}
+
+/// The block factorisation of the symmetric eq-25 matrix
+/// `[[M11, M12], [M12^T, M22]]`: `M11^-1`, `Y = M11^-1 M12` and the inverse
+/// of the Schur complement `S = M22 - M12^T Y`. Factored once per stage and
+/// applied to the state's right-hand side and to every tangent direction's.
+pub(crate) struct Eq25 {
+    m11_inv: [[f64; 3]; 3],
+    m12: [[f64; 3]; 3],
+    y12: [[f64; 3]; 3],
+    s_inv: [[f64; 3]; 3],
+}
+
+impl Eq25 {
+    /// Factor the blocks `[M11, M12, M22]` (symmetric ones stored whole); `None` if singular.
+    #[inline(always)]
+    pub(crate) fn factor(m: &Blocks<f64>) -> Option<Self> {
+        let (m11, m12, m22) = (&m[0], m[1], &m[2]);
+        let m11_inv = inv_sym3_upper(m11)?;
+        let mut y12 = [[0.0; 3]; 3];
+        for p in 0..3 {
+            for q in 0..3 {
+                y12[p][q] = m11_inv[p][0] * m12[0][q]
+                    + m11_inv[p][1] * m12[1][q]
+                    + m11_inv[p][2] * m12[2][q];
+            }
+        }
+        let mut sc = [[0.0; 3]; 3];
+        for p in 0..3 {
+            for q in p..3 {
+                sc[p][q] = m22[p][q]
+                    - (m12[0][p] * y12[0][q] + m12[1][p] * y12[1][q] + m12[2][p] * y12[2][q]);
+            }
+        }
+        let s_inv = inv_sym3_upper(&sc)?;
+        Some(Eq25 {
+            m11_inv,
+            m12,
+            y12,
+            s_inv,
+        })
+    }
+
+    /// `[v'; u']` for the right-hand side `[e; f]`: `a = M11^-1 e`,
+    /// `u' = S^-1 (f - M12^T a)`, `v' = a - Y u'`.
+    #[inline(always)]
+    pub(crate) fn solve(&self, e: &V3<f64>, f: &V3<f64>) -> (V3<f64>, V3<f64>) {
+        let (mi, m12, y, si) = (&self.m11_inv, &self.m12, &self.y12, &self.s_inv);
+        let a: V3<f64> =
+            std::array::from_fn(|p| mi[p][0] * e[0] + mi[p][1] * e[1] + mi[p][2] * e[2]);
+        let g: V3<f64> = std::array::from_fn(|p| {
+            f[p] - (m12[0][p] * a[0] + m12[1][p] * a[1] + m12[2][p] * a[2])
+        });
+        let ud: V3<f64> =
+            std::array::from_fn(|p| si[p][0] * g[0] + si[p][1] * g[1] + si[p][2] * g[2]);
+        let vd: V3<f64> =
+            std::array::from_fn(|p| a[p] - (y[p][0] * ud[0] + y[p][1] * ud[1] + y[p][2] * ud[2]));
+        (vd, ud)
+    }
+
+    /// [`Eq25::solve`] for `N` right-hand sides at once (`e[p][k]`: component `p`, direction `k`).
+    #[inline(always)]
+    pub(crate) fn solve_n<const N: usize>(
+        &self,
+        e: &[[f64; N]; 3],
+        f: &[[f64; N]; 3],
+    ) -> ([[f64; N]; 3], [[f64; N]; 3]) {
+        let (mi, m12, y, si) = (&self.m11_inv, &self.m12, &self.y12, &self.s_inv);
+        let mut a = [[0.0; N]; 3];
+        let mut g = *f;
+        let mut ud = [[0.0; N]; 3];
+        for p in 0..3 {
+            for k in 0..N {
+                a[p][k] = mi[p][0] * e[0][k] + mi[p][1] * e[1][k] + mi[p][2] * e[2][k];
+            }
+        }
+        for p in 0..3 {
+            for k in 0..N {
+                g[p][k] -= m12[0][p] * a[0][k] + m12[1][p] * a[1][k] + m12[2][p] * a[2][k];
+            }
+        }
+        for p in 0..3 {
+            for k in 0..N {
+                ud[p][k] = si[p][0] * g[0][k] + si[p][1] * g[1][k] + si[p][2] * g[2][k];
+            }
+        }
+        for p in 0..3 {
+            for k in 0..N {
+                a[p][k] -= y[p][0] * ud[0][k] + y[p][1] * ud[1][k] + y[p][2] * ud[2][k];
+            }
+        }
+        (a, ud)
+    }
 }
 
 impl<'a> RodRhs<'a> {
@@ -112,170 +206,149 @@ impl<'a> RodRhs<'a> {
         }
     }
 
-    /// `dy/ds` (eqs 22-25) with the actuators in `active` (indices).
+    /// `(r, r', r'', L_i)` of actuator `i` at `s` (constants of a straight routing).
+    #[inline(always)]
+    pub(crate) fn routing_at(&self, i: usize, s: f64) -> (V3<f64>, V3<f64>, V3<f64>, f64) {
+        match self.acts[i].straight {
+            Some((r, _, l)) => (r.into(), [0.0; 3], [0.0; 3], l),
+            None => {
+                let (r, rp, rpp) = self.robot.actuators[i].routing.eval(s);
+                (r.into(), rp.into(), rpp.into(), self.ref_rate(i, s))
+            }
+        }
+    }
+
+    /// `dy/ds` (eqs 22-31) with the IVP's tensions, in `f64`.
+    #[inline]
+    pub(crate) fn deriv(&self, s: f64, y: &[f64], active: &[usize], dy: &mut [f64]) -> Result<()> {
+        self.deriv_generic(s, y, self.tensions, active, dy)
+    }
+
+    /// `dy/ds` (eqs 22-31) with tensions `tau` and the actuators in `active`
+    /// (indices), in any [`Real`] arithmetic: `f64` for IVPs, [`super::dual::Dual`]
+    /// for their tangents. The one implementation of the right-hand side
+    /// (its plain twin in the paper's notation is `tests/ode_reference.rs`).
     ///
     /// The 6x6 system (25) is symmetric, `[[M11, M12], [M12^T, M22]]` with
     /// `M11 = K_nu + sum A_i`, `M12 = -sum A_i r_i^`, `M22 = K_omega - sum r_i^ A_i r_i^`
-    /// (`A_i` symmetric, `r^T = -r^`), and is solved by block elimination on
-    /// its 3x3 blocks: `M11^-1`, then the Schur complement `S = M22 - M12^T M11^-1 M12`.
-    #[inline]
-    pub(crate) fn deriv(&self, s: f64, y: &[f64], active: &[usize], dy: &mut [f64]) -> Result<()> {
+    /// (`A_i` symmetric, `r^T = -r^`); it is assembled on the upper
+    /// triangles and solved by [`Real::solve_eq25`] (block elimination).
+    #[inline(always)]
+    pub(crate) fn deriv_generic<T: Real>(
+        &self,
+        s: f64,
+        y: &[T],
+        tau: &[T],
+        active: &[usize],
+        dy: &mut [T],
+    ) -> Result<()> {
         let body = &self.robot.body;
-        let q = Quaternion::new(y[3], y[4], y[5], y[6]);
-        let r_mat = rot(&q);
-        let v = Vector3::new(y[7], y[8], y[9]);
-        let u = Vector3::new(y[10], y[11], y[12]);
-        let nse = self.kse.component_mul(&(v - body.nu_star));
-        let nbt = self.kbt.component_mul(&(u - body.omega_star));
-        // eq (25) right-hand side: [e; f]
-        let rhs_v = -u.cross(&nse) - r_mat.tr_mul(&self.fe);
-        let mut rhs_u = -u.cross(&nbt) - v.cross(&nse);
+        let (nu_star, omega_star): (V3<f64>, V3<f64>) =
+            (body.nu_star.into(), body.omega_star.into());
+        let (kse, kbt): (V3<f64>, V3<f64>) = (self.kse.into(), self.kbt.into());
+        let zero = T::cst(0.0);
+        let rm = rot_t(&[y[3], y[4], y[5], y[6]]);
+        let v = [y[7], y[8], y[9]];
+        let u = [y[10], y[11], y[12]];
+        let nse: V3<T> = std::array::from_fn(|k| (v[k] - nu_star[k]) * kse[k]);
+        let nbt: V3<T> = std::array::from_fn(|k| (u[k] - omega_star[k]) * kbt[k]);
+        // eq (25) right-hand side [e; f] without the actuators' terms (30)-(31)
+        let (ucn, rtfe) = (cross(&u, &nse), rt_mul(&rm, &self.fe.into()));
+        let mut e: V3<T> = std::array::from_fn(|k| -ucn[k] - rtfe[k]);
+        let (ucb, vcn) = (cross(&u, &nbt), cross(&v, &nse));
+        let mut f: V3<T> = std::array::from_fn(|k| -ucb[k] - vcn[k]);
         if self.has_le {
-            rhs_u -= r_mat.tr_mul(&self.le);
+            let rtle = rt_mul(&rm, &self.le.into());
+            for k in 0..3 {
+                f[k] -= rtle[k];
+            }
         }
-        for k in 0..self.robot.actuators.len() {
-            dy[BASE_STATES + k] = 0.0;
+        for d in dy[BASE_STATES..].iter_mut() {
+            *d = zero;
         }
-        let (vd, ud) = if active.is_empty() {
+        let (vd, ud): (V3<T>, V3<T>) = if active.is_empty() {
             (
-                rhs_v.component_mul(&self.kse_inv),
-                rhs_u.component_mul(&self.kbt_inv),
+                std::array::from_fn(|k| e[k] * self.kse_inv[k]),
+                std::array::from_fn(|k| f[k] * self.kbt_inv[k]),
             )
         } else {
-            // Blocks in plain arrays (nalgebra's generic 3x3 arithmetic costs
-            // several times the flops here). Symmetric blocks are stored whole.
-            let mut m11 = [[0.0; 3]; 3];
-            let mut m12 = [[0.0; 3]; 3];
-            let mut m22 = [[0.0; 3]; 3];
+            // [M11, M12, M22], upper triangles of M11 and M22
+            let mut m = [[[zero; 3]; 3]; 3];
             for k in 0..3 {
-                m11[k][k] = self.kse[k];
-                m22[k][k] = self.kbt[k];
+                m[0][k][k] = T::cst(kse[k]);
+                m[2][k][k] = T::cst(kbt[k]);
             }
-            let (mut e, mut f) = ([rhs_v.x, rhs_v.y, rhs_v.z], [rhs_u.x, rhs_u.y, rhs_u.z]);
             for &i in active {
-                let (r, rp, rpp, lref) = match self.acts[i].straight {
-                    Some((r, _, l)) => (r, Vector3::zeros(), Vector3::zeros(), l),
-                    None => {
-                        let (r, rp, rpp) = self.robot.actuators[i].routing.eval(s);
-                        (r, rp, rpp, self.ref_rate(i, s))
-                    }
-                };
-                let pb = v + u.cross(&r) + rp; // eq (19), body frame
-                let nrm = pb.norm();
-                if !(nrm > 1e-12) {
+                let (r, rp, rpp, lref) = self.routing_at(i, s);
+                let ucr = cross_c(&u, &r);
+                let pb: V3<T> = std::array::from_fn(|k| v[k] + ucr[k] + rp[k]); // eq (19), body frame
+                let nrm = dot(&pb, &pb).sqrt();
+                if !(nrm.re() > 1e-12) {
                     return Err(Error::Integration {
                         s,
                         reason: format!("actuator {i} has zero length rate"),
                     });
                 }
-                let tau = self.tensions[i];
                 // A_i = -tau pb^2 / |pb|^3 = c (I - t t^T), c = tau / |pb| (eq 20:
                 // tau t_a' = A_i R^T p_a''). With r^ x = r x x, w = t x r and
                 // r^ r^ = r r^T - |r|^2 I:
                 //   A_i r^ = c (r^ - t w^T),  r^ A_i r^ = c (r r^T - |r|^2 I + w w^T).
-                let c = tau / nrm;
-                let t = pb / nrm;
-                let w = t.cross(&r);
-                let ct = t * c;
-                let g_i = u.cross(&(pb + rp)) + rpp; // omega^(nu + omega^ r + 2 r') + r''
-                let ag = g_i * c - ct * t.dot(&g_i); // A_i g_i
-                let rag = r.cross(&ag);
-                let cr2 = c * r.norm_squared();
-                let cw = w * c;
-                // (26): M11 += c I - c t t^T (symmetric: upper triangle, mirrored below)
-                m11[0][0] += c - ct.x * t.x;
-                m11[0][1] -= ct.x * t.y;
-                m11[0][2] -= ct.x * t.z;
-                m11[1][1] += c - ct.y * t.y;
-                m11[1][2] -= ct.y * t.z;
-                m11[2][2] += c - ct.z * t.z;
-                // (27): M12 += -c r^ + c t w^T; (28) is its transpose
-                let cr = r * c;
+                let c = tau[i] / nrm;
+                let t: V3<T> = std::array::from_fn(|k| pb[k] / nrm);
+                let w = cross_c(&t, &r);
+                let ct: V3<T> = std::array::from_fn(|k| t[k] * c);
+                let pbrp: V3<T> = std::array::from_fn(|k| pb[k] + rp[k]);
+                let upr = cross(&u, &pbrp);
+                // g_i = omega^(nu + omega^ r + 2 r') + r''
+                let g: V3<T> = std::array::from_fn(|k| upr[k] + rpp[k]);
+                let tg = dot(&t, &g);
+                let ag: V3<T> = std::array::from_fn(|k| g[k] * c - ct[k] * tg); // A_i g_i
+                let rag = c_cross(&r, &ag);
+                let cr: V3<T> = std::array::from_fn(|k| c * r[k]);
+                let cr2 = c * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+                let cw: V3<T> = std::array::from_fn(|k| w[k] * c);
                 for p in 0..3 {
-                    m12[p][0] += ct[p] * w.x;
-                    m12[p][1] += ct[p] * w.y;
-                    m12[p][2] += ct[p] * w.z;
-                }
-                m12[0][1] += cr.z;
-                m12[0][2] -= cr.y;
-                m12[1][0] -= cr.z;
-                m12[1][2] += cr.x;
-                m12[2][0] += cr.y;
-                m12[2][1] -= cr.x;
-                // (29): M22 += c |r|^2 I - c r r^T - c w w^T
-                m22[0][0] += cr2 - cr.x * r.x - cw.x * w.x;
-                m22[0][1] -= cr.x * r.y + cw.x * w.y;
-                m22[0][2] -= cr.x * r.z + cw.x * w.z;
-                m22[1][1] += cr2 - cr.y * r.y - cw.y * w.y;
-                m22[1][2] -= cr.y * r.z + cw.y * w.z;
-                m22[2][2] += cr2 - cr.z * r.z - cw.z * w.z;
-                for p in 0..3 {
+                    for q in p..3 {
+                        m[0][p][q] -= ct[p] * t[q]; // (26): M11 += c I - c t t^T
+                        m[2][p][q] -= cr[p] * r[q] + cw[p] * w[q]; // (29): M22 += c |r|^2 I - c r r^T - c w w^T
+                    }
+                    m[0][p][p] += c;
+                    m[2][p][p] += cr2;
+                    for q in 0..3 {
+                        m[1][p][q] += ct[p] * w[q]; // (27): M12 += -c r^ + c t w^T; (28) is its transpose
+                    }
                     e[p] -= ag[p]; // (30)
                     f[p] -= rag[p]; // (31)
                 }
+                m[1][0][1] += cr[2];
+                m[1][0][2] -= cr[1];
+                m[1][1][0] -= cr[2];
+                m[1][1][2] += cr[0];
+                m[1][2][0] += cr[1];
+                m[1][2][1] -= cr[0];
                 dy[BASE_STATES + i] = nrm - lref; // (24)
             }
             for (p, q) in [(1, 0), (2, 0), (2, 1)] {
-                m11[p][q] = m11[q][p];
-                m22[p][q] = m22[q][p];
+                m[0][p][q] = m[0][q][p];
+                m[2][p][q] = m[2][q][p];
             }
-            let singular = || {
-                Error::Integration {
+            T::solve_eq25(&m, &e, &f).ok_or_else(|| Error::Integration {
                 s,
                 reason: "singular stiffness system (25): actuator compression exceeds the body's stiffness".into(),
-            }
-            };
-            let m11_inv = inv_sym3_upper(&m11).ok_or_else(singular)?;
-            // Y = M11^-1 M12, a = M11^-1 e
-            let mut y12 = [[0.0; 3]; 3];
-            let mut ae = [0.0; 3];
-            for p in 0..3 {
-                for q in 0..3 {
-                    y12[p][q] = m11_inv[p][0] * m12[0][q]
-                        + m11_inv[p][1] * m12[1][q]
-                        + m11_inv[p][2] * m12[2][q];
-                }
-                ae[p] = m11_inv[p][0] * e[0] + m11_inv[p][1] * e[1] + m11_inv[p][2] * e[2];
-            }
-            // S = M22 - M12^T Y (symmetric), g = f - M12^T a
-            let mut sc = [[0.0; 3]; 3];
-            let mut g = [0.0; 3];
-            for p in 0..3 {
-                for q in p..3 {
-                    sc[p][q] = m22[p][q]
-                        - (m12[0][p] * y12[0][q] + m12[1][p] * y12[1][q] + m12[2][p] * y12[2][q]);
-                    sc[q][p] = sc[p][q];
-                }
-                g[p] = f[p] - (m12[0][p] * ae[0] + m12[1][p] * ae[1] + m12[2][p] * ae[2]);
-            }
-            let s_inv = inv_sym3_upper(&sc).ok_or_else(singular)?;
-            let mut ud = Vector3::zeros();
-            for p in 0..3 {
-                ud[p] = s_inv[p][0] * g[0] + s_inv[p][1] * g[1] + s_inv[p][2] * g[2];
-            }
-            let mut vd = Vector3::zeros();
-            for p in 0..3 {
-                vd[p] = ae[p] - (y12[p][0] * ud[0] + y12[p][1] * ud[1] + y12[p][2] * ud[2]);
-            }
-            (vd, ud)
+            })?
         };
-        let pd = r_mat * v; // (22)
-        dy[0] = pd.x;
-        dy[1] = pd.y;
-        dy[2] = pd.z;
+        for k in 0..3 {
+            dy[k] = rm[k][0] * v[0] + rm[k][1] * v[1] + rm[k][2] * v[2]; // (22)
+        }
         // (23) as q' = q (0, u) / 2
-        let qd = q * Quaternion::new(0.0, u.x, u.y, u.z) * 0.5;
-        dy[3] = qd.w;
-        dy[4] = qd.i;
-        dy[5] = qd.j;
-        dy[6] = qd.k;
-        dy[7] = vd.x;
-        dy[8] = vd.y;
-        dy[9] = vd.z;
-        dy[10] = ud.x;
-        dy[11] = ud.y;
-        dy[12] = ud.z;
-        if !dy.iter().fold(0.0, |acc, x| acc + x * 0.0).is_finite() {
+        let (qw, qx, qy, qz) = (y[3], y[4], y[5], y[6]);
+        dy[3] = -(qx * u[0] + qy * u[1] + qz * u[2]) * 0.5;
+        dy[4] = (qw * u[0] + qy * u[2] - qz * u[1]) * 0.5;
+        dy[5] = (qw * u[1] + qz * u[0] - qx * u[2]) * 0.5;
+        dy[6] = (qw * u[2] + qx * u[1] - qy * u[0]) * 0.5;
+        dy[7..10].copy_from_slice(&vd);
+        dy[10..13].copy_from_slice(&ud);
+        if !dy.iter().fold(0.0, |acc, x| acc + x.re() * 0.0).is_finite() {
             return Err(Error::Integration {
                 s,
                 reason: "non-finite derivative".into(),
@@ -284,3 +357,7 @@ impl<'a> RodRhs<'a> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+#[path = "ode_reference.rs"]
+mod reference;

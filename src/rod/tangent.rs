@@ -14,371 +14,12 @@
 //! `f64` fast path in `ode.rs`; `f64` instances of both agree to rounding
 //! (tested).
 
-use nalgebra::{DMatrix, Matrix6, Vector3, Vector6};
+use nalgebra::{DMatrix, Vector3};
 
-use super::dual::{Dual, Real};
+use super::dual::{c_cross, cross_c, dot, rot_t, rt_mul, Dual, Real, V3};
 use super::ode::RodRhs;
 use super::{IvpResult, IvpSpec, RodState, BASE_STATES};
 use crate::error::{Error, Result};
-
-type V3<T> = [T; 3];
-
-#[inline(always)]
-fn cross<T: Real>(a: &V3<T>, b: &V3<T>) -> V3<T> {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// `a x b` for a constant `b`.
-#[inline(always)]
-fn cross_c<T: Real>(a: &V3<T>, b: &Vector3<f64>) -> V3<T> {
-    [
-        a[1] * b.z - a[2] * b.y,
-        a[2] * b.x - a[0] * b.z,
-        a[0] * b.y - a[1] * b.x,
-    ]
-}
-
-/// `a x b` for a constant `a`.
-#[inline(always)]
-fn c_cross<T: Real>(a: &Vector3<f64>, b: &V3<T>) -> V3<T> {
-    [
-        b[2] * a.y - b[1] * a.z,
-        b[0] * a.z - b[2] * a.x,
-        b[1] * a.x - b[0] * a.y,
-    ]
-}
-
-#[inline(always)]
-fn dot<T: Real>(a: &V3<T>, b: &V3<T>) -> T {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Rotation matrix of a unit quaternion `[w, x, y, z]` (as `rod::rot`).
-#[inline(always)]
-fn rot_t<T: Real>(q: &[T; 4]) -> [[T; 3]; 3] {
-    let (w, x, y, z) = (q[0], q[1], q[2], q[3]);
-    let one = T::cst(1.0);
-    [
-        [
-            one - (y * y + z * z) * 2.0,
-            (x * y - w * z) * 2.0,
-            (x * z + w * y) * 2.0,
-        ],
-        [
-            (x * y + w * z) * 2.0,
-            one - (x * x + z * z) * 2.0,
-            (y * z - w * x) * 2.0,
-        ],
-        [
-            (x * z - w * y) * 2.0,
-            (y * z + w * x) * 2.0,
-            one - (x * x + y * y) * 2.0,
-        ],
-    ]
-}
-
-/// `R^T a` for a constant `a`.
-#[inline(always)]
-fn rt_mul<T: Real>(r: &[[T; 3]; 3], a: &Vector3<f64>) -> V3<T> {
-    std::array::from_fn(|k| r[0][k] * a.x + r[1][k] * a.y + r[2][k] * a.z)
-}
-
-/// Inverse of a symmetric 3x3 matrix (upper triangle read), `None` if singular.
-#[inline(always)]
-fn inv_sym3<T: Real>(m: &[[T; 3]; 3]) -> Option<[[T; 3]; 3]> {
-    let (a, b, c) = (m[0][0], m[0][1], m[0][2]);
-    let (d, e) = (m[1][1], m[1][2]);
-    let f = m[2][2];
-    let c00 = d * f - e * e;
-    let c01 = c * e - b * f;
-    let c02 = b * e - c * d;
-    let det = a * c00 + b * c01 + c * c02;
-    if !(det.re().is_finite() && det.re() != 0.0) {
-        return None;
-    }
-    let c11 = (a * f - c * c) / det;
-    let c12 = (b * c - a * e) / det;
-    let c22 = (a * d - b * b) / det;
-    let (c00, c01, c02) = (c00 / det, c01 / det, c02 / det);
-    Some([[c00, c01, c02], [c01, c11, c12], [c02, c12, c22]])
-}
-
-impl RodRhs<'_> {
-    /// `(r, r', r'', L_i)` of actuator `i` at `s` (constants of the routing).
-    #[inline(always)]
-    fn routing_at(&self, i: usize, s: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>, f64) {
-        match self.acts[i].straight {
-            Some((r, _, l)) => (r, Vector3::zeros(), Vector3::zeros(), l),
-            None => {
-                let (r, rp, rpp) = self.robot.actuators[i].routing.eval(s);
-                (r, rp, rpp, self.ref_rate(i, s))
-            }
-        }
-    }
-
-    /// `dy/ds` (eqs 22-31) in any [`Real`] arithmetic, with tensions `tau`:
-    /// the plain twin of [`RodRhs::deriv`].
-    pub(crate) fn deriv_generic<T: Real>(
-        &self,
-        s: f64,
-        y: &[T],
-        tau: &[T],
-        active: &[usize],
-        dy: &mut [T],
-    ) -> Result<()> {
-        let body = &self.robot.body;
-        let zero = T::cst(0.0);
-        let rm = rot_t(&[y[3], y[4], y[5], y[6]]);
-        let v = [y[7], y[8], y[9]];
-        let u = [y[10], y[11], y[12]];
-        let nse: V3<T> = std::array::from_fn(|k| (v[k] - body.nu_star[k]) * self.kse[k]);
-        let nbt: V3<T> = std::array::from_fn(|k| (u[k] - body.omega_star[k]) * self.kbt[k]);
-        // eq (25) right-hand side: [e; f]
-        let (ucn, rtfe) = (cross(&u, &nse), rt_mul(&rm, &self.fe));
-        let mut e: V3<T> = std::array::from_fn(|k| -ucn[k] - rtfe[k]);
-        let (ucb, vcn) = (cross(&u, &nbt), cross(&v, &nse));
-        let mut f: V3<T> = std::array::from_fn(|k| -ucb[k] - vcn[k]);
-        if self.has_le {
-            let rtle = rt_mul(&rm, &self.le);
-            for k in 0..3 {
-                f[k] -= rtle[k];
-            }
-        }
-        for d in dy[BASE_STATES..].iter_mut() {
-            *d = zero;
-        }
-        let (vd, ud): (V3<T>, V3<T>) = if active.is_empty() {
-            (
-                std::array::from_fn(|k| e[k] * self.kse_inv[k]),
-                std::array::from_fn(|k| f[k] * self.kbt_inv[k]),
-            )
-        } else {
-            let mut m11 = [[zero; 3]; 3];
-            let mut m12 = [[zero; 3]; 3];
-            let mut m22 = [[zero; 3]; 3];
-            for k in 0..3 {
-                m11[k][k] = T::cst(self.kse[k]);
-                m22[k][k] = T::cst(self.kbt[k]);
-            }
-            for &i in active {
-                let (r, rp, rpp, lref) = self.routing_at(i, s);
-                let ucr = cross_c(&u, &r);
-                let pb: V3<T> = std::array::from_fn(|k| v[k] + ucr[k] + rp[k]); // eq (19), body frame
-                let nrm = dot(&pb, &pb).sqrt();
-                if !(nrm.re() > 1e-12) {
-                    return Err(Error::Integration {
-                        s,
-                        reason: format!("actuator {i} has zero length rate"),
-                    });
-                }
-                // A_i = c (I - t t^T), c = tau / |pb| (eq 20)
-                let c = tau[i] / nrm;
-                let t: V3<T> = std::array::from_fn(|k| pb[k] / nrm);
-                let w = cross_c(&t, &r);
-                let ct: V3<T> = std::array::from_fn(|k| t[k] * c);
-                let pbrp: V3<T> = std::array::from_fn(|k| pb[k] + rp[k]);
-                let upr = cross(&u, &pbrp);
-                let g: V3<T> = std::array::from_fn(|k| upr[k] + rpp[k]);
-                let tg = dot(&t, &g);
-                let ag: V3<T> = std::array::from_fn(|k| g[k] * c - ct[k] * tg); // A_i g_i
-                let rag = c_cross(&r, &ag);
-                let cr: V3<T> = std::array::from_fn(|k| c * r[k]);
-                let cr2 = c * r.norm_squared();
-                let cw: V3<T> = std::array::from_fn(|k| w[k] * c);
-                for p in 0..3 {
-                    for q in p..3 {
-                        // (26): M11 += c I - c t t^T; (29): M22 += c |r|^2 I - c r r^T - c w w^T
-                        m11[p][q] -= ct[p] * t[q];
-                        m22[p][q] -= cr[p] * r[q] + cw[p] * w[q];
-                    }
-                    m11[p][p] += c;
-                    m22[p][p] += cr2;
-                    // (27): M12 += -c r^ + c t w^T
-                    for q in 0..3 {
-                        m12[p][q] += ct[p] * w[q];
-                    }
-                    e[p] -= ag[p]; // (30)
-                    f[p] -= rag[p]; // (31)
-                }
-                m12[0][1] += cr[2];
-                m12[0][2] -= cr[1];
-                m12[1][0] -= cr[2];
-                m12[1][2] += cr[0];
-                m12[2][0] += cr[1];
-                m12[2][1] -= cr[0];
-                dy[BASE_STATES + i] = nrm - lref; // (24)
-            }
-            for (p, q) in [(1, 0), (2, 0), (2, 1)] {
-                m11[p][q] = m11[q][p];
-                m22[p][q] = m22[q][p];
-            }
-            let singular = || {
-                Error::Integration {
-                s,
-                reason: "singular stiffness system (25): actuator compression exceeds the body's stiffness".into(),
-            }
-            };
-            let m11_inv = inv_sym3(&m11).ok_or_else(singular)?;
-            // Y = M11^-1 M12, a = M11^-1 e; S = M22 - M12^T Y, g = f - M12^T a
-            let y12: [[T; 3]; 3] = std::array::from_fn(|p| {
-                std::array::from_fn(|q| {
-                    m11_inv[p][0] * m12[0][q]
-                        + m11_inv[p][1] * m12[1][q]
-                        + m11_inv[p][2] * m12[2][q]
-                })
-            });
-            let ae: V3<T> = std::array::from_fn(|p| {
-                m11_inv[p][0] * e[0] + m11_inv[p][1] * e[1] + m11_inv[p][2] * e[2]
-            });
-            let mut sc = [[zero; 3]; 3];
-            for p in 0..3 {
-                for q in p..3 {
-                    sc[p][q] = m22[p][q]
-                        - (m12[0][p] * y12[0][q] + m12[1][p] * y12[1][q] + m12[2][p] * y12[2][q]);
-                    sc[q][p] = sc[p][q];
-                }
-            }
-            let g: V3<T> = std::array::from_fn(|p| {
-                f[p] - (m12[0][p] * ae[0] + m12[1][p] * ae[1] + m12[2][p] * ae[2])
-            });
-            let s_inv = inv_sym3(&sc).ok_or_else(singular)?;
-            let ud: V3<T> = std::array::from_fn(|p| {
-                s_inv[p][0] * g[0] + s_inv[p][1] * g[1] + s_inv[p][2] * g[2]
-            });
-            let vd: V3<T> = std::array::from_fn(|p| {
-                ae[p] - (y12[p][0] * ud[0] + y12[p][1] * ud[1] + y12[p][2] * ud[2])
-            });
-            (vd, ud)
-        };
-        for k in 0..3 {
-            dy[k] = rm[k][0] * v[0] + rm[k][1] * v[1] + rm[k][2] * v[2]; // (22)
-        }
-        // (23) as q' = q (0, u) / 2
-        let (w, x, yq, z) = (y[3], y[4], y[5], y[6]);
-        dy[3] = -(x * u[0] + yq * u[1] + z * u[2]) * 0.5;
-        dy[4] = (w * u[0] + yq * u[2] - z * u[1]) * 0.5;
-        dy[5] = (w * u[1] + z * u[0] - x * u[2]) * 0.5;
-        dy[6] = (w * u[2] + x * u[1] - yq * u[0]) * 0.5;
-        dy[7..10].copy_from_slice(&vd);
-        dy[10..13].copy_from_slice(&ud);
-        if !dy.iter().all(|d| d.is_finite()) {
-            return Err(Error::Integration {
-                s,
-                reason: "non-finite derivative".into(),
-            });
-        }
-        Ok(())
-    }
-
-    /// Residual of the anchor jump at `s` (see `anchor_loads`) for post-jump
-    /// strains `w = (v, u)`, pre-jump strains `w0` and tensions `tau`, with
-    /// every string anchored at or passing `s` (zero tensions included, so
-    /// that the derivative with respect to a tension is right).
-    fn anchor_residual<T: Real>(
-        &self,
-        s: f64,
-        terms: &[(usize, f64, f64)],
-        w: &[T; 6],
-        w0: &[T; 6],
-        tau: &[T],
-    ) -> [T; 6] {
-        let len = self.robot.body.length;
-        let zero = T::cst(0.0);
-        let (mut f, mut m) = ([zero; 3], [zero; 3]);
-        let mut add = |i: usize, weight: f64, st: &[T; 6]| {
-            let (r, rp, _) = self.robot.actuators[i].routing.eval(s);
-            let (v, u) = ([st[0], st[1], st[2]], [st[3], st[4], st[5]]);
-            let ucr = cross_c(&u, &r);
-            let pb: V3<T> = std::array::from_fn(|k| v[k] + ucr[k] + rp[k]);
-            let nrm = dot(&pb, &pb).sqrt();
-            let p: V3<T> = std::array::from_fn(|k| pb[k] / nrm * tau[i] * weight);
-            let rp_ = c_cross(&r, &p);
-            for k in 0..3 {
-                f[k] += p[k];
-                m[k] += rp_[k];
-            }
-        };
-        for &(i, b, a) in terms {
-            if b != 0.0 {
-                add(i, -b, w0);
-            }
-            if a != 0.0 {
-                add(i, a, w);
-            }
-        }
-        std::array::from_fn(|k| {
-            if k < 3 {
-                w[k] - w0[k] + f[k] * self.kse_inv[k]
-            } else {
-                (w[k] - w0[k] + m[k - 3] * self.kbt_inv[k - 3]) * len
-            }
-        })
-    }
-
-    /// The anchor jump at `s` on a dual state: the real part by the `f64`
-    /// Newton solve of `anchor_loads`, the tangents by the implicit function
-    /// theorem, `dw = -G_w^-1 (G_w0 dw0 + G_tau dtau)`, with `G_w` exact
-    /// (6-direction duals).
-    fn anchor_tangent<const N: usize>(
-        &self,
-        s: f64,
-        y: &mut [Dual<N>],
-        tau: &[Dual<N>],
-    ) -> Result<()> {
-        let tol = 1e-12 * self.robot.body.length;
-        let mut terms: Vec<(usize, f64, f64)> = Vec::new();
-        for (i, act) in self.robot.actuators.iter().enumerate() {
-            let ends = (act.s_end - s).abs() <= tol;
-            let starts = (act.s_start - s).abs() <= tol;
-            let passes = act.s_start < s - tol && act.s_end > s + tol;
-            let (b, a) = (
-                if ends || passes { 1.0 } else { 0.0 },
-                if starts || passes { 1.0 } else { 0.0 },
-            );
-            if b != 0.0 || a != 0.0 {
-                terms.push((i, b, a));
-            }
-        }
-        let mut yr: Vec<f64> = y.iter().map(|d| d.re).collect();
-        self.anchor_loads(s, &mut yr)?;
-        if terms.is_empty() {
-            return Ok(());
-        }
-        let ws: [f64; 6] = std::array::from_fn(|k| yr[7 + k]);
-        // G_w by 6 dual directions
-        let w6: [Dual<6>; 6] = std::array::from_fn(|k| {
-            let mut e = [0.0; 6];
-            e[k] = 1.0;
-            Dual::new(ws[k], e)
-        });
-        let w06: [Dual<6>; 6] = std::array::from_fn(|k| Dual::cst(y[7 + k].re));
-        let tau6: Vec<Dual<6>> = tau.iter().map(|t| Dual::cst(t.re)).collect();
-        let g6 = self.anchor_residual(s, &terms, &w6, &w06, &tau6);
-        let gw = Matrix6::from_fn(|r, c| g6[r].eps[c]);
-        let lu = gw.lu();
-        // G_w0 dw0 + G_tau dtau at fixed w
-        let wn: [Dual<N>; 6] = std::array::from_fn(|k| Dual::cst(ws[k]));
-        let w0n: [Dual<N>; 6] = std::array::from_fn(|k| y[7 + k]);
-        let gn = self.anchor_residual(s, &terms, &wn, &w0n, tau);
-        let mut out: [Dual<N>; 6] = wn;
-        for d in 0..N {
-            let rhs = Vector6::from_fn(|r, _| -gn[r].eps[d]);
-            let dw = lu.solve(&rhs).ok_or_else(|| Error::Integration {
-                s,
-                reason: "singular anchor-load system".into(),
-            })?;
-            for k in 0..6 {
-                out[k].eps[d] = dw[k];
-            }
-        }
-        y[7..13].copy_from_slice(&out);
-        Ok(())
-    }
-}
 
 /// Seed directions of a tangent IVP: each column is one direction, giving
 /// the derivative of the initial strains and of the tensions along it.
@@ -468,10 +109,10 @@ pub fn integrate_tangent(
     loop {
         let w = (k - c0).min(MAX_PASS);
         let part = match w {
-            0..=4 => pass::<4>(spec, v0, u0, seeds, c0, w, record)?,
-            5..=8 => pass::<8>(spec, v0, u0, seeds, c0, w, record)?,
-            9..=12 => pass::<12>(spec, v0, u0, seeds, c0, w, record)?,
-            _ => pass::<MAX_PASS>(spec, v0, u0, seeds, c0, w, record)?,
+            0..=4 => dispatch::<4>(spec, v0, u0, seeds, c0, w, record)?,
+            5..=8 => dispatch::<8>(spec, v0, u0, seeds, c0, w, record)?,
+            9..=12 => dispatch::<12>(spec, v0, u0, seeds, c0, w, record)?,
+            _ => dispatch::<MAX_PASS>(spec, v0, u0, seeds, c0, w, record)?,
         };
         out = Some(match out {
             None => part,
@@ -499,7 +140,72 @@ pub fn integrate_tangent(
     Ok(out.expect("at least one pass"))
 }
 
+/// [`pass`] compiled for the widest vector unit the CPU has: the
+/// directions of a [`Dual`] are independent lanes, so AVX-512 carries eight
+/// of them per instruction (SSE2, the x86-64 baseline, two). Element-wise
+/// IEEE arithmetic either way (no fused multiply-add is generated), so the
+/// results are bit-for-bit the same.
+fn dispatch<const N: usize>(
+    spec: &IvpSpec<'_>,
+    v0: &Vector3<f64>,
+    u0: &Vector3<f64>,
+    seeds: &TangentSeeds,
+    c0: usize,
+    w: usize,
+    record: bool,
+) -> Result<TangentIvp> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU supports AVX-512F (checked just above).
+            return unsafe { pass_avx512::<N>(spec, v0, u0, seeds, c0, w, record) };
+        }
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 (checked just above).
+            return unsafe { pass_avx2::<N>(spec, v0, u0, seeds, c0, w, record) };
+        }
+    }
+    pass::<N>(spec, v0, u0, seeds, c0, w, record)
+}
+
+/// [`pass`] with AVX-512F enabled.
+///
+/// # Safety
+/// The CPU must support AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn pass_avx512<const N: usize>(
+    spec: &IvpSpec<'_>,
+    v0: &Vector3<f64>,
+    u0: &Vector3<f64>,
+    seeds: &TangentSeeds,
+    c0: usize,
+    w: usize,
+    record: bool,
+) -> Result<TangentIvp> {
+    pass::<N>(spec, v0, u0, seeds, c0, w, record)
+}
+
+/// [`pass`] with AVX2 enabled.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn pass_avx2<const N: usize>(
+    spec: &IvpSpec<'_>,
+    v0: &Vector3<f64>,
+    u0: &Vector3<f64>,
+    seeds: &TangentSeeds,
+    c0: usize,
+    w: usize,
+    record: bool,
+) -> Result<TangentIvp> {
+    pass::<N>(spec, v0, u0, seeds, c0, w, record)
+}
+
 /// One pass of [`integrate_tangent`] over directions `c0 .. c0 + w` (`w <= N`).
+#[inline(always)]
 fn pass<const N: usize>(
     spec: &IvpSpec<'_>,
     v0: &Vector3<f64>,
@@ -605,8 +311,8 @@ fn pass<const N: usize>(
     let rm = rot_t(&[y[3], y[4], y[5], y[6]]);
     let v = [y[7], y[8], y[9]];
     let u = [y[10], y[11], y[12]];
-    let rtf = rt_mul(&rm, &spec.tip_force);
-    let rtm = rt_mul(&rm, &spec.tip_moment);
+    let rtf = rt_mul(&rm, &spec.tip_force.into());
+    let rtm = rt_mul(&rm, &spec.tip_moment.into());
     let mut rf: V3<D<N>> = std::array::from_fn(|k| (v[k] - body.nu_star[k]) * fz.kse[k] - rtf[k]);
     let mut rmm: V3<D<N>> =
         std::array::from_fn(|k| (u[k] - body.omega_star[k]) * fz.kbt[k] - rtm[k]);
@@ -614,6 +320,7 @@ fn pass<const N: usize>(
         if (act.s_end - len).abs() <= tol {
             elongation[i] = y[BASE_STATES + i];
             let (r, rp, _) = act.routing.eval(len);
+            let (r, rp): (V3<f64>, V3<f64>) = (r.into(), rp.into());
             let ucr = cross_c(&u, &r);
             let pb: V3<D<N>> = std::array::from_fn(|k| v[k] + ucr[k] + rp[k]);
             let nrm = dot(&pb, &pb).sqrt();
@@ -624,6 +331,14 @@ fn pass<const N: usize>(
                 rmm[k] += rxp[k];
             }
         }
+    }
+    // the stages check only the real parts: the derivatives once, here
+    let all_finite = |v: &[D<N>]| v.iter().all(|d| d.eps.iter().all(|e| e.is_finite()));
+    if !(all_finite(&y) && all_finite(&elongation) && all_finite(&rf) && all_finite(&rmm)) {
+        return Err(Error::Integration {
+            s: len,
+            reason: "non-finite tangent".into(),
+        });
     }
     let yr: Vec<f64> = y.iter().map(|d| d.re).collect();
     let tip = RodState::from_slice(&yr);

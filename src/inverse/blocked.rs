@@ -1,0 +1,354 @@
+//! A blocked tip (mixed boundary conditions), the paper's incremental
+//! method (eq 43) and the grasp temperature (eq 44).
+
+use nalgebra::Vector3;
+
+use super::{exact_blocks, load_scales, ExactBlocks, Groups};
+use crate::error::{Error, Result, StopReason};
+use crate::rod::Robot;
+use crate::shooting::{
+    assemble, initial_guess, shoot, solve_loaded, Loads, Solution, SolveOptions,
+};
+use crate::solve::{newton, FnSystem};
+
+/// A blocked tip: the tip's displacement along `normal` (unit, world) is held
+/// at `point`; the environment pushes on the tip with force `-f normal`,
+/// `f >= 0` (the tip presses along `+normal`).
+#[derive(Debug, Clone, Copy)]
+pub struct Block {
+    /// A point of the blocking plane \[m\].
+    pub point: Vector3<f64>,
+    /// Unit normal: the direction the tip presses in.
+    pub normal: Vector3<f64>,
+}
+
+impl Block {
+    /// Validate and normalise.
+    pub fn new(point: Vector3<f64>, normal: Vector3<f64>) -> Result<Self> {
+        for k in 0..3 {
+            crate::error::finite(&format!("point[{k}] [m]"), point[k])?;
+            crate::error::finite(&format!("normal[{k}]"), normal[k])?;
+        }
+        let n = normal.norm();
+        if !(n > 0.0) {
+            return Err(Error::input("normal", "must be a non-zero vector"));
+        }
+        Ok(Block {
+            point,
+            normal: normal / n,
+        })
+    }
+    fn loads(&self, robot: &Robot, f: f64) -> Loads {
+        let mut l = Loads::of(robot);
+        l.tip_force -= self.normal * f;
+        l
+    }
+}
+
+/// A blocked-tip solution.
+#[derive(Debug, Clone)]
+pub struct BlockedResult {
+    /// The forward solution with the contact force applied at the tip.
+    pub solution: Solution,
+    /// Contact force magnitude \[N\] (the tip presses with it along the normal).
+    pub force: f64,
+    /// Actuation variables.
+    pub variables: Vec<f64>,
+    /// IVPs integrated.
+    pub evaluations: usize,
+    /// Iterations (increments for the incremental method, Newton iterations for the direct one).
+    pub iterations: usize,
+}
+
+/// Direct solve with the tip held (mixed boundary condition): at given
+/// actuation variables `z`, the contact force `f` \[N\] is an extra unknown and
+/// `normal . (p(L) - point) = 0` an extra residual. `f` may come out negative
+/// if the tip would pull away from the block (the caller decides whether
+/// contact holds).
+pub fn blocked_force(
+    robot: &Robot,
+    groups: &Groups,
+    block: &Block,
+    z: &[f64],
+    opts: &SolveOptions,
+    warm: Option<(&Solution, f64)>,
+) -> Result<BlockedResult> {
+    groups.validate(robot)?;
+    let inputs = groups.inputs(z);
+    robot.check_inputs(&inputs)?;
+    let (fc, _) = load_scales(robot);
+    let len = robot.body.length;
+    let nx = 6 + robot.actuators.len();
+    let mut x0 = initial_guess(robot, &inputs, warm.map(|w| w.0));
+    x0.push(warm.map_or(0.0, |w| w.1) / fc);
+    let f = |x: &[f64]| -> Result<Vec<f64>> {
+        let l = block.loads(robot, x[nx] * fc);
+        let (mut r, ivp, _) = shoot(robot, &inputs, &l, &x[..nx], opts.steps, false)?;
+        r.push(block.normal.dot(&(ivp.tip.p - block.point)) / len);
+        Ok(r)
+    };
+    let mut sys = FnSystem::new(f);
+    let nr = newton(&mut sys, &x0, &opts.newton(), "blocked-tip shooting")?;
+    let force = nr.x[nx] * fc;
+    let l = block.loads(robot, force);
+    let sol = assemble(
+        robot,
+        &inputs,
+        &l,
+        &nr.x[..nx],
+        opts.steps,
+        nr.iterations,
+        nr.evaluations,
+    )?;
+    Ok(BlockedResult {
+        solution: sol,
+        force,
+        variables: z.to_vec(),
+        evaluations: nr.evaluations,
+        iterations: nr.iterations,
+    })
+}
+
+/// Direct solve for the single actuation variable at which the blocked tip
+/// presses with `force` \[N\] (the variable is an extra unknown). Independent
+/// check of [`blocked_temperature`].
+pub fn blocked_variable_direct(
+    robot: &Robot,
+    groups: &Groups,
+    block: &Block,
+    force: f64,
+    z_guess: f64,
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+) -> Result<BlockedResult> {
+    groups.validate(robot)?;
+    if groups.n_vars() != 1 {
+        return Err(Error::input(
+            "groups",
+            "a blocked-force temperature needs exactly one actuation variable",
+        ));
+    }
+    crate::error::finite("force [N]", force)?;
+    let (lo, hi) = groups.bounds(robot)[0];
+    let zs = (hi - lo).clamp(1.0, 1e3);
+    let len = robot.body.length;
+    let nx = 6 + robot.actuators.len();
+    let l = block.loads(robot, force);
+    let mut x0 = initial_guess(robot, &groups.inputs(&[z_guess]), warm);
+    x0.push(z_guess / zs);
+    let f = |x: &[f64]| -> Result<Vec<f64>> {
+        let z = x[nx] * zs;
+        let inputs = groups.inputs(&[z]);
+        robot.check_inputs(&inputs)?;
+        let (mut r, ivp, _) = shoot(robot, &inputs, &l, &x[..nx], opts.steps, false)?;
+        r.push(block.normal.dot(&(ivp.tip.p - block.point)) / len);
+        Ok(r)
+    };
+    let mut sys = FnSystem::new(f);
+    let nr = newton(
+        &mut sys,
+        &x0,
+        &opts.newton(),
+        "blocked-tip temperature shooting",
+    )?;
+    let z = nr.x[nx] * zs;
+    let sol = assemble(
+        robot,
+        &groups.inputs(&[z]),
+        &l,
+        &nr.x[..nx],
+        opts.steps,
+        nr.iterations,
+        nr.evaluations,
+    )?;
+    Ok(BlockedResult {
+        solution: sol,
+        force,
+        variables: vec![z],
+        evaluations: nr.evaluations,
+        iterations: nr.iterations,
+    })
+}
+
+/// The paper's incremental method (eq 43 with `dx = 0`): starting from a
+/// solution `start` whose tip touches the block with zero force, raise the
+/// contact force to `force` \[N\] in `increments` steps, each
+/// `dq = -(n^T J)^-1 n^T C dW`, followed by one forward solve and a
+/// position correction `dq = (n^T J)^-1 n^T (point - p)` so that the tip stays
+/// on the block. Needs exactly one actuation variable. A force that needs
+/// an input outside the actuator's range is [`Error::NoSolution`]; a step that
+/// overshoots a bound by linearisation error (a tenth of the step at most) is
+/// clamped to it.
+pub fn blocked_temperature(
+    robot: &Robot,
+    groups: &Groups,
+    block: &Block,
+    start: &Solution,
+    force: f64,
+    increments: usize,
+    opts: &SolveOptions,
+) -> Result<BlockedResult> {
+    groups.validate(robot)?;
+    if groups.n_vars() != 1 {
+        return Err(Error::input(
+            "groups",
+            "a blocked-force temperature needs exactly one actuation variable",
+        ));
+    }
+    crate::error::finite("force [N]", force)?;
+    if increments == 0 {
+        return Err(Error::param("increments", 0.0, ">= 1"));
+    }
+    let (lo, hi) = groups.bounds(robot)[0];
+    let n = block.normal;
+    let mut z = groups.vars(&start.inputs)[0];
+    let mut sol = start.clone();
+    let mut f = 0.0;
+    let mut evals = 0;
+    let mut pushed_out = false;
+    let df = force / increments as f64;
+    for k in 0..increments + 3 {
+        let l = block.loads(robot, f);
+        // J and C exactly, from one tangent IVP (its B blocks also give the
+        // warm start below)
+        let blocks = exact_blocks(robot, &sol, &l, groups, opts.steps)?;
+        let sens = blocks.sensitivities()?;
+        evals += sens.evaluations;
+        let nj: f64 = (0..3).map(|i| n[i] * sens.jacobian[(i, 0)]).sum();
+        if nj.abs() < 1e-300 {
+            return Err(Error::NotConverged {
+                solver: "blocked-tip increments",
+                iterations: k,
+                evaluations: evals,
+                residual: f64::INFINITY,
+                stop: StopReason::SingularJacobian,
+                reason: "the actuator cannot move the tip along the block normal (n^T J = 0)"
+                    .into(),
+            });
+        }
+        // wrench increment on the tip: -df n (force only)
+        let step = if k < increments { df } else { 0.0 };
+        let nc_dw: f64 = (0..3)
+            .map(|i| {
+                (0..3)
+                    .map(|j| n[i] * sens.compliance[(i, j)] * (-n[j] * step))
+                    .sum::<f64>()
+            })
+            .sum();
+        let gap = n.dot(&(block.point - sol.tip_position()));
+        let dz = (-nc_dw + gap) / nj;
+        z += dz;
+        f += step;
+        // Near a bound (e.g. the blocked force at 160 C, fed back), a step may
+        // overshoot the bound by its linearisation error, a small fraction of
+        // the step: clamp it and let the next position correction decide.
+        // Beyond that (more than a tenth of the step plus rounding, 1e-9 of
+        // the range), or twice in a row in the corrections at the final
+        // force, the force needs an input outside the range.
+        let slack = 1e-9 * (hi - lo).clamp(1.0, 1e3);
+        let over = (lo - z).max(z - hi).max(0.0);
+        let outside = over > slack;
+        if over > 0.1 * dz.abs() + slack || (outside && step == 0.0 && pushed_out) {
+            return Err(Error::NoSolution {
+                reason: format!("the blocked force {force:.6e} N needs an input outside [{lo}, {hi}] (reached {z:.3} at force {f:.6e} N)"),
+            });
+        }
+        pushed_out = outside && step == 0.0;
+        let dz = z.clamp(lo, hi) - (z - dz);
+        z = z.clamp(lo, hi);
+        let l = block.loads(robot, f);
+        let warm = predicted(robot, groups, &sol, &blocks, dz, -n * step, z);
+        sol = solve_loaded(robot, &groups.inputs(&[z]), &l, opts, Some(&warm))?;
+        evals += sol.evaluations;
+        let gap = n.dot(&(block.point - sol.tip_position()));
+        if k + 1 >= increments && gap.abs() < 1e-9 * robot.body.length {
+            return Ok(BlockedResult {
+                solution: sol,
+                force: f,
+                variables: vec![z],
+                evaluations: evals,
+                iterations: k + 1,
+            });
+        }
+    }
+    Err(Error::NotConverged {
+        solver: "blocked-tip increments",
+        iterations: increments + 3,
+        evaluations: evals,
+        stop: StopReason::IterationLimit,
+        residual: n.dot(&(block.point - sol.tip_position())).abs() / robot.body.length,
+        reason: "tip did not settle on the block".into(),
+    })
+}
+
+/// The warm start of an eq-43 increment: `sol` moved to first order
+/// along `dz` (variable) and `df` (tip force) by the exact blocks at `sol`
+/// (`du = -B_u^-1 (B_q dz + B_W dW)`), with its tensions at the predicted
+/// elongations and `B_u` as the Newton Jacobian (so that the corrector's
+/// chord steps need no new tangent IVP).
+fn predicted(
+    robot: &Robot,
+    groups: &Groups,
+    sol: &Solution,
+    blocks: &ExactBlocks,
+    dz: f64,
+    df: Vector3<f64>,
+    z: f64,
+) -> Solution {
+    let mut warm = sol.clone();
+    warm.newton_jacobian = Some(blocks.bu());
+    let dw = [df.x, df.y, df.z, 0.0, 0.0, 0.0];
+    let Some(du) = blocks.predict(&[dz], &dw) else {
+        return warm;
+    };
+    let len = robot.body.length;
+    let inputs = groups.inputs(&[z]);
+    let x: Vec<f64> = sol
+        .unknowns
+        .iter()
+        .zip(du.iter())
+        .map(|(a, b)| a + b)
+        .collect();
+    let tensions: Option<Vec<f64>> = robot
+        .actuators
+        .iter()
+        .enumerate()
+        .map(|(i, a)| a.law.tension(x[6 + i] * len, inputs[i]).ok())
+        .collect();
+    if let Some(t) = tensions.filter(|t| t.iter().all(|v| v.is_finite())) {
+        if x.iter().all(|v| v.is_finite()) {
+            warm.unknowns = x;
+            warm.tensions = t;
+        }
+    }
+    warm
+}
+
+/// Grasp temperature (eq 44): the actuation variable at which `fingers`
+/// identical fingers with friction coefficient `mu` hold a mass `mass` \[kg\],
+/// `mu n F(T) = m g`, each finger's tip blocked at its reference position
+/// and pressing along `normal`. Returns the blocked result for one finger.
+#[allow(clippy::too_many_arguments)]
+pub fn grasp(
+    robot: &Robot,
+    groups: &Groups,
+    normal: &Vector3<f64>,
+    mass: f64,
+    mu: f64,
+    fingers: usize,
+    gravity: f64,
+    increments: usize,
+    opts: &SolveOptions,
+) -> Result<BlockedResult> {
+    crate::error::positive("mass [kg]", mass)?;
+    crate::error::positive("mu [-]", mu)?;
+    crate::error::positive("gravity [m/s^2]", gravity)?;
+    if fingers == 0 {
+        return Err(Error::param("fingers", 0.0, ">= 1"));
+    }
+    let reference = robot.reference_inputs();
+    let start = solve_loaded(robot, &reference, &Loads::of(robot), opts, None)?;
+    let block = Block::new(start.tip_position(), *normal)?;
+    let force = mass * gravity / (mu * fingers as f64);
+    blocked_temperature(robot, groups, &block, &start, force, increments, opts)
+}

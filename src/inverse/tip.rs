@@ -1,0 +1,194 @@
+//! The tip-position inverse (eqs 34-38): damped least squares on `J`.
+
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+
+use super::{rotation_vector, sensitivities_exact, Groups};
+use crate::error::{Error, Result};
+use crate::rod::Robot;
+use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
+
+/// Outcome of [`tip_position_inverse`].
+#[derive(Debug, Clone)]
+pub struct InverseResult {
+    /// Final forward solution (the closest reachable one if not `reached`).
+    pub solution: Solution,
+    /// Final actuation variables.
+    pub variables: Vec<f64>,
+    /// Distance \[m\] from the target (and angle \[rad\] if orientation was asked).
+    pub error: f64,
+    /// Iterations (Jacobian evaluations).
+    pub iterations: usize,
+    /// Whether the target was reached to tolerance.
+    pub reached: bool,
+    /// Variables resting on a bound at the end.
+    pub at_bound: Vec<bool>,
+    /// IVPs integrated in total.
+    pub evaluations: usize,
+}
+
+/// Options of the inverse solvers.
+#[derive(Debug, Clone, Copy)]
+pub struct InverseOptions {
+    /// Forward solver options.
+    pub forward: SolveOptions,
+    /// Position tolerance \[m\].
+    pub tol: f64,
+    /// Iteration limit.
+    pub max_iter: usize,
+    /// Damping `lambda` [m per unit variable] of the damped least squares.
+    pub damping: f64,
+}
+
+impl Default for InverseOptions {
+    fn default() -> Self {
+        InverseOptions {
+            forward: SolveOptions::default(),
+            tol: 1e-7,
+            max_iter: 50,
+            damping: 1e-6,
+        }
+    }
+}
+
+/// Reach a target tip position `target` \[m\] (and orientation: rotation matrix
+/// `target_rotation`, weighted by `orientation_weight` \[m/rad\]) by iterating
+/// the local inverse `dz = J^+ dx` (damped least squares) with variables kept
+/// within their bounds (ambient to the material's limit for TCAs).
+///
+/// An unreachable target ends at the closest configuration found with
+/// `reached = false`, not with an error.
+#[allow(clippy::too_many_arguments)]
+pub fn tip_position_inverse(
+    robot: &Robot,
+    groups: &Groups,
+    target: &Vector3<f64>,
+    target_rotation: Option<(&Matrix3<f64>, f64)>,
+    z_start: &[f64],
+    opts: &InverseOptions,
+) -> Result<InverseResult> {
+    groups.validate(robot)?;
+    for (k, v) in target.iter().enumerate() {
+        crate::error::finite(&format!("target[{k}] [m]"), *v)?;
+    }
+    let nz = groups.n_vars();
+    if z_start.len() != nz {
+        return Err(Error::input(
+            "start",
+            format!("expected {nz} variables, got {}", z_start.len()),
+        ));
+    }
+    let bounds = groups.bounds(robot);
+    let mut z: Vec<f64> = z_start
+        .iter()
+        .zip(&bounds)
+        .map(|(v, (lo, hi))| v.clamp(*lo, *hi))
+        .collect();
+    let loads = Loads::of(robot);
+    let mut sol = solve_loaded(robot, &groups.inputs(&z), &loads, &opts.forward, None)?;
+    let mut evals = sol.evaluations;
+    let rows = if target_rotation.is_some() { 6 } else { 3 };
+    let err_vec = |s: &Solution| -> DVector<f64> {
+        let dp = target - s.tip_position();
+        let mut e = DVector::zeros(rows);
+        e.rows_mut(0, 3).copy_from(&dp);
+        if let Some((rt, w)) = target_rotation {
+            let th = rotation_vector(&(rt * s.tip_rotation().transpose()));
+            e.rows_mut(3, 3).copy_from(&(th * w));
+        }
+        e
+    };
+    let mut err = err_vec(&sol);
+    let mut best = (err.norm(), sol.clone(), z.clone());
+    let mut iterations = 0;
+    while err.norm() > opts.tol && iterations < opts.max_iter {
+        iterations += 1;
+        let sens = sensitivities_exact(robot, &sol, &loads, groups, opts.forward.steps)?;
+        evals += sens.evaluations;
+        let mut jr = sens.jacobian.rows(0, rows).into_owned();
+        if let Some((_, w)) = target_rotation {
+            for c in 0..nz {
+                for r in 3..6 {
+                    jr[(r, c)] *= w;
+                }
+            }
+        }
+        // Variables on a bound whose step would push past it are frozen.
+        let mut free: Vec<bool> = vec![true; nz];
+        let mut dz = DVector::zeros(nz);
+        for _ in 0..=nz {
+            let cols: Vec<usize> = (0..nz).filter(|&k| free[k]).collect();
+            if cols.is_empty() {
+                break;
+            }
+            let jf = DMatrix::from_fn(rows, cols.len(), |r, c| jr[(r, cols[c])]);
+            let lam2 = opts.damping * opts.damping;
+            let a = jf.transpose() * &jf + DMatrix::identity(cols.len(), cols.len()) * lam2;
+            let step = a
+                .lu()
+                .solve(&(jf.transpose() * &err))
+                .unwrap_or_else(|| DVector::zeros(cols.len()));
+            dz = DVector::zeros(nz);
+            for (c, &k) in cols.iter().enumerate() {
+                dz[k] = step[c];
+            }
+            let mut changed = false;
+            for k in 0..nz {
+                let (lo, hi) = bounds[k];
+                if free[k] && ((z[k] <= lo && dz[k] < 0.0) || (z[k] >= hi && dz[k] > 0.0)) {
+                    free[k] = false;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        // backtrack on the tip error, clamping to bounds
+        let mut t = 1.0;
+        let mut accepted = false;
+        while t > 1e-4 {
+            let zt: Vec<f64> = (0..nz)
+                .map(|k| (z[k] + t * dz[k]).clamp(bounds[k].0, bounds[k].1))
+                .collect();
+            if let Ok(st) = solve_loaded(
+                robot,
+                &groups.inputs(&zt),
+                &loads,
+                &opts.forward,
+                Some(&sol),
+            ) {
+                evals += st.evaluations;
+                let et = err_vec(&st);
+                if et.norm() < err.norm() {
+                    z = zt;
+                    sol = st;
+                    err = et;
+                    accepted = true;
+                    break;
+                }
+            }
+            t *= 0.5;
+        }
+        if err.norm() < best.0 {
+            best = (err.norm(), sol.clone(), z.clone());
+        }
+        if !accepted {
+            break; // no descent: closest reachable configuration
+        }
+    }
+    let (e, s, zb) = best;
+    let at_bound = zb
+        .iter()
+        .zip(&bounds)
+        .map(|(v, (lo, hi))| *v <= *lo || *v >= *hi)
+        .collect();
+    Ok(InverseResult {
+        solution: s,
+        variables: zb,
+        error: e,
+        iterations,
+        reached: e <= opts.tol,
+        at_bound,
+        evaluations: evals,
+    })
+}
