@@ -341,5 +341,5 @@ fn grasp_temperature(
             &rr, &g, &normal, mass.0, mu.0, fingers, gravity.0, increments, &opts,
         )
     })?;
-    blocked(py, robot, res)
+    blocked(py, robot, res, normal)
 }
