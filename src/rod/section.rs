@@ -109,7 +109,7 @@ impl Section {
         Ok(self)
     }
 
-    /// Width and height [m] of the section's bounding box (custom sections:
+    /// Width and height \[m\] of the section's bounding box (custom sections:
     /// the edge distances along x and y, twice).
     pub fn extent(&self) -> (f64, f64) {
         let s = self;

@@ -1,0 +1,140 @@
+//! Unit tests of the TCA law.
+
+use super::*;
+
+fn fig5_three_thread() -> Tca {
+    Tca::new(
+        0.497,
+        0.110,
+        2e-3,
+        300.0,
+        Chirality::Extension,
+        Material::silver_coated_nylon(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn contact_law_is_continuous_and_monotone() {
+    let t = fig5_three_thread();
+    let at = t.at(25.0).unwrap();
+    let e = TcaAt::CONTACT_SMOOTHING;
+    let f = |d: f64| at.tension(d).unwrap();
+    // continuity at 0 and at -eps (relative 1e-9: rounding of the pieces)
+    assert!((f(-1e-18) - f(0.0)).abs() < 1e-12);
+    assert!((f(-e * (1.0 - 1e-12)) - f(-e * (1.0 + 1e-12))).abs() < 1e-9 * f(-e).abs().max(1e-12));
+    // slope rises from the spring's to the contact stiffness
+    let slope = |d: f64| (f(d + 1e-12) - f(d - 1e-12)) / 2e-12;
+    assert!(slope(-2.0 * e) > 100.0 * slope(1e-6));
+    assert!((slope(-3.0 * e) - at.contact_stiffness()).abs() < 1e-3 * at.contact_stiffness());
+    // tension increases with elongation through the whole contact region
+    let mut last = f64::NEG_INFINITY;
+    for k in 0..50 {
+        let d = -3.0 * e + 1e-8 * k as f64;
+        assert!(f(d) > last, "not increasing at {d}");
+        last = f(d);
+    }
+}
+
+#[test]
+fn derived_quantities_follow_the_paper() {
+    let t = fig5_three_thread();
+    assert!((t.alpha0() - (0.110f64 / 0.497).asin()).abs() < 1e-15);
+    assert!((t.n_coils() - 2.0 * t.alpha0().cos() * 0.497 / (PI * 2e-3)).abs() < 1e-12);
+    assert!((t.d0() - 2.0 * 2e-3 * 0.110 / 0.497).abs() < 1e-15);
+    assert!((t.phi0() - 600.0 * PI).abs() < 1e-12);
+}
+
+#[test]
+fn reference_temperature_gives_no_torque_and_hookean_response() {
+    let t = fig5_three_thread();
+    let s = t.at(25.0).unwrap();
+    assert_eq!(s.tau, 0.0);
+    // compression at T_ref: coils in contact
+    assert_eq!(t.displacement(-0.1, 25.0).unwrap(), 0.0);
+    // tension: delta = f11(alpha(delta)) F
+    let f = 0.05;
+    let d = t.displacement(f, 25.0).unwrap();
+    let a = t.pitch_angle(d).unwrap();
+    assert!((d - s.f11(a) * f).abs() < 1e-14);
+}
+
+#[test]
+fn force_and_displacement_are_inverse() {
+    let t = fig5_three_thread();
+    for temp in [25.0, 80.0, 160.0] {
+        for f in [0.0, 0.02, 0.2] {
+            let d = t.displacement(f, temp).unwrap();
+            if d > 0.0 {
+                let f2 = t.force(d, temp).unwrap();
+                assert!((f2 - f).abs() < 1e-9, "{temp} {f} {f2}");
+            }
+        }
+    }
+}
+
+#[test]
+fn temperature_inverts_displacement_at_the_ends_of_the_range() {
+    // A state computed at t_min or t_max satisfies the law only to the
+    // displacement solve's tolerance; the inverse must still find it.
+    let t = fig5_three_thread();
+    for temp in [25.0, 160.0] {
+        for i in 0..=40 {
+            let f = -0.3 + 0.02 * f64::from(i);
+            let d = t.displacement(f, temp).unwrap();
+            if d > 0.0 {
+                let back = t.temperature(f, d).unwrap();
+                // Brent's 1e-10 C, or the exact end
+                assert!((back - temp).abs() < 1e-7, "{temp} {f} {back}");
+            }
+        }
+    }
+}
+
+#[test]
+fn segment_keeps_geometry_ratios_and_scales_elongation() {
+    let t = fig5_three_thread();
+    for frac in [0.25, 0.5, 1.0 / 3.0, 1.0] {
+        let s = t.segment(frac).unwrap();
+        // ratios of scaled lengths: equal to rounding (a few ulps)
+        assert!((s.alpha0() - t.alpha0()).abs() < 1e-14, "{frac}");
+        assert!((s.d0() - t.d0()).abs() < 1e-15 * t.d0().max(1.0), "{frac}");
+        assert!(
+            (s.turns() / s.fibre_length() - t.turns() / t.fibre_length()).abs() < 1e-9,
+            "{frac}"
+        );
+        assert!((s.n_coils() - frac * t.n_coils()).abs() < 1e-12 * t.n_coils());
+        assert_eq!(s.coil_diameter(), t.coil_diameter());
+        assert_eq!(s.chirality(), t.chirality());
+        // the law is linear in n at fixed l/n, d, alpha: a segment
+        // stretches by `frac` of the whole under the same force and
+        // temperature (to the displacement solve's 1e-15 l tolerance,
+        // amplified by the conditioning of the root; 1e-9 relative is
+        // far above that and far below any modelling difference)
+        for (f, temp) in [(0.02, 25.0), (-0.05, 120.0), (0.0, 160.0)] {
+            let dw = t.displacement(f, temp).unwrap();
+            let ds = s.displacement(f, temp).unwrap();
+            assert!(
+                (ds - frac * dw).abs() <= 1e-9 * dw.abs().max(1e-12),
+                "{frac} {f} {temp}: {ds} vs {}",
+                frac * dw
+            );
+            if dw > 0.0 {
+                let fw = t.force(dw, temp).unwrap();
+                let fs = s.force(frac * dw, temp).unwrap();
+                assert!((fw - fs).abs() < 1e-9 * fw.abs().max(1e-3));
+            }
+        }
+    }
+    for bad in [0.0, -0.5, 1.5, f64::NAN] {
+        assert!(t.segment(bad).is_err(), "{bad}");
+    }
+}
+
+#[test]
+fn invalid_geometry_rejected() {
+    let m = Material::silver_coated_nylon();
+    assert!(Tca::new(0.1, 0.11, 2e-3, 300.0, Chirality::Extension, m.clone()).is_err());
+    assert!(Tca::new(0.5, 0.11, f64::NAN, 300.0, Chirality::Extension, m.clone()).is_err());
+    assert!(Tca::new(0.5, 0.11, 2e-3, -1.0, Chirality::Extension, m).is_err());
+}
