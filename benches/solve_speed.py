@@ -36,13 +36,12 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import statistics
 import time
 from typing import Any, Callable
 
-from tcarod import Actuator, Body, Robot, Routing, Section, Solution, _core
+from tcarod import Robot, Solution, _core
 from tcarod.models.grasp import grasp
 from tcarod.inverse import jacobian_and_compliance
 from tcarod.models.manipulators import square_manipulator
@@ -51,28 +50,15 @@ from tcarod.models.manipulators import square_manipulator
 FIG6_TEMPERATURE_C = 100.0
 WARM_STEP_C = 5.0
 #: Steel tendon robot (issue 10).
-STEEL_TENSIONS_N = [15.0, 0.0, 0.0, 0.0]
-STEEL_OFFSET_M = 15.06e-3
+STEEL_TENSIONS_N = list(_core.fixture_constants()["steel_tendon_tensions"])
 STEPS = 100
 #: Minimum CPU time of one sample [s].
 MIN_SAMPLE_S = 2e-3
 
 
 def steel_tendon_robot() -> Robot:
-    """The issue-10 steel tendon robot (see the module docstring)."""
-    body = Body(
-        0.5,
-        Section.circle(2e-3),
-        200e9,
-        shear_modulus=80e9,
-        density=8000.0,
-        gravity=[9.81, 0.0, 0.0],
-    )
-    tendons = [
-        Actuator.tendon(Routing.straight(STEEL_OFFSET_M * math.cos(a), STEEL_OFFSET_M * math.sin(a)))
-        for a in (0.0, 0.5 * math.pi, math.pi, 1.5 * math.pi)
-    ]
-    return Robot(body, tendons)
+    """The issue-10 steel tendon robot (the core's fixture; see the module docstring)."""
+    return _core.fixture_tendon_robot("steel")
 
 
 def sample(fn: Callable[[], Any]) -> tuple[float, Any]:

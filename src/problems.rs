@@ -62,8 +62,8 @@ pub const SELF_WEIGHT_BUCKLING: f64 = 7.837;
 /// Largest `psi A |g| L^3 / (E I)` the generator accepts (see the module docs).
 pub const MAX_WEIGHT_RATIO: f64 = 50.0;
 
-/// Standard gravity [m/s^2] of the random designs.
-pub const GRAVITY: f64 = 9.81;
+/// Standard gravity [m/s^2] of the random designs (the paper's `G0`).
+pub const GRAVITY: f64 = crate::experiments::G0;
 
 /// SplitMix64 (Steele, Lea and Flood 2014): a 64-bit generator with a
 /// one-word state, written out so that the designs do not depend on an

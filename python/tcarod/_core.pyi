@@ -6,7 +6,7 @@ temperatures in degrees C. Argument errors raise ``ValueError`` naming the
 argument; wrong Python types raise ``TypeError``.
 """
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any, Final, Literal, final
 
 import numpy as np
@@ -410,10 +410,13 @@ class Actuator:
 class Robot:
     """A body with its embedded actuators (see ``tcarod.Robot``)."""
 
-    def __new__(cls, body: Body, actuators: Sequence[Actuator] = ()) -> Self: ...
+    def __new__(cls, body: Body, actuators: Sequence[Actuator] = (), *, spacer_disks: bool = False) -> Self: ...
     def __getnewargs_ex__(self) -> tuple[tuple[Any, ...], dict[str, Any]]: ...
     def __eq__(self, value: object, /) -> bool: ...
     def __hash__(self) -> int: ...
+    @property
+    def spacer_disks(self) -> bool:
+        """True if the actuators run through spacer disks outside the section."""
     @property
     def body(self) -> Body: ...
     @property
@@ -601,6 +604,9 @@ def _restore_actuator(
     length_ratio: float | None,
     pretension_n: float | None,
 ) -> Actuator: ...
+def _register_plotter(plotter: Callable[..., Any]) -> None:
+    """Register the function ``Solution.plot`` calls (the package does it at import)."""
+
 def _restore_solution(
     robot: Robot,
     inputs: Sequence[float],
@@ -963,3 +969,6 @@ def fixture_fig5_tca(threads: Literal[3, 4]) -> Tca:
 
 def fixture_fig5_half_tca(threads: Literal[3, 4]) -> Tca:
     """One folded half of the Fig. 5 TCA: ``Tca.segment(0.5)`` of the whole."""
+
+def fixture_tendon_robot(name: Literal["steel", "soft"]) -> Robot:
+    """The issue-10 tendon robots: ``"steel"`` (on spacer disks) or ``"soft"``."""

@@ -25,6 +25,7 @@ import importlib.util
 import io
 import sys
 from typing import Any, Callable
+from . import _core
 
 __all__ = ["register", "figure_png", "solution_html", "robot_html"]
 
@@ -37,6 +38,17 @@ def figure_png(fig: Any) -> bytes | None:
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=100, bbox_inches="tight")
     return buf.getvalue()
+
+
+def _plot_solution(sol: Any, **kwargs: Any) -> Any:
+    """``Solution.plot``: the bindings call this (registered below) so that they
+    never import Python modules themselves; matplotlib is imported on first use."""
+    from .plotting import plot_solution
+
+    return plot_solution(sol, **kwargs)
+
+
+_core._register_plotter(_plot_solution)
 
 
 def _solution_png(sol: Any) -> bytes | None:

@@ -22,6 +22,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fixture_leg_turns, m)?)?;
     m.add_function(wrap_pyfunction!(fixture_fig5_tca, m)?)?;
     m.add_function(wrap_pyfunction!(fixture_fig5_half_tca, m)?)?;
+    m.add_function(wrap_pyfunction!(fixture_tendon_robot, m)?)?;
     Ok(())
 }
 
@@ -90,6 +91,7 @@ fn fixture_constants(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         d.set_item(k, v)?;
     }
     d.set_item("table1_masses", ex::TABLE1_MASSES.to_vec())?;
+    d.set_item("steel_tendon_tensions", ex::STEEL_TENDON_TENSIONS.to_vec())?;
     d.set_item(
         "table1_paper_predictions",
         ex::TABLE1_PAPER_PREDICTIONS.to_vec(),
@@ -202,4 +204,23 @@ fn fixture_fig5_half_tca(threads: Bound<'_, PyAny>) -> PyResult<PyTca> {
 /// The Fig. 5 thread count, 3 or 4.
 fn fig5_threads(obj: &Bound<'_, PyAny>) -> PyResult<u32> {
     Ok(count("threads", obj, 3, 4)? as u32)
+}
+
+/// The issue-10 tendon robots (not from the paper): `"steel"` (L 0.5 m,
+/// radius 1 mm, E 200 GPa, G 80 GPa, 8000 kg/m^3, gravity along `+x`, four
+/// tendons at 15.06 mm on spacer disks; benchmark tensions
+/// `fixture_constants()["steel_tendon_tensions"]` [N]) or `"soft"` (0.2 m,
+/// 10 mm, 1 MPa, one tendon at 4 mm).
+#[pyfunction]
+fn fixture_tendon_robot(name: &str) -> PyResult<PyRobot> {
+    let robot = match name {
+        "steel" => ex::steel_tendon_robot(),
+        "soft" => ex::soft_tendon_robot(),
+        _ => {
+            return Err(
+                Error::input("name", format!("{name:?} is not one of 'steel', 'soft'")).into(),
+            )
+        }
+    };
+    Ok(py_robot(robot))
 }

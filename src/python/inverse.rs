@@ -310,7 +310,7 @@ fn blocked_temperature_direct(
 /// along `normal`; `increments` eq-43 steps (1 to 10,000). Returns the
 /// blocked result of one finger (`force` [N] = `m g / (mu n)`).
 #[pyfunction]
-#[pyo3(signature = (robot, normal, mass, mu, fingers, *, gravity=Real(9.81), groups=None, increments=None, steps=None,
+#[pyo3(signature = (robot, normal, mass, mu, fingers, *, gravity=Real(crate::experiments::G0), groups=None, increments=None, steps=None,
     tol=Real(1e-10), max_iter=None),
     text_signature = "(robot, normal, mass, mu, fingers, *, gravity=9.81, groups=None, increments=8, steps=100, \
         tol=1e-10, max_iter=50)")]

@@ -34,10 +34,20 @@ from typing import Any, Final
 import numpy as np
 
 from .. import _core
+from ..models.manipulators import (
+    ECOFLEX10_DENSITY_KG_PER_M3,
+    ECOFLEX10_POISSON,
+    ECOFLEX10_YOUNGS_MODULUS_PA,
+    UPRIGHT,
+)
 from ..models.stability import Branch, follow_branch, plot_branch
 
-#: EcoFlex 10 (Section V): density [kg/m^3], Young's modulus [Pa], Poisson ratio [-].
-ECOFLEX10: Final[tuple[float, float, float]] = (1040.0, 37.8e3, 0.5)
+#: EcoFlex 10 (Section V, the core's fixture): density [kg/m^3], Young's modulus [Pa], Poisson ratio [-].
+ECOFLEX10: Final[tuple[float, float, float]] = (
+    ECOFLEX10_DENSITY_KG_PER_M3,
+    ECOFLEX10_YOUNGS_MODULUS_PA,
+    ECOFLEX10_POISSON,
+)
 #: Greenhill's self-weight buckling load of an upright clamped column, rho A g L^3 / EI [-].
 GREENHILL: Final[float] = 7.837
 #: The soft column: length [m], section width and height [m].
@@ -56,7 +66,7 @@ def column_robot() -> _core.Robot:
         e,
         poisson=nu,
         density=rho,
-        gravity=[0.0, 0.0, -9.81],
+        gravity=list(UPRIGHT),
     )
     return _core.Robot(body, [])
 

@@ -29,6 +29,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(section::restore_routing, m)?)?;
     m.add_function(wrap_pyfunction!(actuator::restore_actuator, m)?)?;
     m.add_function(wrap_pyfunction!(solution::restore_solution, m)?)?;
+    m.add_function(wrap_pyfunction!(solution::register_plotter, m)?)?;
     Ok(())
 }
 /// The Rust fixture `name` of `src/experiments.rs` (`"fig6_circle"`,

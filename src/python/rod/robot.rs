@@ -13,13 +13,15 @@ use crate::python::to_py::{hash_by_text, positional_args, NewArgs};
 use crate::python::{reals, Real, MAX_SEQUENCE};
 use crate::rod::{Actuator, Robot};
 
-/// A body with its embedded actuators: `Robot(body, actuators=())`.
+/// A body with its embedded actuators: `Robot(body, actuators=(), *, spacer_disks=False)`.
 ///
 /// `body` is a `Body`; `actuators` a sequence of `Actuator` (inputs are given
 /// in this order to `solve`: temperature [C] for TCAs, tension [N] for
 /// tendons, pull [m] for linear tendons). Building checks the layout: anchors
 /// inside the body, routings inside the section, TCAs no longer than their
-/// span (ValueError naming `actuators[i]`). Value object: immutable, `==`
+/// span (ValueError naming `actuators[i]`). `spacer_disks=True`: a tendon
+/// robot whose actuators run through spacer disks outside the backbone's
+/// section (the routing-inside-the-section rule is waived). Value object: immutable, `==`
 /// (two identically built robots are equal), picklable, so it travels to
 /// process pools and Dask workers.
 #[pyclass(name = "Robot", module = "tcarod._core", frozen, subclass, eq, hash)]
@@ -33,14 +35,19 @@ pub struct PyRobot {
 #[pymethods]
 impl PyRobot {
     #[new]
-    #[pyo3(signature = (body, actuators=None), text_signature = "(body, actuators=())")]
-    fn new(body: PyBody, actuators: Option<Bound<'_, PyAny>>) -> PyResult<Self> {
+    #[pyo3(signature = (body, actuators=None, *, spacer_disks=false),
+        text_signature = "(body, actuators=(), *, spacer_disks=False)")]
+    fn new(body: PyBody, actuators: Option<Bound<'_, PyAny>>, spacer_disks: bool) -> PyResult<Self> {
         let actuators = match actuators {
             None => Vec::new(),
             Some(seq) => actuator_list(&seq)?,
         };
         let acts: Vec<Actuator> = actuators.iter().map(|a| a.inner.clone()).collect();
-        let robot = Robot::new(body.inner.clone(), acts)?;
+        let robot = if spacer_disks {
+            Robot::with_spacer_disks(body.inner.clone(), acts)?
+        } else {
+            Robot::new(body.inner.clone(), acts)?
+        };
         Ok(PyRobot {
             inner: Arc::new(robot),
             body,
@@ -56,6 +63,11 @@ impl PyRobot {
     #[getter]
     fn actuators(&self) -> Vec<PyActuator> {
         self.actuators.clone()
+    }
+    /// True if the actuators run through spacer disks outside the section.
+    #[getter]
+    fn spacer_disks(&self) -> bool {
+        self.inner.spacer_disks
     }
     /// Passive inputs: ambient temperature [C] for TCAs, zero tension [N] / pull [m] for tendons.
     #[getter]
@@ -154,14 +166,19 @@ impl PyRobot {
     fn __repr__(&self) -> String {
         let acts: Vec<String> = self.actuators.iter().map(|a| a.__repr__()).collect();
         format!(
-            "Robot(body={}, actuators=[{}])",
+            "Robot(body={}, actuators=[{}]{})",
             body_repr(&self.body.inner),
-            acts.join(", ")
+            acts.join(", "),
+            if self.inner.spacer_disks { ", spacer_disks=True" } else { "" }
         )
     }
     /// Constructor arguments, for pickle and copy.
     fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> NewArgs<'py> {
-        positional_args((self.body.clone(), self.actuators.clone()), py)
+        let (args, kwargs) = positional_args((self.body.clone(), self.actuators.clone()), py)?;
+        if self.inner.spacer_disks {
+            kwargs.set_item("spacer_disks", true)?;
+        }
+        Ok((args, kwargs))
     }
 }
 
@@ -178,6 +195,7 @@ impl PyRobot {
     pub(crate) fn same_as(&self, other: &PyRobot) -> bool {
         Arc::ptr_eq(&self.inner, &other.inner)
             || (self.body.inner == other.body.inner
+                && self.inner.spacer_disks == other.inner.spacer_disks
                 && self.actuators.len() == other.actuators.len()
                 && self
                     .actuators

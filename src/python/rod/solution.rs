@@ -296,16 +296,20 @@ impl PySolution {
     fn unknowns<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.inner.unknowns)
     }
-    /// 3-D plot of the shape with the actuators (see `tcarod.plotting.plot_solution`).
+    /// 3-D plot of the shape with the actuators (see `tcarod.plotting.plot_solution`;
+    /// the package registers that function at import, the bindings import nothing).
     #[pyo3(signature = (**kwargs))]
     fn plot<'py>(
         slf: &Bound<'py, Self>,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let py = slf.py();
-        py.import("tcarod.plotting")?
-            .getattr("plot_solution")?
-            .call((slf,), kwargs)
+        let plotter = PLOTTER.get(py).ok_or_else(|| {
+            pyo3::exceptions::PyRuntimeError::new_err(
+                "no plotter registered: import tcarod (the package), not tcarod._core alone",
+            )
+        })?;
+        plotter.bind(py).call((slf,), kwargs)
     }
     /// True if this equilibrium is stable: a strict local minimum of the
     /// potential energy (Till and Rucker's criterion, extended to the
@@ -412,6 +416,23 @@ impl PartialEq for PySolution {
             && a.floor.to_bits() == b.floor.to_bits()
             && a.continuation_steps == b.continuation_steps
     }
+}
+
+/// The Python function behind `Solution.plot`, registered by the package at
+/// import (`tcarod._display`): plotting lives in Python and the bindings never
+/// import back up into it (issue 11).
+static PLOTTER: pyo3::sync::PyOnceLock<Py<PyAny>> = pyo3::sync::PyOnceLock::new();
+
+/// Register the function `Solution.plot` calls (not public API; the first
+/// registration wins).
+#[pyfunction]
+#[pyo3(name = "_register_plotter")]
+pub(crate) fn register_plotter(py: Python<'_>, plotter: Bound<'_, PyAny>) -> PyResult<()> {
+    if !plotter.is_callable() {
+        return Err(pyo3::exceptions::PyTypeError::new_err("plotter must be callable"));
+    }
+    let _ = PLOTTER.set(py, plotter.unbind());
+    Ok(())
 }
 
 /// Rebuild a `Solution` from its robot and converged unknowns (pickle
