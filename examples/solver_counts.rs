@@ -139,7 +139,15 @@ fn main() {
     let g = Groups(vec![0, 0]);
     let run_grasp = || {
         grasp(
-            &finger, &g, &normal, TABLE1_MASSES[0], TABLE1_MU, TABLE1_FINGERS, G0, 8, &o,
+            &finger,
+            &g,
+            &normal,
+            TABLE1_MASSES[0],
+            TABLE1_MU,
+            TABLE1_FINGERS,
+            G0,
+            8,
+            &o,
         )
     };
     let mut times: Vec<f64> = (0..11)

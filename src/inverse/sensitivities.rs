@@ -103,11 +103,11 @@ impl ExactBlocks {
     pub(crate) fn predict(&self, dz: &[f64], dw: &[f64; 6]) -> Option<DVector<f64>> {
         let (nx, nz) = (self.nx, self.nz);
         let mut rhs = DVector::zeros(nx);
-        for k in 0..nz {
-            rhs += self.bm.column(nx + k) * dz[k];
+        for (k, d) in dz.iter().enumerate() {
+            rhs += self.bm.column(nx + k) * *d;
         }
-        for k in 0..6 {
-            rhs += self.bm.column(nx + nz + k) * dw[k];
+        for (k, d) in dw.iter().enumerate() {
+            rhs += self.bm.column(nx + nz + k) * *d;
         }
         self.bm.columns(0, nx).into_owned().lu().solve(&(-rhs))
     }

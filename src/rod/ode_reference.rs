@@ -213,7 +213,7 @@ mod tests {
                     let (top, bot) = (r * v.fixed_rows::<3>(0), r * v.fixed_rows::<3>(3));
                     Vector6::new(top.x, top.y, top.z, bot.x, bot.y, bot.z)
                 };
-                let res = scaled(&m * x - &b);
+                let res = scaled(m * x - b);
                 let bound = 1e-13 * (m.abs() * x.abs() + b.abs());
                 for k in 0..6 {
                     assert!(
