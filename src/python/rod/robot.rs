@@ -37,7 +37,11 @@ impl PyRobot {
     #[new]
     #[pyo3(signature = (body, actuators=None, *, spacer_disks=false),
         text_signature = "(body, actuators=(), *, spacer_disks=False)")]
-    fn new(body: PyBody, actuators: Option<Bound<'_, PyAny>>, spacer_disks: bool) -> PyResult<Self> {
+    fn new(
+        body: PyBody,
+        actuators: Option<Bound<'_, PyAny>>,
+        spacer_disks: bool,
+    ) -> PyResult<Self> {
         let actuators = match actuators {
             None => Vec::new(),
             Some(seq) => actuator_list(&seq)?,
@@ -169,7 +173,11 @@ impl PyRobot {
             "Robot(body={}, actuators=[{}]{})",
             body_repr(&self.body.inner),
             acts.join(", "),
-            if self.inner.spacer_disks { ", spacer_disks=True" } else { "" }
+            if self.inner.spacer_disks {
+                ", spacer_disks=True"
+            } else {
+                ""
+            }
         )
     }
     /// Constructor arguments, for pickle and copy.

@@ -429,7 +429,9 @@ static PLOTTER: pyo3::sync::PyOnceLock<Py<PyAny>> = pyo3::sync::PyOnceLock::new(
 #[pyo3(name = "_register_plotter")]
 pub(crate) fn register_plotter(py: Python<'_>, plotter: Bound<'_, PyAny>) -> PyResult<()> {
     if !plotter.is_callable() {
-        return Err(pyo3::exceptions::PyTypeError::new_err("plotter must be callable"));
+        return Err(pyo3::exceptions::PyTypeError::new_err(
+            "plotter must be callable",
+        ));
     }
     let _ = PLOTTER.set(py, plotter.unbind());
     Ok(())
