@@ -45,10 +45,33 @@ def test_bad_fixture_arguments_raise_value_error() -> None:
 def test_grasp_temperature_presses_with_the_eq_44_force() -> None:
     finger = _core.fixture_manipulator("table1_finger")
     k = _core.fixture_constants()
-    res = _core.grasp_temperature(finger, k["table1_normal"], 1e-3, k["table1_mu"], 2, groups=[0, 0])
+    res, point = _core.grasp_temperature(finger, k["table1_normal"], 1e-3, k["table1_mu"], 2, groups=[0, 0])
+    # the tip is blocked where it rests at the reference inputs
+    rest = finger.solve(finger.reference_inputs, stability="off").tip_position
+    assert point == pytest.approx(list(rest), abs=1e-12)  # same solve, same unknowns: to rounding
     # eq 44: mu n F = m g, so F = 1e-3 * 9.81 / (1.1 * 2) N, exactly
     assert res.force == pytest.approx(1e-3 * 9.81 / 2.2, rel=1e-12)
     lo, hi = finger.actuators[0].input_bounds
     assert lo < res.variables[0] < hi
     with pytest.raises(ValueError, match="mass"):
         _core.grasp_temperature(finger, k["table1_normal"], -1.0, 1.1, 2, groups=[0, 0])
+    with pytest.raises(ValueError, match="method"):
+        _core.grasp_temperature(finger, k["table1_normal"], 1e-3, 1.1, 2, method="bisection")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="contact"):
+        _core.grasp_temperature(finger, k["table1_normal"], 1e-3, 1.1, 2, contact=[72.0])
+
+
+def test_tendon_fixtures_and_spacer_disks_round_trip() -> None:
+    import pickle
+
+    steel = _core.fixture_tendon_robot("steel")
+    assert steel.spacer_disks and "spacer_disks=True" in repr(steel)
+    assert pickle.loads(pickle.dumps(steel)) == steel
+    tensions = _core.fixture_constants()["steel_tendon_tensions"]
+    assert steel.solve(tensions, stability="off").success
+    # the same layout without spacer disks breaks the routing-inside-the-section rule
+    with pytest.raises(ValueError, match="routing"):
+        _core.Robot(steel.body, steel.actuators)
+    assert not _core.fixture_tendon_robot("soft").spacer_disks
+    with pytest.raises(ValueError, match="name"):
+        _core.fixture_tendon_robot("brass")  # type: ignore[arg-type]

@@ -806,14 +806,19 @@ def grasp_temperature(
     *,
     gravity: float = 9.81,
     groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    contact: Sequence[float] | _FloatArray | None = None,
+    method: Literal["incremental", "direct"] = "incremental",
     increments: int = 8,
     steps: int = 100,
     tol: float = 1e-10,
     max_iter: int = 50,
-) -> BlockedResult:
+) -> tuple[BlockedResult, tuple[float, float, float]]:
     """Grasp temperature (eq 44): the actuation variable at which ``fingers``
     fingers with friction ``mu`` hold ``mass`` [kg], ``mu n F(T) = m g``, each
-    tip blocked where it rests at the reference inputs, pressing along ``normal``."""
+    tip blocked where it rests at the ``contact`` inputs (default: the
+    reference inputs), pressing along ``normal``; ``method``: eq 43 in
+    ``increments`` steps or a direct solve. Returns (the blocked result of
+    one finger, the block point [m])."""
 
 def solve_batch(
     robot: Robot,

@@ -1,5 +1,5 @@
-//! A blocked tip (mixed boundary conditions), the paper's incremental
-//! method (eq 43) and the grasp temperature (eq 44).
+//! A blocked tip (mixed boundary conditions) and the paper's incremental
+//! method (eq 43).
 
 use nalgebra::Vector3;
 
@@ -322,33 +322,4 @@ fn predicted(
         }
     }
     warm
-}
-
-/// Grasp temperature (eq 44): the actuation variable at which `fingers`
-/// identical fingers with friction coefficient `mu` hold a mass `mass` \[kg\],
-/// `mu n F(T) = m g`, each finger's tip blocked at its reference position
-/// and pressing along `normal`. Returns the blocked result for one finger.
-#[allow(clippy::too_many_arguments)]
-pub fn grasp(
-    robot: &Robot,
-    groups: &Groups,
-    normal: &Vector3<f64>,
-    mass: f64,
-    mu: f64,
-    fingers: usize,
-    gravity: f64,
-    increments: usize,
-    opts: &SolveOptions,
-) -> Result<BlockedResult> {
-    crate::error::positive("mass [kg]", mass)?;
-    crate::error::positive("mu [-]", mu)?;
-    crate::error::positive("gravity [m/s^2]", gravity)?;
-    if fingers == 0 {
-        return Err(Error::param("fingers", 0.0, ">= 1"));
-    }
-    let reference = robot.reference_inputs();
-    let start = solve_loaded(robot, &reference, &Loads::of(robot), opts, None)?;
-    let block = Block::new(start.tip_position(), *normal)?;
-    let force = mass * gravity / (mu * fingers as f64);
-    blocked_temperature(robot, groups, &block, &start, force, increments, opts)
 }

@@ -13,12 +13,14 @@ use crate::error::{Error, Result};
 use crate::rod::Robot;
 
 mod blocked;
+mod grasp;
 mod sensitivities;
 mod tip;
 
 pub use blocked::{
-    blocked_force, blocked_temperature, blocked_variable_direct, grasp, Block, BlockedResult,
+    blocked_force, blocked_temperature, blocked_variable_direct, Block, BlockedResult,
 };
+pub use grasp::{grasp, Grasp, GraspMethod};
 pub(crate) use sensitivities::{exact_blocks, ExactBlocks};
 pub use sensitivities::{
     sensitivities, sensitivities_exact, sensitivities_fast, sensitivities_with_step,

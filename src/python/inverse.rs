@@ -306,14 +306,16 @@ fn blocked_temperature_direct(
 /// Grasp temperature (eq 44): the actuation variable at which `fingers`
 /// identical fingers (this `robot`) with friction coefficient `mu` [-] hold
 /// a mass `mass` [kg] under `gravity` [m/s^2], `mu n F(T) = m g`, each
-/// finger's tip blocked where it rests at the reference inputs and pressing
-/// along `normal`; `increments` eq-43 steps (1 to 10,000). Returns the
-/// blocked result of one finger (`force` [N] = `m g / (mu n)`).
+/// finger's tip blocked where it rests at the `contact` inputs (default: the
+/// reference inputs) and pressing along `normal`. `method`: `"incremental"`
+/// (eq 43 in `increments` steps, 1 to 10,000) or `"direct"` (the variable as
+/// a shooting unknown). Returns `(blocked result of one finger, block point
+/// [m])`; the result's `force` [N] is `m g / (mu n)`.
 #[pyfunction]
-#[pyo3(signature = (robot, normal, mass, mu, fingers, *, gravity=Real(crate::experiments::G0), groups=None, increments=None, steps=None,
-    tol=Real(1e-10), max_iter=None),
-    text_signature = "(robot, normal, mass, mu, fingers, *, gravity=9.81, groups=None, increments=8, steps=100, \
-        tol=1e-10, max_iter=50)")]
+#[pyo3(signature = (robot, normal, mass, mu, fingers, *, gravity=Real(crate::experiments::G0), groups=None,
+    contact=None, method="incremental", increments=None, steps=None, tol=Real(1e-10), max_iter=None),
+    text_signature = "(robot, normal, mass, mu, fingers, *, gravity=9.81, groups=None, contact=None, \
+        method='incremental', increments=8, steps=100, tol=1e-10, max_iter=50)")]
 #[allow(clippy::too_many_arguments)]
 fn grasp_temperature(
     py: Python<'_>,
@@ -324,22 +326,49 @@ fn grasp_temperature(
     fingers: Bound<'_, PyAny>,
     gravity: Real,
     groups: Option<Bound<'_, PyAny>>,
+    contact: Option<Bound<'_, PyAny>>,
+    method: &str,
     increments: Option<Bound<'_, PyAny>>,
     steps: Option<Bound<'_, PyAny>>,
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
-) -> PyResult<PyBlockedResult> {
+) -> PyResult<(PyBlockedResult, [f64; 3])> {
     let r = robot.get();
     let g = groups_for(r, groups.as_ref())?;
-    let normal = vec3("normal", &normal)?;
-    let fingers = super::args::count("fingers", &fingers, 1, super::MAX_SEQUENCE)?;
-    let increments = count_or("increments", increments.as_ref(), 8, 1, MAX_INCREMENTS)?;
+    let na = r.inner.actuators.len();
+    let spec = inverse::Grasp {
+        normal: vec3("normal", &normal)?,
+        mass: mass.0,
+        mu: mu.0,
+        fingers: super::args::count("fingers", &fingers, 1, super::MAX_SEQUENCE)?,
+        gravity: gravity.0,
+        contact: contact
+            .map(|c| super::reals("contact", &c, Some(na)))
+            .transpose()?,
+    };
+    let method = match method {
+        "incremental" => inverse::GraspMethod::Incremental(count_or(
+            "increments",
+            increments.as_ref(),
+            8,
+            1,
+            MAX_INCREMENTS,
+        )?),
+        "direct" => inverse::GraspMethod::Direct,
+        _ => {
+            return Err(crate::error::Error::input(
+                "method",
+                format!("{method:?} is not 'incremental' or 'direct'"),
+            )
+            .into())
+        }
+    };
     let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
     let rr = r.inner.clone();
-    let res = super::errors::detach_interruptible(py, || {
-        inverse::grasp(
-            &rr, &g, &normal, mass.0, mu.0, fingers, gravity.0, increments, &opts,
-        )
-    })?;
-    blocked(py, robot, res, normal)
+    let (res, point) =
+        super::errors::detach_interruptible(py, || spec.solve(&rr, &g, method, &opts))?;
+    Ok((
+        blocked(py, robot, res, spec.normal)?,
+        [point.x, point.y, point.z],
+    ))
 }

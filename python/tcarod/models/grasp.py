@@ -27,7 +27,7 @@ from typing import Final, Literal, Sequence
 
 from .. import _core
 from .manipulators import DEFAULT_TURNS_READING, GRAVITY_M_PER_S2, PAPER_CONSTANTS, TurnsReading
-from ..inverse import BlockedResult, blocked_force, blocked_temperature, blocked_temperature_direct
+from ..inverse import BlockedResult, blocked_force
 from ..rod import Robot
 from .. import _validate as V
 from ..tca import Material
@@ -146,32 +146,36 @@ def grasp(
         raise ValueError(f"method must be 'incremental' or 'direct', got {method!r}")
     robot = table1_finger() if finger is None else V.instance("finger", finger, Robot, "a tcarod.Robot")
     grp = list(groups) if groups is not None else [0] * len(robot.actuators)
-    force = m * g / (mu_ * fingers)  # eq (44)
-    inputs = robot.reference_inputs
+    contact = None
     if contact_temperature_c is not None:
         tc = float(contact_temperature_c)
         lo, hi = robot.actuators[0].input_bounds
         if not (math.isfinite(tc) and lo <= tc <= hi):
             raise ValueError(f"invalid contact_temperature_c = {contact_temperature_c!r}: must be in [{lo}, {hi}] C")
-        inputs = [tc] * len(robot.actuators)
-    start = robot.solve(inputs, steps=steps, tol=tol)
-    point = tuple(float(x) for x in start.tip_position)
+        contact = [tc] * len(robot.actuators)
     nrm = [float(x) for x in normal]
-    hi_t = robot.actuators[0].input_bounds[1]
-    if method == "incremental":
-        res = blocked_temperature(
-            robot, point, nrm, force, start, groups=grp, increments=increments, steps=steps, tol=tol
-        )
-    else:
-        guess = None if contact_temperature_c is None else 0.5 * (float(contact_temperature_c) + hi_t)
-        res = blocked_temperature_direct(robot, point, nrm, force, guess, groups=grp, steps=steps, tol=tol)
+    # eq (44) and the blocked solve live in the core (inverse::Grasp)
+    res, point = _core.grasp_temperature(
+        robot,
+        nrm,
+        m,
+        mu_,
+        fingers,
+        gravity=g,
+        groups=grp,
+        contact=contact,
+        method=method,
+        increments=increments,
+        steps=steps,
+        tol=tol,
+    )
     n = math.sqrt(sum(x * x for x in nrm))
     return Grasp(
         mass_kg=m,
         mu=mu_,
         fingers=fingers,
         gravity_m_per_s2=g,
-        force_per_finger_n=force,
+        force_per_finger_n=res.force,
         temperature_c=float(res.variables[0]),
         block_point_m=(point[0], point[1], point[2]),
         normal=(nrm[0] / n, nrm[1] / n, nrm[2] / n),
