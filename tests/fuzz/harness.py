@@ -40,7 +40,8 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .strategies import DESIGN_TEXT, FILE_ENTRIES, Call, Fix
+from .primitives import DESIGN_TEXT, Call, Fix
+from .strategies import FILE_ENTRIES
 
 ALLOWED = frozenset({"ok", "ValueError", "TypeError", "ConvergenceError", "OSError", "exit"})
 #: Entry points documented to return +inf (a straight body / collinear points: infinite radius).
