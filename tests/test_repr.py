@@ -115,6 +115,6 @@ def test_signatures_are_real() -> None:
     for f in fns:
         sig = str(inspect.signature(f))
         assert "Ellipsis" not in sig and "..." not in sig, (f, sig)
-    assert str(inspect.signature(_core.Robot)) == "(body, actuators=())"
+    assert str(inspect.signature(_core.Robot)) == "(body, actuators=(), *, spacer_disks=False)"
     assert "steps=100" in str(inspect.signature(_core.Robot.solve))
     assert "pretension_n=None" in str(inspect.signature(_core.Actuator.tca))

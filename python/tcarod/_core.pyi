@@ -416,7 +416,7 @@ class Robot:
     def __hash__(self) -> int: ...
     @property
     def spacer_disks(self) -> bool:
-        """True if the actuators run through spacer disks outside the section."""
+        """``True`` if the actuators run through spacer disks outside the section."""
     @property
     def body(self) -> Body: ...
     @property

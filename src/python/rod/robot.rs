@@ -68,7 +68,8 @@ impl PyRobot {
     fn actuators(&self) -> Vec<PyActuator> {
         self.actuators.clone()
     }
-    /// True if the actuators run through spacer disks outside the section.
+    /// `True` if the actuators run through spacer disks outside the section
+    /// (the routing-inside-the-section rule waived).
     #[getter]
     fn spacer_disks(&self) -> bool {
         self.inner.spacer_disks
