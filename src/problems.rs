@@ -360,23 +360,7 @@ fn draw_actuator(
         ActuatorKind::Tca => rng.range(0.3e-3, 2.0e-3).min(0.4 * half_min) * 0.5,
         _ => 0.05 * half_min,
     };
-    let helix = rng.chance(0.3);
-    let routing = if helix {
-        let radius = rng.range(0.3, 0.85) * (half_min - own);
-        let turns = rng.range(-1.5, 1.5);
-        Routing::Helix {
-            radius,
-            rate: 2.0 * PI * turns / span,
-            phase: rng.range(0.0, 2.0 * PI),
-        }
-    } else {
-        let theta = rng.range(0.0, 2.0 * PI);
-        let r = rng.range(0.3, 0.85) * (section.edge_distance(theta) - own);
-        Routing::Straight {
-            x: r * theta.cos(),
-            y: r * theta.sin(),
-        }
-    };
+    let routing = draw_routing(rng, &section, half_min, own, span);
     let offset = match routing {
         Routing::Straight { x, y } => x.hypot(y),
         Routing::Helix { radius, .. } => radius,
@@ -394,7 +378,52 @@ fn draw_actuator(
     let kappa = (theta / span)
         .min(0.3 / half_max)
         .min(0.2 * ea / n_act as f64 * offset / ei);
-    let (law, input): (Arc<dyn crate::rod::ForceLaw>, f64) = match kind {
+    let (law, input) = draw_law(rng, kind, span, own, ei * kappa / offset, kappa, offset, ei)?;
+    Some((Actuator::new(routing, s_start, s_end, law), input, kind))
+}
+
+/// The routing of a drawn actuator: a helix (probability 0.3) or a straight
+/// line, inside the section less the actuator's own radius `own` \[m\].
+fn draw_routing(
+    rng: &mut SplitMix64,
+    section: &Section,
+    half_min: f64,
+    own: f64,
+    span: f64,
+) -> Routing {
+    if rng.chance(0.3) {
+        let radius = rng.range(0.3, 0.85) * (half_min - own);
+        let turns = rng.range(-1.5, 1.5);
+        Routing::Helix {
+            radius,
+            rate: 2.0 * PI * turns / span,
+            phase: rng.range(0.0, 2.0 * PI),
+        }
+    } else {
+        let theta = rng.range(0.0, 2.0 * PI);
+        let r = rng.range(0.3, 0.85) * (section.edge_distance(theta) - own);
+        Routing::Straight {
+            x: r * theta.cos(),
+            y: r * theta.sin(),
+        }
+    }
+}
+
+/// The force law of a drawn actuator and its input: a TCA at 25-160 C, a
+/// constant tension `tension` \[N\] (curvature `kappa` at offset `offset`),
+/// or a linear tendon pulled to the same curvature.
+#[allow(clippy::too_many_arguments)]
+fn draw_law(
+    rng: &mut SplitMix64,
+    kind: ActuatorKind,
+    span: f64,
+    own: f64,
+    tension: f64,
+    kappa: f64,
+    offset: f64,
+    ei: f64,
+) -> Option<(Arc<dyn crate::rod::ForceLaw>, f64)> {
+    Some(match kind {
         ActuatorKind::Tca => {
             let chirality = if rng.chance(0.7) {
                 Chirality::Extension
@@ -414,18 +443,17 @@ fn draw_actuator(
             .ok()?;
             (Arc::new(TcaLaw(tca)), rng.range(25.0, 160.0))
         }
-        ActuatorKind::ConstantTension => (Arc::new(ConstantTension), ei * kappa / offset),
+        ActuatorKind::ConstantTension => (Arc::new(ConstantTension), tension),
         ActuatorKind::LinearTendon => {
             // stiffness k against the bending stiffness seen at the tendon,
             // E I / (r^2 span); pull for curvature kappa:
             // k (pull - kappa r span) = E I kappa / r
             let k_body = ei / (offset * offset * span);
             let k = rng.log_range(1.0, 100.0) * k_body;
-            let pull = (ei * kappa / offset) / k + kappa * offset * span;
+            let pull = tension / k + kappa * offset * span;
             (Arc::new(LinearTendon { stiffness: k }), pull)
         }
-    };
-    Some((Actuator::new(routing, s_start, s_end, law), input, kind))
+    })
 }
 
 mod equilibrium;

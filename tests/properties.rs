@@ -87,13 +87,10 @@ impl Design {
     }
 }
 
-/// A random body with 1-3 actuators (TCAs or tendons) at random offsets.
-/// `nested`: random anchors. Otherwise one actuator with a random span, or several
-/// that run base to tip or along consecutive disjoint pieces, so that no anchor
-/// inside the body is shared or passed by another actuator.
-fn design(rng: &mut SplitMix64, nested: bool) -> Design {
-    let length = rng.range(0.02, 0.06);
-    let (section, hw, hh) = if rng.chance(0.5) {
+/// A circle (7-12 mm) or a rectangle (7-12 mm sides) and the half extents
+/// \[m\] inside which actuators are placed (the inscribed square for a circle).
+fn draw_section(rng: &mut SplitMix64) -> (Section, f64, f64) {
+    if rng.chance(0.5) {
         let d = rng.range(7e-3, 12e-3);
         let h = d / 2.0 / 2f64.sqrt();
         (Section::Circle { diameter: d }, h, h)
@@ -107,7 +104,16 @@ fn design(rng: &mut SplitMix64, nested: bool) -> Design {
             w / 2.0,
             h / 2.0,
         )
-    };
+    }
+}
+
+/// A random body with 1-3 actuators (TCAs or tendons) at random offsets.
+/// `nested`: random anchors. Otherwise one actuator with a random span, or several
+/// that run base to tip or along consecutive disjoint pieces, so that no anchor
+/// inside the body is shared or passed by another actuator.
+fn design(rng: &mut SplitMix64, nested: bool) -> Design {
+    let length = rng.range(0.02, 0.06);
+    let (section, hw, hh) = draw_section(rng);
     let e = rng.range(3e4, 2e5);
     let (area, ix, iy, _) = section.properties();
     let ei = e * ix.min(iy);

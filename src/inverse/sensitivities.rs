@@ -1,7 +1,7 @@
 //! `J` and `C` (eqs 39-42): the paper's finite differences and the exact
 //! tangents.
 
-use nalgebra::{DMatrix, DVector, Quaternion, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Quaternion, Vector3};
 
 use super::{load_scales, pose_delta, Groups, Scheme, Sensitivities};
 use crate::error::{Error, Result, StopReason};
@@ -171,19 +171,7 @@ pub(crate) fn exact_blocks(
         expand(&tan.tip_force_residual),
         expand(&tan.tip_moment_residual),
     );
-    // pose tangents: dp, and dtheta = 2 vec(dq conj(q)) for a unit q
-    let q = tan.ivp.tip.q;
-    let mut e = DMatrix::<f64>::zeros(6, ncol + 6);
-    for c in 0..ncol {
-        for k in 0..3 {
-            e[(k, c)] = tip[(k, c)];
-        }
-        let dq = Quaternion::new(tip[(3, c)], tip[(4, c)], tip[(5, c)], tip[(6, c)]);
-        let w = dq * q.conjugate() * 2.0;
-        e[(3, c)] = w.i;
-        e[(4, c)] = w.j;
-        e[(5, c)] = w.k;
-    }
+    let e = pose_tangents(&tip, tan.ivp.tip.q, ncol);
     let (fs, ms) = crate::shooting::residual_scales(robot);
     let mut bm = DMatrix::<f64>::zeros(nx, ncol + 6);
     for c in 0..ncol {
@@ -195,7 +183,30 @@ pub(crate) fn exact_blocks(
             bm[(6 + i, c)] = elong[(i, c)] / len - if c == 6 + i { 1.0 } else { 0.0 };
         }
     }
-    let r0 = tan.ivp.tip.rotation();
+    tip_wrench_columns(&mut bm, &tan.ivp.tip.rotation(), fs, ms, ncol);
+    Ok(ExactBlocks { e, bm, nx, nz })
+}
+
+/// Tip pose tangents `[dp; dtheta]` (6 x (ncol + 6), the wrench columns
+/// zero) from the state tangents: `dtheta = 2 vec(dq conj(q))` for a unit `q`.
+fn pose_tangents(tip: &DMatrix<f64>, q: Quaternion<f64>, ncol: usize) -> DMatrix<f64> {
+    let mut e = DMatrix::<f64>::zeros(6, ncol + 6);
+    for c in 0..ncol {
+        for k in 0..3 {
+            e[(k, c)] = tip[(k, c)];
+        }
+        let dq = Quaternion::new(tip[(3, c)], tip[(4, c)], tip[(5, c)], tip[(6, c)]);
+        let w = dq * q.conjugate() * 2.0;
+        e[(3, c)] = w.i;
+        e[(4, c)] = w.j;
+        e[(5, c)] = w.k;
+    }
+    e
+}
+
+/// The scaled tip-balance residual (eqs 32-33) on a world-frame tip wrench:
+/// `-R(L)^T` times the force / moment scales `fs`, `ms`, in columns `ncol..ncol + 6`.
+fn tip_wrench_columns(bm: &mut DMatrix<f64>, r0: &Matrix3<f64>, fs: f64, ms: f64, ncol: usize) {
     for k in 0..6 {
         for i in 0..3 {
             let (row, val) = if k < 3 {
@@ -206,7 +217,6 @@ pub(crate) fn exact_blocks(
             bm[(row, ncol + k)] = val;
         }
     }
-    Ok(ExactBlocks { e, bm, nx, nz })
 }
 
 /// [`sensitivities`] with a chosen relative step (for studies of step-size error).
@@ -306,17 +316,7 @@ fn sensitivities_impl(
         // linearly: d r_F / dF = -(L^2/EI) R^T, d r_M / dM = -(L/EI) R^T
         // in the scaled residual of `shoot`.
         let (fs, ms) = crate::shooting::residual_scales(robot);
-        for k in 0..6 {
-            let col = nx + nz + k;
-            for i in 0..3 {
-                let (row, val) = if k < 3 {
-                    (i, -r0[(k, i)] * fs)
-                } else {
-                    (3 + i, -r0[(k - 3, i)] * ms)
-                };
-                bm[(row, col)] = val;
-            }
-        }
+        tip_wrench_columns(&mut bm, &r0, fs, ms, nx + nz);
     } else {
         // tip wrench W = [F; M] by differences, the paper's way
         let (fc, mc) = load_scales(robot);
@@ -346,8 +346,19 @@ fn sensitivities_impl(
             put(nx + nz + k, plus, minus, h);
         }
     }
-    let bu = bm.columns(0, nx).into_owned();
-    let lu = bu.lu();
+    eliminate_unknowns(&e, &bm, nx, nz, evals)
+}
+
+/// J and C from the pose blocks `E = [E_u E_q E_W]` and the residual blocks
+/// `B = [B_u B_q B_W]`: `J = E_q - E_u B_u^-1 B_q` (eq 41), `C = E_W - E_u B_u^-1 B_W` (eq 42).
+fn eliminate_unknowns(
+    e: &DMatrix<f64>,
+    bm: &DMatrix<f64>,
+    nx: usize,
+    nz: usize,
+    evaluations: usize,
+) -> Result<Sensitivities> {
+    let lu = bm.columns(0, nx).into_owned().lu();
     let solve_b = |rhs: DMatrix<f64>| {
         lu.solve(&rhs).ok_or_else(|| Error::NotConverged {
             solver: "sensitivities",
@@ -365,6 +376,6 @@ fn sensitivities_impl(
     Ok(Sensitivities {
         jacobian: jac,
         compliance: comp,
-        evaluations: evals,
+        evaluations,
     })
 }

@@ -148,15 +148,7 @@ pub(crate) fn continuation(
             prev.as_ref().map(|(l0, x0)| (lam - l0, x0.as_slice())),
             lt - lam,
         );
-        // intermediate steps are predictors: converged to 1e-8 (or tol if looser)
-        let step_opts = if lt >= 1.0 {
-            *opts
-        } else {
-            SolveOptions {
-                tol: opts.tol.max(INTERMEDIATE_TOL),
-                ..*opts
-            }
-        };
+        let step_opts = step_options(opts, lt >= 1.0);
         match newton_shooting(&r, &inp, &l, &step_opts, &x0, jac.as_ref(), lt >= 1.0, work) {
             Ok((nr, last)) => {
                 path.push(lt);
@@ -170,10 +162,7 @@ pub(crate) fn continuation(
                 }
                 tau = match last {
                     Some((_, _, t)) => t,
-                    None => {
-                        let delta: Vec<f64> = nr.x[6..].iter().map(|d| d * len).collect();
-                        tensions(&r, &inp, &delta)?
-                    }
+                    None => tensions_at(&r, &inp, &nr.x, len)?,
                 };
                 prev = Some((lam, std::mem::replace(&mut x, nr.x)));
                 lam = lt;
@@ -200,6 +189,25 @@ pub(crate) fn continuation(
         }
     }
     Err(stall_error(last_err, work, lam))
+}
+
+/// Options of one homotopy step: intermediate steps are predictors,
+/// converged to 1e-8 (or `tol` if looser); the last one to `tol`.
+fn step_options(opts: &SolveOptions, last: bool) -> SolveOptions {
+    if last {
+        *opts
+    } else {
+        SolveOptions {
+            tol: opts.tol.max(INTERMEDIATE_TOL),
+            ..*opts
+        }
+    }
+}
+
+/// Actuator tensions \[N\] at the scaled unknowns `x` (elongations `x[6..] L`).
+fn tensions_at(robot: &Robot, inputs: &[f64], x: &[f64], len: f64) -> Result<Vec<f64>> {
+    let delta: Vec<f64> = x[6..].iter().map(|d| d * len).collect();
+    tensions(robot, inputs, &delta)
 }
 
 /// The start of the path: the inputs, unknowns, tensions and Jacobian of

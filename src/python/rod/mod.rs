@@ -3,6 +3,7 @@
 
 mod actuator;
 mod body;
+mod restore;
 mod robot;
 mod section;
 mod solution;
@@ -28,7 +29,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(section::restore_section, m)?)?;
     m.add_function(wrap_pyfunction!(section::restore_routing, m)?)?;
     m.add_function(wrap_pyfunction!(actuator::restore_actuator, m)?)?;
-    m.add_function(wrap_pyfunction!(solution::restore_solution, m)?)?;
+    m.add_function(wrap_pyfunction!(restore::restore_solution, m)?)?;
     m.add_function(wrap_pyfunction!(solution::register_plotter, m)?)?;
     Ok(())
 }
