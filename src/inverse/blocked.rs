@@ -3,7 +3,7 @@
 
 use nalgebra::Vector3;
 
-use super::{exact_blocks, load_scales, ExactBlocks, Groups};
+use super::{exact_blocks, load_scales, ExactBlocks, Groups, Sensitivities};
 use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
 use crate::shooting::{
@@ -188,17 +188,7 @@ pub fn blocked_temperature(
     increments: usize,
     opts: &SolveOptions,
 ) -> Result<BlockedResult> {
-    groups.validate(robot)?;
-    if groups.n_vars() != 1 {
-        return Err(Error::input(
-            "groups",
-            "a blocked-force temperature needs exactly one actuation variable",
-        ));
-    }
-    crate::error::finite("force [N]", force)?;
-    if increments == 0 {
-        return Err(Error::param("increments", 0.0, ">= 1"));
-    }
+    check_increments(robot, groups, force, increments)?;
     let (lo, hi) = groups.bounds(robot)[0];
     let n = block.normal;
     let mut z = groups.vars(&start.inputs)[0];
@@ -209,13 +199,13 @@ pub fn blocked_temperature(
     let df = force / increments as f64;
     for k in 0..increments + 3 {
         let l = block.loads(robot, f);
-        // J and C exactly, from one tangent IVP (its B blocks also give the
-        // warm start below)
+        // J and C exactly, from one tangent IVP (its B blocks: the warm start)
         let blocks = exact_blocks(robot, &sol, &l, groups, opts.steps)?;
         let sens = blocks.sensitivities()?;
         evals += sens.evaluations;
-        let nj: f64 = (0..3).map(|i| n[i] * sens.jacobian[(i, 0)]).sum();
-        if nj.abs() < 1e-300 {
+        let step = if k < increments { df } else { 0.0 };
+        let gap = n.dot(&(block.point - sol.tip_position()));
+        let Some(dz) = eq43_increment(&sens, &n, step, gap) else {
             return Err(Error::NotConverged {
                 solver: "blocked-tip increments",
                 iterations: k,
@@ -225,18 +215,7 @@ pub fn blocked_temperature(
                 reason: "the actuator cannot move the tip along the block normal (n^T J = 0)"
                     .into(),
             });
-        }
-        // wrench increment on the tip: -df n (force only)
-        let step = if k < increments { df } else { 0.0 };
-        let nc_dw: f64 = (0..3)
-            .map(|i| {
-                (0..3)
-                    .map(|j| n[i] * sens.compliance[(i, j)] * (-n[j] * step))
-                    .sum::<f64>()
-            })
-            .sum();
-        let gap = n.dot(&(block.point - sol.tip_position()));
-        let dz = (-nc_dw + gap) / nj;
+        };
         z += dz;
         f += step;
         // Near a bound (e.g. the blocked force at 160 C, fed back), a step may
@@ -279,6 +258,41 @@ pub fn blocked_temperature(
         residual: n.dot(&(block.point - sol.tip_position())).abs() / robot.body.length,
         reason: "tip did not settle on the block".into(),
     })
+}
+
+/// The arguments of [`blocked_temperature`]: one actuation variable, a
+/// finite force, at least one increment.
+fn check_increments(robot: &Robot, groups: &Groups, force: f64, increments: usize) -> Result<()> {
+    groups.validate(robot)?;
+    if groups.n_vars() != 1 {
+        return Err(Error::input(
+            "groups",
+            "a blocked-force temperature needs exactly one actuation variable",
+        ));
+    }
+    crate::error::finite("force [N]", force)?;
+    if increments == 0 {
+        return Err(Error::param("increments", 0.0, ">= 1"));
+    }
+    Ok(())
+}
+
+/// One eq-43 increment of the actuation variable for the tip wrench
+/// increment `dW = -step n` (force only) and the gap `n . (point - p)` \[m\]:
+/// `dz = (gap - n^T C dW) / (n^T J)`; `None` if `n^T J = 0`.
+fn eq43_increment(sens: &Sensitivities, n: &Vector3<f64>, step: f64, gap: f64) -> Option<f64> {
+    let nj: f64 = (0..3).map(|i| n[i] * sens.jacobian[(i, 0)]).sum();
+    if nj.abs() < 1e-300 {
+        return None;
+    }
+    let nc_dw: f64 = (0..3)
+        .map(|i| {
+            (0..3)
+                .map(|j| n[i] * sens.compliance[(i, j)] * (-n[j] * step))
+                .sum::<f64>()
+        })
+        .sum();
+    Some((-nc_dw + gap) / nj)
 }
 
 /// The warm start of an eq-43 increment: `sol` moved to first order
