@@ -66,17 +66,8 @@ pub fn tip_position_inverse(
     z_start: &[f64],
     opts: &InverseOptions,
 ) -> Result<InverseResult> {
-    groups.validate(robot)?;
-    for (k, v) in target.iter().enumerate() {
-        crate::error::finite(&format!("target[{k}] [m]"), *v)?;
-    }
+    check_target(robot, groups, target, z_start)?;
     let nz = groups.n_vars();
-    if z_start.len() != nz {
-        return Err(Error::input(
-            "start",
-            format!("expected {nz} variables, got {}", z_start.len()),
-        ));
-    }
     let bounds = groups.bounds(robot);
     let mut z: Vec<f64> = z_start
         .iter()
@@ -104,45 +95,8 @@ pub fn tip_position_inverse(
         iterations += 1;
         let sens = sensitivities_exact(robot, &sol, &loads, groups, opts.forward.steps)?;
         evals += sens.evaluations;
-        let mut jr = sens.jacobian.rows(0, rows).into_owned();
-        if let Some((_, w)) = target_rotation {
-            for c in 0..nz {
-                for r in 3..6 {
-                    jr[(r, c)] *= w;
-                }
-            }
-        }
-        // Variables on a bound whose step would push past it are frozen.
-        let mut free: Vec<bool> = vec![true; nz];
-        let mut dz = DVector::zeros(nz);
-        for _ in 0..=nz {
-            let cols: Vec<usize> = (0..nz).filter(|&k| free[k]).collect();
-            if cols.is_empty() {
-                break;
-            }
-            let jf = DMatrix::from_fn(rows, cols.len(), |r, c| jr[(r, cols[c])]);
-            let lam2 = opts.damping * opts.damping;
-            let a = jf.transpose() * &jf + DMatrix::identity(cols.len(), cols.len()) * lam2;
-            let step = a
-                .lu()
-                .solve(&(jf.transpose() * &err))
-                .unwrap_or_else(|| DVector::zeros(cols.len()));
-            dz = DVector::zeros(nz);
-            for (c, &k) in cols.iter().enumerate() {
-                dz[k] = step[c];
-            }
-            let mut changed = false;
-            for k in 0..nz {
-                let (lo, hi) = bounds[k];
-                if free[k] && ((z[k] <= lo && dz[k] < 0.0) || (z[k] >= hi && dz[k] > 0.0)) {
-                    free[k] = false;
-                    changed = true;
-                }
-            }
-            if !changed {
-                break;
-            }
-        }
+        let jr = weighted_rows(&sens.jacobian, rows, target_rotation.map(|(_, w)| w));
+        let dz = bounded_step(&jr, &err, &z, &bounds, opts.damping);
         // backtrack on the tip error, clamping to bounds
         let mut t = 1.0;
         let mut accepted = false;
@@ -150,20 +104,12 @@ pub fn tip_position_inverse(
             let zt: Vec<f64> = (0..nz)
                 .map(|k| (z[k] + t * dz[k]).clamp(bounds[k].0, bounds[k].1))
                 .collect();
-            if let Ok(st) = solve_loaded(
-                robot,
-                &groups.inputs(&zt),
-                &loads,
-                &opts.forward,
-                Some(&sol),
-            ) {
+            let inputs = groups.inputs(&zt);
+            if let Ok(st) = solve_loaded(robot, &inputs, &loads, &opts.forward, Some(&sol)) {
                 evals += st.evaluations;
                 let et = err_vec(&st);
                 if et.norm() < err.norm() {
-                    z = zt;
-                    sol = st;
-                    err = et;
-                    accepted = true;
+                    (z, sol, err, accepted) = (zt, st, et, true);
                     break;
                 }
             }
@@ -191,4 +137,83 @@ pub fn tip_position_inverse(
         at_bound,
         evaluations: evals,
     })
+}
+
+/// A finite target and one start value per actuation variable.
+fn check_target(
+    robot: &Robot,
+    groups: &Groups,
+    target: &Vector3<f64>,
+    z_start: &[f64],
+) -> Result<()> {
+    groups.validate(robot)?;
+    for (k, v) in target.iter().enumerate() {
+        crate::error::finite(&format!("target[{k}] [m]"), *v)?;
+    }
+    let nz = groups.n_vars();
+    if z_start.len() != nz {
+        return Err(Error::input(
+            "start",
+            format!("expected {nz} variables, got {}", z_start.len()),
+        ));
+    }
+    Ok(())
+}
+
+/// Damped least-squares step `dz = (J^T J + lambda^2 I)^-1 J^T e` on the
+/// free variables: a variable on a bound whose step would push past it is
+/// frozen and the step recomputed without it.
+fn bounded_step(
+    jr: &DMatrix<f64>,
+    err: &DVector<f64>,
+    z: &[f64],
+    bounds: &[(f64, f64)],
+    damping: f64,
+) -> DVector<f64> {
+    let (rows, nz) = (jr.nrows(), jr.ncols());
+    let mut free: Vec<bool> = vec![true; nz];
+    let mut dz = DVector::zeros(nz);
+    for _ in 0..=nz {
+        let cols: Vec<usize> = (0..nz).filter(|&k| free[k]).collect();
+        if cols.is_empty() {
+            break;
+        }
+        let jf = DMatrix::from_fn(rows, cols.len(), |r, c| jr[(r, cols[c])]);
+        let lam2 = damping * damping;
+        let a = jf.transpose() * &jf + DMatrix::identity(cols.len(), cols.len()) * lam2;
+        let step = a
+            .lu()
+            .solve(&(jf.transpose() * err))
+            .unwrap_or_else(|| DVector::zeros(cols.len()));
+        dz = DVector::zeros(nz);
+        for (c, &k) in cols.iter().enumerate() {
+            dz[k] = step[c];
+        }
+        let mut changed = false;
+        for k in 0..nz {
+            let (lo, hi) = bounds[k];
+            if free[k] && ((z[k] <= lo && dz[k] < 0.0) || (z[k] >= hi && dz[k] > 0.0)) {
+                free[k] = false;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    dz
+}
+
+/// The first `rows` rows of J, the rotation rows (3..6) weighted by `w` (the
+/// weight of the orientation error, as in the tip error).
+fn weighted_rows(jacobian: &DMatrix<f64>, rows: usize, w: Option<f64>) -> DMatrix<f64> {
+    let mut jr = jacobian.rows(0, rows).into_owned();
+    if let Some(w) = w {
+        for c in 0..jr.ncols() {
+            for r in 3..rows {
+                jr[(r, c)] *= w;
+            }
+        }
+    }
+    jr
 }
