@@ -49,6 +49,82 @@ fn axpy(out: &mut [f64], y: &[f64], h: f64, k: &[f64]) {
     }
 }
 
+/// The RK4 update `y += h/6 (k1 + 2 k2 + 2 k3 + k4)`, then the quaternion
+/// renormalised.
+#[inline(always)]
+fn rk4_update(y: &mut [f64], k1: &[f64], k2: &[f64], k3: &[f64], k4: &[f64], h6: f64) {
+    for ((((yj, a), b), c), d) in y
+        .iter_mut()
+        .zip(k1.iter())
+        .zip(k2.iter())
+        .zip(k3.iter())
+        .zip(k4.iter())
+    {
+        *yj += h6 * (a + 2.0 * (b + c) + d);
+    }
+    let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();
+    for yq in &mut y[3..7] {
+        *yq /= qn;
+    }
+}
+
+/// At a breakpoint `a` inside the body: record the elongation of the strings
+/// ending there, then apply all anchor and kink loads at `a` together.
+fn anchors_at(
+    robot: &Robot,
+    fz: &RodRhs<'_>,
+    a: f64,
+    y: &mut [f64],
+    elongation: &mut [f64],
+    tol: f64,
+) -> Result<()> {
+    let mut any = false;
+    for (i, act) in robot.actuators.iter().enumerate() {
+        if (act.s_end - a).abs() <= tol {
+            elongation[i] = y[BASE_STATES + i];
+            any = true;
+        }
+        if (act.s_start - a).abs() <= tol {
+            any = true;
+        }
+    }
+    if any {
+        fz.anchor_loads(a, y)?;
+    }
+    Ok(())
+}
+
+/// The tip balance (32)-(33) at the tip state `y`, closed by the actuators
+/// anchored at the tip (their elongations recorded in `elongation`).
+fn tip_balance(
+    spec: &IvpSpec<'_>,
+    fz: &RodRhs<'_>,
+    y: &[f64],
+    elongation: &mut [f64],
+    tol: f64,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let body = &spec.robot.body;
+    let len = body.length;
+    let (kse, kbt) = body.stiffness();
+    let v = Vector3::new(y[7], y[8], y[9]);
+    let u = Vector3::new(y[10], y[11], y[12]);
+    let q = Quaternion::new(y[3], y[4], y[5], y[6]);
+    let rt = rot(&q).transpose();
+    let mut rf = kse * (v - body.nu_star) - rt * spec.tip_force; // (32)
+    let mut rm = kbt * (u - body.omega_star) - rt * spec.tip_moment; // (33)
+    for (i, act) in spec.robot.actuators.iter().enumerate() {
+        if (act.s_end - len).abs() <= tol {
+            elongation[i] = y[BASE_STATES + i];
+            let (pb, r) = fz.pb(i, len, &v, &u);
+            let t = pb / pb.norm();
+            let tau = spec.tensions[i];
+            rf += t * tau;
+            rm += r.cross(&t) * tau;
+        }
+    }
+    (rf, rm)
+}
+
 /// Integrate the rod from the base with unknown initial strains `v0`, `u0`
 /// (eqs 22-25), by fixed-step RK4 on a grid that has a node at every actuator
 /// anchor. Actuator elongations start at zero at their proximal anchors.
@@ -60,7 +136,6 @@ pub fn integrate(
 ) -> Result<IvpResult> {
     let robot = spec.robot;
     let body = &robot.body;
-    let (kse, kbt) = body.stiffness();
     let fz = RodRhs::new(robot, spec.tensions);
     let na = robot.actuators.len();
     let n = robot.n_states();
@@ -91,33 +166,17 @@ pub fn integrate(
     let mut active: Vec<usize> = Vec::with_capacity(na);
     for w in bps.windows(2) {
         let (a, b) = (w[0], w[1]);
-        // anchors at `a`: record the elongation of strings ending here, then
-        // apply all anchor and kink loads at `a` together
         if a > 0.0 {
-            let mut any = false;
-            for i in 0..na {
-                let act = &robot.actuators[i];
-                if (act.s_end - a).abs() <= tol {
-                    elongation[i] = y[BASE_STATES + i];
-                    any = true;
-                }
-                if (act.s_start - a).abs() <= tol {
-                    any = true;
-                }
-            }
-            if any {
-                fz.anchor_loads(a, y)?;
-            }
+            anchors_at(robot, &fz, a, y, &mut elongation, tol)?;
         }
         if record {
             nodes.push((a, RodState::from_slice(y)));
         }
         active.clear();
-        for (i, act) in robot.actuators.iter().enumerate() {
-            if act.s_start <= a + tol && act.s_end >= b - tol {
-                active.push(i);
-            }
-        }
+        active.extend((0..na).filter(|&i| {
+            let act = &robot.actuators[i];
+            act.s_start <= a + tol && act.s_end >= b - tol
+        }));
         let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
         let h = (b - a) / m as f64;
         let (h2, h6) = (0.5 * h, h / 6.0);
@@ -130,42 +189,13 @@ pub fn integrate(
             fz.deriv(s + h2, yt, &active, k3)?;
             axpy(yt, y, h, k3);
             fz.deriv(s + h, yt, &active, k4)?;
-            for ((((yj, a), b), c), d) in y
-                .iter_mut()
-                .zip(k1.iter())
-                .zip(k2.iter())
-                .zip(k3.iter())
-                .zip(k4.iter())
-            {
-                *yj += h6 * (a + 2.0 * (b + c) + d);
-            }
-            let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();
-            for yq in &mut y[3..7] {
-                *yq /= qn;
-            }
+            rk4_update(y, k1, k2, k3, k4, h6);
             if record && k + 1 < m {
                 nodes.push((s + h, RodState::from_slice(y)));
             }
         }
     }
-    // tip: actuators anchored at the tip close the balance (32)-(33)
-    let v = Vector3::new(y[7], y[8], y[9]);
-    let u = Vector3::new(y[10], y[11], y[12]);
-    let q = Quaternion::new(y[3], y[4], y[5], y[6]);
-    let rt = rot(&q).transpose();
-    let mut rf = kse * (v - body.nu_star) - rt * spec.tip_force;
-    let mut rm = kbt * (u - body.omega_star) - rt * spec.tip_moment;
-    for i in 0..na {
-        let act = &robot.actuators[i];
-        if (act.s_end - len).abs() <= tol {
-            elongation[i] = y[BASE_STATES + i];
-            let (pb, r) = fz.pb(i, len, &v, &u);
-            let t = pb / pb.norm();
-            let tau = spec.tensions[i];
-            rf += t * tau;
-            rm += r.cross(&t) * tau;
-        }
-    }
+    let (rf, rm) = tip_balance(spec, &fz, y, &mut elongation, tol);
     let tip = RodState::from_slice(y);
     if record {
         nodes.push((len, tip.clone()));
