@@ -78,20 +78,35 @@ fn anchors_at(
     elongation: &mut [f64],
     tol: f64,
 ) -> Result<()> {
-    let mut any = false;
-    for (i, act) in robot.actuators.iter().enumerate() {
-        if (act.s_end - a).abs() <= tol {
-            elongation[i] = y[BASE_STATES + i];
-            any = true;
-        }
-        if (act.s_start - a).abs() <= tol {
-            any = true;
-        }
-    }
-    if any {
+    if anchored_at(robot, a, tol, |i| elongation[i] = y[BASE_STATES + i]) {
         fz.anchor_loads(a, y)?;
     }
     Ok(())
+}
+
+/// True if an actuator is anchored at `a` (either end); `on_end(i)` for each
+/// actuator `i` whose string ends there.
+#[inline(always)]
+pub(super) fn anchored_at(robot: &Robot, a: f64, tol: f64, mut on_end: impl FnMut(usize)) -> bool {
+    let mut any = false;
+    for (i, act) in robot.actuators.iter().enumerate() {
+        if (act.s_end - a).abs() <= tol {
+            on_end(i);
+            any = true;
+        }
+        any |= (act.s_start - a).abs() <= tol;
+    }
+    any
+}
+
+/// The actuators spanning the grid interval `[a, b]`, into `active`.
+#[inline(always)]
+pub(super) fn spanning(robot: &Robot, a: f64, b: f64, tol: f64, active: &mut Vec<usize>) {
+    active.clear();
+    active.extend((0..robot.actuators.len()).filter(|&i| {
+        let act = &robot.actuators[i];
+        act.s_start <= a + tol && act.s_end >= b - tol
+    }));
 }
 
 /// The tip balance (32)-(33) at the tip state `y`, closed by the actuators
@@ -172,11 +187,7 @@ pub fn integrate(
         if record {
             nodes.push((a, RodState::from_slice(y)));
         }
-        active.clear();
-        active.extend((0..na).filter(|&i| {
-            let act = &robot.actuators[i];
-            act.s_start <= a + tol && act.s_end >= b - tol
-        }));
+        spanning(robot, a, b, tol, &mut active);
         let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
         let h = (b - a) / m as f64;
         let (h2, h6) = (0.5 * h, h / 6.0);

@@ -17,6 +17,7 @@
 use nalgebra::{DMatrix, Vector3};
 
 use super::dual::{c_cross, cross_c, dot, rot_t, rt_mul, Dual, Real, V3};
+use super::ivp::{anchored_at, spanning};
 use super::ode::RodRhs;
 use super::{IvpResult, IvpSpec, RodState, BASE_STATES};
 use crate::error::{Error, Result};
@@ -204,6 +205,107 @@ unsafe fn pass_avx2<const N: usize>(
     pass::<N>(spec, v0, u0, seeds, c0, w, record)
 }
 
+/// The RK4 stages of a tangent pass (`n` states each).
+struct Stages<const N: usize> {
+    k1: Vec<Dual<N>>,
+    k2: Vec<Dual<N>>,
+    k3: Vec<Dual<N>>,
+    k4: Vec<Dual<N>>,
+    yt: Vec<Dual<N>>,
+}
+
+impl<const N: usize> Stages<N> {
+    fn new(n: usize) -> Self {
+        let zero = vec![Dual::<N>::cst(0.0); n];
+        Stages {
+            k1: zero.clone(),
+            k2: zero.clone(),
+            k3: zero.clone(),
+            k4: zero.clone(),
+            yt: zero,
+        }
+    }
+
+    /// One RK4 step of length `h` from `s` (eqs 22-31 in dual arithmetic),
+    /// then the quaternion renormalised, as in [`super::integrate`].
+    #[inline(always)]
+    fn step(
+        &mut self,
+        fz: &RodRhs<'_>,
+        s: f64,
+        h: f64,
+        y: &mut [Dual<N>],
+        tau: &[Dual<N>],
+        active: &[usize],
+    ) -> Result<()> {
+        let (h2, h6) = (0.5 * h, h / 6.0);
+        let n = y.len();
+        let Stages { k1, k2, k3, k4, yt } = self;
+        fz.deriv_generic(s, y, tau, active, k1)?;
+        for j in 0..n {
+            yt[j] = y[j] + k1[j] * h2;
+        }
+        fz.deriv_generic(s + h2, yt, tau, active, k2)?;
+        for j in 0..n {
+            yt[j] = y[j] + k2[j] * h2;
+        }
+        fz.deriv_generic(s + h2, yt, tau, active, k3)?;
+        for j in 0..n {
+            yt[j] = y[j] + k3[j] * h;
+        }
+        fz.deriv_generic(s + h, yt, tau, active, k4)?;
+        for j in 0..n {
+            y[j] += (k1[j] + (k2[j] + k3[j]) * 2.0 + k4[j]) * h6;
+        }
+        let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();
+        for yq in &mut y[3..7] {
+            *yq = *yq / qn;
+        }
+        Ok(())
+    }
+}
+
+/// The tip balance (32)-(33) in the body frame, in dual arithmetic, closed
+/// by the actuators anchored at the tip (their elongations recorded).
+#[inline(always)]
+fn tip_balance<const N: usize>(
+    spec: &IvpSpec<'_>,
+    fz: &RodRhs<'_>,
+    y: &[Dual<N>],
+    tau: &[Dual<N>],
+    elongation: &mut [Dual<N>],
+    tol: f64,
+) -> (V3<Dual<N>>, V3<Dual<N>>) {
+    let body = &spec.robot.body;
+    let len = body.length;
+    let rm = rot_t(&[y[3], y[4], y[5], y[6]]);
+    let v = [y[7], y[8], y[9]];
+    let u = [y[10], y[11], y[12]];
+    let rtf = rt_mul(&rm, &spec.tip_force.into());
+    let rtm = rt_mul(&rm, &spec.tip_moment.into());
+    let mut rf: V3<Dual<N>> =
+        std::array::from_fn(|k| (v[k] - body.nu_star[k]) * fz.kse[k] - rtf[k]);
+    let mut rmm: V3<Dual<N>> =
+        std::array::from_fn(|k| (u[k] - body.omega_star[k]) * fz.kbt[k] - rtm[k]);
+    for (i, act) in spec.robot.actuators.iter().enumerate() {
+        if (act.s_end - len).abs() <= tol {
+            elongation[i] = y[BASE_STATES + i];
+            let (r, rp, _) = act.routing.eval(len);
+            let (r, rp): (V3<f64>, V3<f64>) = (r.into(), rp.into());
+            let ucr = cross_c(&u, &r);
+            let pb: V3<Dual<N>> = std::array::from_fn(|k| v[k] + ucr[k] + rp[k]);
+            let nrm = dot(&pb, &pb).sqrt();
+            let p: V3<Dual<N>> = std::array::from_fn(|k| pb[k] / nrm * tau[i]);
+            let rxp = c_cross(&r, &p);
+            for k in 0..3 {
+                rf[k] += p[k];
+                rmm[k] += rxp[k];
+            }
+        }
+    }
+    (rf, rmm)
+}
+
 /// One pass of [`integrate_tangent`] over directions `c0 .. c0 + w` (`w <= N`).
 #[inline(always)]
 fn pass<const N: usize>(
@@ -236,13 +338,7 @@ fn pass<const N: usize>(
         y[7 + k] = Dual::new(v0[k], seed(&seeds.nu0, k));
         y[10 + k] = Dual::new(u0[k], seed(&seeds.omega0, k));
     }
-    let (mut k1, mut k2, mut k3, mut k4, mut yt) = (
-        vec![zero; n],
-        vec![zero; n],
-        vec![zero; n],
-        vec![zero; n],
-        vec![zero; n],
-    );
+    let mut st = Stages::<N>::new(n);
     let to_node = |s: f64, y: &[D<N>]| TangentNode {
         s,
         state: y.iter().map(|d| d.re).collect(),
@@ -255,83 +351,24 @@ fn pass<const N: usize>(
     let mut active: Vec<usize> = Vec::with_capacity(na);
     for win in bps.windows(2) {
         let (a, b) = (win[0], win[1]);
-        if a > 0.0 {
-            let mut any = false;
-            for (i, act) in robot.actuators.iter().enumerate() {
-                if (act.s_end - a).abs() <= tol {
-                    elongation[i] = y[BASE_STATES + i];
-                    any = true;
-                }
-                any |= (act.s_start - a).abs() <= tol;
-            }
-            if any {
-                fz.anchor_tangent(a, &mut y, &tau)?;
-            }
+        if a > 0.0 && anchored_at(robot, a, tol, |i| elongation[i] = y[BASE_STATES + i]) {
+            fz.anchor_tangent(a, &mut y, &tau)?;
         }
         if record {
             nodes.push(to_node(a, &y));
         }
-        active.clear();
-        for (i, act) in robot.actuators.iter().enumerate() {
-            if act.s_start <= a + tol && act.s_end >= b - tol {
-                active.push(i);
-            }
-        }
+        spanning(robot, a, b, tol, &mut active);
         let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
         let h = (b - a) / m as f64;
-        let (h2, h6) = (0.5 * h, h / 6.0);
         for kk in 0..m {
             let s = a + kk as f64 * h;
-            fz.deriv_generic(s, &y, &tau, &active, &mut k1)?;
-            for j in 0..n {
-                yt[j] = y[j] + k1[j] * h2;
-            }
-            fz.deriv_generic(s + h2, &yt, &tau, &active, &mut k2)?;
-            for j in 0..n {
-                yt[j] = y[j] + k2[j] * h2;
-            }
-            fz.deriv_generic(s + h2, &yt, &tau, &active, &mut k3)?;
-            for j in 0..n {
-                yt[j] = y[j] + k3[j] * h;
-            }
-            fz.deriv_generic(s + h, &yt, &tau, &active, &mut k4)?;
-            for j in 0..n {
-                y[j] += (k1[j] + (k2[j] + k3[j]) * 2.0 + k4[j]) * h6;
-            }
-            let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();
-            for yq in &mut y[3..7] {
-                *yq = *yq / qn;
-            }
+            st.step(&fz, s, h, &mut y, &tau, &active)?;
             if record && kk + 1 < m {
                 nodes.push(to_node(s + h, &y));
             }
         }
     }
-    // tip balance (32)-(33), body frame
-    let rm = rot_t(&[y[3], y[4], y[5], y[6]]);
-    let v = [y[7], y[8], y[9]];
-    let u = [y[10], y[11], y[12]];
-    let rtf = rt_mul(&rm, &spec.tip_force.into());
-    let rtm = rt_mul(&rm, &spec.tip_moment.into());
-    let mut rf: V3<D<N>> = std::array::from_fn(|k| (v[k] - body.nu_star[k]) * fz.kse[k] - rtf[k]);
-    let mut rmm: V3<D<N>> =
-        std::array::from_fn(|k| (u[k] - body.omega_star[k]) * fz.kbt[k] - rtm[k]);
-    for (i, act) in robot.actuators.iter().enumerate() {
-        if (act.s_end - len).abs() <= tol {
-            elongation[i] = y[BASE_STATES + i];
-            let (r, rp, _) = act.routing.eval(len);
-            let (r, rp): (V3<f64>, V3<f64>) = (r.into(), rp.into());
-            let ucr = cross_c(&u, &r);
-            let pb: V3<D<N>> = std::array::from_fn(|k| v[k] + ucr[k] + rp[k]);
-            let nrm = dot(&pb, &pb).sqrt();
-            let p: V3<D<N>> = std::array::from_fn(|k| pb[k] / nrm * tau[i]);
-            let rxp = c_cross(&r, &p);
-            for k in 0..3 {
-                rf[k] += p[k];
-                rmm[k] += rxp[k];
-            }
-        }
-    }
+    let (rf, rmm) = tip_balance(spec, &fz, &y, &tau, &mut elongation, tol);
     // the stages check only the real parts: the derivatives once, here
     let all_finite = |v: &[D<N>]| v.iter().all(|d| d.eps.iter().all(|e| e.is_finite()));
     if !(all_finite(&y) && all_finite(&elongation) && all_finite(&rf) && all_finite(&rmm)) {
@@ -340,12 +377,26 @@ fn pass<const N: usize>(
             reason: "non-finite tangent".into(),
         });
     }
-    let yr: Vec<f64> = y.iter().map(|d| d.re).collect();
-    let tip = RodState::from_slice(&yr);
     if record {
         nodes.push(to_node(len, &y));
     }
-    let tan = |v: &[D<N>]| DMatrix::from_fn(v.len(), w, |r, c| v[r].eps[c]);
+    Ok(finish(&y, &elongation, &rf, &rmm, nodes, w, record))
+}
+
+/// The tangent IVP's result from the final dual state: the real parts as
+/// the IVP, the derivative parts (`w` directions) as tangents.
+fn finish<const N: usize>(
+    y: &[Dual<N>],
+    elongation: &[Dual<N>],
+    rf: &V3<Dual<N>>,
+    rmm: &V3<Dual<N>>,
+    nodes: Vec<TangentNode>,
+    w: usize,
+    record: bool,
+) -> TangentIvp {
+    let yr: Vec<f64> = y.iter().map(|d| d.re).collect();
+    let tip = RodState::from_slice(&yr);
+    let tan = |v: &[Dual<N>]| DMatrix::from_fn(v.len(), w, |r, c| v[r].eps[c]);
     let ivp_nodes = if record {
         nodes
             .iter()
@@ -354,7 +405,7 @@ fn pass<const N: usize>(
     } else {
         Vec::new()
     };
-    Ok(TangentIvp {
+    TangentIvp {
         ivp: IvpResult {
             tip,
             elongation: elongation.iter().map(|d| d.re).collect(),
@@ -362,10 +413,10 @@ fn pass<const N: usize>(
             tip_moment_residual: Vector3::new(rmm[0].re, rmm[1].re, rmm[2].re),
             nodes: ivp_nodes,
         },
-        tip: tan(&y),
-        elongation: tan(&elongation),
-        tip_force_residual: tan(&rf),
-        tip_moment_residual: tan(&rmm),
+        tip: tan(y),
+        elongation: tan(elongation),
+        tip_force_residual: tan(rf),
+        tip_moment_residual: tan(rmm),
         nodes,
-    })
+    }
 }
