@@ -121,14 +121,7 @@ pub fn blocked_variable_direct(
     opts: &SolveOptions,
     warm: Option<&Solution>,
 ) -> Result<BlockedResult> {
-    groups.validate(robot)?;
-    if groups.n_vars() != 1 {
-        return Err(Error::input(
-            "groups",
-            "a blocked-force temperature needs exactly one actuation variable",
-        ));
-    }
-    crate::error::finite("force [N]", force)?;
+    one_variable_and_force(robot, groups, force)?;
     let (lo, hi) = groups.bounds(robot)[0];
     let zs = (hi - lo).clamp(1.0, 1e3);
     let len = robot.body.length;
@@ -263,6 +256,15 @@ pub fn blocked_temperature(
 /// The arguments of [`blocked_temperature`]: one actuation variable, a
 /// finite force, at least one increment.
 fn check_increments(robot: &Robot, groups: &Groups, force: f64, increments: usize) -> Result<()> {
+    one_variable_and_force(robot, groups, force)?;
+    if increments == 0 {
+        return Err(Error::param("increments", 0.0, ">= 1"));
+    }
+    Ok(())
+}
+
+/// Valid `groups` with exactly one actuation variable, and a finite force.
+fn one_variable_and_force(robot: &Robot, groups: &Groups, force: f64) -> Result<()> {
     groups.validate(robot)?;
     if groups.n_vars() != 1 {
         return Err(Error::input(
@@ -271,9 +273,6 @@ fn check_increments(robot: &Robot, groups: &Groups, force: f64, increments: usiz
         ));
     }
     crate::error::finite("force [N]", force)?;
-    if increments == 0 {
-        return Err(Error::param("increments", 0.0, ">= 1"));
-    }
     Ok(())
 }
 
