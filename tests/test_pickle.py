@@ -142,22 +142,10 @@ def test_different_objects_are_unequal() -> None:
 def test_a_pickled_solution_keeps_every_array_and_warm_starts_the_same() -> None:
     sol = SQUARE.solve([90.0, 90.0])
     back = pickle.loads(pickle.dumps(sol))
-    for field in (
-        "s",
-        "positions",
-        "rotations",
-        "nu",
-        "omega",
-        "internal_force",
-        "internal_moment",
-        "tensions",
-        "elongations",
-        "elongation_profile",
-        "inputs",
-        "base_force",
-        "base_moment",
-        "unknowns",
-    ):
+    # every public array getter, so that a new one cannot be forgotten here
+    fields = [n for n in dir(sol) if not n.startswith("_") and isinstance(getattr(sol, n), np.ndarray)]
+    assert {"positions", "rotations", "tensions", "elongation_profile", "unknowns"} <= set(fields)
+    for field in fields:
         np.testing.assert_array_equal(getattr(back, field), getattr(sol, field))
     assert (back.iterations, back.evaluations, back.residual) == (sol.iterations, sol.evaluations, sol.residual)
     assert back.robot == SQUARE

@@ -35,6 +35,8 @@ EXT = fig5_tca("extension")
 CON = fig5_tca("contraction")
 
 temperatures = st.floats(min_value=T_REF, max_value=T_MAX, allow_nan=False)
+#: Both chiralities of the Fig. 5 TCA.
+fig5_tcas = st.sampled_from([EXT, CON])
 
 
 def stiffness(tca: Tca, displacement: float, temperature: float) -> float:
@@ -75,13 +77,8 @@ def test_loaded_extension_tca_never_shortens_when_heated(t1: float, t2: float, f
 
 
 @SETTINGS
-@given(
-    temperature=temperatures,
-    u=st.floats(min_value=1e-3, max_value=1.0),
-    chirality=st.sampled_from(["extension", "contraction"]),
-)
-def test_force_inverts_displacement(temperature: float, u: float, chirality: str) -> None:
-    tca = fig5_tca(chirality)
+@given(temperature=temperatures, u=st.floats(min_value=1e-3, max_value=1.0), tca=fig5_tcas)
+def test_force_inverts_displacement(temperature: float, u: float, tca: Tca) -> None:
     # Forces that keep the coils open (above the blocked force) and stay well
     # below the straight-fibre limit (F at 80% of the largest elongation).
     f_lo = tca.blocked_force(temperature)
@@ -98,13 +95,8 @@ def test_force_inverts_displacement(temperature: float, u: float, chirality: str
 
 
 @SETTINGS
-@given(
-    temperature=temperatures,
-    u=st.floats(min_value=1e-4, max_value=0.8),
-    chirality=st.sampled_from(["extension", "contraction"]),
-)
-def test_displacement_inverts_force(temperature: float, u: float, chirality: str) -> None:
-    tca = fig5_tca(chirality)
+@given(temperature=temperatures, u=st.floats(min_value=1e-4, max_value=0.8), tca=fig5_tcas)
+def test_displacement_inverts_force(temperature: float, u: float, tca: Tca) -> None:
     delta = u * tca.max_displacement
     force = tca.force(delta, temperature)
     assert force > tca.blocked_force(temperature)  # holding it open takes more than the blocked force

@@ -103,19 +103,18 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
     let t = [BENCH_TEMPERATURE, BENCH_TEMPERATURE];
     let opts = SolveOptions::default();
     Ok(match name {
-        "ivp" => {
+        "ivp" | "tangent" => {
+            // one IVP at the solution, plain or with its tangents (the exact shooting Jacobian)
             let sol = solve(&robot, &t, &opts, None)?;
             let loads = Loads::of(&robot);
+            let tangent = name == "tangent";
             Box::new(move || {
-                shoot(
-                    &robot,
-                    &sol.inputs,
-                    &loads,
-                    std::hint::black_box(&sol.unknowns),
-                    opts.steps,
-                    false,
-                )
-                .map(|_| ())
+                let x = std::hint::black_box(&sol.unknowns);
+                if tangent {
+                    shoot_jacobian(&robot, &sol.inputs, &loads, x, opts.steps, false).map(|_| ())
+                } else {
+                    shoot(&robot, &sol.inputs, &loads, x, opts.steps, false).map(|_| ())
+                }
             })
         }
         "cold" => {
@@ -125,20 +124,21 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
             let w = solve(&robot, &[BENCH_TEMPERATURE - WARM_STEP; 2], &opts, None)?;
             Box::new(move || solve(&robot, std::hint::black_box(&t), &opts, Some(&w)).map(|_| ()))
         }
-        "jc" => {
+        "jc" | "jc_exact" => {
+            // J and C at the solution: forward differences (wrench columns exact) or exact tangents
             let sol = solve(&robot, &t, &opts, None)?;
             let loads = Loads::of(&robot);
             let groups = Groups(vec![0, 0]);
+            let exact = name == "jc_exact";
             Box::new(move || {
-                sensitivities_fast(
-                    &robot,
-                    std::hint::black_box(&sol),
-                    &loads,
-                    &groups,
-                    opts.steps,
-                    Scheme::Forward,
-                )
-                .map(|_| ())
+                let sol = std::hint::black_box(&sol);
+                let steps = opts.steps;
+                if exact {
+                    sensitivities_exact(&robot, sol, &loads, &groups, steps).map(|_| ())
+                } else {
+                    sensitivities_fast(&robot, sol, &loads, &groups, steps, Scheme::Forward)
+                        .map(|_| ())
+                }
             })
         }
         "grasp" => {
@@ -156,36 +156,6 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
                     G0,
                     8,
                     &opts,
-                )
-                .map(|_| ())
-            })
-        }
-        "jc_exact" => {
-            let sol = solve(&robot, &t, &opts, None)?;
-            let loads = Loads::of(&robot);
-            let groups = Groups(vec![0, 0]);
-            Box::new(move || {
-                sensitivities_exact(
-                    &robot,
-                    std::hint::black_box(&sol),
-                    &loads,
-                    &groups,
-                    opts.steps,
-                )
-                .map(|_| ())
-            })
-        }
-        "tangent" => {
-            let sol = solve(&robot, &t, &opts, None)?;
-            let loads = Loads::of(&robot);
-            Box::new(move || {
-                shoot_jacobian(
-                    &robot,
-                    &sol.inputs,
-                    &loads,
-                    std::hint::black_box(&sol.unknowns),
-                    opts.steps,
-                    false,
                 )
                 .map(|_| ())
             })

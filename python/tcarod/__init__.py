@@ -20,7 +20,8 @@ from ._core import (
     UnstableEquilibriumWarning,
     __version__,
 )
-from .rod import Actuator, Body, Robot, Routing, Section, Solution, circle_radius, inner_edge_radius
+from . import rod
+from .rod import *  # noqa: F403  the rod API (Robot, Body, ...): the names of rod.__all__
 from .tca import Material, Tca
 from .batch import BatchResult, solve_batch
 from .models.grasp import grasp_temperature
@@ -36,14 +37,6 @@ from .inverse import (
 from . import _display  # noqa: F401  registers notebook display formatters inside IPython (issue 14)
 
 __all__ = [
-    "Actuator",
-    "Body",
-    "Robot",
-    "Routing",
-    "Section",
-    "Solution",
-    "circle_radius",
-    "inner_edge_radius",
     "ConvergenceError",
     "UnitsWarning",
     "UnstableEquilibriumError",
@@ -62,3 +55,4 @@ __all__ = [
     "solve_batch",
     "tip_position",
 ]
+__all__ += rod.__all__  # Robot, Body, ... (tcarod.rod)

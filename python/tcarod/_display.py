@@ -85,13 +85,13 @@ def solution_html(sol: Any) -> str:
         for k, (a, x, t, e) in enumerate(zip(sol.robot.actuators, sol.inputs, sol.tensions, sol.elongations))
     ]
     head = _row(["actuator", "input", "tension", "elongation"], "th")
-    return (
-        "<div><b>tcarod Solution</b><table>"
-        + "".join(rows)
-        + "</table>"
-        + ("<table>" + head + "".join(acts) + "</table>" if acts else "")
-        + "</div>"
-    )
+    return _html("Solution", rows, head, acts)
+
+
+def _html(title: str, rows: list[str], head: str, acts: list[str]) -> str:
+    """The notebook view: a table of ``rows`` and, if there are actuators, a table of ``acts`` under ``head``."""
+    actuators = "<table>" + head + "".join(acts) + "</table>" if acts else ""
+    return f"<div><b>tcarod {title}</b><table>{''.join(rows)}</table>{actuators}</div>"
 
 
 def robot_html(robot: Any) -> str:
@@ -112,13 +112,7 @@ def robot_html(robot: Any) -> str:
         acts.append(
             _row([str(k), str(a.kind), f"{float(a.s_start) * 1e3:g}", end, str(a.input_name), f"{lo:g} .. {hi:g}"])
         )
-    return (
-        "<div><b>tcarod Robot</b><table>"
-        + "".join(rows)
-        + "</table>"
-        + ("<table>" + head + "".join(acts) + "</table>" if acts else "")
-        + "</div>"
-    )
+    return _html("Robot", rows, head, acts)
 
 
 def _for_type(formatter: Any, cls: type, method: str, fn: Callable[[Any], Any]) -> None:

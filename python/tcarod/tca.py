@@ -87,6 +87,11 @@ def _broadcast(
     )
 
 
+def _flat(value: ArrayLike, name: str) -> tuple[FloatArray, tuple[int, ...], bool]:
+    x = _as_float_array(name, value)
+    return np.ascontiguousarray(x.ravel()), x.shape, x.ndim == 0
+
+
 def _unwrap(out: FloatArray, shape: tuple[int, ...], scalar: bool) -> float | FloatArray:
     if scalar:
         return float(out[0])
@@ -171,8 +176,9 @@ class Tca(_core.Tca):
     @overload
     def free_stroke(self, temperature: ArrayLike) -> float | FloatArray: ...
     def free_stroke(self, temperature: ArrayLike) -> float | FloatArray:
-        """Unloaded elongation [m] at ``temperature`` [C]."""
-        return self.displacement(0.0, temperature)
+        """Unloaded elongation [m] at ``temperature`` [C] (the core's ``Tca::free_stroke``)."""
+        t, shape, scalar = _flat(temperature, "temperature")
+        return _unwrap(self._free_stroke_flat(t), shape, scalar)
 
     @overload
     def blocked_force(self, temperature: float) -> float: ...
@@ -182,6 +188,7 @@ class Tca(_core.Tca):
         """Force [N] holding the TCA at its coiled length at ``temperature`` [C].
 
         Negative (the TCA pushes) for a heated extension TCA, positive (it pulls)
-        for a heated contraction TCA.
+        for a heated contraction TCA (the core's ``Tca::blocked_force``).
         """
-        return self.force(0.0, temperature)
+        t, shape, scalar = _flat(temperature, "temperature")
+        return _unwrap(self._blocked_force_flat(t), shape, scalar)

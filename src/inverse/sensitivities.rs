@@ -18,10 +18,11 @@ pub fn sensitivities(
     steps: usize,
     scheme: Scheme,
 ) -> Result<Sensitivities> {
-    let Some(rel) = scheme.relative_step() else {
-        return sensitivities_exact(robot, sol, loads, groups, steps);
-    };
-    sensitivities_with_step(robot, sol, loads, groups, steps, scheme, rel)
+    by_scheme(
+        At::of(robot, sol, loads, groups, steps),
+        scheme,
+        Wrench::Differenced,
+    )
 }
 
 /// [`sensitivities`] with the wrench columns exact instead of differenced:
@@ -37,10 +38,58 @@ pub fn sensitivities_fast(
     steps: usize,
     scheme: Scheme,
 ) -> Result<Sensitivities> {
-    let Some(rel) = scheme.relative_step() else {
-        return sensitivities_exact(robot, sol, loads, groups, steps);
-    };
-    sensitivities_impl(robot, sol, loads, groups, steps, scheme, rel, true)
+    by_scheme(
+        At::of(robot, sol, loads, groups, steps),
+        scheme,
+        Wrench::Exact,
+    )
+}
+
+/// How the tip-wrench columns `E_W`, `B_W` of the differenced blocks are found.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Wrench {
+    /// By differences of IVPs, the paper's way.
+    Differenced,
+    /// In closed form (see [`sensitivities_fast`]).
+    Exact,
+}
+
+/// The forward problem at a converged solution, around which the blocks of
+/// eq (40) are taken.
+#[derive(Clone, Copy)]
+struct At<'a> {
+    robot: &'a Robot,
+    sol: &'a Solution,
+    loads: &'a Loads,
+    groups: &'a Groups,
+    steps: usize,
+}
+
+impl<'a> At<'a> {
+    fn of(
+        robot: &'a Robot,
+        sol: &'a Solution,
+        loads: &'a Loads,
+        groups: &'a Groups,
+        steps: usize,
+    ) -> Self {
+        At {
+            robot,
+            sol,
+            loads,
+            groups,
+            steps,
+        }
+    }
+}
+
+/// The exact tangents for [`Scheme::Exact`], else differences with the
+/// scheme's step.
+fn by_scheme(at: At<'_>, scheme: Scheme, wrench: Wrench) -> Result<Sensitivities> {
+    match scheme.relative_step() {
+        None => sensitivities_exact(at.robot, at.sol, at.loads, at.groups, at.steps),
+        Some(rel) => differenced(at, scheme == Scheme::Central, rel, wrench),
+    }
 }
 
 /// `J` and `C` (eqs 39-42) exactly, from one tangent IVP at the solution
@@ -230,102 +279,165 @@ pub fn sensitivities_with_step(
     scheme: Scheme,
     rel: f64,
 ) -> Result<Sensitivities> {
-    sensitivities_impl(robot, sol, loads, groups, steps, scheme, rel, false)
+    differenced(
+        At::of(robot, sol, loads, groups, steps),
+        scheme == Scheme::Central,
+        rel,
+        Wrench::Differenced,
+    )
 }
 
-#[allow(clippy::too_many_arguments)]
-fn sensitivities_impl(
-    robot: &Robot,
-    sol: &Solution,
-    loads: &Loads,
-    groups: &Groups,
-    steps: usize,
-    scheme: Scheme,
-    rel: f64,
-    exact_wrench: bool,
-) -> Result<Sensitivities> {
-    groups.validate(robot)?;
-    let nx = sol.unknowns.len();
-    let nz = groups.n_vars();
-    let z0 = groups.vars(&sol.inputs);
-    let bounds = groups.bounds(robot);
-    let (b0, ivp0, _) = shoot(robot, &sol.inputs, loads, &sol.unknowns, steps, false)?;
-    let p0 = ivp0.tip.p;
-    let r0 = ivp0.tip.rotation();
-    let mut evals = 1;
-    // Evaluate pose and residual at a perturbation; returns (E column, B column).
-    let mut column = |x: &[f64], inputs: &[f64], l: &Loads| -> Result<([f64; 6], Vec<f64>)> {
-        let (b, ivp, _) = shoot(robot, inputs, l, x, steps, false)?;
-        evals += 1;
-        Ok((pose_delta(&p0, &r0, &ivp.tip.p, &ivp.tip.rotation()), b))
-    };
-    let mut e = DMatrix::<f64>::zeros(6, nx + nz + 6);
-    let mut bm = DMatrix::<f64>::zeros(nx, nx + nz + 6);
-    let mut put =
-        |col: usize, plus: ([f64; 6], Vec<f64>), minus: Option<([f64; 6], Vec<f64>)>, h: f64| {
-            for i in 0..6 {
-                e[(i, col)] = match &minus {
-                    Some(m) => (plus.0[i] - m.0[i]) / (2.0 * h),
-                    None => plus.0[i] / h,
-                };
-            }
-            for i in 0..nx {
-                bm[(i, col)] = match &minus {
-                    Some(m) => (plus.1[i] - m.1[i]) / (2.0 * h),
-                    None => (plus.1[i] - b0[i]) / h,
-                };
-            }
-        };
-    // unknowns u
-    for j in 0..nx {
-        // Typical sizes: strains ~1; actuator elongations / L ~1e-2. The
-        // elongation columns are the most nonlinear (a TCA is far stiffer
-        // than the body, so micrometres of elongation move the tip a lot), so
-        // they get a step scaled to their size rather than to 1.
-        let typical = if j < 6 { 1.0 } else { 1e-2 };
-        let h = rel * sol.unknowns[j].abs().max(typical);
-        let mut xp = sol.unknowns.clone();
-        xp[j] += h;
-        let plus = column(&xp, &sol.inputs, loads)?;
-        let minus = if scheme == Scheme::Central {
-            xp[j] = sol.unknowns[j] - h;
-            Some(column(&xp, &sol.inputs, loads)?)
-        } else {
-            None
-        };
-        put(j, plus, minus, h);
-    }
-    // actuation variables q (one-sided away from a bound)
-    for k in 0..nz {
-        let h0 = rel * z0[k].abs().max(1.0);
-        let (lo, hi) = bounds[k];
-        let mut zp = z0.clone();
-        let (h, minus) = if scheme == Scheme::Central && z0[k] - h0 >= lo && z0[k] + h0 <= hi {
-            zp[k] = z0[k] - h0;
-            (h0, Some(column(&sol.unknowns, &groups.inputs(&zp), loads)?))
-        } else {
-            (if z0[k] + h0 <= hi { h0 } else { -h0 }, None)
-        };
-        zp[k] = z0[k] + h;
-        let plus = column(&sol.unknowns, &groups.inputs(&zp), loads)?;
-        put(nx + k, plus, minus, h);
-    }
-    if exact_wrench {
+/// `J` and `C` from the blocks of eq (40) by finite differences (central or
+/// forward) with relative step `rel`, columns `[u | q | W]` (eqs 41-42).
+fn differenced(at: At<'_>, central: bool, rel: f64, wrench: Wrench) -> Result<Sensitivities> {
+    at.groups.validate(at.robot)?;
+    let (nx, nz) = (at.sol.unknowns.len(), at.groups.n_vars());
+    let mut fd = Differences::new(at, central)?;
+    fd.unknown_columns(rel)?;
+    fd.variable_columns(rel)?;
+    if wrench == Wrench::Exact {
         // tip wrench W = [F; M]: exact, no IVP. For fixed unknowns the wrench
         // moves no state (E_W = 0) and enters only the tip balance (32)-(33),
         // linearly: d r_F / dF = -(L^2/EI) R^T, d r_M / dM = -(L/EI) R^T
         // in the scaled residual of `shoot`.
-        let (fs, ms) = crate::shooting::residual_scales(robot);
-        tip_wrench_columns(&mut bm, &r0, fs, ms, nx + nz);
+        let (fs, ms) = crate::shooting::residual_scales(at.robot);
+        tip_wrench_columns(&mut fd.bm, &fd.r0, fs, ms, nx + nz);
     } else {
-        // tip wrench W = [F; M] by differences, the paper's way
-        let (fc, mc) = load_scales(robot);
-        for k in 0..6 {
-            let scale = if k < 3 { fc } else { mc };
-            let w0 = if k < 3 {
-                loads.tip_force[k]
+        fd.wrench_columns(nx + nz, rel)?;
+    }
+    eliminate_unknowns(&fd.e, &fd.bm, nx, nz, fd.evaluations)
+}
+
+/// Tip pose change `[dp; dtheta]` and scaled residual of one perturbed IVP.
+type Column = ([f64; 6], Vec<f64>);
+
+/// Finite differences of the tip pose (`E`) and of the scaled shooting
+/// residual (`B`) around a converged solution, one column per perturbed
+/// unknown, actuation variable or wrench component (eq 40).
+struct Differences<'a> {
+    at: At<'a>,
+    /// Central differences (else forward).
+    central: bool,
+    /// Residual, tip position and tip rotation at the solution.
+    b0: Vec<f64>,
+    p0: Vector3<f64>,
+    r0: Matrix3<f64>,
+    e: DMatrix<f64>,
+    bm: DMatrix<f64>,
+    /// IVPs integrated.
+    evaluations: usize,
+}
+
+impl<'a> Differences<'a> {
+    fn new(at: At<'a>, central: bool) -> Result<Self> {
+        let (sol, nx) = (at.sol, at.sol.unknowns.len());
+        let ncol = nx + at.groups.n_vars() + 6;
+        let (b0, ivp0, _) = shoot(
+            at.robot,
+            &sol.inputs,
+            at.loads,
+            &sol.unknowns,
+            at.steps,
+            false,
+        )?;
+        Ok(Differences {
+            at,
+            central,
+            b0,
+            p0: ivp0.tip.p,
+            r0: ivp0.tip.rotation(),
+            e: DMatrix::zeros(6, ncol),
+            bm: DMatrix::zeros(nx, ncol),
+            evaluations: 1,
+        })
+    }
+
+    /// Pose change and residual at unknowns `x`, inputs and loads `l`.
+    fn column(&mut self, x: &[f64], inputs: &[f64], l: &Loads) -> Result<Column> {
+        let (b, ivp, _) = shoot(self.at.robot, inputs, l, x, self.at.steps, false)?;
+        self.evaluations += 1;
+        Ok((
+            pose_delta(&self.p0, &self.r0, &ivp.tip.p, &ivp.tip.rotation()),
+            b,
+        ))
+    }
+
+    /// Column `col` of `E` and `B` from the IVP at `+h` and, central, at `-h`.
+    fn put(&mut self, col: usize, plus: Column, minus: Option<Column>, h: f64) {
+        // the other end: the IVP at -h (central) or the solution (forward),
+        // where the pose change is zero
+        let (width, pose, residual) = match &minus {
+            Some(m) => (2.0 * h, m.0, &m.1),
+            None => (h, [0.0; 6], &self.b0),
+        };
+        for (i, (p, m)) in plus.0.iter().zip(pose).enumerate() {
+            self.e[(i, col)] = (p - m) / width;
+        }
+        for (i, (p, m)) in plus.1.iter().zip(residual).enumerate() {
+            self.bm[(i, col)] = (p - m) / width;
+        }
+    }
+
+    /// Columns of the shooting unknowns `u`.
+    fn unknown_columns(&mut self, rel: f64) -> Result<()> {
+        let (sol, loads) = (self.at.sol, self.at.loads);
+        for j in 0..sol.unknowns.len() {
+            // Typical sizes: strains ~1; actuator elongations / L ~1e-2. The
+            // elongation columns are the most nonlinear (a TCA is far stiffer
+            // than the body, so micrometres of elongation move the tip a lot), so
+            // they get a step scaled to their size rather than to 1.
+            let typical = if j < 6 { 1.0 } else { 1e-2 };
+            let h = rel * sol.unknowns[j].abs().max(typical);
+            let mut xp = sol.unknowns.clone();
+            xp[j] += h;
+            let plus = self.column(&xp, &sol.inputs, loads)?;
+            let minus = if self.central {
+                xp[j] = sol.unknowns[j] - h;
+                Some(self.column(&xp, &sol.inputs, loads)?)
             } else {
-                loads.tip_moment[k - 3]
+                None
+            };
+            self.put(j, plus, minus, h);
+        }
+        Ok(())
+    }
+
+    /// Columns of the actuation variables `q` (one-sided away from a bound).
+    fn variable_columns(&mut self, rel: f64) -> Result<()> {
+        let (sol, loads, groups) = (self.at.sol, self.at.loads, self.at.groups);
+        let nx = sol.unknowns.len();
+        let z0 = groups.vars(&sol.inputs);
+        let bounds = groups.bounds(self.at.robot);
+        for k in 0..z0.len() {
+            let h0 = rel * z0[k].abs().max(1.0);
+            let (lo, hi) = bounds[k];
+            let mut zp = z0.clone();
+            let (h, minus) = if self.central && z0[k] - h0 >= lo && z0[k] + h0 <= hi {
+                zp[k] = z0[k] - h0;
+                (
+                    h0,
+                    Some(self.column(&sol.unknowns, &groups.inputs(&zp), loads)?),
+                )
+            } else {
+                (if z0[k] + h0 <= hi { h0 } else { -h0 }, None)
+            };
+            zp[k] = z0[k] + h;
+            let plus = self.column(&sol.unknowns, &groups.inputs(&zp), loads)?;
+            self.put(nx + k, plus, minus, h);
+        }
+        Ok(())
+    }
+
+    /// Columns `col0..col0 + 6` of the tip wrench `W = [F; M]` by differences,
+    /// the paper's way.
+    fn wrench_columns(&mut self, col0: usize, rel: f64) -> Result<()> {
+        let (sol, loads) = (self.at.sol, self.at.loads);
+        let (fc, mc) = load_scales(self.at.robot);
+        for k in 0..6 {
+            let (scale, w0) = if k < 3 {
+                (fc, loads.tip_force[k])
+            } else {
+                (mc, loads.tip_moment[k - 3])
             };
             let h = rel * (w0.abs() / scale).max(1.0) * scale;
             let perturbed = |d: f64| {
@@ -337,16 +449,16 @@ fn sensitivities_impl(
                 }
                 l
             };
-            let plus = column(&sol.unknowns, &sol.inputs, &perturbed(h))?;
-            let minus = if scheme == Scheme::Central {
-                Some(column(&sol.unknowns, &sol.inputs, &perturbed(-h))?)
+            let plus = self.column(&sol.unknowns, &sol.inputs, &perturbed(h))?;
+            let minus = if self.central {
+                Some(self.column(&sol.unknowns, &sol.inputs, &perturbed(-h))?)
             } else {
                 None
             };
-            put(nx + nz + k, plus, minus, h);
+            self.put(col0 + k, plus, minus, h);
         }
+        Ok(())
     }
-    eliminate_unknowns(&e, &bm, nx, nz, evals)
 }
 
 /// J and C from the pose blocks `E = [E_u E_q E_W]` and the residual blocks

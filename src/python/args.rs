@@ -5,6 +5,8 @@ use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyByteArray, PyBytes, PyString};
 
+use crate::error::Error;
+use crate::limits::{CountLimit, EVALUATIONS, ITERATIONS, STEPS, TIME_LIMIT_ALLOWED};
 use crate::shooting::SolveOptions;
 
 /// A real-number argument with the strict contract of issue 12: `float`,
@@ -167,44 +169,68 @@ pub(crate) fn vec3_arg(
 /// `TypeError` for non-integers (floats, str, bytes, None), `ValueError`
 /// naming the range for negative or huge values (never `OverflowError`).
 pub(crate) fn count(name: &str, obj: &Bound<'_, PyAny>, lo: usize, hi: usize) -> PyResult<usize> {
+    let v = integer(name, obj)?;
+    if v < lo as i128 || v > hi as i128 {
+        return Err(out_of_range(
+            name,
+            obj,
+            v,
+            &format!("{lo} <= {name} <= {hi}"),
+        ));
+    }
+    Ok(v as usize)
+}
+
+/// An integer option checked by the core against `limit` (see
+/// [`crate::limits`]): `TypeError` for non-integers, `ValueError` naming the
+/// range for values no `usize` holds; the core checks the range itself.
+fn count_for(
+    limit: &CountLimit,
+    obj: Option<&Bound<'_, PyAny>>,
+    default: usize,
+) -> PyResult<usize> {
+    let Some(o) = obj.filter(|o| !o.is_none()) else {
+        return Ok(default);
+    };
+    let v = integer(limit.name, o)?;
+    usize::try_from(v).map_err(|_| out_of_range(limit.name, o, v, &limit.allowed()))
+}
+
+/// `obj` as an integer named `name` (`TypeError` for bool and non-integers);
+/// ints beyond `i64` saturate to `i128::MAX` / `MIN`.
+fn integer(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<i128> {
     use pyo3::types::PyBool;
     if obj.is_instance_of::<PyBool>() {
         return Err(PyTypeError::new_err(format!(
             "{name}: expected an integer, not bool"
         )));
     }
-    let v: i128 = match obj.extract::<i64>() {
-        Ok(v) => v as i128,
+    match obj.extract::<i64>() {
+        Ok(v) => Ok(v as i128),
         Err(e) if e.is_instance_of::<PyOverflowError>(obj.py()) => {
-            if obj.gt(0)? {
-                i128::MAX
-            } else {
-                i128::MIN
-            }
+            Ok(if obj.gt(0)? { i128::MAX } else { i128::MIN })
         }
-        Err(_) => {
-            return Err(PyTypeError::new_err(format!(
-                "{name}: expected an integer, not {}",
-                obj.get_type().name()?
-            )))
-        }
-    };
-    if v < lo as i128 || v > hi as i128 {
-        let shown = if v == i128::MAX || v == i128::MIN {
-            obj.str()?.to_string()
-        } else {
-            v.to_string()
-        };
-        let shown = if shown.len() > 40 {
-            format!("{}...", &shown[..40])
-        } else {
-            shown
-        };
-        return Err(PyValueError::new_err(format!(
-            "invalid {name} = {shown}: allowed {lo} <= {name} <= {hi}"
-        )));
+        Err(_) => Err(PyTypeError::new_err(format!(
+            "{name}: expected an integer, not {}",
+            obj.get_type().name()?
+        ))),
     }
-    Ok(v as usize)
+}
+
+/// The `ValueError` of an integer `v` (read from `obj`) outside `allowed`:
+/// the core's wording, a saturated value shown as Python wrote it (at most 40 digits).
+fn out_of_range(name: &str, obj: &Bound<'_, PyAny>, v: i128, allowed: &str) -> PyErr {
+    let shown = if v == i128::MAX || v == i128::MIN {
+        obj.str().map(|s| s.to_string()).unwrap_or_default()
+    } else {
+        v.to_string()
+    };
+    let shown = if shown.len() > 40 {
+        format!("{}...", &shown[..40])
+    } else {
+        shown
+    };
+    PyValueError::new_err(format!("invalid {name} = {shown}: allowed {allowed}"))
 }
 
 /// Integer list argument (e.g. `groups`), each in `[0, hi]`, at most [`MAX_SEQUENCE`] long.
@@ -244,44 +270,38 @@ pub(crate) fn count_or(
     }
 }
 
-/// Solver options from Python arguments: `steps` in `1..=MAX_STEPS`,
-/// `max_iter` in `1..=MAX_ITER` (ValueError naming the argument and range
-/// beyond; TypeError for non-integers), `tol` finite and > 0.
+/// Solver options from Python arguments, checked by the core
+/// ([`SolveOptions::check_limits`], [`SolveOptions::validate`]): `steps` in
+/// `1..=MAX_STEPS`, `max_iter` in `1..=MAX_ITER` (ValueError naming the
+/// argument and range beyond; TypeError for non-integers), `tol` finite and > 0.
 pub(crate) fn solve_options(
     steps: Option<&Bound<'_, PyAny>>,
     tol: Real,
     max_iter: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<SolveOptions> {
-    use crate::limits::{MAX_ITER, MAX_STEPS};
-    let steps = count_or("steps", steps, 100, 1, MAX_STEPS)?;
-    let max_iter = count_or("max_iter", max_iter, 50, 1, MAX_ITER)?;
+    let defaults = SolveOptions::default();
+    let steps = count_for(&STEPS, steps, defaults.steps)?;
+    let max_iter = count_for(&ITERATIONS, max_iter, defaults.max_iter)?;
     options(steps, tol.0, max_iter)
 }
 
-/// The per-solve budget from Python arguments: `max_evaluations` in
-/// `1..=1e8` IVPs (default [`crate::shooting::DEFAULT_MAX_EVALUATIONS`]),
-/// `time_limit` in `(0, 1e9]` s (default none).
+/// The per-solve budget from Python arguments, checked by the core
+/// ([`SolveOptions::check_limits`]): `max_evaluations` in `1..=1e8` IVPs
+/// (default [`crate::shooting::DEFAULT_MAX_EVALUATIONS`]), `time_limit` in
+/// `(0, 1e9]` s (default none).
 pub(crate) fn budget_options(
     opts: &mut SolveOptions,
     max_evaluations: Option<&Bound<'_, PyAny>>,
     time_limit: Option<Real>,
 ) -> PyResult<()> {
-    opts.max_evaluations = count_or(
-        "max_evaluations",
-        max_evaluations,
-        crate::shooting::DEFAULT_MAX_EVALUATIONS,
-        1,
-        100_000_000,
-    )?;
+    opts.max_evaluations = count_for(&EVALUATIONS, max_evaluations, opts.max_evaluations)?;
     if let Some(Real(t)) = time_limit {
-        if !(t.is_finite() && t > 0.0 && t <= 1e9) {
-            return Err(
-                crate::error::Error::param("time_limit [s]", t, "0 < time_limit <= 1e9 s").into(),
-            );
-        }
-        opts.time_limit = Some(std::time::Duration::from_secs_f64(t));
+        // NaN, negative and unrepresentable seconds are no duration at all
+        let d = std::time::Duration::try_from_secs_f64(t)
+            .map_err(|_| Error::param("time_limit [s]", t, TIME_LIMIT_ALLOWED))?;
+        opts.time_limit = Some(d);
     }
-    Ok(())
+    Ok(opts.check_limits()?)
 }
 
 pub(crate) fn options(steps: usize, tol: f64, max_iter: usize) -> PyResult<SolveOptions> {
@@ -291,6 +311,7 @@ pub(crate) fn options(steps: usize, tol: f64, max_iter: usize) -> PyResult<Solve
         max_iter,
         ..Default::default()
     };
+    o.check_limits()?;
     o.validate()?;
     Ok(o)
 }

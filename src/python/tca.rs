@@ -49,8 +49,8 @@ fn map2(
     b: &PyReadonlyArray1<'_, f64>,
     f: impl Fn(f64, f64) -> Result<f64> + Send + Sync,
 ) -> PyResult<Py<PyArray1<f64>>> {
-    let a = a.as_slice()?.to_vec();
-    let b = b.as_slice()?.to_vec();
+    let a = a.as_slice()?;
+    let b = b.as_slice()?;
     if a.len() != b.len() {
         return Err(Error::input(
             "arrays",
@@ -58,13 +58,33 @@ fn map2(
         )
         .into());
     }
+    let pairs: Vec<(f64, f64)> = a.iter().copied().zip(b.iter().copied()).collect();
+    map_elements(py, output, &pairs, |&(x, y)| f(x, y))
+}
+
+/// [`map2`] over one array.
+fn map1(
+    py: Python<'_>,
+    output: &str,
+    a: &PyReadonlyArray1<'_, f64>,
+    f: impl Fn(f64) -> Result<f64> + Send + Sync,
+) -> PyResult<Py<PyArray1<f64>>> {
+    map_elements(py, output, a.as_slice()?, |&x| f(x))
+}
+
+/// `f` of every element, without the GIL; errors name the element's index.
+fn map_elements<T: Sync>(
+    py: Python<'_>,
+    output: &str,
+    elements: &[T],
+    f: impl Fn(&T) -> Result<f64> + Send + Sync,
+) -> PyResult<Py<PyArray1<f64>>> {
     let out: Result<Vec<f64>> = py.detach(|| {
-        a.iter()
-            .zip(&b)
+        elements
+            .iter()
             .enumerate()
-            .map(|(i, (&x, &y))| {
-                f(x, y)
-                    .and_then(|v| finite_output(output, v))
+            .map(|(i, x)| {
+                f(x).and_then(|v| finite_output(output, v))
                     .map_err(|e| match e {
                         Error::NoSolution { reason } => Error::NoSolution {
                             reason: format!("element {i}: {reason}"),
@@ -272,6 +292,24 @@ impl PyTca {
     ) -> PyResult<Py<PyArray1<f64>>> {
         map2(py, "temperature [C]", &force, &displacement, |f, d| {
             self.inner.temperature(f, d)
+        })
+    }
+    fn _free_stroke_flat(
+        &self,
+        py: Python<'_>,
+        temperature: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Py<PyArray1<f64>>> {
+        map1(py, "free_stroke [m]", &temperature, |t| {
+            self.inner.free_stroke(t)
+        })
+    }
+    fn _blocked_force_flat(
+        &self,
+        py: Python<'_>,
+        temperature: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Py<PyArray1<f64>>> {
+        map1(py, "blocked_force [N]", &temperature, |t| {
+            self.inner.blocked_force(t)
         })
     }
     pub(crate) fn __repr__(slf: &Bound<'_, Self>) -> PyResult<String> {

@@ -53,25 +53,9 @@ CHIRALITY = st.sampled_from(["extension", "contraction", "sideways", None, 1])
 def _tca_rod_entries(reg: Callable[..., None]) -> None:
     """The TCA law and the geometry."""
     # TCA law
-    reg(
-        "Tca",
-        1,
-        fnum(0.05, 1.0),
-        fnum(0.01, 0.2),
-        fnum(1e-4, 5e-3),
-        fnum(1.0, 500.0),
-        chirality=CHIRALITY,
-        material=fix("MAT"),
-    )
-    reg(
-        "Tca.from_pitch_angle",
-        1,
-        fnum(0.01, 0.2),
-        fnum(0.05, 1.0),
-        fnum(1e-4, 5e-3),
-        fnum(1.0, 500.0),
-        chirality=CHIRALITY,
-    )
+    coil = (fnum(1e-4, 5e-3), fnum(1.0, 500.0))  # coil diameter [m] and turns, alike for both constructors
+    reg("Tca", 1, fnum(0.05, 1.0), fnum(0.01, 0.2), *coil, chirality=CHIRALITY, material=fix("MAT"))
+    reg("Tca.from_pitch_angle", 1, fnum(0.01, 0.2), fnum(0.05, 1.0), *coil, chirality=CHIRALITY)
     arr_or = lambda lo, hi: st.one_of(fnum(lo, hi), fvec(3, lo, hi))  # noqa: E731
     reg("Tca.displacement", 1, this("TCA"), arr_or(-0.5, 0.5), arr_or(25.0, 160.0))
     reg("Tca.force", 1, this("TCA"), arr_or(-0.01, 0.05), arr_or(25.0, 160.0))
@@ -371,6 +355,7 @@ def _more_entries() -> None:
     valid call runs many forward solves)."""
     keys = st.sampled_from(["rho", "E_B", "rho(T)", "coil_diameter", "nope", 1])
     scales = st.one_of(st.none(), st.dictionaries(keys, fnum(0.5, 2.0), max_size=2), bad_type)
+    tip = st.one_of(st.just(Fix("TIP")), fvec(3, -0.03, 0.05))  # the fixture's tip [m] or a point near it
     ENTRIES["perturbed_finger"] = (call("perturbed_finger", scales), 2)
     ENTRIES["table1_grip_temperatures"] = (
         call("table1_grip_temperatures", scales, st.one_of(st.lists(fnum(1e-4, 3e-3), max_size=2), bad_type)),
@@ -380,7 +365,7 @@ def _more_entries() -> None:
         call(
             "brute_force_blocked_temperature",
             fix("RNG"),
-            st.one_of(st.just(Fix("TIP")), fvec(3, -0.03, 0.05)),
+            tip,
             VEC3_NORMAL,
             fnum(1e-4, 0.05),
             groups=GROUPS,
@@ -393,7 +378,7 @@ def _more_entries() -> None:
         call(
             "brute_force_tip_position",
             fix("RNG"),
-            st.one_of(st.just(Fix("TIP")), fvec(3, -0.03, 0.05)),
+            tip,
             start=maybe(TEMPS2),
             groups=GROUPS,
             xatol=fnum(1e-2, 1.0),

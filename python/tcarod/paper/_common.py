@@ -22,6 +22,7 @@ from ..tca import Material, Tca
 
 __all__ = [
     "GRAVITY_M_PER_S2",
+    "PAPER_TEMPERATURES_C",
     "DeadWeight",
     "ExperimentResult",
     "FloatArray",
@@ -31,6 +32,9 @@ __all__ = [
 ]
 
 FloatArray = npt.NDArray[np.float64]
+
+#: The temperature axis [C] of Figs. 5, 6 and 8: 25 to 160 C in 5 C steps.
+PAPER_TEMPERATURES_C: tuple[float, ...] = tuple(float(t) for t in range(25, 161, 5))
 
 
 class ExperimentResult(Protocol):

@@ -19,6 +19,7 @@ import numpy as np
 from .. import _core
 from ..tca import Material, Tca
 from ._common import GRAVITY_M_PER_S2, DeadWeight, FloatArray, PublishedCurve, TcaSpec, onset_temperature_c
+from ._common import PAPER_TEMPERATURES_C
 
 __all__ = ["FIG5", "Fig5Case", "Fig5Curve", "Fig5Experiment", "Fig5Result", "predict_fig5"]
 
@@ -69,7 +70,7 @@ class Fig5Experiment:
 
     tcas: tuple[TcaSpec, ...]
     loads: tuple[DeadWeight, ...]
-    temperatures_c: tuple[float, ...]
+    temperatures_c: tuple[float, ...] = PAPER_TEMPERATURES_C
     #: ``None``: the paper prints no numeric data for Fig. 5 (NOTES.md 4); the
     #: curves exist only as a plot. Fill with digitised :class:`PublishedCurve`
     #: objects if such data become available.
@@ -105,7 +106,6 @@ FIG5: Final[Fig5Experiment] = Fig5Experiment(
         DeadWeight(mass_kg=5e-3, friction_equivalent_kg=2.5e-3),
         DeadWeight(mass_kg=10e-3, friction_equivalent_kg=5e-3),
     ),
-    temperatures_c=tuple(float(t) for t in range(25, 161, 5)),
 )
 
 

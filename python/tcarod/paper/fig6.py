@@ -54,7 +54,7 @@ from ..models.manipulators import (
     manipulator_tca,
 )
 from ..rod import Robot, Solution, inner_edge_radius
-from ._common import PublishedCurve
+from ._common import PAPER_TEMPERATURES_C, PublishedCurve
 
 __all__ = [
     "CIRCLE_PRECURVATURE_RADIUS_M",
@@ -101,9 +101,10 @@ class Fig6Manipulator:
     fixture: Literal["fig6_circle", "fig6_square"]
     section: Literal["circle", "square"]
     size_m: float
-    length_m: float
-    tca_offset_m: float
     tca_y_m: tuple[float, ...]
+    #: Both manipulators of Fig. 6 are 40 mm long, their TCAs 3 mm off the axis.
+    length_m: float = PAPER_CONSTANTS["fig6_length"]
+    tca_offset_m: float = TCA_OFFSET_M
     precurvature_radius_m: float | None = None
     #: Whether ``precurvature_radius_m`` is an assumption (not printed in the paper).
     precurvature_is_assumption: bool = False
@@ -123,7 +124,7 @@ class Fig6Experiment:
     (pre-curved) and square manipulators (see the module docstring)."""
 
     manipulators: tuple[Fig6Manipulator, ...]
-    temperatures_c: tuple[float, ...]
+    temperatures_c: tuple[float, ...] = PAPER_TEMPERATURES_C
     assumptions: tuple[str, ...] = _ASSUMPTIONS
     #: ``None``: the paper prints no numeric data for Fig. 6 (NOTES.md 4).
     published_data: tuple[PublishedCurve, ...] | None = None
@@ -151,8 +152,6 @@ FIG6: Final[Fig6Experiment] = Fig6Experiment(
             fixture="fig6_circle",
             section="circle",
             size_m=PAPER_CONSTANTS["circle_diameter"],
-            length_m=PAPER_CONSTANTS["fig6_length"],
-            tca_offset_m=TCA_OFFSET_M,
             tca_y_m=(0.0,),
             precurvature_radius_m=CIRCLE_PRECURVATURE_RADIUS_M,
             precurvature_is_assumption=True,
@@ -162,12 +161,9 @@ FIG6: Final[Fig6Experiment] = Fig6Experiment(
             fixture="fig6_square",
             section="square",
             size_m=PAPER_CONSTANTS["square_side"],
-            length_m=PAPER_CONSTANTS["fig6_length"],
-            tca_offset_m=TCA_OFFSET_M,
             tca_y_m=(U_LEG_HALF_SPACING_M, -U_LEG_HALF_SPACING_M),
         ),
     ),
-    temperatures_c=tuple(float(t) for t in range(25, 161, 5)),
 )
 
 

@@ -48,7 +48,7 @@ from ..models.manipulators import (
 from ..inverse import blocked_force, blocked_temperature
 from ..rod import Robot
 from ..tca import Material
-from ._common import FloatArray
+from ._common import PAPER_TEMPERATURES_C, FloatArray
 
 __all__ = ["FIG8", "Fig8CrossCheck", "Fig8Experiment", "Fig8Reading", "Fig8Result", "fig8_forces", "predict_fig8"]
 
@@ -68,7 +68,7 @@ class Fig8Experiment:
     length_m: float = PAPER_CONSTANTS["fig8_length"]
     #: Temperature [C] at which the wire becomes taut (the paper: about 55 C).
     taut_temperature_c: float = 55.0
-    temperatures_c: tuple[float, ...] = tuple(float(t) for t in range(25, 161, 5))
+    temperatures_c: tuple[float, ...] = PAPER_TEMPERATURES_C
     #: Temperatures [C] at which the incremental eq-43 method re-derives the temperature from the force.
     cross_check_temperatures_c: tuple[float, ...] = (70.0, 100.0, 130.0, 160.0)
     #: Direction in which the tip presses on the wire (world frame); the wire pulls along its negative.
