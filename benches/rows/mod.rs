@@ -97,8 +97,19 @@ pub const SOLVER_ROWS: [Row; 4] = [
     },
 ];
 
-/// A prepared operation of row `name`: calling it runs the operation once.
-pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
+/// The timed operation of a row: calling it runs the operation once.
+pub type Operation = Box<dyn FnMut() -> Result<()>>;
+
+/// A prepared operation of row `name`.
+pub fn operation(name: &str) -> Result<Operation> {
+    match name {
+        "grasp" | "steel_cold" | "steel_warm" => other_robot_row(name),
+        _ => fig6_square_row(name),
+    }
+}
+
+/// The rows on the Fig. 6 square manipulator at [`BENCH_TEMPERATURE`].
+fn fig6_square_row(name: &str) -> Result<Operation> {
     let robot = fig6_square(true);
     let t = [BENCH_TEMPERATURE, BENCH_TEMPERATURE];
     let opts = SolveOptions::default();
@@ -141,6 +152,21 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
                 }
             })
         }
+        "cold_1um" => {
+            let o = SolveOptions {
+                steps: ACCURATE_STEPS,
+                ..opts
+            };
+            Box::new(move || solve(&robot, std::hint::black_box(&t), &o, None).map(|_| ()))
+        }
+        other => return Err(unknown_row(other)),
+    })
+}
+
+/// The rows on the Table I finger and the steel tendon robot.
+fn other_robot_row(name: &str) -> Result<Operation> {
+    let opts = SolveOptions::default();
+    Ok(match name {
         "grasp" => {
             let finger = table1_finger();
             let groups = Groups(vec![0, 0]);
@@ -178,18 +204,10 @@ pub fn operation(name: &str) -> Result<Box<dyn FnMut() -> Result<()>>> {
             let up: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
             Box::new(move || solve(&steel, std::hint::black_box(&up), &opts, Some(&w)).map(|_| ()))
         }
-        "cold_1um" => {
-            let o = SolveOptions {
-                steps: ACCURATE_STEPS,
-                ..opts
-            };
-            Box::new(move || solve(&robot, std::hint::black_box(&t), &o, None).map(|_| ()))
-        }
-        other => {
-            return Err(tcarod::error::Error::input(
-                "row",
-                format!("unknown bench row {other:?}"),
-            ))
-        }
+        other => return Err(unknown_row(other)),
     })
+}
+
+fn unknown_row(name: &str) -> tcarod::error::Error {
+    tcarod::error::Error::input("row", format!("unknown bench row {name:?}"))
 }
