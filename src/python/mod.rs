@@ -41,23 +41,51 @@ pub(crate) fn warn_units(py: Python<'_>, msg: String) -> PyResult<()> {
     )
 }
 
-#[pymodule]
-fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+/// Registers part of the module's contents.
+type Register = fn(&Bound<'_, PyModule>) -> PyResult<()>;
+
+/// The module's parts: each is also the submodule `tcarod._core.<part>` (in
+/// `sys.modules`), so that the stub package `tcarod/_core/` (one private stub
+/// per part, re-exported by `__init__.pyi`) is checked part by part by
+/// `mypy.stubtest`. Everything is re-exported at the top level, where Python
+/// code imports it from; classes keep `__module__ == "tcarod._core"`.
+const PARTS: [(&str, &[Register]); 8] = [
+    ("_common", &[register_errors]),
+    ("_tca", &[material::register, tca::register]),
+    ("_rod", &[rod::register]),
+    ("_solution", &[rod::register_solution]),
+    ("_inverse", &[inverse::register, results::register]),
+    ("_batch", &[batch::register, bench::register]),
+    ("_stability", &[stability::register]),
+    ("_fixtures", &[fixtures::register]),
+];
+
+fn register_errors(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
     m.add("UnitsWarning", m.py().get_type::<UnitsWarning>())?;
     m.add(
         "UnstableEquilibriumError",
         m.py().get_type::<UnstableEquilibriumError>(),
-    )?;
-    material::register(m)?;
-    tca::register(m)?;
-    rod::register(m)?;
-    inverse::register(m)?;
-    results::register(m)?;
-    batch::register(m)?;
-    bench::register(m)?;
-    stability::register(m)?;
-    fixtures::register(m)?;
+    )
+}
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    let modules = py.import("sys")?.getattr("modules")?;
+    for (name, registers) in PARTS {
+        let full = format!("tcarod._core.{name}");
+        let part = PyModule::new(py, &full)?;
+        for register in registers {
+            register(&part)?;
+        }
+        for item in part.getattr("__all__")?.try_iter()? {
+            let name: String = item?.extract()?;
+            m.add(name.as_str(), part.getattr(name.as_str())?)?;
+        }
+        m.setattr(name, &part)?; // not in `__all__`: private
+        modules.set_item(full, part)?;
+    }
     Ok(())
 }

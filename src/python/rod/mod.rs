@@ -24,15 +24,21 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyBody>()?;
     m.add_class::<PyActuator>()?;
     m.add_class::<PyRobot>()?;
-    m.add_class::<PySolution>()?;
     m.add_function(wrap_pyfunction!(experiment_robot, m)?)?;
     m.add_function(wrap_pyfunction!(section::restore_section, m)?)?;
     m.add_function(wrap_pyfunction!(section::restore_routing, m)?)?;
     m.add_function(wrap_pyfunction!(actuator::restore_actuator, m)?)?;
+    Ok(())
+}
+
+/// The forward solution and its helpers (the `_solution` part of the module).
+pub(crate) fn register_solution(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PySolution>()?;
     m.add_function(wrap_pyfunction!(restore::restore_solution, m)?)?;
     m.add_function(wrap_pyfunction!(solution::register_plotter, m)?)?;
     Ok(())
 }
+
 /// The Rust fixture `name` of `src/experiments.rs` (`"fig6_circle"`,
 /// `"fig6_square"`), standing upright under gravity if `gravity`. For tests
 /// that check the Python fixtures of `tcarod.paper` against the Rust

@@ -1,0 +1,42 @@
+"""Aliases, errors and warnings of ``tcarod._core`` (private stub module)."""
+
+from collections.abc import Sequence
+from typing import Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from ._solution import Solution
+
+_Chirality = Literal["extension", "contraction"]
+_FloatArray = npt.NDArray[np.float64]
+
+_Vec3 = Sequence[float] | _FloatArray
+
+_Policy = Literal["report", "require", "continue", "off"]
+
+class ConvergenceError(RuntimeError):
+    """A solve stopped without meeting its tolerance."""
+
+    #: Best residual norm reached (dimensionless unless the solver says otherwise).
+    residual: float
+    #: Iterations performed.
+    iterations: int
+    #: IVPs integrated, failed attempts included.
+    evaluations: int
+    #: Why it stopped: "iteration_limit", "line_search", "singular_jacobian",
+    #: "non_finite", "budget" (``max_evaluations`` or ``time_limit`` spent),
+    #: "integration" or "other".
+    reason: str
+
+class UnstableEquilibriumError(RuntimeError):
+    """``Robot.solve(..., stability="require")`` (or ``require_stable=True``)
+    converged to an unstable equilibrium."""
+
+    #: Stability margin of the equilibrium found [-] (< 0).
+    margin: float
+    #: The unstable equilibrium found.
+    solution: Solution
+
+class UnitsWarning(UserWarning):
+    """Sizes that are valid SI numbers but look like millimetres."""

@@ -1,0 +1,207 @@
+"""Inverse kinetostatics of ``tcarod._core`` (src/python/inverse.rs)."""
+
+from collections.abc import Sequence
+from typing import Any, Literal, final
+
+import numpy as np
+import numpy.typing as npt
+
+from ._common import _FloatArray
+from ._rod import Robot
+from ._solution import Solution
+
+# ---------------------------------------------------------------------------
+# Inverse kinetostatics (src/python/inverse.rs; paper Section IV, eqs 34-43).
+# `Robot` and `Solution` are the rod classes stubbed above. Tip poses are
+# `[dp (m); dtheta (rad)]` in the world frame; tip wrenches `[F (N); M (N m)]`.
+# `groups[i]` is the actuation variable driving actuator `i` (the two legs of
+# a U-shaped TCA share one temperature: `groups=[0, 0]`); default: one
+# variable per actuator.
+# ---------------------------------------------------------------------------
+
+@final
+class InverseResult:
+    """Result of :func:`tip_inverse`: the final (or closest reachable) configuration."""
+
+    @property
+    def solution(self) -> Solution:
+        """Forward solution at :attr:`variables`."""
+    @property
+    def variables(self) -> list[float]:
+        """Actuation variables (temperatures [C] for TCAs), one per group."""
+    @property
+    def error(self) -> float:
+        """Remaining tip error [m] (plus weighted angle if an orientation was asked)."""
+    @property
+    def iterations(self) -> int:
+        """Jacobian evaluations (outer iterations)."""
+    @property
+    def reached(self) -> bool:
+        """Whether the target was reached to ``tol``."""
+    @property
+    def at_bound(self) -> list[bool]:
+        """Per variable: resting on a bound of its input range at the end."""
+    @property
+    def evaluations(self) -> int:
+        """IVPs integrated in total."""
+    @property
+    def max_iter(self) -> int:
+        """The iteration budget of the solve."""
+    @property
+    def success(self) -> bool: ...
+    @property
+    def status(self) -> int:
+        """0 reached, 1 unreachable (at the bounds), 2 out of budget, 3 stalled."""
+    @property
+    def message(self) -> str: ...
+    @property
+    def nit(self) -> int: ...
+    @property
+    def nfev(self) -> int: ...
+    @property
+    def tip_position(self) -> _FloatArray:
+        """Tip position [m] of ``solution``, shape ``(3,)``."""
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+
+@final
+class BlockedResult:
+    """A blocked-tip solution: contact ``force`` [N] at actuation ``variables``."""
+
+    @property
+    def solution(self) -> Solution:
+        """Forward solution with the contact force applied at the tip."""
+    @property
+    def force(self) -> float:
+        """Contact force [N] with which the tip presses along the block normal."""
+    @property
+    def variables(self) -> list[float]:
+        """Actuation variables (temperatures [C] for TCAs)."""
+    @property
+    def iterations(self) -> int:
+        """Increments (incremental method) or Newton iterations (direct solves)."""
+    @property
+    def evaluations(self) -> int:
+        """IVPs integrated."""
+    @property
+    def success(self) -> bool: ...
+    @property
+    def status(self) -> int: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def nit(self) -> int: ...
+    @property
+    def nfev(self) -> int: ...
+    @property
+    def tip_position(self) -> _FloatArray:
+        """Tip position [m] of ``solution``, shape ``(3,)``."""
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+
+def sensitivities(
+    solution: Solution,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    scheme: Literal["forward", "central", "exact"] = "forward",
+) -> tuple[_FloatArray, _FloatArray]:
+    """``(J, C)`` at ``solution`` (eqs 41-42): ``J`` is ``6 x n_vars`` [m or rad per C],
+    ``C`` is ``6 x 6`` [m or rad per N or N m]."""
+
+def tip_inverse(
+    robot: Robot,
+    target: Sequence[float] | _FloatArray,
+    *,
+    start: Sequence[float] | _FloatArray | None = None,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    target_rotation: Sequence[Sequence[float]] | _FloatArray | None = None,
+    orientation_weight: float = 0.01,
+    tol: float = 1e-7,
+    max_iter: int = 50,
+    damping: float = 1e-6,
+    steps: int = 100,
+) -> InverseResult:
+    """Iterate the local inverse to put the tip at ``target`` [m]; unreachable
+    targets end at the closest configuration with ``reached=False``."""
+
+def blocked_force(
+    robot: Robot,
+    point: Sequence[float] | _FloatArray,
+    normal: Sequence[float] | _FloatArray,
+    variables: Sequence[float] | _FloatArray,
+    *,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+    warm_start: BlockedResult | None = None,
+) -> BlockedResult:
+    """Contact force [N] with the tip held on the plane through ``point`` [m]
+    with unit ``normal`` (the direction the tip presses in), at ``variables``."""
+
+def blocked_temperature(
+    robot: Robot,
+    point: Sequence[float] | _FloatArray,
+    normal: Sequence[float] | _FloatArray,
+    force: float,
+    start: Solution,
+    *,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    increments: int = 10,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> BlockedResult:
+    """The paper's incremental method (eq 43, ``dx = 0``): the single actuation
+    variable at which the blocked tip presses with ``force`` [N]."""
+
+def blocked_temperature_direct(
+    robot: Robot,
+    point: Sequence[float] | _FloatArray,
+    normal: Sequence[float] | _FloatArray,
+    force: float,
+    guess: float,
+    *,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> BlockedResult:
+    """Direct mixed solve: the actuation variable is a shooting unknown, the
+    contact ``force`` [N] is given (check of :func:`blocked_temperature`)."""
+
+def grasp_temperature(
+    robot: Robot,
+    normal: Sequence[float] | _FloatArray,
+    mass: float,
+    mu: float,
+    fingers: int,
+    *,
+    gravity: float = 9.81,
+    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    contact: Sequence[float] | _FloatArray | None = None,
+    method: Literal["incremental", "direct"] = "incremental",
+    increments: int = 8,
+    steps: int = 100,
+    tol: float = 1e-10,
+    max_iter: int = 50,
+) -> tuple[BlockedResult, tuple[float, float, float]]:
+    """Grasp temperature (eq 44): the actuation variable at which ``fingers``
+    fingers with friction ``mu`` hold ``mass`` [kg], ``mu n F(T) = m g``, each
+    tip blocked where it rests at the ``contact`` inputs (default: the
+    reference inputs), pressing along ``normal``; ``method``: eq 43 in
+    ``increments`` steps or a direct solve. Returns (the blocked result of
+    one finger, the block point [m])."""
+
+def _restore_inverse_result(
+    solution: Solution,
+    variables: Sequence[float],
+    error: float,
+    iterations: int,
+    reached: bool,
+    at_bound: Sequence[bool],
+    evaluations: int,
+    max_iter: int,
+) -> InverseResult: ...
+def _restore_blocked_result(
+    solution: Solution, force: float, variables: Sequence[float], iterations: int, evaluations: int
+) -> BlockedResult: ...
