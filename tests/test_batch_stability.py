@@ -8,23 +8,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import tcarod._core as core
 from tcarod.batch import BatchResult, fig6_square_robot, iter_batches, solve_batch
 
-# Self-weight buckling of an upright clamped-free column (Greenhill):
-# rho A g L^3 / (E I) = 7.837; the column below carries 10, past it.
-HEAVY = 10.0
-
-
-def heavy_column() -> core.Robot:
-    """An upright rectangular soft column (10 x 9 mm, L = 0.5 m) without
-    actuators, under gravity scaled to rho A g L^3 / (E I_min) = HEAVY."""
-    section = core.Section.rectangle(0.01, 0.009)
-    area, ix, iy, _ = section.properties
-    length, youngs, density = 0.5, 1e6, 1000.0
-    g = HEAVY * youngs * min(ix, iy) / (density * area * length**3)
-    body = core.Body(length, section, youngs, poisson=0.5, density=density, gravity=[0.0, 0.0, -g])
-    return core.Robot(body, [])
+# the upright column past self-weight buckling (rho A g L^3 / (E I) = 10 >
+# Greenhill's 7.837), without actuators, as in the Solution tests
+from test_solution_stability import heavy_column  # noqa: E402  (tests/ is on sys.path under pytest)
 
 
 def test_buckled_column_rows_are_unstable() -> None:

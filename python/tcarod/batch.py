@@ -24,7 +24,7 @@ Example::
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
-from typing import Any, Callable, Iterable, Iterator, Union
+from typing import Any, Callable, Iterable, Iterator, Literal, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -44,6 +44,8 @@ Robot = Any
 RobotLike = Union[Robot, Callable[[], Robot]]
 
 DEFAULT_CHUNK_SIZE = 256
+# what a batch does with the stability verdict (see solve_batch)
+BatchStability = Literal["report", "off"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -208,7 +210,7 @@ class _Settings:
     tol: float
     max_iter: int
     chunk_size: int
-    stability: str
+    stability: BatchStability
 
 
 def _solve_block(
@@ -246,7 +248,7 @@ def iter_batches(
     block_chunks: int | None = None,
     threads: int = 0,
     progress: bool = False,
-    stability: str = "report",
+    stability: BatchStability = "report",
 ) -> Iterator[BatchResult]:
     """Yield the results of consecutive blocks of rows, ``block_chunks``
     chunks per block (default: 4 per thread), holding only one block at a
@@ -315,7 +317,7 @@ def solve_batch(
     threads: int = 0,
     progress: bool = False,
     client: Any = None,
-    stability: str = "report",
+    stability: BatchStability = "report",
 ) -> BatchResult:
     """Solve every row of ``inputs`` (``(n, n_actuators)``; temperatures [C]
     for TCAs) with optional tip ``wrenches`` (``(n, 6)``: force [N], moment
