@@ -39,7 +39,12 @@ fn a_column_past_euler_reports_unstable_and_below_stable() {
         assert!(out.converged[k], "row {k}");
         let p = Vector3::from(out.tip_positions[k]);
         assert!(p.x.hypot(p.y) < 1e-9, "row {k}: straight");
-        assert_eq!(out.stable[k], *r < 1.0, "ratio {r}: margin {}", out.margin[k]);
+        assert_eq!(
+            out.stable[k],
+            *r < 1.0,
+            "ratio {r}: margin {}",
+            out.margin[k]
+        );
         assert_eq!(out.stable[k], out.margin[k] > 0.0);
         // the row's verdict is the single solve's (the same cold equilibrium)
         let w = &wrenches[6 * k..6 * k + 6];

@@ -82,21 +82,15 @@ fn positive_definite(h: &M6, y: &M6) -> bool {
         }
     }
     for j in 0..6 {
-        let mut d = a[j][j];
-        for k in 0..j {
-            d -= a[j][k] * a[j][k];
-        }
+        let d = a[j][j] - a[j][..j].iter().map(|x| x * x).sum::<f64>();
         if !(d > 0.0) {
             return false;
         }
         let l = d.sqrt();
         a[j][j] = l;
         for i in j + 1..6 {
-            let mut x = a[i][j];
-            for k in 0..j {
-                x -= a[i][k] * a[j][k];
-            }
-            a[i][j] = x / l;
+            let x: f64 = a[i][..j].iter().zip(&a[j][..j]).map(|(p, q)| p * q).sum();
+            a[i][j] = (a[i][j] - x) / l;
         }
     }
     true
