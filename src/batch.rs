@@ -16,6 +16,7 @@ use crate::limits::{MAX_BATCH_ROWS, MAX_CHUNK, MAX_THREADS};
 use crate::rod::Robot;
 use crate::shooting::{solve_tip, Loads, SolveOptions, TipSolution};
 use crate::solve::cancel;
+use crate::stability::{stability_at, Equilibrium, Stability};
 
 /// Options of [`solve_batch`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,6 +29,10 @@ pub struct BatchOptions {
     pub threads: usize,
     /// Warm-start each row from the previous row of its chunk (else every row is cold).
     pub warm: bool,
+    /// Give each converged row its stability verdict ([`crate::stability`],
+    /// one tangent integration per row, about as much as a warm solve); off
+    /// for hot loops that do not use it.
+    pub stability: bool,
 }
 
 impl Default for BatchOptions {
@@ -37,6 +42,7 @@ impl Default for BatchOptions {
             chunk_size: 256,
             threads: 0,
             warm: true,
+            stability: true,
         }
     }
 }
@@ -57,6 +63,14 @@ pub struct BatchOutput {
     pub evaluations: Vec<u32>,
     /// Whether each solve converged.
     pub converged: Vec<bool>,
+    /// Whether each row's equilibrium is stable (`false` where no verdict:
+    /// see `margin`).
+    pub stable: Vec<bool>,
+    /// Stability margin of each row (smallest eigenvalue of the
+    /// dimensionless tip stiffness, > 0 iff stable; see
+    /// [`crate::stability::Stability::margin`]); NaN where there is no
+    /// verdict: the solve or the verdict failed, or `stability` was off.
+    pub margin: Vec<f64>,
 }
 
 impl BatchOutput {
@@ -68,6 +82,8 @@ impl BatchOutput {
             iterations: vec![0; n],
             evaluations: vec![0; n],
             converged: vec![false; n],
+            stable: vec![false; n],
+            margin: vec![f64::NAN; n],
         }
     }
 }
@@ -81,6 +97,81 @@ struct ChunkOut<'a> {
     iters: &'a mut [u32],
     evals: &'a mut [u32],
     ok: &'a mut [bool],
+    stable: &'a mut [bool],
+    margin: &'a mut [f64],
+}
+
+impl<'a> ChunkOut<'a> {
+    fn whole(out: &'a mut BatchOutput) -> Self {
+        ChunkOut {
+            pos: &mut out.tip_positions,
+            rot: &mut out.tip_rotations,
+            tensions: &mut out.tensions,
+            iters: &mut out.iterations,
+            evals: &mut out.evaluations,
+            ok: &mut out.converged,
+            stable: &mut out.stable,
+            margin: &mut out.margin,
+        }
+    }
+
+    fn rows(&self) -> usize {
+        self.ok.len()
+    }
+
+    /// The first `rows` rows (at most all) and the rest.
+    fn split(self, rows: usize, na: usize) -> (Self, Self) {
+        let k = rows.min(self.rows());
+        let (pos, pos2) = self.pos.split_at_mut(k);
+        let (rot, rot2) = self.rot.split_at_mut(k);
+        let (tensions, tensions2) = self.tensions.split_at_mut(k * na);
+        let (iters, iters2) = self.iters.split_at_mut(k);
+        let (evals, evals2) = self.evals.split_at_mut(k);
+        let (ok, ok2) = self.ok.split_at_mut(k);
+        let (stable, stable2) = self.stable.split_at_mut(k);
+        let (margin, margin2) = self.margin.split_at_mut(k);
+        (
+            ChunkOut {
+                pos,
+                rot,
+                tensions,
+                iters,
+                evals,
+                ok,
+                stable,
+                margin,
+            },
+            ChunkOut {
+                pos: pos2,
+                rot: rot2,
+                tensions: tensions2,
+                iters: iters2,
+                evals: evals2,
+                ok: ok2,
+                stable: stable2,
+                margin: margin2,
+            },
+        )
+    }
+
+    /// Row `j` from the converged solve `s` and its verdict, if any.
+    fn set(&mut self, j: usize, s: &TipSolution, verdict: Option<&Stability>) {
+        let na = s.tensions.len();
+        self.pos[j] = s.position.into();
+        for a in 0..3 {
+            for b in 0..3 {
+                self.rot[j][3 * a + b] = s.rotation[(a, b)];
+            }
+        }
+        self.tensions[j * na..(j + 1) * na].copy_from_slice(&s.tensions);
+        self.iters[j] = s.iterations as u32;
+        self.evals[j] = (s.evaluations + verdict.map_or(0, |v| v.evaluations)) as u32;
+        self.ok[j] = true;
+        if let Some(v) = verdict {
+            self.stable[j] = v.stable;
+            self.margin[j] = v.margin;
+        }
+    }
 }
 
 /// Number of worker threads for `requested` (0: available parallelism).
@@ -225,34 +316,14 @@ fn batch_rows(robot: &Robot, inputs: &[f64], wrenches: Option<&[f64]>) -> Result
 type ChunkItem<'a> = Mutex<Option<(usize, ChunkOut<'a>)>>;
 
 fn chunk_items(out: &mut BatchOutput, chunk_size: usize, na: usize) -> Vec<ChunkItem<'_>> {
-    let cs = chunk_size;
-    let n_chunks = out.converged.len().div_ceil(cs);
-    // the tensions of each chunk (empty slices without actuators)
-    let tensions: Vec<&mut [f64]> = if na == 0 {
-        (0..n_chunks).map(|_| Default::default()).collect()
-    } else {
-        out.tensions.chunks_mut(cs * na).collect()
-    };
-    out.tip_positions
-        .chunks_mut(cs)
-        .zip(out.tip_rotations.chunks_mut(cs))
-        .zip(tensions)
-        .zip(out.iterations.chunks_mut(cs))
-        .zip(out.evaluations.chunks_mut(cs))
-        .zip(out.converged.chunks_mut(cs))
-        .enumerate()
-        .map(|(c, (((((pos, rot), tensions), iters), evals), ok))| {
-            let chunk = ChunkOut {
-                pos,
-                rot,
-                tensions,
-                iters,
-                evals,
-                ok,
-            };
-            Mutex::new(Some((c, chunk)))
-        })
-        .collect()
+    let mut items = Vec::with_capacity(out.converged.len().div_ceil(chunk_size));
+    let mut rest = ChunkOut::whole(out);
+    while rest.rows() > 0 {
+        let (chunk, r) = rest.split(chunk_size, na);
+        items.push(Mutex::new(Some((items.len(), chunk))));
+        rest = r;
+    }
+    items
 }
 
 /// Run `work` on `threads` threads (inline for one). Workers poll `stop`,
@@ -289,20 +360,12 @@ fn solve_chunk(
     wrenches: Option<&[f64]>,
     opts: &BatchOptions,
     first: usize,
-    out: ChunkOut<'_>,
+    mut out: ChunkOut<'_>,
 ) -> Result<()> {
-    let ChunkOut {
-        pos,
-        rot,
-        tensions,
-        iters,
-        evals,
-        ok,
-    } = out;
     let na = robot.actuators.len();
     let base = Loads::of(robot);
     let mut warm: Option<TipSolution> = None;
-    for j in 0..pos.len() {
+    for j in 0..out.rows() {
         let k = first + j;
         let loads = match wrenches {
             Some(w) => {
@@ -316,24 +379,22 @@ fn solve_chunk(
         };
         let q = &inputs[k * na..(k + 1) * na];
         cancel::check()?;
-        match solve_tip(
-            robot,
-            q,
-            &loads,
-            &opts.solve,
-            if opts.warm { warm.as_ref() } else { None },
-        ) {
+        let start = if opts.warm { warm.as_ref() } else { None };
+        match solve_tip(robot, q, &loads, &opts.solve, start) {
             Ok(s) => {
-                pos[j] = [s.position.x, s.position.y, s.position.z];
-                for a in 0..3 {
-                    for b in 0..3 {
-                        rot[j][3 * a + b] = s.rotation[(a, b)];
-                    }
-                }
-                tensions[j * na..(j + 1) * na].copy_from_slice(&s.tensions);
-                iters[j] = s.iterations as u32;
-                evals[j] = s.evaluations as u32;
-                ok[j] = true;
+                let verdict = if opts.stability {
+                    let eq = Equilibrium {
+                        unknowns: &s.unknowns,
+                        inputs: q,
+                        loads,
+                        steps: opts.solve.steps,
+                    };
+                    // a verdict that cannot be computed leaves the row without one (NaN margin)
+                    stability_at(robot, &eq, &[]).ok()
+                } else {
+                    None
+                };
+                out.set(j, &s, verdict.as_ref());
                 warm = Some(s);
             }
             Err(Error::Interrupted) => return Err(Error::Interrupted),

@@ -36,6 +36,7 @@ fn batch_equals_individual_solves() {
                 chunk_size: chunk,
                 threads,
                 warm: true,
+                ..Default::default()
             },
         )
         .unwrap();

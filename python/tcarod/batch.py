@@ -24,7 +24,7 @@ Example::
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
-from typing import Any, Callable, Iterable, Iterator, Union
+from typing import Any, Callable, Iterable, Iterator, Literal, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -44,6 +44,8 @@ Robot = Any
 RobotLike = Union[Robot, Callable[[], Robot]]
 
 DEFAULT_CHUNK_SIZE = 256
+# what a batch does with the stability verdict (see solve_batch)
+BatchStability = Literal["report", "off"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -61,6 +63,12 @@ class BatchResult:
     the actuator pushes), NaN where a solve did not converge; ``None`` only
     for results built by hand without them.
 
+    ``stable`` ``(n,)`` and ``margin`` ``(n,)`` [-]: each row's stability
+    verdict (``Solution.stable`` / ``Solution.stability.margin``: the smallest
+    eigenvalue of the dimensionless tip stiffness, > 0 iff stable; ``stable``
+    False and ``margin`` NaN where there is none: the solve or the verdict
+    failed); both ``None`` when the batch ran with ``stability="off"``.
+
     SciPy-style summary: ``success`` (every row converged), ``status`` per row
     (0 converged, 1 not), ``message``, ``nit`` / ``nfev`` per row (aliases of
     ``iterations`` / ``evaluations``). ``to_pandas()`` gives one row per solve
@@ -76,6 +84,8 @@ class BatchResult:
     inputs: FloatArray | None = None
     wrenches: FloatArray | None = None
     tensions: FloatArray | None = None
+    stable: BoolArray | None = None
+    margin: FloatArray | None = None
 
     def __len__(self) -> int:
         return int(self.tip_positions.shape[0])
@@ -126,7 +136,7 @@ class BatchResult:
         """One row per solve: ``input_<i>`` (one per actuator), ``force_x``
         ... ``moment_z`` if wrenches were given, ``tip_x_m``, ``tip_y_m``,
         ``tip_z_m``, ``tension_<i>_n`` [N] (one per actuator), ``converged``, ``status``,
-        ``nit``, ``nfev``. Needs pandas (``pip install 'tcarod[pandas]'``)."""
+        ``nit``, ``nfev``, and ``stable``, ``margin`` with a verdict. Needs pandas (``pip install 'tcarod[pandas]'``)."""
         pd: Any = require("pandas")
         cols: dict[str, Any] = {}
         if self.inputs is not None:
@@ -146,6 +156,9 @@ class BatchResult:
         cols["status"] = self.status
         cols["nit"] = self.iterations
         cols["nfev"] = self.evaluations
+        if self.stable is not None and self.margin is not None:
+            cols["stable"] = self.stable
+            cols["margin"] = self.margin
         return pd.DataFrame(cols)
 
     @staticmethod
@@ -170,6 +183,8 @@ class BatchResult:
             inputs=cat("inputs"),
             wrenches=cat("wrenches"),
             tensions=cat("tensions"),
+            stable=cat("stable"),
+            margin=cat("margin"),
         )
 
 
@@ -187,27 +202,34 @@ def _as_rows(x: Any, width: int, name: str) -> FloatArray:
     return a
 
 
+@dataclass(frozen=True)
+class _Settings:
+    """What every row of a batch is solved with (see :func:`solve_batch`)."""
+
+    steps: int
+    tol: float
+    max_iter: int
+    chunk_size: int
+    stability: BatchStability
+
+
 def _solve_block(
-    robot: RobotLike,
-    inputs: FloatArray,
-    wrenches: FloatArray | None,
-    steps: int,
-    tol: float,
-    max_iter: int,
-    chunk_size: int,
-    threads: int,
+    robot: RobotLike, inputs: FloatArray, wrenches: FloatArray | None, cfg: _Settings, threads: int
 ) -> BatchResult:
-    pos, rot, tens, it, ev, ok = _core.solve_batch(
+    pos, rot, tens, it, ev, ok, stable, margin = _core.solve_batch(
         _robot(robot),
         inputs,
         wrenches,
-        steps=steps,
-        tol=tol,
-        max_iter=max_iter,
-        chunk_size=chunk_size,
+        steps=cfg.steps,
+        tol=cfg.tol,
+        max_iter=cfg.max_iter,
+        chunk_size=cfg.chunk_size,
         threads=threads,
+        stability=cfg.stability,
     )
-    return BatchResult(pos, rot, it, ev, ok, inputs=inputs, wrenches=wrenches, tensions=tens)
+    return BatchResult(
+        pos, rot, it, ev, ok, inputs=inputs, wrenches=wrenches, tensions=tens, stable=stable, margin=margin
+    )
 
 
 def _blocks(n: int, block: int) -> list[tuple[int, int]]:
@@ -226,13 +248,16 @@ def iter_batches(
     block_chunks: int | None = None,
     threads: int = 0,
     progress: bool = False,
+    stability: BatchStability = "report",
 ) -> Iterator[BatchResult]:
     """Yield the results of consecutive blocks of rows, ``block_chunks``
     chunks per block (default: 4 per thread), holding only one block at a
     time. ``inputs`` (and ``wrenches``) may be arrays, or iterables of
     ``(m, n_actuators)`` arrays (e.g. a generator making a huge sweep on the
     fly); then each yielded block corresponds to one given array.
-    ``progress=True`` shows a tqdm bar (rows)."""
+    ``progress=True`` shows a tqdm bar (rows). The other arguments as for
+    :func:`solve_batch`."""
+    cfg = _Settings(steps, tol, max_iter, chunk_size, stability)
     nthreads = threads if threads > 0 else _core.default_threads()
     block = chunk_size * (block_chunks if block_chunks is not None else 4 * nthreads)
     if isinstance(inputs, np.ndarray) or (
@@ -253,7 +278,7 @@ def iter_batches(
             na = len(r.actuators)
             qa = _as_rows(q, na, "inputs")
             wa = None if w is None else _as_rows(w, 6, "wrenches")
-            res = _solve_block(r, qa, wa, steps, tol, max_iter, chunk_size, threads)
+            res = _solve_block(r, qa, wa, cfg, threads)
             if bar is not None:
                 bar.update(len(res))
             yield res
@@ -292,6 +317,7 @@ def solve_batch(
     threads: int = 0,
     progress: bool = False,
     client: Any = None,
+    stability: BatchStability = "report",
 ) -> BatchResult:
     """Solve every row of ``inputs`` (``(n, n_actuators)``; temperatures [C]
     for TCAs) with optional tip ``wrenches`` (``(n, 6)``: force [N], moment
@@ -303,65 +329,59 @@ def solve_batch(
     local path. ``robot`` may be a zero-argument callable returning the robot
     (needed for process-based Dask workers, which must rebuild it).
 
+    ``stability``: ``"report"`` (the default) gives every converged row its
+    stability verdict (``stable``, ``margin``), as ``Robot.solve`` does, so a
+    batch never hands back an unstable equilibrium without saying so: a
+    sweep through buckling is exactly where the warm-started chain may
+    follow a shape the robot cannot hold. It costs one tangent integration
+    per row, about as much as a warm solve (a sweep takes about twice as
+    long); ``"off"`` skips it (``stable`` and ``margin`` are then ``None``)
+    for hot loops that do not use it. ``"require"`` and ``"continue"`` are
+    not offered for batches: filter on ``stable``, or re-solve the unstable
+    rows with ``Robot.solve(..., stability="continue")``.
+
     Invalid inputs raise ``ValueError`` naming the row; a solve that does not
     converge gives NaN pose and ``converged = False``.
     """
+    cfg = _Settings(steps, tol, max_iter, chunk_size, stability)
     if client is not None:
-        return _solve_dask(robot, inputs, wrenches, client, steps, tol, max_iter, chunk_size, progress)
+        return _solve_dask(robot, inputs, wrenches, client, cfg, progress)
     r = _robot(robot)
     na = len(r.actuators)
     q = _as_rows(inputs, na, "inputs")
     if not progress:
         w = None if wrenches is None else _as_rows(wrenches, 6, "wrenches")
-        return _solve_block(r, q, w, steps, tol, max_iter, chunk_size, threads)
-    return BatchResult.concatenate(
-        iter_batches(
-            r,
-            q,
-            wrenches,
-            steps=steps,
-            tol=tol,
-            max_iter=max_iter,
-            chunk_size=chunk_size,
-            threads=threads,
-            progress=True,
-        )
+        return _solve_block(r, q, w, cfg, threads)
+    parts = iter_batches(
+        r,
+        q,
+        wrenches,
+        steps=steps,
+        tol=tol,
+        max_iter=max_iter,
+        chunk_size=chunk_size,
+        threads=threads,
+        progress=True,
+        stability=stability,
     )
+    return BatchResult.concatenate(parts)
 
 
-def _dask_task(
-    robot: RobotLike,
-    inputs: FloatArray,
-    wrenches: FloatArray | None,
-    steps: int,
-    tol: float,
-    max_iter: int,
-    chunk_size: int,
-) -> BatchResult:
+def _dask_task(robot: RobotLike, inputs: FloatArray, wrenches: FloatArray | None, cfg: _Settings) -> BatchResult:
     # one chunk per task, solved on one thread of the worker
-    return _solve_block(robot, inputs, wrenches, steps, tol, max_iter, chunk_size, 1)
+    return _solve_block(robot, inputs, wrenches, cfg, 1)
 
 
 def _solve_dask(
-    robot: RobotLike,
-    inputs: Any,
-    wrenches: Any,
-    client: Any,
-    steps: int,
-    tol: float,
-    max_iter: int,
-    chunk_size: int,
-    progress: bool,
+    robot: RobotLike, inputs: Any, wrenches: Any, client: Any, cfg: _Settings, progress: bool
 ) -> BatchResult:
     na = len(_robot(robot).actuators)
     q = _as_rows(inputs, na, "inputs")
     w = None if wrenches is None else _as_rows(wrenches, 6, "wrenches")
     # the same chunks as the local path: warm-start chains restart at each
     futures = [
-        client.submit(
-            _dask_task, robot, q[a:b], None if w is None else w[a:b], steps, tol, max_iter, chunk_size, pure=False
-        )
-        for a, b in _blocks(q.shape[0], chunk_size)
+        client.submit(_dask_task, robot, q[a:b], None if w is None else w[a:b], cfg, pure=False)
+        for a, b in _blocks(q.shape[0], cfg.chunk_size)
     ]
     if progress:
         as_completed: Any = require("distributed").as_completed

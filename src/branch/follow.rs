@@ -137,30 +137,29 @@ struct Corrector<'a, 'b> {
     evaluations: usize,
 }
 
+impl Corrector<'_, '_> {
+    /// The pseudo-arclength condition `t . (y - y_p)`.
+    fn arclength(&self, y: &[f64]) -> f64 {
+        y.iter()
+            .zip(self.yp)
+            .zip(self.t.iter())
+            .map(|((a, b), c)| (a - b) * c)
+            .sum()
+    }
+}
+
 impl System for Corrector<'_, '_> {
     fn residual(&mut self, y: &[f64]) -> Result<Vec<f64>> {
         let m = y.len() - 1;
         self.evaluations += 1;
         let mut r = self.pb.residual(&y[..m], y[m] * self.scale, self.steps)?;
-        r.push(
-            y.iter()
-                .zip(self.yp)
-                .zip(self.t.iter())
-                .map(|((a, b), c)| (a - b) * c)
-                .sum(),
-        );
+        r.push(self.arclength(y));
         Ok(r)
     }
     fn residual_and_jacobian(&mut self, y: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
         let m = y.len() - 1;
         let (mut r, j) = jacobian(self.pb, y, self.scale, self.steps, &mut self.evaluations)?;
-        r.push(
-            y.iter()
-                .zip(self.yp)
-                .zip(self.t.iter())
-                .map(|((a, b), c)| (a - b) * c)
-                .sum(),
-        );
+        r.push(self.arclength(y));
         let mut a = DMatrix::zeros(m + 1, m + 1);
         a.view_mut((0, 0), (m, m + 1)).copy_from(&j);
         a.row_mut(m).copy_from(&self.t.transpose());

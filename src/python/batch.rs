@@ -23,7 +23,22 @@ type BatchArrays<'py> = (
     Bound<'py, PyArray1<i64>>,
     Bound<'py, PyArray1<i64>>,
     Bound<'py, PyArray1<bool>>,
+    Option<Bound<'py, PyArray1<bool>>>,
+    Option<Bound<'py, PyArray1<f64>>>,
 );
+
+/// The `stability` argument of `solve_batch`: a verdict per row or none.
+fn batch_stability(policy: &str) -> PyResult<bool> {
+    match policy {
+        "report" => Ok(true),
+        "off" => Ok(false),
+        _ => Err(Error::input(
+            "stability",
+            format!("{policy:?}: must be 'report' or 'off' for a batch"),
+        )
+        .into()),
+    }
+}
 
 /// Solve the forward problem for every row of `inputs` (shape
 /// `(n, n_actuators)`, C for TCAs; at most 10,000,000 rows per call) and
@@ -33,11 +48,15 @@ type BatchArrays<'py> = (
 /// solved in order with warm starts. `steps` (1 to 100,000), `tol`,
 /// `max_iter` (1 to 100,000) as for `Robot.solve`. Returns `(tip_positions
 /// (n, 3) [m], tip_rotations (n, 3, 3), tensions (n, n_actuators) [N],
-/// iterations (n,), evaluations (n,), converged (n,))`; a row that does not
-/// converge has NaN pose and tensions and `converged = False`.
+/// iterations (n,), evaluations (n,), converged (n,), stable (n,), margin
+/// (n,))`; a row that does not converge has NaN pose and tensions and
+/// `converged = False`. `stability="report"` gives each converged row its
+/// stability verdict (`stable`, and `margin` [-], > 0 iff stable; NaN margin
+/// where there is none), one tangent integration per row; `"off"` skips it
+/// and returns `None` for both.
 #[pyfunction]
-#[pyo3(signature = (robot, inputs, wrenches=None, *, steps=None, tol=Real(1e-10), max_iter=None, chunk_size=None, threads=None, warm=true),
-    text_signature = "(robot, inputs, wrenches=None, *, steps=100, tol=1e-10, max_iter=50, chunk_size=256, threads=0, warm=True)")]
+#[pyo3(signature = (robot, inputs, wrenches=None, *, steps=None, tol=Real(1e-10), max_iter=None, chunk_size=None, threads=None, warm=true, stability="report"),
+    text_signature = "(robot, inputs, wrenches=None, *, steps=100, tol=1e-10, max_iter=50, chunk_size=256, threads=0, warm=True, stability='report')")]
 #[allow(clippy::too_many_arguments)]
 fn solve_batch<'py>(
     py: Python<'py>,
@@ -50,11 +69,13 @@ fn solve_batch<'py>(
     chunk_size: Option<Bound<'py, PyAny>>,
     threads: Option<Bound<'py, PyAny>>,
     warm: bool,
+    stability: &str,
 ) -> PyResult<BatchArrays<'py>> {
     use crate::limits::{MAX_CHUNK, MAX_THREADS};
     let solve = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
     let chunk_size = count_or("chunk_size", chunk_size.as_ref(), 256, 1, MAX_CHUNK)?;
     let threads = count_or("threads", threads.as_ref(), 0, 0, MAX_THREADS)?;
+    let with_verdict = batch_stability(stability)?;
     let r = robot.get().inner.clone();
     let na = r.actuators.len();
     let shape = inputs.shape();
@@ -86,6 +107,7 @@ fn solve_batch<'py>(
         chunk_size,
         threads,
         warm,
+        stability: with_verdict,
     };
     let out =
         super::errors::detach_interruptible(py, || core_solve_batch(&r, &q, w.as_deref(), &opts))?;
@@ -97,7 +119,9 @@ fn solve_batch<'py>(
     let it = PyArray1::from_iter(py, out.iterations.iter().map(|&k| k as i64));
     let ev = PyArray1::from_iter(py, out.evaluations.iter().map(|&k| k as i64));
     let ok = PyArray1::from_iter(py, out.converged.iter().copied());
-    Ok((pos, rot, tens, it, ev, ok))
+    let stable = with_verdict.then(|| PyArray1::from_slice(py, &out.stable));
+    let margin = with_verdict.then(|| PyArray1::from_slice(py, &out.margin));
+    Ok((pos, rot, tens, it, ev, ok, stable, margin))
 }
 
 /// Worker threads `solve_batch` uses for `threads=0` (the available cores).

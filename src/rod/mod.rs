@@ -36,7 +36,7 @@ pub use body::{Body, Shear, DEFAULT_POISSON};
 pub use ivp::{integrate, IvpResult, IvpSpec};
 pub use robot::{Robot, BASE_STATES};
 pub use section::Section;
-pub use tangent::{integrate_tangent, TangentIvp, TangentNode, TangentSeeds};
+pub use tangent::{integrate_tangent, Record, TangentIvp, TangentNode, TangentNodes, TangentSeeds};
 
 use nalgebra::{Matrix3, Quaternion, Vector3};
 

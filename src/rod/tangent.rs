@@ -49,21 +49,89 @@ impl TangentSeeds {
     }
 }
 
-/// One recorded grid node of a tangent IVP.
-#[derive(Debug, Clone)]
-pub struct TangentNode {
+/// One recorded grid node of a tangent IVP (a view into [`TangentNodes`]).
+#[derive(Debug, Clone, Copy)]
+pub struct TangentNode<'a> {
     /// Arc length \[m\].
     pub s: f64,
     /// State `y(s)` (`p, q, nu, omega, delta`; see [`crate::rod::BASE_STATES`]).
-    pub state: Vec<f64>,
-    /// `d y(s) / d seed`, `n_states x k` (after the jump at an anchor node).
-    pub tangent: DMatrix<f64>,
+    pub state: &'a [f64],
+    /// `d y(s) / d seed`, `n_states x k` column-major (after the jump at an
+    /// anchor node): column `j` is `tangent[j * n_states..(j + 1) * n_states]`.
+    pub tangent: &'a [f64],
+}
+
+/// The recorded grid nodes of a tangent IVP, in one flat buffer each for
+/// the arc lengths, the states and the tangents (no allocation per node).
+#[derive(Debug, Clone, Default)]
+pub struct TangentNodes {
+    /// States per node.
+    n: usize,
+    /// Directions per node.
+    k: usize,
+    s: Vec<f64>,
+    state: Vec<f64>,
+    tangent: Vec<f64>,
+}
+
+impl TangentNodes {
+    fn new(n: usize, k: usize, capacity: usize) -> Self {
+        TangentNodes {
+            n,
+            k,
+            s: Vec::with_capacity(capacity),
+            state: Vec::with_capacity(capacity * n),
+            tangent: Vec::with_capacity(capacity * n * k),
+        }
+    }
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.s.len()
+    }
+    /// True if no node was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.s.is_empty()
+    }
+    /// Node `i`.
+    pub fn get(&self, i: usize) -> TangentNode<'_> {
+        let (n, nk) = (self.n, self.n * self.k);
+        TangentNode {
+            s: self.s[i],
+            state: &self.state[i * n..(i + 1) * n],
+            tangent: &self.tangent[i * nk..(i + 1) * nk],
+        }
+    }
+    /// The nodes in order.
+    pub fn iter(&self) -> impl Iterator<Item = TangentNode<'_>> {
+        (0..self.len()).map(|i| self.get(i))
+    }
+    /// `d y / d seed` of node `i` as an `n_states x k` matrix.
+    pub fn tangent_matrix(&self, i: usize) -> DMatrix<f64> {
+        DMatrix::from_column_slice(self.n, self.k, self.get(i).tangent)
+    }
+    /// Record node `idx` of a pass over directions `c0 .. c0 + w`: the first
+    /// pass appends the node, the others fill in their columns.
+    #[inline(always)]
+    fn record<const N: usize>(&mut self, idx: usize, s: f64, y: &[Dual<N>], c0: usize, w: usize) {
+        let (n, nk) = (self.n, self.n * self.k);
+        if idx == self.s.len() {
+            self.s.push(s);
+            self.state.extend(y.iter().map(|d| d.re));
+            self.tangent.resize(self.tangent.len() + nk, 0.0);
+        }
+        let t = &mut self.tangent[idx * nk..(idx + 1) * nk];
+        for (r, d) in y.iter().enumerate() {
+            for (c, e) in d.eps[..w].iter().enumerate() {
+                t[(c0 + c) * n + r] = *e;
+            }
+        }
+    }
 }
 
 /// A tangent IVP: the IVP (its real part) and its derivatives along the seeds.
 #[derive(Debug, Clone)]
 pub struct TangentIvp {
-    /// The IVP itself (nodes recorded if asked for).
+    /// The IVP itself (nodes recorded if asked for by [`integrate_tangent`]).
     pub ivp: IvpResult,
     /// `d y(L) / d seed`, `n_states x k`.
     pub tip: DMatrix<f64>,
@@ -73,25 +141,48 @@ pub struct TangentIvp {
     pub tip_force_residual: DMatrix<f64>,
     /// `d r_M / d seed` (tip moment balance (33)) \[N m\], `3 x k`.
     pub tip_moment_residual: DMatrix<f64>,
-    /// Every grid node with its tangents, if `record` (anchor nodes after their jump).
-    pub nodes: Vec<TangentNode>,
+    /// Every grid node with its tangents, if recorded (anchor nodes after their jump).
+    pub nodes: TangentNodes,
 }
 
 /// Largest number of directions integrated in one pass (more are split into passes).
 const MAX_PASS: usize = 16;
 
+/// What a tangent pass records at the grid nodes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Record {
+    /// Nothing (the tip only); `false`.
+    Tip,
+    /// States and tangents ([`TangentIvp::nodes`]), what a stability
+    /// verdict reads; the IVP's own node list stays empty.
+    Tangents,
+    /// Tangents and the IVP's nodes ([`IvpResult::nodes`]) too; `true`.
+    All,
+}
+
+impl From<bool> for Record {
+    fn from(all: bool) -> Self {
+        if all {
+            Record::All
+        } else {
+            Record::Tip
+        }
+    }
+}
+
 /// Integrate the IVP (eqs 22-31, as [`crate::rod::integrate`]) together with
 /// its tangents along `seeds`, on the same RK4 grid, through the anchor
 /// jumps and the tip balance. The tangents are the exact derivatives of the
-/// discrete map. With `record`, every grid node's state and tangent matrix
-/// are returned (for stability analyses).
+/// discrete map. `record` (a [`Record`], or `true` for [`Record::All`]) says
+/// which grid nodes are returned.
 pub fn integrate_tangent(
     spec: &IvpSpec<'_>,
     v0: &Vector3<f64>,
     u0: &Vector3<f64>,
     seeds: &TangentSeeds,
-    record: bool,
+    record: impl Into<Record>,
 ) -> Result<TangentIvp> {
+    let record = record.into();
     let k = seeds.directions();
     let na = spec.robot.actuators.len();
     if seeds.nu0.nrows() != 3
@@ -105,15 +196,30 @@ pub fn integrate_tangent(
             format!("expected 3, 3 and {na} rows and equal column counts"),
         ));
     }
+    let n = spec.robot.n_states();
+    let capacity = if record == Record::Tip {
+        0
+    } else {
+        spec.steps.max(1) + spec.robot.breakpoints().len()
+    };
+    let mut nodes = TangentNodes::new(n, k, capacity);
     let mut out: Option<TangentIvp> = None;
     let mut c0 = 0;
     loop {
         let w = (k - c0).min(MAX_PASS);
+        let p = Pass {
+            spec,
+            v0,
+            u0,
+            seeds,
+            c0,
+            w,
+        };
         let part = match w {
-            0..=4 => dispatch::<4>(spec, v0, u0, seeds, c0, w, record)?,
-            5..=8 => dispatch::<8>(spec, v0, u0, seeds, c0, w, record)?,
-            9..=12 => dispatch::<12>(spec, v0, u0, seeds, c0, w, record)?,
-            _ => dispatch::<MAX_PASS>(spec, v0, u0, seeds, c0, w, record)?,
+            0..=4 => dispatch::<4>(&p, record, &mut nodes)?,
+            5..=8 => dispatch::<8>(&p, record, &mut nodes)?,
+            9..=12 => dispatch::<12>(&p, record, &mut nodes)?,
+            _ => dispatch::<MAX_PASS>(&p, record, &mut nodes)?,
         };
         out = Some(match out {
             None => part,
@@ -127,9 +233,6 @@ pub fn integrate_tangent(
                 o.elongation = cat(&o.elongation, &part.elongation);
                 o.tip_force_residual = cat(&o.tip_force_residual, &part.tip_force_residual);
                 o.tip_moment_residual = cat(&o.tip_moment_residual, &part.tip_moment_residual);
-                for (a, b) in o.nodes.iter_mut().zip(&part.nodes) {
-                    a.tangent = cat(&a.tangent, &b.tangent);
-                }
                 o
             }
         });
@@ -138,7 +241,19 @@ pub fn integrate_tangent(
             break;
         }
     }
-    Ok(out.expect("at least one pass"))
+    let mut out = out.expect("at least one pass");
+    out.nodes = nodes;
+    Ok(out)
+}
+
+/// The arguments of one pass: directions `c0 .. c0 + w` of `seeds`.
+struct Pass<'s, 'a> {
+    spec: &'s IvpSpec<'a>,
+    v0: &'s Vector3<f64>,
+    u0: &'s Vector3<f64>,
+    seeds: &'s TangentSeeds,
+    c0: usize,
+    w: usize,
 }
 
 /// [`pass`] compiled for the widest vector unit the CPU has: the
@@ -147,63 +262,44 @@ pub fn integrate_tangent(
 /// IEEE arithmetic either way (no fused multiply-add is generated), so the
 /// results are bit-for-bit the same.
 fn dispatch<const N: usize>(
-    spec: &IvpSpec<'_>,
-    v0: &Vector3<f64>,
-    u0: &Vector3<f64>,
-    seeds: &TangentSeeds,
-    c0: usize,
-    w: usize,
-    record: bool,
+    p: &Pass<'_, '_>,
+    record: Record,
+    nodes: &mut TangentNodes,
 ) -> Result<TangentIvp> {
     #[cfg(target_arch = "x86_64")]
     {
         if std::is_x86_feature_detected!("avx512f") {
             // SAFETY: the CPU supports AVX-512F (checked just above).
-            return unsafe { pass_avx512::<N>(spec, v0, u0, seeds, c0, w, record) };
+            return unsafe { pass_avx512::<N>(p, record, nodes) };
         }
         if std::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2 (checked just above).
-            return unsafe { pass_avx2::<N>(spec, v0, u0, seeds, c0, w, record) };
+            return unsafe { pass_avx2::<N>(p, record, nodes) };
         }
     }
-    pass::<N>(spec, v0, u0, seeds, c0, w, record)
+    pass::<N>(p, record, nodes)
 }
 
-/// [`pass`] with AVX-512F enabled.
-///
-/// # Safety
-/// The CPU must support AVX-512F.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-unsafe fn pass_avx512<const N: usize>(
-    spec: &IvpSpec<'_>,
-    v0: &Vector3<f64>,
-    u0: &Vector3<f64>,
-    seeds: &TangentSeeds,
-    c0: usize,
-    w: usize,
-    record: bool,
-) -> Result<TangentIvp> {
-    pass::<N>(spec, v0, u0, seeds, c0, w, record)
+/// [`pass`] compiled with a target feature enabled.
+macro_rules! pass_with {
+    ($name:ident, $feature:literal) => {
+        #[doc = concat!("[`pass`] with ", $feature, " enabled.")]
+        ///
+        /// # Safety
+        /// The CPU must support the feature.
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = $feature)]
+        unsafe fn $name<const N: usize>(
+            p: &Pass<'_, '_>,
+            record: Record,
+            nodes: &mut TangentNodes,
+        ) -> Result<TangentIvp> {
+            pass::<N>(p, record, nodes)
+        }
+    };
 }
-
-/// [`pass`] with AVX2 enabled.
-///
-/// # Safety
-/// The CPU must support AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn pass_avx2<const N: usize>(
-    spec: &IvpSpec<'_>,
-    v0: &Vector3<f64>,
-    u0: &Vector3<f64>,
-    seeds: &TangentSeeds,
-    c0: usize,
-    w: usize,
-    record: bool,
-) -> Result<TangentIvp> {
-    pass::<N>(spec, v0, u0, seeds, c0, w, record)
-}
+pass_with!(pass_avx512, "avx512f");
+pass_with!(pass_avx2, "avx2");
 
 /// The RK4 stages of a tangent pass (`n` states each).
 struct Stages<const N: usize> {
@@ -306,18 +402,23 @@ fn tip_balance<const N: usize>(
     (rf, rmm)
 }
 
-/// One pass of [`integrate_tangent`] over directions `c0 .. c0 + w` (`w <= N`).
+/// One pass of [`integrate_tangent`] over directions `c0 .. c0 + w` (`w <= N`),
+/// recording into `nodes` as asked.
 #[inline(always)]
 fn pass<const N: usize>(
-    spec: &IvpSpec<'_>,
-    v0: &Vector3<f64>,
-    u0: &Vector3<f64>,
-    seeds: &TangentSeeds,
-    c0: usize,
-    w: usize,
-    record: bool,
+    p: &Pass<'_, '_>,
+    record: Record,
+    nodes: &mut TangentNodes,
 ) -> Result<TangentIvp> {
     type D<const N: usize> = Dual<N>;
+    let Pass {
+        spec,
+        v0,
+        u0,
+        seeds,
+        c0,
+        w,
+    } = *p;
     let robot = spec.robot;
     let body = &robot.body;
     let fz = RodRhs::new(robot, spec.tensions);
@@ -339,14 +440,19 @@ fn pass<const N: usize>(
         y[10 + k] = Dual::new(u0[k], seed(&seeds.omega0, k));
     }
     let mut st = Stages::<N>::new(n);
-    let to_node = |s: f64, y: &[D<N>]| TangentNode {
-        s,
-        state: y.iter().map(|d| d.re).collect(),
-        tangent: DMatrix::from_fn(n, w, |r, c| y[r].eps[c]),
-    };
+    let rec = record != Record::Tip;
+    let mut idx = 0;
+    // record node `idx` at `s` if asked
+    macro_rules! node {
+        ($s:expr) => {
+            if rec {
+                nodes.record(idx, $s, &y, c0, w);
+                idx += 1;
+            }
+        };
+    }
     let bps = robot.breakpoints();
     let tol = 1e-12 * len;
-    let mut nodes = Vec::new();
     let mut elongation = vec![zero; na];
     let mut active: Vec<usize> = Vec::with_capacity(na);
     for win in bps.windows(2) {
@@ -354,17 +460,15 @@ fn pass<const N: usize>(
         if a > 0.0 && anchored_at(robot, a, tol, |i| elongation[i] = y[BASE_STATES + i]) {
             fz.anchor_tangent(a, &mut y, &tau)?;
         }
-        if record {
-            nodes.push(to_node(a, &y));
-        }
+        node!(a);
         spanning(robot, a, b, tol, &mut active);
         let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
         let h = (b - a) / m as f64;
         for kk in 0..m {
             let s = a + kk as f64 * h;
             st.step(&fz, s, h, &mut y, &tau, &active)?;
-            if record && kk + 1 < m {
-                nodes.push(to_node(s + h, &y));
+            if kk + 1 < m {
+                node!(s + h);
             }
         }
     }
@@ -377,34 +481,34 @@ fn pass<const N: usize>(
             reason: "non-finite tangent".into(),
         });
     }
-    if record {
-        nodes.push(to_node(len, &y));
+    if rec {
+        nodes.record(idx, len, &y, c0, w);
     }
-    Ok(finish(&y, &elongation, &rf, &rmm, nodes, w, record))
+    let ivp_nodes = if record == Record::All && c0 == 0 {
+        nodes
+            .iter()
+            .map(|nd| (nd.s, RodState::from_slice(nd.state)))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    Ok(finish(&y, &elongation, &rf, &rmm, ivp_nodes, w))
 }
 
 /// The tangent IVP's result from the final dual state: the real parts as
-/// the IVP, the derivative parts (`w` directions) as tangents.
+/// the IVP (with its recorded nodes `ivp_nodes`), the derivative parts (`w`
+/// directions) as tangents; the tangent nodes are filled in by the caller.
 fn finish<const N: usize>(
     y: &[Dual<N>],
     elongation: &[Dual<N>],
     rf: &V3<Dual<N>>,
     rmm: &V3<Dual<N>>,
-    nodes: Vec<TangentNode>,
+    ivp_nodes: Vec<(f64, RodState)>,
     w: usize,
-    record: bool,
 ) -> TangentIvp {
     let yr: Vec<f64> = y.iter().map(|d| d.re).collect();
     let tip = RodState::from_slice(&yr);
     let tan = |v: &[Dual<N>]| DMatrix::from_fn(v.len(), w, |r, c| v[r].eps[c]);
-    let ivp_nodes = if record {
-        nodes
-            .iter()
-            .map(|nd| (nd.s, RodState::from_slice(&nd.state)))
-            .collect()
-    } else {
-        Vec::new()
-    };
     TangentIvp {
         ivp: IvpResult {
             tip,
@@ -417,6 +521,6 @@ fn finish<const N: usize>(
         elongation: tan(elongation),
         tip_force_residual: tan(rf),
         tip_moment_residual: tan(rmm),
-        nodes,
+        nodes: TangentNodes::default(),
     }
 }

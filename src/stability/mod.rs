@@ -86,7 +86,7 @@ use nalgebra::Vector3;
 
 use crate::error::{Error, Result};
 use crate::rod::Robot;
-use crate::shooting::Solution;
+use crate::shooting::{Loads, Solution};
 
 mod landing;
 mod policy;
@@ -133,18 +133,45 @@ pub struct Stability {
     pub mode: [f64; 6],
 }
 
-/// Stiffness of each actuator's law, `d tau / d delta` \[N/m\], at the solution.
-fn actuator_stiffness(robot: &Robot, sol: &Solution) -> Result<Vec<f64>> {
+/// What a verdict needs of an equilibrium: its scaled shooting unknowns
+/// (`v(0)`, `u(0) L`, `delta_i / L`), inputs, loads and RK4 grid. A
+/// [`Solution`] gives one; so does a batch row's tip solution.
+#[derive(Debug, Clone, Copy)]
+pub struct Equilibrium<'a> {
+    /// Scaled shooting unknowns (`6 + N`).
+    pub unknowns: &'a [f64],
+    /// Actuator inputs (`N`; temperature \[C\] for a TCA).
+    pub inputs: &'a [f64],
+    /// Tip loads (world frame).
+    pub loads: Loads,
+    /// RK4 steps over the body length.
+    pub steps: usize,
+}
+
+impl<'a> From<&'a Solution> for Equilibrium<'a> {
+    fn from(sol: &'a Solution) -> Self {
+        Equilibrium {
+            unknowns: &sol.unknowns,
+            inputs: &sol.inputs,
+            loads: sol.loads,
+            steps: sol.steps,
+        }
+    }
+}
+
+/// Stiffness of each actuator's law, `d tau / d delta` \[N/m\], at the
+/// equilibrium (central differences, so a kink nearby counts).
+fn actuator_stiffness(robot: &Robot, eq: &Equilibrium<'_>) -> Result<Vec<f64>> {
     let len = robot.body.length;
     robot
         .actuators
         .iter()
         .enumerate()
         .map(|(i, a)| {
-            let d = sol.elongations[i];
+            let d = eq.unknowns[6 + i] * len;
             let h = 1e-9 * len;
-            let tp = a.law.tension(d + h, sol.inputs[i])?;
-            let tm = a.law.tension(d - h, sol.inputs[i])?;
+            let tp = a.law.tension(d + h, eq.inputs[i])?;
+            let tm = a.law.tension(d - h, eq.inputs[i])?;
             Ok((tp - tm) / (2.0 * h))
         })
         .collect()
@@ -152,15 +179,15 @@ fn actuator_stiffness(robot: &Robot, sol: &Solution) -> Result<Vec<f64>> {
 
 /// Validate the arguments; true if the verdict needs the full tip stiffness
 /// (S3): an actuator whose tension depends on strain, or a blocked tip.
-fn check(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<bool> {
+fn check(robot: &Robot, eq: &Equilibrium<'_>, blocked: &[Vector3<f64>]) -> Result<bool> {
     robot.validate()?;
     let na = robot.actuators.len();
-    if sol.unknowns.len() != 6 + na || sol.inputs.len() != na {
+    if eq.unknowns.len() != 6 + na || eq.inputs.len() != na {
         return Err(Error::input(
             "solution",
             format!(
                 "solution of a robot with {} actuators, this one has {na}",
-                sol.inputs.len()
+                eq.inputs.len()
             ),
         ));
     }
@@ -172,9 +199,7 @@ fn check(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<bool
             ));
         }
     }
-    let springy = actuator_stiffness(robot, sol)?
-        .iter()
-        .any(|k| k.abs() > 0.0);
+    let springy = actuator_stiffness(robot, eq)?.iter().any(|k| k.abs() > 0.0);
     Ok(springy || !blocked.is_empty())
 }
 
@@ -183,15 +208,24 @@ fn check(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<bool
 /// `blocked`: world directions along which the tip translation is held (a
 /// blocked-tip solution's block normal); empty for a free tip.
 pub fn stability(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<Stability> {
-    let full = check(robot, sol, blocked)?;
-    let t = tangents::exact_tangents(robot, sol, full)?;
+    stability_at(robot, &Equilibrium::from(sol), blocked)
+}
+
+/// [`stability`] of an equilibrium given by its parts.
+pub fn stability_at(
+    robot: &Robot,
+    eq: &Equilibrium<'_>,
+    blocked: &[Vector3<f64>],
+) -> Result<Stability> {
+    let full = check(robot, eq, blocked)?;
+    let t = tangents::exact_tangents(robot, eq, full)?;
     Ok(verdict::verdict(&t, robot.body.length, blocked, full, 1))
 }
 
 /// [`stability`] from forward-difference tangents (`7 + N` IVPs); for
 /// cross-checks.
 pub fn stability_fd(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<Stability> {
-    let full = check(robot, sol, blocked)?;
+    let full = check(robot, &Equilibrium::from(sol), blocked)?;
     let t = tangents::fd_tangents(robot, sol)?;
     let n = 7 + robot.actuators.len();
     Ok(verdict::verdict(&t, robot.body.length, blocked, full, n))

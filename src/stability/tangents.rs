@@ -4,8 +4,9 @@
 
 use nalgebra::{DMatrix, Matrix3, Matrix6, Quaternion, Vector3, Vector6};
 
+use super::Equilibrium;
 use crate::error::Result;
-use crate::rod::{integrate_tangent, rot, IvpSpec, Robot, RodState, TangentSeeds};
+use crate::rod::{integrate_tangent, rot, IvpSpec, Record, Robot, RodState, TangentSeeds};
 use crate::shooting::{residual_scales, shoot, Loads, Solution};
 
 /// Tangents of one equilibrium: at every node the frozen-tension columns
@@ -97,7 +98,7 @@ struct Consts {
 fn column(
     c: &Consts,
     f: &NodeFrame,
-    t: nalgebra::DVectorView<'_, f64>,
+    t: &[f64],
     dtau: &DMatrix<f64>,
     j: usize,
 ) -> (Vector6<f64>, Vector6<f64>) {
@@ -133,7 +134,7 @@ fn column(
 /// the tensions and `d tau_i / d z_j` (`N x nz`).
 fn seeds(
     robot: &Robot,
-    sol: &Solution,
+    eq: &Equilibrium<'_>,
     nz: usize,
 ) -> Result<(TangentSeeds, Vec<f64>, DMatrix<f64>)> {
     let na = robot.actuators.len();
@@ -148,7 +149,7 @@ fn seeds(
     for (i, a) in robot.actuators.iter().enumerate() {
         let (t, dt_de, _) = a
             .law
-            .tension_derivatives(sol.unknowns[6 + i] * len, sol.inputs[i])?;
+            .tension_derivatives(eq.unknowns[6 + i] * len, eq.inputs[i])?;
         tau.push(t);
         if nz > 6 {
             seeds.tensions[(i, 6 + i)] = dt_de * len;
@@ -160,22 +161,26 @@ fn seeds(
 
 /// Exact tangents from one recorded tangent IVP along the six base strains
 /// and, if `actuators`, the `N` actuator elongation guesses too.
-pub(super) fn exact_tangents(robot: &Robot, sol: &Solution, actuators: bool) -> Result<Tangents> {
+pub(super) fn exact_tangents(
+    robot: &Robot,
+    eq: &Equilibrium<'_>,
+    actuators: bool,
+) -> Result<Tangents> {
     let na = robot.actuators.len();
     let nz = if actuators { 6 + na } else { 6 };
     let len = robot.body.length;
-    let x = &sol.unknowns;
-    let (seeds, tau, dtau) = seeds(robot, sol, nz)?;
+    let x = eq.unknowns;
+    let (seeds, tau, dtau) = seeds(robot, eq, nz)?;
     let spec = IvpSpec {
         robot,
         tensions: &tau,
-        tip_force: sol.loads.tip_force,
-        tip_moment: sol.loads.tip_moment,
-        steps: sol.steps,
+        tip_force: eq.loads.tip_force,
+        tip_moment: eq.loads.tip_moment,
+        steps: eq.steps,
     };
     let v0 = Vector3::new(x[0], x[1], x[2]);
     let u0 = Vector3::new(x[3], x[4], x[5]) / len;
-    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, true)?;
+    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, Record::Tangents)?;
     let (fs, ms) = residual_scales(robot);
     let (kse, kbt) = robot.body.stiffness();
     let c = Consts {
@@ -195,12 +200,13 @@ pub(super) fn exact_tangents(robot: &Robot, sol: &Solution, actuators: bool) -> 
         e: DMatrix::zeros(na, if actuators { nz } else { 0 }),
     };
     let mut strings = Vec::with_capacity(na);
+    let ns = robot.n_states();
     for (n, node) in tan.nodes.iter().enumerate() {
-        let f = frame(robot, &c, &tau, node.s, &node.state, strings);
+        let f = frame(robot, &c, &tau, node.s, node.state, strings);
         let (mut y, mut h) = (Matrix6::zeros(), Matrix6::zeros());
         let tip = n + 1 == k;
         for j in 0..if tip { nz } else { 6 } {
-            let (dy, dh) = column(&c, &f, node.tangent.column(j), &dtau, j);
+            let (dy, dh) = column(&c, &f, &node.tangent[j * ns..(j + 1) * ns], &dtau, j);
             if j < 6 {
                 y.set_column(j, &dy);
                 h.set_column(j, &dh);

@@ -2,7 +2,7 @@
 //! (determinant (S1), Dirichlet test, positive definiteness of (S2)) and the
 //! margin at the tip ((S2), or (S3) restricted to the free directions).
 
-use nalgebra::{DMatrix, DVector, SymmetricEigen, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix6, SymmetricEigen, Vector3};
 
 use super::tangents::Tangents;
 use super::{Stability, NEUTRAL};
@@ -26,12 +26,82 @@ struct Scan {
     dirichlet: Option<f64>,
 }
 
+/// A 6 x 6 matrix as rows on the stack.
+type M6 = [[f64; 6]; 6];
+
+fn rows(m: &Matrix6<f64>) -> M6 {
+    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+}
+
+/// Determinant by Gaussian elimination with partial pivoting (as an LU
+/// factorisation, on the stack).
+fn det6(mut a: M6) -> f64 {
+    let mut det = 1.0;
+    for k in 0..6 {
+        let mut p = k;
+        for i in k + 1..6 {
+            if a[i][k].abs() > a[p][k].abs() {
+                p = i;
+            }
+        }
+        if a[p][k] == 0.0 {
+            return 0.0;
+        }
+        if p != k {
+            a.swap(p, k);
+            det = -det;
+        }
+        det *= a[k][k];
+        let inv = 1.0 / a[k][k];
+        let (top, rest) = a.split_at_mut(k + 1);
+        let pivot = &top[k];
+        for row in rest {
+            let f = row[k] * inv;
+            for j in k + 1..6 {
+                row[j] -= f * pivot[j];
+            }
+        }
+    }
+    det
+}
+
+/// True if `sym(H^T Y) + NEUTRAL H^T H` is positive definite (Cholesky,
+/// stopped at the first non-positive pivot); with `H` invertible this is
+/// `sym(K) + NEUTRAL I` for `K = Y H^-1` (S2), by congruence: no inverse needed.
+fn positive_definite(h: &M6, y: &M6) -> bool {
+    let mut a = [[0.0; 6]; 6];
+    for i in 0..6 {
+        for j in 0..=i {
+            let (mut hty, mut ytj, mut hth) = (0.0, 0.0, 0.0);
+            for k in 0..6 {
+                hty += h[k][i] * y[k][j];
+                ytj += y[k][i] * h[k][j];
+                hth += h[k][i] * h[k][j];
+            }
+            a[i][j] = 0.5 * (hty + ytj) + NEUTRAL * hth;
+        }
+    }
+    for j in 0..6 {
+        let d = a[j][j] - a[j][..j].iter().map(|x| x * x).sum::<f64>();
+        if !(d > 0.0) {
+            return false;
+        }
+        let l = d.sqrt();
+        a[j][j] = l;
+        for i in j + 1..6 {
+            let x: f64 = a[i][..j].iter().zip(&a[j][..j]).map(|(p, q)| p * q).sum();
+            a[i][j] = (a[i][j] - x) / l;
+        }
+    }
+    true
+}
+
 /// (S1) normalised at the base, the Dirichlet test (if `dirichlet`) and a
-/// Cholesky test of the symmetric part of (S2) at every node (fixed-size
-/// 6 x 6 algebra).
+/// Cholesky test of the symmetric part of (S2) at every node (6 x 6
+/// algebra on the stack).
 fn scan(t: &Tangents, dirichlet: bool) -> Scan {
     let nodes = t.s.len();
-    let det0 = t.y.first().map_or(0.0, |y| y.determinant());
+    let det0 = t.y.first().map_or(0.0, |y| det6(rows(y)));
     let mut out = Scan {
         determinant: Vec::with_capacity(nodes),
         min_stiffness: Vec::with_capacity(nodes),
@@ -40,9 +110,10 @@ fn scan(t: &Tangents, dirichlet: bool) -> Scan {
     };
     let mut hdet_sign = 0.0;
     for (k, &sk) in t.s.iter().enumerate() {
+        let y = rows(&t.y[k]);
         // det(Y(s) Y(0)^-1) = det Y(s) / det Y(0)
         out.determinant.push(if det0 != 0.0 {
-            t.y[k].determinant() / det0
+            det6(y) / det0
         } else {
             f64::NAN
         });
@@ -50,21 +121,16 @@ fn scan(t: &Tangents, dirichlet: bool) -> Scan {
             out.min_stiffness.push(f64::INFINITY);
             continue;
         }
-        let h = &t.h[k];
+        let h = rows(&t.h[k]);
         if dirichlet {
-            let hd = h.determinant();
+            let hd = det6(h);
             if hdet_sign == 0.0 {
                 hdet_sign = hd.signum();
             } else if out.dirichlet.is_none() && hd * hdet_sign <= 0.0 {
                 out.dirichlet = Some(sk);
             }
         }
-        // sym(K) + NEUTRAL I is positive definite iff its congruent
-        // H^T (sym(K) + NEUTRAL I) H = sym(H^T Y) + NEUTRAL H^T H is (H
-        // invertible): no inverse needed
-        let hty = h.transpose() * t.y[k];
-        let a = (hty + hty.transpose()) * 0.5 + h.transpose() * h * NEUTRAL;
-        let pd = a.cholesky().is_some();
+        let pd = positive_definite(&h, &y);
         if out.conjugate.is_none() && !pd {
             out.conjugate = Some(sk);
         }

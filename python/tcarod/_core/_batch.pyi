@@ -1,5 +1,7 @@
 """Batch solves and bench timings of ``tcarod._core`` (src/python/batch.rs)."""
 
+from typing import Literal
+
 import numpy as np
 import numpy.typing as npt
 
@@ -19,10 +21,23 @@ def solve_batch(
     chunk_size: int = 256,
     threads: int = 0,
     warm: bool = True,
-) -> tuple[_FloatArray, _FloatArray, _FloatArray, npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.bool_]]:
+    stability: Literal["report", "off"] = "report",
+) -> tuple[
+    _FloatArray,
+    _FloatArray,
+    _FloatArray,
+    npt.NDArray[np.int64],
+    npt.NDArray[np.int64],
+    npt.NDArray[np.bool_],
+    npt.NDArray[np.bool_] | None,
+    _FloatArray | None,
+]:
     """Solve every row of ``inputs`` ``(n, n_actuators)`` in parallel; returns
     ``(tip_positions (n, 3) [m], tip_rotations (n, 3, 3), tensions (n, n_actuators) [N],
-    iterations, evaluations, converged)``."""
+    iterations, evaluations, converged, stable, margin)``. ``stability="report"``
+    gives each converged row its verdict: ``stable`` ``(n,)`` and ``margin``
+    ``(n,)`` [-] (> 0 iff stable; NaN where there is none), one tangent
+    integration per row; ``"off"`` skips it and returns ``None`` for both."""
 
 def default_threads() -> int:
     """Worker threads ``solve_batch`` uses for ``threads=0``."""

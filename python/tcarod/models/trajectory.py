@@ -60,7 +60,8 @@ def quasi_static_trajectory(
 ) -> ShapeTrajectory:
     """Temperatures from each actuator's voltage profile, then the quasi-static
     shape at every time (heating takes seconds, the body settles in far less),
-    each solve warm-started from the previous one.
+    each solve warm-started from the previous one, without the stability
+    verdict (``stability="off"``; ``Solution.stable`` computes it on demand).
 
     With constant or temperature-dependent resistance the temperature
     trajectories are computed first (:meth:`ThermalModel.transient`). If a
@@ -116,7 +117,8 @@ def quasi_static_trajectory(
                 if s0 > m.t_max_c:
                     raise ValueError(f"the temperature exceeds t_max at t = {t[k]:.3f} s: lower the voltage")
             temps[k] = state
-        sol = robot.solve([float(x) for x in temps[k]], steps=steps, warm_start=sols[-1] if sols else None)
+        warm = sols[-1] if sols else None
+        sol = robot.solve([float(x) for x in temps[k]], steps=steps, warm_start=warm, stability="off")
         sols.append(sol)
         tips[k] = np.asarray(sol.tip_position, dtype=np.float64)
     return ShapeTrajectory(t, temps, tips, sols)

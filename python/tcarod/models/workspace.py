@@ -60,17 +60,18 @@ def solve_rows(robot: Any, inputs: FloatArray, steps: int = 100) -> list[Any | N
         raise ValueError(f"invalid inputs: {arr.shape[0]} rows, at most {V.MAX_GRID_POINTS} allowed")
     rows = [list(map(float, r)) for r in arr]
     try:
-        return list(robot.sweep(rows, steps=steps))
+        # tip positions only: no stability verdict (it would double the cost)
+        return list(robot.sweep(rows, steps=steps, stability="off"))
     except (ValueError, ConvergenceError):
         pass
     out: list[Any | None] = []
     warm = None
     for r in rows:
         try:
-            sol = robot.solve(r, steps=steps, warm_start=warm)
+            sol = robot.solve(r, steps=steps, warm_start=warm, stability="off")
         except ConvergenceError:
             try:
-                sol = robot.solve(r, steps=steps)
+                sol = robot.solve(r, steps=steps, stability="off")
             except ConvergenceError:
                 out.append(None)
                 continue

@@ -37,6 +37,19 @@ pub struct PyBranch {
     evaluations: usize,
 }
 
+impl PyBranch {
+    /// Parameters of the located events of `kind`, shape `(j,)`.
+    fn events_of<'py>(&self, py: Python<'py>, kind: &str) -> Bound<'py, PyArray1<f64>> {
+        let p: Vec<f64> = self
+            .events
+            .iter()
+            .filter(|e| e.0 == kind)
+            .map(|e| e.1)
+            .collect();
+        arr1(py, &p)
+    }
+}
+
 #[pymethods]
 impl PyBranch {
     /// Parameter value of each point, shape `(k,)`.
@@ -76,28 +89,12 @@ impl PyBranch {
     /// Parameters of the located folds, shape `(j,)`.
     #[getter]
     fn folds<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arr1(
-            py,
-            &self
-                .events
-                .iter()
-                .filter(|e| e.0 == "fold")
-                .map(|e| e.1)
-                .collect::<Vec<_>>(),
-        )
+        self.events_of(py, "fold")
     }
     /// Parameters of the located bifurcations, shape `(j,)`.
     #[getter]
     fn bifurcations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arr1(
-            py,
-            &self
-                .events
-                .iter()
-                .filter(|e| e.0 == "bifurcation")
-                .map(|e| e.1)
-                .collect::<Vec<_>>(),
-        )
+        self.events_of(py, "bifurcation")
     }
     /// Jumps of a stable sweep: `(parameter, before, after)` solutions.
     #[getter]
