@@ -325,3 +325,67 @@ fn exact_sensitivities_match_differences() {
         );
     }
 }
+
+/// The grasp temperature of the Table I finger by the direct augmented
+/// Newton solve and by the paper's eq-43 increments.
+#[test]
+fn direct_grasp_agrees_with_the_incremental_method() {
+    use tcarod::experiments::{
+        table1_finger, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL,
+    };
+    use tcarod::stability::Policy;
+    let finger = table1_finger();
+    let groups = Groups(vec![0, 0]);
+    let o = SolveOptions::default();
+    for (m, contact) in [
+        (TABLE1_MASSES[0], None),
+        (TABLE1_MASSES[2], Some(vec![72.0, 72.0])),
+    ] {
+        let spec = Grasp {
+            normal: Vector3::from(TABLE1_NORMAL),
+            mass: m,
+            mu: TABLE1_MU,
+            fingers: TABLE1_FINGERS,
+            gravity: G0,
+            contact,
+            stability: Policy::Off,
+        };
+        let t = std::time::Instant::now();
+        let (inc, p_inc) = spec
+            .solve(&finger, &groups, GraspMethod::Incremental(8), &o)
+            .unwrap();
+        let ti = t.elapsed();
+        let t = std::time::Instant::now();
+        let (dir, p_dir) = spec
+            .solve(&finger, &groups, GraspMethod::Direct, &o)
+            .unwrap();
+        let td = t.elapsed();
+        println!(
+            "m {m}: inc {} C {} IVPs {:?}; direct {} C {} IVPs {} it {:?}; diff {:e}",
+            inc.variables[0],
+            inc.evaluations,
+            ti,
+            dir.variables[0],
+            dir.evaluations,
+            dir.iterations,
+            td,
+            inc.variables[0] - dir.variables[0]
+        );
+        assert_eq!(p_inc, p_dir);
+    }
+}
+#[test]
+fn dbg_grasp() {
+    use tcarod::experiments::{table1_finger, TABLE1_NORMAL};
+    let finger = table1_finger();
+    let groups = Groups(vec![0, 0]);
+    let o = SolveOptions::default();
+    let start = solve(&finger, &finger.reference_inputs(), &o, None).unwrap();
+    eprintln!("start evals {} it {}", start.evaluations, start.iterations);
+    let block = Block::new(start.tip_position(), Vector3::from(TABLE1_NORMAL))
+        .unwrap()
+        .with_stability(tcarod::stability::Policy::Off)
+        .unwrap();
+    let r = blocked_variable_from(&finger, &groups, &block, &start, 1e-3 * G0 / 2.2, &o).unwrap();
+    eprintln!("evals {} it {}", r.evaluations, r.iterations);
+}

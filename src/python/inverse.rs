@@ -178,15 +178,18 @@ fn tip_inverse(
     })
 }
 
-/// The Python result; its solution carries the stability verdict with the
-/// tip held along `normal` (issue 16: one tangent IVP, an unstable one warns).
+/// The Python result; its solution carries the core's stability verdict
+/// with the tip held along the block normal (issue 16: an unstable one warns).
 fn blocked(
     py: Python<'_>,
     robot: &Bound<'_, PyRobot>,
     b: BlockedResult,
-    normal: nalgebra::Vector3<f64>,
+    normal: Vector3<f64>,
 ) -> PyResult<PyBlockedResult> {
-    let solution = super::stability::blocked_verdict(py, robot, b.solution, normal)?;
+    let solution = match b.stability {
+        Some(st) => super::stability::blocked_verdict(py, robot, b.solution, normal, st)?,
+        None => PySolution::new(b.solution, robot.clone().unbind()),
+    };
     Ok(PyBlockedResult {
         solution: Py::new(py, solution)?,
         force: b.force,
@@ -194,6 +197,38 @@ fn blocked(
         iterations: b.iterations,
         evaluations: b.evaluations,
     })
+}
+
+/// What every blocked-tip binding reads: the robot's groups and the solve
+/// options; the block from `point` [m] and `normal` when given.
+struct BlockedArgs {
+    robot: crate::rod::Robot,
+    groups: Groups,
+    opts: crate::shooting::SolveOptions,
+}
+
+impl BlockedArgs {
+    fn read(
+        robot: &PyRobot,
+        groups: Option<&Bound<'_, PyAny>>,
+        steps: Option<&Bound<'_, PyAny>>,
+        tol: Real,
+        max_iter: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        Ok(BlockedArgs {
+            groups: groups_for(robot, groups)?,
+            opts: solve_options(steps, tol, max_iter)?,
+            robot: robot.inner.clone(),
+        })
+    }
+}
+
+/// The plane through `point` [m] with unit `normal`.
+fn block_arg(point: &Bound<'_, PyAny>, normal: &Bound<'_, PyAny>) -> PyResult<Block> {
+    Ok(Block::new(
+        vec3("point [m]", point)?,
+        vec3("normal", normal)?,
+    )?)
 }
 
 /// Contact force [N] with the tip held on the plane through `point` [m] with
@@ -215,25 +250,22 @@ fn blocked_force(
     max_iter: Option<Bound<'_, PyAny>>,
     warm_start: Option<PyRef<'_, PyBlockedResult>>,
 ) -> PyResult<PyBlockedResult> {
-    let r = robot.get();
-    let g = groups_for(r, groups.as_ref())?;
-    let block = Block::new(vec3("point [m]", &point)?, vec3("normal", &normal)?)?;
-    let variables = reals("variables", &variables, Some(g.n_vars()))?;
-    let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+    let a = BlockedArgs::read(
+        robot.get(),
+        groups.as_ref(),
+        steps.as_ref(),
+        tol,
+        max_iter.as_ref(),
+    )?;
+    let block = block_arg(&point, &normal)?;
+    let variables = reals("variables", &variables, Some(a.groups.n_vars()))?;
     if let Some(w) = &warm_start {
-        same_robot(py, r, w.solution.bind(py).get(), "warm_start")?;
+        same_robot(py, robot.get(), w.solution.bind(py).get(), "warm_start")?;
     }
     let warm = warm_start.map(|w| (w.solution.bind(py).get().inner.clone(), w.force));
-    let rr = r.inner.clone();
     let res = super::errors::detach_interruptible(py, || {
-        inverse::blocked_force(
-            &rr,
-            &g,
-            &block,
-            &variables,
-            &opts,
-            warm.as_ref().map(|(s, f)| (s, *f)),
-        )
+        let w = warm.as_ref().map(|(s, f)| (s, *f));
+        inverse::blocked_force(&a.robot, &a.groups, &block, &variables, &a.opts, w)
     })?;
     blocked(py, robot, res, block.normal)
 }
@@ -259,16 +291,20 @@ fn blocked_temperature(
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<PyBlockedResult> {
-    let r = robot.get();
-    let g = groups_for(r, groups.as_ref())?;
-    same_robot(py, r, &start, "start")?;
-    let block = Block::new(vec3("point [m]", &point)?, vec3("normal", &normal)?)?;
+    let a = BlockedArgs::read(
+        robot.get(),
+        groups.as_ref(),
+        steps.as_ref(),
+        tol,
+        max_iter.as_ref(),
+    )?;
+    same_robot(py, robot.get(), &start, "start")?;
+    let block = block_arg(&point, &normal)?;
     let increments = count_or("increments", increments.as_ref(), 10, 1, MAX_INCREMENTS)?;
-    let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
     let st = start.inner.clone();
-    let rr = r.inner.clone();
     let res = super::errors::detach_interruptible(py, || {
-        inverse::blocked_temperature(&rr, &g, &block, &st, force.0, increments, &opts)
+        let (r, g) = (&a.robot, &a.groups);
+        inverse::blocked_temperature(r, g, &block, &st, force.0, increments, &a.opts)
     })?;
     blocked(py, robot, res, block.normal)
 }
@@ -292,13 +328,17 @@ fn blocked_temperature_direct(
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<PyBlockedResult> {
-    let r = robot.get();
-    let g = groups_for(r, groups.as_ref())?;
-    let block = Block::new(vec3("point [m]", &point)?, vec3("normal", &normal)?)?;
-    let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
-    let rr = r.inner.clone();
+    let a = BlockedArgs::read(
+        robot.get(),
+        groups.as_ref(),
+        steps.as_ref(),
+        tol,
+        max_iter.as_ref(),
+    )?;
+    let block = block_arg(&point, &normal)?;
     let res = super::errors::detach_interruptible(py, || {
-        inverse::blocked_variable_direct(&rr, &g, &block, force.0, guess.0, &opts, None)
+        let (r, g) = (&a.robot, &a.groups);
+        inverse::blocked_variable_direct(r, g, &block, force.0, guess.0, &a.opts, None)
     })?;
     blocked(py, robot, res, block.normal)
 }
@@ -308,9 +348,10 @@ fn blocked_temperature_direct(
 /// a mass `mass` [kg] under `gravity` [m/s^2], `mu n F(T) = m g`, each
 /// finger's tip blocked where it rests at the `contact` inputs (default: the
 /// reference inputs) and pressing along `normal`. `method`: `"incremental"`
-/// (eq 43 in `increments` steps, 1 to 10,000) or `"direct"` (the variable as
-/// a shooting unknown). Returns `(blocked result of one finger, block point
-/// [m])`; the result's `force` [N] is `m g / (mu n)`.
+/// (eq 43 in `increments` steps, 1 to 10,000) or `"direct"` (one augmented
+/// Newton solve: the variable an extra shooting unknown, from an eq-43
+/// predictor). Returns `(blocked result of one finger, block point [m])`;
+/// the result's `force` [N] is `m g / (mu n)`.
 #[pyfunction]
 #[pyo3(signature = (robot, normal, mass, mu, fingers, *, gravity=Real(crate::experiments::G0), groups=None,
     contact=None, method="incremental", increments=None, steps=None, tol=Real(1e-10), max_iter=None),
@@ -333,9 +374,14 @@ fn grasp_temperature(
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<(PyBlockedResult, [f64; 3])> {
-    let r = robot.get();
-    let g = groups_for(r, groups.as_ref())?;
-    let na = r.inner.actuators.len();
+    let a = BlockedArgs::read(
+        robot.get(),
+        groups.as_ref(),
+        steps.as_ref(),
+        tol,
+        max_iter.as_ref(),
+    )?;
+    let na = a.robot.actuators.len();
     let spec = inverse::Grasp {
         normal: vec3("normal", &normal)?,
         mass: mass.0,
@@ -345,6 +391,7 @@ fn grasp_temperature(
         contact: contact
             .map(|c| super::reals("contact", &c, Some(na)))
             .transpose()?,
+        stability: crate::stability::Policy::Report,
     };
     let method = match method {
         "incremental" => inverse::GraspMethod::Incremental(count_or(
@@ -363,10 +410,9 @@ fn grasp_temperature(
             .into())
         }
     };
-    let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
-    let rr = r.inner.clone();
-    let (res, point) =
-        super::errors::detach_interruptible(py, || spec.solve(&rr, &g, method, &opts))?;
+    let (res, point) = super::errors::detach_interruptible(py, || {
+        spec.solve(&a.robot, &a.groups, method, &a.opts)
+    })?;
     Ok((
         blocked(py, robot, res, spec.normal)?,
         [point.x, point.y, point.z],
