@@ -242,9 +242,9 @@ fn augmented(sys: &Mixed<'_>, x: &[f64], steps: usize) -> Result<Augmented> {
     let scale = sys.scale();
     match &sys.extra {
         Extra::Variable { .. } => {
-            for i in 0..na {
+            for (i, dt_dq) in per_variable.iter().enumerate() {
                 jac.column_mut(nx)
-                    .axpy(per_variable[i] * scale, &raw.column(6 + i), 1.0);
+                    .axpy(dt_dq * scale, &raw.column(6 + i), 1.0);
             }
         }
         Extra::Force { .. } => {
@@ -343,4 +343,69 @@ pub(crate) fn predictor(
         x[nx] = z / scale;
     }
     Ok((x, t.jacobian))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiments::square_manipulator;
+    use crate::shooting::{solve, SolveOptions};
+
+    /// The exact augmented Jacobian (full grid) against central differences
+    /// of the augmented residual, for both extra unknowns, away from a root.
+    #[test]
+    fn augmented_jacobian_matches_central_differences() {
+        let robot = square_manipulator(0.026, true);
+        let groups = Groups(vec![0, 0]);
+        let start = solve(&robot, &[55.0, 55.0], &SolveOptions::default(), None).unwrap();
+        let block = Block::new(start.tip_position(), Vector3::new(-1.0, 0.0, 0.0)).unwrap();
+        let extras = [
+            (
+                Extra::Force {
+                    inputs: vec![90.0, 90.0],
+                },
+                0.4,
+            ),
+            (
+                Extra::Variable {
+                    force: 0.02,
+                    scale: 135.0,
+                },
+                0.6,
+            ),
+        ];
+        for (extra, e) in extras {
+            let mut sys = Mixed::new(&robot, &groups, &block, extra, 100);
+            assert!(sys.refine()); // the full grid's Jacobian
+            let mut x = start.unknowns.clone();
+            x.push(e);
+            x[3] *= 1.1; // off the root: all terms of the tangent count
+            let (r, jac) = sys.residual_and_jacobian(&x).unwrap();
+            let r0 = sys.residual(&x).unwrap();
+            // the tangent IVP's real part is the plain IVP (to rounding: the
+            // generic and the f64 right-hand sides round differently)
+            for (a, b) in r.iter().zip(&r0) {
+                assert!((a - b).abs() < 1e-12 * b.abs().max(1.0), "{a} vs {b}");
+            }
+            for c in 0..x.len() {
+                // step eps^(1/3) of an O(1) unknown: truncation and rounding
+                // ~1e-10 of the column; a wrong tangent term is O(1) wrong
+                let h = 6e-6 * x[c].abs().max(1e-2);
+                let (mut xp, mut xm) = (x.clone(), x.clone());
+                xp[c] += h;
+                xm[c] -= h;
+                let (rp, rm) = (sys.residual(&xp).unwrap(), sys.residual(&xm).unwrap());
+                let col: Vec<f64> = rp
+                    .iter()
+                    .zip(&rm)
+                    .map(|(a, b)| (a - b) / (2.0 * h))
+                    .collect();
+                let size = col.iter().fold(1e-3_f64, |m, v| m.max(v.abs()));
+                for (i, fd) in col.iter().enumerate() {
+                    let err = (jac[(i, c)] - fd).abs() / size;
+                    assert!(err < 1e-6, "column {c} row {i}: {} vs {fd}", jac[(i, c)]);
+                }
+            }
+        }
+    }
 }

@@ -202,33 +202,35 @@ fn blocked(
 /// What every blocked-tip binding reads: the robot's groups and the solve
 /// options; the block from `point` [m] and `normal` when given.
 struct BlockedArgs {
-    robot: crate::rod::Robot,
+    robot: std::sync::Arc<crate::rod::Robot>,
     groups: Groups,
     opts: crate::shooting::SolveOptions,
 }
 
+/// The optional arguments `groups`, `steps`, `max_iter` of a blocked-tip binding.
+type Optional<'py> = [Option<Bound<'py, PyAny>>; 3];
+
 impl BlockedArgs {
-    fn read(
-        robot: &PyRobot,
-        groups: Option<&Bound<'_, PyAny>>,
-        steps: Option<&Bound<'_, PyAny>>,
-        tol: Real,
-        max_iter: Option<&Bound<'_, PyAny>>,
-    ) -> PyResult<Self> {
+    /// Groups and solve options (`[groups, steps, max_iter]` and `tol`).
+    fn read_options(robot: &PyRobot, optional: Optional<'_>, tol: Real) -> PyResult<Self> {
+        let [groups, steps, max_iter] = optional;
         Ok(BlockedArgs {
-            groups: groups_for(robot, groups)?,
-            opts: solve_options(steps, tol, max_iter)?,
+            groups: groups_for(robot, groups.as_ref())?,
+            opts: solve_options(steps.as_ref(), tol, max_iter.as_ref())?,
             robot: robot.inner.clone(),
         })
     }
-}
-
-/// The plane through `point` [m] with unit `normal`.
-fn block_arg(point: &Bound<'_, PyAny>, normal: &Bound<'_, PyAny>) -> PyResult<Block> {
-    Ok(Block::new(
-        vec3("point [m]", point)?,
-        vec3("normal", normal)?,
-    )?)
+    /// [`BlockedArgs::read_options`] and the plane through `point` [m] with unit `normal`.
+    fn read(
+        robot: &PyRobot,
+        (point, normal): (&Bound<'_, PyAny>, &Bound<'_, PyAny>),
+        optional: Optional<'_>,
+        tol: Real,
+    ) -> PyResult<(Self, Block)> {
+        let a = Self::read_options(robot, optional, tol)?;
+        let block = Block::new(vec3("point [m]", point)?, vec3("normal", normal)?)?;
+        Ok((a, block))
+    }
 }
 
 /// Contact force [N] with the tip held on the plane through `point` [m] with
@@ -250,14 +252,12 @@ fn blocked_force(
     max_iter: Option<Bound<'_, PyAny>>,
     warm_start: Option<PyRef<'_, PyBlockedResult>>,
 ) -> PyResult<PyBlockedResult> {
-    let a = BlockedArgs::read(
+    let (a, block) = BlockedArgs::read(
         robot.get(),
-        groups.as_ref(),
-        steps.as_ref(),
+        (&point, &normal),
+        [groups, steps, max_iter],
         tol,
-        max_iter.as_ref(),
     )?;
-    let block = block_arg(&point, &normal)?;
     let variables = reals("variables", &variables, Some(a.groups.n_vars()))?;
     if let Some(w) = &warm_start {
         same_robot(py, robot.get(), w.solution.bind(py).get(), "warm_start")?;
@@ -291,15 +291,13 @@ fn blocked_temperature(
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<PyBlockedResult> {
-    let a = BlockedArgs::read(
+    let (a, block) = BlockedArgs::read(
         robot.get(),
-        groups.as_ref(),
-        steps.as_ref(),
+        (&point, &normal),
+        [groups, steps, max_iter],
         tol,
-        max_iter.as_ref(),
     )?;
     same_robot(py, robot.get(), &start, "start")?;
-    let block = block_arg(&point, &normal)?;
     let increments = count_or("increments", increments.as_ref(), 10, 1, MAX_INCREMENTS)?;
     let st = start.inner.clone();
     let res = super::errors::detach_interruptible(py, || {
@@ -328,14 +326,12 @@ fn blocked_temperature_direct(
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<PyBlockedResult> {
-    let a = BlockedArgs::read(
+    let (a, block) = BlockedArgs::read(
         robot.get(),
-        groups.as_ref(),
-        steps.as_ref(),
+        (&point, &normal),
+        [groups, steps, max_iter],
         tol,
-        max_iter.as_ref(),
     )?;
-    let block = block_arg(&point, &normal)?;
     let res = super::errors::detach_interruptible(py, || {
         let (r, g) = (&a.robot, &a.groups);
         inverse::blocked_variable_direct(r, g, &block, force.0, guess.0, &a.opts, None)
@@ -374,13 +370,7 @@ fn grasp_temperature(
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<(PyBlockedResult, [f64; 3])> {
-    let a = BlockedArgs::read(
-        robot.get(),
-        groups.as_ref(),
-        steps.as_ref(),
-        tol,
-        max_iter.as_ref(),
-    )?;
+    let a = BlockedArgs::read_options(robot.get(), [groups, steps, max_iter], tol)?;
     let na = a.robot.actuators.len();
     let spec = inverse::Grasp {
         normal: vec3("normal", &normal)?,
