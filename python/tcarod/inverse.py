@@ -14,6 +14,10 @@
   temperature for a wanted ``f`` by the paper's incremental method, eq (43)
   with ``dx = 0``; :func:`blocked_temperature_direct` solves the same
   equations directly (the temperature is a shooting unknown) as a check.
+  Each result's ``solution`` carries the core's stability verdict of the
+  equilibrium with the tip held along ``normal`` (``solution.stable``,
+  ``solution.stability_margin``); an unstable one raises
+  :class:`tcarod.UnstableEquilibriumWarning`.
 
 Conventions: world frame with the base at the origin and the reference
 tangent along ``+z``; tip poses ``[dp (m); dtheta (rad)]``, tip wrenches
@@ -26,7 +30,7 @@ actuator. Argument errors raise ``ValueError``; a failed solve raises
 
 from __future__ import annotations
 
-from typing import Literal, Optional, Sequence, Union
+from typing import Any, Literal, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -80,6 +84,16 @@ def _groups(groups: Sequence[int] | None) -> Optional[list[int]]:
             raise ValueError(f"groups: invalid groups entry {g}: allowed 0 <= groups[i] < number of actuators")
         out.append(int(g))
     return out
+
+
+def _plane(point: Vector, normal: Vector) -> tuple[list[float], list[float]]:
+    """The blocking plane's ``point`` [m] and ``normal`` as lists of 3 floats."""
+    return _vector("point [m]", point, 3), _vector("normal", normal, 3)
+
+
+def _solver(groups: Sequence[int] | None, steps: int, tol: float, max_iter: int) -> dict[str, Any]:
+    """The keyword arguments every blocked-tip solve passes to the core."""
+    return {"groups": _groups(groups), "steps": steps, "tol": tol, "max_iter": max_iter}
 
 
 def jacobian_and_compliance(
@@ -184,17 +198,9 @@ def blocked_force(
     the plane; whether contact holds is the caller's decision. ``warm_start``:
     a nearby :class:`BlockedResult` (e.g. the previous temperature of a sweep).
     """
-    return _core.blocked_force(
-        robot,
-        _vector("point [m]", point, 3),
-        _vector("normal", normal, 3),
-        _vector("variables", variables),
-        groups=_groups(groups),
-        steps=steps,
-        tol=tol,
-        max_iter=max_iter,
-        warm_start=warm_start,
-    )
+    variables_ = _vector("variables", variables)
+    solver = _solver(groups, steps, tol, max_iter)
+    return _core.blocked_force(robot, *_plane(point, normal), variables_, warm_start=warm_start, **solver)
 
 
 def blocked_temperature(
@@ -216,8 +222,8 @@ def blocked_temperature(
     From ``start``, a solution whose tip touches the plane with no force
     (default: the free solution at the reference inputs, whose tip must then
     lie on the plane), the contact force rises to ``force`` in ``increments``
-    steps; each step is ``dq = -(n^T J)^-1 n^T C dW`` with ``J`` and ``C`` from
-    finite differences of IVPs, then one BVP solve and a position correction
+    steps; each step is ``dq = -(n^T J)^-1 n^T C dW`` with ``J`` and ``C``
+    exact (one tangent IVP), then one BVP solve and a position correction
     that keeps the tip on the plane. Needs exactly one actuation variable
     (e.g. ``groups=[0, 0]`` for a U-shaped TCA). Raises ``ValueError`` if the
     force needs a temperature outside the material's range.
@@ -225,18 +231,8 @@ def blocked_temperature(
     V.instance("robot", robot, Robot, "a tcarod.Robot")
     if start is None:
         start = robot.solve(robot.reference_inputs, steps=steps, tol=tol, max_iter=max_iter)
-    return _core.blocked_temperature(
-        robot,
-        _vector("point [m]", point, 3),
-        _vector("normal", normal, 3),
-        force,
-        start,
-        groups=_groups(groups),
-        increments=increments,
-        steps=steps,
-        tol=tol,
-        max_iter=max_iter,
-    )
+    solver = _solver(groups, steps, tol, max_iter)
+    return _core.blocked_temperature(robot, *_plane(point, normal), force, start, increments=increments, **solver)
 
 
 def blocked_temperature_direct(
@@ -253,7 +249,8 @@ def blocked_temperature_direct(
 ) -> BlockedResult:
     """The same unknown as :func:`blocked_temperature`, solved directly: the
     single actuation variable is an extra shooting unknown of the mixed
-    boundary-value problem with the contact ``force`` [N] given.
+    boundary-value problem with the contact ``force`` [N] given (Newton
+    with the exact Jacobian of the augmented system).
 
     ``guess``: starting temperature [C] (default: the midpoint of the first
     actuator's input range). Newton from a poor guess may fail with
@@ -264,13 +261,5 @@ def blocked_temperature_direct(
         lo, hi = robot.actuators[0].input_bounds
         guess = 0.5 * (lo + hi)
     return _core.blocked_temperature_direct(
-        robot,
-        _vector("point [m]", point, 3),
-        _vector("normal", normal, 3),
-        force,
-        guess,
-        groups=_groups(groups),
-        steps=steps,
-        tol=tol,
-        max_iter=max_iter,
+        robot, *_plane(point, normal), force, guess, **_solver(groups, steps, tol, max_iter)
     )

@@ -1,15 +1,15 @@
 //! A blocked tip (mixed boundary conditions) and the paper's incremental
 //! method (eq 43).
 
-use nalgebra::Vector3;
+use nalgebra::{DMatrix, Vector3};
 
+use super::mixed::{predictor, Extra, Mixed};
 use super::{exact_blocks, load_scales, ExactBlocks, Groups, Sensitivities};
 use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
-use crate::shooting::{
-    assemble, initial_guess, shoot, solve_loaded, Loads, Solution, SolveOptions,
-};
-use crate::solve::{newton, FnSystem};
+use crate::shooting::{assemble, initial_guess, solve_loaded, Loads, Solution, SolveOptions};
+use crate::solve::newton::newton_from;
+use crate::stability::{stability, unstable_error, Policy, Stability};
 
 /// A blocked tip: the tip's displacement along `normal` (unit, world) is held
 /// at `point`; the environment pushes on the tip with force `-f normal`,
@@ -20,10 +20,15 @@ pub struct Block {
     pub point: Vector3<f64>,
     /// Unit normal: the direction the tip presses in.
     pub normal: Vector3<f64>,
+    /// What the blocked solves do with the stability verdict of the
+    /// equilibrium they find (tip held along `normal`): [`Policy::Report`]
+    /// (the default) attaches it to the result, [`Policy::Require`] refuses
+    /// an unstable one, [`Policy::Off`] skips it.
+    pub stability: Policy,
 }
 
 impl Block {
-    /// Validate and normalise.
+    /// Validate and normalise; the verdict policy is [`Policy::Report`].
     pub fn new(point: Vector3<f64>, normal: Vector3<f64>) -> Result<Self> {
         for k in 0..3 {
             crate::error::finite(&format!("point[{k}] [m]"), point[k])?;
@@ -36,12 +41,41 @@ impl Block {
         Ok(Block {
             point,
             normal: normal / n,
+            stability: Policy::Report,
         })
     }
-    fn loads(&self, robot: &Robot, f: f64) -> Loads {
+    /// The same block under another stability policy; [`Policy::Continue`]
+    /// (moving to a stable free-tip equilibrium) does not apply to a held tip.
+    pub fn with_stability(self, policy: Policy) -> Result<Self> {
+        if policy == Policy::Continue {
+            return Err(Error::input(
+                "stability",
+                "'continue' is not available for a blocked tip: use 'report', 'require' or 'off'",
+            ));
+        }
+        Ok(Block {
+            stability: policy,
+            ..self
+        })
+    }
+    pub(crate) fn loads(&self, robot: &Robot, f: f64) -> Loads {
         let mut l = Loads::of(robot);
         l.tip_force -= self.normal * f;
         l
+    }
+    /// The block's verdict on `res` (see [`Block::stability`]); the
+    /// verdict's tangent IVP is counted in `res.evaluations`.
+    fn check(&self, robot: &Robot, mut res: BlockedResult) -> Result<BlockedResult> {
+        if self.stability == Policy::Off {
+            return Ok(res);
+        }
+        let st = stability(robot, &res.solution, &[self.normal])?;
+        res.evaluations += st.evaluations;
+        if self.stability == Policy::Require && !st.stable {
+            return Err(unstable_error(&res.solution, &st));
+        }
+        res.stability = Some(st);
+        Ok(res)
     }
 }
 
@@ -54,15 +88,19 @@ pub struct BlockedResult {
     pub force: f64,
     /// Actuation variables.
     pub variables: Vec<f64>,
-    /// IVPs integrated.
+    /// IVPs integrated (plain and tangent; the verdict's included).
     pub evaluations: usize,
     /// Iterations (increments for the incremental method, Newton iterations for the direct one).
     pub iterations: usize,
+    /// Stability verdict of the equilibrium with the tip held along the
+    /// block normal (`None` only under [`Policy::Off`]).
+    pub stability: Option<Stability>,
 }
 
 /// Direct solve with the tip held (mixed boundary condition): at given
 /// actuation variables `z`, the contact force `f` \[N\] is an extra unknown and
-/// `normal . (p(L) - point) = 0` an extra residual. `f` may come out negative
+/// `normal . (p(L) - point) = 0` an extra residual (Newton with the exact
+/// Jacobian, see [`super::mixed`]). `f` may come out negative
 /// if the tip would pull away from the block (the caller decides whether
 /// contact holds).
 pub fn blocked_force(
@@ -77,41 +115,17 @@ pub fn blocked_force(
     let inputs = groups.inputs(z);
     robot.check_inputs(&inputs)?;
     let (fc, _) = load_scales(robot);
-    let len = robot.body.length;
-    let nx = 6 + robot.actuators.len();
     let mut x0 = initial_guess(robot, &inputs, warm.map(|w| w.0));
     x0.push(warm.map_or(0.0, |w| w.1) / fc);
-    let f = |x: &[f64]| -> Result<Vec<f64>> {
-        let l = block.loads(robot, x[nx] * fc);
-        let (mut r, ivp, _) = shoot(robot, &inputs, &l, &x[..nx], opts.steps, false)?;
-        r.push(block.normal.dot(&(ivp.tip.p - block.point)) / len);
-        Ok(r)
-    };
-    let mut sys = FnSystem::new(f);
-    let nr = newton(&mut sys, &x0, &opts.newton(), "blocked-tip shooting")?;
-    let force = nr.x[nx] * fc;
-    let l = block.loads(robot, force);
-    let sol = assemble(
-        robot,
-        &inputs,
-        &l,
-        &nr.x[..nx],
-        opts.steps,
-        nr.iterations,
-        nr.evaluations,
-    )?;
-    Ok(BlockedResult {
-        solution: sol,
-        force,
-        variables: z.to_vec(),
-        evaluations: nr.evaluations,
-        iterations: nr.iterations,
-    })
+    let extra = Extra::Force { inputs };
+    let mut sys = Mixed::new(robot, groups, block, extra, opts.steps);
+    mixed_newton(&mut sys, &x0, None, opts, "blocked-tip shooting")
 }
 
 /// Direct solve for the single actuation variable at which the blocked tip
-/// presses with `force` \[N\] (the variable is an extra unknown). Independent
-/// check of [`blocked_temperature`].
+/// presses with `force` \[N\] (the variable is an extra unknown), Newton
+/// with the exact Jacobian from `z_guess`. Independent check of
+/// [`blocked_temperature`].
 pub fn blocked_variable_direct(
     robot: &Robot,
     groups: &Groups,
@@ -122,45 +136,88 @@ pub fn blocked_variable_direct(
     warm: Option<&Solution>,
 ) -> Result<BlockedResult> {
     one_variable_and_force(robot, groups, force)?;
-    let (lo, hi) = groups.bounds(robot)[0];
-    let zs = (hi - lo).clamp(1.0, 1e3);
-    let len = robot.body.length;
-    let nx = 6 + robot.actuators.len();
-    let l = block.loads(robot, force);
+    let scale = variable_scale(robot, groups);
     let mut x0 = initial_guess(robot, &groups.inputs(&[z_guess]), warm);
-    x0.push(z_guess / zs);
-    let f = |x: &[f64]| -> Result<Vec<f64>> {
-        let z = x[nx] * zs;
-        let inputs = groups.inputs(&[z]);
-        robot.check_inputs(&inputs)?;
-        let (mut r, ivp, _) = shoot(robot, &inputs, &l, &x[..nx], opts.steps, false)?;
-        r.push(block.normal.dot(&(ivp.tip.p - block.point)) / len);
-        Ok(r)
-    };
-    let mut sys = FnSystem::new(f);
-    let nr = newton(
+    x0.push(z_guess / scale);
+    let extra = Extra::Variable { force, scale };
+    let mut sys = Mixed::new(robot, groups, block, extra, opts.steps);
+    mixed_newton(
         &mut sys,
         &x0,
-        &opts.newton(),
+        None,
+        opts,
         "blocked-tip temperature shooting",
-    )?;
-    let z = nr.x[nx] * zs;
-    let sol = assemble(
+    )
+}
+
+/// Direct solve for the single actuation variable at which the blocked tip
+/// presses with `force` \[N\], from `start` (a solution whose tip touches the
+/// block with no force): one augmented Newton solve (the variable an extra
+/// unknown, see [`super::mixed`]) started from an eq-43 predictor of the
+/// whole force in one step with the force law kept exact (see
+/// [`super::mixed::predictor`]). The predictor's tangents (one tangent IVP
+/// at `start`, on the Jacobian's coarse grid) are also the first Newton
+/// Jacobian, so that the first corrections cost one plain IVP each.
+pub fn blocked_variable_from(
+    robot: &Robot,
+    groups: &Groups,
+    block: &Block,
+    start: &Solution,
+    force: f64,
+    opts: &SolveOptions,
+) -> Result<BlockedResult> {
+    one_variable_and_force(robot, groups, force)?;
+    let scale = variable_scale(robot, groups);
+    let extra = Extra::Variable { force, scale };
+    let mut sys = Mixed::new(robot, groups, block, extra, opts.steps);
+    let (x0, jac0) = predictor(&mut sys, start, groups.vars(&start.inputs)[0])?;
+    mixed_newton(
+        &mut sys,
+        &x0,
+        Some(&jac0),
+        opts,
+        "blocked-tip grasp shooting",
+    )
+}
+
+/// Scale of the single actuation variable: its range, within `[1, 1000]`.
+fn variable_scale(robot: &Robot, groups: &Groups) -> f64 {
+    let (lo, hi) = groups.bounds(robot)[0];
+    (hi - lo).clamp(1.0, 1e3)
+}
+
+/// Newton on the augmented system from `x0` (with the Jacobian `jac0`, if
+/// given), the solution assembled at the root, the block's verdict attached.
+fn mixed_newton(
+    sys: &mut Mixed<'_>,
+    x0: &[f64],
+    jac0: Option<&DMatrix<f64>>,
+    opts: &SolveOptions,
+    solver: &'static str,
+) -> Result<BlockedResult> {
+    let nr = newton_from(sys, x0, &opts.newton(), solver, jac0)?;
+    let (robot, nx) = (sys.robot(), x0.len() - 1);
+    let (inputs, loads, force) = sys.problem(&nr.x)?;
+    let mut sol = assemble(
         robot,
-        &groups.inputs(&[z]),
-        &l,
+        &inputs,
+        &loads,
         &nr.x[..nx],
         opts.steps,
         nr.iterations,
-        nr.evaluations,
+        nr.evaluations + 1,
     )?;
-    Ok(BlockedResult {
+    sol.status = nr.status;
+    sol.floor = nr.floor;
+    let res = BlockedResult {
         solution: sol,
         force,
-        variables: vec![z],
-        evaluations: nr.evaluations,
+        variables: sys.groups().vars(&inputs),
+        evaluations: nr.evaluations + 1,
         iterations: nr.iterations,
-    })
+        stability: None,
+    };
+    sys.block().check(robot, res)
 }
 
 /// The paper's incremental method (eq 43 with `dx = 0`): starting from a
@@ -234,13 +291,15 @@ pub fn blocked_temperature(
         evals += sol.evaluations;
         let gap = n.dot(&(block.point - sol.tip_position()));
         if k + 1 >= increments && gap.abs() < 1e-9 * robot.body.length {
-            return Ok(BlockedResult {
+            let res = BlockedResult {
                 solution: sol,
                 force: f,
                 variables: vec![z],
                 evaluations: evals,
                 iterations: k + 1,
-            });
+                stability: None,
+            };
+            return block.check(robot, res);
         }
     }
     Err(Error::NotConverged {

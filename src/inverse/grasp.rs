@@ -3,18 +3,21 @@
 
 use nalgebra::Vector3;
 
-use super::{blocked_temperature, blocked_variable_direct, Block, BlockedResult, Groups};
+use super::{blocked_temperature, blocked_variable_from, Block, BlockedResult, Groups};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 use crate::shooting::{solve_loaded, Loads, SolveOptions};
+use crate::stability::Policy;
 
 /// How the grasp temperature is found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum GraspMethod {
     /// The paper's incremental inverse (eq 43) in this many force steps.
     Incremental(usize),
-    /// The actuation variable as a shooting unknown, Newton from halfway
-    /// between the contact input and the top of the first actuator's range.
+    /// One augmented Newton solve: the shooting unknowns plus the
+    /// actuation variable, the residual plus the blocked-tip condition, the
+    /// exact Jacobian, from the eq-43 predictor of the whole force
+    /// ([`super::blocked_variable_from`]).
     Direct,
 }
 
@@ -30,6 +33,7 @@ pub struct Grasp {
     pub fingers: usize,
     pub gravity: f64,
     pub contact: Option<Vec<f64>>,
+    pub stability: Policy,
 }
 
 impl Grasp {
@@ -44,8 +48,9 @@ impl Grasp {
         Ok(self.mass * self.gravity / (self.mu * self.fingers as f64)) // eq (44)
     }
 
-    /// The blocked result of one finger at the grasp temperature, and the
-    /// point \[m\] where its tip is blocked (its free position at contact).
+    /// The blocked result of one finger at the grasp temperature (its
+    /// `evaluations` include the free solve at contact), and the point \[m\]
+    /// where its tip is blocked (its free position at contact).
     pub fn solve(
         &self,
         robot: &Robot,
@@ -62,34 +67,24 @@ impl Grasp {
             None => robot.reference_inputs(),
         };
         let start = solve_loaded(robot, &contact, &Loads::of(robot), opts, None)?;
-        let block = Block::new(start.tip_position(), self.normal)?;
-        let res = match method {
+        let block =
+            Block::new(start.tip_position(), self.normal)?.with_stability(self.stability)?;
+        let mut res = match method {
             GraspMethod::Incremental(increments) => {
                 blocked_temperature(robot, groups, &block, &start, force, increments, opts)?
             }
             GraspMethod::Direct => {
-                let (lo, hi) = robot
-                    .actuators
-                    .first()
-                    .map_or((0.0, 0.0), |a| a.law.input_bounds());
-                let from = self.contact.as_ref().map_or(lo, |c| c[0]);
-                blocked_variable_direct(
-                    robot,
-                    groups,
-                    &block,
-                    force,
-                    0.5 * (from + hi),
-                    opts,
-                    None,
-                )?
+                blocked_variable_from(robot, groups, &block, &start, force, opts)?
             }
         };
+        res.evaluations += start.evaluations; // the free solve at contact
         Ok((res, block.point))
     }
 }
 
 /// Grasp temperature (eq 44) with the tip blocked where it rests at the
-/// reference inputs, by `increments` eq-43 steps (see [`Grasp`]).
+/// reference inputs, by `increments` eq-43 steps, with its stability
+/// verdict (see [`Grasp`]).
 #[allow(clippy::too_many_arguments)]
 pub fn grasp(
     robot: &Robot,
@@ -109,6 +104,7 @@ pub fn grasp(
         fingers,
         gravity,
         contact: None,
+        stability: Policy::Report,
     };
     Ok(spec
         .solve(robot, groups, GraspMethod::Incremental(increments), opts)?

@@ -14,11 +14,13 @@ use crate::rod::Robot;
 
 mod blocked;
 mod grasp;
+mod mixed;
 mod sensitivities;
 mod tip;
 
 pub use blocked::{
-    blocked_force, blocked_temperature, blocked_variable_direct, Block, BlockedResult,
+    blocked_force, blocked_temperature, blocked_variable_direct, blocked_variable_from, Block,
+    BlockedResult,
 };
 pub use grasp::{grasp, Grasp, GraspMethod};
 pub(crate) use sensitivities::{exact_blocks, ExactBlocks};

@@ -12,17 +12,15 @@ use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
 pub struct InverseResult {
     /// Final forward solution (the closest reachable one if not `reached`).
     pub solution: Solution,
-    /// Final actuation variables.
+    /// Final actuation variables, and which of them rest on a bound at the end.
     pub variables: Vec<f64>,
-    /// Distance \[m\] from the target (and angle \[rad\] if orientation was asked).
-    pub error: f64,
-    /// Iterations (Jacobian evaluations).
-    pub iterations: usize,
-    /// Whether the target was reached to tolerance.
-    pub reached: bool,
-    /// Variables resting on a bound at the end.
     pub at_bound: Vec<bool>,
-    /// IVPs integrated in total.
+    /// Distance \[m\] from the target (and angle \[rad\] if orientation
+    /// was asked), and whether it is within the tolerance.
+    pub error: f64,
+    pub reached: bool,
+    /// Iterations (Jacobian evaluations) and IVPs integrated in total.
+    pub iterations: usize,
     pub evaluations: usize,
 }
 

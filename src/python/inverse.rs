@@ -178,15 +178,18 @@ fn tip_inverse(
     })
 }
 
-/// The Python result; its solution carries the stability verdict with the
-/// tip held along `normal` (issue 16: one tangent IVP, an unstable one warns).
+/// The Python result; its solution carries the core's stability verdict
+/// with the tip held along the block normal (issue 16: an unstable one warns).
 fn blocked(
     py: Python<'_>,
     robot: &Bound<'_, PyRobot>,
     b: BlockedResult,
-    normal: nalgebra::Vector3<f64>,
+    normal: Vector3<f64>,
 ) -> PyResult<PyBlockedResult> {
-    let solution = super::stability::blocked_verdict(py, robot, b.solution, normal)?;
+    let solution = match b.stability {
+        Some(st) => super::stability::blocked_verdict(py, robot, b.solution, normal, st)?,
+        None => PySolution::new(b.solution, robot.clone().unbind()),
+    };
     Ok(PyBlockedResult {
         solution: Py::new(py, solution)?,
         force: b.force,
@@ -194,6 +197,40 @@ fn blocked(
         iterations: b.iterations,
         evaluations: b.evaluations,
     })
+}
+
+/// What every blocked-tip binding reads: the robot's groups and the solve
+/// options; the block from `point` [m] and `normal` when given.
+struct BlockedArgs {
+    robot: std::sync::Arc<crate::rod::Robot>,
+    groups: Groups,
+    opts: crate::shooting::SolveOptions,
+}
+
+/// The optional arguments `groups`, `steps`, `max_iter` of a blocked-tip binding.
+type Optional<'py> = [Option<Bound<'py, PyAny>>; 3];
+
+impl BlockedArgs {
+    /// Groups and solve options (`[groups, steps, max_iter]` and `tol`).
+    fn read_options(robot: &PyRobot, optional: Optional<'_>, tol: Real) -> PyResult<Self> {
+        let [groups, steps, max_iter] = optional;
+        Ok(BlockedArgs {
+            groups: groups_for(robot, groups.as_ref())?,
+            opts: solve_options(steps.as_ref(), tol, max_iter.as_ref())?,
+            robot: robot.inner.clone(),
+        })
+    }
+    /// [`BlockedArgs::read_options`] and the plane through `point` [m] with unit `normal`.
+    fn read(
+        robot: &PyRobot,
+        (point, normal): (&Bound<'_, PyAny>, &Bound<'_, PyAny>),
+        optional: Optional<'_>,
+        tol: Real,
+    ) -> PyResult<(Self, Block)> {
+        let a = Self::read_options(robot, optional, tol)?;
+        let block = Block::new(vec3("point [m]", point)?, vec3("normal", normal)?)?;
+        Ok((a, block))
+    }
 }
 
 /// Contact force [N] with the tip held on the plane through `point` [m] with
@@ -215,25 +252,20 @@ fn blocked_force(
     max_iter: Option<Bound<'_, PyAny>>,
     warm_start: Option<PyRef<'_, PyBlockedResult>>,
 ) -> PyResult<PyBlockedResult> {
-    let r = robot.get();
-    let g = groups_for(r, groups.as_ref())?;
-    let block = Block::new(vec3("point [m]", &point)?, vec3("normal", &normal)?)?;
-    let variables = reals("variables", &variables, Some(g.n_vars()))?;
-    let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
+    let (a, block) = BlockedArgs::read(
+        robot.get(),
+        (&point, &normal),
+        [groups, steps, max_iter],
+        tol,
+    )?;
+    let variables = reals("variables", &variables, Some(a.groups.n_vars()))?;
     if let Some(w) = &warm_start {
-        same_robot(py, r, w.solution.bind(py).get(), "warm_start")?;
+        same_robot(py, robot.get(), w.solution.bind(py).get(), "warm_start")?;
     }
     let warm = warm_start.map(|w| (w.solution.bind(py).get().inner.clone(), w.force));
-    let rr = r.inner.clone();
     let res = super::errors::detach_interruptible(py, || {
-        inverse::blocked_force(
-            &rr,
-            &g,
-            &block,
-            &variables,
-            &opts,
-            warm.as_ref().map(|(s, f)| (s, *f)),
-        )
+        let w = warm.as_ref().map(|(s, f)| (s, *f));
+        inverse::blocked_force(&a.robot, &a.groups, &block, &variables, &a.opts, w)
     })?;
     blocked(py, robot, res, block.normal)
 }
@@ -259,16 +291,18 @@ fn blocked_temperature(
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<PyBlockedResult> {
-    let r = robot.get();
-    let g = groups_for(r, groups.as_ref())?;
-    same_robot(py, r, &start, "start")?;
-    let block = Block::new(vec3("point [m]", &point)?, vec3("normal", &normal)?)?;
+    let (a, block) = BlockedArgs::read(
+        robot.get(),
+        (&point, &normal),
+        [groups, steps, max_iter],
+        tol,
+    )?;
+    same_robot(py, robot.get(), &start, "start")?;
     let increments = count_or("increments", increments.as_ref(), 10, 1, MAX_INCREMENTS)?;
-    let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
     let st = start.inner.clone();
-    let rr = r.inner.clone();
     let res = super::errors::detach_interruptible(py, || {
-        inverse::blocked_temperature(&rr, &g, &block, &st, force.0, increments, &opts)
+        let (r, g) = (&a.robot, &a.groups);
+        inverse::blocked_temperature(r, g, &block, &st, force.0, increments, &a.opts)
     })?;
     blocked(py, robot, res, block.normal)
 }
@@ -292,13 +326,15 @@ fn blocked_temperature_direct(
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<PyBlockedResult> {
-    let r = robot.get();
-    let g = groups_for(r, groups.as_ref())?;
-    let block = Block::new(vec3("point [m]", &point)?, vec3("normal", &normal)?)?;
-    let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
-    let rr = r.inner.clone();
+    let (a, block) = BlockedArgs::read(
+        robot.get(),
+        (&point, &normal),
+        [groups, steps, max_iter],
+        tol,
+    )?;
     let res = super::errors::detach_interruptible(py, || {
-        inverse::blocked_variable_direct(&rr, &g, &block, force.0, guess.0, &opts, None)
+        let (r, g) = (&a.robot, &a.groups);
+        inverse::blocked_variable_direct(r, g, &block, force.0, guess.0, &a.opts, None)
     })?;
     blocked(py, robot, res, block.normal)
 }
@@ -308,9 +344,10 @@ fn blocked_temperature_direct(
 /// a mass `mass` [kg] under `gravity` [m/s^2], `mu n F(T) = m g`, each
 /// finger's tip blocked where it rests at the `contact` inputs (default: the
 /// reference inputs) and pressing along `normal`. `method`: `"incremental"`
-/// (eq 43 in `increments` steps, 1 to 10,000) or `"direct"` (the variable as
-/// a shooting unknown). Returns `(blocked result of one finger, block point
-/// [m])`; the result's `force` [N] is `m g / (mu n)`.
+/// (eq 43 in `increments` steps, 1 to 10,000) or `"direct"` (one augmented
+/// Newton solve: the variable an extra shooting unknown, from an eq-43
+/// predictor). Returns `(blocked result of one finger, block point [m])`;
+/// the result's `force` [N] is `m g / (mu n)`.
 #[pyfunction]
 #[pyo3(signature = (robot, normal, mass, mu, fingers, *, gravity=Real(crate::experiments::G0), groups=None,
     contact=None, method="incremental", increments=None, steps=None, tol=Real(1e-10), max_iter=None),
@@ -333,9 +370,8 @@ fn grasp_temperature(
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<(PyBlockedResult, [f64; 3])> {
-    let r = robot.get();
-    let g = groups_for(r, groups.as_ref())?;
-    let na = r.inner.actuators.len();
+    let a = BlockedArgs::read_options(robot.get(), [groups, steps, max_iter], tol)?;
+    let na = a.robot.actuators.len();
     let spec = inverse::Grasp {
         normal: vec3("normal", &normal)?,
         mass: mass.0,
@@ -345,6 +381,7 @@ fn grasp_temperature(
         contact: contact
             .map(|c| super::reals("contact", &c, Some(na)))
             .transpose()?,
+        stability: crate::stability::Policy::Report,
     };
     let method = match method {
         "incremental" => inverse::GraspMethod::Incremental(count_or(
@@ -363,10 +400,9 @@ fn grasp_temperature(
             .into())
         }
     };
-    let opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
-    let rr = r.inner.clone();
-    let (res, point) =
-        super::errors::detach_interruptible(py, || spec.solve(&rr, &g, method, &opts))?;
+    let (res, point) = super::errors::detach_interruptible(py, || {
+        spec.solve(&a.robot, &a.groups, method, &a.opts)
+    })?;
     Ok((
         blocked(py, robot, res, spec.normal)?,
         [point.x, point.y, point.z],

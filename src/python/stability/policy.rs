@@ -13,9 +13,7 @@ use crate::python::errors::{detach_interruptible, UnstableEquilibriumError};
 use crate::python::pv;
 use crate::python::rod::{checked_solution, PyRobot, PySolution};
 use crate::shooting::{Loads, Solution, SolveOptions};
-use crate::stability::{
-    solve_checked, stability as stability_core, sweep_checked, Checked, Policy,
-};
+use crate::stability::{solve_checked, sweep_checked, Checked, Policy, Stability};
 
 pyo3::create_exception!(
     tcarod._core,
@@ -216,16 +214,15 @@ pub(crate) fn sweep_policy(
     Ok(out)
 }
 
-/// A blocked-tip `Solution` with the verdict of the tip held along
-/// `normal` (computed now, one tangent IVP; `report` policy).
+/// A blocked-tip `Solution` with the core's verdict `st` of the tip held
+/// along `normal` (`report` policy: an unstable one warns).
 pub(crate) fn blocked_verdict(
     py: Python<'_>,
     robot: &Bound<'_, PyRobot>,
     sol: Solution,
     normal: Vector3<f64>,
+    st: Stability,
 ) -> PyResult<PySolution> {
-    let r = robot.get().inner.clone();
-    let st = py.detach(|| stability_core(&r, &sol, &[normal]))?;
     let st = super::finite_margin(st);
     let mut s = PySolution::new(sol, robot.clone().unbind());
     s.blocked = vec![normal];
