@@ -257,20 +257,10 @@ fn stats(out: &[Outcome]) -> Stats<'_> {
 
 fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
     let st = stats(out);
-    let Stats {
-        ok,
-        via_cont,
-        not_past,
-        ok_not_past,
-        ivp,
-        it,
-        eq,
-        ive,
-        cpu,
-        cpu_ok,
-        fails,
-        eq_bad,
-    } = &st;
+    let (ok, ivp, it, eq, ive) = (&st.ok, &st.ivp, &st.it, &st.eq, &st.ive);
+    let (cpu, cpu_ok, fails) = (&st.cpu, &st.cpu_ok, &st.fails);
+    let (not_past, ok_not_past, via_cont, eq_bad) =
+        (st.not_past, st.ok_not_past, st.via_cont, st.eq_bad);
     println!("designs: {n} (seed {seed:#x}), {} past self-weight buckling; clock: {clock}; wall {wall:.1} s", n - not_past);
     println!("converged cold: {} / {n} all, {ok_not_past} / {not_past} not past buckling; {via_cont} of them via continuation", ok.len());
     println!(
