@@ -21,35 +21,9 @@ use tcarod::problems::{equilibrium, random_design, Design, DEFAULT_SEED, EQUILIB
 use tcarod::shooting::{shoot, solve, Loads, SolveOptions};
 use tcarod::Error;
 
-#[repr(C)]
-struct Timespec {
-    tv_sec: i64,
-    tv_nsec: i64,
-}
-
-extern "C" {
-    // POSIX, in the C library every Rust program on Linux links already
-    fn clock_gettime(clock: i32, ts: *mut Timespec) -> i32;
-}
-
-/// `CLOCK_THREAD_CPUTIME_ID` on Linux.
-const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
-
-/// Thread CPU time [s] from `clock_gettime(CLOCK_THREAD_CPUTIME_ID)`, or
-/// `None` where it fails. (`/proc/thread-self/schedstat` is no substitute:
-/// it is updated at scheduler ticks, 4 ms apart here.)
-fn thread_cpu() -> Option<f64> {
-    if !cfg!(target_os = "linux") || !cfg!(target_pointer_width = "64") {
-        return None;
-    }
-    let mut ts = Timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `ts` is a valid, writable timespec (64-bit Linux layout).
-    let rc = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    (rc == 0).then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
-}
+#[path = "clock/mod.rs"]
+mod clock;
+use clock::thread_cpu;
 
 /// Quantile `q` of sorted data (nearest rank).
 fn quantile(sorted: &[f64], q: f64) -> f64 {
@@ -84,10 +58,12 @@ struct Converged {
     iterations: usize,
     equilibrium: f64,
     ivp_equivalents: f64,
-    continuation: bool,
+    /// Homotopy steps taken (0: the direct Newton run converged).
+    continuation_steps: usize,
 }
 
 struct Outcome {
+    index: usize,
     past: bool,
     cpu: f64,
     result: Result<Converged, String>,
@@ -177,7 +153,7 @@ fn solve_one(
                 iterations: sol.iterations,
                 equilibrium: eq.relative,
                 ivp_equivalents: cpu / ivp,
-                continuation: !sol.continuation_steps.is_empty(),
+                continuation_steps: sol.continuation_steps.len(),
             })
         }
         Err(e) => {
@@ -208,6 +184,7 @@ fn solve_one(
         _ => None,
     };
     Outcome {
+        index: i,
         past: d.past_buckling(),
         cpu,
         result,
@@ -234,7 +211,7 @@ struct Stats<'a> {
 
 fn stats(out: &[Outcome]) -> Stats<'_> {
     let ok: Vec<&Converged> = out.iter().filter_map(|o| o.result.as_ref().ok()).collect();
-    let via_cont = ok.iter().filter(|c| c.continuation).count();
+    let via_cont = ok.iter().filter(|c| c.continuation_steps > 0).count();
     let not_past = out.iter().filter(|o| !o.past).count();
     let ok_not_past = out.iter().filter(|o| !o.past && o.result.is_ok()).count();
     let ivp = sorted(ok.iter().map(|r| r.ivps as f64).collect());
@@ -280,20 +257,10 @@ fn stats(out: &[Outcome]) -> Stats<'_> {
 
 fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
     let st = stats(out);
-    let Stats {
-        ok,
-        via_cont,
-        not_past,
-        ok_not_past,
-        ivp,
-        it,
-        eq,
-        ive,
-        cpu,
-        cpu_ok,
-        fails,
-        eq_bad,
-    } = &st;
+    let (ok, ivp, it, eq, ive) = (&st.ok, &st.ivp, &st.it, &st.eq, &st.ive);
+    let (cpu, cpu_ok, fails) = (&st.cpu, &st.cpu_ok, &st.fails);
+    let (not_past, ok_not_past, via_cont, eq_bad) =
+        (st.not_past, st.ok_not_past, st.via_cont, st.eq_bad);
     println!("designs: {n} (seed {seed:#x}), {} past self-weight buckling; clock: {clock}; wall {wall:.1} s", n - not_past);
     println!("converged cold: {} / {n} all, {ok_not_past} / {not_past} not past buckling; {via_cont} of them via continuation", ok.len());
     println!(
@@ -343,28 +310,43 @@ fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
     for (r, k, p) in fails.iter() {
         println!("  failed: {k:4} ({p} past buckling)  {r}");
     }
+    listing(out);
     json(&st, out, n, seed);
+}
+
+/// Each failing design (index, past buckling, reason) and the 20 converged
+/// designs with the most IVP-equivalents (index, IVP-equivalents, IVPs,
+/// iterations, homotopy steps).
+fn listing(out: &[Outcome]) {
+    for o in out {
+        if let Err(r) = &o.result {
+            let past = if o.past { "past buckling" } else { "not past" };
+            println!("  FAIL #{} ({past}): {r}", o.index);
+        }
+    }
+    let mut worst: Vec<(usize, &Converged)> = out
+        .iter()
+        .filter_map(|o| o.result.as_ref().ok().map(|c| (o.index, c)))
+        .collect();
+    worst.sort_by(|a, b| b.1.ivp_equivalents.total_cmp(&a.1.ivp_equivalents));
+    println!("  worst 20 by IVP-equivalents: #index ive ivps iterations homotopy-steps");
+    for (i, c) in worst.iter().take(20) {
+        println!(
+            "  WORST #{i} {:.1} {} {} {}",
+            c.ivp_equivalents, c.ivps, c.iterations, c.continuation_steps
+        );
+    }
 }
 
 /// The one `JSON ` line.
 fn json(st: &Stats<'_>, out: &[Outcome], n: usize, seed: u64) {
-    let Stats {
-        ok,
-        via_cont,
-        not_past,
-        ok_not_past,
-        ivp,
-        it,
-        eq,
-        ive,
-        cpu,
-        fails,
-        eq_bad,
-        ..
-    } = st;
+    let (ivp, ive, it, eq) = (&st.ivp, &st.ive, &st.it, &st.eq);
+    let (not_past, ok_not_past, via_cont, eq_bad) =
+        (st.not_past, st.ok_not_past, st.via_cont, st.eq_bad);
     let fine = sorted(out.iter().filter_map(|o| o.fine).collect());
     let fine_bad = fine.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
-    let fails_json: Vec<String> = fails
+    let fails_json: Vec<String> = st
+        .fails
         .iter()
         .map(|(r, k, p)| format!("{{\"reason\":{:?},\"count\":{k},\"past_buckling\":{p}}}", r))
         .collect();
@@ -373,7 +355,7 @@ fn json(st: &Stats<'_>, out: &[Outcome], n: usize, seed: u64) {
 \"via_continuation\":{via_cont},\"ivp\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"ivp_equivalents\":{{\"median\":{:.2},\"p90\":{:.2},\"p99\":{:.2},\"max\":{:.2}}},\"iterations\":{{\"median\":{},\"max\":{}}},\
 \"cpu_s\":{{\"median\":{:.6e},\"p99\":{:.6e},\"max\":{:.6e},\"total\":{:.3}}},\"equilibrium\":{{\"max\":{:.3e},\"above_tol\":{eq_bad},\"fine_resolved\":{},\"fine_above_tol\":{fine_bad},\"fine_max\":{:.3e}}},\"failures\":[{}]}}",
         n - not_past,
-        ok.len(),
+        st.ok.len(),
         quantile(ivp, 0.5),
         quantile(ivp, 0.9),
         quantile(ivp, 0.99),
@@ -384,10 +366,10 @@ fn json(st: &Stats<'_>, out: &[Outcome], n: usize, seed: u64) {
         quantile(ive, 1.0),
         quantile(it, 0.5),
         quantile(it, 1.0),
-        quantile(cpu, 0.5),
-        quantile(cpu, 0.99),
-        quantile(cpu, 1.0),
-        cpu.iter().sum::<f64>(),
+        quantile(&st.cpu, 0.5),
+        quantile(&st.cpu, 0.99),
+        quantile(&st.cpu, 1.0),
+        st.cpu.iter().sum::<f64>(),
         quantile(eq, 1.0),
         fine.len(),
         quantile(&fine, 1.0),

@@ -26,30 +26,12 @@ use tcarod::problems::{random_design, Design, DEFAULT_SEED};
 use tcarod::shooting::{shoot, shoot_jacobian, Loads, Solution, SolveOptions};
 use tcarod::stability::{solve_checked, stability, sweep_checked, Checked, Policy};
 
-#[repr(C)]
-struct Timespec {
-    tv_sec: i64,
-    tv_nsec: i64,
-}
+#[path = "clock/mod.rs"]
+mod clock;
 
-extern "C" {
-    // POSIX, in the C library every Rust program on Linux links already
-    fn clock_gettime(clock: i32, ts: *mut Timespec) -> i32;
-}
-
-/// Thread CPU time [s] (`CLOCK_THREAD_CPUTIME_ID` = 3 on Linux), else wall time.
+/// Thread CPU time [s], else wall time since `t0`.
 fn cpu(t0: Instant) -> f64 {
-    if cfg!(target_os = "linux") && cfg!(target_pointer_width = "64") {
-        let mut ts = Timespec {
-            tv_sec: 0,
-            tv_nsec: 0,
-        };
-        // SAFETY: `ts` is a valid, writable timespec (64-bit Linux layout).
-        if unsafe { clock_gettime(3, &mut ts) } == 0 {
-            return ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9;
-        }
-    }
-    t0.elapsed().as_secs_f64()
+    clock::thread_cpu().unwrap_or_else(|| t0.elapsed().as_secs_f64())
 }
 
 fn env(name: &str, default: u64) -> u64 {

@@ -149,11 +149,7 @@ pub trait ForceLaw: Send + Sync + Debug {
         if input.is_finite() && input >= lo && input <= hi {
             Ok(())
         } else {
-            Err(Error::param(
-                self.input_name(),
-                input,
-                format!("{lo} <= input <= {hi}"),
-            ))
+            Err(out_of_range(self.input_name(), input, (lo, hi)))
         }
     }
     /// Short name of the law.
@@ -193,6 +189,11 @@ pub trait ForceLaw: Send + Sync + Debug {
         }
         Ok((self.tension(elongation, b)? - self.tension(elongation, a)?) / (b - a))
     }
+}
+
+/// The error of an `input` outside a law's valid interval `(lo, hi)`.
+fn out_of_range(name: &'static str, input: f64, (lo, hi): (f64, f64)) -> Error {
+    Error::param(name, input, format!("{lo} <= input <= {hi}"))
 }
 
 /// The TCA law (eq 13) at the input temperature \[C\]: tension from the TCA's
@@ -237,11 +238,7 @@ impl ForceLaw for TcaLaw {
         if input.is_finite() && input <= hi {
             Ok(())
         } else {
-            Err(Error::param(
-                self.input_name(),
-                input,
-                format!("{lo} <= input <= {hi}"),
-            ))
+            Err(out_of_range(self.input_name(), input, (lo, hi)))
         }
     }
     /// Exact in the elongation ([`crate::tca::TcaAt::tension_slope`]);

@@ -12,7 +12,11 @@
 //! `phi <= phi0 + 1e-4 t grad phi . dx` (Armijo), else `t` is halved (a
 //! quadratic-interpolation step stalled where a TCA's coil contact makes the
 //! residual only C1). A trial where `f` fails (e.g. an IVP that cannot
-//! be integrated) counts as an infinite merit.
+//! be integrated) counts as an infinite merit. Where the full step fails the
+//! Armijo test, a watchdog step is tried first (`Run::watchdog` in
+//! `newton_steps.rs`): the full step and one more Newton step from there,
+//! kept if together they meet the first step's Armijo bound (a
+//! non-monotone step across a kink of a force law, where backtracking creeps).
 //!
 //! Convergence: `max |f_i| <= max(tol, floor)`, where `floor` is the
 //! caller's estimate of the rounding floor of the residual at `x` (the
@@ -23,7 +27,7 @@
 
 use std::time::Instant;
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 use super::cancel;
 use crate::error::{Error, Result, StopReason};
@@ -155,6 +159,9 @@ const SLOW_CONTRACTION: f64 = 0.25;
 /// of 25.1 and a worst case of 1,933, with the same designs converged.
 const SLOW_STEPS_BEFORE_REFINE: usize = 3;
 
+/// Iterations without a watchdog step after a failed one (see `Run::watchdog`).
+const WATCHDOG_COOLDOWN: usize = 2;
+
 fn inf_norm(r: &[f64]) -> f64 {
     r.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
@@ -194,6 +201,8 @@ struct Run<'a, S: System> {
     slow: usize,
     /// `max |f|` before each fresh step and whether the step was damped.
     history: Vec<(f64, bool)>,
+    /// Iterations left before the next watchdog attempt (see `Run::watchdog`).
+    cooldown: usize,
 }
 
 /// What a step did.
@@ -277,127 +286,6 @@ impl<S: System> Run<'_, S> {
             && h[h.len() - w..].iter().all(|&(_, damped)| damped)
             && inf_norm(&self.r) > 0.5 * h[h.len() - w].0
     }
-
-    /// The Newton direction for `jac` (steepest descent scaled to the
-    /// Gauss-Newton length where it is not a descent direction), its slope
-    /// `grad phi . dx`; `None`: singular or not descending with a kept Jacobian.
-    fn direction(&self, jac: &DMatrix<f64>) -> Result<Option<(DVector<f64>, f64)>> {
-        let rv = DVector::from_column_slice(&self.r);
-        let (m, n) = jac.shape();
-        let dx = if m == n {
-            jac.clone().lu().solve(&(-&rv))
-        } else {
-            jac.clone().svd(true, true).solve(&(-&rv), 1e-14).ok()
-        };
-        let grad = jac.tr_mul(&rv); // grad phi = J^T f
-        let dx = match dx {
-            Some(d) if d.iter().all(|v| v.is_finite()) => d,
-            _ if !self.fresh => return Ok(None),
-            _ => return Err(self.fail(StopReason::SingularJacobian, "singular Jacobian")),
-        };
-        let slope = grad.dot(&dx);
-        if slope < 0.0 {
-            return Ok(Some((dx, slope)));
-        }
-        if !self.fresh {
-            return Ok(None);
-        }
-        // not a descent direction (inaccurate Jacobian): steepest descent,
-        // scaled to the Gauss-Newton step length
-        let g2 = grad.norm_squared();
-        if !(g2 > 0.0) {
-            return Err(self.fail(StopReason::SingularJacobian, "zero gradient of the merit"));
-        }
-        let jg = jac * &grad;
-        let dx = -&grad * (g2 / jg.norm_squared().max(f64::MIN_POSITIVE));
-        let slope = grad.dot(&dx);
-        Ok(Some((dx, slope)))
-    }
-
-    /// Count a full step's contraction; refine the Jacobian after
-    /// [`SLOW_STEPS_BEFORE_REFINE`] slow ones in a row.
-    fn note_full_step(&mut self, before: f64, after: f64) {
-        if after > SLOW_CONTRACTION * before {
-            self.slow += 1;
-            if self.slow >= SLOW_STEPS_BEFORE_REFINE && self.sys.refine() {
-                self.jacobian = None;
-                self.slow = 0;
-            }
-        } else {
-            self.slow = 0;
-        }
-    }
-
-    /// A chord step with a kept Jacobian: full length only, and it must
-    /// halve `max |f|`.
-    fn chord_step(&mut self, dx: &DVector<f64>, res: f64) -> Result<Step> {
-        let xt: Vec<f64> = self.x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
-        match self.sys.residual(&xt) {
-            Ok(rt) if inf_norm(&rt) <= 0.5 * res => {
-                let after = inf_norm(&rt);
-                // slow (linear) contraction, or the last iteration next:
-                // a fresh Jacobian for the next step
-                if after > 0.25 * res || self.iterations + 1 >= self.opts.max_iter {
-                    self.jacobian = None;
-                }
-                self.x = xt;
-                self.r = rt;
-                self.note_full_step(res, after);
-                Ok(Step::Moved)
-            }
-            Err(Error::Interrupted) => Err(Error::Interrupted),
-            _ => {
-                self.jacobian = None;
-                Ok(Step::Redo)
-            }
-        }
-    }
-
-    /// Armijo backtracking (plain halving) along `dx` from the current point.
-    /// `Ok(None)`: converged at the floor after a failed search.
-    fn line_search(&mut self, dx: &DVector<f64>, slope: f64, res: f64) -> Result<Option<Step>> {
-        let phi0 = merit(&self.r);
-        let mut t = 1.0;
-        loop {
-            let xt: Vec<f64> = self
-                .x
-                .iter()
-                .zip(dx.iter())
-                .map(|(a, b)| a + t * b)
-                .collect();
-            match self.sys.residual(&xt) {
-                Ok(rt) => {
-                    let phi = merit(&rt);
-                    if phi.is_finite() && (phi <= phi0 + 1e-4 * t * slope) {
-                        let after = inf_norm(&rt);
-                        self.x = xt;
-                        self.r = rt;
-                        self.history.push((res, t < 1.0));
-                        if t < 1.0 {
-                            // a damped step: the Jacobian is recomputed at the new point
-                            self.jacobian = None;
-                            self.slow = 0;
-                        } else {
-                            self.note_full_step(res, after);
-                        }
-                        return Ok(Some(Step::Moved));
-                    }
-                }
-                Err(Error::Interrupted) => return Err(Error::Interrupted),
-                Err(_) => {}
-            }
-            // plain halving: the residual is only C1 where a TCA's coils
-            // touch, and a quadratic model there shrinks the step too far
-            t *= 0.5;
-            if t < self.opts.min_step || self.over_budget() {
-                if t < self.opts.min_step && self.sys.refine() {
-                    self.jacobian = None;
-                    return Ok(Some(Step::Redo));
-                }
-                return Ok(None);
-            }
-        }
-    }
 }
 
 /// [`newton`] with an initial Jacobian `jac0` (e.g. that of a neighbouring
@@ -436,6 +324,7 @@ pub fn newton_from<S: System>(
         fresh: false,
         slow: 0,
         history: Vec::new(),
+        cooldown: 0,
     };
     loop {
         if let Some(done) = run.check()? {
@@ -443,6 +332,7 @@ pub fn newton_from<S: System>(
         }
         cancel::check()?;
         run.iterations += 1;
+        run.cooldown = run.cooldown.saturating_sub(1);
         let res = inf_norm(&run.r);
         let jac = match run.jacobian.take() {
             Some(j) => j,
@@ -489,6 +379,9 @@ pub fn newton_from<S: System>(
 }
 
 pub use super::fn_system::FnSystem;
+
+#[path = "newton_steps.rs"]
+mod steps;
 
 #[cfg(test)]
 #[path = "newton_tests.rs"]

@@ -56,3 +56,34 @@ fn tol_below_the_floor_converges_to_the_floor() {
     assert!((r.x[0] - 2.0).abs() <= 2e-9);
     assert_eq!(r.floor, 1e-9);
 }
+
+/// A force law's kink: `f(x) = x + 1` (slack side, `x >= 0`), `1000 x + 1`
+/// (stiff side, root `x = -1e-3`), with its exact Jacobian. From `x = 1` the
+/// Newton step lands at `x = -1` on the stiff side and fails the Armijo
+/// test; the watchdog's second step, with the stiff side's Jacobian, lands
+/// on the root, so two iterations suffice. (Backtracking alone needs three:
+/// `t = 1/2` to the kink, `t = 2^-9` along the next step, then the stiff
+/// Newton step.)
+#[test]
+fn a_watchdog_step_crosses_a_kink() {
+    struct Kink(usize);
+    impl System for Kink {
+        fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
+            self.0 += 1;
+            let k = if x[0] >= 0.0 { 1.0 } else { 1000.0 };
+            Ok(vec![k * x[0] + 1.0])
+        }
+        fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
+            let k = if x[0] >= 0.0 { 1.0 } else { 1000.0 };
+            Ok((self.residual(x)?, DMatrix::from_element(1, 1, k)))
+        }
+        fn evaluations(&self) -> usize {
+            self.0
+        }
+    }
+    let o = NewtonOptions::new(1e-12, 20, 1e-10);
+    let r = newton(&mut Kink(0), &[1.0], &o, "test").unwrap();
+    // the root to rounding: |f| <= 1e-12 means |x + 1e-3| <= 1e-15
+    assert!((r.x[0] + 1e-3).abs() < 1e-15, "{}", r.x[0]);
+    assert_eq!(r.iterations, 2);
+}
