@@ -29,29 +29,46 @@ fn solves_rosenbrock_from_afar_and_reports_failures() {
     }
 }
 
+/// A scalar system `f(x)` with its exact derivative, `(f, df/dx) =
+/// f(n, x)` at the `n`-th evaluation, and a known rounding floor.
+struct Scalar<F: FnMut(usize, f64) -> (f64, f64)> {
+    f: F,
+    floor: f64,
+    n: usize,
+}
+
+impl<F: FnMut(usize, f64) -> (f64, f64)> System for Scalar<F> {
+    fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
+        Ok(self.residual_and_jacobian(x)?.0)
+    }
+    fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
+        self.n += 1;
+        let (v, d) = (self.f)(self.n, x[0]);
+        Ok((vec![v], DMatrix::from_element(1, 1, d)))
+    }
+    fn floor(&self, _x: &[f64], _r: &[f64]) -> f64 {
+        self.floor
+    }
+    fn evaluations(&self) -> usize {
+        self.n
+    }
+}
+
 /// A residual with rounding noise of 1e-9: tol 1e-12 converges to the
 /// floor (reported), instead of failing.
 #[test]
 fn tol_below_the_floor_converges_to_the_floor() {
-    struct Noisy(usize);
-    impl System for Noisy {
-        fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
-            self.0 += 1;
-            let noise = 1e-9 * ((self.0 as f64 * 12.9898).sin() * 43758.5453).fract();
-            Ok(vec![x[0] - 2.0 + noise])
-        }
-        fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
-            Ok((self.residual(x)?, DMatrix::from_element(1, 1, 1.0)))
-        }
-        fn floor(&self, _x: &[f64], _r: &[f64]) -> f64 {
-            1e-9
-        }
-        fn evaluations(&self) -> usize {
-            self.0
-        }
-    }
+    let noisy = |n: usize, x: f64| {
+        let noise = 1e-9 * ((n as f64 * 12.9898).sin() * 43758.5453).fract();
+        (x - 2.0 + noise, 1.0)
+    };
+    let mut sys = Scalar {
+        f: noisy,
+        floor: 1e-9,
+        n: 0,
+    };
     let o = NewtonOptions::new(1e-12, 20, 1e-6);
-    let r = newton(&mut Noisy(0), &[10.0], &o, "test").unwrap();
+    let r = newton(&mut sys, &[10.0], &o, "test").unwrap();
     assert_eq!(r.status, Status::ConvergedAtFloor);
     assert!((r.x[0] - 2.0).abs() <= 2e-9);
     assert_eq!(r.floor, 1e-9);
@@ -66,23 +83,17 @@ fn tol_below_the_floor_converges_to_the_floor() {
 /// Newton step.)
 #[test]
 fn a_watchdog_step_crosses_a_kink() {
-    struct Kink(usize);
-    impl System for Kink {
-        fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
-            self.0 += 1;
-            let k = if x[0] >= 0.0 { 1.0 } else { 1000.0 };
-            Ok(vec![k * x[0] + 1.0])
-        }
-        fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
-            let k = if x[0] >= 0.0 { 1.0 } else { 1000.0 };
-            Ok((self.residual(x)?, DMatrix::from_element(1, 1, k)))
-        }
-        fn evaluations(&self) -> usize {
-            self.0
-        }
-    }
+    let kink = |_: usize, x: f64| {
+        let k = if x >= 0.0 { 1.0 } else { 1000.0 };
+        (k * x + 1.0, k)
+    };
+    let mut sys = Scalar {
+        f: kink,
+        floor: 0.0,
+        n: 0,
+    };
     let o = NewtonOptions::new(1e-12, 20, 1e-10);
-    let r = newton(&mut Kink(0), &[1.0], &o, "test").unwrap();
+    let r = newton(&mut sys, &[1.0], &o, "test").unwrap();
     // the root to rounding: |f| <= 1e-12 means |x + 1e-3| <= 1e-15
     assert!((r.x[0] + 1e-3).abs() < 1e-15, "{}", r.x[0]);
     assert_eq!(r.iterations, 2);
