@@ -5,26 +5,18 @@
 //! indication only; the criterion benches in benches/rod.rs are the timings.)
 use std::time::Instant;
 
-#[repr(C)]
-struct Timespec {
-    tv_sec: i64,
-    tv_nsec: i64,
-}
-
 extern "C" {
-    // POSIX, in the C library every Rust program on Linux links already
-    fn clock_gettime(clock: i32, ts: *mut Timespec) -> i32;
+    // POSIX (the C library every Rust program on Linux links); a 64-bit
+    // Linux timespec is two i64, seconds and nanoseconds
+    fn clock_gettime(clock: i32, ts: *mut [i64; 2]) -> i32;
 }
 
-/// Thread CPU time [s] (`CLOCK_THREAD_CPUTIME_ID`, Linux).
+/// Thread CPU time [s] (`CLOCK_THREAD_CPUTIME_ID` = 3, Linux).
 fn thread_cpu() -> f64 {
-    let mut ts = Timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `ts` is a valid, writable timespec (64-bit Linux layout).
+    let mut ts = [0i64; 2];
+    // SAFETY: `ts` is valid and writable, laid out as a 64-bit timespec.
     unsafe { clock_gettime(3, &mut ts) };
-    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+    ts[0] as f64 + ts[1] as f64 * 1e-9
 }
 
 /// Median thread-CPU time [s] of `f`, over `n` runs of 10 calls.
