@@ -1,8 +1,77 @@
 //! Iterations, IVPs and wall time of cold (and warm) forward solves of the
 //! issue-10 tendon cases and the Fig. 6 square: `cargo run --release
-//! --example solver_counts`. (Wall time of one run each, median of 21: an
+//! --example solver_counts` (`-- --compare`: thread-CPU medians with and
+//! without the coarse-grid pre-solve, interleaved). (Wall time of one run each, median of 21: an
 //! indication only; the criterion benches in benches/rod.rs are the timings.)
 use std::time::Instant;
+
+extern "C" {
+    // POSIX (the C library every Rust program on Linux links); a 64-bit
+    // Linux timespec is two i64, seconds and nanoseconds
+    fn clock_gettime(clock: i32, ts: *mut [i64; 2]) -> i32;
+}
+
+/// Thread CPU time [s] (`CLOCK_THREAD_CPUTIME_ID` = 3, Linux).
+fn thread_cpu() -> f64 {
+    let mut ts = [0i64; 2];
+    // SAFETY: `ts` is valid and writable, laid out as a 64-bit timespec.
+    unsafe { clock_gettime(3, &mut ts) };
+    ts[0] as f64 + ts[1] as f64 * 1e-9
+}
+
+/// Median thread-CPU time [s] of `f`, over `n` runs of 10 calls.
+fn cpu_median(n: usize, mut f: impl FnMut()) -> f64 {
+    let mut t: Vec<f64> = (0..n)
+        .map(|_| {
+            let t0 = thread_cpu();
+            for _ in 0..10 {
+                f();
+            }
+            (thread_cpu() - t0) / 10.0
+        })
+        .collect();
+    t.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    t[n / 2]
+}
+
+/// Thread-CPU medians of a solve with and without the coarse-grid pre-solve
+/// (interleaved, 15 rounds of 10 solves each), in us and in plain-IVP times.
+fn compare(name: &str, robot: &Robot, inputs: &[f64], warm: Option<&Solution>) {
+    let o = SolveOptions::default();
+    let off = SolveOptions {
+        presolve: false,
+        ..o
+    };
+    let l = tcarod::shooting::Loads::of(robot);
+    let at = solve(robot, inputs, &o, None).unwrap();
+    let (mut a, mut b, mut u) = (Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..15 {
+        a.push(cpu_median(1, || {
+            drop(solve(robot, inputs, &o, warm).unwrap())
+        }));
+        b.push(cpu_median(1, || {
+            drop(solve(robot, inputs, &off, warm).unwrap())
+        }));
+        u.push(cpu_median(1, || {
+            drop(tcarod::shooting::shoot(robot, inputs, &l, &at.unknowns, 100, false).unwrap())
+        }));
+    }
+    for v in [&mut a, &mut b, &mut u] {
+        v.sort_by(|x, y| x.partial_cmp(y).unwrap());
+    }
+    let (ea, eb) = (
+        solve(robot, inputs, &o, warm).unwrap().evaluations,
+        solve(robot, inputs, &off, warm).unwrap().evaluations,
+    );
+    println!(
+        "{name:<28} thread CPU: pre-solve {:>6.1} us ({:.2} IVPs, {ea} evaluations), full-grid Newton {:>6.1} us ({:.2} IVPs, {eb} evaluations); one IVP {:.1} us",
+        a[7] * 1e6,
+        a[7] / u[7],
+        b[7] * 1e6,
+        b[7] / u[7],
+        u[7] * 1e6
+    );
+}
 
 use tcarod::experiments::{
     fig6_square, soft_tendon_robot, soft_tendon_tension, steel_tendon_robot, STEEL_TENDON_TENSIONS,
@@ -74,6 +143,24 @@ fn run(
 }
 
 fn main() {
+    if std::env::args().any(|a| a == "--compare") {
+        let sq = fig6_square(true);
+        let o = SolveOptions::default();
+        let s95 = solve(&sq, &[95.0, 95.0], &o, None).unwrap();
+        compare("fig6 square 100 C cold", &sq, &[100.0, 100.0], None);
+        compare(
+            "fig6 square 100 C warm (95)",
+            &sq,
+            &[100.0, 100.0],
+            Some(&s95),
+        );
+        let steel = steel_tendon_robot();
+        let s0 = solve(&steel, &STEEL_TENDON_TENSIONS, &o, None).unwrap();
+        let up: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
+        compare("steel tendon cold", &steel, &STEEL_TENDON_TENSIONS, None);
+        compare("steel tendon warm +1 %", &steel, &up, Some(&s0));
+        return;
+    }
     let soft = soft_tendon_robot();
     let o50 = SolveOptions {
         steps: 50,

@@ -27,13 +27,22 @@ pub fn reference_guess(robot: &Robot) -> Vec<f64> {
 /// elongation would imply a very different force, while the old force is
 /// close to the new one.
 pub fn initial_guess(robot: &Robot, inputs: &[f64], warm: Option<&Solution>) -> Vec<f64> {
+    warm_guess(
+        robot,
+        inputs,
+        warm.map(|w| (&w.unknowns[..], &w.tensions[..])),
+    )
+}
+
+/// [`initial_guess`] from a neighbouring solution's `(unknowns, tensions)`.
+pub fn warm_guess(robot: &Robot, inputs: &[f64], warm: Option<(&[f64], &[f64])>) -> Vec<f64> {
     let len = robot.body.length;
     let mut x = match warm {
-        Some(w) => w.unknowns.clone(),
+        Some((unknowns, _)) => unknowns.to_vec(),
         None => reference_guess(robot),
     };
     for (i, a) in robot.actuators.iter().enumerate() {
-        let tension = warm.map_or(0.0, |w| w.tensions[i]);
+        let tension = warm.map_or(0.0, |(_, t)| t[i]);
         if let Some(d) = a.law.elongation(tension, inputs[i]) {
             if d.is_finite() {
                 x[6 + i] = d / len;

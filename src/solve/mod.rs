@@ -8,6 +8,7 @@ pub mod fn_system;
 pub mod guess;
 pub mod newton;
 pub mod options;
+pub mod presolve;
 pub mod residual;
 pub mod shooting;
 pub mod solution;

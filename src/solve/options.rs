@@ -25,6 +25,10 @@ pub struct SolveOptions {
     /// Wall-time limit of one solve (`None`: none); passing it raises
     /// [`Error::NotConverged`] with [`crate::StopReason::Budget`].
     pub time_limit: Option<Duration>,
+    /// Pre-solve on a grid of a tenth of the steps and correct the defect
+    /// on the full grid (see [`crate::solve::presolve`]); `false`: Newton
+    /// on the full grid from the start.
+    pub presolve: bool,
 }
 
 /// Default IVP budget of one solve ([`SolveOptions::max_evaluations`]): 40
@@ -53,6 +57,7 @@ impl Default for SolveOptions {
             min_step: 1e-6,
             max_evaluations: DEFAULT_MAX_EVALUATIONS,
             time_limit: None,
+            presolve: true,
         }
     }
 }

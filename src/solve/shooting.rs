@@ -25,9 +25,10 @@ use super::continuation::continuation;
 use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
 
-pub use super::guess::{initial_guess, linear_guess, reference_guess};
+pub use super::guess::{initial_guess, linear_guess, reference_guess, warm_guess};
 pub use super::newton::Status;
 pub use super::options::{SolveOptions, DEFAULT_MAX_EVALUATIONS};
+use super::presolve::{presolved_shooting, Warm};
 pub use super::residual::{
     residual_scales, shoot, shoot_jacobian, tension_slope, tensions, Loads, ONSET_BAND,
 };
@@ -117,8 +118,12 @@ pub fn solve_loaded(
     if warm.is_none() {
         linear_guess(robot, inputs, loads, &mut x0);
     }
-    let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
-    match newton_shooting(robot, inputs, loads, opts, &x0, jac0, true, &mut work) {
+    let start = warm.map(|w| Warm {
+        unknowns: &w.unknowns,
+        inputs: &w.inputs,
+        jacobian: w.newton_jacobian.as_ref(),
+    });
+    match presolved_shooting(robot, inputs, loads, opts, &x0, start, true, &mut work) {
         Ok((nr, last)) => solution_from(robot, inputs, loads, opts, nr, last, &mut work),
         Err(e) if is_input_error(&e) || is_budget_error(&e) => Err(e),
         Err(first) => continuation(robot, inputs, loads, opts, warm, &mut work)
@@ -193,25 +198,21 @@ pub fn solve_tip(
     opts: &SolveOptions,
     warm: Option<&TipSolution>,
 ) -> Result<TipSolution> {
-    let len = robot.body.length;
-    let mut x0 = match warm {
-        Some(w) => w.unknowns.clone(),
-        None => reference_guess(robot),
-    };
-    for (i, a) in robot.actuators.iter().enumerate() {
-        let tension = warm.map_or(0.0, |w| w.tensions[i]);
-        if let Some(d) = a.law.elongation(tension, inputs[i]) {
-            if d.is_finite() {
-                x0[6 + i] = d / len;
-            }
-        }
-    }
+    let mut x0 = warm_guess(
+        robot,
+        inputs,
+        warm.map(|w| (&w.unknowns[..], &w.tensions[..])),
+    );
     if warm.is_none() {
         linear_guess(robot, inputs, loads, &mut x0);
     }
     let mut work = Work::start(opts);
-    let jac0 = warm.and_then(|w| w.newton_jacobian.as_ref());
-    match newton_shooting(robot, inputs, loads, opts, &x0, jac0, false, &mut work) {
+    let start = warm.map(|w| Warm {
+        unknowns: &w.unknowns,
+        inputs: &w.inputs,
+        jacobian: w.newton_jacobian.as_ref(),
+    });
+    match presolved_shooting(robot, inputs, loads, opts, &x0, start, false, &mut work) {
         Ok((nr, last)) => {
             let (ivp, tau) = match last {
                 Some((_, ivp, tau)) => (ivp, tau),

@@ -16,7 +16,7 @@ use crate::rod::{IvpResult, Robot};
 /// Unknowns, residual, IVP and tensions of the last evaluation, kept for the solution.
 type LastEvaluation = (Vec<f64>, Vec<f64>, IvpResult, Vec<f64>);
 /// Residual, IVP and tensions at the Newton solution (when it was the last one integrated).
-type FinalIvp = (Vec<f64>, IvpResult, Vec<f64>);
+pub(crate) type FinalIvp = (Vec<f64>, IvpResult, Vec<f64>);
 
 /// The shooting residual of one forward problem as a Newton [`System`]:
 /// plain IVPs for residuals, tangent IVPs for the exact Jacobian. Counts
@@ -78,7 +78,7 @@ impl<'a> Shooting<'a> {
         }
     }
     /// The last plain IVP if it was at `x`: `(residual, ivp, tensions)`.
-    fn take_last(&mut self, x: &[f64]) -> Option<(Vec<f64>, IvpResult, Vec<f64>)> {
+    pub(crate) fn take_last(&mut self, x: &[f64]) -> Option<(Vec<f64>, IvpResult, Vec<f64>)> {
         match self.last.take() {
             Some((xl, r, ivp, tau)) if xl == x => Some((r, ivp, tau)),
             _ => None,
@@ -199,7 +199,7 @@ impl Work {
             || self.deadline.is_some_and(|d| Instant::now() >= d)
     }
     /// The Newton options of one run within the remaining budget.
-    fn newton_options(&self, opts: &SolveOptions) -> NewtonOptions {
+    pub(crate) fn newton_options(&self, opts: &SolveOptions) -> NewtonOptions {
         let max_evaluations = if self.max_evaluations == 0 {
             usize::MAX
         } else {
