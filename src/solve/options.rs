@@ -65,29 +65,14 @@ impl Default for SolveOptions {
 impl SolveOptions {
     /// Validate.
     pub fn validate(&self) -> Result<()> {
-        if self.steps == 0 || self.steps > 10_000_000 {
-            return Err(Error::param(
-                "steps",
-                self.steps as f64,
-                "1 <= steps <= 1e7",
-            ));
-        }
+        // the caps on the work of one solve (steps, max_iter,
+        // max_evaluations, time_limit) are defined once, in crate::limits
+        self.check_limits()?;
         if !(self.tol.is_finite() && self.tol > 0.0) {
             return Err(Error::param("tol", self.tol, "finite and > 0"));
         }
-        if self.max_iter == 0 {
-            return Err(Error::param("max_iter", 0.0, ">= 1"));
-        }
         if !(self.min_step > 0.0 && self.min_step < 1.0) {
             return Err(Error::param("min_step", self.min_step, "0 < min_step < 1"));
-        }
-        if self.max_evaluations == 0 {
-            return Err(Error::param("max_evaluations", 0.0, ">= 1"));
-        }
-        if let Some(t) = self.time_limit {
-            if t.is_zero() {
-                return Err(Error::param("time_limit [s]", 0.0, "> 0"));
-            }
         }
         Ok(())
     }
