@@ -23,7 +23,6 @@ use nalgebra::{Matrix3, Vector3};
 use tcarod::experiments::{fig6_circle, fig6_square, manipulator_tca};
 use tcarod::problems::SplitMix64;
 use tcarod::rod::{Actuator, Body, Robot, Routing, Section};
-use tcarod::shooting::{sweep, SolveOptions};
 
 const G0: f64 = 9.81;
 /// Random designs per property (the Python hypothesis tests draw 25).
@@ -464,46 +463,6 @@ fn heated_extension_tcas_of_fig6_bend_toward_minus_x() {
             assert!(sol.elongations.iter().all(|&e| e > 0.0), "and lengthens");
             // planar: the TCAs are symmetric about y = 0
             assert!(sol.tip_position().y.abs() < 1e-12);
-        }
-    }
-}
-
-// ------------------------------------------------------------ convergence
-
-#[test]
-fn fig6_sweeps_converge_cold_and_warm() {
-    let temps: Vec<f64> = (0..28).map(|k| 25.0 + 5.0 * k as f64).collect(); // 25..160 C
-    let opts = SolveOptions::default();
-    for gravity in [true, false] {
-        for robot in [fig6_circle(gravity), fig6_square(gravity)] {
-            let n = robot.actuators.len();
-            let rows: Vec<Vec<f64>> = temps.iter().map(|&t| vec![t; n]).collect();
-            let warm = sweep(&robot, &rows, &opts).unwrap();
-            // every temperature from the reference guess
-            let cold: Vec<_> = rows.iter().map(|r| solve_default(&robot, r)).collect();
-            for (w, c) in warm.iter().zip(&cold) {
-                assert!(w.residual <= 1e-10 && c.residual <= 1e-10);
-                // incl. the fallback continuation of a cold solve
-                assert!(w.iterations <= 50 && c.iterations <= 50 * 11);
-                // the same solution from both starts (tolerance 1e-10 in strain -> ~1e-11 m)
-                assert!(common::max_diff(&w.positions, &c.positions) <= 1e-9);
-            }
-            // the warm start pays off over the sweep in IVPs (its chord iterations are
-            // one plain IVP each; a cold iteration needs a tangent IVP)
-            let ivps =
-                |s: &[tcarod::shooting::Solution]| s.iter().map(|x| x.evaluations).sum::<usize>();
-            // (counted on full-grid Newton: the coarse pre-solve's IVPs cost a
-            // tenth each, so its counts do not measure this)
-            let off = SolveOptions {
-                presolve: false,
-                ..opts
-            };
-            let warm = sweep(&robot, &rows, &off).unwrap();
-            let cold: Vec<_> = rows
-                .iter()
-                .map(|r| tcarod::shooting::solve(&robot, r, &off, None).unwrap())
-                .collect();
-            assert!(ivps(&warm) < ivps(&cold), "gravity {gravity}");
         }
     }
 }

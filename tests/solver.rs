@@ -1,9 +1,13 @@
 //! The Newton solver's contract: few iterations on the issue-10 tendon
 //! cases, convergence to the rounding floor, continuation with its path,
 //! cancellation, honest work counts.
+mod common;
+
+use common::solve_default;
 use nalgebra::Vector3;
 use tcarod::experiments::{
-    fig6_square, soft_tendon_robot, soft_tendon_tension, steel_tendon_robot, STEEL_TENDON_TENSIONS,
+    fig6_circle, fig6_square, soft_tendon_robot, soft_tendon_tension, steel_tendon_robot,
+    STEEL_TENDON_TENSIONS,
 };
 use tcarod::inverse::rotation_vector;
 use tcarod::shooting::{
@@ -308,4 +312,41 @@ fn a_rescaled_warm_jacobian_is_the_exact_one_at_the_new_inputs() {
         "{:e}",
         (&jw - &j0).amax()
     );
+}
+
+#[test]
+fn fig6_sweeps_converge_cold_and_warm() {
+    let temps: Vec<f64> = (0..28).map(|k| 25.0 + 5.0 * k as f64).collect(); // 25..160 C
+    let opts = SolveOptions::default();
+    for gravity in [true, false] {
+        for robot in [fig6_circle(gravity), fig6_square(gravity)] {
+            let n = robot.actuators.len();
+            let rows: Vec<Vec<f64>> = temps.iter().map(|&t| vec![t; n]).collect();
+            let warm = sweep(&robot, &rows, &opts).unwrap();
+            // every temperature from the reference guess
+            let cold: Vec<_> = rows.iter().map(|r| solve_default(&robot, r)).collect();
+            for (w, c) in warm.iter().zip(&cold) {
+                assert!(w.residual <= 1e-10 && c.residual <= 1e-10);
+                // incl. the fallback continuation of a cold solve
+                assert!(w.iterations <= 50 && c.iterations <= 50 * 11);
+                // the same solution from both starts (tolerance 1e-10 in strain -> ~1e-11 m)
+                assert!(common::max_diff(&w.positions, &c.positions) <= 1e-9);
+            }
+            // the warm start pays off over the sweep in IVPs (its chord iterations are
+            // one plain IVP each; a cold iteration needs a tangent IVP)
+            let ivps = |s: &[Solution]| s.iter().map(|x| x.evaluations).sum::<usize>();
+            // (counted on full-grid Newton: the coarse pre-solve's IVPs cost a
+            // tenth each, so its counts do not measure this)
+            let off = SolveOptions {
+                presolve: false,
+                ..opts
+            };
+            let warm = sweep(&robot, &rows, &off).unwrap();
+            let cold: Vec<_> = rows
+                .iter()
+                .map(|r| solve(&robot, r, &off, None).unwrap())
+                .collect();
+            assert!(ivps(&warm) < ivps(&cold), "gravity {gravity}");
+        }
+    }
 }

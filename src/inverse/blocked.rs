@@ -256,15 +256,7 @@ pub fn blocked_temperature(
         let step = if k < increments { df } else { 0.0 };
         let gap = n.dot(&(block.point - sol.tip_position()));
         let Some(dz) = eq43_increment(&sens, &n, step, gap) else {
-            return Err(Error::NotConverged {
-                solver: "blocked-tip increments",
-                iterations: k,
-                evaluations: evals,
-                residual: f64::INFINITY,
-                stop: StopReason::SingularJacobian,
-                reason: "the actuator cannot move the tip along the block normal (n^T J = 0)"
-                    .into(),
-            });
+            return Err(tip_cannot_move(k, evals));
         };
         z += dz;
         f += step;
@@ -310,6 +302,19 @@ pub fn blocked_temperature(
         residual: n.dot(&(block.point - sol.tip_position())).abs() / robot.body.length,
         reason: "tip did not settle on the block".into(),
     })
+}
+
+/// The error of an eq-43 increment whose actuator cannot move the tip along
+/// the block normal (`n^T J = 0`), after `iterations` increments.
+fn tip_cannot_move(iterations: usize, evaluations: usize) -> Error {
+    Error::NotConverged {
+        solver: "blocked-tip increments",
+        iterations,
+        evaluations,
+        residual: f64::INFINITY,
+        stop: StopReason::SingularJacobian,
+        reason: "the actuator cannot move the tip along the block normal (n^T J = 0)".into(),
+    }
 }
 
 /// The arguments of [`blocked_temperature`]: one actuation variable, a

@@ -23,7 +23,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::{load_scales, Block, Groups};
 use crate::error::Result;
-use crate::rod::{integrate_tangent, IvpSpec, Robot, TangentSeeds};
+use crate::rod::{integrate_tangent, IvpResult, IvpSpec, Robot, TangentSeeds};
 use crate::shooting::{residual_scales, shoot, Loads, System};
 use crate::solve::system::COARSE_JACOBIAN_MIN_STEPS;
 
@@ -255,18 +255,26 @@ fn augmented(sys: &Mixed<'_>, x: &[f64], steps: usize) -> Result<Augmented> {
             }
         }
     }
-    let mut r = Vec::with_capacity(nx + 1);
-    r.extend((ivp.tip_force_residual * fs).iter());
-    r.extend((ivp.tip_moment_residual * ms).iter());
-    for i in 0..na {
-        r.push((ivp.elongation[i] - x[6 + i] * len) / len);
-    }
-    r.push(sys.gap(&ivp.tip.p));
     Ok(Augmented {
-        residual: r,
+        residual: scaled_residual(sys, ivp, x),
         jacobian: jac,
         per_tension: raw.columns(6, na).into_owned(),
     })
+}
+
+/// The augmented residual at `x` from its IVP: the scaled tip force and
+/// moment residuals, the elongation mismatches `/ L` and the tip gap.
+fn scaled_residual(sys: &Mixed<'_>, ivp: &IvpResult, x: &[f64]) -> Vec<f64> {
+    let (robot, len) = (sys.robot, sys.robot.body.length);
+    let (fs, ms) = residual_scales(robot);
+    let mut r = Vec::with_capacity(x.len());
+    r.extend((ivp.tip_force_residual * fs).iter());
+    r.extend((ivp.tip_moment_residual * ms).iter());
+    for (i, e) in ivp.elongation.iter().enumerate() {
+        r.push((e - x[6 + i] * len) / len);
+    }
+    r.push(sys.gap(&ivp.tip.p));
+    r
 }
 
 /// The start of a direct solve for the actuation variable (`sys` with

@@ -30,6 +30,7 @@ mod ode;
 mod robot;
 mod section;
 mod tangent;
+mod tangent_nodes;
 
 pub use actuator::{Actuator, ConstantTension, ForceLaw, LinearTendon, Routing, TcaLaw};
 pub use body::{Body, Shear, DEFAULT_POISSON};

@@ -19,114 +19,9 @@ use nalgebra::{DMatrix, Vector3};
 use super::dual::{c_cross, cross_c, dot, rot_t, rt_mul, Dual, Real, V3};
 use super::ivp::{anchored_at, spanning};
 use super::ode::RodRhs;
+pub use super::tangent_nodes::{TangentNode, TangentNodes, TangentSeeds};
 use super::{IvpResult, IvpSpec, RodState, BASE_STATES};
 use crate::error::{Error, Result};
-
-/// Seed directions of a tangent IVP: each column is one direction, giving
-/// the derivative of the initial strains and of the tensions along it.
-#[derive(Debug, Clone)]
-pub struct TangentSeeds {
-    /// `d nu(0)` \[-\], `3 x k`.
-    pub nu0: DMatrix<f64>,
-    /// `d omega(0)` \[1/m\], `3 x k`.
-    pub omega0: DMatrix<f64>,
-    /// `d tau` \[N\], `n_actuators x k`.
-    pub tensions: DMatrix<f64>,
-}
-
-impl TangentSeeds {
-    /// `k` zero directions for a robot with `na` actuators.
-    pub fn zeros(na: usize, k: usize) -> Self {
-        TangentSeeds {
-            nu0: DMatrix::zeros(3, k),
-            omega0: DMatrix::zeros(3, k),
-            tensions: DMatrix::zeros(na, k),
-        }
-    }
-    /// Number of directions.
-    pub fn directions(&self) -> usize {
-        self.nu0.ncols()
-    }
-}
-
-/// One recorded grid node of a tangent IVP (a view into [`TangentNodes`]).
-#[derive(Debug, Clone, Copy)]
-pub struct TangentNode<'a> {
-    /// Arc length \[m\].
-    pub s: f64,
-    /// State `y(s)` (`p, q, nu, omega, delta`; see [`crate::rod::BASE_STATES`]).
-    pub state: &'a [f64],
-    /// `d y(s) / d seed`, `n_states x k` column-major (after the jump at an
-    /// anchor node): column `j` is `tangent[j * n_states..(j + 1) * n_states]`.
-    pub tangent: &'a [f64],
-}
-
-/// The recorded grid nodes of a tangent IVP, in one flat buffer each for
-/// the arc lengths, the states and the tangents (no allocation per node).
-#[derive(Debug, Clone, Default)]
-pub struct TangentNodes {
-    /// States per node.
-    n: usize,
-    /// Directions per node.
-    k: usize,
-    s: Vec<f64>,
-    state: Vec<f64>,
-    tangent: Vec<f64>,
-}
-
-impl TangentNodes {
-    fn new(n: usize, k: usize, capacity: usize) -> Self {
-        TangentNodes {
-            n,
-            k,
-            s: Vec::with_capacity(capacity),
-            state: Vec::with_capacity(capacity * n),
-            tangent: Vec::with_capacity(capacity * n * k),
-        }
-    }
-    /// Number of nodes.
-    pub fn len(&self) -> usize {
-        self.s.len()
-    }
-    /// True if no node was recorded.
-    pub fn is_empty(&self) -> bool {
-        self.s.is_empty()
-    }
-    /// Node `i`.
-    pub fn get(&self, i: usize) -> TangentNode<'_> {
-        let (n, nk) = (self.n, self.n * self.k);
-        TangentNode {
-            s: self.s[i],
-            state: &self.state[i * n..(i + 1) * n],
-            tangent: &self.tangent[i * nk..(i + 1) * nk],
-        }
-    }
-    /// The nodes in order.
-    pub fn iter(&self) -> impl Iterator<Item = TangentNode<'_>> {
-        (0..self.len()).map(|i| self.get(i))
-    }
-    /// `d y / d seed` of node `i` as an `n_states x k` matrix.
-    pub fn tangent_matrix(&self, i: usize) -> DMatrix<f64> {
-        DMatrix::from_column_slice(self.n, self.k, self.get(i).tangent)
-    }
-    /// Record node `idx` of a pass over directions `c0 .. c0 + w`: the first
-    /// pass appends the node, the others fill in their columns.
-    #[inline(always)]
-    fn record<const N: usize>(&mut self, idx: usize, s: f64, y: &[Dual<N>], c0: usize, w: usize) {
-        let (n, nk) = (self.n, self.n * self.k);
-        if idx == self.s.len() {
-            self.s.push(s);
-            self.state.extend(y.iter().map(|d| d.re));
-            self.tangent.resize(self.tangent.len() + nk, 0.0);
-        }
-        let t = &mut self.tangent[idx * nk..(idx + 1) * nk];
-        for (r, d) in y.iter().enumerate() {
-            for (c, e) in d.eps[..w].iter().enumerate() {
-                t[(c0 + c) * n + r] = *e;
-            }
-        }
-    }
-}
 
 /// A tangent IVP: the IVP (its real part) and its derivatives along the seeds.
 #[derive(Debug, Clone)]
@@ -411,14 +306,7 @@ fn pass<const N: usize>(
     nodes: &mut TangentNodes,
 ) -> Result<TangentIvp> {
     type D<const N: usize> = Dual<N>;
-    let Pass {
-        spec,
-        v0,
-        u0,
-        seeds,
-        c0,
-        w,
-    } = *p;
+    let (spec, c0, w) = (p.spec, p.c0, p.w);
     let robot = spec.robot;
     let body = &robot.body;
     let fz = RodRhs::new(robot, spec.tensions);
@@ -426,19 +314,8 @@ fn pass<const N: usize>(
     let n = robot.n_states();
     let len = body.length;
     let steps = spec.steps.max(1);
-    let seed = |m: &DMatrix<f64>, row: usize| -> [f64; N] {
-        std::array::from_fn(|d| if d < w { m[(row, c0 + d)] } else { 0.0 })
-    };
-    let tau: Vec<D<N>> = (0..na)
-        .map(|i| Dual::new(spec.tensions[i], seed(&seeds.tensions, i)))
-        .collect();
+    let (tau, mut y) = seeded_start::<N>(p, n);
     let zero = D::<N>::cst(0.0);
-    let mut y = vec![zero; n];
-    y[3] = D::cst(1.0);
-    for k in 0..3 {
-        y[7 + k] = Dual::new(v0[k], seed(&seeds.nu0, k));
-        y[10 + k] = Dual::new(u0[k], seed(&seeds.omega0, k));
-    }
     let mut st = Stages::<N>::new(n);
     let rec = record != Record::Tip;
     let mut idx = 0;
@@ -493,6 +370,27 @@ fn pass<const N: usize>(
         Vec::new()
     };
     Ok(finish(&y, &elongation, &rf, &rmm, ivp_nodes, w))
+}
+
+/// The dual tensions and initial state of a pass: directions `c0 .. c0 + w`
+/// of the seeds on the tensions and on `nu(0)`, `omega(0)`; the base at the
+/// origin with the identity rotation.
+fn seeded_start<const N: usize>(p: &Pass<'_, '_>, n: usize) -> (Vec<Dual<N>>, Vec<Dual<N>>) {
+    let (seeds, c0, w) = (p.seeds, p.c0, p.w);
+    let seed = |m: &DMatrix<f64>, row: usize| -> [f64; N] {
+        std::array::from_fn(|d| if d < w { m[(row, c0 + d)] } else { 0.0 })
+    };
+    let na = p.spec.robot.actuators.len();
+    let tau = (0..na)
+        .map(|i| Dual::new(p.spec.tensions[i], seed(&seeds.tensions, i)))
+        .collect();
+    let mut y = vec![Dual::<N>::cst(0.0); n];
+    y[3] = Dual::cst(1.0);
+    for k in 0..3 {
+        y[7 + k] = Dual::new(p.v0[k], seed(&seeds.nu0, k));
+        y[10 + k] = Dual::new(p.u0[k], seed(&seeds.omega0, k));
+    }
+    (tau, y)
 }
 
 /// The tangent IVP's result from the final dual state: the real parts as

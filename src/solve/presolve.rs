@@ -223,18 +223,14 @@ pub(crate) fn presolved_shooting(
     for _ in 0..MAX_ROUNDS {
         let (out, evals) = pre.coarse_run(&x, defect.clone(), jac.as_ref(), work);
         work.evaluations += evals;
-        let nr = match out {
-            Ok(nr) => nr,
-            Err(e @ Error::Interrupted) => return Err(e),
-            Err(_) => break,
+        let Some(nr) = unless_interrupted(out)? else {
+            break;
         };
         iterations += nr.iterations;
         x = nr.x;
         jac = nr.jacobian.or(jac);
-        let r = match full.residual(&x) {
-            Ok(r) => r,
-            Err(e @ Error::Interrupted) => return Err(e),
-            Err(_) => break,
+        let Some(r) = unless_interrupted(full.residual(&x))? else {
+            break;
         };
         let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let floor = full.floor(&x, &r);
@@ -272,5 +268,15 @@ pub(crate) fn presolved_shooting(
         newton_shooting(robot, inputs, loads, opts, &x, jac.as_ref(), record, work)
     } else {
         newton_shooting(robot, inputs, loads, opts, x0, jac0, record, work)
+    }
+}
+
+/// `Ok(Some(value))`, `Ok(None)` for an error the pre-solve falls back from,
+/// or the error if it is an interrupt (which ends the solve).
+fn unless_interrupted<T>(r: Result<T>) -> Result<Option<T>> {
+    match r {
+        Ok(v) => Ok(Some(v)),
+        Err(e @ Error::Interrupted) => Err(e),
+        Err(_) => Ok(None),
     }
 }

@@ -1,0 +1,119 @@
+//! The seed directions of a tangent IVP and its recorded grid nodes (one
+//! flat buffer each for the arc lengths, states and tangents).
+
+use nalgebra::DMatrix;
+
+use super::dual::Dual;
+
+/// Seed directions of a tangent IVP: each column is one direction, giving
+/// the derivative of the initial strains and of the tensions along it.
+#[derive(Debug, Clone)]
+pub struct TangentSeeds {
+    /// `d nu(0)` \[-\], `3 x k`.
+    pub nu0: DMatrix<f64>,
+    /// `d omega(0)` \[1/m\], `3 x k`.
+    pub omega0: DMatrix<f64>,
+    /// `d tau` \[N\], `n_actuators x k`.
+    pub tensions: DMatrix<f64>,
+}
+
+impl TangentSeeds {
+    /// `k` zero directions for a robot with `na` actuators.
+    pub fn zeros(na: usize, k: usize) -> Self {
+        TangentSeeds {
+            nu0: DMatrix::zeros(3, k),
+            omega0: DMatrix::zeros(3, k),
+            tensions: DMatrix::zeros(na, k),
+        }
+    }
+    /// Number of directions.
+    pub fn directions(&self) -> usize {
+        self.nu0.ncols()
+    }
+}
+
+/// One recorded grid node of a tangent IVP (a view into [`TangentNodes`]).
+#[derive(Debug, Clone, Copy)]
+pub struct TangentNode<'a> {
+    /// Arc length \[m\].
+    pub s: f64,
+    /// State `y(s)` (`p, q, nu, omega, delta`; see [`crate::rod::BASE_STATES`]).
+    pub state: &'a [f64],
+    /// `d y(s) / d seed`, `n_states x k` column-major (after the jump at an
+    /// anchor node): column `j` is `tangent[j * n_states..(j + 1) * n_states]`.
+    pub tangent: &'a [f64],
+}
+
+/// The recorded grid nodes of a tangent IVP, in one flat buffer each for
+/// the arc lengths, the states and the tangents (no allocation per node).
+#[derive(Debug, Clone, Default)]
+pub struct TangentNodes {
+    /// States per node.
+    n: usize,
+    /// Directions per node.
+    k: usize,
+    s: Vec<f64>,
+    state: Vec<f64>,
+    tangent: Vec<f64>,
+}
+
+impl TangentNodes {
+    pub(super) fn new(n: usize, k: usize, capacity: usize) -> Self {
+        TangentNodes {
+            n,
+            k,
+            s: Vec::with_capacity(capacity),
+            state: Vec::with_capacity(capacity * n),
+            tangent: Vec::with_capacity(capacity * n * k),
+        }
+    }
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.s.len()
+    }
+    /// True if no node was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.s.is_empty()
+    }
+    /// Node `i`.
+    pub fn get(&self, i: usize) -> TangentNode<'_> {
+        let (n, nk) = (self.n, self.n * self.k);
+        TangentNode {
+            s: self.s[i],
+            state: &self.state[i * n..(i + 1) * n],
+            tangent: &self.tangent[i * nk..(i + 1) * nk],
+        }
+    }
+    /// The nodes in order.
+    pub fn iter(&self) -> impl Iterator<Item = TangentNode<'_>> {
+        (0..self.len()).map(|i| self.get(i))
+    }
+    /// `d y / d seed` of node `i` as an `n_states x k` matrix.
+    pub fn tangent_matrix(&self, i: usize) -> DMatrix<f64> {
+        DMatrix::from_column_slice(self.n, self.k, self.get(i).tangent)
+    }
+    /// Record node `idx` of a pass over directions `c0 .. c0 + w`: the first
+    /// pass appends the node, the others fill in their columns.
+    #[inline(always)]
+    pub(super) fn record<const N: usize>(
+        &mut self,
+        idx: usize,
+        s: f64,
+        y: &[Dual<N>],
+        c0: usize,
+        w: usize,
+    ) {
+        let (n, nk) = (self.n, self.n * self.k);
+        if idx == self.s.len() {
+            self.s.push(s);
+            self.state.extend(y.iter().map(|d| d.re));
+            self.tangent.resize(self.tangent.len() + nk, 0.0);
+        }
+        let t = &mut self.tangent[idx * nk..(idx + 1) * nk];
+        for (r, d) in y.iter().enumerate() {
+            for (c, e) in d.eps[..w].iter().enumerate() {
+                t[(c0 + c) * n + r] = *e;
+            }
+        }
+    }
+}
