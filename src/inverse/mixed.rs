@@ -23,8 +23,8 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::{load_scales, Block, Groups};
 use crate::error::Result;
-use crate::rod::{integrate_tangent, IvpResult, IvpSpec, Robot, TangentSeeds};
-use crate::shooting::{residual_scales, shoot, Loads, System};
+use crate::rod::{integrate_tangent, IvpResult, Robot, TangentSeeds};
+use crate::shooting::{base_strains, residual_scales, shoot, Loads, System};
 use crate::solve::system::COARSE_JACOBIAN_MIN_STEPS;
 
 /// RK4 steps of the coarse-grid Jacobian for `steps` (a tenth, at least
@@ -208,15 +208,8 @@ fn augmented(sys: &Mixed<'_>, x: &[f64], steps: usize) -> Result<Augmented> {
         slope.push(dt_de * len);
         per_variable.push(dt_dq);
     }
-    let spec = IvpSpec {
-        robot,
-        tensions: &tau,
-        tip_force: loads.tip_force,
-        tip_moment: loads.tip_moment,
-        steps,
-    };
-    let v0 = Vector3::new(x[0], x[1], x[2]);
-    let u0 = Vector3::new(x[3], x[4], x[5]) / len;
+    let spec = loads.ivp(robot, &tau, steps);
+    let (v0, u0) = base_strains(x, len);
     let tan = integrate_tangent(&spec, &v0, &u0, &seeds, false)?;
     let (fs, ms) = residual_scales(robot);
     let ivp = &tan.ivp;

@@ -5,8 +5,8 @@ use nalgebra::{DMatrix, DVector, Matrix3, Quaternion, Vector3};
 
 use super::{load_scales, pose_delta, Groups, Scheme, Sensitivities};
 use crate::error::{Error, Result, StopReason};
-use crate::rod::{integrate_tangent, IvpSpec, Robot, TangentSeeds};
-use crate::shooting::{shoot, Loads, Solution};
+use crate::rod::{integrate_tangent, Robot, TangentSeeds};
+use crate::shooting::{base_strains, shoot, Loads, Solution};
 
 /// `J` and `C` at a converged solution, from finite differences of IVPs
 /// around it (eqs 41-42), the paper's way.
@@ -195,15 +195,8 @@ pub(crate) fn exact_blocks(
         chain[(i, 6 + i)] = dt_de * len;
         chain[(i, nx + groups.0[i])] = dt_dq;
     }
-    let spec = IvpSpec {
-        robot,
-        tensions: &tau,
-        tip_force: loads.tip_force,
-        tip_moment: loads.tip_moment,
-        steps,
-    };
-    let v0 = Vector3::new(x[0], x[1], x[2]);
-    let u0 = Vector3::new(x[3], x[4], x[5]) / len;
+    let spec = loads.ivp(robot, &tau, steps);
+    let (v0, u0) = base_strains(x, len);
     let tan = integrate_tangent(&spec, &v0, &u0, &seeds, false)?;
     let ncol = nx + nz;
     // columns per unknown and variable: strain columns as seeded, the

@@ -40,6 +40,25 @@ impl Loads {
             tip_moment: robot.body.tip_moment,
         }
     }
+
+    /// The IVP of `robot` under these tip loads, with the actuator
+    /// `tensions` \[N\], on `steps` RK4 steps.
+    pub fn ivp<'a>(&self, robot: &'a Robot, tensions: &'a [f64], steps: usize) -> IvpSpec<'a> {
+        IvpSpec {
+            robot,
+            tensions,
+            tip_force: self.tip_force,
+            tip_moment: self.tip_moment,
+            steps,
+        }
+    }
+}
+
+/// The base strains of the scaled unknowns `x`: `nu(0) = x[0..3]` \[-\] and
+/// `omega(0) = x[3..6] / L` \[1/m\] (`len` = L \[m\]).
+pub fn base_strains(x: &[f64], len: f64) -> (Vector3<f64>, Vector3<f64>) {
+    let v0 = Vector3::new(x[0], x[1], x[2]);
+    (v0, Vector3::new(x[3], x[4], x[5]) / len)
 }
 
 /// One IVP from scaled unknowns `x`, and its scaled residual.
@@ -53,17 +72,10 @@ pub fn shoot(
 ) -> Result<(Vec<f64>, IvpResult, Vec<f64>)> {
     let len = robot.body.length;
     let na = robot.actuators.len();
-    let v0 = Vector3::new(x[0], x[1], x[2]);
-    let u0 = Vector3::new(x[3], x[4], x[5]) / len;
+    let (v0, u0) = base_strains(x, len);
     let delta: Vec<f64> = x[6..6 + na].iter().map(|d| d * len).collect();
     let tau = tensions(robot, inputs, &delta)?;
-    let spec = IvpSpec {
-        robot,
-        tensions: &tau,
-        tip_force: loads.tip_force,
-        tip_moment: loads.tip_moment,
-        steps,
-    };
+    let spec = loads.ivp(robot, &tau, steps);
     let ivp = integrate(&spec, &v0, &u0, record)?;
     let (fs, ms) = residual_scales(robot);
     let ef = ivp.tip_force_residual * fs;
@@ -109,8 +121,7 @@ pub(crate) fn shoot_jacobian_side(
     let len = robot.body.length;
     let na = robot.actuators.len();
     let nx = 6 + na;
-    let v0 = Vector3::new(x[0], x[1], x[2]);
-    let u0 = Vector3::new(x[3], x[4], x[5]) / len;
+    let (v0, u0) = base_strains(x, len);
     let mut tau = Vec::with_capacity(na);
     let mut seeds = TangentSeeds::zeros(na, nx);
     let mut onset = false;
@@ -124,13 +135,7 @@ pub(crate) fn shoot_jacobian_side(
         tau.push(t);
         seeds.tensions[(i, 6 + i)] = dt_de * len;
     }
-    let spec = IvpSpec {
-        robot,
-        tensions: &tau,
-        tip_force: loads.tip_force,
-        tip_moment: loads.tip_moment,
-        steps,
-    };
+    let spec = loads.ivp(robot, &tau, steps);
     let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
     let (fs, ms) = residual_scales(robot);
     let ivp = &tan.ivp;

@@ -30,7 +30,8 @@ pub use super::newton::Status;
 pub use super::options::{SolveOptions, DEFAULT_MAX_EVALUATIONS};
 use super::presolve::{presolved_shooting, Warm};
 pub use super::residual::{
-    residual_scales, shoot, shoot_jacobian, tension_slope, tensions, Loads, ONSET_BAND,
+    base_strains, residual_scales, shoot, shoot_jacobian, tension_slope, tensions, Loads,
+    ONSET_BAND,
 };
 pub use super::solution::{assemble, Solution, TipSolution};
 pub(crate) use super::system::{newton_shooting, solution_from, Work};

@@ -6,8 +6,8 @@ use nalgebra::{DMatrix, Matrix3, Matrix6, Quaternion, Vector3, Vector6};
 
 use super::Equilibrium;
 use crate::error::Result;
-use crate::rod::{integrate_tangent, rot, IvpSpec, Record, Robot, RodState, TangentSeeds};
-use crate::shooting::{residual_scales, shoot, Loads, Solution};
+use crate::rod::{integrate_tangent, rot, Record, Robot, RodState, TangentSeeds};
+use crate::shooting::{base_strains, residual_scales, shoot, Loads, Solution};
 
 /// Tangents of one equilibrium: at every node the frozen-tension columns
 /// (the six base strains) `Y_k`, `H_k`; at the tip all `nz` columns when the
@@ -171,15 +171,8 @@ pub(super) fn exact_tangents(
     let len = robot.body.length;
     let x = eq.unknowns;
     let (seeds, tau, dtau) = seeds(robot, eq, nz)?;
-    let spec = IvpSpec {
-        robot,
-        tensions: &tau,
-        tip_force: eq.loads.tip_force,
-        tip_moment: eq.loads.tip_moment,
-        steps: eq.steps,
-    };
-    let v0 = Vector3::new(x[0], x[1], x[2]);
-    let u0 = Vector3::new(x[3], x[4], x[5]) / len;
+    let spec = eq.loads.ivp(robot, &tau, eq.steps);
+    let (v0, u0) = base_strains(x, len);
     let tan = integrate_tangent(&spec, &v0, &u0, &seeds, Record::Tangents)?;
     let (fs, ms) = residual_scales(robot);
     let (kse, kbt) = robot.body.stiffness();
