@@ -100,7 +100,7 @@ pub struct BlockedResult {
 /// Direct solve with the tip held (mixed boundary condition): at given
 /// actuation variables `z`, the contact force `f` \[N\] is an extra unknown and
 /// `normal . (p(L) - point) = 0` an extra residual (Newton with the exact
-/// Jacobian, see [`super::mixed`]). `f` may come out negative
+/// Jacobian, see `inverse::mixed`). `f` may come out negative
 /// if the tip would pull away from the block (the caller decides whether
 /// contact holds).
 pub fn blocked_force(
@@ -153,9 +153,9 @@ pub fn blocked_variable_direct(
 /// Direct solve for the single actuation variable at which the blocked tip
 /// presses with `force` \[N\], from `start` (a solution whose tip touches the
 /// block with no force): one augmented Newton solve (the variable an extra
-/// unknown, see [`super::mixed`]) started from an eq-43 predictor of the
+/// unknown, see `inverse::mixed`) started from an eq-43 predictor of the
 /// whole force in one step with the force law kept exact (see
-/// [`super::mixed::predictor`]). The predictor's tangents (one tangent IVP
+/// `inverse::mixed::predictor`). The predictor's tangents (one tangent IVP
 /// at `start`, on the Jacobian's coarse grid) are also the first Newton
 /// Jacobian, so that the first corrections cost one plain IVP each.
 pub fn blocked_variable_from(

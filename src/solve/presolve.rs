@@ -22,7 +22,7 @@
 //!    grid's error in the Jacobian (Fig. 6: 1.4e-6 to ~1e-10 per round).
 //! 3. A failure anywhere (coarse Newton, a full residual that does not
 //!    contract tenfold, [`MAX_ROUNDS`] used) falls back on full-grid
-//!    Newton ([`newton_shooting`]) from the best point reached; its work is
+//!    Newton (`newton_shooting`) from the best point reached; its work is
 //!    counted on top.
 //!
 //! Every IVP counts as one evaluation, coarse ones included
