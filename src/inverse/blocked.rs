@@ -279,7 +279,14 @@ pub fn blocked_temperature(
         z = z.clamp(lo, hi);
         let l = block.loads(robot, f);
         let warm = predicted(robot, groups, &sol, &blocks, dz, -n * step, z);
-        sol = solve_loaded(robot, &groups.inputs(&[z]), &l, opts, Some(&warm))?;
+        // full-grid Newton from the eq-43 prediction: the coarse pre-solve's
+        // rounds do not pay off from a first-order-accurate start (Table I
+        // grasp: 64 IVPs without it, 215 with it; benches/grasp.rs)
+        let full = SolveOptions {
+            presolve: false,
+            ..*opts
+        };
+        sol = solve_loaded(robot, &groups.inputs(&[z]), &l, &full, Some(&warm))?;
         evals += sol.evaluations;
         let gap = n.dot(&(block.point - sol.tip_position()));
         if k + 1 >= increments && gap.abs() < 1e-9 * robot.body.length {
