@@ -37,7 +37,10 @@ fn cpu_median(n: usize, mut f: impl FnMut()) -> f64 {
 /// Thread-CPU medians of a solve with and without the coarse-grid pre-solve
 /// (interleaved, 15 rounds of 10 solves each), in us and in plain-IVP times.
 fn compare(name: &str, robot: &Robot, inputs: &[f64], warm: Option<&Solution>) {
-    let o = SolveOptions::default();
+    let o = SolveOptions {
+        presolve: true,
+        ..Default::default()
+    };
     let off = SolveOptions {
         presolve: false,
         ..o

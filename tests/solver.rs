@@ -88,10 +88,14 @@ fn steel_tendon_converges_to_the_rounding_floor() {
         w.iterations,
         w.evaluations
     );
-    // with the coarse pre-solve (default): chord iterations on the coarse
+    // with the coarse pre-solve (opt-in): chord iterations on the coarse
     // grid, one coarse IVP each, plus the warm defect's coarse IVP and a
     // first residual per coarse run (two full-grid IVPs among them)
-    let w = solve(&robot, &t, &SolveOptions::default(), Some(&d)).unwrap();
+    let pre = SolveOptions {
+        presolve: true,
+        ..Default::default()
+    };
+    let w = solve(&robot, &t, &pre, Some(&d)).unwrap();
     assert!(
         w.iterations <= 5 && w.evaluations <= 2 * w.iterations + 2,
         "{} iterations, {} IVPs",
@@ -243,7 +247,10 @@ fn full_grid_residual(robot: &tcarod::rod::Robot, s: &Solution, steps: usize) ->
 
 #[test]
 fn the_coarse_presolve_converges_on_the_full_grid_to_the_same_tips() {
-    let o = SolveOptions::default();
+    let o = SolveOptions {
+        presolve: true,
+        ..Default::default()
+    };
     let off = SolveOptions {
         presolve: false,
         ..o
