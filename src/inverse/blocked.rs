@@ -279,9 +279,8 @@ pub fn blocked_temperature(
         z = z.clamp(lo, hi);
         let l = block.loads(robot, f);
         let warm = predicted(robot, groups, &sol, &blocks, dz, -n * step, z);
-        // full-grid Newton from the eq-43 prediction: the coarse pre-solve's
-        // rounds do not pay off from a first-order-accurate start (Table I
-        // grasp: 64 IVPs without it, 215 with it; benches/grasp.rs)
+        // full-grid Newton from the eq-43 prediction, even if the pre-solve
+        // is asked for (Table I grasp: 64 IVPs without it, 215 with it)
         let full = SolveOptions {
             presolve: false,
             ..*opts
