@@ -18,15 +18,31 @@ use crate::error::{finite, positive, Error, Result};
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
     name: String,
-    e_ref: f64,
-    e_slope: f64,
-    g_ref: f64,
-    g_slope: f64,
-    rho_ref: f64,
-    rho_slope: f64,
+    /// `E_T`: \[Pa\] at `t_ref`, slope \[Pa/C\].
+    youngs: Linear,
+    /// `G_T`: \[Pa\] at `t_ref`, slope \[Pa/C\].
+    shear: Linear,
+    /// `rho`: \[1/C\] at `t_ref`, slope \[1/C^2\].
+    expansion: Linear,
+    /// Reference temperature and valid range \[C\].
     t_ref: f64,
     t_min: f64,
     t_max: f64,
+}
+
+/// A coefficient linear in temperature, `at_ref + slope (T - t_ref)`: each of
+/// the material's three laws.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Linear {
+    at_ref: f64,
+    slope: f64,
+}
+
+impl Linear {
+    /// The value at `dt = T - t_ref` \[C\].
+    fn at(self, dt: f64) -> f64 {
+        self.at_ref + self.slope * dt
+    }
 }
 
 /// Coefficients of the fibre-diameter fit `d/d0 = a T^2 + b T + c` (T in C) of
@@ -95,12 +111,24 @@ impl Material {
         t_min: f64,
         t_max: f64,
     ) -> Result<Self> {
-        positive("youngs_modulus [Pa]", e_ref)?;
-        finite("youngs_modulus_slope [Pa/C]", e_slope)?;
-        positive("shear_modulus [Pa]", g_ref)?;
-        finite("shear_modulus_slope [Pa/C]", g_slope)?;
-        finite("expansion [1/C]", rho_ref)?;
-        finite("expansion_slope [1/C^2]", rho_slope)?;
+        let law = |at_ref, slope| Linear { at_ref, slope };
+        let laws = [
+            law(e_ref, e_slope),
+            law(g_ref, g_slope),
+            law(rho_ref, rho_slope),
+        ];
+        Self::from_laws(name.into(), laws, [t_ref, t_min, t_max])
+    }
+
+    /// [`Material::new`] from the laws `[E_T, G_T, rho]` and `[t_ref, t_min, t_max]`.
+    fn from_laws(name: String, laws: [Linear; 3], [t_ref, t_min, t_max]: [f64; 3]) -> Result<Self> {
+        let [youngs, shear, expansion] = laws;
+        positive("youngs_modulus [Pa]", youngs.at_ref)?;
+        finite("youngs_modulus_slope [Pa/C]", youngs.slope)?;
+        positive("shear_modulus [Pa]", shear.at_ref)?;
+        finite("shear_modulus_slope [Pa/C]", shear.slope)?;
+        finite("expansion [1/C]", expansion.at_ref)?;
+        finite("expansion_slope [1/C^2]", expansion.slope)?;
         finite("t_ref [C]", t_ref)?;
         finite("t_min [C]", t_min)?;
         finite("t_max [C]", t_max)?;
@@ -122,13 +150,10 @@ impl Material {
             ));
         }
         let m = Material {
-            name: name.into(),
-            e_ref,
-            e_slope,
-            g_ref,
-            g_slope,
-            rho_ref,
-            rho_slope,
+            name,
+            youngs,
+            shear,
+            expansion,
             t_ref,
             t_min,
             t_max,
@@ -138,21 +163,21 @@ impl Material {
             if m.youngs_modulus_unchecked(t) <= 0.0 {
                 return Err(Error::param(
                     "youngs_modulus_slope [Pa/C]",
-                    e_slope,
+                    youngs.slope,
                     format!("a slope keeping E_T > 0 at {t} C"),
                 ));
             }
             if m.shear_modulus_unchecked(t) <= 0.0 {
                 return Err(Error::param(
                     "shear_modulus_slope [Pa/C]",
-                    g_slope,
+                    shear.slope,
                     format!("a slope keeping G_T > 0 at {t} C"),
                 ));
             }
             if m.diameter_ratio_unchecked(t) <= 0.0 {
                 return Err(Error::param(
                     "expansion [1/C]",
-                    rho_ref,
+                    expansion.at_ref,
                     format!("a value keeping 1 + rho dT > 0 at {t} C"),
                 ));
             }
@@ -195,7 +220,7 @@ impl Material {
             e_ref,
             e_slope,
             g_ref,
-            e_slope * g_ref / e_ref,
+            Material::proportional_shear_slope(e_ref, e_slope, g_ref),
             rho_ref,
             rho_slope,
             t_ref,
@@ -237,17 +262,14 @@ impl Material {
         let rho_ref = (b1 * m22 - b2 * m12) / det;
         let rho_slope = (m11 * b2 - m12 * b1) / det;
         let base = Material::silver_coated_nylon();
-        Material::new(
-            "silver-coated nylon 6,6, measured radial CTE (Choy et al. 1984)",
-            base.e_ref,
-            base.e_slope,
-            base.g_ref,
-            base.g_slope,
-            rho_ref,
-            rho_slope,
-            t_ref,
-            25.0,
-            160.0,
+        let expansion = Linear {
+            at_ref: rho_ref,
+            slope: rho_slope,
+        };
+        Material::from_laws(
+            "silver-coated nylon 6,6, measured radial CTE (Choy et al. 1984)".into(),
+            [base.youngs, base.shear, expansion],
+            [t_ref, 25.0, 160.0],
         )
         .expect("preset is valid")
     }
@@ -258,17 +280,14 @@ impl Material {
     /// studies, never a default.
     pub fn with_expansion_scale(&self, factor: f64) -> Result<Self> {
         positive("factor [-]", factor)?;
-        Material::new(
+        let expansion = Linear {
+            at_ref: self.expansion.at_ref * factor,
+            slope: self.expansion.slope * factor,
+        };
+        Material::from_laws(
             format!("{} (rho x {factor})", self.name),
-            self.e_ref,
-            self.e_slope,
-            self.g_ref,
-            self.g_slope,
-            self.rho_ref * factor,
-            self.rho_slope * factor,
-            self.t_ref,
-            self.t_min,
-            self.t_max,
+            [self.youngs, self.shear, expansion],
+            [self.t_ref, self.t_min, self.t_max],
         )
     }
 
@@ -279,7 +298,8 @@ impl Material {
     pub fn instantaneous_expansion(&self, t: f64) -> Result<f64> {
         self.check_temperature("temperature [C]", t)?;
         let dt = t - self.t_ref;
-        Ok((self.rho_ref + 2.0 * self.rho_slope * dt) / self.diameter_ratio_unchecked(t))
+        let rho = self.expansion;
+        Ok((rho.at_ref + 2.0 * rho.slope * dt) / self.diameter_ratio_unchecked(t))
     }
 
     /// Name of the material.
@@ -301,14 +321,8 @@ impl Material {
     /// `(e_ref, e_slope, g_ref, g_slope, rho_ref, rho_slope)` in Pa, Pa/C, Pa,
     /// Pa/C, 1/C, 1/C^2.
     pub fn coefficients(&self) -> (f64, f64, f64, f64, f64, f64) {
-        (
-            self.e_ref,
-            self.e_slope,
-            self.g_ref,
-            self.g_slope,
-            self.rho_ref,
-            self.rho_slope,
-        )
+        let (e, g, rho) = (self.youngs, self.shear, self.expansion);
+        (e.at_ref, e.slope, g.at_ref, g.slope, rho.at_ref, rho.slope)
     }
 
     /// Error unless `t` \[C\] is finite and within `\[t_min, t_max\]`.
@@ -328,14 +342,14 @@ impl Material {
     }
 
     fn youngs_modulus_unchecked(&self, t: f64) -> f64 {
-        self.e_ref + self.e_slope * (t - self.t_ref)
+        self.youngs.at(t - self.t_ref)
     }
     fn shear_modulus_unchecked(&self, t: f64) -> f64 {
-        self.g_ref + self.g_slope * (t - self.t_ref)
+        self.shear.at(t - self.t_ref)
     }
     fn diameter_ratio_unchecked(&self, t: f64) -> f64 {
         let dt = t - self.t_ref;
-        1.0 + (self.rho_ref + self.rho_slope * dt) * dt
+        1.0 + self.expansion.at(dt) * dt
     }
 
     /// Young's modulus `E_T(T)` \[Pa\] of the twisted fibre.
@@ -351,7 +365,7 @@ impl Material {
     /// Radial expansion coefficient `rho(T)` \[1/C\].
     pub fn expansion(&self, t: f64) -> Result<f64> {
         self.check_temperature("temperature [C]", t)?;
-        Ok(self.rho_ref + self.rho_slope * (t - self.t_ref))
+        Ok(self.expansion.at(t - self.t_ref))
     }
     /// Fibre diameter ratio `d/d0 = 1 + rho(T) (T - t_ref)` \[-\].
     pub fn diameter_ratio(&self, t: f64) -> Result<f64> {

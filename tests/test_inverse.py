@@ -4,6 +4,7 @@ finite-difference method with a brute-force optimiser, bad input."""
 
 from __future__ import annotations
 
+import inspect
 import math
 
 import numpy as np
@@ -126,6 +127,18 @@ def test_grasp_eq44_and_monotone_in_mass() -> None:
     assert grasp_temperature(2e-3, fingers=4) == pytest.approx(temps[0], abs=1e-9)
     # incremental (eq 43) and direct solves converge the same equations
     assert grasp_temperature(2e-3, method="direct") == pytest.approx(temps[1], abs=1e-6)
+
+
+def test_grasp_temperature_shows_grasps_parameters() -> None:
+    # Jupyter, help() and IDEs read inspect.signature: the real keywords, not (*args, **kwargs)
+    sig = inspect.signature(grasp_temperature)
+    assert sig.parameters == inspect.signature(grasp).parameters
+    assert list(sig.parameters)[:5] == ["mass_kg", "finger", "mu", "fingers", "gravity"]
+    assert {"normal", "groups", "method", "increments", "steps", "tol", "contact_temperature_c"} <= set(sig.parameters)
+    assert sig.return_annotation == "float"
+    assert grasp_temperature.__name__ == "grasp_temperature"
+    with pytest.raises(TypeError):
+        grasp_temperature(1e-3, no_such_keyword=1)  # type: ignore[call-arg]
 
 
 def test_grasp_default_finger_hangs_and_bends_toward_minus_x() -> None:

@@ -182,3 +182,25 @@ def test_no_function_over_80_lines(path: Path) -> None:
         and node.end_lineno - node.lineno + 1 > MAX_FUNCTION_LINES
     ]
     assert not long, f"{path}: {long}"
+
+
+def test_stub_only_bases_declare_only_runtime_members() -> None:
+    # stubtest checks a stub class by its own names and the run-time class's names,
+    # so a member declared only in a @type_check_only base (python/tcarod/_core/
+    # _inverse.pyi: _Outcome) and missing at run time would pass it unseen
+    from tcarod import _core
+
+    classes = {
+        node.name: node
+        for path in CORE_STUBS
+        for node in ast.parse(path.read_text(encoding="utf-8")).body
+        if isinstance(node, ast.ClassDef)
+    }
+    stub_only = {n for n, c in classes.items() if any("type_check_only" in ast.unparse(d) for d in c.decorator_list)}
+    checked = []
+    for name, cls in classes.items():
+        for base in (ast.unparse(b) for b in cls.bases if ast.unparse(b) in stub_only):
+            for member in (f.name for f in classes[base].body if isinstance(f, ast.FunctionDef)):
+                assert hasattr(getattr(_core, name), member), f"{name}.{member} (from {base}) is not at run time"
+                checked.append(f"{name}.{member}")
+    assert len(checked) >= 16  # InverseResult and BlockedResult, 8 members each

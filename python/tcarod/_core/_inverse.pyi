@@ -1,7 +1,7 @@
 """Inverse kinetostatics of ``tcarod._core`` (src/python/inverse.rs)."""
 
 from collections.abc import Sequence
-from typing import Any, Literal, final
+from typing import Any, Literal, final, type_check_only
 
 import numpy as np
 import numpy.typing as npt
@@ -19,8 +19,30 @@ from ._solution import Solution
 # variable per actuator.
 # ---------------------------------------------------------------------------
 
+@type_check_only
+class _Outcome:
+    """What both results share at run time: the SciPy-style status fields
+    (``scipy_fields!``), the tip of ``solution`` (``tip_of_solution!``; both
+    in src/python/outcome.rs), pickling and equality. Stub-only."""
+
+    @property
+    def success(self) -> bool: ...
+    @property
+    def status(self) -> int: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def nit(self) -> int: ...
+    @property
+    def nfev(self) -> int: ...
+    @property
+    def tip_position(self) -> _FloatArray:
+        """Tip position [m] of ``solution``, shape ``(3,)``."""
+    def __reduce__(self) -> tuple[Any, ...]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+
 @final
-class InverseResult:
+class InverseResult(_Outcome):
     """Result of :func:`tip_inverse`: the final (or closest reachable) configuration."""
 
     @property
@@ -48,24 +70,11 @@ class InverseResult:
     def max_iter(self) -> int:
         """The iteration budget of the solve."""
     @property
-    def success(self) -> bool: ...
-    @property
     def status(self) -> int:
         """0 reached, 1 unreachable (at the bounds), 2 out of budget, 3 stalled."""
-    @property
-    def message(self) -> str: ...
-    @property
-    def nit(self) -> int: ...
-    @property
-    def nfev(self) -> int: ...
-    @property
-    def tip_position(self) -> _FloatArray:
-        """Tip position [m] of ``solution``, shape ``(3,)``."""
-    def __reduce__(self) -> tuple[Any, ...]: ...
-    def __eq__(self, value: object, /) -> bool: ...
 
 @final
-class BlockedResult:
+class BlockedResult(_Outcome):
     """A blocked-tip solution: contact ``force`` [N] at actuation ``variables``."""
 
     @property
@@ -83,21 +92,6 @@ class BlockedResult:
     @property
     def evaluations(self) -> int:
         """IVPs integrated."""
-    @property
-    def success(self) -> bool: ...
-    @property
-    def status(self) -> int: ...
-    @property
-    def message(self) -> str: ...
-    @property
-    def nit(self) -> int: ...
-    @property
-    def nfev(self) -> int: ...
-    @property
-    def tip_position(self) -> _FloatArray:
-        """Tip position [m] of ``solution``, shape ``(3,)``."""
-    def __reduce__(self) -> tuple[Any, ...]: ...
-    def __eq__(self, value: object, /) -> bool: ...
 
 def sensitivities(
     solution: Solution,

@@ -21,9 +21,10 @@ the body-aligned frame), pressing along ``-x`` (heating bends it toward
 
 from __future__ import annotations
 
+import inspect
 import math
 from dataclasses import dataclass
-from typing import Any, Final, Literal, Sequence
+from typing import TYPE_CHECKING, Callable, Final, Literal, Sequence
 
 from .. import _core
 from .manipulators import DEFAULT_TURNS_READING, GRAVITY_M_PER_S2, PAPER_CONSTANTS, TurnsReading
@@ -31,6 +32,11 @@ from ..inverse import BlockedResult, blocked_force
 from ..rod import Robot
 from .. import _validate as V
 from ..tca import Material
+
+if TYPE_CHECKING:  # typing.ParamSpec is Python >= 3.10; at run time only the annotations (strings) name it
+    from typing import ParamSpec
+
+    _P = ParamSpec("_P")
 
 __all__ = [
     "FRICTION_COEFFICIENT",
@@ -245,7 +251,27 @@ def blocked_force_curve(
     return out
 
 
-def grasp_temperature(mass_kg: float, *args: Any, **kwargs: Any) -> float:
-    """Grip temperature [C] for ``mass_kg`` [kg]: ``mu n F(T) = m g`` (eq 44)
-    solved on the blocked-tip finger; the arguments are :func:`grasp`'s."""
-    return grasp(mass_kg, *args, **kwargs).temperature_c
+def _temperature_of(solve: Callable[_P, Grasp]) -> Callable[_P, float]:
+    """``solve`` returning only the grip temperature [C], with ``solve``'s
+    parameters, visible to ``inspect.signature`` (Jupyter, ``help``) and,
+    through the ``ParamSpec``, to type checkers."""
+
+    def grasp_temperature(*args: _P.args, **kwargs: _P.kwargs) -> float:
+        """Grip temperature [C] for ``mass_kg`` [kg]: ``mu n F(T) = m g`` (eq 44)
+        solved on the blocked-tip finger, i.e. ``grasp(...).temperature_c``;
+        the parameters are :func:`grasp`'s."""
+        return solve(*args, **kwargs).temperature_c
+
+    grasp_temperature.__qualname__ = "grasp_temperature"
+    setattr(grasp_temperature, "__signature__", inspect.signature(solve).replace(return_annotation="float"))
+    return grasp_temperature
+
+
+grasp_temperature = _temperature_of(grasp)
+"""``grasp_temperature(mass_kg, finger=None, mu=FRICTION_COEFFICIENT, fingers=2,
+gravity=GRAVITY_M_PER_S2, *, normal=GRASP_NORMAL, groups=None,
+method="incremental", increments=10, steps=100, tol=1e-10,
+contact_temperature_c=None) -> float``: grip temperature [C] for ``mass_kg``
+[kg], ``mu n F(T) = m g`` (eq 44) solved on the blocked-tip finger, i.e.
+``grasp(...).temperature_c`` with :func:`grasp`'s parameters (the same
+signature for ``inspect.signature`` and type checkers)."""

@@ -26,9 +26,12 @@ __all__ = [
     "DeadWeight",
     "ExperimentResult",
     "FloatArray",
+    "PAPER_SOURCE",
     "PublishedCurve",
     "TcaSpec",
+    "identity_json",
     "onset_temperature_c",
+    "published_json",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -117,6 +120,39 @@ class PublishedCurve:
     temperatures_c: tuple[float, ...]
     mean: tuple[float, ...]
     std: tuple[float, ...]
+
+    def to_json(self) -> dict[str, Any]:
+        """JSON-serialisable curve (temperatures in C, values in the experiment's SI unit)."""
+        return {
+            "label": self.label,
+            "temperature_c": list(self.temperatures_c),
+            "mean": list(self.mean),
+            "std": list(self.std),
+        }
+
+
+#: The paper every experiment of this package reproduces; each experiment's
+#: ``source`` adds its section and figure.
+PAPER_SOURCE = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019"
+
+
+class _Identified(Protocol):
+    @property
+    def name(self) -> str: ...
+    @property
+    def title(self) -> str: ...
+    @property
+    def source(self) -> str: ...
+
+
+def identity_json(experiment: _Identified) -> dict[str, Any]:
+    """The head of every experiment's JSON: its ``name``, ``title`` and ``source``."""
+    return {"name": experiment.name, "title": experiment.title, "source": experiment.source}
+
+
+def published_json(data: tuple[PublishedCurve, ...] | None) -> list[dict[str, Any]] | None:
+    """An experiment's ``published_data`` as JSON (``None`` where the paper prints none)."""
+    return None if data is None else [p.to_json() for p in data]
 
 
 def onset_temperature_c(tca: Tca, force_n: float) -> float | None:

@@ -19,7 +19,7 @@ import numpy as np
 from .. import _core
 from ..tca import Material, Tca
 from ._common import GRAVITY_M_PER_S2, DeadWeight, FloatArray, PublishedCurve, TcaSpec, onset_temperature_c
-from ._common import PAPER_TEMPERATURES_C
+from ._common import PAPER_SOURCE, identity_json, PAPER_TEMPERATURES_C, published_json
 
 __all__ = ["FIG5", "Fig5Case", "Fig5Curve", "Fig5Experiment", "Fig5Result", "predict_fig5"]
 
@@ -78,7 +78,7 @@ class Fig5Experiment:
     published_data_note: str = "The paper prints no numeric data for Fig. 5, only the plotted curves."
     name: str = "fig5"
     title: str = "Fig. 5: extension TCAs under dead weights"
-    source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-A, Fig. 5"
+    source: str = f"{PAPER_SOURCE}, Section V-A, Fig. 5"
     load_sharing: str = field(default=_FIG5_LOAD_SHARING)
 
     @property
@@ -199,25 +199,12 @@ class Fig5Result:
     def to_json(self) -> dict[str, Any]:
         """JSON-serialisable prediction; temperatures in C, lengths in m, forces in N, masses in kg."""
         exp = self.experiment
-        published: list[dict[str, Any]] | None = None
-        if exp.published_data is not None:
-            published = [
-                {
-                    "label": p.label,
-                    "temperature_c": list(p.temperatures_c),
-                    "mean": list(p.mean),
-                    "std": list(p.std),
-                }
-                for p in exp.published_data
-            ]
         return {
-            "name": exp.name,
-            "title": exp.title,
-            "source": exp.source,
+            **identity_json(exp),
             "gravity_m_per_s2": GRAVITY_M_PER_S2,
             "load_sharing": exp.load_sharing,
             "temperature_c": [float(t) for t in self.temperatures_c],
-            "published_data": published,
+            "published_data": published_json(exp.published_data),
             "published_data_note": exp.published_data_note,
             "cases": [
                 {

@@ -54,7 +54,7 @@ from ..models.manipulators import (
     manipulator_tca,
 )
 from ..rod import Robot, Solution, inner_edge_radius
-from ._common import PAPER_TEMPERATURES_C, PublishedCurve
+from ._common import PAPER_SOURCE, identity_json, PAPER_TEMPERATURES_C, PublishedCurve, published_json
 
 __all__ = [
     "CIRCLE_PRECURVATURE_RADIUS_M",
@@ -131,7 +131,7 @@ class Fig6Experiment:
     published_data_note: str = "The paper prints no numeric data for Fig. 6, only the plotted curves."
     name: str = "fig6"
     title: str = "Fig. 6: bending radius of the soft manipulators"
-    source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-B, Fig. 6"
+    source: str = f"{PAPER_SOURCE}, Section V-B, Fig. 6"
     #: RK4 steps over the body length.
     steps: int = 100
     #: How the printed 76.4 turns apply to a U's legs (:mod:`tcarod.models.manipulators`).
@@ -318,16 +318,8 @@ class Fig6Result:
                     "gravity_summary": _gravity_summary(with_g, without),
                 }
             )
-        published: list[dict[str, Any]] | None = None
-        if exp.published_data is not None:
-            published = [
-                {"label": p.label, "temperature_c": list(p.temperatures_c), "mean": list(p.mean), "std": list(p.std)}
-                for p in exp.published_data
-            ]
         return {
-            "name": exp.name,
-            "title": exp.title,
-            "source": exp.source,
+            **identity_json(exp),
             "radius_definition": "circle through base, middle and tip points on the inner (concave) edge",
             "assumptions": list(exp.assumptions),
             "temperature_c": [float(t) for t in self.temperatures_c],
@@ -342,7 +334,7 @@ class Fig6Result:
                 }
                 for (label, reading), radii in self.readings.items()
             ],
-            "published_data": published,
+            "published_data": published_json(exp.published_data),
             "published_data_note": exp.published_data_note,
             "manipulators": manipulators,
         }

@@ -48,7 +48,7 @@ from ..models.manipulators import (
 from ..inverse import blocked_force, blocked_temperature
 from ..rod import Robot
 from ..tca import Material
-from ._common import PAPER_TEMPERATURES_C, FloatArray
+from ._common import PAPER_SOURCE, identity_json, PAPER_TEMPERATURES_C, FloatArray
 
 __all__ = ["FIG8", "Fig8CrossCheck", "Fig8Experiment", "Fig8Reading", "Fig8Result", "fig8_forces", "predict_fig8"]
 
@@ -86,7 +86,7 @@ class Fig8Experiment:
     blocking: str = field(default=_BLOCKING)
     name: str = "fig8"
     title: str = "Fig. 8: blocked-tip force of the 26 mm square manipulator"
-    source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-C, Fig. 8"
+    source: str = f"{PAPER_SOURCE}, Section V-C, Fig. 8"
 
     #: How the printed 76.4 turns apply to the U's legs (:mod:`tcarod.models.manipulators`).
     turns_reading: TurnsReading = DEFAULT_TURNS_READING
@@ -225,9 +225,7 @@ class Fig8Result:
         """JSON-serialisable prediction; temperatures in C, forces in N, lengths in m."""
         exp = self.experiment
         return {
-            "name": exp.name,
-            "title": exp.title,
-            "source": exp.source,
+            **identity_json(exp),
             "length_m": exp.length_m,
             "gravity_m_per_s2": list(exp.gravity_m_per_s2),
             "blocking": exp.blocking,

@@ -54,6 +54,7 @@ from ..models.manipulators import (
 )
 from ..models.studies import Sensitivity, table1_sensitivity
 from ..tca import Material
+from ._common import PAPER_SOURCE, identity_json
 from .fig8 import fig8_forces
 
 __all__ = ["TABLE1", "Table1Experiment", "Table1Reading", "Table1Result", "Table1Row", "predict_table1"]
@@ -83,7 +84,7 @@ class Table1Experiment:
     turns_reading: TurnsReading = DEFAULT_TURNS_READING
     name: str = "table1"
     title: str = "Table I: grip temperature of a two-finger TCA gripper"
-    source: str = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019, Section V-D, Table I, eq (44)"
+    source: str = f"{PAPER_SOURCE}, Section V-D, Table I, eq (44)"
     blocking: str = field(default=_CONTACT)
 
     def predict(
@@ -244,9 +245,7 @@ class Table1Result:
                 }
             idents.append(d)
         return {
-            "name": exp.name,
-            "title": exp.title,
-            "source": exp.source,
+            **identity_json(exp),
             "mu": exp.mu,
             "fingers": exp.fingers,
             "gravity_m_per_s2": exp.gravity_m_per_s2,

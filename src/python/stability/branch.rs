@@ -321,10 +321,16 @@ fn follow_branch(
             .into());
         }
     }
+    let run = Run {
+        pb: &pb,
+        acts: &acts,
+        opts: &opts,
+        warm: warm.as_ref(),
+    };
     if stable_only {
-        stable_sweep(py, &pb, &acts, &opts, warm.as_ref())
+        run.stable_sweep(py)
     } else {
-        branch(py, &pb, &acts, &opts, warm.as_ref())
+        run.branch(py)
     }
 }
 
@@ -347,47 +353,52 @@ fn parameter_arg(
     Ok(parse_parameter(parameter, actuators, r)?)
 }
 
-/// The stable sweep as a `Branch` with its jumps.
-fn stable_sweep(
-    py: Python<'_>,
-    pb: &Problem<'_>,
-    acts: &[PyActuator],
-    opts: &BranchOptions,
-    warm: Option<&Solution>,
-) -> PyResult<PyBranch> {
-    let sw = super::super::errors::detach_interruptible(py, || sweep_stable(pb, opts, warm))?;
-    let mut out = collect(py, pb, acts, sw.points, vec![], sw.evaluations)?;
-    for j in sw.jumps {
-        out.jumps.push((
-            j.parameter,
-            wrap(py, pb, acts, j.parameter, j.before)?,
-            wrap(py, pb, acts, j.parameter, j.after)?,
-        ));
-    }
-    Ok(out)
+/// One `follow_branch` call: the problem, the actuators its robots are
+/// rebuilt with, the options and the equilibrium to start on.
+struct Run<'a, 'r> {
+    pb: &'a Problem<'r>,
+    acts: &'a [PyActuator],
+    opts: &'a BranchOptions,
+    warm: Option<&'a Solution>,
 }
 
-/// The followed branch with its located events.
-fn branch(
-    py: Python<'_>,
-    pb: &Problem<'_>,
-    acts: &[PyActuator],
-    opts: &BranchOptions,
-    warm: Option<&Solution>,
-) -> PyResult<PyBranch> {
-    let br = super::super::errors::detach_interruptible(py, || follow_core(pb, opts, warm))?;
-    let events = br
-        .events
-        .iter()
-        .map(|e| {
-            let kind = match e.kind {
-                EventKind::Fold => "fold",
-                EventKind::Bifurcation => "bifurcation",
-            };
-            (kind.to_string(), e.parameter, e.tip_position)
-        })
-        .collect();
-    collect(py, pb, acts, br.points, events, br.evaluations)
+impl Run<'_, '_> {
+    /// The stable sweep as a `Branch` with its jumps.
+    fn stable_sweep(&self, py: Python<'_>) -> PyResult<PyBranch> {
+        let (pb, acts) = (self.pb, self.acts);
+        let sw = super::super::errors::detach_interruptible(py, || {
+            sweep_stable(pb, self.opts, self.warm)
+        })?;
+        let mut out = collect(py, pb, acts, sw.points, vec![], sw.evaluations)?;
+        for j in sw.jumps {
+            out.jumps.push((
+                j.parameter,
+                wrap(py, pb, acts, j.parameter, j.before)?,
+                wrap(py, pb, acts, j.parameter, j.after)?,
+            ));
+        }
+        Ok(out)
+    }
+
+    /// The followed branch with its located events.
+    fn branch(&self, py: Python<'_>) -> PyResult<PyBranch> {
+        let (pb, acts) = (self.pb, self.acts);
+        let br = super::super::errors::detach_interruptible(py, || {
+            follow_core(pb, self.opts, self.warm)
+        })?;
+        let events = br
+            .events
+            .iter()
+            .map(|e| {
+                let kind = match e.kind {
+                    EventKind::Fold => "fold",
+                    EventKind::Bifurcation => "bifurcation",
+                };
+                (kind.to_string(), e.parameter, e.tip_position)
+            })
+            .collect();
+        collect(py, pb, acts, br.points, events, br.evaluations)
+    }
 }
 
 fn collect(
