@@ -97,7 +97,7 @@ def test_wrong_length_vectors_name_the_argument() -> None:
     with pytest.raises(ValueError, match=r"start: expected 1 values, got 2"):
         tip_position(SQUARE, [0.0, 0.0, 0.04], start=[30.0, 30.0], groups=[0, 0])
     with pytest.raises(ValueError, match="target"):
-        _core.tip_inverse(SQUARE, [0.0, 0.0])
+        _core.tip_position(SQUARE, [0.0, 0.0])
 
 
 def test_a_lying_len_never_panics() -> None:
@@ -113,13 +113,13 @@ def test_bad_groups_are_value_errors_naming_groups(groups: list[int]) -> None:
     with pytest.raises(ValueError, match="groups"):
         tip_position(SQUARE, [0.0, 0.0, 0.04], groups=groups)
     with pytest.raises(ValueError, match="groups"):
-        _core.tip_inverse(SQUARE, [0.0, 0.0, 0.04], groups=groups)
+        _core.tip_position(SQUARE, [0.0, 0.0, 0.04], groups=groups)
 
 
 @pytest.mark.parametrize("bad", [[0.5, 0.5], ["0", "0"], [None, 0], b"\x00\x00"])
 def test_groups_of_the_wrong_type_are_type_errors(bad: object) -> None:
     with pytest.raises(TypeError, match="groups"):
-        _core.tip_inverse(SQUARE, [0.0, 0.0, 0.04], groups=bad)
+        _core.tip_position(SQUARE, [0.0, 0.0, 0.04], groups=bad)
 
 
 def test_blocked_temperature_with_a_solution_of_a_different_robot() -> None:

@@ -52,7 +52,7 @@ def test_single_heated_tca_bends_away_from_its_side(k: int) -> None:
 def test_3d_inverse_reaches_a_target_from_a_forward_solve() -> None:
     true = [120.0, 60.0, 40.0]
     target = ROBOT.solve(true).tip_position
-    res = _core.tip_inverse(ROBOT, list(target), tol=1e-7)
+    res = _core.tip_position(ROBOT, list(target), tol=1e-7)
     assert res.reached
     tip = res.solution.tip_position
     # tol is 1e-7 m on the tip distance: the solver stops below it

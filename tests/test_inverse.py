@@ -177,6 +177,13 @@ def test_wrapper_bad_input(square40) -> None:  # type: ignore[no-untyped-def]
         tip_position(square40, [0.0, 0.04])
     with pytest.raises(ValueError, match="target"):
         tip_position(square40, [0.0, math.nan, 0.04])
+    # the core keeps targets within 1000 body lengths (40 m here), so the error stays finite
+    with pytest.raises(ValueError, match=r"target \[m\].*1000 body lengths"):
+        tip_position(square40, [1e9, 0.0, 0.0])
+    with pytest.raises(TypeError, match="target"):
+        tip_position(square40, None)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="point"):
+        blocked_force(square40, None, MINUS_X, [50.0], groups=[0, 0])  # type: ignore[arg-type]  # not the origin
     with pytest.raises(ValueError, match="normal"):
         blocked_force(square40, [0.0, 0.0, 0.04], [0.0, 0.0, 0.0], [50.0], groups=[0, 0])
     with pytest.raises(ValueError, match="variables"):

@@ -107,7 +107,7 @@ def test_signatures_are_real() -> None:
         _core.Robot.sweep,
         _core.Actuator.tca,
         _core.Routing.helix,
-        _core.tip_inverse,
+        _core.tip_position,
         _core.solve_batch,
         _core.blocked_temperature,
         _core.blocked_force,

@@ -36,7 +36,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _core
-from ._core import BlockedResult, InverseResult
+from ._core import BlockedResult, InverseResult, blocked_force, tip_position  # the bindings: no defaults to fill
 from .rod import Robot, Solution
 from .tca import _as_float_array
 from . import _validate as V
@@ -114,93 +114,6 @@ def jacobian_and_compliance(
         raise ValueError(f"scheme must be 'forward' or 'central', got {scheme!r}")
     j, c = _core.sensitivities(solution, _groups(groups), scheme)
     return np.asarray(j, dtype=np.float64), np.asarray(c, dtype=np.float64)
-
-
-def tip_position(
-    robot: Robot,
-    target: Vector,
-    *,
-    start: Vector | None = None,
-    groups: Sequence[int] | None = None,
-    target_rotation: Sequence[Sequence[float]] | FloatArray | None = None,
-    orientation_weight: float = 0.01,
-    tol: float = 1e-7,
-    max_iter: int = 50,
-    damping: float = 1e-6,
-    steps: int = 100,
-) -> InverseResult:
-    """Actuation variables (temperatures [C]) that put the tip at ``target`` [m].
-
-    Iterates the paper's local inverse: at each iterate, ``J`` from
-    :func:`jacobian_and_compliance` (``12 + 2N`` IVPs), a damped least-squares
-    step ``dz = (J^T J + damping^2 I)^-1 J^T dx`` with variables frozen at a
-    bound they would cross, a backtracking line search on the tip error, one
-    BVP solve per trial. ``start``: initial variables (default: the reference
-    inputs, ambient temperature). With ``target_rotation`` (a 3x3 rotation
-    matrix) the orientation is matched too, angles weighted by
-    ``orientation_weight`` [m/rad].
-
-    An unreachable target is not an error: the result has ``reached=False``
-    (``success=False``), the closest configuration found, its ``error`` [m]
-    and which variables rest on a bound (``at_bound``). ``status`` tells why it
-    stopped, as in SciPy: 0 reached; 1 unreachable (no descent left with a
-    variable on its temperature bound: the closest point within the range);
-    2 out of budget (``max_iter`` used up: continue with
-    ``start=result.variables``); 3 stalled (no descent, no bound active).
-    ``message`` says the same in words; ``nit`` / ``nfev`` count iterations
-    and IVPs. The default budget reaches reachable targets on the paper's
-    manipulators in 4-7 iterations.
-    """
-    V.instance("robot", robot, Robot, "a tcarod.Robot")
-    target_m = _vector("target [m]", target, 3)
-    reach = 1e3 * robot.body.length  # far beyond any reachable tip; keeps the error finite
-    if max(abs(x) for x in target_m) > reach:
-        raise ValueError(f"invalid target [m] = {target_m}: coordinates must be within {reach:g} m (1000 body lengths)")
-    rot = None
-    if target_rotation is not None:
-        m = _as_float_array("target_rotation", target_rotation)
-        if m.shape != (3, 3):
-            raise ValueError(f"target_rotation must be a 3x3 rotation matrix, got shape {m.shape}")
-        rot = [[float(x) for x in row] for row in m]
-    return _core.tip_inverse(
-        robot,
-        target_m,
-        start=None if start is None else _vector("start", start),
-        groups=_groups(groups),
-        target_rotation=rot,
-        orientation_weight=orientation_weight,
-        tol=tol,
-        max_iter=max_iter,
-        damping=damping,
-        steps=steps,
-    )
-
-
-def blocked_force(
-    robot: Robot,
-    point: Vector,
-    normal: Vector,
-    variables: Vector | float,
-    *,
-    groups: Sequence[int] | None = None,
-    steps: int = 100,
-    tol: float = 1e-10,
-    max_iter: int = 50,
-    warm_start: BlockedResult | None = None,
-) -> BlockedResult:
-    """Contact force [N] of a tip held on the plane through ``point`` [m] with
-    unit ``normal`` (the direction the tip presses in), at actuation
-    ``variables`` (temperatures [C], one per group).
-
-    A mixed boundary-value problem solved directly: the contact force is an
-    extra shooting unknown and ``normal . (p(L) - point) = 0`` an extra
-    residual. The force comes out negative if the tip would pull away from
-    the plane; whether contact holds is the caller's decision. ``warm_start``:
-    a nearby :class:`BlockedResult` (e.g. the previous temperature of a sweep).
-    """
-    variables_ = _vector("variables", variables)
-    solver = _solver(groups, steps, tol, max_iter)
-    return _core.blocked_force(robot, *_plane(point, normal), variables_, warm_start=warm_start, **solver)
 
 
 def blocked_temperature(

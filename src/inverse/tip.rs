@@ -148,6 +148,11 @@ fn check_target(
     for (k, v) in target.iter().enumerate() {
         crate::error::finite(&format!("target[{k}] [m]"), *v)?;
     }
+    let reach = 1e3 * robot.body.length; // far beyond any reachable tip; keeps the error finite
+    if target.amax() > reach {
+        let allowed = format!("coordinates within {reach} m (1000 body lengths)");
+        return Err(Error::param("target [m]", target.amax(), allowed));
+    }
     let nz = groups.n_vars();
     if z_start.len() != nz {
         return Err(Error::input(

@@ -15,7 +15,7 @@ use crate::limits::{MAX_INCREMENTS, MAX_ITER};
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sensitivities, m)?)?;
-    m.add_function(wrap_pyfunction!(tip_inverse, m)?)?;
+    m.add_function(wrap_pyfunction!(tip_position, m)?)?;
     m.add_function(wrap_pyfunction!(blocked_force, m)?)?;
     m.add_function(wrap_pyfunction!(blocked_temperature, m)?)?;
     m.add_function(wrap_pyfunction!(blocked_temperature_direct, m)?)?;
@@ -34,7 +34,12 @@ fn groups_for(robot: &PyRobot, groups: Option<&Bound<'_, PyAny>>) -> PyResult<Gr
     Ok(g)
 }
 
+/// A required 3-vector argument (`None` is a `TypeError`, not the origin).
 fn vec3(name: &str, a: &Bound<'_, PyAny>) -> PyResult<Vector3<f64>> {
+    if a.is_none() {
+        let msg = format!("{name}: expected a sequence of 3 real numbers, not NoneType");
+        return Err(pyo3::exceptions::PyTypeError::new_err(msg));
+    }
     Ok(Vector3::from(vec3_arg(name, Some(a), [0.0; 3])?))
 }
 
@@ -115,17 +120,36 @@ fn rotation_arg(obj: &Bound<'_, PyAny>) -> PyResult<Matrix3<f64>> {
     Ok(mm)
 }
 
-/// Iterate the local inverse to put the tip at `target` [m] (and, if given,
-/// orientation `target_rotation` weighted by `orientation_weight` [m/rad]).
-/// `tol` [m]; `max_iter` iterations (1 to 100,000); `damping` [m per unit
-/// variable]; `steps` RK4 steps per forward solve (1 to 100,000).
+/// Actuation variables (temperatures [C]) that put the tip at `target` [m].
+///
+/// Iterates the paper's local inverse: at each iterate, `J` (exact, one
+/// tangent IVP), a damped least-squares step
+/// `dz = (J^T J + damping^2 I)^-1 J^T dx` with variables frozen at a bound
+/// they would cross, a backtracking line search on the tip error, one BVP
+/// solve per trial. `start`: initial variables (default: the reference
+/// inputs, ambient temperature). With `target_rotation` (a 3x3 rotation
+/// matrix) the orientation is matched too, angles weighted by
+/// `orientation_weight` [m/rad]. `tol` [m]; `max_iter` iterations (1 to
+/// 100,000); `damping` [m per unit variable]; `steps` RK4 steps per forward
+/// solve (1 to 100,000); target coordinates within 1000 body lengths.
+///
+/// An unreachable target is not an error: the result has `reached=False`
+/// (`success=False`), the closest configuration found, its `error` [m] and
+/// which variables rest on a bound (`at_bound`). `status` tells why it
+/// stopped, as in SciPy: 0 reached; 1 unreachable (no descent left with a
+/// variable on its temperature bound: the closest point within the range);
+/// 2 out of budget (`max_iter` used up: continue with
+/// `start=result.variables`); 3 stalled (no descent, no bound active).
+/// `message` says the same in words; `nit` / `nfev` count iterations and
+/// IVPs. The default budget reaches reachable targets on the paper's
+/// manipulators in 4-7 iterations.
 #[pyfunction]
 #[pyo3(signature = (robot, target, *, start=None, groups=None, target_rotation=None, orientation_weight=Real(0.01),
     tol=Real(1e-7), max_iter=None, damping=Real(1e-6), steps=None),
     text_signature = "(robot, target, *, start=None, groups=None, target_rotation=None, orientation_weight=0.01, \
         tol=1e-07, max_iter=50, damping=1e-06, steps=100)")]
 #[allow(clippy::too_many_arguments)]
-fn tip_inverse(
+fn tip_position(
     py: Python<'_>,
     robot: &Bound<'_, PyRobot>,
     target: Bound<'_, PyAny>,
@@ -233,9 +257,15 @@ impl BlockedArgs {
     }
 }
 
-/// Contact force [N] with the tip held on the plane through `point` [m] with
-/// unit `normal` (the direction the tip presses in), at actuation `variables`
-/// (mixed boundary condition; the force is a shooting unknown).
+/// Contact force [N] of a tip held on the plane through `point` [m] with
+/// unit `normal` (the direction the tip presses in), at actuation
+/// `variables` (temperatures [C], one per group; a number for one group).
+///
+/// A mixed boundary-value problem solved directly: the contact force is an
+/// extra shooting unknown and `normal . (p(L) - point) = 0` an extra
+/// residual. The force comes out negative if the tip would pull away from
+/// the plane; whether contact holds is the caller's decision. `warm_start`:
+/// a nearby `BlockedResult` (e.g. the previous temperature of a sweep).
 #[pyfunction]
 #[pyo3(signature = (robot, point, normal, variables, *, groups=None, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None),
     text_signature = "(robot, point, normal, variables, *, groups=None, steps=100, tol=1e-10, max_iter=50, warm_start=None)")]

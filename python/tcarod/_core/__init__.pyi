@@ -28,7 +28,7 @@ from ._solution import _restore_solution as _restore_solution
 from ._inverse import InverseResult as InverseResult
 from ._inverse import BlockedResult as BlockedResult
 from ._inverse import sensitivities as sensitivities
-from ._inverse import tip_inverse as tip_inverse
+from ._inverse import tip_position as tip_position
 from ._inverse import blocked_force as blocked_force
 from ._inverse import blocked_temperature as blocked_temperature
 from ._inverse import blocked_temperature_direct as blocked_temperature_direct

@@ -43,7 +43,7 @@ class _Outcome:
 
 @final
 class InverseResult(_Outcome):
-    """Result of :func:`tip_inverse`: the final (or closest reachable) configuration."""
+    """Result of :func:`tip_position`: the final (or closest reachable) configuration."""
 
     @property
     def solution(self) -> Solution:
@@ -101,7 +101,7 @@ def sensitivities(
     """``(J, C)`` at ``solution`` (eqs 41-42): ``J`` is ``6 x n_vars`` [m or rad per C],
     ``C`` is ``6 x 6`` [m or rad per N or N m]."""
 
-def tip_inverse(
+def tip_position(
     robot: Robot,
     target: Sequence[float] | _FloatArray,
     *,
@@ -114,14 +114,36 @@ def tip_inverse(
     damping: float = 1e-6,
     steps: int = 100,
 ) -> InverseResult:
-    """Iterate the local inverse to put the tip at ``target`` [m]; unreachable
-    targets end at the closest configuration with ``reached=False``."""
+    """Actuation variables (temperatures [C]) that put the tip at ``target`` [m].
+
+    Iterates the paper's local inverse: at each iterate, ``J`` (exact, one
+    tangent IVP), a damped least-squares step
+    ``dz = (J^T J + damping^2 I)^-1 J^T dx`` with variables frozen at a bound
+    they would cross, a backtracking line search on the tip error, one BVP
+    solve per trial. ``start``: initial variables (default: the reference
+    inputs, ambient temperature). With ``target_rotation`` (a 3x3 rotation
+    matrix) the orientation is matched too, angles weighted by
+    ``orientation_weight`` [m/rad]. ``tol`` [m]; ``max_iter`` iterations (1 to
+    100,000); ``damping`` [m per unit variable]; ``steps`` RK4 steps per
+    forward solve (1 to 100,000); target coordinates within 1000 body lengths.
+
+    An unreachable target is not an error: the result has ``reached=False``
+    (``success=False``), the closest configuration found, its ``error`` [m]
+    and which variables rest on a bound (``at_bound``). ``status`` tells why
+    it stopped, as in SciPy: 0 reached; 1 unreachable (no descent left with a
+    variable on its temperature bound: the closest point within the range);
+    2 out of budget (``max_iter`` used up: continue with
+    ``start=result.variables``); 3 stalled (no descent, no bound active).
+    ``message`` says the same in words; ``nit`` / ``nfev`` count iterations
+    and IVPs. The default budget reaches reachable targets on the paper's
+    manipulators in 4-7 iterations.
+    """
 
 def blocked_force(
     robot: Robot,
     point: Sequence[float] | _FloatArray,
     normal: Sequence[float] | _FloatArray,
-    variables: Sequence[float] | _FloatArray,
+    variables: float | Sequence[float] | _FloatArray,
     *,
     groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
     steps: int = 100,
@@ -129,8 +151,16 @@ def blocked_force(
     max_iter: int = 50,
     warm_start: BlockedResult | None = None,
 ) -> BlockedResult:
-    """Contact force [N] with the tip held on the plane through ``point`` [m]
-    with unit ``normal`` (the direction the tip presses in), at ``variables``."""
+    """Contact force [N] of a tip held on the plane through ``point`` [m] with
+    unit ``normal`` (the direction the tip presses in), at actuation
+    ``variables`` (temperatures [C], one per group; a number for one group).
+
+    A mixed boundary-value problem solved directly: the contact force is an
+    extra shooting unknown and ``normal . (p(L) - point) = 0`` an extra
+    residual. The force comes out negative if the tip would pull away from
+    the plane; whether contact holds is the caller's decision. ``warm_start``:
+    a nearby :class:`BlockedResult` (e.g. the previous temperature of a sweep).
+    """
 
 def blocked_temperature(
     robot: Robot,
