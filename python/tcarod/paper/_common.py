@@ -136,18 +136,9 @@ class PublishedCurve:
 PAPER_SOURCE = "Pawlowski et al., IEEE/ASME T-Mech 24(1), 2019"
 
 
-class _Identified(Protocol):
-    @property
-    def name(self) -> str: ...
-    @property
-    def title(self) -> str: ...
-    @property
-    def source(self) -> str: ...
-
-
-def identity_json(experiment: _Identified) -> dict[str, Any]:
+def identity_json(experiment: object) -> dict[str, Any]:
     """The head of every experiment's JSON: its ``name``, ``title`` and ``source``."""
-    return {"name": experiment.name, "title": experiment.title, "source": experiment.source}
+    return {key: getattr(experiment, key) for key in ("name", "title", "source")}
 
 
 def published_json(data: tuple[PublishedCurve, ...] | None) -> list[dict[str, Any]] | None:
