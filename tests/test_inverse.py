@@ -182,6 +182,9 @@ def test_wrapper_bad_input(square40) -> None:  # type: ignore[no-untyped-def]
         tip_position(square40, [1e9, 0.0, 0.0])
     with pytest.raises(TypeError, match="target"):
         tip_position(square40, None)  # type: ignore[arg-type]
+    # a negative weight is refused even without a target rotation (it is never silently ignored)
+    with pytest.raises(ValueError, match=r"orientation_weight \[m/rad\].*> 0"):
+        tip_position(square40, [0.0, 0.0, 0.03], orientation_weight=-1.0)
     with pytest.raises(TypeError, match="point"):
         blocked_force(square40, None, MINUS_X, [50.0], groups=[0, 0])  # type: ignore[arg-type]  # not the origin
     with pytest.raises(ValueError, match="normal"):

@@ -65,6 +65,9 @@ pub fn tip_position_inverse(
     opts: &InverseOptions,
 ) -> Result<InverseResult> {
     check_target(robot, groups, target, z_start)?;
+    if let Some((_, w)) = target_rotation {
+        crate::error::positive("orientation_weight [m/rad]", w)?;
+    }
     let nz = groups.n_vars();
     let bounds = groups.bounds(robot);
     let mut z: Vec<f64> = z_start

@@ -165,11 +165,10 @@ fn tip_position(
     let r = robot.get();
     let g = groups_for(r, groups.as_ref())?;
     let t = vec3("target [m]", &target)?;
+    // checked even without a target rotation: a bad keyword is never ignored
+    crate::error::positive("orientation_weight [m/rad]", orientation_weight.0)?;
     let rot = match target_rotation.as_ref().filter(|o| !o.is_none()) {
-        Some(o) => {
-            crate::error::positive("orientation_weight [m/rad]", orientation_weight.0)?;
-            Some(rotation_arg(o)?)
-        }
+        Some(o) => Some(rotation_arg(o)?),
         None => None,
     };
     crate::error::positive("tol [m]", tol.0)?;
