@@ -116,11 +116,13 @@ impl<S: System> Run<'_, S> {
             match trial {
                 Ok(rt) => {
                     let phi = merit(&rt);
-                    if t == 1.0 && phi.is_finite() && phi > bound {
-                        if self.watchdog(&xt, &rt, bound)? {
-                            self.history.push((res, false));
-                            return Ok(Some(Step::Moved));
-                        }
+                    if t == 1.0
+                        && phi.is_finite()
+                        && phi > bound
+                        && self.watchdog(&xt, &rt, bound)?
+                    {
+                        self.history.push((res, false));
+                        return Ok(Some(Step::Moved));
                     }
                     if phi.is_finite() && (phi <= phi0 + 1e-4 * t * slope) {
                         let after = inf_norm(&rt);
