@@ -13,7 +13,9 @@
 //! quadratic-interpolation step stalled where a TCA's coil contact makes the
 //! residual only C1). A trial where `f` fails (e.g. an IVP that cannot
 //! be integrated) counts as an infinite merit. Where the full step fails the
-//! Armijo test, a watchdog step is tried first (`Run::watchdog` in
+//! Armijo test, the system's limited step is tried first
+//! ([`System::limit_step`]; shooting: actuator elongations limited through
+//! their force laws, [`crate::solve::limit`]), then a watchdog step (`Run::watchdog` in
 //! `newton_steps.rs`): the full step and one more Newton step from there,
 //! kept if together they meet the first step's Armijo bound (a
 //! non-monotone step across a kink of a force law, where backtracking creeps).
