@@ -222,7 +222,38 @@ const SUBSET: usize = 40;
 /// lambda = 0", best residual 7.3e-5). Branch `robust3` (a watchdog step
 /// where backtracking crept along the TCA's coil-contact onset) converges
 /// #21 (via continuation) and 994 of the 1,000: none of the subset fails.
+/// Branch `robust4` (the limited step through the force laws,
+/// `solve::limit`): still none.
 const KNOWN_COLD_FAILURES: usize = 0;
+
+/// Benchmark designs, not past self-weight buckling, on which the Newton
+/// step carries a TCA across its coil-contact onset (its slope rises ~400x
+/// within 0.1 um): from the soft side the full step overshoots by that
+/// factor and backtracking crept along the onset with steps of `1e-4`, at
+/// every homotopy parameter alike (the residual near the reference
+/// configuration is homogeneous in `lambda`). All four failed on main
+/// (a9f65e2: "iteration limit reached; continuation stalled at lambda =
+/// 0"); the limited step (the elongation that gives the tension the linear
+/// model predicted) converges #792 and #932 directly and #443 and #714
+/// through continuation.
+const COIL_CONTACT_DESIGNS: [usize; 4] = [443, 714, 792, 932];
+
+#[test]
+fn designs_crossing_a_coil_contact_converge_cold() {
+    let opts = SolveOptions::default();
+    for i in COIL_CONTACT_DESIGNS {
+        let d = random_design(DEFAULT_SEED, i);
+        assert!(!d.past_buckling(), "{}", d.summary());
+        let sol = solve(&d.robot, &d.inputs, &opts, None)
+            .unwrap_or_else(|e| panic!("{}: {e}", d.summary()));
+        // converged to the solver's own test (tol, or the rounding floor above it)
+        assert!(sol.residual <= opts.tol.max(sol.floor), "{}", d.summary());
+        // and the converged shape balances the loads (to 1e-8, or RK4's
+        // truncation error as in `seeded_subset_converges_and_balances`)
+        let eq = equilibrium(&d.robot, &sol).relative;
+        assert!(eq < 1e-6, "#{i}: equilibrium {eq:e}");
+    }
+}
 
 #[test]
 fn seeded_subset_converges_and_balances() {

@@ -6,6 +6,7 @@ pub mod cancel;
 pub mod continuation;
 pub mod fn_system;
 pub mod guess;
+pub mod limit;
 pub mod newton;
 pub mod options;
 pub mod presolve;

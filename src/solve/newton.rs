@@ -13,7 +13,9 @@
 //! quadratic-interpolation step stalled where a TCA's coil contact makes the
 //! residual only C1). A trial where `f` fails (e.g. an IVP that cannot
 //! be integrated) counts as an infinite merit. Where the full step fails the
-//! Armijo test, a watchdog step is tried first (`Run::watchdog` in
+//! Armijo test, the system's limited step is tried first
+//! ([`System::limit_step`]; shooting: actuator elongations limited through
+//! their force laws, [`crate::solve::limit`]), then a watchdog step (`Run::watchdog` in
 //! `newton_steps.rs`): the full step and one more Newton step from there,
 //! kept if together they meet the first step's Armijo bound (a
 //! non-monotone step across a kink of a force law, where backtracking creeps).
@@ -78,6 +80,14 @@ pub trait System {
     }
     /// Function evaluations so far (IVPs for shooting, failed ones included).
     fn evaluations(&self) -> usize;
+    /// A limited version of the full Newton step `x + dx`, tried where the
+    /// full step fails the Armijo test (before the watchdog and
+    /// backtracking); `None` (the default): no limiting. Shooting limits
+    /// actuator elongations through their force laws (see
+    /// [`crate::solve::limit`]).
+    fn limit_step(&self, _x: &[f64], _dx: &[f64]) -> Option<Vec<f64>> {
+        None
+    }
     /// Switch to a more accurate Jacobian, if the system has one; `true` if
     /// it did (then a failed line search is retried with it).
     fn refine(&mut self) -> bool {

@@ -103,15 +103,26 @@ impl<S: System> Run<'_, S> {
                 .zip(dx.iter())
                 .map(|(a, b)| a + t * b)
                 .collect();
-            match self.sys.residual(&xt) {
+            let trial = self.sys.residual(&xt);
+            let bound = phi0 + 1e-4 * slope;
+            if t == 1.0 && !matches!(&trial, Ok(rt) if merit(rt) <= bound) {
+                if let Err(Error::Interrupted) = trial {
+                    return Err(Error::Interrupted);
+                }
+                if self.limited(dx, bound, res)? {
+                    return Ok(Some(Step::Moved));
+                }
+            }
+            match trial {
                 Ok(rt) => {
                     let phi = merit(&rt);
-                    if t == 1.0 && phi.is_finite() && phi > phi0 + 1e-4 * slope {
-                        let bound = phi0 + 1e-4 * slope;
-                        if self.watchdog(&xt, &rt, bound)? {
-                            self.history.push((res, false));
-                            return Ok(Some(Step::Moved));
-                        }
+                    if t == 1.0
+                        && phi.is_finite()
+                        && phi > bound
+                        && self.watchdog(&xt, &rt, bound)?
+                    {
+                        self.history.push((res, false));
+                        return Ok(Some(Step::Moved));
                     }
                     if phi.is_finite() && (phi <= phi0 + 1e-4 * t * slope) {
                         let after = inf_norm(&rt);
@@ -141,6 +152,36 @@ impl<S: System> Run<'_, S> {
                 }
                 return Ok(None);
             }
+        }
+    }
+
+    /// The system's limited step ([`System::limit_step`]) in place of a
+    /// full step `dx` that failed the Armijo bound `bound`: taken (`true`)
+    /// if it meets that bound, with a fresh Jacobian next; else the
+    /// watchdog pair is tried from the limited point (its Jacobian is that
+    /// of the state the limited step reached, not of the overshoot).
+    fn limited(&mut self, dx: &DVector<f64>, bound: f64, res: f64) -> Result<bool> {
+        let Some(xl) = self.sys.limit_step(&self.x, dx.as_slice()) else {
+            return Ok(false);
+        };
+        match self.sys.residual(&xl) {
+            Ok(rl) if merit(&rl) <= bound => {
+                self.x = xl;
+                self.r = rl;
+                self.jacobian = None;
+                self.slow = 0;
+                self.history.push((res, false));
+                Ok(true)
+            }
+            Ok(rl) if merit(&rl).is_finite() => {
+                let taken = self.watchdog(&xl, &rl, bound)?;
+                if taken {
+                    self.history.push((res, false));
+                }
+                Ok(taken)
+            }
+            Err(Error::Interrupted) => Err(Error::Interrupted),
+            _ => Ok(false),
         }
     }
 

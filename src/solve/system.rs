@@ -120,6 +120,9 @@ impl System for Shooting<'_> {
         self.at_onset = onset;
         Ok((r, j))
     }
+    fn limit_step(&self, x: &[f64], dx: &[f64]) -> Option<Vec<f64>> {
+        super::limit::limited_step(self.robot, self.inputs, x, dx)
+    }
     /// First the full grid's Jacobian; then, if an actuator was at its
     /// onset of tension, the slack side's derivative there (see
     /// [`crate::solve::residual::tension_slope`]).

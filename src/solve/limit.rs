@@ -1,0 +1,71 @@
+//! Step limiting through the actuators' force laws (the shooting analogue
+//! of SPICE's junction-voltage limiting, Nagel 1975): a Newton step that
+//! carries an actuator's elongation across a sharp stiffening of its law
+//! (a TCA's coil contact: the slope rises ~400x within 0.1 um) overshoots,
+//! because the Jacobian has the soft side's slope. The limited step keeps
+//! the Newton step in the body's unknowns and replaces each actuator's
+//! elongation step `d -> d + dd` by the elongation that gives the tension
+//! the linear model predicted, `tau(d) + k dd` (`k` the law's slope at
+//! `d`), where that tension lies between `tau(d)` and `tau(d + dd)` (the
+//! law is stiffer along the step than the model: an overshoot); elsewhere
+//! (a softer law, a tendon going slack) the step is unchanged. For one
+//! monotone law alone the limited step is Newton's step in the tension.
+
+use crate::rod::{ForceLaw, Robot};
+
+/// Bisection steps of the scalar inversion (the bracket shrinks to
+/// `2^-60` of the step, below rounding of the elongation).
+const INVERSION_STEPS: usize = 60;
+
+/// The elongation in `[a, b]` (`tau(a) <= target <= tau(b)` or the
+/// reverse) where `law` gives `target` at `input`: bisection (the law is
+/// monotone but only C1, where regula falsi stalls on one side).
+fn invert(law: &dyn ForceLaw, input: f64, target: f64, mut a: f64, mut b: f64) -> Option<f64> {
+    let ta = law.tension(a, input).ok()?;
+    let up = law.tension(b, input).ok()? >= ta;
+    for _ in 0..INVERSION_STEPS {
+        let m = 0.5 * (a + b);
+        let tm = law.tension(m, input).ok()?;
+        if (tm < target) == up {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    Some(0.5 * (a + b))
+}
+
+/// The limited step `x + dx` of the shooting unknowns (see the module
+/// docs; elongations are `x[6 + i] L`), or `None` where no actuator's
+/// step overshoots.
+pub(crate) fn limited_step(
+    robot: &Robot,
+    inputs: &[f64],
+    x: &[f64],
+    dx: &[f64],
+) -> Option<Vec<f64>> {
+    let len = robot.body.length;
+    let mut out: Vec<f64> = x.iter().zip(dx).map(|(a, b)| a + b).collect();
+    let mut changed = false;
+    for (i, (a, &input)) in robot.actuators.iter().zip(inputs).enumerate() {
+        let law = a.law.as_ref();
+        let (d, dd) = (x[6 + i] * len, dx[6 + i] * len);
+        let Ok((t0, k, _)) = law.tension_derivatives(d, input) else {
+            continue;
+        };
+        let Ok(t1) = law.tension(d + dd, input) else {
+            continue;
+        };
+        let target = t0 + k * dd;
+        // an overshoot: the target lies strictly between tau(d) and tau(d + dd)
+        let (lo, hi) = (t0.min(t1), t0.max(t1));
+        if !(k > 0.0 && target > lo && target < hi && (t1 - target).abs() > 0.5 * (t1 - t0).abs()) {
+            continue;
+        }
+        if let Some(e) = invert(law, input, target, d, d + dd) {
+            out[6 + i] = e / len;
+            changed = true;
+        }
+    }
+    changed.then_some(out)
+}
