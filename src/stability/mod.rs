@@ -219,7 +219,7 @@ pub fn stability_at(
 ) -> Result<Stability> {
     let full = check(robot, eq, blocked)?;
     let t = tangents::exact_tangents(robot, eq, full)?;
-    Ok(verdict::verdict(&t, robot.body.length, blocked, full, 1))
+    Ok(verdict::verdict(t, robot.body.length, blocked, full, 1))
 }
 
 /// [`stability`] from forward-difference tangents (`7 + N` IVPs); for
@@ -228,5 +228,5 @@ pub fn stability_fd(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> 
     let full = check(robot, &Equilibrium::from(sol), blocked)?;
     let t = tangents::fd_tangents(robot, sol)?;
     let n = 7 + robot.actuators.len();
-    Ok(verdict::verdict(&t, robot.body.length, blocked, full, n))
+    Ok(verdict::verdict(t, robot.body.length, blocked, full, n))
 }
