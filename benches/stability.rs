@@ -1,12 +1,122 @@
-//! Criterion benches of the stability verdict (issue 16): a warm solve of the
-//! Fig. 6 square at 100 C without the verdict (`Policy::Off`) and with it
+//! Benches of the stability verdict (issue 16): a warm solve of the Fig. 6
+//! square at 100 C without the verdict (`Policy::Off`) and with it
 //! (`Policy::Report`, the default), the verdict alone, and the tangent IVP
 //! it must not exceed (the solver's exact Jacobian on the full grid, no
 //! nodes recorded). `cargo bench --bench stability`.
+//!
+//! First an interleaved run (each round times every contender once, by
+//! thread CPU time; medians over the rounds) prints the cost target's
+//! ratio `(report - off) / tangent IVP` (set `TCAROD_ROUNDS`, default 300);
+//! then criterion (wall clock).
+use std::hint::black_box;
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use tcarod::experiments::fig6_square;
-use tcarod::shooting::{shoot_jacobian, solve, Loads, SolveOptions};
+use tcarod::rod::Robot;
+use tcarod::shooting::{shoot, shoot_jacobian, solve, Loads, Solution, SolveOptions};
 use tcarod::stability::{solve_checked, stability, Policy};
+
+#[path = "clock/mod.rs"]
+mod clock;
+use clock::thread_cpu;
+
+/// The contenders, each a closure run once per round.
+type Contender<'a> = (&'static str, Box<dyn Fn() + 'a>);
+
+fn contenders<'a>(
+    robot: &'a Robot,
+    sol: &'a Solution,
+    warm: &'a Solution,
+    opts: &'a SolveOptions,
+    loads: &'a Loads,
+) -> Vec<Contender<'a>> {
+    let q = [100.0, 100.0];
+    let solve_with = move |policy| {
+        black_box(solve_checked(robot, &q, loads, opts, Some(warm), policy).unwrap());
+    };
+    let base: Vec<Contender<'a>> = vec![
+        ("solve_off", Box::new(move || solve_with(Policy::Off))),
+        ("solve_report", Box::new(move || solve_with(Policy::Report))),
+        (
+            "verdict",
+            Box::new(move || {
+                black_box(stability(robot, sol, &[]).unwrap());
+            }),
+        ),
+        (
+            "tangent_ivp",
+            Box::new(move || {
+                let (x, st) = (&sol.unknowns, sol.steps);
+                black_box(shoot_jacobian(robot, &sol.inputs, loads, x, st, false).unwrap());
+            }),
+        ),
+        (
+            "plain_ivp",
+            Box::new(move || {
+                let (x, st) = (&sol.unknowns, sol.steps);
+                black_box(shoot(robot, &sol.inputs, loads, x, st, false).unwrap());
+            }),
+        ),
+    ];
+    base.into_iter().chain(widths(robot, sol, loads)).collect()
+}
+
+/// Tangent passes (`integrate_tangent`, no residual assembled) of 4, 6 and
+/// 8 directions, and of 8 with every node recorded (what the verdict
+/// integrates): the cost of a direction. 6 directions run in the 8-wide
+/// dual, so they cost what 8 do; the verdict needs 6 along `s` and all
+/// `6 + N` at the tip, so its pass cannot be cheaper than the Jacobian's.
+fn widths<'a>(robot: &'a Robot, sol: &'a Solution, loads: &'a Loads) -> Vec<Contender<'a>> {
+    use tcarod::rod::{integrate_tangent, Record, TangentSeeds};
+    use tcarod::shooting::{base_strains, tensions};
+    let len = robot.body.length;
+    let d: Vec<f64> = sol.unknowns[6..].iter().map(|x| x * len).collect();
+    let tau = tensions(robot, &sol.inputs, &d).unwrap();
+    let tau: &'a [f64] = Box::leak(tau.into_boxed_slice());
+    let mk = move |k: usize, rec: Record| -> Box<dyn Fn() + 'a> {
+        Box::new(move || {
+            let mut seeds = TangentSeeds::zeros(robot.actuators.len(), k);
+            for j in 0..k.min(6) {
+                if j < 3 {
+                    seeds.nu0[(j, j)] = 1.0
+                } else {
+                    seeds.omega0[(j - 3, j)] = 1.0
+                }
+            }
+            let spec = loads.ivp(robot, tau, sol.steps);
+            let (v0, u0) = base_strains(&sol.unknowns, len);
+            black_box(integrate_tangent(&spec, &v0, &u0, &seeds, rec).unwrap());
+        })
+    };
+    let v: Vec<Contender<'a>> = vec![
+        ("tan4", mk(4, Record::Tip)),
+        ("tan6", mk(6, Record::Tip)),
+        ("tan8", mk(8, Record::Tip)),
+        ("tan8rec", mk(8, Record::Tangents)),
+    ];
+    v
+}
+
+/// Median thread-CPU time \[s\] of each contender over `rounds` interleaved
+/// rounds.
+fn interleaved(cs: &[Contender<'_>], rounds: usize) -> Option<Vec<f64>> {
+    let mut t = vec![Vec::with_capacity(rounds); cs.len()];
+    for _ in 0..rounds {
+        for (k, (_, f)) in cs.iter().enumerate() {
+            let t0 = thread_cpu()?;
+            f();
+            t[k].push(thread_cpu()? - t0);
+        }
+    }
+    Some(
+        t.into_iter()
+            .map(|mut v| {
+                v.sort_by(f64::total_cmp);
+                v[v.len() / 2]
+            })
+            .collect(),
+    )
+}
 
 fn verdict(c: &mut Criterion) {
     let robot = fig6_square(true);
@@ -16,28 +126,28 @@ fn verdict(c: &mut Criterion) {
     let sol = solve(&robot, &q, &opts, None).expect("fig6 square solves");
     // a warm start from a neighbouring input, as in a sweep
     let warm = solve(&robot, &[98.0, 98.0], &opts, None).expect("fig6 square solves");
-    let mut g = c.benchmark_group("stability");
-    for (name, policy) in [("solve_off", Policy::Off), ("solve_report", Policy::Report)] {
-        g.bench_function(name, |b| {
-            b.iter(|| solve_checked(&robot, &q, &loads, &opts, Some(&warm), policy).unwrap())
-        });
+    let cs = contenders(&robot, &sol, &warm, &opts, &loads);
+    let rounds = std::env::var("TCAROD_ROUNDS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(300);
+    if let Some(m) = interleaved(&cs, rounds) {
+        for ((name, _), t) in cs.iter().zip(&m) {
+            println!(
+                "interleaved thread-CPU median {name:>13}: {:8.1} us",
+                t * 1e6
+            );
+        }
+        println!(
+            "(report - off) / tangent IVP = {:.3}; verdict / tangent IVP = {:.3}",
+            (m[1] - m[0]) / m[3],
+            m[2] / m[3]
+        );
     }
-    g.bench_function("verdict", |b| {
-        b.iter(|| stability(&robot, &sol, &[]).unwrap())
-    });
-    g.bench_function("tangent_ivp", |b| {
-        b.iter(|| {
-            shoot_jacobian(
-                &robot,
-                &sol.inputs,
-                &sol.loads,
-                &sol.unknowns,
-                sol.steps,
-                false,
-            )
-            .unwrap()
-        })
-    });
+    let mut g = c.benchmark_group("stability");
+    for (name, f) in &cs {
+        g.bench_function(*name, |b| b.iter(f));
+    }
     g.finish();
 }
 

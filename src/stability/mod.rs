@@ -72,9 +72,24 @@
 //! [`crate::rod::integrate_tangent`]) gives every node's `Y`, `H` and the
 //! actuator rows: along the six base strains only when the tensions are
 //! frozen and the tip free, along all `6 + N` shooting unknowns otherwise.
-//! The scan along `s` uses fixed-size 6 x 6 algebra (no allocation per
-//! node). [`stability_fd`] does the same from `7 + N` recorded IVPs by
-//! forward differences (a cross-check).
+//! The scan along `s` uses fixed-size 6 x 6 algebra on column arrays (no
+//! allocation per node). [`stability_fd`] does the same from `7 + N`
+//! recorded IVPs by forward differences (a cross-check).
+//!
+//! What the criterion needs, and why the pass cannot be narrower than the
+//! Newton Jacobian's: along `s`, the Dirichlet test (`det H(s)`) and (S2)
+//! need all six frozen-tension columns at every node; at the tip, (S3)
+//! needs the `N` actuator columns and `E` as well. A tension change is a
+//! source distributed along its string, so its tip response is an integral
+//! of the full fundamental matrix (`12 + N` columns) over the string's span,
+//! not a combination of the six base columns: the `N` actuator directions
+//! must be integrated over the actuators' spans, which for strings that
+//! start at the base is the whole body. The directions of a tangent pass
+//! are lanes of one dual number (4, 8, 12 or 16 wide), and 6 directions
+//! cost what 8 do, so the verdict's pass is the Jacobian's pass plus the
+//! recorded nodes (measured in `benches/stability.rs`). It does not reuse
+//! the solver's tangents: those are taken on a tenth of the grid and at the
+//! last Newton iterate, not at the solution on the full grid.
 //!
 //! # Policy
 //!
@@ -219,7 +234,7 @@ pub fn stability_at(
 ) -> Result<Stability> {
     let full = check(robot, eq, blocked)?;
     let t = tangents::exact_tangents(robot, eq, full)?;
-    Ok(verdict::verdict(&t, robot.body.length, blocked, full, 1))
+    Ok(verdict::verdict(t, robot.body.length, blocked, full, 1))
 }
 
 /// [`stability`] from forward-difference tangents (`7 + N` IVPs); for
@@ -228,5 +243,5 @@ pub fn stability_fd(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> 
     let full = check(robot, &Equilibrium::from(sol), blocked)?;
     let t = tangents::fd_tangents(robot, sol)?;
     let n = 7 + robot.actuators.len();
-    Ok(verdict::verdict(&t, robot.body.length, blocked, full, n))
+    Ok(verdict::verdict(t, robot.body.length, blocked, full, n))
 }

@@ -2,7 +2,7 @@
 //! `H = d (p/L, theta)(s)/d z`: exact from one recorded tangent IVP, or by
 //! forward differences of recorded IVPs (a cross-check).
 
-use nalgebra::{DMatrix, Matrix3, Matrix6, Quaternion, Vector3, Vector6};
+use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3, Vector6};
 
 use super::Equilibrium;
 use crate::error::Result;
@@ -13,14 +13,20 @@ use crate::shooting::{base_strains, residual_scales, shoot, Loads, Solution};
 /// (the six base strains) `Y_k`, `H_k`; at the tip all `nz` columns when the
 /// actuator directions were integrated, and the actuator consistency rows
 /// `E = d (delta_i(L) - delta_i)/L / d z` (`na x nz`; `na x 0` if not).
+/// The node matrices are [`Cols6`] (flat, on the stack, by columns).
 pub(super) struct Tangents {
     pub s: Vec<f64>,
-    pub y: Vec<Matrix6<f64>>,
-    pub h: Vec<Matrix6<f64>>,
+    pub y: Vec<Cols6>,
+    pub h: Vec<Cols6>,
     pub y_tip: DMatrix<f64>,
     pub h_tip: DMatrix<f64>,
     pub e: DMatrix<f64>,
 }
+
+/// A 6 x 6 matrix by columns: `m[j]` is column `j` (the tangent along
+/// direction `j`), so the scan's products `H^T Y` are dot products of
+/// contiguous columns.
+pub(super) type Cols6 = [[f64; 6]; 6];
 
 /// A string crossing a node: `(actuator, r, unit tangent t, |p_b|, tau)`.
 type Crossing = (usize, Vector3<f64>, Vector3<f64>, f64, f64);
@@ -196,13 +202,13 @@ pub(super) fn exact_tangents(
     let ns = robot.n_states();
     for (n, node) in tan.nodes.iter().enumerate() {
         let f = frame(robot, &c, &tau, node.s, node.state, strings);
-        let (mut y, mut h) = (Matrix6::zeros(), Matrix6::zeros());
+        let (mut y, mut h) = ([[0.0; 6]; 6], [[0.0; 6]; 6]);
         let tip = n + 1 == k;
         for j in 0..if tip { nz } else { 6 } {
             let (dy, dh) = column(&c, &f, &node.tangent[j * ns..(j + 1) * ns], &dtau, j);
             if j < 6 {
-                y.set_column(j, &dy);
-                h.set_column(j, &dh);
+                y[j].copy_from_slice(dy.as_slice());
+                h[j].copy_from_slice(dh.as_slice());
             }
             if tip {
                 out.y_tip.set_column(j, &dy);
@@ -325,7 +331,8 @@ pub(super) fn fd_tangents(robot: &Robot, sol: &Solution) -> Result<Tangents> {
             e[(i, j)] = (pp.resid[6 + i] - base.resid[6 + i]) / step;
         }
     }
-    let m6 = |m: &DMatrix<f64>| Matrix6::from_fn(|i, j| m[(i, j)]);
+    let m6 =
+        |m: &DMatrix<f64>| -> Cols6 { std::array::from_fn(|j| std::array::from_fn(|i| m[(i, j)])) };
     Ok(Tangents {
         s: sol.s.clone(),
         y: y.iter().map(m6).collect(),

@@ -4,7 +4,7 @@
 
 use nalgebra::{DMatrix, DVector, Matrix6, SymmetricEigen, Vector3};
 
-use super::tangents::Tangents;
+use super::tangents::{Cols6, Tangents};
 use super::{Stability, NEUTRAL};
 
 /// Smallest eigenvalue of the symmetric part of a square matrix and its unit
@@ -26,11 +26,17 @@ struct Scan {
     dirichlet: Option<f64>,
 }
 
-/// A 6 x 6 matrix as rows on the stack.
+/// A 6 x 6 matrix on the stack (by rows or by columns: the determinant is
+/// the same).
 type M6 = [[f64; 6]; 6];
 
-fn rows(m: &Matrix6<f64>) -> M6 {
-    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+/// The tangents' columns as a matrix.
+fn matrix(c: &Cols6) -> Matrix6<f64> {
+    Matrix6::from_fn(|i, j| c[j][i])
+}
+
+fn dot6(a: &[f64; 6], b: &[f64; 6]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
 }
 
 /// Determinant by Gaussian elimination with partial pivoting (as an LU
@@ -68,17 +74,13 @@ fn det6(mut a: M6) -> f64 {
 /// True if `sym(H^T Y) + NEUTRAL H^T H` is positive definite (Cholesky,
 /// stopped at the first non-positive pivot); with `H` invertible this is
 /// `sym(K) + NEUTRAL I` for `K = Y H^-1` (S2), by congruence: no inverse needed.
-fn positive_definite(h: &M6, y: &M6) -> bool {
+/// `h`, `y` by columns: `(H^T Y)_ij` is the dot product of columns `i`, `j`.
+fn positive_definite(h: &Cols6, y: &Cols6) -> bool {
     let mut a = [[0.0; 6]; 6];
     for i in 0..6 {
         for j in 0..=i {
-            let (mut hty, mut ytj, mut hth) = (0.0, 0.0, 0.0);
-            for k in 0..6 {
-                hty += h[k][i] * y[k][j];
-                ytj += y[k][i] * h[k][j];
-                hth += h[k][i] * h[k][j];
-            }
-            a[i][j] = 0.5 * (hty + ytj) + NEUTRAL * hth;
+            let (hty, ytj) = (dot6(&h[i], &y[j]), dot6(&y[i], &h[j]));
+            a[i][j] = 0.5 * (hty + ytj) + NEUTRAL * dot6(&h[i], &h[j]);
         }
     }
     for j in 0..6 {
@@ -101,7 +103,8 @@ fn positive_definite(h: &M6, y: &M6) -> bool {
 /// algebra on the stack).
 fn scan(t: &Tangents, dirichlet: bool) -> Scan {
     let nodes = t.s.len();
-    let det0 = t.y.first().map_or(0.0, |y| det6(rows(y)));
+    // det Y = det Y^T: the columns serve as rows
+    let det0 = t.y.first().map_or(0.0, |y| det6(*y));
     let mut out = Scan {
         determinant: Vec::with_capacity(nodes),
         min_stiffness: Vec::with_capacity(nodes),
@@ -110,10 +113,10 @@ fn scan(t: &Tangents, dirichlet: bool) -> Scan {
     };
     let mut hdet_sign = 0.0;
     for (k, &sk) in t.s.iter().enumerate() {
-        let y = rows(&t.y[k]);
+        let y = &t.y[k];
         // det(Y(s) Y(0)^-1) = det Y(s) / det Y(0)
         out.determinant.push(if det0 != 0.0 {
-            det6(y) / det0
+            det6(*y) / det0
         } else {
             f64::NAN
         });
@@ -121,16 +124,16 @@ fn scan(t: &Tangents, dirichlet: bool) -> Scan {
             out.min_stiffness.push(f64::INFINITY);
             continue;
         }
-        let h = rows(&t.h[k]);
+        let h = &t.h[k];
         if dirichlet {
-            let hd = det6(h);
+            let hd = det6(*h);
             if hdet_sign == 0.0 {
                 hdet_sign = hd.signum();
             } else if out.dirichlet.is_none() && hd * hdet_sign <= 0.0 {
                 out.dirichlet = Some(sk);
             }
         }
-        let pd = positive_definite(&h, &y);
+        let pd = positive_definite(h, y);
         if out.conjugate.is_none() && !pd {
             out.conjugate = Some(sk);
         }
@@ -143,20 +146,20 @@ fn scan(t: &Tangents, dirichlet: bool) -> Scan {
 /// (`full = false`), or the tip stiffness (S3) with the actuator springs in,
 /// restricted to the complement of `blocked`.
 pub(super) fn verdict(
-    t: &Tangents,
+    t: Tangents,
     len: f64,
     blocked: &[Vector3<f64>],
     full: bool,
     evaluations: usize,
 ) -> Stability {
-    let sc = scan(t, full);
+    let sc = scan(&t, full);
     let nodes = t.s.len();
     let last = nodes.saturating_sub(1);
     let mut out = Stability {
         stable: false,
         margin: f64::NEG_INFINITY,
         conjugate_point: sc.conjugate,
-        s: t.s.clone(),
+        s: Vec::new(),
         determinant: sc.determinant,
         min_stiffness: sc.min_stiffness,
         evaluations,
@@ -165,8 +168,8 @@ pub(super) fn verdict(
     // the frozen tip stiffness (S2) at s = L: its smallest eigenvalue is the
     // last node's min_stiffness and, without springs, the margin
     if nodes > 1 {
-        if let Some(hi) = t.h[last].try_inverse() {
-            let kk = t.y[last] * hi;
+        if let Some(hi) = matrix(&t.h[last]).try_inverse() {
+            let kk = matrix(&t.y[last]) * hi;
             let e = SymmetricEigen::new((kk + kk.transpose()) * 0.5);
             let i = e.eigenvalues.imin();
             out.min_stiffness[last] = e.eigenvalues[i];
@@ -181,10 +184,13 @@ pub(super) fn verdict(
             Some(s) => m.min(-(len - s) / len),
             None => m,
         };
+        out.s = t.s;
         return out;
     }
     out.mode = [0.0; 6];
-    let Some((m, mode)) = full_tip(t, blocked) else {
+    let tip = full_tip(&t, blocked);
+    out.s = t.s;
+    let Some((m, mode)) = tip else {
         return out;
     };
     out.mode = mode;
