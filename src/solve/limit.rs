@@ -69,3 +69,51 @@ pub(crate) fn limited_step(
     }
     changed.then_some(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::limited_step;
+    use crate::experiments::fig6_square;
+
+    /// A step from the coil spring into coil contact is cut to the
+    /// elongation where the law gives the linear model's tension; a step
+    /// within the coil spring's smooth range is left alone.
+    #[test]
+    fn a_step_into_coil_contact_is_limited_to_the_predicted_tension() {
+        let robot = fig6_square(true);
+        let len = robot.body.length;
+        let na = robot.actuators.len();
+        let inputs: Vec<f64> = robot
+            .actuators
+            .iter()
+            .map(|a| a.law.reference_input())
+            .collect();
+        let law = robot.actuators[0].law.as_ref();
+        let (d, dd) = (1e-6, -2e-6); // from 1 um stretched to 1 um pressed
+        let mut x = vec![0.0; 6 + na];
+        let mut dx = vec![0.0; 6 + na];
+        x[6] = d / len;
+        dx[6] = dd / len;
+        dx[0] = 1e-3; // a body unknown's step is kept as it is
+        let out = limited_step(&robot, &inputs, &x, &dx).expect("the step overshoots");
+        let (t0, k, _) = law.tension_derivatives(d, inputs[0]).unwrap();
+        let target = t0 + k * dd;
+        let reached = law.tension(out[6] * len, inputs[0]).unwrap();
+        // bisection to 2^-60 of the 2 um bracket: the tension is exact to
+        // rounding times the contact stiffness' scale
+        assert!(
+            (reached - target).abs() <= 1e-9 * target.abs().max(1.0),
+            "{reached} vs {target}"
+        );
+        assert!(
+            out[6] * len > d + dd && out[6] * len < d,
+            "limited within the step"
+        );
+        assert_eq!(out[0], 1e-3);
+        // within the coil spring's range (no contact) the law is not stiffer
+        // along the step than the model: no limiting
+        x[6] = 1e-3 / len;
+        dx[6] = 1e-4 / len;
+        assert!(limited_step(&robot, &inputs, &x, &dx).is_none());
+    }
+}
