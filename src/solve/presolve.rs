@@ -20,12 +20,6 @@
 //!    repeated from `x` with the coarse Jacobian (a chord step or two). The
 //!    full residual contracts by the defect's variation, about the coarse
 //!    grid's error in the Jacobian (Fig. 6: 1.4e-6 to ~1e-10 per round).
-//!    Each round after the first starts from a fresh coarse tangent (at
-//!    `x`, near the root: a chord run from it takes a step or two, where
-//!    the first round's Jacobian, older, took up to eight), and the first
-//!    round stops at [`FIRST_ROUND_DEFECT_FRACTION`] of the warm defect:
-//!    below it the defect's own change, not the coarse solve, limits the
-//!    full residual, so further coarse iterations are wasted.
 //! 3. A failure anywhere (coarse Newton, a full residual that does not
 //!    contract tenfold, [`MAX_ROUNDS`] used) falls back on full-grid
 //!    Newton (`newton_shooting`) from the best point reached; its work is
@@ -56,22 +50,6 @@ const FALLBACK_NEAR: f64 = 1e-3;
 /// a coarse run that needs more is cut short and the full-grid Newton
 /// takes over).
 const COARSE_MAX_ITER: usize = 20;
-
-/// The first round's coarse tolerance as a fraction of `max |defect|` (the
-/// warm defect; zero cold): the defect changes between the warm solution
-/// and the new one by about the coarse grid's relative error (Fig. 6:
-/// 1e-2 to 1e-1 of itself), so the full residual after round one is no
-/// smaller than that; the coarse solve need not go further (never below
-/// `0.1 tol`).
-const FIRST_ROUND_DEFECT_FRACTION: f64 = 0.01;
-
-/// A solve that ended in its first round after more coarse iterations than
-/// this passes on no Jacobian (the next warm start takes a fresh coarse
-/// tangent): its Jacobian was the warm one, kept through chord steps that
-/// contracted at least fourfold each but ever more slowly from one warm
-/// solve to the next (Fig. 6 warm sweeps: 6, 7, 8, ... 18 iterations a
-/// step, then a reset). A coarse tangent costs about one plain full-grid IVP.
-const STALE_ITERATIONS: usize = 6;
 
 /// The warm start of a pre-solve: the neighbouring solution's unknowns,
 /// inputs and Newton Jacobian.
@@ -151,33 +129,6 @@ struct PreSolve<'a> {
 }
 
 impl<'a> PreSolve<'a> {
-    fn new(
-        robot: &'a Robot,
-        inputs: &'a [f64],
-        loads: &'a Loads,
-        opts: &'a SolveOptions,
-        coarse: usize,
-    ) -> Self {
-        PreSolve {
-            robot,
-            inputs,
-            loads,
-            opts,
-            coarse,
-        }
-    }
-
-    /// The coarse tolerance of round `round` (from 0) with `defect`: `0.1 tol`,
-    /// in round 0 no smaller than [`FIRST_ROUND_DEFECT_FRACTION`] of the defect.
-    fn round_tol(&self, round: usize, defect: &[f64]) -> f64 {
-        let tol = 0.1 * self.opts.tol;
-        if round == 0 {
-            tol.max(FIRST_ROUND_DEFECT_FRACTION * inf_norm(defect))
-        } else {
-            tol
-        }
-    }
-
     /// Coarse Newton on `r_coarse + defect` from `x0`; its result and the
     /// coarse IVPs used.
     fn coarse_run(
@@ -186,25 +137,19 @@ impl<'a> PreSolve<'a> {
         defect: Vec<f64>,
         jac0: Option<&DMatrix<f64>>,
         work: &Work,
-        tol: f64,
     ) -> (Result<NewtonResult>, usize) {
         let mut sys = Corrected {
             sys: Shooting::new(self.robot, self.inputs, self.loads, self.coarse, false),
             defect,
         };
         let nopts = NewtonOptions {
-            tol,
+            tol: 0.1 * self.opts.tol,
             max_iter: COARSE_MAX_ITER.min(self.opts.max_iter),
             ..work.newton_options(self.opts)
         };
         let out = newton_from(&mut sys, x0, &nopts, "coarse pre-solve", jac0);
         (out, sys.sys.evaluations)
     }
-}
-
-/// `max |v_i|`.
-fn inf_norm(v: &[f64]) -> f64 {
-    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
 /// [`Status::Converged`] if `norm <= tol`, else at the floor.
@@ -263,18 +208,20 @@ pub(crate) fn presolved_shooting(
     if coarse < COARSE_JACOBIAN_MIN_STEPS || !opts.presolve {
         return newton_shooting(robot, inputs, loads, opts, x0, jac0, record, work);
     }
-    let pre = PreSolve::new(robot, inputs, loads, opts, coarse);
+    let pre = PreSolve {
+        robot,
+        inputs,
+        loads,
+        opts,
+        coarse,
+    };
     let (mut defect, mut jac) = warm_start(robot, loads, coarse, x0, inputs, warm, work);
     let mut full = Shooting::new(robot, inputs, loads, opts.steps, record);
     let mut x = x0.to_vec();
     let mut iterations = 0;
     let mut last_norm = f64::INFINITY;
-    for round in 0..MAX_ROUNDS {
-        if round > 0 {
-            jac = None; // a fresh coarse tangent, near the root
-        }
-        let ctol = pre.round_tol(round, &defect);
-        let (out, evals) = pre.coarse_run(&x, defect.clone(), jac.as_ref(), work, ctol);
+    for _ in 0..MAX_ROUNDS {
+        let (out, evals) = pre.coarse_run(&x, defect.clone(), jac.as_ref(), work);
         work.evaluations += evals;
         let Some(nr) = unless_interrupted(out)? else {
             break;
@@ -282,12 +229,10 @@ pub(crate) fn presolved_shooting(
         iterations += nr.iterations;
         x = nr.x;
         jac = nr.jacobian.or(jac);
-        // not a Jacobian worn by a long chord run of round one
-        let pass_on = round > 0 || nr.iterations <= STALE_ITERATIONS;
         let Some(r) = unless_interrupted(full.residual(&x))? else {
             break;
         };
-        let norm = inf_norm(&r);
+        let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let floor = full.floor(&x, &r);
         if norm <= opts.tol.max(floor) {
             work.evaluations += full.evaluations;
@@ -302,7 +247,7 @@ pub(crate) fn presolved_shooting(
                 status,
                 iterations,
                 evaluations: work.evaluations,
-                jacobian: jac.filter(|_| pass_on),
+                jacobian: jac,
             };
             return Ok((nr, last));
         }
@@ -333,38 +278,5 @@ fn unless_interrupted<T>(r: Result<T>) -> Result<Option<T>> {
         Ok(v) => Ok(Some(v)),
         Err(e @ Error::Interrupted) => Err(e),
         Err(_) => Ok(None),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::experiments::{fig6_circle, fig6_square};
-    use crate::solve::shooting::{sweep, SolveOptions};
-
-    /// The Fig. 6 warm sweeps (25-160 C every 5 C, with gravity) with the
-    /// pre-solve: each warm step within the bound of
-    /// `tests/test_fig6.py::test_cold_and_warm_sweeps_agree` (12; with the
-    /// warm Jacobian passed on unrefreshed the circle's climbed to 18), and
-    /// at the full-grid Newton solution's tips.
-    #[test]
-    fn warm_sweeps_keep_their_iterations_bounded() {
-        let on = SolveOptions::default();
-        assert!(on.presolve, "the pre-solve is the default");
-        let off = SolveOptions {
-            presolve: false,
-            ..on
-        };
-        for (robot, n) in [(fig6_circle(true), 1), (fig6_square(true), 2)] {
-            let rows: Vec<Vec<f64>> = (0..28).map(|k| vec![25.0 + 5.0 * k as f64; n]).collect();
-            let a = sweep(&robot, &rows, &on).unwrap();
-            let b = sweep(&robot, &rows, &off).unwrap();
-            let worst = a[1..].iter().map(|s| s.iterations).max().unwrap();
-            assert!(worst <= 12, "a warm step took {worst} iterations");
-            for (x, y) in a.iter().zip(&b) {
-                // both meet tol 1e-10 in strain on the same grid: ~1e-12 m
-                let d = (x.tip_position() - y.tip_position()).norm();
-                assert!(d < 1e-9, "tips {d:e} m apart");
-            }
-        }
     }
 }
