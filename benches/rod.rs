@@ -9,7 +9,8 @@ mod rows;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use rows::{operation, ROWS, SOLVER_ROWS};
 use tcarod::batch::{solve_batch, BatchOptions};
-use tcarod::experiments::fig6_square;
+use tcarod::experiments::{fig6_circle, fig6_square};
+use tcarod::shooting::{sweep, SolveOptions};
 
 fn rows(c: &mut Criterion) {
     for row in ROWS.iter().chain(SOLVER_ROWS.iter()) {
@@ -38,6 +39,8 @@ fn batch(c: &mut Criterion) {
         let opts = BatchOptions {
             threads,
             chunk_size: 50,
+            // no stability verdict, as the rows of earlier stops
+            stability: false,
             ..Default::default()
         };
         g.bench_function(format!("sweep_{n}_threads_{threads}"), |b| {
@@ -47,5 +50,31 @@ fn batch(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, rows, batch);
+/// Whole warm-started Fig. 6 sweeps (25-160 C every 5 C, with gravity, as
+/// `tcarod.paper.fig6`), with the coarse-grid pre-solve (the default) and
+/// with full-grid Newton: the pre-solve's cost along a sweep, where its
+/// warm Jacobians are passed on from step to step.
+fn sweeps(c: &mut Criterion) {
+    let mut g = c.benchmark_group("sweep");
+    g.sample_size(10);
+    for (name, robot, n) in [
+        ("circle", fig6_circle(true), 1),
+        ("square", fig6_square(true), 2),
+    ] {
+        let rows: Vec<Vec<f64>> = (0..28).map(|k| vec![25.0 + 5.0 * k as f64; n]).collect();
+        for presolve in [true, false] {
+            let opts = SolveOptions {
+                presolve,
+                ..Default::default()
+            };
+            let label = if presolve { "presolve" } else { "full_grid" };
+            g.bench_function(format!("fig6_{name}_{label}"), |b| {
+                b.iter(|| sweep(&robot, &rows, &opts).unwrap())
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, rows, batch, sweeps);
 criterion_main!(benches);

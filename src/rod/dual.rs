@@ -144,8 +144,8 @@ impl<const N: usize> Real for Dual<N> {
         }
         let (dv, du) = fac.solve_n(&bv, &bu);
         Some((
-            std::array::from_fn(|p| Dual::new(v[p], dv[p])),
-            std::array::from_fn(|p| Dual::new(u[p], du[p])),
+            v3(|p| Dual::new(v[p], dv[p])),
+            v3(|p| Dual::new(u[p], du[p])),
         ))
     }
 }
@@ -250,6 +250,14 @@ impl<const N: usize> SubAssign for Dual<N> {
     }
 }
 
+/// `[f(0), f(1), f(2)]`: `std::array::from_fn` for 3-vectors, written out
+/// so that it is always inlined (`from_fn` over a [`Dual`] was not, which
+/// kept the tangent pass's lanes from vectorising).
+#[inline(always)]
+pub(crate) fn v3<T>(f: impl Fn(usize) -> T) -> [T; 3] {
+    [f(0), f(1), f(2)]
+}
+
 /// `a x b`.
 #[inline(always)]
 pub(crate) fn cross<T: Real>(a: &V3<T>, b: &V3<T>) -> V3<T> {
@@ -315,7 +323,7 @@ pub(crate) fn rot_t<T: Real>(q: &[T; 4]) -> [[T; 3]; 3] {
 /// `R^T a` for a constant `a`.
 #[inline(always)]
 pub(crate) fn rt_mul<T: Real>(r: &[[T; 3]; 3], a: &V3<f64>) -> V3<T> {
-    std::array::from_fn(|k| r[0][k] * a[0] + r[1][k] * a[1] + r[2][k] * a[2])
+    v3(|k| r[0][k] * a[0] + r[1][k] * a[1] + r[2][k] * a[2])
 }
 
 #[cfg(test)]

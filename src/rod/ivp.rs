@@ -143,7 +143,48 @@ fn tip_balance(
 /// Integrate the rod from the base with unknown initial strains `v0`, `u0`
 /// (eqs 22-25), by fixed-step RK4 on a grid that has a node at every actuator
 /// anchor. Actuator elongations start at zero at their proximal anchors.
+///
+/// Compiled twice and chosen at run time: for AVX2 + FMA where the CPU has
+/// them, else for the x86-64 baseline (SSE2), so one wheel runs everywhere.
+/// Rust never fuses a multiply and an add on its own, so both copies do the
+/// same IEEE operations in the same order: bit-for-bit the same results.
 pub fn integrate(
+    spec: &IvpSpec<'_>,
+    v0: &Vector3<f64>,
+    u0: &Vector3<f64>,
+    record: bool,
+) -> Result<IvpResult> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::env::var("ZZ_NOAVX").is_err()
+            && std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("fma")
+        {
+            // SAFETY: the CPU supports AVX2 and FMA (checked just above).
+            return unsafe { integrate_avx2(spec, v0, u0, record) };
+        }
+    }
+    integrate_plain(spec, v0, u0, record)
+}
+
+/// [`integrate_plain`] with AVX2 and FMA enabled.
+///
+/// # Safety
+/// The CPU must support AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn integrate_avx2(
+    spec: &IvpSpec<'_>,
+    v0: &Vector3<f64>,
+    u0: &Vector3<f64>,
+    record: bool,
+) -> Result<IvpResult> {
+    integrate_plain(spec, v0, u0, record)
+}
+
+/// The body of [`integrate`], inlined into each compiled copy.
+#[inline(always)]
+fn integrate_plain(
     spec: &IvpSpec<'_>,
     v0: &Vector3<f64>,
     u0: &Vector3<f64>,

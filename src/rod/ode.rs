@@ -3,7 +3,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::dual::{c_cross, cross, cross_c, dot, rot_t, rt_mul, Blocks, Real, V3};
+use super::dual::{c_cross, cross, cross_c, dot, rot_t, rt_mul, v3, Blocks, Real, V3};
 use super::{Robot, Routing, BASE_STATES};
 use crate::error::{Error, Result};
 
@@ -97,15 +97,10 @@ impl Eq25 {
     #[inline(always)]
     pub(crate) fn solve(&self, e: &V3<f64>, f: &V3<f64>) -> (V3<f64>, V3<f64>) {
         let (mi, m12, y, si) = (&self.m11_inv, &self.m12, &self.y12, &self.s_inv);
-        let a: V3<f64> =
-            std::array::from_fn(|p| mi[p][0] * e[0] + mi[p][1] * e[1] + mi[p][2] * e[2]);
-        let g: V3<f64> = std::array::from_fn(|p| {
-            f[p] - (m12[0][p] * a[0] + m12[1][p] * a[1] + m12[2][p] * a[2])
-        });
-        let ud: V3<f64> =
-            std::array::from_fn(|p| si[p][0] * g[0] + si[p][1] * g[1] + si[p][2] * g[2]);
-        let vd: V3<f64> =
-            std::array::from_fn(|p| a[p] - (y[p][0] * ud[0] + y[p][1] * ud[1] + y[p][2] * ud[2]));
+        let a: V3<f64> = v3(|p| mi[p][0] * e[0] + mi[p][1] * e[1] + mi[p][2] * e[2]);
+        let g: V3<f64> = v3(|p| f[p] - (m12[0][p] * a[0] + m12[1][p] * a[1] + m12[2][p] * a[2]));
+        let ud: V3<f64> = v3(|p| si[p][0] * g[0] + si[p][1] * g[1] + si[p][2] * g[2]);
+        let vd: V3<f64> = v3(|p| a[p] - (y[p][0] * ud[0] + y[p][1] * ud[1] + y[p][2] * ud[2]));
         (vd, ud)
     }
 
@@ -219,7 +214,7 @@ impl<'a> RodRhs<'a> {
     }
 
     /// `dy/ds` (eqs 22-31) with the IVP's tensions, in `f64`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn deriv(&self, s: f64, y: &[f64], active: &[usize], dy: &mut [f64]) -> Result<()> {
         self.deriv_generic(s, y, self.tensions, active, dy)
     }
@@ -250,13 +245,13 @@ impl<'a> RodRhs<'a> {
         let rm = rot_t(&[y[3], y[4], y[5], y[6]]);
         let v = [y[7], y[8], y[9]];
         let u = [y[10], y[11], y[12]];
-        let nse: V3<T> = std::array::from_fn(|k| (v[k] - nu_star[k]) * kse[k]);
-        let nbt: V3<T> = std::array::from_fn(|k| (u[k] - omega_star[k]) * kbt[k]);
+        let nse: V3<T> = v3(|k| (v[k] - nu_star[k]) * kse[k]);
+        let nbt: V3<T> = v3(|k| (u[k] - omega_star[k]) * kbt[k]);
         // eq (25) right-hand side [e; f] without the actuators' terms (30)-(31)
         let (ucn, rtfe) = (cross(&u, &nse), rt_mul(&rm, &self.fe.into()));
-        let mut e: V3<T> = std::array::from_fn(|k| -ucn[k] - rtfe[k]);
+        let mut e: V3<T> = v3(|k| -ucn[k] - rtfe[k]);
         let (ucb, vcn) = (cross(&u, &nbt), cross(&v, &nse));
-        let mut f: V3<T> = std::array::from_fn(|k| -ucb[k] - vcn[k]);
+        let mut f: V3<T> = v3(|k| -ucb[k] - vcn[k]);
         if self.has_le {
             let rtle = rt_mul(&rm, &self.le.into());
             for k in 0..3 {
@@ -268,8 +263,8 @@ impl<'a> RodRhs<'a> {
         }
         let (vd, ud): (V3<T>, V3<T>) = if active.is_empty() {
             (
-                std::array::from_fn(|k| e[k] * self.kse_inv[k]),
-                std::array::from_fn(|k| f[k] * self.kbt_inv[k]),
+                v3(|k| e[k] * self.kse_inv[k]),
+                v3(|k| f[k] * self.kbt_inv[k]),
             )
         } else {
             // [M11, M12, M22], upper triangles of M11 and M22
@@ -281,7 +276,7 @@ impl<'a> RodRhs<'a> {
             for &i in active {
                 let (r, rp, rpp, lref) = self.routing_at(i, s);
                 let ucr = cross_c(&u, &r);
-                let pb: V3<T> = std::array::from_fn(|k| v[k] + ucr[k] + rp[k]); // eq (19), body frame
+                let pb: V3<T> = v3(|k| v[k] + ucr[k] + rp[k]); // eq (19), body frame
                 let nrm = dot(&pb, &pb).sqrt();
                 if !(nrm.re() > 1e-12) {
                     return Err(Error::Integration {
@@ -294,19 +289,19 @@ impl<'a> RodRhs<'a> {
                 // r^ r^ = r r^T - |r|^2 I:
                 //   A_i r^ = c (r^ - t w^T),  r^ A_i r^ = c (r r^T - |r|^2 I + w w^T).
                 let c = tau[i] / nrm;
-                let t: V3<T> = std::array::from_fn(|k| pb[k] / nrm);
+                let t: V3<T> = v3(|k| pb[k] / nrm);
                 let w = cross_c(&t, &r);
-                let ct: V3<T> = std::array::from_fn(|k| t[k] * c);
-                let pbrp: V3<T> = std::array::from_fn(|k| pb[k] + rp[k]);
+                let ct: V3<T> = v3(|k| t[k] * c);
+                let pbrp: V3<T> = v3(|k| pb[k] + rp[k]);
                 let upr = cross(&u, &pbrp);
                 // g_i = omega^(nu + omega^ r + 2 r') + r''
-                let g: V3<T> = std::array::from_fn(|k| upr[k] + rpp[k]);
+                let g: V3<T> = v3(|k| upr[k] + rpp[k]);
                 let tg = dot(&t, &g);
-                let ag: V3<T> = std::array::from_fn(|k| g[k] * c - ct[k] * tg); // A_i g_i
+                let ag: V3<T> = v3(|k| g[k] * c - ct[k] * tg); // A_i g_i
                 let rag = c_cross(&r, &ag);
-                let cr: V3<T> = std::array::from_fn(|k| c * r[k]);
+                let cr: V3<T> = v3(|k| c * r[k]);
                 let cr2 = c * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-                let cw: V3<T> = std::array::from_fn(|k| w[k] * c);
+                let cw: V3<T> = v3(|k| w[k] * c);
                 for p in 0..3 {
                     for q in p..3 {
                         m[0][p][q] -= ct[p] * t[q]; // (26): M11 += c I - c t t^T
