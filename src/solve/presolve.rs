@@ -86,6 +86,9 @@ impl System for Corrected<'_> {
     fn refine(&mut self) -> bool {
         self.sys.refine()
     }
+    fn limit_step(&self, x: &[f64], dx: &[f64]) -> Option<Vec<f64>> {
+        self.sys.limit_step(x, dx) // the force laws do not depend on the grid
+    }
 }
 
 /// `jac` (a Jacobian at `x_from`, inputs `from`) with each actuator column
