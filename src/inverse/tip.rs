@@ -64,10 +64,7 @@ pub fn tip_position_inverse(
     z_start: &[f64],
     opts: &InverseOptions,
 ) -> Result<InverseResult> {
-    check_target(robot, groups, target, z_start)?;
-    if let Some((_, w)) = target_rotation {
-        crate::error::positive("orientation_weight [m/rad]", w)?;
-    }
+    check_target(robot, groups, target, target_rotation, z_start)?;
     let nz = groups.n_vars();
     let bounds = groups.bounds(robot);
     let mut z: Vec<f64> = z_start
@@ -145,9 +142,13 @@ fn check_target(
     robot: &Robot,
     groups: &Groups,
     target: &Vector3<f64>,
+    target_rotation: Option<(&Matrix3<f64>, f64)>,
     z_start: &[f64],
 ) -> Result<()> {
     groups.validate(robot)?;
+    if let Some((_, w)) = target_rotation {
+        crate::error::positive("orientation_weight [m/rad]", w)?;
+    }
     for (k, v) in target.iter().enumerate() {
         crate::error::finite(&format!("target[{k}] [m]"), *v)?;
     }
