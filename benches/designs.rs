@@ -18,7 +18,7 @@
 use std::time::Instant;
 
 use tcarod::problems::{equilibrium, random_design, Design, DEFAULT_SEED, EQUILIBRIUM_TOL};
-use tcarod::shooting::{shoot, solve, Loads, SolveOptions};
+use tcarod::shooting::{solve, Loads, Shot, SolveOptions};
 use tcarod::Error;
 
 #[path = "clock/mod.rs"]
@@ -138,14 +138,10 @@ fn solve_one(
             let loads = Loads::of(&d.robot);
             let t1 = now();
             for _ in 0..5 {
-                let _ = std::hint::black_box(shoot(
-                    &d.robot,
-                    &d.inputs,
-                    &loads,
-                    &sol.unknowns,
-                    opts.steps,
-                    false,
-                ));
+                let _ = std::hint::black_box(
+                    Shot::new(&d.robot, &d.inputs, &loads, opts.steps)
+                        .residual(&sol.unknowns, false),
+                );
             }
             let ivp = (now() - t1) / 5.0;
             Ok(Converged {

@@ -17,7 +17,7 @@ use tcarod::experiments::{
 };
 use tcarod::inverse::{Grasp, GraspMethod, Groups};
 use tcarod::rod::Robot;
-use tcarod::shooting::{shoot, shoot_jacobian, solve, Loads, SolveOptions};
+use tcarod::shooting::{solve, Loads, Shot, SolveOptions};
 use tcarod::stability::Policy;
 
 /// The Table I grasp of the lightest mass under a stability policy.
@@ -61,15 +61,9 @@ fn report(finger: &Robot, groups: &Groups, opts: &SolveOptions) {
     let sol = solve(finger, &finger.reference_inputs(), opts, None).expect("free solve");
     let loads = Loads::of(finger);
     let ivp = median(|| {
-        shoot(
-            finger,
-            &sol.inputs,
-            &loads,
-            &sol.unknowns,
-            opts.steps,
-            false,
-        )
-        .expect("IVP");
+        Shot::new(finger, &sol.inputs, &loads, opts.steps)
+            .residual(&sol.unknowns, false)
+            .expect("IVP");
     });
     println!("one IVP of the finger: {:.1} us", ivp * 1e6);
     for (name, method, policy) in CASES {
@@ -111,7 +105,9 @@ fn rows(c: &mut Criterion) {
     g.bench_function("tangent", |b| {
         b.iter(|| {
             let x = std::hint::black_box(&sol.unknowns);
-            shoot_jacobian(&finger, &inputs, &loads, x, opts.steps, false).expect("tangent")
+            Shot::new(&finger, &inputs, &loads, opts.steps)
+                .jacobian(x, false)
+                .expect("tangent")
         })
     });
     g.finish();

@@ -13,7 +13,7 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, Criterion};
 use tcarod::experiments::fig6_square;
 use tcarod::rod::Robot;
-use tcarod::shooting::{shoot, shoot_jacobian, solve, Loads, Solution, SolveOptions};
+use tcarod::shooting::{solve, Loads, Shot, Solution, SolveOptions};
 use tcarod::stability::{solve_checked, stability, Policy};
 
 #[path = "clock/mod.rs"]
@@ -47,14 +47,22 @@ fn contenders<'a>(
             "tangent_ivp",
             Box::new(move || {
                 let (x, st) = (&sol.unknowns, sol.steps);
-                black_box(shoot_jacobian(robot, &sol.inputs, loads, x, st, false).unwrap());
+                black_box(
+                    Shot::new(robot, &sol.inputs, loads, st)
+                        .jacobian(x, false)
+                        .unwrap(),
+                );
             }),
         ),
         (
             "plain_ivp",
             Box::new(move || {
                 let (x, st) = (&sol.unknowns, sol.steps);
-                black_box(shoot(robot, &sol.inputs, loads, x, st, false).unwrap());
+                black_box(
+                    Shot::new(robot, &sol.inputs, loads, st)
+                        .residual(x, false)
+                        .unwrap(),
+                );
             }),
         ),
     ];

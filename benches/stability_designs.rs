@@ -18,12 +18,12 @@
 //! Verdict cost, per cold solution: thread-CPU time of the verdict
 //! (`stability::stability`, which integrates one tangent IVP) over that of
 //! one tangent IVP at the solution without recorded nodes
-//! (`shooting::shoot_jacobian` on the full grid: the exact Newton Jacobian),
+//! (`shooting::Shot::jacobian` on the full grid: the exact Newton Jacobian),
 //! each the median of 3, interleaved; and the same over one plain IVP.
 use std::time::Instant;
 
 use tcarod::problems::{random_design, Design, DEFAULT_SEED};
-use tcarod::shooting::{shoot, shoot_jacobian, Loads, Solution, SolveOptions};
+use tcarod::shooting::{Loads, Shot, Solution, SolveOptions};
 use tcarod::stability::{solve_checked, stability, sweep_checked, Checked, Policy};
 
 #[path = "clock/mod.rs"]
@@ -76,16 +76,13 @@ fn cost(d: &Design, s: &Solution, t0: Instant, tally: &mut Tally) {
         let a = cpu(t0);
         let _ = std::hint::black_box(stability(r, s, &[]));
         let b = cpu(t0);
-        let _ = std::hint::black_box(shoot_jacobian(
-            r,
-            &s.inputs,
-            &s.loads,
-            &s.unknowns,
-            s.steps,
-            false,
-        ));
+        let _ = std::hint::black_box(
+            Shot::new(r, &s.inputs, &s.loads, s.steps).jacobian(&s.unknowns, false),
+        );
         let c = cpu(t0);
-        let _ = std::hint::black_box(shoot(r, &s.inputs, &s.loads, &s.unknowns, s.steps, false));
+        let _ = std::hint::black_box(
+            Shot::new(r, &s.inputs, &s.loads, s.steps).residual(&s.unknowns, false),
+        );
         let e = cpu(t0);
         v.push(b - a);
         t.push(c - b);

@@ -56,7 +56,11 @@ fn compare(name: &str, robot: &Robot, inputs: &[f64], warm: Option<&Solution>) {
             drop(solve(robot, inputs, &off, warm).unwrap())
         }));
         u.push(cpu_median(1, || {
-            drop(tcarod::shooting::shoot(robot, inputs, &l, &at.unknowns, 100, false).unwrap())
+            drop(
+                tcarod::shooting::Shot::new(robot, inputs, &l, 100)
+                    .residual(&at.unknowns, false)
+                    .unwrap(),
+            )
         }));
     }
     for v in [&mut a, &mut b, &mut u] {
@@ -99,15 +103,9 @@ fn ivp_time(robot: &Robot, inputs: &[f64], steps: usize) -> f64 {
         .map(|_| {
             let t = Instant::now();
             for _ in 0..20 {
-                tcarod::shooting::shoot(
-                    robot,
-                    inputs,
-                    &l,
-                    std::hint::black_box(&s.unknowns),
-                    steps,
-                    false,
-                )
-                .unwrap();
+                tcarod::shooting::Shot::new(robot, inputs, &l, steps)
+                    .residual(std::hint::black_box(&s.unknowns), false)
+                    .unwrap();
             }
             t.elapsed().as_secs_f64() / 20.0
         })

@@ -10,9 +10,7 @@ use tcarod::experiments::{
     STEEL_TENDON_TENSIONS,
 };
 use tcarod::inverse::rotation_vector;
-use tcarod::shooting::{
-    initial_guess, shoot, shoot_jacobian, solve, sweep, Loads, Solution, SolveOptions, Status,
-};
+use tcarod::shooting::{initial_guess, solve, sweep, Loads, Shot, Solution, SolveOptions, Status};
 use tcarod::solve::cancel::interruptible;
 use tcarod::solve::presolve::rescale_tension_columns;
 use tcarod::{Error, StopReason};
@@ -241,7 +239,9 @@ fn a_linear_tendon_at_its_onset_of_tension_converges_cold() {
 /// Max-norm of the full-grid residual at a solution's unknowns, from an
 /// independent IVP.
 fn full_grid_residual(robot: &tcarod::rod::Robot, s: &Solution, steps: usize) -> f64 {
-    let (r, _, _) = shoot(robot, &s.inputs, &s.loads, &s.unknowns, steps, false).unwrap();
+    let (r, _, _) = Shot::new(robot, &s.inputs, &s.loads, steps)
+        .residual(&s.unknowns, false)
+        .unwrap();
     r.iter().fold(0.0f64, |m, v| m.max(v.abs()))
 }
 
@@ -298,10 +298,12 @@ fn a_rescaled_warm_jacobian_is_the_exact_one_at_the_new_inputs() {
     let w = solve(&sq, &[95.0, 95.0], &o, None).unwrap();
     let to = [100.0, 100.0];
     let x0 = initial_guess(&sq, &to, Some(&w));
-    let jw = shoot_jacobian(&sq, &w.inputs, &loads, &w.unknowns, o.steps, false)
+    let jw = Shot::new(&sq, &w.inputs, &loads, o.steps)
+        .jacobian(&w.unknowns, false)
         .unwrap()
         .1;
-    let j0 = shoot_jacobian(&sq, &to, &loads, &x0, o.steps, false)
+    let j0 = Shot::new(&sq, &to, &loads, o.steps)
+        .jacobian(&x0, false)
         .unwrap()
         .1;
     let jr = rescale_tension_columns(&sq, &jw, (&w.unknowns, &w.inputs), (&x0, &to));

@@ -10,7 +10,7 @@ use tcarod::experiments::{
     MANIPULATOR_TURNS,
 };
 use tcarod::rod::{Actuator, Body, ConstantTension, LinearTendon, Robot, Routing, Section, TcaLaw};
-use tcarod::shooting::{initial_guess, shoot, shoot_jacobian, solve, Loads, SolveOptions};
+use tcarod::shooting::{initial_guess, solve, Loads, Shot, SolveOptions};
 
 /// A soft helix-and-interior-anchor design: a constant-tension helix from
 /// 0.2 L to the tip, a linear tendon anchored at 0.3 L .. 0.7 L, a straight
@@ -71,9 +71,15 @@ fn fd_jacobian(robot: &Robot, inputs: &[f64], x: &[f64], steps: usize) -> DMatri
         let h = 1e-9;
         let mut xp = x.to_vec();
         xp[c] += h;
-        let rp = shoot(robot, inputs, &loads, &xp, steps, false).unwrap().0;
+        let rp = Shot::new(robot, inputs, &loads, steps)
+            .residual(&xp, false)
+            .unwrap()
+            .0;
         xp[c] = x[c] - h;
-        let rm = shoot(robot, inputs, &loads, &xp, steps, false).unwrap().0;
+        let rm = Shot::new(robot, inputs, &loads, steps)
+            .residual(&xp, false)
+            .unwrap()
+            .0;
         for r in 0..n {
             j[(r, c)] = (rp[r] - rm[r]) / (2.0 * h);
         }
@@ -83,8 +89,12 @@ fn fd_jacobian(robot: &Robot, inputs: &[f64], x: &[f64], steps: usize) -> DMatri
 
 fn check(name: &str, robot: &Robot, inputs: &[f64], x: &[f64], steps: usize) {
     let loads = Loads::of(robot);
-    let (r, jac, _, _) = shoot_jacobian(robot, inputs, &loads, x, steps, false).unwrap();
-    let (r0, _, _) = shoot(robot, inputs, &loads, x, steps, false).unwrap();
+    let (r, jac, _, _) = Shot::new(robot, inputs, &loads, steps)
+        .jacobian(x, false)
+        .unwrap();
+    let (r0, _, _) = Shot::new(robot, inputs, &loads, steps)
+        .residual(x, false)
+        .unwrap();
     // the generic (dual) twin of the RHS and the f64 fast path compute the
     // same map: residuals agree to rounding of O(1) strains over the grid
     for (a, b) in r.iter().zip(&r0) {

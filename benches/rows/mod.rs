@@ -16,7 +16,7 @@ use tcarod::experiments::{
 };
 use tcarod::experiments::{steel_tendon_robot, STEEL_TENDON_TENSIONS};
 use tcarod::inverse::{grasp, sensitivities_exact, sensitivities_fast, Groups, Scheme};
-use tcarod::shooting::{shoot, shoot_jacobian, solve, Loads, SolveOptions};
+use tcarod::shooting::{solve, Loads, Shot, SolveOptions};
 
 /// Temperature \[C\] of both TCAs in the benches.
 pub const BENCH_TEMPERATURE: f64 = 100.0;
@@ -122,9 +122,13 @@ fn fig6_square_row(name: &str) -> Result<Operation> {
             Box::new(move || {
                 let x = std::hint::black_box(&sol.unknowns);
                 if tangent {
-                    shoot_jacobian(&robot, &sol.inputs, &loads, x, opts.steps, false).map(|_| ())
+                    Shot::new(&robot, &sol.inputs, &loads, opts.steps)
+                        .jacobian(x, false)
+                        .map(|_| ())
                 } else {
-                    shoot(&robot, &sol.inputs, &loads, x, opts.steps, false).map(|_| ())
+                    Shot::new(&robot, &sol.inputs, &loads, opts.steps)
+                        .residual(x, false)
+                        .map(|_| ())
                 }
             })
         }

@@ -4,7 +4,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::{Branch, BranchOptions, BranchPoint, Event, EventKind, Problem};
 use crate::error::{Error, Result};
-use crate::shooting::{shoot_jacobian, Solution};
+use crate::shooting::{Shot, Solution};
 use crate::solve::newton::{newton, System};
 
 /// Jacobian `[F_x, F_lambda~]` (`m x (m+1)`, scaled lambda) and the
@@ -19,7 +19,7 @@ fn jacobian(
 ) -> Result<(Vec<f64>, DMatrix<f64>)> {
     let m = y.len() - 1;
     let (robot, inputs, loads) = pb.at(y[m] * scale)?;
-    let (r, jx, _, _) = shoot_jacobian(&robot, &inputs, &loads, &y[..m], steps, false)?;
+    let (r, jx, _, _) = Shot::new(&robot, &inputs, &loads, steps).jacobian(&y[..m], false)?;
     let mut j = DMatrix::zeros(m, m + 1);
     j.columns_mut(0, m).copy_from(&jx);
     let h = f64::EPSILON.sqrt() * y[m].abs().max(1.0);

@@ -16,7 +16,7 @@ use nalgebra::Vector3;
 
 use crate::error::{Error, Result};
 use crate::rod::Robot;
-use crate::shooting::{assemble, shoot, solve_loaded, Loads, Solution, SolveOptions};
+use crate::shooting::{assemble, solve_loaded, Loads, Shot, Solution, SolveOptions};
 use crate::stability::{stability, Stability};
 
 mod follow;
@@ -105,7 +105,9 @@ impl<'a> Problem<'a> {
     /// Scaled shooting residual at `(x, lambda)`.
     fn residual(&self, x: &[f64], lambda: f64, steps: usize) -> Result<Vec<f64>> {
         let (robot, inputs, loads) = self.at(lambda)?;
-        shoot(&robot, &inputs, &loads, x, steps, false).map(|t| t.0)
+        Shot::new(&robot, &inputs, &loads, steps)
+            .residual(x, false)
+            .map(|t| t.0)
     }
 
     /// Equilibrium with its profile at `lambda` from unknowns `x`.

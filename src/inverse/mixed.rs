@@ -24,7 +24,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 use super::{load_scales, Block, Groups};
 use crate::error::Result;
 use crate::rod::{integrate_tangent, IvpResult, Robot, TangentSeeds};
-use crate::shooting::{base_strains, residual_scales, shoot, Loads, System};
+use crate::shooting::{base_strains, residual_scales, Loads, Shot, System};
 use crate::solve::system::COARSE_JACOBIAN_MIN_STEPS;
 
 /// RK4 steps of the coarse-grid Jacobian for `steps` (a tenth, at least
@@ -126,7 +126,8 @@ impl System for Mixed<'_> {
         self.evaluations += 1;
         let nx = 6 + self.robot.actuators.len();
         let (inputs, loads, _) = self.problem(x)?;
-        let (mut r, ivp, tau) = shoot(self.robot, &inputs, &loads, &x[..nx], self.steps, false)?;
+        let (mut r, ivp, tau) =
+            Shot::new(self.robot, &inputs, &loads, self.steps).residual(&x[..nx], false)?;
         r.push(self.gap(&ivp.tip.p));
         self.tau = tau;
         Ok(r)

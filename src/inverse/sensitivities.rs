@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Quaternion, Vector3};
 use super::{load_scales, pose_delta, Groups, Scheme, Sensitivities};
 use crate::error::{Error, Result, StopReason};
 use crate::rod::{integrate_tangent, Robot, TangentSeeds};
-use crate::shooting::{base_strains, shoot, Loads, Solution};
+use crate::shooting::{base_strains, Loads, Shot, Solution};
 
 /// `J` and `C` at a converged solution, from finite differences of IVPs
 /// around it (eqs 41-42), the paper's way.
@@ -292,7 +292,7 @@ fn differenced(at: At<'_>, central: bool, rel: f64, wrench: Wrench) -> Result<Se
         // tip wrench W = [F; M]: exact, no IVP. For fixed unknowns the wrench
         // moves no state (E_W = 0) and enters only the tip balance (32)-(33),
         // linearly: d r_F / dF = -(L^2/EI) R^T, d r_M / dM = -(L/EI) R^T
-        // in the scaled residual of `shoot`.
+        // in the scaled residual of `Shot::residual`.
         let (fs, ms) = crate::shooting::residual_scales(at.robot);
         tip_wrench_columns(&mut fd.bm, &fd.r0, fs, ms, nx + nz);
     } else {
@@ -325,14 +325,8 @@ impl<'a> Differences<'a> {
     fn new(at: At<'a>, central: bool) -> Result<Self> {
         let (sol, nx) = (at.sol, at.sol.unknowns.len());
         let ncol = nx + at.groups.n_vars() + 6;
-        let (b0, ivp0, _) = shoot(
-            at.robot,
-            &sol.inputs,
-            at.loads,
-            &sol.unknowns,
-            at.steps,
-            false,
-        )?;
+        let (b0, ivp0, _) =
+            Shot::new(at.robot, &sol.inputs, at.loads, at.steps).residual(&sol.unknowns, false)?;
         Ok(Differences {
             at,
             central,
@@ -347,7 +341,7 @@ impl<'a> Differences<'a> {
 
     /// Pose change and residual at unknowns `x`, inputs and loads `l`.
     fn column(&mut self, x: &[f64], inputs: &[f64], l: &Loads) -> Result<Column> {
-        let (b, ivp, _) = shoot(self.at.robot, inputs, l, x, self.at.steps, false)?;
+        let (b, ivp, _) = Shot::new(self.at.robot, inputs, l, self.at.steps).residual(x, false)?;
         self.evaluations += 1;
         Ok((
             pose_delta(&self.p0, &self.r0, &ivp.tip.p, &ivp.tip.rotation()),

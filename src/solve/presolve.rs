@@ -33,7 +33,7 @@ use nalgebra::DMatrix;
 
 use super::newton::{newton_from, NewtonOptions, NewtonResult, Status, System};
 use super::options::SolveOptions;
-use super::residual::{shoot, tension_slope, Loads};
+use super::residual::{tension_slope, Loads, Shot};
 use super::system::{newton_shooting, FinalIvp, Shooting, Work, COARSE_JACOBIAN_MIN_STEPS};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
@@ -182,7 +182,7 @@ fn warm_start(
         return (defect, None);
     };
     work.evaluations += 1;
-    if let Ok((rw, _, _)) = shoot(robot, w.inputs, loads, w.unknowns, coarse, false) {
+    if let Ok((rw, _, _)) = Shot::new(robot, w.inputs, loads, coarse).residual(w.unknowns, false) {
         defect = rw.iter().map(|r| -r).collect();
     }
     let jac = w

@@ -61,102 +61,119 @@ pub fn base_strains(x: &[f64], len: f64) -> (Vector3<f64>, Vector3<f64>) {
     (v0, Vector3::new(x[3], x[4], x[5]) / len)
 }
 
-/// One IVP from scaled unknowns `x`, and its scaled residual.
-pub fn shoot(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    x: &[f64],
-    steps: usize,
-    record: bool,
-) -> Result<(Vec<f64>, IvpResult, Vec<f64>)> {
-    let len = robot.body.length;
-    let na = robot.actuators.len();
-    let (v0, u0) = base_strains(x, len);
-    let delta: Vec<f64> = x[6..6 + na].iter().map(|d| d * len).collect();
-    let tau = tensions(robot, inputs, &delta)?;
-    let spec = loads.ivp(robot, &tau, steps);
-    let ivp = integrate(&spec, &v0, &u0, record)?;
-    let (fs, ms) = residual_scales(robot);
-    let ef = ivp.tip_force_residual * fs;
-    let em = ivp.tip_moment_residual * ms;
-    let mut r = Vec::with_capacity(6 + na);
-    r.extend_from_slice(ef.as_slice());
-    r.extend_from_slice(em.as_slice());
-    for (e, d) in ivp.elongation.iter().zip(&delta[..na]) {
-        r.push((e - d) / len);
-    }
-    Ok((r, ivp, tau))
+/// The shooting problem of one forward problem at fixed inputs: `robot` at
+/// actuator `inputs` under tip `loads`, integrated on `steps` RK4 steps.
+/// Its scaled unknowns `x` are the base strains and the scaled guessed
+/// elongations (see [`base_strains`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Shot<'a> {
+    /// The robot.
+    pub robot: &'a Robot,
+    /// Actuator inputs, one per actuator (units of each force law).
+    pub inputs: &'a [f64],
+    /// Tip loads.
+    pub loads: &'a Loads,
+    /// RK4 steps of the IVP.
+    pub steps: usize,
 }
 
-/// One tangent IVP from scaled unknowns `x`: the scaled residual (as
-/// [`shoot`]) and its EXACT Jacobian with respect to `x` (the derivative of
-/// the discrete RK4 map, from the variational equations and the force laws'
-/// derivatives), `(6 + N) x (6 + N)`. With `record`, the IVP's nodes carry
-/// `d y(s) / d x` (see [`crate::rod::TangentNode`]).
-pub fn shoot_jacobian(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    x: &[f64],
-    steps: usize,
-    record: bool,
-) -> Result<ResidualAndJacobian> {
-    Ok(shoot_jacobian_side(robot, inputs, loads, x, steps, record, false)?.0)
-}
-
-/// [`shoot_jacobian`] with the side of the generalised derivative at an
-/// actuator's onset of tension (see [`tension_slope`]); also returns whether
-/// any actuator is at its onset.
-#[allow(clippy::too_many_arguments)] // the shooting problem's parts
-pub(crate) fn shoot_jacobian_side(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    x: &[f64],
-    steps: usize,
-    record: bool,
-    slack: bool,
-) -> Result<(ResidualAndJacobian, bool)> {
-    let len = robot.body.length;
-    let na = robot.actuators.len();
-    let nx = 6 + na;
-    let (v0, u0) = base_strains(x, len);
-    let mut tau = Vec::with_capacity(na);
-    let mut seeds = TangentSeeds::zeros(na, nx);
-    let mut onset = false;
-    for k in 0..3 {
-        seeds.nu0[(k, k)] = 1.0;
-        seeds.omega0[(k, 3 + k)] = 1.0 / len;
-    }
-    for (i, a) in robot.actuators.iter().enumerate() {
-        let (t, dt_de, at) = tension_slope(a.law.as_ref(), x[6 + i] * len, inputs[i], len, slack)?;
-        onset |= at;
-        tau.push(t);
-        seeds.tensions[(i, 6 + i)] = dt_de * len;
-    }
-    let spec = loads.ivp(robot, &tau, steps);
-    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
-    let (fs, ms) = residual_scales(robot);
-    let ivp = &tan.ivp;
-    let mut r = Vec::with_capacity(nx);
-    r.extend((ivp.tip_force_residual * fs).iter());
-    r.extend((ivp.tip_moment_residual * ms).iter());
-    for i in 0..na {
-        r.push((ivp.elongation[i] - x[6 + i] * len) / len);
-    }
-    let mut jac = DMatrix::zeros(nx, nx);
-    jac.rows_mut(0, 3)
-        .copy_from(&(&tan.tip_force_residual * fs));
-    jac.rows_mut(3, 3)
-        .copy_from(&(&tan.tip_moment_residual * ms));
-    for i in 0..na {
-        for j in 0..nx {
-            jac[(6 + i, j)] = tan.elongation[(i, j)] / len;
+impl<'a> Shot<'a> {
+    /// The shooting problem of `robot` at `inputs` under `loads` on `steps` RK4 steps.
+    pub fn new(robot: &'a Robot, inputs: &'a [f64], loads: &'a Loads, steps: usize) -> Self {
+        Shot {
+            robot,
+            inputs,
+            loads,
+            steps,
         }
-        jac[(6 + i, 6 + i)] -= 1.0;
     }
-    Ok(((r, jac, tan, tau), onset))
+
+    /// This problem on `steps` RK4 steps.
+    pub fn with_steps(self, steps: usize) -> Self {
+        Shot { steps, ..self }
+    }
+
+    /// One IVP from scaled unknowns `x`: the scaled residual, the IVP (with
+    /// its nodes if `record`) and the tensions \[N\].
+    pub fn residual(&self, x: &[f64], record: bool) -> Result<(Vec<f64>, IvpResult, Vec<f64>)> {
+        let len = self.robot.body.length;
+        let na = self.robot.actuators.len();
+        let (v0, u0) = base_strains(x, len);
+        let delta: Vec<f64> = x[6..6 + na].iter().map(|d| d * len).collect();
+        let tau = tensions(self.robot, self.inputs, &delta)?;
+        let spec = self.loads.ivp(self.robot, &tau, self.steps);
+        let ivp = integrate(&spec, &v0, &u0, record)?;
+        let (fs, ms) = residual_scales(self.robot);
+        let ef = ivp.tip_force_residual * fs;
+        let em = ivp.tip_moment_residual * ms;
+        let mut r = Vec::with_capacity(6 + na);
+        r.extend_from_slice(ef.as_slice());
+        r.extend_from_slice(em.as_slice());
+        for (e, d) in ivp.elongation.iter().zip(&delta[..na]) {
+            r.push((e - d) / len);
+        }
+        Ok((r, ivp, tau))
+    }
+
+    /// One tangent IVP from scaled unknowns `x`: the scaled residual (as
+    /// [`Shot::residual`]) and its EXACT Jacobian with respect to `x` (the
+    /// derivative of the discrete RK4 map, from the variational equations and
+    /// the force laws' derivatives), `(6 + N) x (6 + N)`. With `record`, the
+    /// IVP's nodes carry `d y(s) / d x` (see [`crate::rod::TangentNode`]).
+    pub fn jacobian(&self, x: &[f64], record: bool) -> Result<ResidualAndJacobian> {
+        Ok(self.jacobian_side(x, record, false)?.0)
+    }
+
+    /// [`Shot::jacobian`] with the side of the generalised derivative at an
+    /// actuator's onset of tension (see [`tension_slope`]); also returns
+    /// whether any actuator is at its onset.
+    pub(crate) fn jacobian_side(
+        &self,
+        x: &[f64],
+        record: bool,
+        slack: bool,
+    ) -> Result<(ResidualAndJacobian, bool)> {
+        let len = self.robot.body.length;
+        let na = self.robot.actuators.len();
+        let nx = 6 + na;
+        let (v0, u0) = base_strains(x, len);
+        let mut tau = Vec::with_capacity(na);
+        let mut seeds = TangentSeeds::zeros(na, nx);
+        let mut onset = false;
+        for k in 0..3 {
+            seeds.nu0[(k, k)] = 1.0;
+            seeds.omega0[(k, 3 + k)] = 1.0 / len;
+        }
+        for (i, a) in self.robot.actuators.iter().enumerate() {
+            let (t, dt_de, at) =
+                tension_slope(a.law.as_ref(), x[6 + i] * len, self.inputs[i], len, slack)?;
+            onset |= at;
+            tau.push(t);
+            seeds.tensions[(i, 6 + i)] = dt_de * len;
+        }
+        let spec = self.loads.ivp(self.robot, &tau, self.steps);
+        let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
+        let (fs, ms) = residual_scales(self.robot);
+        let ivp = &tan.ivp;
+        let mut r = Vec::with_capacity(nx);
+        r.extend((ivp.tip_force_residual * fs).iter());
+        r.extend((ivp.tip_moment_residual * ms).iter());
+        for i in 0..na {
+            r.push((ivp.elongation[i] - x[6 + i] * len) / len);
+        }
+        let mut jac = DMatrix::zeros(nx, nx);
+        jac.rows_mut(0, 3)
+            .copy_from(&(&tan.tip_force_residual * fs));
+        jac.rows_mut(3, 3)
+            .copy_from(&(&tan.tip_moment_residual * ms));
+        for i in 0..na {
+            for j in 0..nx {
+                jac[(6 + i, j)] = tan.elongation[(i, j)] / len;
+            }
+            jac[(6 + i, 6 + i)] -= 1.0;
+        }
+        Ok(((r, jac, tan, tau), onset))
+    }
 }
 
 /// Relative band (of the body length) of elongation within which a slack

@@ -9,7 +9,7 @@
 //! `(delta_i(s_end) - delta_i) / L`. The conditions at actuator anchors inside
 //! the body are met exactly by the point loads applied during integration.
 //!
-//! The Jacobian is exact ([`shoot_jacobian`]: tangents of the discrete RK4
+//! The Jacobian is exact ([`Shot::jacobian`]: tangents of the discrete RK4
 //! map), the Newton solver is [`crate::solve::newton()`], and a cold solve that
 //! fails falls back on homotopy continuation
 //! ([`crate::solve::continuation`]).
@@ -30,8 +30,7 @@ pub use super::newton::Status;
 pub use super::options::{SolveOptions, DEFAULT_MAX_EVALUATIONS};
 use super::presolve::{presolved_shooting, Warm};
 pub use super::residual::{
-    base_strains, residual_scales, shoot, shoot_jacobian, tension_slope, tensions, Loads,
-    ONSET_BAND,
+    base_strains, residual_scales, tension_slope, tensions, Loads, Shot, ONSET_BAND,
 };
 pub use super::solution::{assemble, Solution, TipSolution};
 pub(crate) use super::system::{newton_shooting, solution_from, Work};
@@ -219,7 +218,8 @@ pub fn solve_tip(
                 Some((_, ivp, tau)) => (ivp, tau),
                 None => {
                     work.evaluations += 1;
-                    let (_, ivp, tau) = shoot(robot, inputs, loads, &nr.x, opts.steps, false)?;
+                    let (_, ivp, tau) =
+                        Shot::new(robot, inputs, loads, opts.steps).residual(&nr.x, false)?;
                     (ivp, tau)
                 }
             };

@@ -4,7 +4,7 @@
 use nalgebra::{DMatrix, Matrix3, Vector3};
 
 use super::newton::Status;
-use super::residual::{shoot, Loads};
+use super::residual::{Loads, Shot};
 use crate::error::Result;
 use crate::rod::{IvpResult, Robot};
 
@@ -85,7 +85,7 @@ pub fn assemble(
     iterations: usize,
     evaluations: usize,
 ) -> Result<Solution> {
-    let (r, ivp, tau) = shoot(robot, inputs, loads, x, steps, true)?;
+    let (r, ivp, tau) = Shot::new(robot, inputs, loads, steps).residual(x, true)?;
     assemble_from(
         robot,
         inputs,

@@ -8,7 +8,7 @@ use nalgebra::DMatrix;
 
 use super::newton::{newton_from, NewtonOptions, NewtonResult, System};
 use super::options::SolveOptions;
-use super::residual::{residual_scales, shoot, shoot_jacobian_side, Loads};
+use super::residual::{residual_scales, Loads, Shot};
 use super::solution::{assemble, assemble_from, Solution};
 use crate::error::{Error, Result};
 use crate::rod::{IvpResult, Robot};
@@ -23,10 +23,7 @@ pub(crate) type FinalIvp = (Vec<f64>, IvpResult, Vec<f64>);
 /// every IVP (failed ones too) and keeps the last plain one (at the point
 /// Newton returns, so that it can serve as the solution's profile).
 pub struct Shooting<'a> {
-    robot: &'a Robot,
-    inputs: &'a [f64],
-    loads: &'a Loads,
-    steps: usize,
+    shot: Shot<'a>,
     record: bool,
     /// IVPs integrated (plain and tangent).
     pub evaluations: usize,
@@ -64,10 +61,7 @@ impl<'a> Shooting<'a> {
             None
         };
         Shooting {
-            robot,
-            inputs,
-            loads,
-            steps,
+            shot: Shot::new(robot, inputs, loads, steps),
             record,
             evaluations: 0,
             tangent_evaluations: 0,
@@ -89,14 +83,7 @@ impl<'a> Shooting<'a> {
 impl System for Shooting<'_> {
     fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
         self.evaluations += 1;
-        let (r, ivp, tau) = shoot(
-            self.robot,
-            self.inputs,
-            self.loads,
-            x,
-            self.steps,
-            self.record,
-        )?;
+        let (r, ivp, tau) = self.shot.residual(x, self.record)?;
         self.last = Some((x.to_vec(), r.clone(), ivp, tau));
         Ok(r)
     }
@@ -107,21 +94,16 @@ impl System for Shooting<'_> {
         // and a Jacobian within RK4's coarse-grid error (~1e-4) of the exact
         // one, which Newton's convergence test on the full grid absorbs in a
         // chord step or two; the full-grid Jacobian after a failed line search
-        let steps = self.jacobian_steps.unwrap_or(self.steps);
-        let ((r, j, _, _), onset) = shoot_jacobian_side(
-            self.robot,
-            self.inputs,
-            self.loads,
-            x,
-            steps,
-            false,
-            self.slack_onset,
-        )?;
+        let steps = self.jacobian_steps.unwrap_or(self.shot.steps);
+        let ((r, j, _, _), onset) =
+            self.shot
+                .with_steps(steps)
+                .jacobian_side(x, false, self.slack_onset)?;
         self.at_onset = onset;
         Ok((r, j))
     }
     fn limit_step(&self, x: &[f64], dx: &[f64]) -> Option<Vec<f64>> {
-        super::limit::limited_step(self.robot, self.inputs, x, dx)
+        super::limit::limited_step(self.shot.robot, self.shot.inputs, x, dx)
     }
     /// First the full grid's Jacobian; then, if an actuator was at its
     /// onset of tension, the slack side's derivative there (see
@@ -141,7 +123,7 @@ impl System for Shooting<'_> {
     /// `K (strain - strain*)` with strains of order one, in the scaled
     /// residual. (For a steel rod `EA L^2 / EI` makes this ~1e-9.)
     fn floor(&self, x: &[f64], _r: &[f64]) -> f64 {
-        let robot = self.robot;
+        let robot = self.shot.robot;
         let (kse, kbt) = robot.body.stiffness();
         let (fs, ms) = residual_scales(robot);
         let len = robot.body.length;
@@ -158,8 +140,8 @@ impl System for Shooting<'_> {
             .zip(&tau)
             .map(|(a, t)| a.routing.eval(len).0.norm() * t.abs())
             .sum();
-        let f = fs * (kse.max() * vmax + self.loads.tip_force.amax() + st);
-        let m = ms * (kbt.max() * umax * len + self.loads.tip_moment.amax() + srt);
+        let f = fs * (kse.max() * vmax + self.shot.loads.tip_force.amax() + st);
+        let m = ms * (kbt.max() * umax * len + self.shot.loads.tip_moment.amax() + srt);
         4.0 * f64::EPSILON * f.max(m)
     }
     fn evaluations(&self) -> usize {

@@ -7,7 +7,7 @@ use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3, Vector6};
 use super::Equilibrium;
 use crate::error::Result;
 use crate::rod::{integrate_tangent, rot, Record, Robot, RodState, TangentSeeds};
-use crate::shooting::{base_strains, residual_scales, shoot, Loads, Solution};
+use crate::shooting::{base_strains, residual_scales, Loads, Shot, Solution};
 
 /// Tangents of one equilibrium: at every node the frozen-tension columns
 /// (the six base strains) `Y_k`, `H_k`; at the tip all `nz` columns when the
@@ -267,7 +267,7 @@ fn profile(
     x: &[f64],
     steps: usize,
 ) -> Result<Profile> {
-    let (resid, ivp, tau) = shoot(robot, inputs, loads, x, steps, true)?;
+    let (resid, ivp, tau) = Shot::new(robot, inputs, loads, steps).residual(x, true)?;
     let k = ivp.nodes.len();
     let mut pr = Profile {
         p: Vec::with_capacity(k),
