@@ -156,10 +156,7 @@ pub fn integrate(
 ) -> Result<IvpResult> {
     #[cfg(target_arch = "x86_64")]
     {
-        if std::env::var("ZZ_NOAVX").is_err()
-            && std::is_x86_feature_detected!("avx2")
-            && std::is_x86_feature_detected!("fma")
-        {
+        if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
             // SAFETY: the CPU supports AVX2 and FMA (checked just above).
             return unsafe { integrate_avx2(spec, v0, u0, record) };
         }
