@@ -5,18 +5,12 @@
 //! indication only; the criterion benches in benches/rod.rs are the timings.)
 use std::time::Instant;
 
-extern "C" {
-    // POSIX (the C library every Rust program on Linux links); a 64-bit
-    // Linux timespec is two i64, seconds and nanoseconds
-    fn clock_gettime(clock: i32, ts: *mut [i64; 2]) -> i32;
-}
+#[path = "../benches/clock/mod.rs"]
+mod clock;
 
-/// Thread CPU time [s] (`CLOCK_THREAD_CPUTIME_ID` = 3, Linux).
+/// Thread CPU time [s] (Linux; the benches' clock).
 fn thread_cpu() -> f64 {
-    let mut ts = [0i64; 2];
-    // SAFETY: `ts` is valid and writable, laid out as a 64-bit timespec.
-    unsafe { clock_gettime(3, &mut ts) };
-    ts[0] as f64 + ts[1] as f64 * 1e-9
+    clock::thread_cpu().expect("thread CPU time needs 64-bit Linux")
 }
 
 /// Median thread-CPU time [s] of `f`, over `n` runs of 10 calls.
@@ -37,14 +31,10 @@ fn cpu_median(n: usize, mut f: impl FnMut()) -> f64 {
 /// Thread-CPU medians of a solve with and without the coarse-grid pre-solve
 /// (interleaved, 15 rounds of 10 solves each), in us and in plain-IVP times.
 fn compare(name: &str, robot: &Robot, inputs: &[f64], warm: Option<&Solution>) {
-    let o = SolveOptions {
-        presolve: true,
+    let [o, off] = [true, false].map(|presolve| SolveOptions {
+        presolve,
         ..Default::default()
-    };
-    let off = SolveOptions {
-        presolve: false,
-        ..o
-    };
+    });
     let l = tcarod::shooting::Loads::of(robot);
     let at = solve(robot, inputs, &o, None).unwrap();
     let (mut a, mut b, mut u) = (Vec::new(), Vec::new(), Vec::new());

@@ -34,16 +34,9 @@ _FIG5_LOAD_SHARING: Final[str] = (
 
 @dataclass(frozen=True)
 class Fig5Case:
-    """One curve of Fig. 5: a TCA under one dead weight.
-
-    Load sharing (a modelling choice; the paper does not state it): the TCA
-    is folded into two halves standing side by side on guide rods and the
-    weight hangs at the fold, so each half carries half of
-    ``(mass + friction equivalent) * g`` as a *compressive* force, and the
-    measured displacement is one half's elongation. A half is
-    ``Tca(l/2, L/2, D, N/2)``: the same ``alpha0`` and ``d0`` as the whole TCA,
-    half its coils and turns.
-    """
+    """One curve of Fig. 5: a TCA under one dead weight, shared by the two
+    folded halves as :attr:`Fig5Experiment.load_sharing` states (a modelling
+    choice; the paper does not state it)."""
 
     tca: TcaSpec
     load: DeadWeight
