@@ -179,6 +179,11 @@ fn solve_one(
         }
         _ => None,
     };
+    if verbose {
+        if let Some(f) = fine {
+            eprintln!("EQUILIBRIUM at 4x steps #{i} {f:.2e}");
+        }
+    }
     Outcome {
         index: i,
         past: d.past_buckling(),

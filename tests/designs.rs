@@ -183,6 +183,27 @@ fn equilibrium_holds_with_gravity_and_tip_loads() {
 }
 
 #[test]
+fn equilibrium_holds_with_an_anchor_in_the_first_grid_interval() {
+    // The grid's first interval ends at the anchor (1 mm < L/100): the check
+    // integrates `int p ds` there by the quadratic through p_0, p'_0 and p_1.
+    // Its weights were once swapped ((p_0 + 2 p_1) / 3), a 1e-5 relative
+    // moment error under gravity that did not shrink with the steps. Bound:
+    // the target 1e-8, which the swapped weights missed 1000-fold.
+    for steps in [100, 400] {
+        let (mut robot, q) = one_tendon(1e-3, 0.1, false);
+        robot.body.gravity = Vector3::new(0.0, -9.81, -2.0);
+        let opts = SolveOptions {
+            steps,
+            ..Default::default()
+        };
+        let sol = solve(&robot, &q, &opts, None).unwrap();
+        assert!(sol.s[1] == 1e-3 || steps == 400, "{:?}", &sol.s[..3]);
+        let eq = equilibrium(&robot, &sol);
+        assert!(eq.relative < EQUILIBRIUM_TOL, "{steps} steps: {eq:?}");
+    }
+}
+
+#[test]
 fn equilibrium_check_fails_on_a_perturbed_solution() {
     let (mut robot, q) = one_tendon(0.0, 0.1, false);
     robot.body.gravity = Vector3::new(0.0, 0.0, -9.81);

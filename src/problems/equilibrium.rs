@@ -117,8 +117,9 @@ pub fn position_integral(robot: &Robot, sol: &Solution) -> Vector3<f64> {
             let b = (p[k + 1] - p[k - 1]) * 0.5 - tangent(k) * h;
             total += (p[k] + tangent(k) * (0.5 * h) + a / 3.0 + b / 4.0) * h;
         } else {
-            // quadratic through p_k, p'_k, p_{k+1}
-            total += (p[k] / 3.0 + p[k + 1] * (2.0 / 3.0)) * h + tangent(k) * (h * h / 6.0);
+            // quadratic c with c(0) = p_k, c'(0) = p'_k, c(h) = p_{k+1}:
+            // int_0^h c = (2 p_k + p_{k+1}) h / 3 + p'_k h^2 / 6
+            total += (p[k] * (2.0 / 3.0) + p[k + 1] / 3.0) * h + tangent(k) * (h * h / 6.0);
         }
     }
     total
