@@ -456,5 +456,4 @@ fn draw_law(
     })
 }
 
-mod equilibrium;
-pub use equilibrium::{equilibrium, position_integral, Equilibrium, EQUILIBRIUM_TOL};
+pub use crate::solve::equilibrium::{equilibrium, position_integral, Equilibrium, EQUILIBRIUM_TOL};

@@ -4,6 +4,7 @@
 use std::sync::Arc;
 
 use nalgebra::Vector3;
+use tcarod::experiments::fig6_square;
 use tcarod::problems::{
     column_ratio, equilibrium, past_self_weight_buckling, random_design, random_designs,
     ActuatorKind, SplitMix64, DEFAULT_SEED, EQUILIBRIUM_TOL, MAX_WEIGHT_RATIO,
@@ -200,6 +201,64 @@ fn equilibrium_holds_with_an_anchor_in_the_first_grid_interval() {
         assert!(sol.s[1] == 1e-3 || steps == 400, "{:?}", &sol.s[..3]);
         let eq = equilibrium(&robot, &sol);
         assert!(eq.relative < EQUILIBRIUM_TOL, "{steps} steps: {eq:?}");
+    }
+}
+
+#[test]
+fn equilibrium_tol_refines_the_grid_until_the_check_holds() {
+    // #158 (a 25 mm body with a tight helix): RK4's truncation error puts the
+    // check at 2.5e-5 on 100 steps (benches/designs.rs); #676: the Newton
+    // tolerance 1e-10 (scaled by EI/L^2) is 1.9e-8 of its tiny loads, whatever
+    // the grid
+    for i in [158, 676] {
+        let d = random_design(DEFAULT_SEED, i);
+        let plain = solve(&d.robot, &d.inputs, &SolveOptions::default(), None).unwrap();
+        assert!(
+            equilibrium(&d.robot, &plain).relative > EQUILIBRIUM_TOL,
+            "#{i}"
+        );
+        let o = SolveOptions {
+            equilibrium_tol: Some(EQUILIBRIUM_TOL),
+            ..Default::default()
+        };
+        let sol = solve(&d.robot, &d.inputs, &o, None).unwrap();
+        let eq = equilibrium(&d.robot, &sol);
+        assert!(eq.relative <= EQUILIBRIUM_TOL, "#{i}: {eq:?}");
+        assert!(
+            sol.evaluations > plain.evaluations,
+            "#{i}: the refinement's IVPs count"
+        );
+        // the refined solution is the solve on its grid: a direct solve there agrees
+        let direct = SolveOptions {
+            steps: sol.steps,
+            tol: 1e-13,
+            ..Default::default()
+        };
+        let d2 = solve(&d.robot, &d.inputs, &direct, None).unwrap();
+        // the Newton tolerance of the two solves, 1e-10 of the body length at most
+        let gap = (d2.tip_position() - sol.tip_position()).norm();
+        assert!(gap < 1e-10 * d.robot.body.length.max(1.0), "#{i}: {gap}");
+    }
+    // a paper fixture already holds to 1e-8 on 100 steps: nothing changes
+    let sq = fig6_square(true);
+    let o = SolveOptions {
+        equilibrium_tol: Some(EQUILIBRIUM_TOL),
+        ..Default::default()
+    };
+    let a = solve(&sq, &[100.0, 100.0], &o, None).unwrap();
+    let b = solve(&sq, &[100.0, 100.0], &SolveOptions::default(), None).unwrap();
+    assert_eq!((a.steps, a.evaluations), (b.steps, b.evaluations));
+    assert_eq!(a.tip_position(), b.tip_position());
+    // bad values name the option and its range
+    for t in [0.0, 1e-13, 1.0, f64::NAN] {
+        let o = SolveOptions {
+            equilibrium_tol: Some(t),
+            ..Default::default()
+        };
+        let e = solve(&sq, &[100.0, 100.0], &o, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("equilibrium_tol") && e.contains("1e-12"), "{e}");
     }
 }
 

@@ -236,6 +236,26 @@ fn a_linear_tendon_at_its_onset_of_tension_converges_cold() {
     }
 }
 
+/// A warm start from a converged solution at the same inputs is that
+/// solution. #817 has a TCA pressed 0.49 um into coil contact; the warm guess
+/// re-derives each TCA's elongation from its tension through the law's
+/// inverse, whose contact branch was linear and missed the smoothed onset by
+/// half its width (0.05 um, a tension error of ~400 k_s x 0.05 um): the warm
+/// solve then failed outright (residual 8.4 after 112 iterations).
+#[test]
+fn a_warm_start_from_a_solution_in_coil_contact_stays_there() {
+    use tcarod::problems::{random_design, DEFAULT_SEED};
+    let d = random_design(DEFAULT_SEED, 817);
+    let o = SolveOptions::default();
+    let s = solve(&d.robot, &d.inputs, &o, None).unwrap();
+    assert!(s.tensions.iter().any(|&t| t < 0.0), "a TCA in coil contact");
+    let w = solve(&d.robot, &d.inputs, &o, Some(&s)).unwrap();
+    // converged already: the check of the warm guess, at most one chord step
+    assert!(w.iterations <= 1, "{} iterations", w.iterations);
+    // the same root: the tips agree to the Newton tolerance (1e-10 of the length)
+    assert!((w.tip_position() - s.tip_position()).norm() < 1e-10 * d.robot.body.length);
+}
+
 /// Max-norm of the full-grid residual at a solution's unknowns, from an
 /// independent IVP.
 fn full_grid_residual(robot: &tcarod::rod::Robot, s: &Solution, steps: usize) -> f64 {

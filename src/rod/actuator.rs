@@ -258,7 +258,7 @@ impl ForceLaw for TcaLaw {
         if tension >= f0 {
             at.displacement(tension).ok()
         } else {
-            Some((tension - f0) / at.contact_stiffness())
+            at.contact_elongation(tension).ok()
         }
     }
 }

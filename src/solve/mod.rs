@@ -4,6 +4,7 @@
 
 pub mod cancel;
 pub mod continuation;
+pub mod equilibrium;
 pub mod fn_system;
 pub mod guess;
 pub mod limit;

@@ -32,6 +32,14 @@ pub struct SolveOptions {
     /// sweep its reused coarse Jacobian goes stale and the iterations climb
     /// step by step (Fig. 6: up to 18 a step against 12).
     pub presolve: bool,
+    /// Accuracy control (opt-in; `None`, the default: the grid is `steps`):
+    /// the largest relative error of the global equilibrium check
+    /// ([`crate::solve::equilibrium::equilibrium`]: base wrench against the
+    /// external loads) a solution may have. Above it the solve is repeated on
+    /// a finer grid until it holds (see
+    /// [`crate::solve::equilibrium::refine_to_equilibrium`]); the solution's
+    /// `steps` are those used. Applies to [`crate::shooting::solve`].
+    pub equilibrium_tol: Option<f64>,
 }
 
 /// Default IVP budget of one solve ([`SolveOptions::max_evaluations`]): 40
@@ -61,9 +69,14 @@ impl Default for SolveOptions {
             max_evaluations: DEFAULT_MAX_EVALUATIONS,
             time_limit: None,
             presolve: false,
+            equilibrium_tol: None,
         }
     }
 }
+
+/// Smallest [`SolveOptions::equilibrium_tol`]: the check's own rounding is
+/// about `1e-14` relative (tests/designs.rs: `1e-15`-`1e-13` on exact cases).
+pub const MIN_EQUILIBRIUM_TOL: f64 = 1e-12;
 
 impl SolveOptions {
     /// Validate.
@@ -73,6 +86,15 @@ impl SolveOptions {
         self.check_limits()?;
         if !(self.tol.is_finite() && self.tol > 0.0) {
             return Err(Error::param("tol", self.tol, "finite and > 0"));
+        }
+        if let Some(t) = self.equilibrium_tol {
+            if !(t >= MIN_EQUILIBRIUM_TOL && t < 1.0) {
+                return Err(Error::param(
+                    "equilibrium_tol",
+                    t,
+                    "1e-12 <= equilibrium_tol < 1",
+                ));
+            }
         }
         if !(self.min_step > 0.0 && self.min_step < 1.0) {
             return Err(Error::param("min_step", self.min_step, "0 < min_step < 1"));

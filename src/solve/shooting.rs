@@ -43,7 +43,9 @@ pub use super::system::{Shooting, COARSE_JACOBIAN_MIN_STEPS, STALL_WINDOW};
 /// `warm` if given); if that fails, homotopy continuation from the warm
 /// solution's inputs (or, cold, from the reference configuration in the
 /// inputs and the loads). The returned `iterations` and `evaluations` count
-/// all the work done; `continuation_steps` records the path.
+/// all the work done; `continuation_steps` records the path. With
+/// `opts.equilibrium_tol` set, the grid is then refined until the global
+/// equilibrium check holds to it ([`SolveOptions::equilibrium_tol`]).
 ///
 /// ```
 /// use tcarod::experiments::fig6_square;
@@ -59,7 +61,8 @@ pub fn solve(
     opts: &SolveOptions,
     warm: Option<&Solution>,
 ) -> Result<Solution> {
-    solve_loaded(robot, inputs, &Loads::of(robot), opts, warm)
+    let sol = solve_loaded(robot, inputs, &Loads::of(robot), opts, warm)?;
+    super::equilibrium::refine_to_equilibrium(robot, inputs, opts, sol)
 }
 
 pub(crate) fn is_budget_error(e: &Error) -> bool {

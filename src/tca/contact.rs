@@ -47,6 +47,30 @@ impl TcaAt<'_> {
             f0 - ks * eps - (kc - ks) * eps / 2.0 + kc * (delta + eps)
         })
     }
+    /// The elongation \[m\] below zero at which [`Self::tension`] equals
+    /// `tension` \[N\] `< F(0)`: the exact inverse of the contact branch,
+    /// smoothed onset included (the law increases there), by Brent's method
+    /// on `[(tension - F(0)) / k_c - eps, 0]`, whose left end lies below
+    /// `tension` on the law whichever of `k_s`, `k_c` is larger.
+    pub fn contact_elongation(&self, tension: f64) -> Result<f64> {
+        let f0 = self.force(0.0)?;
+        if !(tension < f0) {
+            return Err(Error::param(
+                "tension [N]",
+                tension,
+                format!("< {f0} (the onset tension F(0))"),
+            ));
+        }
+        let lo = (tension - f0) / self.contact_stiffness() - Self::CONTACT_SMOOTHING;
+        let xtol = 4.0 * f64::EPSILON * lo.abs();
+        crate::roots::brent(
+            |d| self.tension(d).map_or(f64::NAN, |t| t - tension),
+            lo,
+            0.0,
+            xtol,
+        )
+        .ok_or_else(|| Error::param("tension [N]", tension, "a tension the contact law reaches"))
+    }
     /// `d tension / d delta` [N/m] of [`Self::tension`], exact (for the
     /// shooting solver's tangents): eq (6) differentiated through the pitch
     /// angle `alpha(delta)` of eq (5) for `delta >= 0`, the contact branch's

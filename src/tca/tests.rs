@@ -37,6 +37,26 @@ fn contact_law_is_continuous_and_monotone() {
 }
 
 #[test]
+fn contact_elongation_inverts_the_contact_law() {
+    // on the smoothed onset, at its end and deep in contact: tension(d) = t
+    // back to the elongation (the linear (t - F(0)) / k_c it replaces was off
+    // by eps (k_c - k_s) / (2 k_c), half the smoothing width, which moved
+    // warm starts off converged solutions in coil contact)
+    let t = fig5_three_thread();
+    let at = t.at(60.0).unwrap();
+    let e = TcaAt::CONTACT_SMOOTHING;
+    for d in [-0.3 * e, -e, -4.877e-7, -1e-5] {
+        let t = at.tension(d).unwrap();
+        let back = at.contact_elongation(t).unwrap();
+        // the inverse's conditioning: a tension known to a few ulp moves the
+        // elongation by ulp(t) / slope; plus Brent's tolerance, 4 ulp of |lo|
+        let cond = 16.0 * f64::EPSILON * t.abs() / at.tension_slope(d).unwrap();
+        assert!((back - d).abs() < cond + 1e-14 * d.abs(), "{d}: {back}");
+    }
+    assert!(at.contact_elongation(at.force(0.0).unwrap()).is_err());
+}
+
+#[test]
 fn derived_quantities_follow_the_paper() {
     let t = fig5_three_thread();
     assert!((t.alpha0() - (0.110f64 / 0.497).asin()).abs() < 1e-15);

@@ -1,8 +1,14 @@
-//! The global equilibrium check of a converged solution (see the
-//! [`crate::problems`] module docs).
+//! The global equilibrium check of a converged solution (derived in the
+//! [`crate::problems`] module docs), and the accuracy control built on it
+//! ([`SolveOptions::equilibrium_tol`]).
 
 use nalgebra::Vector3;
 
+use super::cancel;
+use super::options::SolveOptions;
+use super::shooting::solve_loaded;
+use crate::error::{Error, Result, StopReason};
+use crate::limits::MAX_STEPS;
 use crate::rod::Robot;
 use crate::shooting::Solution;
 
@@ -123,4 +129,69 @@ pub fn position_integral(robot: &Robot, sol: &Solution) -> Vector3<f64> {
         }
     }
     total
+}
+
+/// Refinements [`refine_to_equilibrium`] tries before it gives up.
+const REFINEMENTS: usize = 3;
+
+/// Accuracy control ([`SolveOptions::equilibrium_tol`]): while the global
+/// equilibrium error of `sol` exceeds the tolerance, solve again, warm
+/// started from `sol`, on a finer grid. RK4's truncation error falls like
+/// `h^4`, so the steps grow by `ceil((2 err / tol)^(1/4))` (at least 2);
+/// where a refinement did not cut the error fourfold (the Newton tolerance,
+/// not the grid, limits it) the Newton tolerance is tightened by the same
+/// ratio too. The result's `steps` are those used; its `iterations` and
+/// `evaluations` count every solve. [`Error::NotConverged`] if the tolerance
+/// is not met after three refinements or within [`MAX_STEPS`].
+pub(crate) fn refine_to_equilibrium(
+    robot: &Robot,
+    inputs: &[f64],
+    opts: &SolveOptions,
+    mut sol: Solution,
+) -> Result<Solution> {
+    let Some(target) = opts.equilibrium_tol else {
+        return Ok(sol);
+    };
+    let (mut iterations, mut evaluations) = (sol.iterations, sol.evaluations);
+    let mut o = SolveOptions {
+        equilibrium_tol: None,
+        ..*opts
+    };
+    let mut err = equilibrium(robot, &sol).relative;
+    let mut previous = f64::INFINITY;
+    for _ in 0..REFINEMENTS {
+        if err <= target {
+            break;
+        }
+        let ratio = err / target;
+        if err > previous / 4.0 {
+            o.tol = (o.tol / (2.0 * ratio)).max(f64::EPSILON);
+        }
+        let factor = ((2.0 * ratio).powf(0.25).ceil() as usize).max(2);
+        if o.steps.saturating_mul(factor) > MAX_STEPS {
+            break;
+        }
+        o.steps *= factor;
+        o.max_evaluations = opts.max_evaluations.saturating_sub(evaluations).max(1);
+        cancel::check()?;
+        let next = solve_loaded(robot, inputs, &sol.loads, &o, Some(&sol))?;
+        (iterations, evaluations) = (iterations + next.iterations, evaluations + next.evaluations);
+        (previous, sol) = (err, next);
+        err = equilibrium(robot, &sol).relative;
+    }
+    if err > target {
+        return Err(Error::NotConverged {
+            solver: "equilibrium refinement",
+            iterations,
+            evaluations,
+            residual: err,
+            stop: StopReason::Other,
+            reason: format!(
+                "global equilibrium error {err:.2e} (relative) above equilibrium_tol {target:.1e} on {} RK4 steps",
+                sol.steps
+            ),
+        });
+    }
+    (sol.iterations, sol.evaluations) = (iterations, evaluations);
+    Ok(sol)
 }
