@@ -127,3 +127,39 @@ def test_budget_bounds_a_solve() -> None:
         robot.solve([100.0, 100.0], max_evaluations=0)
     with pytest.raises(TypeError):
         robot.solve([100.0, 100.0], max_evaluations=2.5)
+
+
+def test_equilibrium_tol_refines_the_grid() -> None:
+    from tcarod import Actuator, Body, Robot, Routing, Section
+
+    # a 25 mm body, gravity, a tendon on a tight helix (1.3 turns in 5 mm):
+    # RK4's truncation error on 100 steps is far above 1e-8 of the loads (the
+    # physics of the check is tested in tests/designs.rs); here the binding
+    body = Body(
+        0.0249,
+        Section.rectangle(1.87e-3, 2.14e-3),
+        9.86e5,
+        poisson=0.5,
+        density=1085.0,
+        gravity=(-7.55, -5.96, 1.92),
+    )
+    helix = Routing.helix(0.521e-3, -1623.6, 0.43)
+    robot = Robot(body, [Actuator.tendon(helix, 1.74e-3, 6.76e-3)])
+    plain = robot.solve([0.3946])
+    fine = robot.solve([0.3946], equilibrium_tol=1e-8)
+    assert plain.steps == 100 and fine.steps > 100
+    assert fine.evaluations > plain.evaluations  # the refinement's IVPs count
+    # the refined solution is the solve on its grid (both to tol 1e-10 of a
+    # 25 mm body: tips within ~1e-12 m)
+    direct = robot.solve([0.3946], steps=fine.steps)
+    assert np.allclose(direct.tip_position, fine.tip_position, rtol=0, atol=1e-12)
+    # and it moved by RK4's truncation error on 100 steps (micrometres, not more)
+    assert 0.0 < np.linalg.norm(fine.tip_position - plain.tip_position) < 1e-4 * body.length
+    # a paper fixture holds 1e-8 on 100 steps already: the same solution
+    sq = fig6_square_robot()
+    assert sq.solve([100.0, 100.0], equilibrium_tol=1e-8) == sq.solve([100.0, 100.0])
+    for bad in (0.0, 1e-13, 1.0, float("nan")):
+        with pytest.raises(ValueError, match="equilibrium_tol"):
+            robot.solve([0.3946], equilibrium_tol=bad)
+    with pytest.raises(TypeError):
+        robot.solve([0.3946], equilibrium_tol="tight")  # type: ignore[arg-type]

@@ -143,7 +143,7 @@ const REFINEMENTS: usize = 3;
 /// ratio too. The result's `steps` are those used; its `iterations` and
 /// `evaluations` count every solve. [`Error::NotConverged`] if the tolerance
 /// is not met after three refinements or within [`MAX_STEPS`].
-pub(crate) fn refine_to_equilibrium(
+pub fn refine_to_equilibrium(
     robot: &Robot,
     inputs: &[f64],
     opts: &SolveOptions,

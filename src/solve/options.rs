@@ -38,7 +38,9 @@ pub struct SolveOptions {
     /// external loads) a solution may have. Above it the solve is repeated on
     /// a finer grid until it holds (see
     /// [`crate::solve::equilibrium::refine_to_equilibrium`]); the solution's
-    /// `steps` are those used. Applies to [`crate::shooting::solve`].
+    /// `steps` are those used. Applies to [`crate::shooting::solve`] and
+    /// [`crate::stability::solve_checked`] (Python's `Robot.solve`); the
+    /// solves inside the inverse, branches and continuation keep `steps`.
     pub equilibrium_tol: Option<f64>,
 }
 

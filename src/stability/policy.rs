@@ -85,7 +85,8 @@ pub struct Checked {
     pub continued: Option<Continued>,
 }
 
-/// [`solve_loaded`] under a stability [`Policy`] (free tip).
+/// [`solve_loaded`] (with the accuracy control of
+/// [`SolveOptions::equilibrium_tol`]) under a stability [`Policy`] (free tip).
 pub fn solve_checked(
     robot: &Robot,
     inputs: &[f64],
@@ -94,7 +95,8 @@ pub fn solve_checked(
     warm: Option<&Solution>,
     policy: Policy,
 ) -> Result<Checked> {
-    let mut sol = solve_loaded(robot, inputs, loads, opts, warm)?;
+    let sol = solve_loaded(robot, inputs, loads, opts, warm)?;
+    let mut sol = crate::solve::equilibrium::refine_to_equilibrium(robot, inputs, opts, sol)?;
     if policy == Policy::Off {
         return Ok(Checked {
             solution: sol,

@@ -250,6 +250,7 @@ class Robot:
         require_stable: bool = False,
         max_evaluations: int = 20000,
         time_limit: float | None = None,
+        equilibrium_tol: float | None = None,
     ) -> Solution:
         """Forward kinetostatics for one input per actuator (temperature [C] for TCAs);
         ``steps`` RK4 steps over the body; ``max_evaluations`` IVPs and
@@ -259,9 +260,12 @@ class Robot:
         ``"require"`` (raise ``UnstableEquilibriumError``), ``"continue"`` (move
         to a stable equilibrium at the same inputs; ``Solution.continued``) or
         ``"off"`` (no verdict, hot loops); ``require_stable=True`` is
-        ``"require"``. Raises ``ValueError`` on bad input and
-        ``ConvergenceError`` if Newton fails (``reason == "budget"`` when the
-        budget ran out)."""
+        ``"require"``. ``equilibrium_tol`` (opt-in, 1e-12 to 1): refine the
+        RK4 grid until the global equilibrium check (base wrench against the
+        loads) holds to this relative error; ``Solution.steps`` is the grid
+        used. Raises ``ValueError`` on bad input and ``ConvergenceError`` if
+        Newton fails (``reason == "budget"`` when the budget ran out) or the
+        check cannot be met."""
     def sweep(
         self,
         inputs: Sequence[Sequence[float] | _FloatArray] | _FloatArray,

@@ -97,10 +97,15 @@ impl PyRobot {
     /// `max_evaluations`: IVP budget of the solve, continuation included (1 to
     /// 1e8, default 20,000); `time_limit`: wall-time limit [s] (default none);
     /// running out of either raises `ConvergenceError` with
-    /// `reason == "budget"`. Raises `ValueError` on bad input, `TypeError` on
-    /// wrong types and `ConvergenceError` if Newton fails.
-    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, stability="report", require_stable=false, max_evaluations=None, time_limit=None),
-        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, stability='report', require_stable=False, max_evaluations=20000, time_limit=None)")]
+    /// `reason == "budget"`. `equilibrium_tol` (opt-in accuracy control, 1e-12
+    /// to 1): the largest relative error of the global equilibrium check
+    /// (base wrench against the loads) the solution may have; above it the
+    /// solve is repeated on finer RK4 grids until it holds, and
+    /// `Solution.steps` reports the grid used. Raises `ValueError` on bad
+    /// input, `TypeError` on wrong types and `ConvergenceError` if Newton
+    /// fails or the check cannot be met.
+    #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, stability="report", require_stable=false, max_evaluations=None, time_limit=None, equilibrium_tol=None),
+        text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, stability='report', require_stable=False, max_evaluations=20000, time_limit=None, equilibrium_tol=None)")]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         slf: &Bound<'_, Self>,
@@ -114,10 +119,13 @@ impl PyRobot {
         require_stable: bool,
         max_evaluations: Option<Bound<'_, PyAny>>,
         time_limit: Option<Real>,
+        equilibrium_tol: Option<Real>,
     ) -> PyResult<PySolution> {
         let this = slf.get();
         let mut opts = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
         budget_options(&mut opts, max_evaluations.as_ref(), time_limit)?;
+        opts.equilibrium_tol = equilibrium_tol.map(|t| t.0);
+        opts.validate()?;
         let mut policy = crate::python::stability::parse_policy(stability)?;
         if require_stable {
             policy = crate::stability::Policy::Require;
