@@ -138,9 +138,8 @@ const REFINEMENTS: usize = 3;
 /// equilibrium error of `sol` exceeds the tolerance, solve again, warm
 /// started from `sol`, on a finer grid. RK4's truncation error falls like
 /// `h^4`, so the steps grow by `ceil((2 err / tol)^(1/4))` (at least 2);
-/// where a refinement did not cut the error fourfold (the Newton tolerance,
-/// not the grid, limits it) the Newton tolerance is tightened by the same
-/// ratio too. The result's `steps` are those used; its `iterations` and
+/// the part from Newton's tolerance falls with it, which is divided by
+/// `2 err / tol` too. The result's `steps` are those used; its `iterations` and
 /// `evaluations` count every solve. [`Error::NotConverged`] if the tolerance
 /// is not met after three refinements or within [`MAX_STEPS`].
 pub fn refine_to_equilibrium(
@@ -158,15 +157,13 @@ pub fn refine_to_equilibrium(
         ..*opts
     };
     let mut err = equilibrium(robot, &sol).relative;
-    let mut previous = f64::INFINITY;
     for _ in 0..REFINEMENTS {
         if err <= target {
             break;
         }
         let ratio = err / target;
-        if err > previous / 4.0 {
-            o.tol = (o.tol / (2.0 * ratio)).max(f64::EPSILON);
-        }
+        // below the rounding floor Newton converges to the floor and says so
+        o.tol = (o.tol / (2.0 * ratio)).max(f64::EPSILON);
         let factor = ((2.0 * ratio).powf(0.25).ceil() as usize).max(2);
         if o.steps.saturating_mul(factor) > MAX_STEPS {
             break;
@@ -176,7 +173,7 @@ pub fn refine_to_equilibrium(
         cancel::check()?;
         let next = solve_loaded(robot, inputs, &sol.loads, &o, Some(&sol))?;
         (iterations, evaluations) = (iterations + next.iterations, evaluations + next.evaluations);
-        (previous, sol) = (err, next);
+        sol = next;
         err = equilibrium(robot, &sol).relative;
     }
     if err > target {
