@@ -248,6 +248,16 @@ const COIL_CONTACT_DESIGNS: [usize; 4] = [443, 714, 792, 932];
 /// IVP now switches to the full grid's exact Jacobian.
 const COARSE_GRID_DESIGNS: [usize; 1] = [112];
 
+/// Benchmark designs, not past self-weight buckling, on which a Newton step
+/// carries a law onto a softer piece than the one the Jacobian linearised:
+/// #783 (a 20 mm, 144 kPa rod with two linear tendons and a TCA) converged
+/// through continuation before the limited step (stop 19) and stalled at
+/// `lambda = 0` after it (main 4e12f50): a tendon at its onset of tension
+/// stepped into slack, where the taut slope's step creeps (`t ~ 1e-4` per
+/// iteration). The step is now relinearised on the landing piece
+/// (`solve::limit::piece_step`).
+const SOFTER_PIECE_DESIGNS: [usize; 1] = [783];
+
 /// Design `i` of the benchmark is not past buckling, converges cold to the
 /// solver's own test and balances its loads.
 fn converges_cold(i: usize) {
@@ -286,6 +296,11 @@ fn designs_crossing_a_coil_contact_converge_cold() {
 #[test]
 fn designs_whose_coarse_jacobian_overflows_converge_cold() {
     COARSE_GRID_DESIGNS.into_iter().for_each(converges_cold);
+}
+
+#[test]
+fn designs_stepping_onto_a_softer_piece_converge_cold() {
+    SOFTER_PIECE_DESIGNS.into_iter().for_each(converges_cold);
 }
 
 #[test]

@@ -116,8 +116,13 @@ impl System for Shooting<'_> {
         self.at_onset = onset;
         Ok((r, j))
     }
-    fn limit_step(&self, x: &[f64], dx: &[f64]) -> Option<Vec<f64>> {
-        super::limit::limited_step(self.shot.robot, self.shot.inputs, x, dx)
+    fn limit_step(&self, x: &[f64], dx: &[f64], r: &[f64], jac: &DMatrix<f64>) -> Option<Vec<f64>> {
+        let (robot, inputs) = (self.shot.robot, self.shot.inputs);
+        match super::limit::piece_step(robot, inputs, x, dx, r, jac) {
+            Some(d) => super::limit::limited_step(robot, inputs, x, &d)
+                .or_else(|| Some(x.iter().zip(&d).map(|(a, b)| a + b).collect())),
+            None => super::limit::limited_step(robot, inputs, x, dx),
+        }
     }
     /// First the full grid's Jacobian; then, if an actuator was at its
     /// onset of tension, the slack side's derivative there (see
