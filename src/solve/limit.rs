@@ -7,9 +7,11 @@
 //! elongation step `d -> d + dd` by the elongation that gives the tension
 //! the linear model predicted, `tau(d) + k dd` (`k` the law's slope at
 //! `d`), where that tension lies between `tau(d)` and `tau(d + dd)` (the
-//! law is stiffer along the step than the model: an overshoot); elsewhere
-//! (a softer law, a tendon going slack) the step is unchanged. For one
+//! law is stiffer along the step than the model: an overshoot). For one
 //! monotone law alone the limited step is Newton's step in the tension.
+//! Along a softer law (a tendon going slack, a TCA's coils parting) the
+//! step is instead recomputed with the law linearised on the piece it
+//! lands on ([`piece_step`]), and then limited as above.
 
 use nalgebra::{DMatrix, DVector};
 
