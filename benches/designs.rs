@@ -4,7 +4,9 @@
 //! Environment: `TCAROD_DESIGNS` (default 1000) designs, `TCAROD_SEED`
 //! (default `problems::DEFAULT_SEED`), `TCAROD_VERBOSE=1` lists each failure
 //! and each equilibrium residual above the target; diagnostics:
-//! `TCAROD_ONLY=3,17` solves only these designs, `TCAROD_STEPS` sets the RK4 steps.
+//! `TCAROD_ONLY=3,17` solves only these designs, `TCAROD_STEPS` sets the RK4 steps,
+//! `TCAROD_LIST=1` lists every converged design (index, IVP-equivalents,
+//! IVPs, iterations, homotopy steps).
 //!
 //! Each design is solved once from the reference (straight) guess with the
 //! default `SolveOptions` (100 RK4 steps, tol 1e-10, max_iter 50 per Newton
@@ -337,6 +339,14 @@ fn listing(out: &[Outcome]) {
         .iter()
         .filter_map(|o| o.result.as_ref().ok().map(|c| (o.index, c)))
         .collect();
+    if std::env::var("TCAROD_LIST").is_ok_and(|v| v == "1") {
+        for (i, c) in &worst {
+            println!(
+                "  DESIGN #{i} {:.1} {} {} {}",
+                c.ivp_equivalents, c.ivps, c.iterations, c.continuation_steps
+            );
+        }
+    }
     worst.sort_by(|a, b| b.1.ivp_equivalents.total_cmp(&a.1.ivp_equivalents));
     println!("  worst 20 by IVP-equivalents: #index ive ivps iterations homotopy-steps");
     for (i, c) in worst.iter().take(20) {

@@ -7,9 +7,13 @@
 //! elongation step `d -> d + dd` by the elongation that gives the tension
 //! the linear model predicted, `tau(d) + k dd` (`k` the law's slope at
 //! `d`), where that tension lies between `tau(d)` and `tau(d + dd)` (the
-//! law is stiffer along the step than the model: an overshoot); elsewhere
-//! (a softer law, a tendon going slack) the step is unchanged. For one
+//! law is stiffer along the step than the model: an overshoot). For one
 //! monotone law alone the limited step is Newton's step in the tension.
+//! Along a softer law (a tendon going slack, a TCA's coils parting) the
+//! step is instead recomputed with the law linearised on the piece it
+//! lands on ([`piece_step`]), and then limited as above.
+
+use nalgebra::{DMatrix, DVector};
 
 use crate::rod::{ForceLaw, Robot};
 
@@ -68,6 +72,69 @@ pub(crate) fn limited_step(
         }
     }
     changed.then_some(out)
+}
+
+/// The Newton step `dx` (Jacobian `jac` at `x`, residual `r`) recomputed
+/// where an actuator's step lands on a softer piece of its law than the
+/// one `jac` linearised (a tendon going slack, a TCA's coils parting):
+/// there the law at the end of the step is at most half as stiff as at
+/// `x` and, along the step, changes the tension by less than half of the
+/// linear model's `k dd`, so the model step would not even halve that
+/// actuator's tension error (a chord iteration with the stiff slope
+/// creeps: measured on design #783, a tendon at its onset stepped into
+/// slack, each line search accepted `t ~ 1e-4`). Each such law is
+/// linearised on the landing piece instead, `tau ~ tau(d + dd) + k1 (d' -
+/// d - dd)` (`k1` the law's slope at `d + dd`), as a piecewise-linear
+/// solver does when a step crosses into another region (Katzenelson,
+/// Bell Syst. Tech. J. 44, 1965): the Jacobian's tension part of column
+/// `6 + i`, `g k L` with `g = dr / d tau_i` (the column plus the unit
+/// elongation term), is rescaled to `k1`, and the residual moves by
+/// `g (tau(d + dd) - k1 dd - tau(d))`. `None`: no law softens along the
+/// step (or the system is singular).
+pub(crate) fn piece_step(
+    robot: &Robot,
+    inputs: &[f64],
+    x: &[f64],
+    dx: &[f64],
+    r: &[f64],
+    jac: &DMatrix<f64>,
+) -> Option<Vec<f64>> {
+    let len = robot.body.length;
+    if jac.nrows() != jac.ncols() || jac.ncols() != x.len() {
+        return None;
+    }
+    let mut jm = jac.clone();
+    let mut rm = DVector::from_column_slice(r);
+    let mut changed = false;
+    for (i, (a, &input)) in robot.actuators.iter().zip(inputs).enumerate() {
+        let law = a.law.as_ref();
+        let (j, d, dd) = (6 + i, x[6 + i] * len, dx[6 + i] * len);
+        let Ok((t0, k, _)) = law.tension_derivatives(d, input) else {
+            continue;
+        };
+        let Ok((t1, k1, _)) = law.tension_derivatives(d + dd, input) else {
+            continue;
+        };
+        // the secant over the step and the landing slope, against the model's
+        if !(k > 0.0 && dd != 0.0 && (t1 - t0) / (k * dd) < 0.5 && k1 < 0.5 * k) {
+            continue;
+        }
+        let mut g = jm.column(j).clone_owned();
+        g[j] += 1.0;
+        g /= k * len;
+        rm += &g * (t1 - k1 * dd - t0);
+        let mut col = &g * (k1 * len);
+        col[j] -= 1.0;
+        jm.set_column(j, &col);
+        changed = true;
+    }
+    if !changed {
+        return None;
+    }
+    let step = jm.lu().solve(&(-rm))?;
+    step.iter()
+        .all(|v| v.is_finite())
+        .then(|| step.iter().copied().collect())
 }
 
 #[cfg(test)]

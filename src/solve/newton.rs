@@ -80,12 +80,19 @@ pub trait System {
     }
     /// Function evaluations so far (IVPs for shooting, failed ones included).
     fn evaluations(&self) -> usize;
-    /// A limited version of the full Newton step `x + dx`, tried where the
-    /// full step fails the Armijo test (before the watchdog and
-    /// backtracking); `None` (the default): no limiting. Shooting limits
-    /// actuator elongations through their force laws (see
-    /// [`crate::solve::limit`]).
-    fn limit_step(&self, _x: &[f64], _dx: &[f64]) -> Option<Vec<f64>> {
+    /// A limited version of the full Newton step `x + dx` (taken with the
+    /// Jacobian `jac` at `x`, residual `r`), tried where the full step fails
+    /// the Armijo test (before the watchdog and backtracking); `None` (the
+    /// default): no limiting. Shooting limits actuator elongations through
+    /// their force laws and relinearises a law on the piece a step lands on
+    /// (see [`crate::solve::limit`]).
+    fn limit_step(
+        &self,
+        _x: &[f64],
+        _dx: &[f64],
+        _r: &[f64],
+        _jac: &DMatrix<f64>,
+    ) -> Option<Vec<f64>> {
         None
     }
     /// Switch to a more accurate Jacobian, if the system has one; `true` if

@@ -161,7 +161,10 @@ impl<S: System> Run<'_, S> {
     /// watchdog pair is tried from the limited point (its Jacobian is that
     /// of the state the limited step reached, not of the overshoot).
     fn limited(&mut self, dx: &DVector<f64>, bound: f64, res: f64) -> Result<bool> {
-        let Some(xl) = self.sys.limit_step(&self.x, dx.as_slice()) else {
+        let Some(jac) = self.jacobian.as_ref() else {
+            return Ok(false);
+        };
+        let Some(xl) = self.sys.limit_step(&self.x, dx.as_slice(), &self.r, jac) else {
             return Ok(false);
         };
         match self.sys.residual(&xl) {

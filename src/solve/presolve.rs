@@ -86,8 +86,8 @@ impl System for Corrected<'_> {
     fn refine(&mut self) -> bool {
         self.sys.refine()
     }
-    fn limit_step(&self, x: &[f64], dx: &[f64]) -> Option<Vec<f64>> {
-        self.sys.limit_step(x, dx) // the force laws do not depend on the grid
+    fn limit_step(&self, x: &[f64], dx: &[f64], r: &[f64], jac: &DMatrix<f64>) -> Option<Vec<f64>> {
+        self.sys.limit_step(x, dx, r, jac) // the force laws do not depend on the grid
     }
 }
 
