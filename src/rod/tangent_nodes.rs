@@ -37,7 +37,7 @@ impl TangentSeeds {
 impl Drop for TangentNodes {
     /// Keep the buffers for the next recording on this thread.
     fn drop(&mut self) {
-        if self.tangent.capacity() == 0 {
+        if self.tangent.capacity() == 0 || self.tangent.capacity() > SPARE_MAX {
             return;
         }
         let b = (
@@ -80,6 +80,10 @@ pub struct TangentNodes {
 
 /// The buffers `(s, state, tangent)` of a recorded [`TangentNodes`].
 type Buffers = (Vec<f64>, Vec<f64>, Vec<f64>);
+
+/// Largest tangent buffer kept for reuse (f64s: 1 MB; Fig. 6's verdict
+/// takes 12,120), so that a long grid's buffer is not held on to.
+const SPARE_MAX: usize = 1 << 17;
 
 thread_local! {
     /// The buffers of the last recorded [`TangentNodes`] dropped on this
