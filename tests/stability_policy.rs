@@ -4,7 +4,6 @@
 
 use nalgebra::Vector3;
 use tcarod::error::Error;
-use tcarod::experiments::fig6_square;
 use tcarod::rod::{Body, Robot, Section};
 use tcarod::shooting::{solve_loaded, Loads, SolveOptions};
 use tcarod::stability::{solve_checked, Policy};
@@ -71,61 +70,6 @@ fn report_carries_the_verdict_at_one_tangent_ivp() {
         assert_eq!(st.evaluations, 1);
         assert_eq!(c.solution.evaluations, plain.evaluations + 1);
         assert!(c.continued.is_none());
-    }
-}
-
-/// With a verdict, Newton's IVPs record no nodes and the solution is
-/// assembled from the verdict's tangent integration at the solution (its
-/// real part is the IVP): the same equilibrium, work and profile as the
-/// solve without a verdict, cold and warm, for one tangent IVP more.
-#[test]
-fn report_assembles_the_same_solution_from_the_verdicts_integration() {
-    let robot = fig6_square(true);
-    let (opts, loads, q) = (SolveOptions::default(), Loads::of(&robot), [100.0, 100.0]);
-    let warm = solve_loaded(&robot, &[98.0, 98.0], &loads, &opts, None).unwrap();
-    let len = robot.body.length;
-    for w in [None, Some(&warm)] {
-        let checked = |p| solve_checked(&robot, &q, &loads, &opts, w, p).unwrap();
-        let off = checked(Policy::Off).solution;
-        let on = checked(Policy::Report).solution;
-        // Newton's path does not depend on recording: identical unknowns,
-        // residual, counts and Jacobian
-        assert_eq!(on.unknowns, off.unknowns);
-        assert_eq!(on.residual, off.residual);
-        assert_eq!(on.iterations, off.iterations);
-        assert_eq!(on.evaluations, off.evaluations + 1);
-        assert_eq!(on.newton_jacobian, off.newton_jacobian);
-        assert_eq!(on.s.len(), off.s.len());
-        // the tangent pass's real part runs the generic right-hand side and
-        // the plain IVP its SIMD copy: equal to rounding (~1e-16 relative);
-        // the bounds leave 1e4 of it (forces: the strains' rounding is
-        // amplified by K_nu |nu - nu*|^-1 ~ 1e4 for this soft body)
-        let fmax = off
-            .internal_force
-            .iter()
-            .map(|f| f.norm())
-            .fold(0.0, f64::max);
-        let mmax = off
-            .internal_moment
-            .iter()
-            .map(|m| m.norm())
-            .fold(0.0, f64::max);
-        for k in 0..on.s.len() {
-            assert!((on.s[k] - off.s[k]).abs() <= 1e-12 * len);
-            assert!((on.positions[k] - off.positions[k]).norm() <= 1e-12 * len);
-            assert!((on.rotations[k] - off.rotations[k]).amax() <= 1e-12);
-            assert!((on.internal_force[k] - off.internal_force[k]).norm() <= 1e-8 * fmax);
-            assert!((on.internal_moment[k] - off.internal_moment[k]).norm() <= 1e-8 * mmax);
-        }
-        for (a, b) in on.tensions.iter().zip(&off.tensions) {
-            assert!(
-                (a - b).abs() <= 1e-12 * b.abs().max(1e-3),
-                "tension {a} {b}"
-            );
-        }
-        for (a, b) in on.elongations.iter().zip(&off.elongations) {
-            assert!((a - b).abs() <= 1e-12 * len, "elongation {a} {b}");
-        }
     }
 }
 

@@ -14,13 +14,10 @@
 use std::str::FromStr;
 
 use super::landing::{land, Route};
-use super::{stability, stability_profiled, Equilibrium, Stability};
+use super::{stability, Stability};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
-use crate::solve::newton::NewtonResult;
-use crate::solve::shooting::{solve_direct, Solved, Work};
-use crate::solve::solution::assemble_from;
 
 /// What a solve does with the stability verdict of the equilibrium found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -89,11 +86,6 @@ pub struct Checked {
 }
 
 /// [`solve_loaded`] under a stability [`Policy`] (free tip).
-///
-/// With a verdict, Newton's IVPs record no nodes: the verdict's tangent
-/// integration at the solution (whose real part is the IVP, recorded)
-/// gives the solution's profile, so the verdict costs that one tangent IVP
-/// and no plain one.
 pub fn solve_checked(
     robot: &Robot,
     inputs: &[f64],
@@ -102,21 +94,16 @@ pub fn solve_checked(
     warm: Option<&Solution>,
     policy: Policy,
 ) -> Result<Checked> {
+    let mut sol = solve_loaded(robot, inputs, loads, opts, warm)?;
     if policy == Policy::Off {
         return Ok(Checked {
-            solution: solve_loaded(robot, inputs, loads, opts, warm)?,
+            solution: sol,
             stability: None,
             continued: None,
         });
     }
-    let (sol, st) = match solve_direct(robot, inputs, loads, opts, warm, false)? {
-        Solved::Newton(nr, _, work) => profiled(robot, inputs, loads, opts, nr, work)?,
-        Solved::Solution(mut sol) => {
-            let st = stability(robot, &sol, &[])?;
-            sol.evaluations += st.evaluations;
-            (sol, st)
-        }
-    };
+    let st = stability(robot, &sol, &[])?;
+    sol.evaluations += st.evaluations;
     if st.stable || policy == Policy::Report {
         return Ok(Checked {
             solution: sol,
@@ -142,34 +129,6 @@ pub fn solve_checked(
             evaluations: l.evaluations,
         }),
     })
-}
-
-/// The solution of a converged Newton run `nr` (work `work`) and its
-/// verdict, both from the verdict's recorded tangent IVP at `nr.x` (the
-/// residual is Newton's, from its last IVP there).
-fn profiled(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    nr: NewtonResult,
-    work: Work,
-) -> Result<(Solution, Stability)> {
-    let eq = Equilibrium {
-        unknowns: &nr.x,
-        inputs,
-        loads: *loads,
-        steps: opts.steps,
-    };
-    let (st, ivp, tau) = stability_profiled(robot, &eq)?;
-    let evaluations = work.evaluations + st.evaluations;
-    let (x, steps, it) = (&nr.x, opts.steps, work.iterations);
-    let r = nr.residual.clone();
-    let mut sol = assemble_from(robot, inputs, loads, x, steps, it, evaluations, r, ivp, tau)?;
-    sol.newton_jacobian = nr.jacobian;
-    sol.status = nr.status;
-    sol.floor = nr.floor;
-    Ok((sol, st))
 }
 
 /// The error of [`Policy::Require`] for an unstable `sol`.
