@@ -1,6 +1,8 @@
 //! The seed directions of a tangent IVP and its recorded grid nodes (one
 //! flat buffer each for the arc lengths, states and tangents).
 
+use std::cell::RefCell;
+
 use nalgebra::DMatrix;
 
 use super::dual::Dual;
@@ -32,6 +34,25 @@ impl TangentSeeds {
     }
 }
 
+impl Drop for TangentNodes {
+    /// Keep the buffers for the next recording on this thread.
+    fn drop(&mut self) {
+        if self.tangent.capacity() == 0 || self.tangent.capacity() > SPARE_MAX {
+            return;
+        }
+        let b = (
+            std::mem::take(&mut self.s),
+            std::mem::take(&mut self.state),
+            std::mem::take(&mut self.tangent),
+        );
+        let _ = SPARE.try_with(|c| {
+            if let Ok(mut spare) = c.try_borrow_mut() {
+                *spare = Some(b);
+            }
+        });
+    }
+}
+
 /// One recorded grid node of a tangent IVP (a view into [`TangentNodes`]).
 #[derive(Debug, Clone, Copy)]
 pub struct TangentNode<'a> {
@@ -57,14 +78,41 @@ pub struct TangentNodes {
     tangent: Vec<f64>,
 }
 
+/// The buffers `(s, state, tangent)` of a recorded [`TangentNodes`].
+type Buffers = (Vec<f64>, Vec<f64>, Vec<f64>);
+
+/// Largest tangent buffer kept for reuse (f64s: 1 MB; Fig. 6's verdict
+/// takes 12,120), so that a long grid's buffer is not held on to.
+const SPARE_MAX: usize = 1 << 17;
+
+thread_local! {
+    /// The buffers of the last recorded [`TangentNodes`] dropped on this
+    /// thread, reused by the next recording: a stability verdict's tangents
+    /// take ~100 kB (Fig. 6: 101 nodes of 15 states by 8 directions), and
+    /// freeing them can hand the pages back to the system (glibc trims a heap
+    /// top above 128 kB), to be faulted in again by the next verdict.
+    static SPARE: RefCell<Option<Buffers>> = const { RefCell::new(None) };
+}
+
 impl TangentNodes {
     pub(super) fn new(n: usize, k: usize, capacity: usize) -> Self {
+        let spare = match capacity {
+            0 => None,
+            _ => SPARE.try_with(|c| c.borrow_mut().take()).ok().flatten(),
+        };
+        let (mut s, mut state, mut tangent) = spare.unwrap_or_default();
+        s.clear();
+        state.clear();
+        tangent.clear();
+        s.reserve(capacity);
+        state.reserve(capacity * n);
+        tangent.reserve(capacity * n * k);
         TangentNodes {
             n,
             k,
-            s: Vec::with_capacity(capacity),
-            state: Vec::with_capacity(capacity * n),
-            tangent: Vec::with_capacity(capacity * n * k),
+            s,
+            state,
+            tangent,
         }
     }
     /// Number of nodes.

@@ -73,26 +73,30 @@ fn det6(mut a: M6) -> f64 {
 
 /// True if `sym(H^T Y) + NEUTRAL H^T H` is positive definite (Cholesky,
 /// stopped at the first non-positive pivot); with `H` invertible this is
-/// `sym(K) + NEUTRAL I` for `K = Y H^-1` (S2), by congruence: no inverse needed.
-/// `h`, `y` by columns: `(H^T Y)_ij` is the dot product of columns `i`, `j`.
+/// `sym(K) + NEUTRAL I` for `K = Y H^-1` (S2), by congruence (`x = H z`): no
+/// inverse needed, and a singular `H` fails it too.
+/// `h`, `y` by columns: with `Y' = Y + NEUTRAL H` the matrix is
+/// `sym(H^T Y')`, whose entry `(i, j)` is the mean of the dot products of
+/// columns `h_i . y'_j` and `y'_i . h_j` (36 dot products of six).
 fn positive_definite(h: &Cols6, y: &Cols6) -> bool {
+    let yn: Cols6 = std::array::from_fn(|j| std::array::from_fn(|i| y[j][i] + NEUTRAL * h[j][i]));
     let mut a = [[0.0; 6]; 6];
     for i in 0..6 {
-        for j in 0..=i {
-            let (hty, ytj) = (dot6(&h[i], &y[j]), dot6(&y[i], &h[j]));
-            a[i][j] = 0.5 * (hty + ytj) + NEUTRAL * dot6(&h[i], &h[j]);
+        a[i][i] = dot6(&h[i], &yn[i]);
+        for j in 0..i {
+            a[i][j] = 0.5 * (dot6(&h[i], &yn[j]) + dot6(&yn[i], &h[j]));
         }
     }
+    // lower-triangular Cholesky in place, by columns
     for j in 0..6 {
         let d = a[j][j] - a[j][..j].iter().map(|x| x * x).sum::<f64>();
         if !(d > 0.0) {
             return false;
         }
-        let l = d.sqrt();
-        a[j][j] = l;
+        let inv = 1.0 / d.sqrt();
         for i in j + 1..6 {
             let x: f64 = a[i][..j].iter().zip(&a[j][..j]).map(|(p, q)| p * q).sum();
-            a[i][j] = (a[i][j] - x) / l;
+            a[i][j] = (a[i][j] - x) * inv;
         }
     }
     true
