@@ -191,7 +191,8 @@ impl<const N: usize> Div for Dual<N> {
     #[inline(always)]
     fn div(self, o: Self) -> Self {
         let inv = 1.0 / o.re;
-        let re = self.re * inv;
+        // the value as f64 divides (bit-for-bit the IVP's), the derivatives by `inv`
+        let re = self.re / o.re;
         let mut eps = [0.0; N];
         for ((e, a), b) in eps.iter_mut().zip(&self.eps).zip(&o.eps) {
             *e = (a - re * b) * inv;
@@ -233,8 +234,7 @@ impl<const N: usize> Div<f64> for Dual<N> {
     type Output = Self;
     #[inline(always)]
     fn div(self, o: f64) -> Self {
-        let inv = 1.0 / o;
-        self.map(self.re * inv, inv)
+        self.map(self.re / o, 1.0 / o)
     }
 }
 impl<const N: usize> AddAssign for Dual<N> {

@@ -154,39 +154,87 @@ mod tests {
         ((*k >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
     }
 
-    #[test]
-    fn fast_path_agrees_with_the_papers_notation_to_rounding() {
-        let designs = [
+    /// The five designs of these tests.
+    fn designs() -> [Robot; 5] {
+        [
             fig6_square(true),
             fig6_circle(true),
             table1_finger(),
             steel_tendon_robot(),
             helix_design(),
-        ];
-        let mut seed = 7u64;
-        for (n_design, robot) in designs.iter().enumerate() {
+        ]
+    }
+
+    /// A random state of `robot` at which (25) is regular: a unit
+    /// quaternion, strains near the reference, and tensions of either sign.
+    fn random_state(robot: &Robot, seed: &mut u64) -> (Vec<f64>, Vec<f64>, f64) {
+        let na = robot.actuators.len();
+        let len = robot.body.length;
+        let (kse, _) = robot.body.stiffness();
+        let tmax = 1e-3 * kse[(0, 0)].min(50.0);
+        let tau: Vec<f64> = (0..na).map(|_| tmax * rnd(seed)).collect();
+        let mut y = vec![0.0; robot.n_states()];
+        let axis = Vector3::new(rnd(seed), rnd(seed), rnd(seed));
+        let q = UnitQuaternion::from_scaled_axis(axis * 2.0);
+        y[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k]);
+        let nu = Vector3::new(0.05 * rnd(seed), 0.05 * rnd(seed), 1.0 + 0.1 * rnd(seed));
+        let om = Vector3::new(rnd(seed), rnd(seed), rnd(seed)) * (10.0 / len);
+        y[7..10].copy_from_slice(nu.as_slice());
+        y[10..13].copy_from_slice(om.as_slice());
+        (y, tau, len * (0.5 + 0.5 * rnd(seed)))
+    }
+
+    #[test]
+    fn linearised_tangents_agree_with_dual_arithmetic_to_rounding() {
+        use crate::rod::dual::Dual;
+        let mut seed = 11u64;
+        for (n_design, robot) in designs().iter().enumerate() {
             let na = robot.actuators.len();
-            let len = robot.body.length;
             for trial in 0..20 {
-                // tensions of either sign, small enough that (25) stays regular
-                let (kse, _) = robot.body.stiffness();
-                let tmax = 1e-3 * kse[(0, 0)].min(50.0);
-                let tau: Vec<f64> = (0..na).map(|_| tmax * rnd(&mut seed)).collect();
+                let (y, tau, s) = random_state(robot, &mut seed);
                 let rhs = RodRhs::new(robot, &tau);
-                let mut y = vec![0.0; robot.n_states()];
-                let axis = Vector3::new(rnd(&mut seed), rnd(&mut seed), rnd(&mut seed));
-                let q = UnitQuaternion::from_scaled_axis(axis * 2.0);
-                y[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k]);
-                let nu = Vector3::new(
-                    0.05 * rnd(&mut seed),
-                    0.05 * rnd(&mut seed),
-                    1.0 + 0.1 * rnd(&mut seed),
-                );
-                let om =
-                    Vector3::new(rnd(&mut seed), rnd(&mut seed), rnd(&mut seed)) * (10.0 / len);
-                y[7..10].copy_from_slice(nu.as_slice());
-                y[10..13].copy_from_slice(om.as_slice());
-                let s = len * (0.5 + 0.5 * rnd(&mut seed));
+                let active: Vec<usize> =
+                    (0..na).filter(|&i| trial % 4 != 3 || i % 2 == 0).collect();
+                // 8 random directions on every state and tension
+                let mut dir = || -> [f64; 8] { std::array::from_fn(|_| rnd(&mut seed)) };
+                let yd: Vec<Dual<8>> = y.iter().map(|&x| Dual::new(x, dir())).collect();
+                let td: Vec<Dual<8>> = tau.iter().map(|&x| Dual::new(x, dir())).collect();
+                let zero = Dual::new(0.0, [0.0; 8]);
+                let (mut lin, mut dual) = (vec![zero; y.len()], vec![zero; y.len()]);
+                rhs.deriv_tangent(s, &yd, &td, &active, &mut lin).unwrap();
+                rhs.deriv_generic(s, &yd, &td, &active, &mut dual).unwrap();
+                let mut plain = vec![0.0; y.len()];
+                rhs.deriv(s, &y, &active, &mut plain).unwrap();
+                for k in 0..y.len() {
+                    // the values are the f64 right-hand side's, bit for bit
+                    assert_eq!(lin[k].re, plain[k], "design {n_design} y'[{k}]");
+                    // the tangents: the same derivative by two formulas; (25)'s
+                    // solve amplifies their rounding by its condition (~1e6 for
+                    // the steel rod), so compare against the largest lane of the
+                    // row: 1e-8 is a few hundred eps times that condition
+                    let big = dual[k].eps.iter().fold(1e-300f64, |m, x| m.max(x.abs()));
+                    for d in 0..8 {
+                        let err = (lin[k].eps[d] - dual[k].eps[d]).abs() / big;
+                        assert!(
+                            err <= 1e-8,
+                            "design {n_design} trial {trial} y'[{k}] lane {d}: {} vs {} ({err:e})",
+                            lin[k].eps[d],
+                            dual[k].eps[d]
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fast_path_agrees_with_the_papers_notation_to_rounding() {
+        let mut seed = 7u64;
+        for (n_design, robot) in designs().iter().enumerate() {
+            let na = robot.actuators.len();
+            for trial in 0..20 {
+                let (y, tau, s) = random_state(robot, &mut seed);
+                let rhs = RodRhs::new(robot, &tau);
                 let active: Vec<usize> =
                     (0..na).filter(|&i| trial % 4 != 3 || i % 2 == 0).collect();
                 let mut fast = vec![0.0; y.len()];

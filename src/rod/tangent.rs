@@ -14,6 +14,8 @@
 //! `f64` fast path in `ode.rs`; `f64` instances of both agree to rounding
 //! (tested).
 
+use std::cell::Cell;
+
 use nalgebra::{DMatrix, Vector3};
 
 use super::dual::{c_cross, cross_c, dot, rot_t, rt_mul, Dual, Real, V3};
@@ -42,6 +44,24 @@ pub struct TangentIvp {
 
 /// Largest number of directions integrated in one pass (more are split into passes).
 const MAX_PASS: usize = 16;
+
+thread_local! {
+    /// Tangent passes on this thread run the reference right-hand side ([`with_dual_rhs`]).
+    static DUAL_RHS: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Run `f` with this thread's tangent passes on the reference right-hand
+/// side: [`RodRhs::deriv_generic`] in [`Dual`] arithmetic throughout,
+/// instead of the linearisation of [`RodRhs::deriv_tangent`]. The same
+/// derivatives to rounding, at several times the cost: for the tests that
+/// compare the two and for benchmarks, not for use.
+#[doc(hidden)]
+pub fn with_dual_rhs<R>(f: impl FnOnce() -> R) -> R {
+    let old = DUAL_RHS.with(|d| d.replace(true));
+    let out = f();
+    DUAL_RHS.with(|d| d.set(old));
+    out
+}
 
 /// What a tangent pass records at the grid nodes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -198,27 +218,27 @@ pass_with!(pass_avx2, "avx2");
 
 /// The RK4 stages of a tangent pass (`n` states each).
 struct Stages<const N: usize> {
-    k1: Vec<Dual<N>>,
-    k2: Vec<Dual<N>>,
-    k3: Vec<Dual<N>>,
-    k4: Vec<Dual<N>>,
+    k: [Vec<Dual<N>>; 4],
     yt: Vec<Dual<N>>,
+    /// The reference right-hand side ([`with_dual_rhs`]).
+    dual: bool,
 }
 
 impl<const N: usize> Stages<N> {
     fn new(n: usize) -> Self {
         let zero = vec![Dual::<N>::cst(0.0); n];
         Stages {
-            k1: zero.clone(),
-            k2: zero.clone(),
-            k3: zero.clone(),
-            k4: zero.clone(),
+            k: std::array::from_fn(|_| zero.clone()),
             yt: zero,
+            dual: DUAL_RHS.with(Cell::get),
         }
     }
 
-    /// One RK4 step of length `h` from `s` (eqs 22-31 in dual arithmetic),
-    /// then the quaternion renormalised, as in [`super::integrate`].
+    /// One RK4 step of length `h` from `s`, then the quaternion
+    /// renormalised, as in [`super::integrate`]; the right-hand side by
+    /// [`RodRhs::deriv_tangent`], or in dual arithmetic throughout
+    /// ([`RodRhs::deriv_generic`], the reference). The stages are a loop
+    /// so that the right-hand side is inlined once per compiled pass.
     #[inline(always)]
     fn step(
         &mut self,
@@ -231,20 +251,27 @@ impl<const N: usize> Stages<N> {
     ) -> Result<()> {
         let (h2, h6) = (0.5 * h, h / 6.0);
         let n = y.len();
-        let Stages { k1, k2, k3, k4, yt } = self;
-        fz.deriv_generic(s, y, tau, active, k1)?;
-        for j in 0..n {
-            yt[j] = y[j] + k1[j] * h2;
+        let Stages { k, yt, dual } = self;
+        for st in 0..4 {
+            let (hs, ss) = [(0.0, s), (h2, s + h2), (h2, s + h2), (h, s + h)][st];
+            let (done, todo) = k.split_at_mut(st);
+            if st == 0 {
+                yt.copy_from_slice(y);
+            } else {
+                let kp = &done[st - 1];
+                for j in 0..n {
+                    yt[j] = y[j] + kp[j] * hs;
+                }
+            }
+            // a branch, not a closure: a closure is compiled without the
+            // pass's target features
+            if *dual {
+                fz.deriv_generic(ss, yt, tau, active, &mut todo[0])?;
+            } else {
+                fz.deriv_tangent(ss, yt, tau, active, &mut todo[0])?;
+            }
         }
-        fz.deriv_generic(s + h2, yt, tau, active, k2)?;
-        for j in 0..n {
-            yt[j] = y[j] + k2[j] * h2;
-        }
-        fz.deriv_generic(s + h2, yt, tau, active, k3)?;
-        for j in 0..n {
-            yt[j] = y[j] + k3[j] * h;
-        }
-        fz.deriv_generic(s + h, yt, tau, active, k4)?;
+        let [k1, k2, k3, k4] = &*k;
         for j in 0..n {
             y[j] += (k1[j] + (k2[j] + k3[j]) * 2.0 + k4[j]) * h6;
         }
@@ -420,5 +447,89 @@ fn finish<const N: usize>(
         tip_force_residual: tan(rf),
         tip_moment_residual: tan(rmm),
         nodes: TangentNodes::default(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiments::{fig6_square, steel_tendon_robot};
+    use std::sync::Arc;
+
+    use crate::rod::{integrate, Actuator, ConstantTension, Robot, Routing};
+
+    /// The pass with the linearised right-hand side against the reference
+    /// pass in dual arithmetic throughout, and its values against the plain IVP.
+    fn compare(robot: &Robot, tensions: &[f64], v0: Vector3<f64>, u0: Vector3<f64>) {
+        let na = robot.actuators.len();
+        let k = 6 + na;
+        let mut seeds = TangentSeeds::zeros(na, k);
+        for j in 0..k {
+            match j {
+                0..=2 => seeds.nu0[(j, j)] = 1.0,
+                3..=5 => seeds.omega0[(j - 3, j)] = 1.0,
+                _ => seeds.tensions[(j - 6, j)] = 1.0,
+            }
+        }
+        let body = &robot.body;
+        let spec = IvpSpec {
+            robot,
+            tensions,
+            tip_force: body.tip_force,
+            tip_moment: body.tip_moment,
+            steps: 60,
+        };
+        let new = integrate_tangent(&spec, &v0, &u0, &seeds, false).unwrap();
+        let reference = with_dual_rhs(|| integrate_tangent(&spec, &v0, &u0, &seeds, false));
+        let reference = reference.unwrap();
+        // the values are the plain IVP's, bit for bit
+        let plain = integrate(&spec, &v0, &u0, false).unwrap();
+        assert_eq!(new.ivp.tip, plain.tip);
+        assert_eq!(new.ivp.elongation, plain.elongation);
+        // the tangents: one derivative by two formulas, their rounding
+        // carried through 60 steps and amplified by (25)'s condition (~1e6
+        // for the steel rod): 1e-8 of each row's largest entry
+        for (a, b) in [
+            (&new.tip, &reference.tip),
+            (&new.elongation, &reference.elongation),
+        ] {
+            for r in 0..a.nrows() {
+                let big = b.row(r).amax().max(1e-300);
+                let err = (a.row(r) - b.row(r)).amax() / big;
+                assert!(err <= 1e-8, "row {r}: {err:e}\n{a:.6e}\n{b:.6e}");
+            }
+        }
+    }
+
+    #[test]
+    fn linearised_pass_agrees_with_the_dual_pass_and_the_plain_ivp() {
+        let sq = fig6_square(true);
+        let (v0, u0) = (
+            Vector3::new(0.001, -0.002, 1.01),
+            Vector3::new(3.0, -2.0, 0.5),
+        );
+        compare(&sq, &[-0.05, 0.02], v0, u0);
+        // an interior anchor (strain jump) and a helix
+        let len = sq.body.length;
+        let (law, x) = (Arc::new(ConstantTension), 3e-3);
+        let helix = Routing::Helix {
+            radius: x,
+            rate: 40.0,
+            phase: 0.2,
+        };
+        let acts = vec![
+            Actuator::new(Routing::Straight { x, y: 0.0 }, 0.0, 0.6 * len, law.clone()),
+            Actuator::new(helix, 0.2 * len, len, law),
+        ];
+        let mixed = Robot::new(sq.body.clone(), acts).unwrap();
+        compare(&mixed, &[-0.05, 0.02], v0, u0);
+        let steel = steel_tendon_robot();
+        let u0 = Vector3::new(0.0, 0.3, 0.0);
+        compare(
+            &steel,
+            &[15.0, 0.0, 0.0, 0.0],
+            Vector3::new(0.0, 0.0, 1.0),
+            u0,
+        );
     }
 }

@@ -1,0 +1,109 @@
+//! The tangent pass's cost (issues 10 and 16): the linearised right-hand
+//! side (`RodRhs::deriv_tangent`, the default) against the reference pass
+//! in dual arithmetic throughout (`tcarod::rod::with_dual_rhs`), interleaved
+//! in one run by thread CPU time, on the Fig. 6 square at
+//! `rows::BENCH_TEMPERATURE` (100 RK4 steps): one plain IVP, tangent passes
+//! of 6 and 8 directions (tip only), the exact shooting Jacobian
+//! (`rows` "tangent"), exact J and C ("jc_exact"), and the steel tendon
+//! robot's cold and warm solves (their Newton Jacobians are tangent passes).
+//! `cargo bench --bench tangent` (`TCAROD_ROUNDS`, default 300, rounds).
+use std::hint::black_box;
+
+#[allow(dead_code)]
+mod rows;
+
+#[path = "clock/mod.rs"]
+mod clock;
+use clock::thread_cpu;
+
+use rows::{operation, BENCH_TEMPERATURE};
+use tcarod::experiments::fig6_square;
+use tcarod::rod::{integrate_tangent, with_dual_rhs, Record, TangentSeeds};
+use tcarod::shooting::{base_strains, solve, tensions, Loads, SolveOptions};
+
+/// A tangent pass of `k` directions (the 6 base strains first) at the Fig. 6 solution.
+fn pass(k: usize) -> Box<dyn FnMut() -> tcarod::error::Result<()>> {
+    let robot = fig6_square(true);
+    let sol = solve(
+        &robot,
+        &[BENCH_TEMPERATURE; 2],
+        &SolveOptions::default(),
+        None,
+    )
+    .unwrap();
+    let len = robot.body.length;
+    let d: Vec<f64> = sol.unknowns[6..].iter().map(|x| x * len).collect();
+    let tau = tensions(&robot, &sol.inputs, &d).unwrap();
+    let loads = Loads::of(&robot);
+    let mut seeds = TangentSeeds::zeros(robot.actuators.len(), k);
+    for j in 0..k {
+        match j {
+            0..=2 => seeds.nu0[(j, j)] = 1.0,
+            3..=5 => seeds.omega0[(j - 3, j)] = 1.0,
+            _ => seeds.tensions[(j - 6, j)] = 1.0,
+        }
+    }
+    Box::new(move || {
+        let spec = loads.ivp(&robot, &tau, sol.steps);
+        let (v0, u0) = base_strains(&sol.unknowns, len);
+        black_box(integrate_tangent(&spec, &v0, &u0, &seeds, Record::Tip)?);
+        Ok(())
+    })
+}
+
+fn main() {
+    let rounds: usize = std::env::var("TCAROD_ROUNDS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(300);
+    let mut cs: Vec<(String, Box<dyn FnMut() -> tcarod::error::Result<()>>)> = vec![
+        ("ivp".into(), operation("ivp").unwrap()),
+        ("tan6".into(), pass(6)),
+        ("tan8".into(), pass(8)),
+        ("tangent".into(), operation("tangent").unwrap()),
+        ("jc_exact".into(), operation("jc_exact").unwrap()),
+        ("steel_cold".into(), operation("steel_cold").unwrap()),
+        ("steel_warm".into(), operation("steel_warm").unwrap()),
+    ];
+    let n = cs.len();
+    // (name, dual?) per contender: every operation twice, new then reference
+    let mut t = vec![vec![Vec::with_capacity(rounds); 2]; n];
+    for _ in 0..rounds {
+        for (k, (_, f)) in cs.iter_mut().enumerate() {
+            for (m, dual) in [false, true].into_iter().enumerate() {
+                if k == 0 && dual {
+                    continue; // the plain IVP has no tangents
+                }
+                let t0 = thread_cpu().expect("thread CPU clock");
+                if dual {
+                    with_dual_rhs(&mut *f).unwrap();
+                } else {
+                    f().unwrap();
+                }
+                t[k][m].push(thread_cpu().expect("thread CPU clock") - t0);
+            }
+        }
+    }
+    let med = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let ivp = med(&mut t[0][0]);
+    println!("interleaved thread-CPU medians over {rounds} rounds (Fig. 6 square, 100 steps)");
+    println!(
+        "{:>11} {:>10} {:>6} {:>10} {:>6} {:>6}",
+        "", "new us", "IVPs", "ref us", "IVPs", "ratio"
+    );
+    println!("{:>11} {:>10.1} {:>6.2}", "ivp", ivp * 1e6, 1.0);
+    for (k, (name, _)) in cs.iter().enumerate().skip(1) {
+        let (a, b) = (med(&mut t[k][0]), med(&mut t[k][1]));
+        println!(
+            "{name:>11} {:>10.1} {:>6.2} {:>10.1} {:>6.2} {:>6.2}",
+            a * 1e6,
+            a / ivp,
+            b * 1e6,
+            b / ivp,
+            b / a
+        );
+    }
+}
