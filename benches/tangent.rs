@@ -17,20 +17,14 @@ mod clock;
 use clock::thread_cpu;
 
 use rows::{operation, BENCH_TEMPERATURE};
-use tcarod::experiments::fig6_square;
-use tcarod::rod::{integrate_tangent, with_dual_rhs, Record, TangentSeeds};
+use tcarod::experiments::{fig6_square, steel_tendon_robot, STEEL_TENDON_TENSIONS};
+use tcarod::rod::{integrate_tangent, with_dual_rhs, Record, Robot, TangentSeeds};
 use tcarod::shooting::{base_strains, solve, tensions, Loads, SolveOptions};
 
-/// A tangent pass of `k` directions (the 6 base strains first) at the Fig. 6 solution.
-fn pass(k: usize) -> Box<dyn FnMut() -> tcarod::error::Result<()>> {
-    let robot = fig6_square(true);
-    let sol = solve(
-        &robot,
-        &[BENCH_TEMPERATURE; 2],
-        &SolveOptions::default(),
-        None,
-    )
-    .unwrap();
+/// A tangent pass of `k` directions (the 6 base strains, then the
+/// tensions) at the solution of `robot` for `inputs`.
+fn pass(robot: Robot, inputs: &[f64], k: usize) -> Box<dyn FnMut() -> tcarod::error::Result<()>> {
+    let sol = solve(&robot, inputs, &SolveOptions::default(), None).unwrap();
     let len = robot.body.length;
     let d: Vec<f64> = sol.unknowns[6..].iter().map(|x| x * len).collect();
     let tau = tensions(&robot, &sol.inputs, &d).unwrap();
@@ -51,15 +45,38 @@ fn pass(k: usize) -> Box<dyn FnMut() -> tcarod::error::Result<()>> {
     })
 }
 
+/// IVPs and iterations of the steel robot's cold and warm (+1 % tension) solves.
+fn steel_counts() {
+    let (steel, opts) = (steel_tendon_robot(), SolveOptions::default());
+    let cold = solve(&steel, &STEEL_TENDON_TENSIONS, &opts, None).unwrap();
+    let up: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
+    let warm = solve(&steel, &up, &opts, Some(&cold)).unwrap();
+    for (name, s) in [("steel_cold", &cold), ("steel_warm", &warm)] {
+        let (it, ev) = (s.iterations, s.evaluations);
+        println!("{name}: {it} iterations, {ev} IVPs (plain or tangent)");
+    }
+}
+
 fn main() {
+    steel_counts();
     let rounds: usize = std::env::var("TCAROD_ROUNDS")
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(300);
     let mut cs: Vec<(String, Box<dyn FnMut() -> tcarod::error::Result<()>>)> = vec![
         ("ivp".into(), operation("ivp").unwrap()),
-        ("tan6".into(), pass(6)),
-        ("tan8".into(), pass(8)),
+        (
+            "tan6".into(),
+            pass(fig6_square(true), &[BENCH_TEMPERATURE; 2], 6),
+        ),
+        (
+            "tan8".into(),
+            pass(fig6_square(true), &[BENCH_TEMPERATURE; 2], 8),
+        ),
+        (
+            "steel_tan10".into(),
+            pass(steel_tendon_robot(), &STEEL_TENDON_TENSIONS, 10),
+        ),
         ("tangent".into(), operation("tangent").unwrap()),
         ("jc_exact".into(), operation("jc_exact").unwrap()),
         ("steel_cold".into(), operation("steel_cold").unwrap()),

@@ -75,12 +75,17 @@ impl Real for f64 {
 }
 
 /// `re + sum_k eps\[k\] e_k` with `e_j e_k = 0`: value and `N` directional derivatives.
+///
+/// Laid out derivatives first on a 64-byte boundary, so that the lanes of
+/// a stored dual are one aligned vector load (AVX-512) rather than one
+/// split across two cache lines.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(64))]
 pub struct Dual<const N: usize> {
-    /// Value.
-    pub re: f64,
     /// Derivative along each direction.
     pub eps: [f64; N],
+    /// Value.
+    pub re: f64,
 }
 
 impl<const N: usize> Dual<N> {
