@@ -16,14 +16,14 @@ mod rows;
 mod clock;
 use clock::thread_cpu;
 
-use rows::{operation, BENCH_TEMPERATURE};
+use rows::{operation, Operation, BENCH_TEMPERATURE};
 use tcarod::experiments::{fig6_square, steel_tendon_robot, STEEL_TENDON_TENSIONS};
 use tcarod::rod::{integrate_tangent, with_dual_rhs, Record, Robot, TangentSeeds};
 use tcarod::shooting::{base_strains, solve, tensions, Loads, SolveOptions};
 
 /// A tangent pass of `k` directions (the 6 base strains, then the
 /// tensions) at the solution of `robot` for `inputs`.
-fn pass(robot: Robot, inputs: &[f64], k: usize) -> Box<dyn FnMut() -> tcarod::error::Result<()>> {
+fn pass(robot: Robot, inputs: &[f64], k: usize) -> Operation {
     let sol = solve(&robot, inputs, &SolveOptions::default(), None).unwrap();
     let len = robot.body.length;
     let d: Vec<f64> = sol.unknowns[6..].iter().map(|x| x * len).collect();
@@ -63,7 +63,7 @@ fn main() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(300);
-    let mut cs: Vec<(String, Box<dyn FnMut() -> tcarod::error::Result<()>>)> = vec![
+    let mut cs: Vec<(String, Operation)> = vec![
         ("ivp".into(), operation("ivp").unwrap()),
         (
             "tan6".into(),
@@ -84,7 +84,7 @@ fn main() {
     ];
     let n = cs.len();
     // (name, dual?) per contender: every operation twice, new then reference
-    let mut t = vec![vec![Vec::with_capacity(rounds); 2]; n];
+    let mut t = vec![vec![Vec::new(); 2]; n];
     for _ in 0..rounds {
         for (k, (_, f)) in cs.iter_mut().enumerate() {
             for (m, dual) in [false, true].into_iter().enumerate() {

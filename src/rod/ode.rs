@@ -326,11 +326,12 @@ impl<'a> RodRhs<'a> {
         mut rate: impl FnMut(usize, T),
     ) -> Result<(Blocks<T>, V3<T>, V3<T>)> {
         let zero = T::cst(0.0);
+        let (kse, kbt): (V3<f64>, V3<f64>) = (self.kse.into(), self.kbt.into());
         let (mut e, mut f) = (fr.e, fr.f);
         let mut m = [[[zero; 3]; 3]; 3];
         for k in 0..3 {
-            m[0][k][k] = T::cst(self.kse[k]);
-            m[2][k][k] = T::cst(self.kbt[k]);
+            m[0][k][k] = T::cst(kse[k]);
+            m[2][k][k] = T::cst(kbt[k]);
         }
         for &i in active {
             let StringAt {

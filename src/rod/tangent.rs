@@ -26,17 +26,21 @@ use super::{IvpResult, IvpSpec, RodState, BASE_STATES};
 use crate::error::{Error, Result};
 
 /// A tangent IVP: the IVP (its real part) and its derivatives along the seeds.
+///
+/// Each derivative field is `d / d seed` of the [`IvpResult`] field of the
+/// same name (its meaning and unit there, per unit of seed), one column per
+/// seed direction (`k` columns; the tip state as a vector).
 #[derive(Debug, Clone)]
 pub struct TangentIvp {
     /// The IVP itself (nodes recorded if asked for by [`integrate_tangent`]).
     pub ivp: IvpResult,
-    /// `d y(L) / d seed`, `n_states x k`.
+    /// `n_states x k`.
     pub tip: DMatrix<f64>,
-    /// `d delta_i(s_end) / d seed` (distal elongations), `n_actuators x k`.
+    /// `n_actuators x k`.
     pub elongation: DMatrix<f64>,
-    /// `d r_F / d seed` (tip force balance (32), body frame) \[N\], `3 x k`.
+    /// `3 x k`.
     pub tip_force_residual: DMatrix<f64>,
-    /// `d r_M / d seed` (tip moment balance (33)) \[N m\], `3 x k`.
+    /// `3 x k`.
     pub tip_moment_residual: DMatrix<f64>,
     /// Every grid node with its tangents, if recorded (anchor nodes after their jump).
     pub nodes: TangentNodes,
