@@ -75,12 +75,17 @@ impl Real for f64 {
 }
 
 /// `re + sum_k eps\[k\] e_k` with `e_j e_k = 0`: value and `N` directional derivatives.
+///
+/// Laid out derivatives first on a 64-byte boundary, so that the lanes of
+/// a stored dual are one aligned vector load (AVX-512) rather than one
+/// split across two cache lines.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(64))]
 pub struct Dual<const N: usize> {
-    /// Value.
-    pub re: f64,
     /// Derivative along each direction.
     pub eps: [f64; N],
+    /// Value.
+    pub re: f64,
 }
 
 impl<const N: usize> Dual<N> {
@@ -191,7 +196,8 @@ impl<const N: usize> Div for Dual<N> {
     #[inline(always)]
     fn div(self, o: Self) -> Self {
         let inv = 1.0 / o.re;
-        let re = self.re * inv;
+        // the value as f64 divides (bit-for-bit the IVP's), the derivatives by `inv`
+        let re = self.re / o.re;
         let mut eps = [0.0; N];
         for ((e, a), b) in eps.iter_mut().zip(&self.eps).zip(&o.eps) {
             *e = (a - re * b) * inv;
@@ -233,8 +239,7 @@ impl<const N: usize> Div<f64> for Dual<N> {
     type Output = Self;
     #[inline(always)]
     fn div(self, o: f64) -> Self {
-        let inv = 1.0 / o;
-        self.map(self.re * inv, inv)
+        self.map(self.re / o, 1.0 / o)
     }
 }
 impl<const N: usize> AddAssign for Dual<N> {

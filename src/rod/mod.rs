@@ -27,6 +27,7 @@ mod body;
 pub mod dual;
 mod ivp;
 mod ode;
+mod ode_tangent;
 mod robot;
 mod section;
 mod tangent;
@@ -37,7 +38,9 @@ pub use body::{Body, Shear, DEFAULT_POISSON};
 pub use ivp::{integrate, IvpResult, IvpSpec};
 pub use robot::{Robot, BASE_STATES};
 pub use section::Section;
-pub use tangent::{integrate_tangent, Record, TangentIvp, TangentNode, TangentNodes, TangentSeeds};
+pub use tangent::{
+    integrate_tangent, with_dual_rhs, Record, TangentIvp, TangentNode, TangentNodes, TangentSeeds,
+};
 
 use nalgebra::{Matrix3, Quaternion, Vector3};
 

@@ -221,13 +221,15 @@ impl<'a> RodRhs<'a> {
 
     /// `dy/ds` (eqs 22-31) with tensions `tau` and the actuators in `active`
     /// (indices), in any [`Real`] arithmetic: `f64` for IVPs, [`super::dual::Dual`]
-    /// for their tangents. The one implementation of the right-hand side
-    /// (its plain twin in the paper's notation is `tests/ode_reference.rs`).
+    /// for the reference tangents. The one implementation of the right-hand side
+    /// (its plain twin in the paper's notation is `ode_reference.rs`; the
+    /// tangent pass's linearisation, `ode_tangent.rs`, reuses its pieces).
     ///
     /// The 6x6 system (25) is symmetric, `[[M11, M12], [M12^T, M22]]` with
     /// `M11 = K_nu + sum A_i`, `M12 = -sum A_i r_i^`, `M22 = K_omega - sum r_i^ A_i r_i^`
     /// (`A_i` symmetric, `r^T = -r^`); it is assembled on the upper
-    /// triangles and solved by [`Real::solve_eq25`] (block elimination).
+    /// triangles ([`RodRhs::assemble`]) and solved by [`Real::solve_eq25`]
+    /// (block elimination).
     #[inline(always)]
     pub(crate) fn deriv_generic<T: Real>(
         &self,
@@ -237,19 +239,37 @@ impl<'a> RodRhs<'a> {
         active: &[usize],
         dy: &mut [T],
     ) -> Result<()> {
+        let fr = self.frame(y);
+        for d in dy[BASE_STATES..].iter_mut() {
+            *d = T::cst(0.0);
+        }
+        let (vd, ud): (V3<T>, V3<T>) = if active.is_empty() {
+            (
+                v3(|k| fr.e[k] * self.kse_inv[k]),
+                v3(|k| fr.f[k] * self.kbt_inv[k]),
+            )
+        } else {
+            let (m, e, f) = self.assemble(s, &fr, tau, active, |i, x| dy[BASE_STATES + i] = x)?;
+            T::solve_eq25(&m, &e, &f).ok_or_else(|| singular(s))?
+        };
+        self.kinematics(s, y, &fr, &vd, &ud, dy)
+    }
+
+    /// The actuator-free part of (25) at the state `y`: `R`, the strains and
+    /// `[e; f]` without the actuators' terms (30)-(31).
+    #[inline(always)]
+    pub(crate) fn frame<T: Real>(&self, y: &[T]) -> Frame<T> {
         let body = &self.robot.body;
         let (nu_star, omega_star): (V3<f64>, V3<f64>) =
             (body.nu_star.into(), body.omega_star.into());
         let (kse, kbt): (V3<f64>, V3<f64>) = (self.kse.into(), self.kbt.into());
-        let zero = T::cst(0.0);
         let rm = rot_t(&[y[3], y[4], y[5], y[6]]);
         let v = [y[7], y[8], y[9]];
         let u = [y[10], y[11], y[12]];
         let nse: V3<T> = v3(|k| (v[k] - nu_star[k]) * kse[k]);
         let nbt: V3<T> = v3(|k| (u[k] - omega_star[k]) * kbt[k]);
-        // eq (25) right-hand side [e; f] without the actuators' terms (30)-(31)
         let (ucn, rtfe) = (cross(&u, &nse), rt_mul(&rm, &self.fe.into()));
-        let mut e: V3<T> = v3(|k| -ucn[k] - rtfe[k]);
+        let e: V3<T> = v3(|k| -ucn[k] - rtfe[k]);
         let (ucb, vcn) = (cross(&u, &nbt), cross(&v, &nse));
         let mut f: V3<T> = v3(|k| -ucb[k] - vcn[k]);
         if self.has_le {
@@ -258,80 +278,122 @@ impl<'a> RodRhs<'a> {
                 f[k] -= rtle[k];
             }
         }
-        for d in dy[BASE_STATES..].iter_mut() {
-            *d = zero;
-        }
-        let (vd, ud): (V3<T>, V3<T>) = if active.is_empty() {
-            (
-                v3(|k| e[k] * self.kse_inv[k]),
-                v3(|k| f[k] * self.kbt_inv[k]),
-            )
-        } else {
-            // [M11, M12, M22], upper triangles of M11 and M22
-            let mut m = [[[zero; 3]; 3]; 3];
-            for k in 0..3 {
-                m[0][k][k] = T::cst(kse[k]);
-                m[2][k][k] = T::cst(kbt[k]);
-            }
-            for &i in active {
-                let (r, rp, rpp, lref) = self.routing_at(i, s);
-                let ucr = cross_c(&u, &r);
-                let pb: V3<T> = v3(|k| v[k] + ucr[k] + rp[k]); // eq (19), body frame
-                let nrm = dot(&pb, &pb).sqrt();
-                if !(nrm.re() > 1e-12) {
-                    return Err(Error::Integration {
-                        s,
-                        reason: format!("actuator {i} has zero length rate"),
-                    });
-                }
-                // A_i = -tau pb^2 / |pb|^3 = c (I - t t^T), c = tau / |pb| (eq 20:
-                // tau t_a' = A_i R^T p_a''). With r^ x = r x x, w = t x r and
-                // r^ r^ = r r^T - |r|^2 I:
-                //   A_i r^ = c (r^ - t w^T),  r^ A_i r^ = c (r r^T - |r|^2 I + w w^T).
-                let c = tau[i] / nrm;
-                let t: V3<T> = v3(|k| pb[k] / nrm);
-                let w = cross_c(&t, &r);
-                let ct: V3<T> = v3(|k| t[k] * c);
-                let pbrp: V3<T> = v3(|k| pb[k] + rp[k]);
-                let upr = cross(&u, &pbrp);
-                // g_i = omega^(nu + omega^ r + 2 r') + r''
-                let g: V3<T> = v3(|k| upr[k] + rpp[k]);
-                let tg = dot(&t, &g);
-                let ag: V3<T> = v3(|k| g[k] * c - ct[k] * tg); // A_i g_i
-                let rag = c_cross(&r, &ag);
-                let cr: V3<T> = v3(|k| c * r[k]);
-                let cr2 = c * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-                let cw: V3<T> = v3(|k| w[k] * c);
-                for p in 0..3 {
-                    for q in p..3 {
-                        m[0][p][q] -= ct[p] * t[q]; // (26): M11 += c I - c t t^T
-                        m[2][p][q] -= cr[p] * r[q] + cw[p] * w[q]; // (29): M22 += c |r|^2 I - c r r^T - c w w^T
-                    }
-                    m[0][p][p] += c;
-                    m[2][p][p] += cr2;
-                    for q in 0..3 {
-                        m[1][p][q] += ct[p] * w[q]; // (27): M12 += -c r^ + c t w^T; (28) is its transpose
-                    }
-                    e[p] -= ag[p]; // (30)
-                    f[p] -= rag[p]; // (31)
-                }
-                m[1][0][1] += cr[2];
-                m[1][0][2] -= cr[1];
-                m[1][1][0] -= cr[2];
-                m[1][1][2] += cr[0];
-                m[1][2][0] += cr[1];
-                m[1][2][1] -= cr[0];
-                dy[BASE_STATES + i] = nrm - lref; // (24)
-            }
-            for (p, q) in [(1, 0), (2, 0), (2, 1)] {
-                m[0][p][q] = m[0][q][p];
-                m[2][p][q] = m[2][q][p];
-            }
-            T::solve_eq25(&m, &e, &f).ok_or_else(|| Error::Integration {
+        Frame { rm, v, u, e, f }
+    }
+
+    /// Actuator `i`'s string at arc length `s` with strains `v`, `u` and
+    /// tension `tau` (eqs 19-20): an error if its length rate vanishes.
+    #[inline(always)]
+    pub(crate) fn string_at<T: Real>(
+        &self,
+        s: f64,
+        i: usize,
+        v: &V3<T>,
+        u: &V3<T>,
+        tau: T,
+    ) -> Result<StringAt<T>> {
+        let (r, rp, rpp, lref) = self.routing_at(i, s);
+        let ucr = cross_c(u, &r);
+        let pb: V3<T> = v3(|k| v[k] + ucr[k] + rp[k]); // eq (19), body frame
+        let nrm = dot(&pb, &pb).sqrt();
+        if !(nrm.re() > 1e-12) {
+            return Err(Error::Integration {
                 s,
-                reason: "singular stiffness system (25): actuator compression exceeds the body's stiffness".into(),
-            })?
-        };
+                reason: format!("actuator {i} has zero length rate"),
+            });
+        }
+        let pbrp: V3<T> = v3(|k| pb[k] + rp[k]);
+        let upr = cross(u, &pbrp);
+        Ok(StringAt {
+            r,
+            c: tau / nrm,
+            t: v3(|k| pb[k] / nrm),
+            g: v3(|k| upr[k] + rpp[k]), // g_i = omega^(nu + omega^ r + 2 r') + r''
+            rate: nrm - lref,           // (24)
+        })
+    }
+
+    /// The blocks `[M11, M12, M22]` of (25) (symmetric ones stored whole)
+    /// and its right-hand side `[e; f]` for the actuators in `active`, from
+    /// the actuator-free `frame`; `rate(i, delta_i')` gets each elongation rate (24).
+    #[inline(always)]
+    pub(crate) fn assemble<T: Real>(
+        &self,
+        s: f64,
+        fr: &Frame<T>,
+        tau: &[T],
+        active: &[usize],
+        mut rate: impl FnMut(usize, T),
+    ) -> Result<(Blocks<T>, V3<T>, V3<T>)> {
+        let zero = T::cst(0.0);
+        let (kse, kbt): (V3<f64>, V3<f64>) = (self.kse.into(), self.kbt.into());
+        let (mut e, mut f) = (fr.e, fr.f);
+        let mut m = [[[zero; 3]; 3]; 3];
+        for k in 0..3 {
+            m[0][k][k] = T::cst(kse[k]);
+            m[2][k][k] = T::cst(kbt[k]);
+        }
+        for &i in active {
+            let StringAt {
+                r,
+                c,
+                t,
+                g,
+                rate: d,
+            } = self.string_at(s, i, &fr.v, &fr.u, tau[i])?;
+            // A_i = -tau pb^2 / |pb|^3 = c (I - t t^T), c = tau / |pb| (eq 20:
+            // tau t_a' = A_i R^T p_a''). With r^ x = r x x, w = t x r and
+            // r^ r^ = r r^T - |r|^2 I:
+            //   A_i r^ = c (r^ - t w^T),  r^ A_i r^ = c (r r^T - |r|^2 I + w w^T).
+            let w = cross_c(&t, &r);
+            let ct: V3<T> = v3(|k| t[k] * c);
+            let tg = dot(&t, &g);
+            let ag: V3<T> = v3(|k| g[k] * c - ct[k] * tg); // A_i g_i
+            let rag = c_cross(&r, &ag);
+            let cr: V3<T> = v3(|k| c * r[k]);
+            let cr2 = c * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+            let cw: V3<T> = v3(|k| w[k] * c);
+            for p in 0..3 {
+                for q in p..3 {
+                    m[0][p][q] -= ct[p] * t[q]; // (26): M11 += c I - c t t^T
+                    m[2][p][q] -= cr[p] * r[q] + cw[p] * w[q]; // (29): M22 += c |r|^2 I - c r r^T - c w w^T
+                }
+                m[0][p][p] += c;
+                m[2][p][p] += cr2;
+                for q in 0..3 {
+                    m[1][p][q] += ct[p] * w[q]; // (27): M12 += -c r^ + c t w^T; (28) is its transpose
+                }
+                e[p] -= ag[p]; // (30)
+                f[p] -= rag[p]; // (31)
+            }
+            m[1][0][1] += cr[2];
+            m[1][0][2] -= cr[1];
+            m[1][1][0] -= cr[2];
+            m[1][1][2] += cr[0];
+            m[1][2][0] += cr[1];
+            m[1][2][1] -= cr[0];
+            rate(i, d);
+        }
+        for (p, q) in [(1, 0), (2, 0), (2, 1)] {
+            m[0][p][q] = m[0][q][p];
+            m[2][p][q] = m[2][q][p];
+        }
+        Ok((m, e, f))
+    }
+
+    /// The kinematics (22)-(23) into `dy` and the strain rates `vd`, `ud`
+    /// (the solution of (25)); an error if any rate is not finite.
+    #[inline(always)]
+    pub(crate) fn kinematics<T: Real>(
+        &self,
+        s: f64,
+        y: &[T],
+        fr: &Frame<T>,
+        vd: &V3<T>,
+        ud: &V3<T>,
+        dy: &mut [T],
+    ) -> Result<()> {
+        let (rm, v, u) = (&fr.rm, &fr.v, &fr.u);
         for k in 0..3 {
             dy[k] = rm[k][0] * v[0] + rm[k][1] * v[1] + rm[k][2] * v[2]; // (22)
         }
@@ -341,8 +403,8 @@ impl<'a> RodRhs<'a> {
         dy[4] = (qw * u[0] + qy * u[2] - qz * u[1]) * 0.5;
         dy[5] = (qw * u[1] + qz * u[0] - qx * u[2]) * 0.5;
         dy[6] = (qw * u[2] + qx * u[1] - qy * u[0]) * 0.5;
-        dy[7..10].copy_from_slice(&vd);
-        dy[10..13].copy_from_slice(&ud);
+        dy[7..10].copy_from_slice(vd);
+        dy[10..13].copy_from_slice(ud);
         if !dy.iter().fold(0.0, |acc, x| acc + x.re() * 0.0).is_finite() {
             return Err(Error::Integration {
                 s,
@@ -351,6 +413,42 @@ impl<'a> RodRhs<'a> {
         }
         Ok(())
     }
+}
+
+/// The error of a singular system (25).
+pub(crate) fn singular(s: f64) -> Error {
+    Error::Integration {
+        s,
+        reason: "singular stiffness system (25): actuator compression exceeds the body's stiffness"
+            .into(),
+    }
+}
+
+/// The actuator-free part of (25) at one state ([`RodRhs::frame`]).
+#[derive(Clone, Copy)]
+pub(crate) struct Frame<T> {
+    /// `R` (body to world).
+    pub(crate) rm: [[T; 3]; 3],
+    /// Strains `nu`, `omega`.
+    pub(crate) v: V3<T>,
+    pub(crate) u: V3<T>,
+    /// `[e; f]` of (25) without the actuators' terms (30)-(31).
+    pub(crate) e: V3<T>,
+    pub(crate) f: V3<T>,
+}
+
+/// One string at one state ([`RodRhs::string_at`]).
+pub(crate) struct StringAt<T> {
+    /// Offset `r_i` \[m\], body frame.
+    pub(crate) r: V3<f64>,
+    /// `c = tau / |p_b|`, with `A_i = c (I - t t^T)`.
+    pub(crate) c: T,
+    /// Unit tangent `t = p_b / |p_b|` (body frame).
+    pub(crate) t: V3<T>,
+    /// `g_i = omega^(nu + omega^ r + 2 r') + r''`.
+    pub(crate) g: V3<T>,
+    /// Elongation rate `|p_b| - L_i` (24).
+    pub(crate) rate: T,
 }
 
 #[cfg(test)]

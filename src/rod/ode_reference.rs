@@ -154,83 +154,134 @@ mod tests {
         ((*k >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
     }
 
-    #[test]
-    fn fast_path_agrees_with_the_papers_notation_to_rounding() {
-        let designs = [
+    /// The five designs of these tests.
+    fn designs() -> [Robot; 5] {
+        [
             fig6_square(true),
             fig6_circle(true),
             table1_finger(),
             steel_tendon_robot(),
             helix_design(),
-        ];
-        let mut seed = 7u64;
-        for (n_design, robot) in designs.iter().enumerate() {
+        ]
+    }
+
+    /// A random state of `robot` at which (25) is regular: a unit
+    /// quaternion, strains near the reference, and tensions of either sign.
+    fn random_state(robot: &Robot, seed: &mut u64) -> (Vec<f64>, Vec<f64>, f64) {
+        let na = robot.actuators.len();
+        let len = robot.body.length;
+        let (kse, _) = robot.body.stiffness();
+        let tmax = 1e-3 * kse[(0, 0)].min(50.0);
+        let tau: Vec<f64> = (0..na).map(|_| tmax * rnd(seed)).collect();
+        let mut y = vec![0.0; robot.n_states()];
+        let axis = Vector3::new(rnd(seed), rnd(seed), rnd(seed));
+        let q = UnitQuaternion::from_scaled_axis(axis * 2.0);
+        y[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k]);
+        let nu = Vector3::new(0.05 * rnd(seed), 0.05 * rnd(seed), 1.0 + 0.1 * rnd(seed));
+        let om = Vector3::new(rnd(seed), rnd(seed), rnd(seed)) * (10.0 / len);
+        y[7..10].copy_from_slice(nu.as_slice());
+        y[10..13].copy_from_slice(om.as_slice());
+        (y, tau, len * (0.5 + 0.5 * rnd(seed)))
+    }
+
+    /// `check(design, trial, rhs, y, s, active, seed)` on 20 random states
+    /// of each design (every other actuator left out in one trial of four).
+    fn for_each_state(
+        mut seed: u64,
+        mut check: impl FnMut(usize, usize, &RodRhs<'_>, &[f64], f64, &[usize], &mut u64),
+    ) {
+        for (n_design, robot) in designs().iter().enumerate() {
             let na = robot.actuators.len();
-            let len = robot.body.length;
             for trial in 0..20 {
-                // tensions of either sign, small enough that (25) stays regular
-                let (kse, _) = robot.body.stiffness();
-                let tmax = 1e-3 * kse[(0, 0)].min(50.0);
-                let tau: Vec<f64> = (0..na).map(|_| tmax * rnd(&mut seed)).collect();
+                let (y, tau, s) = random_state(robot, &mut seed);
                 let rhs = RodRhs::new(robot, &tau);
-                let mut y = vec![0.0; robot.n_states()];
-                let axis = Vector3::new(rnd(&mut seed), rnd(&mut seed), rnd(&mut seed));
-                let q = UnitQuaternion::from_scaled_axis(axis * 2.0);
-                y[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k]);
-                let nu = Vector3::new(
-                    0.05 * rnd(&mut seed),
-                    0.05 * rnd(&mut seed),
-                    1.0 + 0.1 * rnd(&mut seed),
-                );
-                let om =
-                    Vector3::new(rnd(&mut seed), rnd(&mut seed), rnd(&mut seed)) * (10.0 / len);
-                y[7..10].copy_from_slice(nu.as_slice());
-                y[10..13].copy_from_slice(om.as_slice());
-                let s = len * (0.5 + 0.5 * rnd(&mut seed));
                 let active: Vec<usize> =
                     (0..na).filter(|&i| trial % 4 != 3 || i % 2 == 0).collect();
-                let mut fast = vec![0.0; y.len()];
-                rhs.deriv_generic(s, &y, &tau, &active, &mut fast).unwrap();
-                let reference = deriv_reference(&rhs, s, &y, &tau, &active);
-                // (22)-(24) involve no solve: a few roundings of O(1) terms
-                for k in (0..7).chain(13..y.len()) {
-                    let scale = 1.0 + reference[k].abs();
-                    assert!(
-                        (fast[k] - reference[k]).abs() <= 1e-14 * scale,
-                        "design {n_design} trial {trial} y'[{k}]: {} vs {}",
-                        fast[k],
-                        reference[k]
-                    );
-                }
-                // (25): the strain rates, compared in the body-frame blocks by
-                // the backward error of the fast solution in the reference
-                // system (condition-independent: a steel rod's (25) has
-                // cond ~ EA L^2 / EI ~ 1e6): |M x - b| <= 1e-13 (|M| |x| + |b|)
-                let (m, b, _) = eq25_reference(&rhs, s, &y, &tau, &active);
-                let x = Vector6::from_column_slice(&fast[7..13]);
-                let scaled = |v: Vector6<f64>| {
-                    let r = rot(&Quaternion::new(y[3], y[4], y[5], y[6])).transpose();
-                    let (top, bot) = (r * v.fixed_rows::<3>(0), r * v.fixed_rows::<3>(3));
-                    Vector6::new(top.x, top.y, top.z, bot.x, bot.y, bot.z)
-                };
-                let res = scaled(m * x - b);
-                let bound = 1e-13 * (m.abs() * x.abs() + b.abs());
-                for k in 0..6 {
-                    assert!(
-                        res[k].abs() <= bound.max(),
-                        "design {n_design} trial {trial} (25) row {k}: residual {} > {}",
-                        res[k],
-                        bound.max()
-                    );
-                }
-                // and directly, where (25) is well conditioned enough
-                let xr = Vector6::from_column_slice(&reference[7..13]);
-                let rel = (x - xr).norm() / xr.norm().max(1e-300);
-                assert!(
-                    rel <= 1e-6,
-                    "design {n_design} trial {trial}: rel diff {rel}"
-                );
+                check(n_design, trial, &rhs, &y, s, &active, &mut seed);
             }
         }
+    }
+
+    #[test]
+    fn linearised_tangents_agree_with_dual_arithmetic_to_rounding() {
+        use crate::rod::dual::Dual;
+        for_each_state(11, |n_design, trial, rhs, y, s, active, seed| {
+            // 8 random directions on every state and tension
+            let mut dir = || -> [f64; 8] { std::array::from_fn(|_| rnd(seed)) };
+            let yd: Vec<Dual<8>> = y.iter().map(|&x| Dual::new(x, dir())).collect();
+            let td: Vec<Dual<8>> = rhs.tensions.iter().map(|&x| Dual::new(x, dir())).collect();
+            let zero = Dual::new(0.0, [0.0; 8]);
+            let (mut lin, mut dual) = (vec![zero; y.len()], vec![zero; y.len()]);
+            rhs.deriv_tangent(s, &yd, &td, active, &mut lin).unwrap();
+            rhs.deriv_generic(s, &yd, &td, active, &mut dual).unwrap();
+            let mut plain = vec![0.0; y.len()];
+            rhs.deriv(s, y, active, &mut plain).unwrap();
+            for k in 0..y.len() {
+                // the values are the f64 right-hand side's, bit for bit
+                assert_eq!(lin[k].re, plain[k], "design {n_design} y'[{k}]");
+                // the tangents: the same derivative by two formulas; (25)'s
+                // solve amplifies their rounding by its condition (~1e6 for
+                // the steel rod), so compare against the largest lane of the
+                // row: 1e-8 is a few hundred eps times that condition
+                let big = dual[k].eps.iter().fold(1e-300f64, |m, x| m.max(x.abs()));
+                for d in 0..8 {
+                    let err = (lin[k].eps[d] - dual[k].eps[d]).abs() / big;
+                    assert!(
+                        err <= 1e-8,
+                        "design {n_design} trial {trial} y'[{k}] lane {d}: {} vs {} ({err:e})",
+                        lin[k].eps[d],
+                        dual[k].eps[d]
+                    );
+                }
+            }
+        });
+    }
+
+    #[test]
+    fn fast_path_agrees_with_the_papers_notation_to_rounding() {
+        for_each_state(7, |n_design, trial, rhs, y, s, active, _| {
+            let tau = rhs.tensions;
+            let mut fast = vec![0.0; y.len()];
+            rhs.deriv_generic(s, y, tau, active, &mut fast).unwrap();
+            let reference = deriv_reference(rhs, s, y, tau, active);
+            // (22)-(24) involve no solve: a few roundings of O(1) terms
+            for k in (0..7).chain(13..y.len()) {
+                let scale = 1.0 + reference[k].abs();
+                assert!(
+                    (fast[k] - reference[k]).abs() <= 1e-14 * scale,
+                    "design {n_design} trial {trial} y'[{k}]: {} vs {}",
+                    fast[k],
+                    reference[k]
+                );
+            }
+            // (25): the strain rates, compared in the body-frame blocks by
+            // the backward error of the fast solution in the reference
+            // system (condition-independent: a steel rod's (25) has
+            // cond ~ EA L^2 / EI ~ 1e6): |M x - b| <= 1e-13 (|M| |x| + |b|)
+            let (m, b, _) = eq25_reference(rhs, s, y, tau, active);
+            let x = Vector6::from_column_slice(&fast[7..13]);
+            let scaled = |v: Vector6<f64>| {
+                let r = rot(&Quaternion::new(y[3], y[4], y[5], y[6])).transpose();
+                let (top, bot) = (r * v.fixed_rows::<3>(0), r * v.fixed_rows::<3>(3));
+                Vector6::new(top.x, top.y, top.z, bot.x, bot.y, bot.z)
+            };
+            let res = scaled(m * x - b);
+            let bound = 1e-13 * (m.abs() * x.abs() + b.abs());
+            for k in 0..6 {
+                assert!(
+                    res[k].abs() <= bound.max(),
+                    "design {n_design} trial {trial} (25) row {k}: residual {} > {}",
+                    res[k],
+                    bound.max()
+                );
+            }
+            // and directly, where (25) is well conditioned enough
+            let xr = Vector6::from_column_slice(&reference[7..13]);
+            let rel = (x - xr).norm() / xr.norm().max(1e-300);
+            assert!(
+                rel <= 1e-6,
+                "design {n_design} trial {trial}: rel diff {rel}"
+            );
+        });
     }
 }

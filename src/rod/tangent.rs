@@ -14,6 +14,8 @@
 //! `f64` fast path in `ode.rs`; `f64` instances of both agree to rounding
 //! (tested).
 
+use std::cell::Cell;
+
 use nalgebra::{DMatrix, Vector3};
 
 use super::dual::{c_cross, cross_c, dot, rot_t, rt_mul, Dual, Real, V3};
@@ -24,17 +26,21 @@ use super::{IvpResult, IvpSpec, RodState, BASE_STATES};
 use crate::error::{Error, Result};
 
 /// A tangent IVP: the IVP (its real part) and its derivatives along the seeds.
+///
+/// Each derivative field is `d / d seed` of the [`IvpResult`] field of the
+/// same name (its meaning and unit there, per unit of seed), one column per
+/// seed direction (`k` columns; the tip state as a vector).
 #[derive(Debug, Clone)]
 pub struct TangentIvp {
     /// The IVP itself (nodes recorded if asked for by [`integrate_tangent`]).
     pub ivp: IvpResult,
-    /// `d y(L) / d seed`, `n_states x k`.
+    /// `n_states x k`.
     pub tip: DMatrix<f64>,
-    /// `d delta_i(s_end) / d seed` (distal elongations), `n_actuators x k`.
+    /// `n_actuators x k`.
     pub elongation: DMatrix<f64>,
-    /// `d r_F / d seed` (tip force balance (32), body frame) \[N\], `3 x k`.
+    /// `3 x k`.
     pub tip_force_residual: DMatrix<f64>,
-    /// `d r_M / d seed` (tip moment balance (33)) \[N m\], `3 x k`.
+    /// `3 x k`.
     pub tip_moment_residual: DMatrix<f64>,
     /// Every grid node with its tangents, if recorded (anchor nodes after their jump).
     pub nodes: TangentNodes,
@@ -42,6 +48,24 @@ pub struct TangentIvp {
 
 /// Largest number of directions integrated in one pass (more are split into passes).
 const MAX_PASS: usize = 16;
+
+thread_local! {
+    /// Tangent passes on this thread run the reference right-hand side ([`with_dual_rhs`]).
+    static DUAL_RHS: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Run `f` with this thread's tangent passes on the reference right-hand
+/// side: [`RodRhs::deriv_generic`] in [`Dual`] arithmetic throughout,
+/// instead of the linearisation of [`RodRhs::deriv_tangent`]. The same
+/// derivatives to rounding, at several times the cost: for the tests that
+/// compare the two and for benchmarks, not for use.
+#[doc(hidden)]
+pub fn with_dual_rhs<R>(f: impl FnOnce() -> R) -> R {
+    let old = DUAL_RHS.with(|d| d.replace(true));
+    let out = f();
+    DUAL_RHS.with(|d| d.set(old));
+    out
+}
 
 /// What a tangent pass records at the grid nodes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -198,27 +222,27 @@ pass_with!(pass_avx2, "avx2");
 
 /// The RK4 stages of a tangent pass (`n` states each).
 struct Stages<const N: usize> {
-    k1: Vec<Dual<N>>,
-    k2: Vec<Dual<N>>,
-    k3: Vec<Dual<N>>,
-    k4: Vec<Dual<N>>,
+    k: [Vec<Dual<N>>; 4],
     yt: Vec<Dual<N>>,
+    /// The reference right-hand side ([`with_dual_rhs`]).
+    dual: bool,
 }
 
 impl<const N: usize> Stages<N> {
     fn new(n: usize) -> Self {
         let zero = vec![Dual::<N>::cst(0.0); n];
         Stages {
-            k1: zero.clone(),
-            k2: zero.clone(),
-            k3: zero.clone(),
-            k4: zero.clone(),
+            k: std::array::from_fn(|_| zero.clone()),
             yt: zero,
+            dual: DUAL_RHS.with(Cell::get),
         }
     }
 
-    /// One RK4 step of length `h` from `s` (eqs 22-31 in dual arithmetic),
-    /// then the quaternion renormalised, as in [`super::integrate`].
+    /// One RK4 step of length `h` from `s`, then the quaternion
+    /// renormalised, as in [`super::integrate`]; the right-hand side by
+    /// [`RodRhs::deriv_tangent`], or in dual arithmetic throughout
+    /// ([`RodRhs::deriv_generic`], the reference). The stages are a loop
+    /// so that the right-hand side is inlined once per compiled pass.
     #[inline(always)]
     fn step(
         &mut self,
@@ -231,20 +255,27 @@ impl<const N: usize> Stages<N> {
     ) -> Result<()> {
         let (h2, h6) = (0.5 * h, h / 6.0);
         let n = y.len();
-        let Stages { k1, k2, k3, k4, yt } = self;
-        fz.deriv_generic(s, y, tau, active, k1)?;
-        for j in 0..n {
-            yt[j] = y[j] + k1[j] * h2;
+        let Stages { k, yt, dual } = self;
+        for st in 0..4 {
+            let (hs, ss) = [(0.0, s), (h2, s + h2), (h2, s + h2), (h, s + h)][st];
+            let (done, todo) = k.split_at_mut(st);
+            if st == 0 {
+                yt.copy_from_slice(y);
+            } else {
+                let kp = &done[st - 1];
+                for j in 0..n {
+                    yt[j] = y[j] + kp[j] * hs;
+                }
+            }
+            // a branch, not a closure: a closure is compiled without the
+            // pass's target features
+            if *dual {
+                fz.deriv_generic(ss, yt, tau, active, &mut todo[0])?;
+            } else {
+                fz.deriv_tangent(ss, yt, tau, active, &mut todo[0])?;
+            }
         }
-        fz.deriv_generic(s + h2, yt, tau, active, k2)?;
-        for j in 0..n {
-            yt[j] = y[j] + k2[j] * h2;
-        }
-        fz.deriv_generic(s + h2, yt, tau, active, k3)?;
-        for j in 0..n {
-            yt[j] = y[j] + k3[j] * h;
-        }
-        fz.deriv_generic(s + h, yt, tau, active, k4)?;
+        let [k1, k2, k3, k4] = &*k;
         for j in 0..n {
             y[j] += (k1[j] + (k2[j] + k3[j]) * 2.0 + k4[j]) * h6;
         }
@@ -422,3 +453,7 @@ fn finish<const N: usize>(
         nodes: TangentNodes::default(),
     }
 }
+
+#[cfg(test)]
+#[path = "tangent_tests.rs"]
+mod tests;
