@@ -182,24 +182,19 @@ pub(crate) fn assemble_from(
     Ok(sol)
 }
 
-/// Tip pose of a forward solution, without the sampled profile (for batches).
+/// Tip pose of a forward solution, without the sampled profile (for
+/// batches): `position` and `rotation` are [`Solution::tip_position`] and
+/// [`Solution::tip_rotation`]; every other field means what the
+/// [`Solution`] field of the same name means.
 #[derive(Debug, Clone)]
 pub struct TipSolution {
-    /// Tip position \[m\].
     pub position: Vector3<f64>,
-    /// Tip rotation (body to world).
     pub rotation: Matrix3<f64>,
-    /// Scaled shooting unknowns.
     pub unknowns: Vec<f64>,
-    /// Actuator tensions \[N\].
     pub tensions: Vec<f64>,
-    /// Inputs the solution is for.
     pub inputs: Vec<f64>,
-    /// Newton iterations.
     pub iterations: usize,
-    /// IVPs integrated (coarse-grid ones included).
     pub evaluations: usize,
-    /// Final Newton Jacobian, for warm starts.
     pub newton_jacobian: Option<DMatrix<f64>>,
 }
 
