@@ -90,7 +90,7 @@ impl SolveOptions {
             return Err(Error::param("tol", self.tol, "finite and > 0"));
         }
         if let Some(t) = self.equilibrium_tol {
-            if !(t >= MIN_EQUILIBRIUM_TOL && t < 1.0) {
+            if !(MIN_EQUILIBRIUM_TOL..1.0).contains(&t) {
                 return Err(Error::param(
                     "equilibrium_tol",
                     t,
