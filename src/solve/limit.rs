@@ -11,7 +11,7 @@
 //! monotone law alone the limited step is Newton's step in the tension.
 //! Along a softer law (a tendon going slack, a TCA's coils parting) the
 //! step is instead recomputed with the law linearised on the piece it
-//! lands on ([`piece_step`]), and then limited as above.
+//! lands on (`piece_step`), and then limited as above.
 
 use nalgebra::{DMatrix, DVector};
 
