@@ -134,8 +134,11 @@ fn solve_one(
             let eq = equilibrium(&d.robot, &sol);
             if diagnose {
                 eprintln!(
-                    "#{i} steps {} residual {:.2e}: {eq:?}",
-                    opts.steps, sol.residual
+                    "#{i} steps {} residual {:.2e}: {eq:?}\n  {}\n  tensions {:?}",
+                    opts.steps,
+                    sol.residual,
+                    d.summary(),
+                    sol.tensions
                 );
             }
             // one plain IVP at the solution, 5 times

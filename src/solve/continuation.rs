@@ -9,7 +9,10 @@
 //! inputs to the new ones at full load. Steps are adaptive: doubled after a
 //! step that converged in at most [`EASY_ITERATIONS`] Newton iterations,
 //! quartered after a failure, down to [`MIN_STEP`]. Each step starts from
-//! the previous solution's strains and tensions. The path (the `lambda` of
+//! the previous solution's strains and tensions. A step's Newton run is a
+//! corrector: it converges only to [`INTERMEDIATE_TOL`] and gives up after
+//! [`HOMOTOPY_STALL_WINDOW`] damped steps that do not halve the residual
+//! (then the step is quartered); see those constants for the measurements. The path (the `lambda` of
 //! each converged step) is recorded in `Solution::continuation_steps`.
 //! (Pseudo-arclength continuation through folds is the stability module's.)
 
@@ -23,10 +26,31 @@ use crate::rod::Robot;
 
 /// Newton iterations under which the next homotopy step doubles.
 pub const EASY_ITERATIONS: usize = 4;
-/// Tolerance of the intermediate homotopy steps (scaled residual).
-pub const INTERMEDIATE_TOL: f64 = 1e-8;
+/// Tolerance of the intermediate homotopy steps (scaled residual). A
+/// step's solution only starts the next step's predictor, which lands
+/// within the next corrector's reach as long as this error is small against
+/// the predictor's own (measured: 0.44 at `dl = 1/64` on benchmark design
+/// #126). On the 1,000 benchmark designs (with
+/// [`HOMOTOPY_STALL_WINDOW`], and, for the last three, the direct run's
+/// stall window; `MIN_STEP` `1e-6`): `1e-8` max 1,090 IVP-equivalents,
+/// `1e-4` 654, with the same 999 designs converged; `1e-3` lost 3 designs,
+/// `1e-6` lost 2.
+pub const INTERMEDIATE_TOL: f64 = 1e-4;
 /// Smallest homotopy step.
 pub const MIN_STEP: f64 = 1e-4;
+/// Stall window of every homotopy step's Newton run (see
+/// [`crate::solve::newton::NewtonOptions::stall_window`]): a corrector
+/// whose damped steps creep (no halving of `max |f|` over 2 of them) is
+/// stopped, and the homotopy step quartered. Backtracking in a valley of
+/// the merit costs 10-20 IVPs an iteration (halvings down to
+/// `t = 1e-5`), and a creeping step ran to its iteration limit: on design
+/// #126, 3 failed steps cost 580 of its 1,807 IVPs. Measured on the 1,000
+/// designs with [`INTERMEDIATE_TOL`] `1e-4` (direct run's window 3):
+/// window 2 max 723 IVP-equivalents, 3 max 988 (with `MIN_STEP` `1e-6`),
+/// off (tol `1e-8`, direct run's window off) 1,966, each with the same 999
+/// converged. (At stop 21, windows of 4 and 8 lost #126, with tol `1e-8`
+/// and no stall window in the direct run.)
+pub const HOMOTOPY_STALL_WINDOW: usize = 2;
 
 /// The robot, inputs and loads at homotopy parameter `lam` in `[0, 1]`.
 fn at(
@@ -123,8 +147,7 @@ pub(crate) fn continuation(
     let len = robot.body.length;
     let cold = warm.is_none();
     let (from, mut x, mut tau, mut jac) = start(robot, warm);
-    // homotopy steps are not stopped for stalling (see `STALL_WINDOW`)
-    work.stall_window = 0;
+    work.stall_window = HOMOTOPY_STALL_WINDOW;
     let mut lam = 0.0;
     let mut step: f64 = if cold { 0.25 } else { 0.5 };
     let mut path = Vec::new();
@@ -192,7 +215,7 @@ pub(crate) fn continuation(
 }
 
 /// Options of one homotopy step: intermediate steps are predictors,
-/// converged to 1e-8 (or `tol` if looser) within half of `max_iter`; the
+/// converged to [`INTERMEDIATE_TOL`] (or `tol` if looser) within half of `max_iter`; the
 /// last one to `tol` within `max_iter`. A Newton run from a first-order
 /// predictor that needs more than half the iteration limit is creeping
 /// (the path bends within the step); quartering the step is cheaper than

@@ -219,13 +219,14 @@ impl Work {
 }
 
 /// Stall window of a forward solve's direct Newton run (see
-/// [`NewtonOptions::stall_window`]; 0: off). Off by measurement: on the
-/// first 300 benchmark designs, window 4 sent 99 solves to continuation
-/// (42 without) and converged 293 (295 without), with a larger worst case
-/// (4,175 against 2,453 IVP-equivalents). The continuation's own steps run
-/// without it in any case (stopping them early stalled the path at
-/// `lambda = 0` on 67 of the 1,000 designs).
-pub const STALL_WINDOW: usize = 0;
+/// [`NewtonOptions::stall_window`]; 0: off): 3, by measurement on the 1,000
+/// benchmark designs with the continuation's cheap correctors
+/// ([`crate::solve::continuation::HOMOTOPY_STALL_WINDOW`]): window 3 max
+/// 654 IVP-equivalents (171 solves via continuation), 4 max 737, 6 max 841,
+/// off 1,090 (99 via continuation; design #714 crept 50 iterations at
+/// `t = 8e-6`, 951 IVPs), each with the same 999 converged (homotopy
+/// `MIN_STEP` `1e-6` in these runs; at `1e-4` window 3 gave max 723).
+pub const STALL_WINDOW: usize = 3;
 
 /// Newton shooting from `x0`; returns the Newton result and the IVP at its
 /// solution (if it was the last one integrated). Adds the work to `work`
