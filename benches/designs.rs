@@ -6,7 +6,11 @@
 //! and each equilibrium residual above the target; diagnostics:
 //! `TCAROD_ONLY=3,17` solves only these designs, `TCAROD_STEPS` sets the RK4 steps,
 //! `TCAROD_LIST=1` lists every converged design (index, IVP-equivalents,
-//! IVPs, iterations, homotopy steps).
+//! IVPs, iterations, homotopy steps). `TCAROD_EQUILIBRIUM_TOL=1e-8` solves
+//! every design with that `SolveOptions::equilibrium_tol` (the grid refined
+//! until the global equilibrium check holds; the accuracy target),
+//! so that the statistics are those of the controlled solve (IVP-equivalents
+//! stay in units of one plain IVP on the `TCAROD_STEPS` grid).
 //!
 //! Each design is solved once from the reference (straight) guess with the
 //! default `SolveOptions` (100 RK4 steps, tol 1e-10, max_iter 50 per Newton
@@ -92,6 +96,12 @@ fn main() {
         .and_then(|v| v.parse().ok())
     {
         opts.steps = steps;
+    }
+    if let Some(tol) = std::env::var("TCAROD_EQUILIBRIUM_TOL")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        opts.equilibrium_tol = Some(tol);
     }
     // TCAROD_ONLY=i,j,...: just these designs (diagnostics)
     let only: Option<Vec<usize>> = std::env::var("TCAROD_ONLY")

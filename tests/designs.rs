@@ -341,9 +341,36 @@ const COARSE_GRID_DESIGNS: [usize; 1] = [112];
 /// (`solve::limit::piece_step`).
 const SOFTER_PIECE_DESIGNS: [usize; 1] = [783];
 
+/// Benchmark designs, not past self-weight buckling, whose direct Newton
+/// run creeps along a valley of the merit that holds no root: #714 took 50
+/// damped iterations at `t ~ 8e-6` (951 IVPs, the residual stuck at
+/// 9.0e-2) before continuation solved it in 65 more, and #257 likewise;
+/// 1,016 and 915 IVPs in all on main (ad3a1be). The direct run now stops
+/// after 3 damped steps that do not halve the residual
+/// (`shooting::STALL_WINDOW`): 85 and 55 IVPs.
+const VALLEY_DESIGNS: [usize; 2] = [714, 257];
+
+/// IVP bound of a [`VALLEY_DESIGNS`] solve: about twice the 85 measured
+/// (room for a changed path), and a ninth of the 915-1,016 of a direct run
+/// that creeps to its iteration limit (which it fails).
+const VALLEY_MAX_IVPS: usize = 200;
+
+/// Benchmark design #126 (an 84 mm, 16.6 kPa rod, column ratio 4.7, two
+/// TCAs and two tendons, gravity and a tip force) converges only through
+/// continuation. Its homotopy steps crept: three failed steps ran 25
+/// damped iterations each (580 IVPs) and every step was converged to 1e-8;
+/// 1,807 IVPs in all on main (ad3a1be). A homotopy step's corrector now
+/// stops after 2 creeping damped steps and converges to 1e-4
+/// (`solve::continuation::HOMOTOPY_STALL_WINDOW`, `INTERMEDIATE_TOL`): 687.
+const CREEPING_HOMOTOPY_DESIGN: usize = 126;
+
+/// IVP bound of the [`CREEPING_HOMOTOPY_DESIGN`] solve: 1.5 times the 687
+/// measured, and well below the 1,807 of the creeping path.
+const CREEPING_HOMOTOPY_MAX_IVPS: usize = 1_000;
+
 /// Design `i` of the benchmark is not past buckling, converges cold to the
-/// solver's own test and balances its loads.
-fn converges_cold(i: usize) {
+/// solver's own test and balances its loads; returns its IVPs.
+fn converges_cold(i: usize) -> usize {
     let opts = SolveOptions::default();
     let d = random_design(DEFAULT_SEED, i);
     assert!(!d.past_buckling(), "{}", d.summary());
@@ -369,21 +396,42 @@ fn converges_cold(i: usize) {
             "#{i}: equilibrium {eq:e}, {eqf:e} on 4x steps"
         );
     }
+    sol.evaluations
 }
 
 #[test]
 fn designs_crossing_a_coil_contact_converge_cold() {
-    COIL_CONTACT_DESIGNS.into_iter().for_each(converges_cold);
+    for i in COIL_CONTACT_DESIGNS {
+        converges_cold(i);
+    }
 }
 
 #[test]
 fn designs_whose_coarse_jacobian_overflows_converge_cold() {
-    COARSE_GRID_DESIGNS.into_iter().for_each(converges_cold);
+    for i in COARSE_GRID_DESIGNS {
+        converges_cold(i);
+    }
 }
 
 #[test]
 fn designs_stepping_onto_a_softer_piece_converge_cold() {
-    SOFTER_PIECE_DESIGNS.into_iter().for_each(converges_cold);
+    for i in SOFTER_PIECE_DESIGNS {
+        converges_cold(i);
+    }
+}
+
+#[test]
+fn a_direct_run_creeping_in_a_valley_hands_over_to_continuation_early() {
+    for i in VALLEY_DESIGNS {
+        let ivps = converges_cold(i);
+        assert!(ivps <= VALLEY_MAX_IVPS, "#{i}: {ivps} IVPs");
+    }
+}
+
+#[test]
+fn creeping_homotopy_steps_are_cut_early() {
+    let ivps = converges_cold(CREEPING_HOMOTOPY_DESIGN);
+    assert!(ivps <= CREEPING_HOMOTOPY_MAX_IVPS, "{ivps} IVPs");
 }
 
 #[test]
