@@ -91,8 +91,11 @@
 //! the solver's tangents: those are taken on a tenth of the grid and at the
 //! last Newton iterate, not at the solution on the full grid. Under a
 //! policy ([`solve_checked`]) the solve's own IVPs record no nodes: the
-//! verdict's pass is the IVP at the solution too (its real part, recorded),
-//! and the [`Solution`] is assembled from it.
+//! verdict's pass is the IVP at the solution too (its real part, recorded,
+//! is the plain IVP's arithmetic bit for bit), and the [`Solution`] is
+//! assembled from it, identical to the one a solve without a verdict hands
+//! back (with the accuracy control on, the solve records and refines
+//! first, and the verdict is taken on the refined solution).
 //!
 //! # Policy
 //!
