@@ -4,9 +4,14 @@
 
 use nalgebra::Vector3;
 use tcarod::error::Error;
+use tcarod::experiments::{
+    fig6_square, soft_tendon_robot, soft_tendon_tension, steel_tendon_robot, table1_finger,
+    STEEL_TENDON_TENSIONS,
+};
+use tcarod::problems::{equilibrium, random_design, DEFAULT_SEED, EQUILIBRIUM_TOL};
 use tcarod::rod::{Body, Robot, Section};
-use tcarod::shooting::{solve_loaded, Loads, SolveOptions};
-use tcarod::stability::{solve_checked, Policy};
+use tcarod::shooting::{assemble, solve_loaded, Loads, Solution, SolveOptions};
+use tcarod::stability::{solve_checked, stability, Policy};
 
 /// A slender round column (L/r = 100) under a dead compressive tip load of
 /// `ratio` times the Euler load `pi^2 EI / (4 L^2)`; weightless, so the
@@ -71,6 +76,108 @@ fn report_carries_the_verdict_at_one_tangent_ivp() {
         assert_eq!(c.solution.evaluations, plain.evaluations + 1);
         assert!(c.continued.is_none());
     }
+}
+
+/// Every recorded field of two solutions is the same, bit for bit.
+fn assert_same_profile(a: &Solution, b: &Solution, what: &str) {
+    assert_eq!(a.s, b.s, "{what}: s");
+    assert_eq!(a.positions, b.positions, "{what}: positions");
+    assert_eq!(a.rotations, b.rotations, "{what}: rotations");
+    assert_eq!(a.nu, b.nu, "{what}: nu");
+    assert_eq!(a.omega, b.omega, "{what}: omega");
+    assert_eq!(a.internal_force, b.internal_force, "{what}: force");
+    assert_eq!(a.internal_moment, b.internal_moment, "{what}: moment");
+    assert_eq!(
+        a.elongation_profile, b.elongation_profile,
+        "{what}: delta(s)"
+    );
+    assert_eq!(a.actuator_paths, b.actuator_paths, "{what}: paths");
+    assert_eq!(a.tensions, b.tensions, "{what}: tensions");
+    assert_eq!(a.elongations, b.elongations, "{what}: elongations");
+    assert_eq!(a.base_force, b.base_force, "{what}: base force");
+    assert_eq!(a.base_moment, b.base_moment, "{what}: base moment");
+    assert_eq!(a.residual, b.residual, "{what}: residual");
+}
+
+/// With a verdict, Newton's IVPs record no nodes and the solution is
+/// assembled from the verdict's tangent integration at the solution. Its
+/// real part is the plain IVP's arithmetic, so the solution is the one the
+/// solve without a verdict hands back, bit for bit, for one tangent IVP
+/// more; and rebuilding it from its unknowns by a plain IVP (what a pickled
+/// solution does) gives it back bit for bit. Cold and warm, on TCAs (Fig. 6,
+/// Table I), tendons through spacer disks (steel) and a soft tendon rod.
+#[test]
+fn report_assembles_the_off_solution_bit_for_bit_from_the_verdicts_integration() {
+    let cases: [(Robot, Vec<f64>, Vec<f64>); 4] = [
+        (fig6_square(true), vec![100.0, 100.0], vec![98.0, 98.0]),
+        (table1_finger(), vec![90.0; 2], vec![88.0; 2]),
+        (
+            steel_tendon_robot(),
+            STEEL_TENDON_TENSIONS.to_vec(),
+            vec![14.0, 0.0, 0.0, 0.0],
+        ),
+        (
+            soft_tendon_robot(),
+            vec![soft_tendon_tension(1.0)],
+            vec![soft_tendon_tension(0.9)],
+        ),
+    ];
+    let opts = SolveOptions::default();
+    for (robot, q, q_warm) in &cases {
+        assert_eq!(q.len(), robot.actuators.len());
+        let loads = Loads::of(robot);
+        let warm = solve_loaded(robot, q_warm, &loads, &opts, None).unwrap();
+        for w in [None, Some(&warm)] {
+            let checked = |p| solve_checked(robot, q, &loads, &opts, w, p).unwrap();
+            let off = checked(Policy::Off).solution;
+            let on = checked(Policy::Report).solution;
+            let what = format!("inputs {q:?}, warm {}", w.is_some());
+            // Newton's path does not depend on recording: identical
+            // unknowns, counts and Jacobian
+            assert_eq!(on.unknowns, off.unknowns, "{what}");
+            assert_eq!(on.iterations, off.iterations, "{what}");
+            assert_eq!(on.newton_jacobian, off.newton_jacobian, "{what}");
+            assert_eq!(on.evaluations, off.evaluations + 1, "{what}");
+            assert_same_profile(&on, &off, &what);
+            let again = assemble(robot, q, &loads, &on.unknowns, on.steps, 0, 0).unwrap();
+            assert_same_profile(&again, &on, &format!("{what}, rebuilt"));
+        }
+    }
+}
+
+/// The accuracy control under a verdict: benchmark design #158 (a 25 mm
+/// body with a tight helix, equilibrium check at 2.5e-5 on 100 steps, see
+/// `tests/designs.rs`) is refined to a finer grid, and the solution handed
+/// back with the verdict is the one `Off` refines to, with the verdict of
+/// that refined solution (taken on its grid) for one tangent IVP more.
+#[test]
+fn report_with_equilibrium_tol_gives_the_verdict_of_the_refined_solution() {
+    let d = random_design(DEFAULT_SEED, 158);
+    let loads = Loads::of(&d.robot);
+    let o = SolveOptions {
+        tol: 1e-10,
+        equilibrium_tol: Some(EQUILIBRIUM_TOL),
+        ..Default::default()
+    };
+    let checked = |p| solve_checked(&d.robot, &d.inputs, &loads, &o, None, p).unwrap();
+    let off = checked(Policy::Off).solution;
+    let on = checked(Policy::Report);
+    assert!(
+        off.steps > o.steps,
+        "#158 needs refining: {} steps",
+        off.steps
+    );
+    assert!(equilibrium(&d.robot, &off).relative <= EQUILIBRIUM_TOL);
+    assert_eq!(on.solution.steps, off.steps);
+    assert_eq!(on.solution.unknowns, off.unknowns);
+    assert_eq!(on.solution.iterations, off.iterations);
+    assert_same_profile(&on.solution, &off, "#158 refined");
+    let st = on.stability.expect("Report carries a verdict");
+    let again = stability(&d.robot, &off, &[]).unwrap();
+    assert_eq!(st.s, again.s, "the verdict is taken on the refined grid");
+    assert_eq!((st.stable, st.margin), (again.stable, again.margin));
+    // the verdict, on the refined grid only: one tangent IVP
+    assert_eq!(on.solution.evaluations, off.evaluations + 1);
 }
 
 #[test]

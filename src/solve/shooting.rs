@@ -26,6 +26,7 @@ use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
 
 pub use super::guess::{initial_guess, linear_guess, reference_guess, warm_guess};
+use super::newton::NewtonResult;
 pub use super::newton::Status;
 pub use super::options::{SolveOptions, DEFAULT_MAX_EVALUATIONS};
 use super::presolve::{presolved_shooting, Warm};
@@ -33,7 +34,7 @@ pub use super::residual::{
     base_strains, residual_scales, tension_slope, tensions, Loads, Shot, ONSET_BAND,
 };
 pub use super::solution::{assemble, Solution, TipSolution};
-pub(crate) use super::system::{newton_shooting, solution_from, Work};
+pub(crate) use super::system::{newton_shooting, solution_from, FinalIvp, Work};
 pub use super::system::{Shooting, COARSE_JACOBIAN_MIN_STEPS, STALL_WINDOW};
 
 /// Solve the forward kinetostatics for actuator `inputs` (temperature \[C\]
@@ -90,6 +91,37 @@ pub fn solve_loaded(
     opts: &SolveOptions,
     warm: Option<&Solution>,
 ) -> Result<Solution> {
+    match solve_direct(robot, inputs, loads, opts, warm, true)? {
+        Solved::Newton(nr, last, mut work) => {
+            solution_from(robot, inputs, loads, opts, nr, last, &mut work)
+        }
+        Solved::Solution(s) => Ok(s),
+    }
+}
+
+/// What [`solve_direct`] found: a converged direct Newton run (its result,
+/// the IVP at its solution if that was the last one integrated, and the
+/// work so far), or a whole solution from the continuation fallback.
+pub(crate) enum Solved {
+    /// The direct Newton run converged; no solution is assembled yet.
+    Newton(NewtonResult, Option<FinalIvp>, Work),
+    /// The direct run failed and the continuation found this solution.
+    Solution(Solution),
+}
+
+/// [`solve_loaded`] up to the direct Newton run's result: the solution is
+/// not assembled, and with `record == false` Newton's IVPs record no nodes
+/// (for a caller that integrates at the solution once more, recorded, and
+/// assembles the solution from that: the stability verdict of
+/// [`crate::stability::solve_checked`]).
+pub(crate) fn solve_direct(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+    record: bool,
+) -> Result<Solved> {
     robot.validate()?;
     robot.check_inputs(inputs)?;
     opts.validate()?;
@@ -126,10 +158,11 @@ pub fn solve_loaded(
         inputs: &w.inputs,
         jacobian: w.newton_jacobian.as_ref(),
     });
-    match presolved_shooting(robot, inputs, loads, opts, &x0, start, true, &mut work) {
-        Ok((nr, last)) => solution_from(robot, inputs, loads, opts, nr, last, &mut work),
+    match presolved_shooting(robot, inputs, loads, opts, &x0, start, record, &mut work) {
+        Ok((nr, last)) => Ok(Solved::Newton(nr, last, work)),
         Err(e) if is_input_error(&e) || is_budget_error(&e) => Err(e),
         Err(first) => continuation(robot, inputs, loads, opts, warm, &mut work)
+            .map(Solved::Solution)
             .map_err(|e| combined_error(first, e, &work)),
     }
 }

@@ -89,7 +89,13 @@
 //! cost what 8 do, so the verdict's pass is the Jacobian's pass plus the
 //! recorded nodes (measured in `benches/stability.rs`). It does not reuse
 //! the solver's tangents: those are taken on a tenth of the grid and at the
-//! last Newton iterate, not at the solution on the full grid.
+//! last Newton iterate, not at the solution on the full grid. Under a
+//! policy ([`solve_checked`]) the solve's own IVPs record no nodes: the
+//! verdict's pass is the IVP at the solution too (its real part, recorded,
+//! is the plain IVP's arithmetic bit for bit), and the [`Solution`] is
+//! assembled from it, identical to the one a solve without a verdict hands
+//! back (with the accuracy control on, the solve records and refines
+//! first, and the verdict is taken on the refined solution).
 //!
 //! # Policy
 //!
@@ -100,7 +106,7 @@
 use nalgebra::Vector3;
 
 use crate::error::{Error, Result};
-use crate::rod::Robot;
+use crate::rod::{IvpResult, Robot};
 use crate::shooting::{Loads, Solution};
 
 mod landing;
@@ -233,8 +239,24 @@ pub fn stability_at(
     blocked: &[Vector3<f64>],
 ) -> Result<Stability> {
     let full = check(robot, eq, blocked)?;
-    let t = tangents::exact_tangents(robot, eq, full)?;
+    let (t, _, _) = tangents::exact_tangents(robot, eq, full, false)?;
     Ok(verdict::verdict(t, robot.body.length, blocked, full, 1))
+}
+
+/// [`stability_at`] of a free tip, with the IVP of the verdict's tangent
+/// integration (its real part, nodes recorded) and the tensions \[N\]: what
+/// assembles the [`Solution`] at these unknowns without another IVP.
+pub(crate) fn stability_profiled(
+    robot: &Robot,
+    eq: &Equilibrium<'_>,
+) -> Result<(Stability, IvpResult, Vec<f64>)> {
+    let full = check(robot, eq, &[])?;
+    let (t, ivp, tau) = tangents::exact_tangents(robot, eq, full, true)?;
+    Ok((
+        verdict::verdict(t, robot.body.length, &[], full, 1),
+        ivp,
+        tau,
+    ))
 }
 
 /// [`stability`] from forward-difference tangents (`7 + N` IVPs); for

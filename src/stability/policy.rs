@@ -14,10 +14,14 @@
 use std::str::FromStr;
 
 use super::landing::{land, Route};
-use super::{stability, Stability};
+use super::{stability, stability_profiled, Equilibrium, Stability};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
+use crate::solve::equilibrium::refine_to_equilibrium;
+use crate::solve::newton::NewtonResult;
+use crate::solve::shooting::{solution_from, solve_direct, Solved, Work};
+use crate::solve::solution::assemble_from;
 
 /// What a solve does with the stability verdict of the equilibrium found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -87,6 +91,12 @@ pub struct Checked {
 
 /// [`solve_loaded`] (with the accuracy control of
 /// [`SolveOptions::equilibrium_tol`]) under a stability [`Policy`] (free tip).
+///
+/// With a verdict, Newton's IVPs record no nodes: the verdict's tangent
+/// integration at the solution (whose real part is the plain IVP, bit for
+/// bit) gives the solution's profile, so the verdict costs that one tangent
+/// IVP and no plain one. With the accuracy control on, the solution is
+/// recorded and refined first, and the verdict taken on the refined one.
 pub fn solve_checked(
     robot: &Robot,
     inputs: &[f64],
@@ -95,17 +105,34 @@ pub fn solve_checked(
     warm: Option<&Solution>,
     policy: Policy,
 ) -> Result<Checked> {
-    let sol = solve_loaded(robot, inputs, loads, opts, warm)?;
-    let mut sol = crate::solve::equilibrium::refine_to_equilibrium(robot, inputs, opts, sol)?;
     if policy == Policy::Off {
+        let sol = solve_loaded(robot, inputs, loads, opts, warm)?;
         return Ok(Checked {
-            solution: sol,
+            solution: refine_to_equilibrium(robot, inputs, opts, sol)?,
             stability: None,
             continued: None,
         });
     }
-    let st = stability(robot, &sol, &[])?;
-    sol.evaluations += st.evaluations;
+    // without the accuracy control Newton's solution is final, and its
+    // profile comes from the verdict's pass: Newton records no nodes
+    let final_newton = opts.equilibrium_tol.is_none();
+    let (sol, st) = match solve_direct(robot, inputs, loads, opts, warm, !final_newton)? {
+        Solved::Newton(nr, _, work) if final_newton => {
+            profiled(robot, inputs, loads, opts, nr, work)?
+        }
+        solved => {
+            let sol = match solved {
+                Solved::Newton(nr, last, mut work) => {
+                    solution_from(robot, inputs, loads, opts, nr, last, &mut work)?
+                }
+                Solved::Solution(sol) => sol,
+            };
+            let mut sol = refine_to_equilibrium(robot, inputs, opts, sol)?;
+            let st = stability(robot, &sol, &[])?;
+            sol.evaluations += st.evaluations;
+            (sol, st)
+        }
+    };
     if st.stable || policy == Policy::Report {
         return Ok(Checked {
             solution: sol,
@@ -131,6 +158,34 @@ pub fn solve_checked(
             evaluations: l.evaluations,
         }),
     })
+}
+
+/// The solution of a converged Newton run `nr` (work `work`) and its
+/// verdict, both from the verdict's recorded tangent IVP at `nr.x` (the
+/// residual is Newton's, from its last IVP there).
+fn profiled(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    nr: NewtonResult,
+    work: Work,
+) -> Result<(Solution, Stability)> {
+    let eq = Equilibrium {
+        unknowns: &nr.x,
+        inputs,
+        loads: *loads,
+        steps: opts.steps,
+    };
+    let (st, ivp, tau) = stability_profiled(robot, &eq)?;
+    let evaluations = work.evaluations + st.evaluations;
+    let (x, steps, it) = (&nr.x, opts.steps, work.iterations);
+    let r = nr.residual.clone();
+    let mut sol = assemble_from(robot, inputs, loads, x, steps, it, evaluations, r, ivp, tau)?;
+    sol.newton_jacobian = nr.jacobian;
+    sol.status = nr.status;
+    sol.floor = nr.floor;
+    Ok((sol, st))
 }
 
 /// The error of [`Policy::Require`] for an unstable `sol`.

@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3, Vector6};
 
 use super::Equilibrium;
 use crate::error::Result;
-use crate::rod::{integrate_tangent, rot, Record, Robot, RodState, TangentSeeds};
+use crate::rod::{integrate_tangent, rot, IvpResult, Record, Robot, RodState, TangentSeeds};
 use crate::shooting::{base_strains, residual_scales, Loads, Shot, Solution};
 
 /// Tangents of one equilibrium: at every node the frozen-tension columns
@@ -166,12 +166,14 @@ fn seeds(
 }
 
 /// Exact tangents from one recorded tangent IVP along the six base strains
-/// and, if `actuators`, the `N` actuator elongation guesses too.
+/// and, if `actuators`, the `N` actuator elongation guesses too; with them
+/// the IVP itself (its nodes recorded if `profile`) and the tensions \[N\].
 pub(super) fn exact_tangents(
     robot: &Robot,
     eq: &Equilibrium<'_>,
     actuators: bool,
-) -> Result<Tangents> {
+    profile: bool,
+) -> Result<(Tangents, IvpResult, Vec<f64>)> {
     let na = robot.actuators.len();
     let nz = if actuators { 6 + na } else { 6 };
     let len = robot.body.length;
@@ -179,7 +181,12 @@ pub(super) fn exact_tangents(
     let (seeds, tau, dtau) = seeds(robot, eq, nz)?;
     let spec = eq.loads.ivp(robot, &tau, eq.steps);
     let (v0, u0) = base_strains(x, len);
-    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, Record::Tangents)?;
+    let record = if profile {
+        Record::All
+    } else {
+        Record::Tangents
+    };
+    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
     let (fs, ms) = residual_scales(robot);
     let (kse, kbt) = robot.body.stiffness();
     let c = Consts {
@@ -228,7 +235,7 @@ pub(super) fn exact_tangents(
             out.e[(i, 6 + i)] -= 1.0;
         }
     }
-    Ok(out)
+    Ok((out, tan.ivp, tau))
 }
 
 /// Data of one recorded IVP at each node: position, rotation, total wrench.
