@@ -6,7 +6,8 @@
 //! of 6 and 8 directions (tip only), the exact shooting Jacobian
 //! (`rows` "tangent"), exact J and C ("jc_exact"), and the steel tendon
 //! robot's cold and warm solves (their Newton Jacobians are tangent passes).
-//! `cargo bench --bench tangent` (`TCAROD_ROUNDS`, default 300, rounds).
+//! `cargo bench --bench tangent` (`TCAROD_ROUNDS`, default 300, rounds;
+//! `TCAROD_REF=0` times the new path only, for profiling it with perf).
 use std::hint::black_box;
 
 #[allow(dead_code)]
@@ -116,7 +117,11 @@ fn main() {
     println!("{:>11} {:>10.1} {:>6.2}", "ivp", ivp * 1e6, 1.0);
     for (k, (name, _)) in cs.iter().enumerate().skip(1) {
         let a = med(&mut t[k][0]);
-        let b = if with_ref { med(&mut t[k][1]) } else { f64::NAN };
+        let b = if with_ref {
+            med(&mut t[k][1])
+        } else {
+            f64::NAN
+        };
         println!(
             "{name:>11} {:>10.1} {:>6.2} {:>10.1} {:>6.2} {:>6.2}",
             a * 1e6,
