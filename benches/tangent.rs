@@ -6,7 +6,8 @@
 //! of 6 and 8 directions (tip only), the exact shooting Jacobian
 //! (`rows` "tangent"), exact J and C ("jc_exact"), and the steel tendon
 //! robot's cold and warm solves (their Newton Jacobians are tangent passes).
-//! `cargo bench --bench tangent` (`TCAROD_ROUNDS`, default 300, rounds).
+//! `cargo bench --bench tangent` (`TCAROD_ROUNDS`, default 300, rounds;
+//! `TCAROD_REF=0` times the new path only, for profiling it with perf).
 use std::hint::black_box;
 
 #[allow(dead_code)]
@@ -82,13 +83,15 @@ fn main() {
         ("steel_cold".into(), operation("steel_cold").unwrap()),
         ("steel_warm".into(), operation("steel_warm").unwrap()),
     ];
+    // TCAROD_REF=0: the new path only (for profiling it with perf)
+    let with_ref = std::env::var("TCAROD_REF").map_or(true, |v| v != "0");
     let n = cs.len();
     // (name, dual?) per contender: every operation twice, new then reference
     let mut t = vec![vec![Vec::new(); 2]; n];
     for _ in 0..rounds {
         for (k, (_, f)) in cs.iter_mut().enumerate() {
             for (m, dual) in [false, true].into_iter().enumerate() {
-                if k == 0 && dual {
+                if dual && (k == 0 || !with_ref) {
                     continue; // the plain IVP has no tangents
                 }
                 let t0 = thread_cpu().expect("thread CPU clock");
@@ -113,7 +116,12 @@ fn main() {
     );
     println!("{:>11} {:>10.1} {:>6.2}", "ivp", ivp * 1e6, 1.0);
     for (k, (name, _)) in cs.iter().enumerate().skip(1) {
-        let (a, b) = (med(&mut t[k][0]), med(&mut t[k][1]));
+        let a = med(&mut t[k][0]);
+        let b = if with_ref {
+            med(&mut t[k][1])
+        } else {
+            f64::NAN
+        };
         println!(
             "{name:>11} {:>10.1} {:>6.2} {:>10.1} {:>6.2} {:>6.2}",
             a * 1e6,

@@ -158,23 +158,33 @@ impl<const N: usize> Real for Dual<N> {
 impl<const N: usize> Add for Dual<N> {
     type Output = Self;
     #[inline(always)]
-    fn add(mut self, o: Self) -> Self {
-        self.re += o.re;
-        for k in 0..N {
-            self.eps[k] += o.eps[k];
+    fn add(self, o: Self) -> Self {
+        // a fresh value, not `self` updated: updating would copy the
+        // padding of the 64-byte-aligned layout through every sum
+        let mut eps = [0.0; N];
+        for ((e, a), b) in eps.iter_mut().zip(&self.eps).zip(&o.eps) {
+            *e = a + b;
         }
-        self
+        Dual {
+            re: self.re + o.re,
+            eps,
+        }
     }
 }
 impl<const N: usize> Sub for Dual<N> {
     type Output = Self;
     #[inline(always)]
-    fn sub(mut self, o: Self) -> Self {
-        self.re -= o.re;
-        for k in 0..N {
-            self.eps[k] -= o.eps[k];
+    fn sub(self, o: Self) -> Self {
+        // a fresh value, not `self` updated: updating would copy the
+        // padding of the 64-byte-aligned layout through every sum
+        let mut eps = [0.0; N];
+        for ((e, a), b) in eps.iter_mut().zip(&self.eps).zip(&o.eps) {
+            *e = a - b;
         }
-        self
+        Dual {
+            re: self.re - o.re,
+            eps,
+        }
     }
 }
 impl<const N: usize> Mul for Dual<N> {
@@ -215,17 +225,21 @@ impl<const N: usize> Neg for Dual<N> {
 impl<const N: usize> Add<f64> for Dual<N> {
     type Output = Self;
     #[inline(always)]
-    fn add(mut self, o: f64) -> Self {
-        self.re += o;
-        self
+    fn add(self, o: f64) -> Self {
+        Dual {
+            re: self.re + o,
+            eps: self.eps,
+        }
     }
 }
 impl<const N: usize> Sub<f64> for Dual<N> {
     type Output = Self;
     #[inline(always)]
-    fn sub(mut self, o: f64) -> Self {
-        self.re -= o;
-        self
+    fn sub(self, o: f64) -> Self {
+        Dual {
+            re: self.re - o,
+            eps: self.eps,
+        }
     }
 }
 impl<const N: usize> Mul<f64> for Dual<N> {
