@@ -7,8 +7,9 @@ use super::mixed::{predictor, Extra, Mixed};
 use super::{exact_blocks, load_scales, ExactBlocks, Groups, Sensitivities};
 use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
-use crate::shooting::{assemble, initial_guess, solve_loaded, Loads, Solution, SolveOptions};
+use crate::shooting::{initial_guess, solve_loaded, Loads, Shot, Solution, SolveOptions};
 use crate::solve::newton::newton_from;
+use crate::solve::solution::assemble_from;
 use crate::stability::{stability, unstable_error, Policy, Stability};
 
 /// A blocked tip: the tip's displacement along `normal` (unit, world) is held
@@ -156,8 +157,10 @@ pub fn blocked_variable_direct(
 /// unknown, see `inverse::mixed`) started from an eq-43 predictor of the
 /// whole force in one step with the force law kept exact (see
 /// `inverse::mixed::predictor`). The predictor's tangents (one tangent IVP
-/// at `start`, on the Jacobian's coarse grid) are also the first Newton
-/// Jacobian, so that the first corrections cost one plain IVP each.
+/// at `start`, on the Jacobian's coarse grid), with the force laws' slopes
+/// taken at the predicted point, are also the first Newton Jacobian, so
+/// that the first corrections cost one plain IVP each (Table I grasp: 6
+/// chord steps and no other tangent IVP).
 pub fn blocked_variable_from(
     robot: &Robot,
     groups: &Groups,
@@ -186,6 +189,11 @@ fn variable_scale(robot: &Robot, groups: &Groups) -> f64 {
     (hi - lo).clamp(1.0, 1e3)
 }
 
+/// Multiple of Newton's tol below which the mixed solve records its IVPs
+/// (see `Mixed::record_below`): a coarse-grid chord step contracts the
+/// residual 40-100x (Table I grasp), so from `1e4 tol` one or two steps end it.
+const RECORD_BELOW: f64 = 1e4;
+
 /// Newton on the augmented system from `x0` (with the Jacobian `jac0`, if
 /// given), the solution assembled at the root, the block's verdict attached.
 fn mixed_newton(
@@ -195,17 +203,30 @@ fn mixed_newton(
     opts: &SolveOptions,
     solver: &'static str,
 ) -> Result<BlockedResult> {
+    sys.record_below = RECORD_BELOW * opts.tol;
     let nr = newton_from(sys, x0, &opts.newton(), solver, jac0)?;
     let (robot, nx) = (sys.robot(), x0.len() - 1);
     let (inputs, loads, force) = sys.problem(&nr.x)?;
-    let mut sol = assemble(
+    // the recorded IVP at the root if Newton's last residual was it (bit
+    // for bit the plain IVP's), else one more IVP
+    let ((r, ivp, tau), evaluations) = match sys.take_last(&nr.x) {
+        Some(last) => (last, nr.evaluations),
+        None => {
+            let shot = Shot::new(robot, &inputs, &loads, opts.steps);
+            (shot.residual(&nr.x[..nx], true)?, nr.evaluations + 1)
+        }
+    };
+    let mut sol = assemble_from(
         robot,
         &inputs,
         &loads,
         &nr.x[..nx],
         opts.steps,
         nr.iterations,
-        nr.evaluations + 1,
+        evaluations,
+        r,
+        ivp,
+        tau,
     )?;
     sol.status = nr.status;
     sol.floor = nr.floor;
@@ -213,7 +234,7 @@ fn mixed_newton(
         solution: sol,
         force,
         variables: sys.groups().vars(&inputs),
-        evaluations: nr.evaluations + 1,
+        evaluations,
         iterations: nr.iterations,
         stability: None,
     };

@@ -57,7 +57,22 @@ pub(crate) struct Mixed<'a> {
     pub(crate) evaluations: usize,
     /// Tensions \[N\] of the last plain IVP (for the rounding floor).
     tau: Vec<f64>,
+    /// Record the nodes of a plain IVP when the last residual's `max |r|`
+    /// is at most this (0: never): from there Newton is expected to end
+    /// within a step or two, and the recorded IVP at the root then serves
+    /// as the solution's profile ([`Mixed::take_last`]) instead of one more
+    /// IVP. A wrong guess costs the recording (~7 % of an IVP) or that IVP.
+    pub(crate) record_below: f64,
+    /// `max |r|` of the last plain IVP.
+    last_norm: f64,
+    /// The last recorded plain IVP: unknowns, shooting residual (without
+    /// the gap), IVP, tensions.
+    last: Option<LastIvp>,
 }
+
+/// Unknowns, shooting residual (without the gap), recorded IVP and tensions
+/// of one evaluation.
+type LastIvp = (Vec<f64>, Vec<f64>, IvpResult, Vec<f64>);
 
 impl<'a> Mixed<'a> {
     /// The system of `robot` held by `block`, on `steps` RK4 steps.
@@ -77,6 +92,18 @@ impl<'a> Mixed<'a> {
             jacobian_steps: coarse_steps(steps),
             evaluations: 0,
             tau: vec![0.0; robot.actuators.len()],
+            record_below: 0.0,
+            last_norm: f64::INFINITY,
+            last: None,
+        }
+    }
+
+    /// The last recorded IVP if it was at the augmented unknowns `x`:
+    /// `(shooting residual, ivp, tensions)`.
+    pub(crate) fn take_last(&mut self, x: &[f64]) -> Option<(Vec<f64>, IvpResult, Vec<f64>)> {
+        match self.last.take() {
+            Some((xl, r, ivp, tau)) if xl == x => Some((r, ivp, tau)),
+            _ => None,
         }
     }
 
@@ -126,11 +153,15 @@ impl System for Mixed<'_> {
         self.evaluations += 1;
         let nx = 6 + self.robot.actuators.len();
         let (inputs, loads, _) = self.problem(x)?;
-        let (mut r, ivp, tau) =
-            Shot::new(self.robot, &inputs, &loads, self.steps).residual(&x[..nx], false)?;
-        r.push(self.gap(&ivp.tip.p));
-        self.tau = tau;
-        Ok(r)
+        let record = self.last_norm <= self.record_below;
+        let (r, ivp, tau) =
+            Shot::new(self.robot, &inputs, &loads, self.steps).residual(&x[..nx], record)?;
+        let mut ra = r.clone();
+        ra.push(self.gap(&ivp.tip.p));
+        self.last_norm = ra.iter().fold(0.0, |m, v| m.max(v.abs()));
+        self.tau.clone_from(&tau);
+        self.last = record.then(|| (x.to_vec(), r, ivp, tau));
+        Ok(ra)
     }
 
     fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
@@ -198,16 +229,10 @@ fn augmented(sys: &Mixed<'_>, x: &[f64], steps: usize) -> Result<Augmented> {
         seeds.nu0[(k, k)] = 1.0;
         seeds.omega0[(k, 3 + k)] = 1.0 / len;
     }
-    // d tau_i / d (scaled elongation, scaled variable)
     let mut tau = Vec::with_capacity(na);
-    let mut slope = Vec::with_capacity(na);
-    let mut per_variable = Vec::with_capacity(na);
     for (i, a) in robot.actuators.iter().enumerate() {
-        let (t, dt_de, dt_dq) = a.law.tension_derivatives(x[6 + i] * len, inputs[i])?;
+        tau.push(a.law.tension(x[6 + i] * len, inputs[i])?);
         seeds.tensions[(i, 6 + i)] = 1.0;
-        tau.push(t);
-        slope.push(dt_de * len);
-        per_variable.push(dt_dq);
     }
     let spec = loads.ivp(robot, &tau, steps);
     let (v0, u0) = base_strains(x, len);
@@ -228,32 +253,51 @@ fn augmented(sys: &Mixed<'_>, x: &[f64], steps: usize) -> Result<Augmented> {
     }
     let mut jac = DMatrix::<f64>::zeros(nx + 1, nx + 1);
     jac.columns_mut(0, 6).copy_from(&raw.columns(0, 6));
-    for i in 0..na {
-        jac.column_mut(6 + i)
-            .axpy(slope[i], &raw.column(6 + i), 0.0);
-        jac[(6 + i, 6 + i)] -= 1.0;
-    }
-    let scale = sys.scale();
-    match &sys.extra {
-        Extra::Variable { .. } => {
-            for (i, dt_dq) in per_variable.iter().enumerate() {
-                jac.column_mut(nx)
-                    .axpy(dt_dq * scale, &raw.column(6 + i), 1.0);
-            }
-        }
-        Extra::Force { .. } => {
-            // loads: tip force -f n; d r_F / d F = -(L^2/EI) R^T
-            let rn = ivp.tip.rotation().transpose() * n * (fs * scale);
-            for k in 0..3 {
-                jac[(k, nx)] = rn[k];
-            }
+    let per_tension = raw.columns(6, na).into_owned();
+    actuator_columns(sys, x, &per_tension, &mut jac)?;
+    if let Extra::Force { .. } = &sys.extra {
+        // loads: tip force -f n; d r_F / d F = -(L^2/EI) R^T
+        let rn = ivp.tip.rotation().transpose() * n * (fs * sys.scale());
+        for k in 0..3 {
+            jac[(k, nx)] = rn[k];
         }
     }
     Ok(Augmented {
         residual: scaled_residual(sys, ivp, x),
         jacobian: jac,
-        per_tension: raw.columns(6, na).into_owned(),
+        per_tension,
     })
+}
+
+/// The actuator columns of the augmented Jacobian at `x` (and the
+/// variable's, for [`Extra::Variable`]) from the columns of a unit tension
+/// `per_tension`: the force laws' slopes at `x` times them,
+/// `d tau_i / d (scaled elongation)` and `d tau_i / d (scaled variable)`.
+fn actuator_columns(
+    sys: &Mixed<'_>,
+    x: &[f64],
+    per_tension: &DMatrix<f64>,
+    jac: &mut DMatrix<f64>,
+) -> Result<()> {
+    let (robot, len) = (sys.robot, sys.robot.body.length);
+    let nx = 6 + robot.actuators.len();
+    let (inputs, _, _) = sys.problem(x)?;
+    let scale = sys.scale();
+    let variable = matches!(sys.extra, Extra::Variable { .. });
+    if variable {
+        jac.column_mut(nx).fill(0.0);
+    }
+    for (i, a) in robot.actuators.iter().enumerate() {
+        let (_, dt_de, dt_dq) = a.law.tension_derivatives(x[6 + i] * len, inputs[i])?;
+        jac.column_mut(6 + i)
+            .axpy(dt_de * len, &per_tension.column(i), 0.0);
+        jac[(6 + i, 6 + i)] -= 1.0;
+        if variable {
+            jac.column_mut(nx)
+                .axpy(dt_dq * scale, &per_tension.column(i), 1.0);
+        }
+    }
+    Ok(())
 }
 
 /// The augmented residual at `x` from its IVP: the scaled tip force and
@@ -338,13 +382,24 @@ pub(crate) fn predictor(
         let dtau = a.law.tension(start.elongations[i], inputs[i])? - start.tensions[i];
         c.axpy(dtau, &t.per_tension.column(i), 1.0);
     }
+    let mut jac = t.jacobian;
     if let Some(d) = lu.solve(&-c).filter(|d| d.iter().all(|v| v.is_finite())) {
         for (xi, di) in x.iter_mut().zip(d.iter()).take(nx) {
             *xi += di;
         }
         x[nx] = z / scale;
+        // the force laws' slopes at the predicted point (a TCA's slope in
+        // its elongation and temperature changes with the temperature; the
+        // rod's columns change little): Newton's first chord step from `x`
+        // then contracts (measured on the Table I grasp: with the start's
+        // slopes it grew the residual from 2.7e-2 to 3.6e-2 and a fresh
+        // Jacobian was taken)
+        let before = jac.clone();
+        if actuator_columns(sys, &x, &t.per_tension, &mut jac).is_err() {
+            jac = before;
+        }
     }
-    Ok((x, t.jacobian))
+    Ok((x, jac))
 }
 
 #[cfg(test)]
