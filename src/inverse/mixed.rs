@@ -154,14 +154,15 @@ impl System for Mixed<'_> {
         let nx = 6 + self.robot.actuators.len();
         let (inputs, loads, _) = self.problem(x)?;
         let record = self.last_norm <= self.record_below;
-        let (r, ivp, tau) =
+        let (mut r, ivp, tau) =
             Shot::new(self.robot, &inputs, &loads, self.steps).residual(&x[..nx], record)?;
-        let mut ra = r.clone();
-        ra.push(self.gap(&ivp.tip.p));
-        self.last_norm = ra.iter().fold(0.0, |m, v| m.max(v.abs()));
-        self.tau.clone_from(&tau);
-        self.last = record.then(|| (x.to_vec(), r, ivp, tau));
-        Ok(ra)
+        let gap = self.gap(&ivp.tip.p);
+        // kept only if recorded: the shooting residual without the gap
+        self.last = record.then(|| (x.to_vec(), r.clone(), ivp, tau.clone()));
+        r.push(gap);
+        self.last_norm = r.iter().fold(0.0, |m, v| m.max(v.abs()));
+        self.tau = tau;
+        Ok(r)
     }
 
     fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
@@ -394,9 +395,9 @@ pub(crate) fn predictor(
         // then contracts (measured on the Table I grasp: with the start's
         // slopes it grew the residual from 2.7e-2 to 3.6e-2 and a fresh
         // Jacobian was taken)
-        let before = jac.clone();
-        if actuator_columns(sys, &x, &t.per_tension, &mut jac).is_err() {
-            jac = before;
+        let mut at_x = jac.clone();
+        if actuator_columns(sys, &x, &t.per_tension, &mut at_x).is_ok() {
+            jac = at_x;
         }
     }
     Ok((x, jac))
