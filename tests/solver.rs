@@ -379,3 +379,48 @@ fn fig6_sweeps_converge_cold_and_warm() {
         }
     }
 }
+
+#[test]
+fn a_warm_presolve_sweep_refreshes_its_stale_coarse_jacobian() {
+    // the pre-solve is the default
+    assert!(SolveOptions::default().presolve);
+    let opts = SolveOptions::default();
+    let off = SolveOptions {
+        presolve: false,
+        ..opts
+    };
+    let sq = fig6_square(true);
+    let steel = steel_tendon_robot();
+    let temps: Vec<Vec<f64>> = (0..28).map(|k| vec![25.0 + 5.0 * k as f64; 2]).collect(); // 25..160 C
+    let tensions: Vec<Vec<f64>> = (0..31)
+        .map(|k| {
+            let f = 1.0 + 0.01 * k as f64; // +0..30 % in steps of 1 %
+            STEEL_TENDON_TENSIONS.iter().map(|t| t * f).collect()
+        })
+        .collect();
+    // most IVPs (coarse ones included) of a warm step: the neighbour's
+    // coarse Jacobian handed on from step to step went stale and its chord
+    // steps crept at 5-15x a step (max 22 IVPs a step on the Fig. 6 sweep,
+    // 20 on the steel one); refreshed when more than four chord steps are
+    // still needed, at most 14 and 11
+    for (name, robot, rows, most) in [
+        ("Fig. 6", &sq, &temps, 16),
+        ("steel", &steel, &tensions, 14),
+    ] {
+        let warm = sweep(robot, rows, &opts).unwrap();
+        let full = sweep(robot, rows, &off).unwrap();
+        for (k, (a, b)) in warm.iter().zip(&full).enumerate().skip(1) {
+            assert!(
+                a.evaluations <= most,
+                "{name} step {k}: {} IVPs",
+                a.evaluations
+            );
+            // the full-grid residual meets tol (or the floor) either way:
+            // tips within 1e-9 m of the full-grid Newton's (issue 10)
+            let r = full_grid_residual(robot, a, opts.steps);
+            assert!(r <= opts.tol.max(a.floor), "{name} step {k}: {r:e}");
+            let d = (a.tip_position() - b.tip_position()).norm();
+            assert!(d < 1e-9, "{name} step {k}: tips {d:e} m apart");
+        }
+    }
+}

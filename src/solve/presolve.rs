@@ -60,16 +60,25 @@ pub(crate) struct Warm<'a> {
     pub jacobian: Option<&'a DMatrix<f64>>,
 }
 
-/// The coarse shooting residual plus a constant defect `d`.
+/// The coarse shooting residual plus a constant defect `d`. Remembers its
+/// last residual, so that Newton's first evaluation at the point where a
+/// chord run stopped ([`chord_then_newton`]) costs no IVP.
 struct Corrected<'a> {
     sys: Shooting<'a>,
     defect: Vec<f64>,
+    last: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl System for Corrected<'_> {
     fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
+        if let Some((xl, rl)) = &self.last {
+            if xl == x {
+                return Ok(rl.clone());
+            }
+        }
         let mut r = self.sys.residual(x)?;
         r.iter_mut().zip(&self.defect).for_each(|(a, d)| *a += d);
+        self.last = Some((x.to_vec(), r.clone()));
         Ok(r)
     }
     fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
@@ -144,15 +153,97 @@ impl<'a> PreSolve<'a> {
         let mut sys = Corrected {
             sys: Shooting::new(self.robot, self.inputs, self.loads, self.coarse, false),
             defect,
+            last: None,
         };
         let nopts = NewtonOptions {
             tol: 0.1 * self.opts.tol,
             max_iter: COARSE_MAX_ITER.min(self.opts.max_iter),
             ..work.newton_options(self.opts)
         };
-        let out = newton_from(&mut sys, x0, &nopts, "coarse pre-solve", jac0);
+        let out = match jac0 {
+            Some(jac) => chord_then_newton(&mut sys, x0, jac, &nopts),
+            _ => newton_from(&mut sys, x0, &nopts, "coarse pre-solve", jac0),
+        };
         (out, sys.sys.evaluations)
     }
+}
+
+/// Most chord steps with a kept coarse Jacobian (the warm neighbour's, or
+/// an earlier round's) still needed, at the contraction of the last one,
+/// for which the chord run goes on; beyond, Newton takes a fresh coarse
+/// tangent. A coarse tangent costs 3.2 (Fig. 6) to 4.3 (steel) coarse IVPs
+/// and Newton from it needs one or two steps, so four chord steps cost
+/// about as much. (Newton's own chord rule refreshes only below a 4x
+/// contraction: along a warm Fig. 6 sweep the neighbour's Jacobian, handed
+/// on from step to step, contracted 5-6x a step, 12 chord steps a run.)
+const CHORD_STEPS_LEFT: f64 = 4.0;
+
+fn inf_norm(r: &[f64]) -> f64 {
+    r.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+/// Chord steps from `x0` with the kept Jacobian `jac` while at most
+/// [`CHORD_STEPS_LEFT`] more are needed at their contraction; then, unless converged,
+/// Newton ([`newton_from`]) from the point reached with a fresh Jacobian.
+/// The result carries the Jacobian last used.
+fn chord_then_newton(
+    sys: &mut Corrected<'_>,
+    x0: &[f64],
+    jac: &DMatrix<f64>,
+    nopts: &NewtonOptions,
+) -> Result<NewtonResult> {
+    let mut x = x0.to_vec();
+    let mut r = sys.residual(&x)?;
+    let mut res = inf_norm(&r);
+    let lu = jac.clone().lu();
+    let mut iterations = 0;
+    loop {
+        let floor = sys.floor(&x, &r);
+        if res <= nopts.tol.max(floor) {
+            return Ok(NewtonResult {
+                x,
+                residual: r,
+                norm: res,
+                floor,
+                status: converged_status(res, nopts.tol),
+                iterations,
+                evaluations: sys.evaluations(),
+                jacobian: Some(jac.clone()),
+            });
+        }
+        if iterations + 1 >= nopts.max_iter || sys.evaluations() >= nopts.max_evaluations {
+            break;
+        }
+        let rv = nalgebra::DVector::from_column_slice(&r);
+        let Some(dx) = lu.solve(&(-rv)).filter(|d| d.iter().all(|v| v.is_finite())) else {
+            break;
+        };
+        let xt: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
+        let rt = match sys.residual(&xt) {
+            Ok(rt) => rt,
+            Err(e @ Error::Interrupted) => return Err(e),
+            Err(_) => break,
+        };
+        let after = inf_norm(&rt);
+        if !(after < res) {
+            break;
+        }
+        iterations += 1;
+        (x, r) = (xt, rt);
+        // chord steps still needed at this contraction
+        let needed = (after / nopts.tol).ln() / (res / after).ln();
+        res = after;
+        if needed > CHORD_STEPS_LEFT {
+            break;
+        }
+    }
+    let rest = NewtonOptions {
+        max_iter: nopts.max_iter.saturating_sub(iterations).max(1),
+        ..*nopts
+    };
+    let mut nr = newton_from(sys, &x, &rest, "coarse pre-solve", None)?;
+    nr.iterations += iterations;
+    Ok(nr)
 }
 
 /// [`Status::Converged`] if `norm <= tol`, else at the floor.
