@@ -86,7 +86,7 @@ fn steel_tendon_converges_to_the_rounding_floor() {
         w.iterations,
         w.evaluations
     );
-    // with the coarse pre-solve (opt-in): chord iterations on the coarse
+    // with the coarse pre-solve (the default): chord iterations on the coarse
     // grid, one coarse IVP each, plus the warm defect's coarse IVP and a
     // first residual per coarse run (two full-grid IVPs among them)
     let pre = SolveOptions {

@@ -13,7 +13,9 @@
 //!    full residual is within `tol` of zero), and the warm Jacobian's
 //!    actuator columns are rescaled to the force laws' slopes at the new
 //!    inputs ([`rescale_tension_columns`]: the IVP depends on an elongation
-//!    only through its tension).
+//!    only through its tension). A kept coarse Jacobian (the warm one, or
+//!    an earlier round's) is used for chord steps only while they contract
+//!    fast enough (`CHORD_STEPS_LEFT`); then a fresh coarse tangent.
 //! 2. One full-grid IVP at that point: converged if `max |r_full| <=
 //!    max(tol, floor)` (the same test, on the same grid, as Newton's);
 //!    else the defect is updated to `r_full(x) - r_coarse(x)` and step 1
@@ -169,8 +171,8 @@ impl<'a> PreSolve<'a> {
 }
 
 /// Most chord steps with a kept coarse Jacobian (the warm neighbour's, or
-/// an earlier round's) still needed, at the contraction of the last one,
-/// for which the chord run goes on; beyond, Newton takes a fresh coarse
+/// an earlier round's) still needed, at the contraction of the last one
+/// (from the second on), for which the chord run goes on; beyond, Newton takes a fresh coarse
 /// tangent. A coarse tangent costs 3.2 (Fig. 6) to 4.3 (steel) coarse IVPs
 /// and Newton from it needs one or two steps, so four chord steps cost
 /// about as much. (Newton's own chord rule refreshes only below a 4x
@@ -233,7 +235,9 @@ fn chord_then_newton(
         // chord steps still needed at this contraction
         let needed = (after / nopts.tol).ln() / (res / after).ln();
         res = after;
-        if needed > CHORD_STEPS_LEFT {
+        // (not judged on the first step: its contraction is also that of
+        // the warm start's nonlinearity, e.g. steel +1 %: 39x, then 250x)
+        if iterations > 1 && needed > CHORD_STEPS_LEFT {
             break;
         }
     }
