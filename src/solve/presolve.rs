@@ -171,13 +171,17 @@ impl<'a> PreSolve<'a> {
 }
 
 /// Most chord steps with a kept coarse Jacobian (the warm neighbour's, or
-/// an earlier round's) still needed, at the contraction of the last one
-/// (from the second on), for which the chord run goes on; beyond, Newton takes a fresh coarse
+/// an earlier round's) still needed, at the contraction of the last one,
+/// for which the chord run goes on; beyond, Newton takes a fresh coarse
 /// tangent. A coarse tangent costs 3.2 (Fig. 6) to 4.3 (steel) coarse IVPs
 /// and Newton from it needs one or two steps, so four chord steps cost
 /// about as much. (Newton's own chord rule refreshes only below a 4x
 /// contraction: along a warm Fig. 6 sweep the neighbour's Jacobian, handed
 /// on from step to step, contracted 5-6x a step, 12 chord steps a run.)
+/// Judged from the first step on, although its contraction is also the
+/// warm start's nonlinearity (steel +1 %: 39x, then 250x; the refresh
+/// costs that solve one IVP more): judged from the second, Fig. 6 warm
+/// sweeps took up to 17 iterations a step (tests/test_fig6.py bounds 12).
 const CHORD_STEPS_LEFT: f64 = 4.0;
 
 fn inf_norm(r: &[f64]) -> f64 {
@@ -235,9 +239,7 @@ fn chord_then_newton(
         // chord steps still needed at this contraction
         let needed = (after / nopts.tol).ln() / (res / after).ln();
         res = after;
-        // (not judged on the first step: its contraction is also that of
-        // the warm start's nonlinearity, e.g. steel +1 %: 39x, then 250x)
-        if iterations > 1 && needed > CHORD_STEPS_LEFT {
+        if needed > CHORD_STEPS_LEFT {
             break;
         }
     }
