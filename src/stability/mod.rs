@@ -259,6 +259,36 @@ pub(crate) fn stability_profiled(
     ))
 }
 
+/// The verdict's tangent integration taken ahead, by the solver, at a
+/// point where it predicted Newton's convergence
+/// ([`crate::solve::system::Keep::Verdict`]): Newton's residual there is
+/// its real part (the plain IVP's arithmetic bit for bit), and if Newton
+/// stops there the verdict is read from it ([`verdict_of`]) without
+/// another integration.
+pub(crate) struct VerdictPass {
+    pass: tangents::Pass,
+    full: bool,
+}
+
+/// The recorded tangent integration of [`stability_at`] (free tip) at
+/// `eq` under the actuator tensions `tau` \[N\] (the shooting residual's),
+/// the IVP's nodes recorded too; with that IVP.
+pub(crate) fn verdict_pass(
+    robot: &Robot,
+    eq: &Equilibrium<'_>,
+    tau: &[f64],
+) -> Result<(VerdictPass, IvpResult)> {
+    let full = check(robot, eq, &[])?;
+    let (pass, ivp) = tangents::integrate_pass(robot, eq, full, true, Some(tau))?;
+    Ok((VerdictPass { pass, full }, ivp))
+}
+
+/// The verdict (free tip) from a pass integrated ahead ([`verdict_pass`]).
+pub(crate) fn verdict_of(robot: &Robot, p: &VerdictPass) -> Stability {
+    let t = tangents::tangents_of(robot, &p.pass);
+    verdict::verdict(t, robot.body.length, &[], p.full, 1)
+}
+
 /// [`stability`] from forward-difference tangents (`7 + N` IVPs); for
 /// cross-checks.
 pub fn stability_fd(robot: &Robot, sol: &Solution, blocked: &[Vector3<f64>]) -> Result<Stability> {

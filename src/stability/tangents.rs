@@ -6,7 +6,9 @@ use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3, Vector6};
 
 use super::Equilibrium;
 use crate::error::Result;
-use crate::rod::{integrate_tangent, rot, IvpResult, Record, Robot, RodState, TangentSeeds};
+use crate::rod::{
+    integrate_tangent, rot, IvpResult, Record, Robot, RodState, TangentNodes, TangentSeeds,
+};
 use crate::shooting::{base_strains, residual_scales, Loads, Shot, Solution};
 
 /// Tangents of one equilibrium: at every node the frozen-tension columns
@@ -137,11 +139,13 @@ fn column(
 
 /// Seeds of the tangent IVP along the scaled unknowns `z_0 .. z_nz`
 /// (`nz` = 6: the base strains only; `6 + N`: the elongation guesses too),
-/// the tensions and `d tau_i / d z_j` (`N x nz`).
+/// the tensions and `d tau_i / d z_j` (`N x nz`). `tau`: the tensions \[N\]
+/// if already known (the shooting residual's, [`crate::shooting::tensions`]).
 fn seeds(
     robot: &Robot,
     eq: &Equilibrium<'_>,
     nz: usize,
+    tau: Option<&[f64]>,
 ) -> Result<(TangentSeeds, Vec<f64>, DMatrix<f64>)> {
     let na = robot.actuators.len();
     let len = robot.body.length;
@@ -150,43 +154,70 @@ fn seeds(
         seeds.nu0[(k, k)] = 1.0;
         seeds.omega0[(k, 3 + k)] = 1.0 / len;
     }
-    let mut tau = Vec::with_capacity(na);
+    let mut out = Vec::with_capacity(na);
     let mut dtau = DMatrix::zeros(na, nz);
     for (i, a) in robot.actuators.iter().enumerate() {
         let (t, dt_de, _) = a
             .law
             .tension_derivatives(eq.unknowns[6 + i] * len, eq.inputs[i])?;
-        tau.push(t);
+        out.push(tau.map_or(t, |tau| tau[i]));
         if nz > 6 {
             seeds.tensions[(i, 6 + i)] = dt_de * len;
             dtau[(i, 6 + i)] = dt_de * len;
         }
     }
-    Ok((seeds, tau, dtau))
+    Ok((seeds, out, dtau))
 }
 
-/// Exact tangents from one recorded tangent IVP along the six base strains
-/// and, if `actuators`, the `N` actuator elongation guesses too; with them
-/// the IVP itself (its nodes recorded if `profile`) and the tensions \[N\].
-pub(super) fn exact_tangents(
+/// One recorded tangent IVP at an equilibrium, before its nodes are turned
+/// into [`Tangents`] ([`tangents_of`]): the recorded nodes, the tip
+/// elongation tangents, the tensions \[N\] and `d tau_i / d z_j`.
+pub(crate) struct Pass {
+    nodes: TangentNodes,
+    elongation: DMatrix<f64>,
+    pub tau: Vec<f64>,
+    dtau: DMatrix<f64>,
+    /// Whether the `N` actuator directions were integrated.
+    actuators: bool,
+}
+
+/// The tangent IVP of the verdict along the six base strains and, if
+/// `actuators`, the `N` actuator elongation guesses too, every node
+/// recorded (the IVP's own nodes too if `profile`); with the IVP itself.
+/// `tau`: the tensions, if known (else from the force laws).
+pub(super) fn integrate_pass(
     robot: &Robot,
     eq: &Equilibrium<'_>,
     actuators: bool,
     profile: bool,
-) -> Result<(Tangents, IvpResult, Vec<f64>)> {
+    tau: Option<&[f64]>,
+) -> Result<(Pass, IvpResult)> {
     let na = robot.actuators.len();
     let nz = if actuators { 6 + na } else { 6 };
-    let len = robot.body.length;
-    let x = eq.unknowns;
-    let (seeds, tau, dtau) = seeds(robot, eq, nz)?;
+    let (seeds, tau, dtau) = seeds(robot, eq, nz, tau)?;
     let spec = eq.loads.ivp(robot, &tau, eq.steps);
-    let (v0, u0) = base_strains(x, len);
+    let (v0, u0) = base_strains(eq.unknowns, robot.body.length);
     let record = if profile {
         Record::All
     } else {
         Record::Tangents
     };
     let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
+    let pass = Pass {
+        nodes: tan.nodes,
+        elongation: tan.elongation,
+        tau,
+        dtau,
+        actuators,
+    };
+    Ok((pass, tan.ivp))
+}
+
+/// The tangents at every node of a recorded pass.
+pub(super) fn tangents_of(robot: &Robot, pass: &Pass) -> Tangents {
+    let na = robot.actuators.len();
+    let nz = if pass.actuators { 6 + na } else { 6 };
+    let len = robot.body.length;
     let (fs, ms) = residual_scales(robot);
     let (kse, kbt) = robot.body.stiffness();
     let c = Consts {
@@ -196,23 +227,24 @@ pub(super) fn exact_tangents(
         ms,
         len,
     };
-    let k = tan.nodes.len();
+    let (tau, dtau) = (&pass.tau, &pass.dtau);
+    let k = pass.nodes.len();
     let mut out = Tangents {
         s: Vec::with_capacity(k),
         y: Vec::with_capacity(k),
         h: Vec::with_capacity(k),
         y_tip: DMatrix::zeros(6, nz),
         h_tip: DMatrix::zeros(6, nz),
-        e: DMatrix::zeros(na, if actuators { nz } else { 0 }),
+        e: DMatrix::zeros(na, if pass.actuators { nz } else { 0 }),
     };
     let mut strings = Vec::with_capacity(na);
     let ns = robot.n_states();
-    for (n, node) in tan.nodes.iter().enumerate() {
-        let f = frame(robot, &c, &tau, node.s, node.state, strings);
+    for (n, node) in pass.nodes.iter().enumerate() {
+        let f = frame(robot, &c, tau, node.s, node.state, strings);
         let (mut y, mut h) = ([[0.0; 6]; 6], [[0.0; 6]; 6]);
         let tip = n + 1 == k;
         for j in 0..if tip { nz } else { 6 } {
-            let (dy, dh) = column(&c, &f, &node.tangent[j * ns..(j + 1) * ns], &dtau, j);
+            let (dy, dh) = column(&c, &f, &node.tangent[j * ns..(j + 1) * ns], dtau, j);
             if j < 6 {
                 y[j].copy_from_slice(dy.as_slice());
                 h[j].copy_from_slice(dh.as_slice());
@@ -227,15 +259,28 @@ pub(super) fn exact_tangents(
         out.h.push(h);
         strings = f.strings;
     }
-    if actuators {
+    if pass.actuators {
         for i in 0..na {
             for j in 0..nz {
-                out.e[(i, j)] = tan.elongation[(i, j)] / len;
+                out.e[(i, j)] = pass.elongation[(i, j)] / len;
             }
             out.e[(i, 6 + i)] -= 1.0;
         }
     }
-    Ok((out, tan.ivp, tau))
+    out
+}
+
+/// Exact tangents from one recorded tangent IVP ([`integrate_pass`]); with
+/// them the IVP itself (its nodes recorded if `profile`) and the tensions
+/// \[N\].
+pub(super) fn exact_tangents(
+    robot: &Robot,
+    eq: &Equilibrium<'_>,
+    actuators: bool,
+    profile: bool,
+) -> Result<(Tangents, IvpResult, Vec<f64>)> {
+    let (pass, ivp) = integrate_pass(robot, eq, actuators, profile, None)?;
+    Ok((tangents_of(robot, &pass), ivp, pass.tau))
 }
 
 /// Data of one recorded IVP at each node: position, rotation, total wrench.
