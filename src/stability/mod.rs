@@ -64,7 +64,7 @@
 //! stable); it passes through zero at a buckling load or a fold.
 //! If a conjugate point lies inside the body it is at most `-(L - s_c)/L`
 //! (continuous at a first conjugate point reaching the tip). Along `s` only
-//! positive definiteness is tested (Cholesky), to keep the verdict cheap.
+//! positive definiteness is tested (`LDL^T`), to keep the verdict cheap.
 //!
 //! # Cost
 //!
@@ -142,7 +142,7 @@ pub struct Stability {
     pub determinant: Vec<f64>,
     /// At the tip node, the smallest eigenvalue of the symmetric part of
     /// (S2); at the other nodes `+1` where it is positive definite (above
-    /// `-NEUTRAL`) and `-1` where not (a Cholesky test: no eigenvalue is
+    /// `-NEUTRAL`) and `-1` where not (an `LDL^T` test: no eigenvalue is
     /// computed there); the base node, where `K` is infinite, carries `+inf`.
     pub min_stiffness: Vec<f64>,
     /// Integrations for the verdict: 1 tangent IVP ([`stability`]) or
