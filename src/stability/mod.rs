@@ -202,6 +202,11 @@ fn actuator_stiffness(robot: &Robot, eq: &Equilibrium<'_>) -> Result<Vec<f64>> {
 /// (S3): an actuator whose tension depends on strain, or a blocked tip.
 fn check(robot: &Robot, eq: &Equilibrium<'_>, blocked: &[Vector3<f64>]) -> Result<bool> {
     robot.validate()?;
+    check_equilibrium(robot, eq, blocked)
+}
+
+/// [`check`] of a robot already validated (by the solve that found `eq`).
+fn check_equilibrium(robot: &Robot, eq: &Equilibrium<'_>, blocked: &[Vector3<f64>]) -> Result<bool> {
     let na = robot.actuators.len();
     if eq.unknowns.len() != 6 + na || eq.inputs.len() != na {
         return Err(Error::input(
@@ -272,13 +277,14 @@ pub(crate) struct VerdictPass {
 
 /// The recorded tangent integration of [`stability_at`] (free tip) at
 /// `eq` under the actuator tensions `tau` \[N\] (the shooting residual's),
-/// the IVP's nodes recorded too; with that IVP.
+/// the IVP's nodes recorded too; with that IVP. `robot` must be valid (the
+/// solver's, validated by its solve).
 pub(crate) fn verdict_pass(
     robot: &Robot,
     eq: &Equilibrium<'_>,
     tau: &[f64],
 ) -> Result<(VerdictPass, IvpResult)> {
-    let full = check(robot, eq, &[])?;
+    let full = check_equilibrium(robot, eq, &[])?;
     let (pass, ivp) = tangents::integrate_pass(robot, eq, full, true, Some(tau))?;
     Ok((VerdictPass { pass, full }, ivp))
 }

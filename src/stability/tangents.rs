@@ -137,6 +137,81 @@ fn column(
     )
 }
 
+/// One value per frozen-tension direction (the six base strains).
+type Lanes = [f64; 6];
+/// A 3-vector of [`Lanes`].
+type V3L = [Lanes; 3];
+
+fn lanes(f: impl FnMut(usize) -> f64) -> Lanes {
+    std::array::from_fn(f)
+}
+
+/// `m v` for each lane.
+fn mat_lanes(m: &Matrix3<f64>, v: &V3L) -> V3L {
+    std::array::from_fn(|i| {
+        lanes(|l| m[(i, 0)] * v[0][l] + m[(i, 1)] * v[1][l] + m[(i, 2)] * v[2][l])
+    })
+}
+
+/// `a x b` for lanes `a` and a fixed vector `b`.
+fn cross_lanes(a: &V3L, b: &Vector3<f64>) -> V3L {
+    [
+        lanes(|l| a[1][l] * b.z - a[2][l] * b.y),
+        lanes(|l| a[2][l] * b.x - a[0][l] * b.z),
+        lanes(|l| a[0][l] * b.y - a[1][l] * b.x),
+    ]
+}
+
+/// The six frozen-tension columns of a node at once ([`column`] along the
+/// base strains, whose tension derivatives are zero), lane by lane: the
+/// same arithmetic on arrays of six, which the compiler vectorises.
+/// `t`: the node's tangents, `ns` states per direction.
+fn frozen_columns(c: &Consts, f: &NodeFrame, t: &[f64], ns: usize) -> (Cols6, Cols6) {
+    let g = |k: usize| lanes(|l| t[l * ns + k]);
+    let dp = [g(0), g(1), g(2)];
+    let dq = [g(3), g(4), g(5), g(6)];
+    let dv = [g(7), g(8), g(9)];
+    let du = [g(10), g(11), g(12)];
+    let mut dnb = mat_lanes(&c.kse, &dv);
+    let mut dmb = mat_lanes(&c.kbt, &du);
+    for &(_, r, tt, nrm, tau) in &f.strings {
+        // d pb = d v + d u x r; d t = (I - t t^T) d pb / |pb|; d f = d t tau
+        let ur = cross_lanes(&du, &r);
+        let dpb: V3L = std::array::from_fn(|k| lanes(|l| dv[k][l] + ur[k][l]));
+        let tp = lanes(|l| tt.x * dpb[0][l] + tt.y * dpb[1][l] + tt.z * dpb[2][l]);
+        let df: V3L = std::array::from_fn(|k| lanes(|l| (dpb[k][l] - tt[k] * tp[l]) / nrm * tau));
+        // r x d f = -(d f x r)
+        let rf = cross_lanes(&df, &r);
+        for k in 0..3 {
+            for l in 0..6 {
+                dnb[k][l] += df[k][l];
+                dmb[k][l] -= rf[k][l];
+            }
+        }
+    }
+    // theta = 2 vec(d q (x) q*), q = (w, x, y, z)
+    let (w, x, y, z) = (f.q.w, f.q.i, f.q.j, f.q.k);
+    let th: V3L = [
+        lanes(|l| 2.0 * (-dq[0][l] * x + dq[1][l] * w - dq[2][l] * z + dq[3][l] * y)),
+        lanes(|l| 2.0 * (-dq[0][l] * y + dq[1][l] * z + dq[2][l] * w - dq[3][l] * x)),
+        lanes(|l| 2.0 * (-dq[0][l] * z - dq[1][l] * y + dq[2][l] * x + dq[3][l] * w)),
+    ];
+    // d w = theta x R nb + R d nb (scaled)
+    let (rdn, rdm) = (mat_lanes(&f.rm, &dnb), mat_lanes(&f.rm, &dmb));
+    let (tn, tm) = (cross_lanes(&th, &f.rn), cross_lanes(&th, &f.rmm));
+    let mut y = [[0.0; 6]; 6];
+    let mut h = [[0.0; 6]; 6];
+    for l in 0..6 {
+        for k in 0..3 {
+            y[l][k] = (rdn[k][l] + tn[k][l]) * c.fs;
+            y[l][3 + k] = (rdm[k][l] + tm[k][l]) * c.ms;
+            h[l][k] = dp[k][l] / c.len;
+            h[l][3 + k] = th[k][l];
+        }
+    }
+    (y, h)
+}
+
 /// Seeds of the tangent IVP along the scaled unknowns `z_0 .. z_nz`
 /// (`nz` = 6: the base strains only; `6 + N`: the elongation guesses too),
 /// the tensions and `d tau_i / d z_j` (`N x nz`). `tau`: the tensions \[N\]
@@ -241,18 +316,24 @@ pub(super) fn tangents_of(robot: &Robot, pass: &Pass) -> Tangents {
     let ns = robot.n_states();
     for (n, node) in pass.nodes.iter().enumerate() {
         let f = frame(robot, &c, tau, node.s, node.state, strings);
-        let (mut y, mut h) = ([[0.0; 6]; 6], [[0.0; 6]; 6]);
         let tip = n + 1 == k;
-        for j in 0..if tip { nz } else { 6 } {
+        if !tip {
+            let (y, h) = frozen_columns(&c, &f, node.tangent, ns);
+            out.s.push(node.s);
+            out.y.push(y);
+            out.h.push(h);
+            strings = f.strings;
+            continue;
+        }
+        let (mut y, mut h) = ([[0.0; 6]; 6], [[0.0; 6]; 6]);
+        for j in 0..nz {
             let (dy, dh) = column(&c, &f, &node.tangent[j * ns..(j + 1) * ns], dtau, j);
             if j < 6 {
                 y[j].copy_from_slice(dy.as_slice());
                 h[j].copy_from_slice(dh.as_slice());
             }
-            if tip {
-                out.y_tip.set_column(j, &dy);
-                out.h_tip.set_column(j, &dh);
-            }
+            out.y_tip.set_column(j, &dy);
+            out.h_tip.set_column(j, &dh);
         }
         out.s.push(node.s);
         out.y.push(y);

@@ -244,9 +244,15 @@ fn full_tip(t: &Tangents, blocked: &[Vector3<f64>]) -> Option<(f64, [f64; 6])> {
             v
         })
         .collect();
+    let mut mode = [0.0; 6];
+    if basis.is_empty() {
+        // a free tip: (S3) itself (the complement's basis is the identity)
+        let (m, v) = min_sym_pair(&kfull);
+        mode.copy_from_slice(v.as_slice());
+        return Some((m, mode));
+    }
     let q = complement(&basis);
     let (m, v) = min_sym_pair(&(q.transpose() * kfull * &q));
-    let mut mode = [0.0; 6];
     mode.copy_from_slice((&q * v).as_slice());
     Some((m, mode))
 }
