@@ -191,7 +191,11 @@ fn report_takes_the_verdict_from_newtons_last_evaluation_where_convergence_is_pr
             let st = on.stability.expect("Report carries a verdict");
             let again = stability(robot, &off.solution, &[]).unwrap();
             assert_eq!(st.evaluations, 1, "{what}: one tangent integration");
-            assert_eq!((st.stable, st.margin), (again.stable, again.margin), "{what}");
+            assert_eq!(
+                (st.stable, st.margin),
+                (again.stable, again.margin),
+                "{what}"
+            );
             assert_eq!(st.determinant, again.determinant, "{what}");
             assert_eq!(st.min_stiffness, again.min_stiffness, "{what}");
             assert_eq!(st.mode, again.mode, "{what}");

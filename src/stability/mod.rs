@@ -95,7 +95,12 @@
 //! is the plain IVP's arithmetic bit for bit), and the [`Solution`] is
 //! assembled from it, identical to the one a solve without a verdict hands
 //! back (with the accuracy control on, the solve records and refines
-//! first, and the verdict is taken on the refined solution).
+//! first, and the verdict is taken on the refined solution). Where the
+//! solver predicts Newton's convergence at its next residual
+//! ([`crate::solve::system::Keep::Verdict`]), that residual is taken from
+//! the verdict's pass itself, so when Newton stops there the verdict costs
+//! no integration beyond the solve's own (a tangent IVP in place of the
+//! last plain one).
 //!
 //! # Policy
 //!
@@ -206,7 +211,11 @@ fn check(robot: &Robot, eq: &Equilibrium<'_>, blocked: &[Vector3<f64>]) -> Resul
 }
 
 /// [`check`] of a robot already validated (by the solve that found `eq`).
-fn check_equilibrium(robot: &Robot, eq: &Equilibrium<'_>, blocked: &[Vector3<f64>]) -> Result<bool> {
+fn check_equilibrium(
+    robot: &Robot,
+    eq: &Equilibrium<'_>,
+    blocked: &[Vector3<f64>],
+) -> Result<bool> {
     let na = robot.actuators.len();
     if eq.unknowns.len() != 6 + na || eq.inputs.len() != na {
         return Err(Error::input(

@@ -9,7 +9,9 @@
 //! themselves, or not at all).
 //!
 //! Cost: the verdict is one tangent integration ([`stability`]), the price
-//! of one full-grid Newton Jacobian; `Off` saves it.
+//! of one full-grid Newton Jacobian; where Newton's convergence is
+//! predicted it is Newton's last residual evaluation, in place of a plain
+//! IVP (see [`solve_checked`]); `Off` saves it.
 
 use std::str::FromStr;
 
