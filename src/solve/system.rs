@@ -47,6 +47,9 @@ pub enum Keep {
     Verdict {
         /// Newton's tolerance on `max |r|`.
         tol: f64,
+        /// Whether the plain IVPs record their nodes too (for a solution
+        /// refined by the accuracy control, which reads the recorded one).
+        nodes: bool,
     },
 }
 
@@ -144,7 +147,7 @@ impl<'a> Shooting<'a> {
 
     /// The residual at `x` from a plain IVP.
     fn plain(&self, x: &[f64]) -> Result<FinalIvp> {
-        let nodes = self.keep == Keep::Nodes;
+        let nodes = matches!(self.keep, Keep::Nodes | Keep::Verdict { nodes: true, .. });
         let (residual, ivp, tensions) = self.shot.residual(x, nodes)?;
         Ok(FinalIvp {
             residual,
@@ -192,7 +195,7 @@ impl System for Shooting<'_> {
     fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
         self.evaluations += 1;
         let last = match self.keep {
-            Keep::Verdict { tol } if self.predicts_convergence(x, tol) => {
+            Keep::Verdict { tol, .. } if self.predicts_convergence(x, tol) => {
                 self.tangent_evaluations += 1;
                 match self.with_verdict(x) {
                     Ok(last) => last,

@@ -122,26 +122,34 @@ pub fn solve_checked(
     // without the accuracy control Newton's solution is final, and its
     // profile comes from the verdict's pass: Newton records no nodes
     let final_newton = opts.equilibrium_tol.is_none();
-    let keep = if final_newton {
-        Keep::Verdict { tol: opts.tol }
-    } else {
-        Keep::Nodes
+    let keep = Keep::Verdict {
+        tol: opts.tol,
+        nodes: !final_newton,
     };
     let (sol, st) = match solve_direct(robot, inputs, loads, opts, warm, keep)? {
         Solved::Newton(nr, last, work) if final_newton => {
             profiled(robot, inputs, loads, opts, nr, last, work)?
         }
         solved => {
-            let sol = match solved {
-                Solved::Newton(nr, last, mut work) => {
-                    solution_from(robot, inputs, loads, opts, nr, last, &mut work)?
+            let (sol, pass) = match solved {
+                Solved::Newton(nr, mut last, mut work) => {
+                    let pass = last.as_mut().and_then(|l| l.verdict.take());
+                    let sol = solution_from(robot, inputs, loads, opts, nr, last, &mut work)?;
+                    (sol, pass)
                 }
-                Solved::Solution(sol) => sol,
+                Solved::Solution(sol) => (sol, None),
             };
+            let steps = sol.steps;
             let mut sol = refine_to_equilibrium(robot, inputs, opts, sol)?;
-            let st = stability(robot, &sol, &[])?;
-            sol.evaluations += st.evaluations;
-            (sol, st)
+            match pass {
+                // not refined: the verdict of Newton's last evaluation
+                Some(pass) if sol.steps == steps => (sol, verdict_of(robot, &pass)),
+                _ => {
+                    let st = stability(robot, &sol, &[])?;
+                    sol.evaluations += st.evaluations;
+                    (sol, st)
+                }
+            }
         }
     };
     if st.stable || policy == Policy::Report {
