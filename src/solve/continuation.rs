@@ -184,7 +184,7 @@ pub(crate) fn continuation(
                     step *= 2.0;
                 }
                 tau = match last {
-                    Some((_, _, t)) => t,
+                    Some(last) => last.tensions,
                     None => tensions_at(&r, &inp, &nr.x, len)?,
                 };
                 prev = Some((lam, std::mem::replace(&mut x, nr.x)));
