@@ -159,7 +159,15 @@ impl RodRhs<'_> {
         let taul: Vec<Lanes<N>> = tau.iter().map(Lanes::of).collect();
         let (mut out, mut outl) = (vec![0.0; y.len()], vec![Lanes::ZERO; y.len()]);
         let mut strings = Vec::new();
-        self.deriv_lanes(s, (&yr, &yl), &taul, active, &mut strings, &mut out, &mut outl)?;
+        self.deriv_lanes(
+            s,
+            (&yr, &yl),
+            &taul,
+            active,
+            &mut strings,
+            &mut out,
+            &mut outl,
+        )?;
         for (d, (re, l)) in dy.iter_mut().zip(out.iter().zip(&outl)) {
             *d = Dual::new(*re, l.0);
         }

@@ -68,7 +68,15 @@ impl<const N: usize> LaneStages<N> {
                     ytl[j] = yl[j] + kpl[j] * hs;
                 }
             }
-            fz.deriv_lanes(ss, (yt, ytl), taul, active, strings, &mut todo[0], &mut todol[0])?;
+            fz.deriv_lanes(
+                ss,
+                (yt, ytl),
+                taul,
+                active,
+                strings,
+                &mut todo[0],
+                &mut todol[0],
+            )?;
         }
         let ([k1, k2, k3, k4], [l1, l2, l3, l4]) = (&*k, &*kl);
         for j in 0..n {
