@@ -196,25 +196,37 @@ fn string_lanes<const N: usize>(
         pbrp,
         ..
     } = *st;
+    // loops, not `v3` closures: a closure here was compiled apart, without
+    // the pass's target features
     let dur = cross_lc(&sl.du, &r);
-    let dpb: V3<Lanes<N>> = v3(|k| sl.dv[k] + dur[k]);
+    let mut dpb = [Lanes::ZERO; 3];
+    for k in 0..3 {
+        dpb[k] = sl.dv[k] + dur[k];
+    }
     let dnrm = dot_cl(&t, &dpb);
     let inv = 1.0 / nrm;
     let dc = (dtau - dnrm * c) * inv;
-    let dt: V3<Lanes<N>> = v3(|k| (dpb[k] - dnrm * t[k]) * inv);
+    let mut dt = [Lanes::ZERO; 3];
+    for k in 0..3 {
+        dt[k] = (dpb[k] - dnrm * t[k]) * inv;
+    }
     let (a, b) = (cross_lc(&sl.du, &pbrp), cross_cl(u, &dpb));
-    let dg: V3<Lanes<N>> = v3(|k| a[k] + b[k]);
+    let mut dg = [Lanes::ZERO; 3];
+    for k in 0..3 {
+        dg[k] = a[k] + b[k];
+    }
     // w = z_i + g_i at fixed x, its part along t removed: A_i w = c (w - t (t . w))
-    let urx = [
-        vd[0] + ud[1] * r[2] - ud[2] * r[1],
-        vd[1] + ud[2] * r[0] - ud[0] * r[2],
-        vd[2] + ud[0] * r[1] - ud[1] * r[0],
+    let w = [
+        g[0] + (vd[0] + ud[1] * r[2] - ud[2] * r[1]),
+        g[1] + (vd[1] + ud[2] * r[0] - ud[0] * r[2]),
+        g[2] + (vd[2] + ud[0] * r[1] - ud[1] * r[0]),
     ];
-    let w: V3<f64> = v3(|k| g[k] + urx[k]);
     let tw = t[0] * w[0] + t[1] * w[1] + t[2] * w[2];
     let dtw = dot_cl(&w, &dt) + dot_cl(&t, &dg);
-    let a: V3<f64> = v3(|k| w[k] - t[k] * tw);
-    let daw: V3<Lanes<N>> = v3(|k| (dg[k] - dt[k] * tw - dtw * t[k]) * c + dc * a[k]);
+    let mut daw = [Lanes::ZERO; 3];
+    for k in 0..3 {
+        daw[k] = (dg[k] - dt[k] * tw - dtw * t[k]) * c + dc * (w[k] - t[k] * tw);
+    }
     (daw, dnrm)
 }
 

@@ -1,18 +1,22 @@
 //! Tangents (forward sensitivities) of the IVP: the variational equations
 //! integrated with the state on the same RK4 grid.
 //!
-//! The right-hand side (eqs 22-31), the RK4 stages, the quaternion
-//! renormalisation, the anchor jumps and the tip balance (32)-(33) are run in
+//! The right-hand side (eqs 22-31), the RK4 stages and the quaternion
+//! renormalisation are differentiated by hand (`tangent_lanes.rs`,
+//! `ode_tangent.rs`: the state in `f64` by the IVP's own code, its tangents
+//! in lanes beside it), the anchor jumps and the tip balance (32)-(33) in
 //! [`Dual`] arithmetic, so the tangents are the exact derivatives of the
 //! *discrete* map (to rounding): `d y(s_k) / d seed` at every grid node.
 //! Directions are seeded on the initial strains `nu(0)`, `omega(0)` and on
 //! the actuator tensions; the force laws' derivatives are applied by the
 //! caller (the shooting residual, J and C). All directions share one
-//! evaluation of the real part (the eq-25 block factorisation included).
+//! evaluation of the real part (the eq-25 block factorisation included),
+//! which is bit-for-bit the plain IVP's.
 //!
-//! The generic right-hand side here is the plain twin of the hand-tuned
-//! `f64` fast path in `ode.rs`; `f64` instances of both agree to rounding
-//! (tested).
+//! The reference pass ([`with_dual_rhs`]) runs everything in [`Dual`]
+//! arithmetic on the generic right-hand side, the plain twin of the
+//! hand-tuned `f64` fast path in `ode.rs`; `f64` instances of both agree to
+//! rounding (tested).
 
 use std::cell::Cell;
 
@@ -56,7 +60,7 @@ thread_local! {
 
 /// Run `f` with this thread's tangent passes on the reference right-hand
 /// side: [`RodRhs::deriv_generic`] in [`Dual`] arithmetic throughout,
-/// instead of the linearisation of [`RodRhs::deriv_tangent`]. The same
+/// instead of the linearisation of [`RodRhs::deriv_lanes`]. The same
 /// derivatives to rounding, at several times the cost: for the tests that
 /// compare the two and for benchmarks, not for use.
 #[doc(hidden)]
