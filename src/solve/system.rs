@@ -8,7 +8,7 @@ use nalgebra::DMatrix;
 
 use super::newton::{newton_from, NewtonOptions, NewtonResult, System};
 use super::options::SolveOptions;
-use super::residual::{residual_scales, tensions, Loads, Shot};
+use super::residual::{residual_scales, scaled_residual, tensions, Loads, Shot};
 use super::solution::{assemble, assemble_from, Solution};
 use crate::error::{Error, Result};
 use crate::rod::{IvpResult, Robot};
@@ -173,15 +173,7 @@ impl<'a> Shooting<'a> {
             steps: self.shot.steps,
         };
         let (pass, ivp) = verdict_pass(robot, &eq, &tau)?;
-        let (fs, ms) = residual_scales(robot);
-        let ef = ivp.tip_force_residual * fs;
-        let em = ivp.tip_moment_residual * ms;
-        let mut r = Vec::with_capacity(6 + na);
-        r.extend_from_slice(ef.as_slice());
-        r.extend_from_slice(em.as_slice());
-        for (e, d) in ivp.elongation.iter().zip(&delta[..na]) {
-            r.push((e - d) / len);
-        }
+        let r = scaled_residual(robot, &ivp, &delta);
         Ok(FinalIvp {
             residual: r,
             ivp,
