@@ -1,5 +1,5 @@
-//! The tangent pass's cost (issues 10 and 16): the linearised right-hand
-//! side (`RodRhs::deriv_tangent`, the default) against the reference pass
+//! The tangent pass's cost (issues 10 and 16): the hand-linearised lanes
+//! (`RodRhs::deriv_lanes`, the default) against the reference pass
 //! in dual arithmetic throughout (`tcarod::rod::with_dual_rhs`), interleaved
 //! in one run by thread CPU time, on the Fig. 6 square at
 //! `rows::BENCH_TEMPERATURE` (100 RK4 steps): one plain IVP, tangent passes

@@ -163,3 +163,16 @@ def test_equilibrium_tol_refines_the_grid() -> None:
             robot.solve([0.3946], equilibrium_tol=bad)
     with pytest.raises(TypeError):
         robot.solve([0.3946], equilibrium_tol="tight")  # type: ignore[arg-type]
+
+
+def test_equilibrium_refinement_keeps_the_continuation_path() -> None:
+    # three iterations are too few from the cold guess at 150 C: the first
+    # solve takes the continuation path; 1e-11 is below the Fig. 6 square's
+    # global equilibrium error on 100 RK4 steps, so the grid is refined by a
+    # warm re-solve that needs no path of its own
+    sq = fig6_square_robot()
+    first = sq.solve([150.0, 150.0], max_iter=3)
+    fine = sq.solve([150.0, 150.0], max_iter=3, equilibrium_tol=1e-11)
+    assert fine.steps > first.steps
+    assert first.continuation_steps[-1] == 1.0
+    np.testing.assert_array_equal(fine.continuation_steps, first.continuation_steps)

@@ -26,6 +26,7 @@ mod anchors;
 mod body;
 pub mod dual;
 mod ivp;
+mod lanes;
 mod ode;
 mod ode_tangent;
 mod robot;

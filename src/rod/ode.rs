@@ -26,6 +26,7 @@ pub(crate) struct RodRhs<'a> {
     pub(crate) kbt_inv: Vector3<f64>,
     pub(crate) fe: Vector3<f64>,
     pub(crate) le: Vector3<f64>,
+    pub(crate) has_fe: bool,
     pub(crate) has_le: bool,
     pub(crate) acts: Vec<ActuatorConstants>,
 }
@@ -170,6 +171,7 @@ impl<'a> RodRhs<'a> {
             kbt_inv: kbt.map(|x| 1.0 / x),
             fe: body.distributed_load(),
             le: body.distributed_moment,
+            has_fe: body.distributed_load() != Vector3::zeros(),
             has_le: body.distributed_moment != Vector3::zeros(),
             acts,
         }
@@ -249,7 +251,8 @@ impl<'a> RodRhs<'a> {
                 v3(|k| fr.f[k] * self.kbt_inv[k]),
             )
         } else {
-            let (m, e, f) = self.assemble(s, &fr, tau, active, |i, x| dy[BASE_STATES + i] = x)?;
+            let (m, e, f) =
+                self.assemble(s, &fr, tau, active, |i, st| dy[BASE_STATES + i] = st.rate)?;
             T::solve_eq25(&m, &e, &f).ok_or_else(|| singular(s))?
         };
         self.kinematics(s, y, &fr, &vd, &ud, dy)
@@ -310,12 +313,15 @@ impl<'a> RodRhs<'a> {
             t: v3(|k| pb[k] / nrm),
             g: v3(|k| upr[k] + rpp[k]), // g_i = omega^(nu + omega^ r + 2 r') + r''
             rate: nrm - lref,           // (24)
+            nrm,
+            pbrp,
         })
     }
 
     /// The blocks `[M11, M12, M22]` of (25) (symmetric ones stored whole)
     /// and its right-hand side `[e; f]` for the actuators in `active`, from
-    /// the actuator-free `frame`; `rate(i, delta_i')` gets each elongation rate (24).
+    /// the actuator-free `frame`; `each(i, string)` gets each string (its
+    /// elongation rate (24) among its fields), in the order of `active`.
     #[inline(always)]
     pub(crate) fn assemble<T: Real>(
         &self,
@@ -323,7 +329,7 @@ impl<'a> RodRhs<'a> {
         fr: &Frame<T>,
         tau: &[T],
         active: &[usize],
-        mut rate: impl FnMut(usize, T),
+        mut each: impl FnMut(usize, &StringAt<T>),
     ) -> Result<(Blocks<T>, V3<T>, V3<T>)> {
         let zero = T::cst(0.0);
         let (kse, kbt): (V3<f64>, V3<f64>) = (self.kse.into(), self.kbt.into());
@@ -334,13 +340,8 @@ impl<'a> RodRhs<'a> {
             m[2][k][k] = T::cst(kbt[k]);
         }
         for &i in active {
-            let StringAt {
-                r,
-                c,
-                t,
-                g,
-                rate: d,
-            } = self.string_at(s, i, &fr.v, &fr.u, tau[i])?;
+            let st = self.string_at(s, i, &fr.v, &fr.u, tau[i])?;
+            let StringAt { r, c, t, g, .. } = st;
             // A_i = -tau pb^2 / |pb|^3 = c (I - t t^T), c = tau / |pb| (eq 20:
             // tau t_a' = A_i R^T p_a''). With r^ x = r x x, w = t x r and
             // r^ r^ = r r^T - |r|^2 I:
@@ -372,7 +373,7 @@ impl<'a> RodRhs<'a> {
             m[1][1][2] += cr[0];
             m[1][2][0] += cr[1];
             m[1][2][1] -= cr[0];
-            rate(i, d);
+            each(i, &st);
         }
         for (p, q) in [(1, 0), (2, 0), (2, 1)] {
             m[0][p][q] = m[0][q][p];
@@ -438,6 +439,7 @@ pub(crate) struct Frame<T> {
 }
 
 /// One string at one state ([`RodRhs::string_at`]).
+#[derive(Clone, Copy)]
 pub(crate) struct StringAt<T> {
     /// Offset `r_i` \[m\], body frame.
     pub(crate) r: V3<f64>,
@@ -449,6 +451,10 @@ pub(crate) struct StringAt<T> {
     pub(crate) g: V3<T>,
     /// Elongation rate `|p_b| - L_i` (24).
     pub(crate) rate: T,
+    /// `|p_b|`.
+    pub(crate) nrm: T,
+    /// `p_b + r'`.
+    pub(crate) pbrp: V3<T>,
 }
 
 #[cfg(test)]

@@ -1,18 +1,22 @@
 //! Tangents (forward sensitivities) of the IVP: the variational equations
 //! integrated with the state on the same RK4 grid.
 //!
-//! The right-hand side (eqs 22-31), the RK4 stages, the quaternion
-//! renormalisation, the anchor jumps and the tip balance (32)-(33) are run in
+//! The right-hand side (eqs 22-31), the RK4 stages and the quaternion
+//! renormalisation are differentiated by hand (`tangent_lanes.rs`,
+//! `ode_tangent.rs`: the state in `f64` by the IVP's own code, its tangents
+//! in lanes beside it), the anchor jumps and the tip balance (32)-(33) in
 //! [`Dual`] arithmetic, so the tangents are the exact derivatives of the
 //! *discrete* map (to rounding): `d y(s_k) / d seed` at every grid node.
 //! Directions are seeded on the initial strains `nu(0)`, `omega(0)` and on
 //! the actuator tensions; the force laws' derivatives are applied by the
 //! caller (the shooting residual, J and C). All directions share one
-//! evaluation of the real part (the eq-25 block factorisation included).
+//! evaluation of the real part (the eq-25 block factorisation included),
+//! which is bit-for-bit the plain IVP's.
 //!
-//! The generic right-hand side here is the plain twin of the hand-tuned
-//! `f64` fast path in `ode.rs`; `f64` instances of both agree to rounding
-//! (tested).
+//! The reference pass ([`with_dual_rhs`]) runs everything in [`Dual`]
+//! arithmetic on the generic right-hand side, the plain twin of the
+//! hand-tuned `f64` fast path in `ode.rs`; `f64` instances of both agree to
+//! rounding (tested).
 
 use std::cell::Cell;
 
@@ -56,7 +60,7 @@ thread_local! {
 
 /// Run `f` with this thread's tangent passes on the reference right-hand
 /// side: [`RodRhs::deriv_generic`] in [`Dual`] arithmetic throughout,
-/// instead of the linearisation of [`RodRhs::deriv_tangent`]. The same
+/// instead of the linearisation of [`RodRhs::deriv_lanes`]. The same
 /// derivatives to rounding, at several times the cost: for the tests that
 /// compare the two and for benchmarks, not for use.
 #[doc(hidden)]
@@ -220,12 +224,10 @@ macro_rules! pass_with {
 pass_with!(pass_avx512, "avx512f");
 pass_with!(pass_avx2, "avx2");
 
-/// The RK4 stages of a tangent pass (`n` states each).
+/// The RK4 stages of the reference pass in dual arithmetic (`n` states each).
 struct Stages<const N: usize> {
     k: [Vec<Dual<N>>; 4],
     yt: Vec<Dual<N>>,
-    /// The reference right-hand side ([`with_dual_rhs`]).
-    dual: bool,
 }
 
 impl<const N: usize> Stages<N> {
@@ -234,15 +236,14 @@ impl<const N: usize> Stages<N> {
         Stages {
             k: std::array::from_fn(|_| zero.clone()),
             yt: zero,
-            dual: DUAL_RHS.with(Cell::get),
         }
     }
 
     /// One RK4 step of length `h` from `s`, then the quaternion
-    /// renormalised, as in [`super::integrate`]; the right-hand side by
-    /// [`RodRhs::deriv_tangent`], or in dual arithmetic throughout
-    /// ([`RodRhs::deriv_generic`], the reference). The stages are a loop
-    /// so that the right-hand side is inlined once per compiled pass.
+    /// renormalised, as in [`super::integrate`]; the right-hand side in
+    /// dual arithmetic throughout ([`RodRhs::deriv_generic`], the
+    /// reference). The stages are a loop so that the right-hand side is
+    /// inlined once per compiled pass.
     #[inline(always)]
     fn step(
         &mut self,
@@ -255,7 +256,7 @@ impl<const N: usize> Stages<N> {
     ) -> Result<()> {
         let (h2, h6) = (0.5 * h, h / 6.0);
         let n = y.len();
-        let Stages { k, yt, dual } = self;
+        let Stages { k, yt } = self;
         for st in 0..4 {
             let (hs, ss) = [(0.0, s), (h2, s + h2), (h2, s + h2), (h, s + h)][st];
             let (done, todo) = k.split_at_mut(st);
@@ -267,13 +268,7 @@ impl<const N: usize> Stages<N> {
                     yt[j] = y[j] + kp[j] * hs;
                 }
             }
-            // a branch, not a closure: a closure is compiled without the
-            // pass's target features
-            if *dual {
-                fz.deriv_generic(ss, yt, tau, active, &mut todo[0])?;
-            } else {
-                fz.deriv_tangent(ss, yt, tau, active, &mut todo[0])?;
-            }
+            fz.deriv_generic(ss, yt, tau, active, &mut todo[0])?;
         }
         let [k1, k2, k3, k4] = &*k;
         for j in 0..n {
@@ -329,24 +324,38 @@ fn tip_balance<const N: usize>(
 }
 
 /// One pass of [`integrate_tangent`] over directions `c0 .. c0 + w` (`w <= N`),
-/// recording into `nodes` as asked.
+/// recording into `nodes` as asked: on the hand-linearised right-hand side
+/// ([`lanes_pass::pass_lanes`]), or the reference in dual arithmetic
+/// throughout ([`with_dual_rhs`]).
 #[inline(always)]
 fn pass<const N: usize>(
     p: &Pass<'_, '_>,
     record: Record,
     nodes: &mut TangentNodes,
 ) -> Result<TangentIvp> {
-    type D<const N: usize> = Dual<N>;
+    if DUAL_RHS.with(Cell::get) {
+        pass_dual::<N>(p, record, nodes)
+    } else {
+        lanes_pass::pass_lanes::<N>(p, record, nodes)
+    }
+}
+
+/// [`pass`] in dual arithmetic throughout (the reference).
+#[inline(always)]
+fn pass_dual<const N: usize>(
+    p: &Pass<'_, '_>,
+    record: Record,
+    nodes: &mut TangentNodes,
+) -> Result<TangentIvp> {
     let (spec, c0, w) = (p.spec, p.c0, p.w);
     let robot = spec.robot;
-    let body = &robot.body;
     let fz = RodRhs::new(robot, spec.tensions);
     let na = robot.actuators.len();
     let n = robot.n_states();
-    let len = body.length;
+    let len = robot.body.length;
     let steps = spec.steps.max(1);
     let (tau, mut y) = seeded_start::<N>(p, n);
-    let zero = D::<N>::cst(0.0);
+    let zero = Dual::<N>::cst(0.0);
     let mut st = Stages::<N>::new(n);
     let rec = record != Record::Tip;
     let mut idx = 0;
@@ -380,19 +389,36 @@ fn pass<const N: usize>(
             }
         }
     }
-    let (rf, rmm) = tip_balance(spec, &fz, &y, &tau, &mut elongation, tol);
+    close(p, &fz, &y, &tau, &mut elongation, (record, nodes, idx))
+}
+
+/// The end of a pass at the tip state `y`: the tip balance, the check that
+/// every tangent is finite, the last node recorded as asked (`idx` is its
+/// index) and the result.
+#[inline(always)]
+fn close<const N: usize>(
+    p: &Pass<'_, '_>,
+    fz: &RodRhs<'_>,
+    y: &[Dual<N>],
+    tau: &[Dual<N>],
+    elongation: &mut [Dual<N>],
+    (record, nodes, idx): (Record, &mut TangentNodes, usize),
+) -> Result<TangentIvp> {
+    let len = p.spec.robot.body.length;
+    let tol = 1e-12 * len;
+    let (rf, rmm) = tip_balance(p.spec, fz, y, tau, elongation, tol);
     // the stages check only the real parts: the derivatives once, here
-    let all_finite = |v: &[D<N>]| v.iter().all(|d| d.eps.iter().all(|e| e.is_finite()));
-    if !(all_finite(&y) && all_finite(&elongation) && all_finite(&rf) && all_finite(&rmm)) {
+    let all_finite = |v: &[Dual<N>]| v.iter().all(|d| d.eps.iter().all(|e| e.is_finite()));
+    if !(all_finite(y) && all_finite(elongation) && all_finite(&rf) && all_finite(&rmm)) {
         return Err(Error::Integration {
             s: len,
             reason: "non-finite tangent".into(),
         });
     }
-    if rec {
-        nodes.record(idx, len, &y, c0, w);
+    if record != Record::Tip {
+        nodes.record(idx, len, y, p.c0, p.w);
     }
-    let ivp_nodes = if record == Record::All && c0 == 0 {
+    let ivp_nodes = if record == Record::All && p.c0 == 0 {
         nodes
             .iter()
             .map(|nd| (nd.s, RodState::from_slice(nd.state)))
@@ -400,7 +426,7 @@ fn pass<const N: usize>(
     } else {
         Vec::new()
     };
-    Ok(finish(&y, &elongation, &rf, &rmm, ivp_nodes, w))
+    Ok(finish(y, elongation, &rf, &rmm, ivp_nodes, p.w))
 }
 
 /// The dual tensions and initial state of a pass: directions `c0 .. c0 + w`
@@ -453,6 +479,9 @@ fn finish<const N: usize>(
         nodes: TangentNodes::default(),
     }
 }
+
+#[path = "tangent_lanes.rs"]
+mod lanes_pass;
 
 #[cfg(test)]
 #[path = "tangent_tests.rs"]

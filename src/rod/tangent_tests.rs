@@ -73,6 +73,15 @@ fn linearised_pass_agrees_with_the_dual_pass_and_the_plain_ivp() {
     ];
     let mixed = Robot::new(sq.body.clone(), acts).unwrap();
     compare(&mixed, &[-0.05, 0.02], v0, u0);
+    // no distributed force but a distributed moment, and intervals with no
+    // string at all (an actuator anchored at 0.3 L and 0.7 L only)
+    let mut body = sq.body.clone();
+    body.gravity = Vector3::zeros();
+    body.distributed_moment = Vector3::new(2e-3, -1e-3, 5e-4);
+    let law = Arc::new(ConstantTension);
+    let inner = Actuator::new(Routing::Straight { x, y: -x }, 0.3 * len, 0.7 * len, law);
+    let inner = Robot::new(body, vec![inner]).unwrap();
+    compare(&inner, &[-0.03], v0, u0);
     let steel = steel_tendon_robot();
     let u0 = Vector3::new(0.0, 0.3, 0.0);
     compare(

@@ -9,7 +9,8 @@
 //! inputs to the new ones at full load. Steps are adaptive: doubled after a
 //! step that converged in at most [`EASY_ITERATIONS`] Newton iterations,
 //! quartered after a failure, down to [`MIN_STEP`]. Each step starts from
-//! the previous solution's strains and tensions. A step's Newton run is a
+//! a polynomial predictor through the last converged points
+//! ([`PREDICTOR_POINTS`]). A step's Newton run is a
 //! corrector: it converges only to [`INTERMEDIATE_TOL`] and gives up after
 //! [`HOMOTOPY_STALL_WINDOW`] damped steps that do not halve the residual
 //! (then the step is quartered); see those constants for the measurements. The path (the `lambda` of
@@ -36,6 +37,40 @@ pub const EASY_ITERATIONS: usize = 4;
 /// `1e-4` 654, with the same 999 designs converged; `1e-3` lost 3 designs,
 /// `1e-6` lost 2.
 pub const INTERMEDIATE_TOL: f64 = 1e-4;
+/// Points of the homotopy's predictor polynomial (the current converged
+/// point and up to this many minus one before it): 3, a quadratic. The
+/// paths of soft, heavily loaded bodies bend strongly in `lambda`, and
+/// single shooting reaches only a small neighbourhood of them (on
+/// benchmark design #126, exact undamped Newton diverges from an error of
+/// 0.03-0.09 in the base curvature `L omega`), so the predictor's order
+/// sets the step. Measured on #126 along its exact path (`examples/
+/// trace_homotopy.rs`), first residual of the corrector at `lambda` 0.5,
+/// steps 1/64 / 1/32 / 1/16: secant 0.37 / 1.2 (diverges) / 5.8
+/// (diverges), quadratic 9e-3 / 0.067 / 0.45 (all converge in 3-5 exact
+/// Newton steps); at 0.875: secant 0.67 / 2.2 / 8.5 (diverges), quadratic
+/// 5e-3 / 0.044 / 0.35. A tangent (Euler) predictor from the exact
+/// Jacobian was in between (0.19 / 0.71 / 2.9 at 0.5, diverging at 1/16)
+/// and costs an IVP more. On the 1,000 designs (IVPs per solve, p90 / p99
+/// / max; same 999 converged): secant 99 / 325 / 687, quadratic 97 / 301
+/// / 643 (#126: 687 to 356).
+pub const PREDICTOR_POINTS: usize = 3;
+/// Smallest line-search step of a homotopy corrector's first attempt at a
+/// step (see `step_options`): 0.6 allows the full step only (then the
+/// full-grid Jacobian, [`crate::solve::newton::System::refine`]). A
+/// predictor from which the full Newton step fails the Armijo test lies
+/// outside the corrector's reach, and backtracking from there cost 10-84
+/// IVPs per failed step (measured: #126, #273, #385 of the benchmark);
+/// the step is quartered at once. A retry after a failure backtracks in
+/// full (down to the solve's `min_step`): where the path has a kink (a
+/// tendon going taut or slack, coils touching) small steps need damping.
+/// Measured on the 1,000 designs with the quadratic predictor
+/// ([`PREDICTOR_POINTS`]), IVPs per solve p90 / p99 / max: full
+/// backtracking everywhere 97 / 301 / 643; 0.6 on every attempt 88 / 197
+/// / 474 but lost #153 (not past buckling) and #267, #381; 0.6 on first
+/// attempts, intermediate steps only, 89 / 227 / 535; and on the last
+/// step too (this) 90 / 212 / 485; each of the last two with the same
+/// 999 designs converged. 0.3 (one halving): 91 / 235 / 581.
+pub const CORRECTOR_MIN_STEP: f64 = 0.6;
 /// Smallest homotopy step.
 pub const MIN_STEP: f64 = 1e-4;
 /// Stall window of every homotopy step's Newton run (see
@@ -81,30 +116,36 @@ fn at(
     (r, inp, l)
 }
 
-/// Initial guess of a homotopy step of length `dl` from the converged `x`
-/// (tensions `tau`) at the current `lambda`: the secant through the previous
-/// converged point (`prev`: its distance in `lambda` behind and its
-/// unknowns) extrapolated by `dl` when there is one (first-order predictor:
-/// its error is `O(dl^2)`, against `O(dl)` for the last point itself),
-/// else `x` with the actuator elongations that keep the tensions `tau` at
-/// the step's inputs (see `initial_guess`).
+/// Initial guess of a homotopy step from the converged `x` (tensions
+/// `tau`) at `lam` to `lt`: the polynomial through the last converged
+/// points (`prev`: up to two earlier `(lambda, unknowns)`, most recent
+/// last, and `(lam, x)`) extrapolated to `lt` when there are any (see
+/// [`PREDICTOR_POINTS`]), else `x` with the actuator elongations that keep
+/// the tensions `tau` at the step's inputs (see `initial_guess`).
 fn predictor(
     robot: &Robot,
     inputs: &[f64],
     x: &[f64],
     tau: &[f64],
-    prev: Option<(f64, &[f64])>,
-    dl: f64,
+    prev: &[(f64, Vec<f64>)],
+    lam: f64,
+    lt: f64,
 ) -> Vec<f64> {
-    if let Some((back, xp)) = prev {
-        if back > 0.0 {
-            let a = dl / back;
-            return x
+    if !prev.is_empty() {
+        // Lagrange extrapolation through (prev..., (lam, x))
+        let mut pts: Vec<(f64, &[f64])> = prev.iter().map(|(l, v)| (*l, v.as_slice())).collect();
+        pts.push((lam, x));
+        let mut out = vec![0.0; x.len()];
+        for (i, &(li, xi)) in pts.iter().enumerate() {
+            let w: f64 = pts
                 .iter()
-                .zip(xp)
-                .map(|(xi, pi)| xi + a * (xi - pi))
-                .collect();
+                .enumerate()
+                .filter(|&(j, _)| j != i)
+                .map(|(_, &(lj, _))| (lt - lj) / (li - lj))
+                .product();
+            out.iter_mut().zip(xi).for_each(|(o, v)| *o += w * v);
         }
+        return out;
     }
     let len = robot.body.length;
     let mut x0 = x.to_vec();
@@ -152,10 +193,12 @@ pub(crate) fn continuation(
     let mut step: f64 = if cold { 0.25 } else { 0.5 };
     let mut path = Vec::new();
     let mut last_err: Option<Error> = None;
-    // the previous converged point (lambda, unknowns), for the secant predictor
-    let mut prev: Option<(f64, Vec<f64>)> = None;
+    // the previous converged points (lambda, unknowns), oldest first, for the predictor
+    let mut prev: Vec<(f64, Vec<f64>)> = Vec::new();
     // best residual of the failed Newton runs (for the budget error)
     let mut best = f64::INFINITY;
+    // whether the last step failed (its retry backtracks in full)
+    let mut retry = false;
     while lam < 1.0 {
         cancel::check()?;
         if work.exhausted() {
@@ -163,18 +206,12 @@ pub(crate) fn continuation(
         }
         let lt = (lam + step).min(1.0);
         let (r, inp, l) = at(robot, &from, inputs, loads, cold, lt);
-        let x0 = predictor(
-            &r,
-            &inp,
-            &x,
-            &tau,
-            prev.as_ref().map(|(l0, x0)| (lam - l0, x0.as_slice())),
-            lt - lam,
-        );
-        let step_opts = step_options(opts, lt >= 1.0);
+        let x0 = predictor(&r, &inp, &x, &tau, &prev, lam, lt);
+        let step_opts = step_options(opts, lt >= 1.0, retry);
         match newton_shooting(&r, &inp, &l, &step_opts, &x0, jac.as_ref(), lt >= 1.0, work) {
             Ok((nr, last)) => {
                 path.push(lt);
+                retry = false;
                 if lt >= 1.0 {
                     let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
                     s.continuation_steps = path;
@@ -184,10 +221,13 @@ pub(crate) fn continuation(
                     step *= 2.0;
                 }
                 tau = match last {
-                    Some((_, _, t)) => t,
+                    Some(last) => last.tensions,
                     None => tensions_at(&r, &inp, &nr.x, len)?,
                 };
-                prev = Some((lam, std::mem::replace(&mut x, nr.x)));
+                prev.push((lam, std::mem::replace(&mut x, nr.x)));
+                if prev.len() >= PREDICTOR_POINTS {
+                    prev.remove(0);
+                }
                 lam = lt;
                 if nr.jacobian.is_some() {
                     jac = nr.jacobian;
@@ -204,6 +244,7 @@ pub(crate) fn continuation(
                     best = best.min(*residual);
                 }
                 last_err = Some(e);
+                retry = true;
                 step *= 0.25;
                 if step < MIN_STEP {
                     break;
@@ -222,13 +263,22 @@ pub(crate) fn continuation(
 /// finishing it. Measured on the 1,000 benchmark designs (IVPs per solve,
 /// same converged set): the full limit gave p99 1,434 and max 2,278, half
 /// of it p99 1,043 and max 1,744; 12 iterations lost #126 and #861.
-fn step_options(opts: &SolveOptions, last: bool) -> SolveOptions {
+/// The first attempt at a step (`retry` false) backtracks only down to
+/// [`CORRECTOR_MIN_STEP`]; a retry after a failed step backtracks as the
+/// options say.
+fn step_options(opts: &SolveOptions, last: bool, retry: bool) -> SolveOptions {
+    let min_step = if retry {
+        opts.min_step
+    } else {
+        opts.min_step.max(CORRECTOR_MIN_STEP)
+    };
     if last {
-        *opts
+        SolveOptions { min_step, ..*opts }
     } else {
         SolveOptions {
             tol: opts.tol.max(INTERMEDIATE_TOL),
             max_iter: (opts.max_iter / 2).max(EASY_ITERATIONS + 1),
+            min_step,
             ..*opts
         }
     }

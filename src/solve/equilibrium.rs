@@ -140,8 +140,10 @@ const REFINEMENTS: usize = 3;
 /// `h^4`, so the steps grow by `ceil((2 err / tol)^(1/4))` (at least 2);
 /// the part from Newton's tolerance falls with it, which is divided by
 /// `2 err / tol` too. The result's `steps` are those used; its `iterations` and
-/// `evaluations` count every solve. [`Error::NotConverged`] if the tolerance
-/// is not met after three refinements or within [`MAX_STEPS`].
+/// `evaluations` count every solve, and its `continuation_steps` are the
+/// first solve's path (unless a re-solve needed one of its own).
+/// [`Error::NotConverged`] if the tolerance is not met after three
+/// refinements or within [`MAX_STEPS`].
 pub fn refine_to_equilibrium(
     robot: &Robot,
     inputs: &[f64],
@@ -152,6 +154,8 @@ pub fn refine_to_equilibrium(
         return Ok(sol);
     };
     let (mut iterations, mut evaluations) = (sol.iterations, sol.evaluations);
+    // the path of the first solve (a warm re-solve from it needs none)
+    let path = sol.continuation_steps.clone();
     let mut o = SolveOptions {
         equilibrium_tol: None,
         ..*opts
@@ -190,5 +194,8 @@ pub fn refine_to_equilibrium(
         });
     }
     (sol.iterations, sol.evaluations) = (iterations, evaluations);
+    if sol.continuation_steps.is_empty() {
+        sol.continuation_steps = path;
+    }
     Ok(sol)
 }

@@ -300,7 +300,7 @@ pub(crate) fn presolved_shooting(
     opts: &SolveOptions,
     x0: &[f64],
     warm: Option<Warm<'_>>,
-    record: bool,
+    record: super::system::Keep,
     work: &mut Work,
 ) -> Result<(NewtonResult, Option<FinalIvp>)> {
     let jac0 = warm.and_then(|w| w.jacobian);

@@ -103,15 +103,7 @@ impl<'a> Shot<'a> {
         let tau = tensions(self.robot, self.inputs, &delta)?;
         let spec = self.loads.ivp(self.robot, &tau, self.steps);
         let ivp = integrate(&spec, &v0, &u0, record)?;
-        let (fs, ms) = residual_scales(self.robot);
-        let ef = ivp.tip_force_residual * fs;
-        let em = ivp.tip_moment_residual * ms;
-        let mut r = Vec::with_capacity(6 + na);
-        r.extend_from_slice(ef.as_slice());
-        r.extend_from_slice(em.as_slice());
-        for (e, d) in ivp.elongation.iter().zip(&delta[..na]) {
-            r.push((e - d) / len);
-        }
+        let r = scaled_residual(self.robot, &ivp, &delta);
         Ok((r, ivp, tau))
     }
 
@@ -232,4 +224,21 @@ pub fn residual_scales(robot: &Robot) -> (f64, f64) {
     let (_, ix, iy, _) = b.section.properties();
     let ei = b.youngs_modulus * ix.min(iy);
     (b.length * b.length / ei, b.length / ei)
+}
+
+/// The scaled shooting residual of an IVP whose elongations were guessed as
+/// `delta` \[m\]: tip force and moment balance (32)-(33) as strain errors,
+/// then `(delta_i(s_end) - delta_i) / L` (see [`crate::shooting`]).
+pub(crate) fn scaled_residual(robot: &Robot, ivp: &IvpResult, delta: &[f64]) -> Vec<f64> {
+    let (na, len) = (robot.actuators.len(), robot.body.length);
+    let (fs, ms) = residual_scales(robot);
+    let ef = ivp.tip_force_residual * fs;
+    let em = ivp.tip_moment_residual * ms;
+    let mut r = Vec::with_capacity(6 + na);
+    r.extend_from_slice(ef.as_slice());
+    r.extend_from_slice(em.as_slice());
+    for (e, d) in ivp.elongation.iter().zip(&delta[..na]) {
+        r.push((e - d) / len);
+    }
+    r
 }

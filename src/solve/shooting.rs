@@ -35,7 +35,7 @@ pub use super::residual::{
 };
 pub use super::solution::{assemble, Solution, TipSolution};
 pub(crate) use super::system::{newton_shooting, solution_from, FinalIvp, Work};
-pub use super::system::{Shooting, COARSE_JACOBIAN_MIN_STEPS, STALL_WINDOW};
+pub use super::system::{Keep, Shooting, COARSE_JACOBIAN_MIN_STEPS, STALL_WINDOW};
 
 /// Solve the forward kinetostatics for actuator `inputs` (temperature \[C\]
 /// for TCAs, tension \[N\] or pull \[m\] for tendons).
@@ -91,7 +91,7 @@ pub fn solve_loaded(
     opts: &SolveOptions,
     warm: Option<&Solution>,
 ) -> Result<Solution> {
-    match solve_direct(robot, inputs, loads, opts, warm, true)? {
+    match solve_direct(robot, inputs, loads, opts, warm, Keep::Nodes)? {
         Solved::Newton(nr, last, mut work) => {
             solution_from(robot, inputs, loads, opts, nr, last, &mut work)
         }
@@ -110,17 +110,17 @@ pub(crate) enum Solved {
 }
 
 /// [`solve_loaded`] up to the direct Newton run's result: the solution is
-/// not assembled, and with `record == false` Newton's IVPs record no nodes
-/// (for a caller that integrates at the solution once more, recorded, and
-/// assembles the solution from that: the stability verdict of
-/// [`crate::stability::solve_checked`]).
+/// not assembled, and `keep` says what Newton's IVPs record (with
+/// [`Keep::Verdict`], the stability verdict's integration where Newton is
+/// predicted to stop, from which [`crate::stability::solve_checked`]
+/// assembles the solution).
 pub(crate) fn solve_direct(
     robot: &Robot,
     inputs: &[f64],
     loads: &Loads,
     opts: &SolveOptions,
     warm: Option<&Solution>,
-    record: bool,
+    keep: Keep,
 ) -> Result<Solved> {
     robot.validate()?;
     robot.check_inputs(inputs)?;
@@ -158,7 +158,7 @@ pub(crate) fn solve_direct(
         inputs: &w.inputs,
         jacobian: w.newton_jacobian.as_ref(),
     });
-    match presolved_shooting(robot, inputs, loads, opts, &x0, start, record, &mut work) {
+    match presolved_shooting(robot, inputs, loads, opts, &x0, start, keep, &mut work) {
         Ok((nr, last)) => Ok(Solved::Newton(nr, last, work)),
         Err(e) if is_input_error(&e) || is_budget_error(&e) => Err(e),
         Err(first) => continuation(robot, inputs, loads, opts, warm, &mut work)
@@ -248,10 +248,10 @@ pub fn solve_tip(
         inputs: &w.inputs,
         jacobian: w.newton_jacobian.as_ref(),
     });
-    match presolved_shooting(robot, inputs, loads, opts, &x0, start, false, &mut work) {
+    match presolved_shooting(robot, inputs, loads, opts, &x0, start, Keep::Tip, &mut work) {
         Ok((nr, last)) => {
             let (ivp, tau) = match last {
-                Some((_, ivp, tau)) => (ivp, tau),
+                Some(last) => (last.ivp, last.tensions),
                 None => {
                     work.evaluations += 1;
                     let (_, ivp, tau) =

@@ -8,23 +8,68 @@ use nalgebra::DMatrix;
 
 use super::newton::{newton_from, NewtonOptions, NewtonResult, System};
 use super::options::SolveOptions;
-use super::residual::{residual_scales, Loads, Shot};
+use super::residual::{residual_scales, scaled_residual, tensions, Loads, Shot};
 use super::solution::{assemble, assemble_from, Solution};
 use crate::error::{Error, Result};
 use crate::rod::{IvpResult, Robot};
+use crate::stability::{verdict_pass, Equilibrium, VerdictPass};
 
-/// Unknowns, residual, IVP and tensions of the last evaluation, kept for the solution.
-type LastEvaluation = (Vec<f64>, Vec<f64>, IvpResult, Vec<f64>);
-/// Residual, IVP and tensions at the Newton solution (when it was the last one integrated).
-pub(crate) type FinalIvp = (Vec<f64>, IvpResult, Vec<f64>);
+/// The residual, IVP and tensions \[N\] of one evaluation (at the point
+/// Newton returns, they serve as the solution's profile), and the
+/// stability verdict's tangent integration if it was taken there
+/// ([`Keep::Verdict`]).
+pub(crate) struct FinalIvp {
+    /// Scaled residual.
+    pub residual: Vec<f64>,
+    /// The IVP (its nodes if recorded).
+    pub ivp: IvpResult,
+    /// Actuator tensions \[N\].
+    pub tensions: Vec<f64>,
+    /// The verdict's recorded tangent integration whose real part `ivp` is.
+    pub verdict: Option<Box<VerdictPass>>,
+}
+
+/// What a [`Shooting`] records of its residual evaluations.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Keep {
+    /// Nothing but the tip (`false`).
+    Tip,
+    /// The nodes of every plain IVP (`true`): the last one is the
+    /// solution's profile.
+    Nodes,
+    /// The tip only, except where the residual is predicted to pass
+    /// Newton's test against the tolerance `tol` (see
+    /// [`Shooting::predicts_convergence`]): there the residual comes from
+    /// the stability verdict's recorded tangent integration
+    /// ([`crate::stability`]), whose real part is the plain IVP's arithmetic
+    /// bit for bit, so Newton's path is the same; if Newton stops there, the
+    /// verdict and the solution's profile need no further IVP.
+    Verdict {
+        /// Newton's tolerance on `max |r|`.
+        tol: f64,
+        /// Whether the plain IVPs record their nodes too (for a solution
+        /// refined by the accuracy control, which reads the recorded one).
+        nodes: bool,
+    },
+}
+
+impl From<bool> for Keep {
+    fn from(nodes: bool) -> Self {
+        if nodes {
+            Keep::Nodes
+        } else {
+            Keep::Tip
+        }
+    }
+}
 
 /// The shooting residual of one forward problem as a Newton [`System`]:
 /// plain IVPs for residuals, tangent IVPs for the exact Jacobian. Counts
-/// every IVP (failed ones too) and keeps the last plain one (at the point
-/// Newton returns, so that it can serve as the solution's profile).
+/// every IVP (failed ones too) and keeps the last residual evaluation (at
+/// the point Newton returns, it can serve as the solution's profile).
 pub struct Shooting<'a> {
     shot: Shot<'a>,
-    record: bool,
+    keep: Keep,
     /// IVPs integrated (plain and tangent).
     pub evaluations: usize,
     /// Tangent IVPs among them.
@@ -33,7 +78,10 @@ pub struct Shooting<'a> {
     /// [`COARSE_JACOBIAN_MIN_STEPS`]) until [`System::refine`] switches to
     /// the exact Jacobian of the full grid (`None`).
     jacobian_steps: Option<usize>,
-    last: Option<LastEvaluation>,
+    /// The unknowns and the last residual evaluation.
+    last: Option<(Vec<f64>, FinalIvp)>,
+    /// `max |r|` of the last two residual evaluations (older first).
+    norms: [f64; 2],
     /// Whether the last Jacobian had an actuator at its onset of tension.
     at_onset: bool,
     /// Take the slack side's derivative at an onset (see [`crate::solve::residual::tension_slope`]).
@@ -46,13 +94,14 @@ pub const COARSE_JACOBIAN_MIN_STEPS: usize = 10;
 
 impl<'a> Shooting<'a> {
     /// The system of `robot` at `inputs` under `loads` on `steps` RK4 steps;
-    /// `record`: keep the nodes of the last IVP.
+    /// `keep`: what its residual evaluations record ([`Keep`], or a bool:
+    /// the nodes or not).
     pub fn new(
         robot: &'a Robot,
         inputs: &'a [f64],
         loads: &'a Loads,
         steps: usize,
-        record: bool,
+        keep: impl Into<Keep>,
     ) -> Self {
         let coarse = steps / 10;
         let jacobian_steps = if coarse >= COARSE_JACOBIAN_MIN_STEPS {
@@ -62,29 +111,101 @@ impl<'a> Shooting<'a> {
         };
         Shooting {
             shot: Shot::new(robot, inputs, loads, steps),
-            record,
+            keep: keep.into(),
             evaluations: 0,
             tangent_evaluations: 0,
             jacobian_steps,
             last: None,
+            norms: [f64::INFINITY; 2],
             at_onset: false,
             slack_onset: false,
         }
     }
-    /// The last plain IVP if it was at `x`: `(residual, ivp, tensions)`.
-    pub(crate) fn take_last(&mut self, x: &[f64]) -> Option<(Vec<f64>, IvpResult, Vec<f64>)> {
+    /// The last residual evaluation if it was at `x`.
+    pub(crate) fn take_last(&mut self, x: &[f64]) -> Option<FinalIvp> {
         match self.last.take() {
-            Some((xl, r, ivp, tau)) if xl == x => Some((r, ivp, tau)),
+            Some((xl, last)) if xl == x => Some(last),
             _ => None,
         }
+    }
+
+    /// Whether the residual at `x` is predicted to pass Newton's test
+    /// `max |r| <= max(tol, floor)`: the linear contraction of the last two
+    /// evaluations, `|r_k| ~ |r_(k-1)|^2 / |r_(k-2)|`. Newton's and the
+    /// chord iteration's convergence is at least linear near a root, so
+    /// this errs late rather than early (on the four fixtures of
+    /// `tests/stability_policy.rs`, cold and warm, it predicts the last
+    /// evaluation in seven runs out of eight and never a point that fails;
+    /// the eighth converges in one quadratic step from its first residual,
+    /// with no rate to go on). A wrong prediction costs a tangent IVP for
+    /// a plain one; a missed one, the verdict's own integration.
+    pub fn predicts_convergence(&self, x: &[f64], tol: f64) -> bool {
+        let [older, newer] = self.norms;
+        let predicted = newer * (newer / older);
+        older.is_finite() && older > 0.0 && predicted <= tol.max(self.floor(x, &[]))
+    }
+
+    /// The residual at `x` from a plain IVP.
+    fn plain(&self, x: &[f64]) -> Result<FinalIvp> {
+        let nodes = matches!(self.keep, Keep::Nodes | Keep::Verdict { nodes: true, .. });
+        let (residual, ivp, tensions) = self.shot.residual(x, nodes)?;
+        Ok(FinalIvp {
+            residual,
+            ivp,
+            tensions,
+            verdict: None,
+        })
+    }
+
+    /// The residual at `x` from the stability verdict's recorded tangent
+    /// integration ([`crate::stability`]), whose real part is the plain IVP:
+    /// the tensions and the residual's arithmetic are [`Shot::residual`]'s.
+    fn with_verdict(&self, x: &[f64]) -> Result<FinalIvp> {
+        let robot = self.shot.robot;
+        let len = robot.body.length;
+        let na = robot.actuators.len();
+        let delta: Vec<f64> = x[6..6 + na].iter().map(|d| d * len).collect();
+        let tau = tensions(robot, self.shot.inputs, &delta)?;
+        let eq = Equilibrium {
+            unknowns: x,
+            inputs: self.shot.inputs,
+            loads: *self.shot.loads,
+            steps: self.shot.steps,
+        };
+        let (pass, ivp) = verdict_pass(robot, &eq, &tau)?;
+        let r = scaled_residual(robot, &ivp, &delta);
+        Ok(FinalIvp {
+            residual: r,
+            ivp,
+            tensions: tau,
+            verdict: Some(Box::new(pass)),
+        })
     }
 }
 
 impl System for Shooting<'_> {
     fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
         self.evaluations += 1;
-        let (r, ivp, tau) = self.shot.residual(x, self.record)?;
-        self.last = Some((x.to_vec(), r.clone(), ivp, tau));
+        let last = match self.keep {
+            Keep::Verdict { tol, .. } if self.predicts_convergence(x, tol) => {
+                self.tangent_evaluations += 1;
+                match self.with_verdict(x) {
+                    Ok(last) => last,
+                    Err(Error::Interrupted) => return Err(Error::Interrupted),
+                    // (the verdict's pass failed where the plain IVP may
+                    // not: the plain one, counted too)
+                    Err(_) => {
+                        self.evaluations += 1;
+                        self.plain(x)?
+                    }
+                }
+            }
+            _ => self.plain(x)?,
+        };
+        let r = last.residual.clone();
+        let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        self.norms = [self.norms[1], norm];
+        self.last = Some((x.to_vec(), last));
         Ok(r)
     }
     fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
@@ -146,9 +267,9 @@ impl System for Shooting<'_> {
         let (kse, kbt) = robot.body.stiffness();
         let (fs, ms) = residual_scales(robot);
         let len = robot.body.length;
-        let tau: Vec<f64> = match &self.last {
-            Some((_, _, _, tau)) => tau.clone(),
-            None => vec![0.0; robot.actuators.len()],
+        let tau: &[f64] = match &self.last {
+            Some((_, last)) => &last.tensions,
+            None => &[],
         };
         let vmax = x[0].abs().max(x[1].abs()).max(x[2].abs());
         let umax = x[3].abs().max(x[4].abs()).max(x[5].abs()) / len;
@@ -156,7 +277,7 @@ impl System for Shooting<'_> {
         let srt: f64 = robot
             .actuators
             .iter()
-            .zip(&tau)
+            .zip(tau)
             .map(|(a, t)| a.routing.eval(len).0.norm() * t.abs())
             .sum();
         let f = fs * (kse.max() * vmax + self.shot.loads.tip_force.amax() + st);
@@ -239,10 +360,10 @@ pub(crate) fn newton_shooting(
     opts: &SolveOptions,
     x0: &[f64],
     jac0: Option<&DMatrix<f64>>,
-    record: bool,
+    keep: impl Into<Keep>,
     work: &mut Work,
 ) -> Result<(NewtonResult, Option<FinalIvp>)> {
-    let mut sys = Shooting::new(robot, inputs, loads, opts.steps, record);
+    let mut sys = Shooting::new(robot, inputs, loads, opts.steps, keep);
     let nopts = work.newton_options(opts);
     let out = newton_from(&mut sys, x0, &nopts, "forward shooting", jac0);
     match out {
@@ -277,18 +398,23 @@ pub(crate) fn newton_shooting(
 }
 
 /// A [`Solution`] from a converged Newton result (integrating once more,
-/// recorded, unless the last IVP at the solution is given).
+/// recorded, unless the last IVP at the solution is given with its nodes).
 pub(crate) fn solution_from(
     robot: &Robot,
     inputs: &[f64],
     loads: &Loads,
     opts: &SolveOptions,
     nr: NewtonResult,
-    last: Option<(Vec<f64>, IvpResult, Vec<f64>)>,
+    last: Option<FinalIvp>,
     work: &mut Work,
 ) -> Result<Solution> {
     let mut s = match last {
-        Some((r, ivp, tau)) if !ivp.nodes.is_empty() => {
+        Some(FinalIvp {
+            residual: r,
+            ivp,
+            tensions: tau,
+            ..
+        }) if !ivp.nodes.is_empty() => {
             assemble_from(robot, inputs, loads, &nr.x, opts.steps, 0, 0, r, ivp, tau)?
         }
         _ => {

@@ -64,7 +64,7 @@
 //! stable); it passes through zero at a buckling load or a fold.
 //! If a conjugate point lies inside the body it is at most `-(L - s_c)/L`
 //! (continuous at a first conjugate point reaching the tip). Along `s` only
-//! positive definiteness is tested (Cholesky), to keep the verdict cheap.
+//! positive definiteness is tested (`LDL^T`), to keep the verdict cheap.
 //!
 //! # Cost
 //!
@@ -95,7 +95,12 @@
 //! is the plain IVP's arithmetic bit for bit), and the [`Solution`] is
 //! assembled from it, identical to the one a solve without a verdict hands
 //! back (with the accuracy control on, the solve records and refines
-//! first, and the verdict is taken on the refined solution).
+//! first, and the verdict is taken on the refined solution). Where the
+//! solver predicts Newton's convergence at its next residual
+//! ([`crate::solve::system::Keep::Verdict`]), that residual is taken from
+//! the verdict's pass itself, so when Newton stops there the verdict costs
+//! no integration beyond the solve's own (a tangent IVP in place of the
+//! last plain one).
 //!
 //! # Policy
 //!
@@ -142,7 +147,7 @@ pub struct Stability {
     pub determinant: Vec<f64>,
     /// At the tip node, the smallest eigenvalue of the symmetric part of
     /// (S2); at the other nodes `+1` where it is positive definite (above
-    /// `-NEUTRAL`) and `-1` where not (a Cholesky test: no eigenvalue is
+    /// `-NEUTRAL`) and `-1` where not (an `LDL^T` test: no eigenvalue is
     /// computed there); the base node, where `K` is infinite, carries `+inf`.
     pub min_stiffness: Vec<f64>,
     /// Integrations for the verdict: 1 tangent IVP ([`stability`]) or
@@ -202,6 +207,15 @@ fn actuator_stiffness(robot: &Robot, eq: &Equilibrium<'_>) -> Result<Vec<f64>> {
 /// (S3): an actuator whose tension depends on strain, or a blocked tip.
 fn check(robot: &Robot, eq: &Equilibrium<'_>, blocked: &[Vector3<f64>]) -> Result<bool> {
     robot.validate()?;
+    check_equilibrium(robot, eq, blocked)
+}
+
+/// [`check`] of a robot already validated (by the solve that found `eq`).
+fn check_equilibrium(
+    robot: &Robot,
+    eq: &Equilibrium<'_>,
+    blocked: &[Vector3<f64>],
+) -> Result<bool> {
     let na = robot.actuators.len();
     if eq.unknowns.len() != 6 + na || eq.inputs.len() != na {
         return Err(Error::input(
@@ -257,6 +271,37 @@ pub(crate) fn stability_profiled(
         ivp,
         tau,
     ))
+}
+
+/// The verdict's tangent integration taken ahead, by the solver, at a
+/// point where it predicted Newton's convergence
+/// ([`crate::solve::system::Keep::Verdict`]): Newton's residual there is
+/// its real part (the plain IVP's arithmetic bit for bit), and if Newton
+/// stops there the verdict is read from it ([`verdict_of`]) without
+/// another integration.
+pub(crate) struct VerdictPass {
+    pass: tangents::Pass,
+    full: bool,
+}
+
+/// The recorded tangent integration of [`stability_at`] (free tip) at
+/// `eq` under the actuator tensions `tau` \[N\] (the shooting residual's),
+/// the IVP's nodes recorded too; with that IVP. `robot` must be valid (the
+/// solver's, validated by its solve).
+pub(crate) fn verdict_pass(
+    robot: &Robot,
+    eq: &Equilibrium<'_>,
+    tau: &[f64],
+) -> Result<(VerdictPass, IvpResult)> {
+    let full = check_equilibrium(robot, eq, &[])?;
+    let (pass, ivp) = tangents::integrate_pass(robot, eq, full, true, Some(tau))?;
+    Ok((VerdictPass { pass, full }, ivp))
+}
+
+/// The verdict (free tip) from a pass integrated ahead ([`verdict_pass`]).
+pub(crate) fn verdict_of(robot: &Robot, p: &VerdictPass) -> Stability {
+    let t = tangents::tangents_of(robot, &p.pass);
+    verdict::verdict(t, robot.body.length, &[], p.full, 1)
 }
 
 /// [`stability`] from forward-difference tangents (`7 + N` IVPs); for

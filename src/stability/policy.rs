@@ -9,18 +9,20 @@
 //! themselves, or not at all).
 //!
 //! Cost: the verdict is one tangent integration ([`stability`]), the price
-//! of one full-grid Newton Jacobian; `Off` saves it.
+//! of one full-grid Newton Jacobian; where Newton's convergence is
+//! predicted it is Newton's last residual evaluation, in place of a plain
+//! IVP (see [`solve_checked`]); `Off` saves it.
 
 use std::str::FromStr;
 
 use super::landing::{land, Route};
-use super::{stability, stability_profiled, Equilibrium, Stability};
+use super::{stability, stability_profiled, verdict_of, Equilibrium, Stability};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
 use crate::solve::equilibrium::refine_to_equilibrium;
 use crate::solve::newton::NewtonResult;
-use crate::solve::shooting::{solution_from, solve_direct, Solved, Work};
+use crate::solve::shooting::{solution_from, solve_direct, FinalIvp, Keep, Solved, Work};
 use crate::solve::solution::assemble_from;
 
 /// What a solve does with the stability verdict of the equilibrium found.
@@ -94,9 +96,13 @@ pub struct Checked {
 ///
 /// With a verdict, Newton's IVPs record no nodes: the verdict's tangent
 /// integration at the solution (whose real part is the plain IVP, bit for
-/// bit) gives the solution's profile, so the verdict costs that one tangent
-/// IVP and no plain one. With the accuracy control on, the solution is
-/// recorded and refined first, and the verdict taken on the refined one.
+/// bit) gives the solution's profile. Where Newton's convergence is
+/// predicted ([`Keep::Verdict`]) that integration is Newton's last
+/// residual evaluation itself, in place of its plain IVP: the verdict then
+/// costs no IVP more than the solve without it, only a tangent IVP in place
+/// of a plain one; else it costs its own tangent IVP. With the accuracy
+/// control on, the solution is recorded and refined first, and the verdict
+/// taken on the refined one.
 pub fn solve_checked(
     robot: &Robot,
     inputs: &[f64],
@@ -116,21 +122,34 @@ pub fn solve_checked(
     // without the accuracy control Newton's solution is final, and its
     // profile comes from the verdict's pass: Newton records no nodes
     let final_newton = opts.equilibrium_tol.is_none();
-    let (sol, st) = match solve_direct(robot, inputs, loads, opts, warm, !final_newton)? {
-        Solved::Newton(nr, _, work) if final_newton => {
-            profiled(robot, inputs, loads, opts, nr, work)?
+    let keep = Keep::Verdict {
+        tol: opts.tol,
+        nodes: !final_newton,
+    };
+    let (sol, st) = match solve_direct(robot, inputs, loads, opts, warm, keep)? {
+        Solved::Newton(nr, last, work) if final_newton => {
+            profiled(robot, inputs, loads, opts, nr, last, work)?
         }
         solved => {
-            let sol = match solved {
-                Solved::Newton(nr, last, mut work) => {
-                    solution_from(robot, inputs, loads, opts, nr, last, &mut work)?
+            let (sol, pass) = match solved {
+                Solved::Newton(nr, mut last, mut work) => {
+                    let pass = last.as_mut().and_then(|l| l.verdict.take());
+                    let sol = solution_from(robot, inputs, loads, opts, nr, last, &mut work)?;
+                    (sol, pass)
                 }
-                Solved::Solution(sol) => sol,
+                Solved::Solution(sol) => (sol, None),
             };
+            let steps = sol.steps;
             let mut sol = refine_to_equilibrium(robot, inputs, opts, sol)?;
-            let st = stability(robot, &sol, &[])?;
-            sol.evaluations += st.evaluations;
-            (sol, st)
+            match pass {
+                // not refined: the verdict of Newton's last evaluation
+                Some(pass) if sol.steps == steps => (sol, verdict_of(robot, &pass)),
+                _ => {
+                    let st = stability(robot, &sol, &[])?;
+                    sol.evaluations += st.evaluations;
+                    (sol, st)
+                }
+            }
         }
     };
     if st.stable || policy == Policy::Report {
@@ -161,24 +180,37 @@ pub fn solve_checked(
 }
 
 /// The solution of a converged Newton run `nr` (work `work`) and its
-/// verdict, both from the verdict's recorded tangent IVP at `nr.x` (the
-/// residual is Newton's, from its last IVP there).
+/// verdict, both from the verdict's recorded tangent IVP at `nr.x`: Newton's
+/// last evaluation `last` if it was that IVP, else one more (the residual is
+/// Newton's, from its last IVP there).
 fn profiled(
     robot: &Robot,
     inputs: &[f64],
     loads: &Loads,
     opts: &SolveOptions,
     nr: NewtonResult,
+    last: Option<FinalIvp>,
     work: Work,
 ) -> Result<(Solution, Stability)> {
-    let eq = Equilibrium {
-        unknowns: &nr.x,
-        inputs,
-        loads: *loads,
-        steps: opts.steps,
+    let (st, ivp, tau, evaluations) = match last {
+        Some(FinalIvp {
+            ivp,
+            tensions,
+            verdict: Some(pass),
+            ..
+        }) => (verdict_of(robot, &pass), ivp, tensions, work.evaluations),
+        _ => {
+            let eq = Equilibrium {
+                unknowns: &nr.x,
+                inputs,
+                loads: *loads,
+                steps: opts.steps,
+            };
+            let (st, ivp, tau) = stability_profiled(robot, &eq)?;
+            let evaluations = work.evaluations + st.evaluations;
+            (st, ivp, tau, evaluations)
+        }
     };
-    let (st, ivp, tau) = stability_profiled(robot, &eq)?;
-    let evaluations = work.evaluations + st.evaluations;
     let (x, steps, it) = (&nr.x, opts.steps, work.iterations);
     let r = nr.residual.clone();
     let mut sol = assemble_from(robot, inputs, loads, x, steps, it, evaluations, r, ivp, tau)?;

@@ -6,7 +6,9 @@ use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3, Vector6};
 
 use super::Equilibrium;
 use crate::error::Result;
-use crate::rod::{integrate_tangent, rot, IvpResult, Record, Robot, RodState, TangentSeeds};
+use crate::rod::{
+    integrate_tangent, rot, IvpResult, Record, Robot, RodState, TangentNodes, TangentSeeds,
+};
 use crate::shooting::{base_strains, residual_scales, Loads, Shot, Solution};
 
 /// Tangents of one equilibrium: at every node the frozen-tension columns
@@ -135,13 +137,90 @@ fn column(
     )
 }
 
+/// One value per frozen-tension direction (the six base strains).
+type Lanes = [f64; 6];
+/// A 3-vector of [`Lanes`].
+type V3L = [Lanes; 3];
+
+fn lanes(f: impl FnMut(usize) -> f64) -> Lanes {
+    std::array::from_fn(f)
+}
+
+/// `m v` for each lane.
+fn mat_lanes(m: &Matrix3<f64>, v: &V3L) -> V3L {
+    std::array::from_fn(|i| {
+        lanes(|l| m[(i, 0)] * v[0][l] + m[(i, 1)] * v[1][l] + m[(i, 2)] * v[2][l])
+    })
+}
+
+/// `a x b` for lanes `a` and a fixed vector `b`.
+fn cross_lanes(a: &V3L, b: &Vector3<f64>) -> V3L {
+    [
+        lanes(|l| a[1][l] * b.z - a[2][l] * b.y),
+        lanes(|l| a[2][l] * b.x - a[0][l] * b.z),
+        lanes(|l| a[0][l] * b.y - a[1][l] * b.x),
+    ]
+}
+
+/// The six frozen-tension columns of a node at once ([`column`] along the
+/// base strains, whose tension derivatives are zero), lane by lane: the
+/// same arithmetic on arrays of six, which the compiler vectorises.
+/// `t`: the node's tangents, `ns` states per direction.
+fn frozen_columns(c: &Consts, f: &NodeFrame, t: &[f64], ns: usize) -> (Cols6, Cols6) {
+    let g = |k: usize| lanes(|l| t[l * ns + k]);
+    let dp = [g(0), g(1), g(2)];
+    let dq = [g(3), g(4), g(5), g(6)];
+    let dv = [g(7), g(8), g(9)];
+    let du = [g(10), g(11), g(12)];
+    let mut dnb = mat_lanes(&c.kse, &dv);
+    let mut dmb = mat_lanes(&c.kbt, &du);
+    for &(_, r, tt, nrm, tau) in &f.strings {
+        // d pb = d v + d u x r; d t = (I - t t^T) d pb / |pb|; d f = d t tau
+        let ur = cross_lanes(&du, &r);
+        let dpb: V3L = std::array::from_fn(|k| lanes(|l| dv[k][l] + ur[k][l]));
+        let tp = lanes(|l| tt.x * dpb[0][l] + tt.y * dpb[1][l] + tt.z * dpb[2][l]);
+        let df: V3L = std::array::from_fn(|k| lanes(|l| (dpb[k][l] - tt[k] * tp[l]) / nrm * tau));
+        // r x d f = -(d f x r)
+        let rf = cross_lanes(&df, &r);
+        for k in 0..3 {
+            for l in 0..6 {
+                dnb[k][l] += df[k][l];
+                dmb[k][l] -= rf[k][l];
+            }
+        }
+    }
+    // theta = 2 vec(d q (x) q*), q = (w, x, y, z)
+    let (w, x, y, z) = (f.q.w, f.q.i, f.q.j, f.q.k);
+    let th: V3L = [
+        lanes(|l| 2.0 * (-dq[0][l] * x + dq[1][l] * w - dq[2][l] * z + dq[3][l] * y)),
+        lanes(|l| 2.0 * (-dq[0][l] * y + dq[1][l] * z + dq[2][l] * w - dq[3][l] * x)),
+        lanes(|l| 2.0 * (-dq[0][l] * z - dq[1][l] * y + dq[2][l] * x + dq[3][l] * w)),
+    ];
+    // d w = theta x R nb + R d nb (scaled)
+    let (rdn, rdm) = (mat_lanes(&f.rm, &dnb), mat_lanes(&f.rm, &dmb));
+    let (tn, tm) = (cross_lanes(&th, &f.rn), cross_lanes(&th, &f.rmm));
+    let mut y = [[0.0; 6]; 6];
+    let mut h = [[0.0; 6]; 6];
+    for l in 0..6 {
+        for k in 0..3 {
+            y[l][k] = (rdn[k][l] + tn[k][l]) * c.fs;
+            y[l][3 + k] = (rdm[k][l] + tm[k][l]) * c.ms;
+            h[l][k] = dp[k][l] / c.len;
+            h[l][3 + k] = th[k][l];
+        }
+    }
+    (y, h)
+}
+
 /// Seeds of the tangent IVP along the scaled unknowns `z_0 .. z_nz`
 /// (`nz` = 6: the base strains only; `6 + N`: the elongation guesses too),
-/// the tensions and `d tau_i / d z_j` (`N x nz`).
+/// the tensions and `d tau_i / d z_j` (`N x nz`). `tau`: the tensions \[N\]
+/// if already known (the shooting residual's, [`crate::shooting::tensions`]).
 fn seeds(
     robot: &Robot,
     eq: &Equilibrium<'_>,
     nz: usize,
+    tau: Option<&[f64]>,
 ) -> Result<(TangentSeeds, Vec<f64>, DMatrix<f64>)> {
     let na = robot.actuators.len();
     let len = robot.body.length;
@@ -150,43 +229,70 @@ fn seeds(
         seeds.nu0[(k, k)] = 1.0;
         seeds.omega0[(k, 3 + k)] = 1.0 / len;
     }
-    let mut tau = Vec::with_capacity(na);
+    let mut out = Vec::with_capacity(na);
     let mut dtau = DMatrix::zeros(na, nz);
     for (i, a) in robot.actuators.iter().enumerate() {
         let (t, dt_de, _) = a
             .law
             .tension_derivatives(eq.unknowns[6 + i] * len, eq.inputs[i])?;
-        tau.push(t);
+        out.push(tau.map_or(t, |tau| tau[i]));
         if nz > 6 {
             seeds.tensions[(i, 6 + i)] = dt_de * len;
             dtau[(i, 6 + i)] = dt_de * len;
         }
     }
-    Ok((seeds, tau, dtau))
+    Ok((seeds, out, dtau))
 }
 
-/// Exact tangents from one recorded tangent IVP along the six base strains
-/// and, if `actuators`, the `N` actuator elongation guesses too; with them
-/// the IVP itself (its nodes recorded if `profile`) and the tensions \[N\].
-pub(super) fn exact_tangents(
+/// One recorded tangent IVP at an equilibrium, before its nodes are turned
+/// into [`Tangents`] ([`tangents_of`]): the recorded nodes, the tip
+/// elongation tangents, the tensions \[N\] and `d tau_i / d z_j`.
+pub(crate) struct Pass {
+    nodes: TangentNodes,
+    elongation: DMatrix<f64>,
+    pub tau: Vec<f64>,
+    dtau: DMatrix<f64>,
+    /// Whether the `N` actuator directions were integrated.
+    actuators: bool,
+}
+
+/// The tangent IVP of the verdict along the six base strains and, if
+/// `actuators`, the `N` actuator elongation guesses too, every node
+/// recorded (the IVP's own nodes too if `profile`); with the IVP itself.
+/// `tau`: the tensions, if known (else from the force laws).
+pub(super) fn integrate_pass(
     robot: &Robot,
     eq: &Equilibrium<'_>,
     actuators: bool,
     profile: bool,
-) -> Result<(Tangents, IvpResult, Vec<f64>)> {
+    tau: Option<&[f64]>,
+) -> Result<(Pass, IvpResult)> {
     let na = robot.actuators.len();
     let nz = if actuators { 6 + na } else { 6 };
-    let len = robot.body.length;
-    let x = eq.unknowns;
-    let (seeds, tau, dtau) = seeds(robot, eq, nz)?;
+    let (seeds, tau, dtau) = seeds(robot, eq, nz, tau)?;
     let spec = eq.loads.ivp(robot, &tau, eq.steps);
-    let (v0, u0) = base_strains(x, len);
+    let (v0, u0) = base_strains(eq.unknowns, robot.body.length);
     let record = if profile {
         Record::All
     } else {
         Record::Tangents
     };
     let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
+    let pass = Pass {
+        nodes: tan.nodes,
+        elongation: tan.elongation,
+        tau,
+        dtau,
+        actuators,
+    };
+    Ok((pass, tan.ivp))
+}
+
+/// The tangents at every node of a recorded pass.
+pub(super) fn tangents_of(robot: &Robot, pass: &Pass) -> Tangents {
+    let na = robot.actuators.len();
+    let nz = if pass.actuators { 6 + na } else { 6 };
+    let len = robot.body.length;
     let (fs, ms) = residual_scales(robot);
     let (kse, kbt) = robot.body.stiffness();
     let c = Consts {
@@ -196,46 +302,66 @@ pub(super) fn exact_tangents(
         ms,
         len,
     };
-    let k = tan.nodes.len();
+    let (tau, dtau) = (&pass.tau, &pass.dtau);
+    let k = pass.nodes.len();
     let mut out = Tangents {
         s: Vec::with_capacity(k),
         y: Vec::with_capacity(k),
         h: Vec::with_capacity(k),
         y_tip: DMatrix::zeros(6, nz),
         h_tip: DMatrix::zeros(6, nz),
-        e: DMatrix::zeros(na, if actuators { nz } else { 0 }),
+        e: DMatrix::zeros(na, if pass.actuators { nz } else { 0 }),
     };
     let mut strings = Vec::with_capacity(na);
     let ns = robot.n_states();
-    for (n, node) in tan.nodes.iter().enumerate() {
-        let f = frame(robot, &c, &tau, node.s, node.state, strings);
-        let (mut y, mut h) = ([[0.0; 6]; 6], [[0.0; 6]; 6]);
+    for (n, node) in pass.nodes.iter().enumerate() {
+        let f = frame(robot, &c, tau, node.s, node.state, strings);
         let tip = n + 1 == k;
-        for j in 0..if tip { nz } else { 6 } {
-            let (dy, dh) = column(&c, &f, &node.tangent[j * ns..(j + 1) * ns], &dtau, j);
+        if !tip {
+            let (y, h) = frozen_columns(&c, &f, node.tangent, ns);
+            out.s.push(node.s);
+            out.y.push(y);
+            out.h.push(h);
+            strings = f.strings;
+            continue;
+        }
+        let (mut y, mut h) = ([[0.0; 6]; 6], [[0.0; 6]; 6]);
+        for j in 0..nz {
+            let (dy, dh) = column(&c, &f, &node.tangent[j * ns..(j + 1) * ns], dtau, j);
             if j < 6 {
                 y[j].copy_from_slice(dy.as_slice());
                 h[j].copy_from_slice(dh.as_slice());
             }
-            if tip {
-                out.y_tip.set_column(j, &dy);
-                out.h_tip.set_column(j, &dh);
-            }
+            out.y_tip.set_column(j, &dy);
+            out.h_tip.set_column(j, &dh);
         }
         out.s.push(node.s);
         out.y.push(y);
         out.h.push(h);
         strings = f.strings;
     }
-    if actuators {
+    if pass.actuators {
         for i in 0..na {
             for j in 0..nz {
-                out.e[(i, j)] = tan.elongation[(i, j)] / len;
+                out.e[(i, j)] = pass.elongation[(i, j)] / len;
             }
             out.e[(i, 6 + i)] -= 1.0;
         }
     }
-    Ok((out, tan.ivp, tau))
+    out
+}
+
+/// Exact tangents from one recorded tangent IVP ([`integrate_pass`]); with
+/// them the IVP itself (its nodes recorded if `profile`) and the tensions
+/// \[N\].
+pub(super) fn exact_tangents(
+    robot: &Robot,
+    eq: &Equilibrium<'_>,
+    actuators: bool,
+    profile: bool,
+) -> Result<(Tangents, IvpResult, Vec<f64>)> {
+    let (pass, ivp) = integrate_pass(robot, eq, actuators, profile, None)?;
+    Ok((tangents_of(robot, &pass), ivp, pass.tau))
 }
 
 /// Data of one recorded IVP at each node: position, rotation, total wrench.

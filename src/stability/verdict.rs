@@ -40,7 +40,10 @@ fn dot6(a: &[f64; 6], b: &[f64; 6]) -> f64 {
 }
 
 /// Determinant by Gaussian elimination with partial pivoting (as an LU
-/// factorisation, on the stack).
+/// factorisation, on the stack). The row updates run over all six columns
+/// (fixed-length loops the compiler vectorises): the entries left of the
+/// pivot are never read again, and those right of it get the arithmetic of
+/// the textbook loop, so the result is the same bit for bit.
 fn det6(mut a: M6) -> f64 {
     let mut det = 1.0;
     for k in 0..6 {
@@ -57,21 +60,20 @@ fn det6(mut a: M6) -> f64 {
             a.swap(p, k);
             det = -det;
         }
-        det *= a[k][k];
-        let inv = 1.0 / a[k][k];
-        let (top, rest) = a.split_at_mut(k + 1);
-        let pivot = &top[k];
-        for row in rest {
+        let pivot = a[k];
+        det *= pivot[k];
+        let inv = 1.0 / pivot[k];
+        for row in &mut a[k + 1..] {
             let f = row[k] * inv;
-            for j in k + 1..6 {
-                row[j] -= f * pivot[j];
+            for (x, p) in row.iter_mut().zip(&pivot) {
+                *x -= f * p;
             }
         }
     }
     det
 }
 
-/// True if `sym(H^T Y) + NEUTRAL H^T H` is positive definite (Cholesky,
+/// True if `sym(H^T Y) + NEUTRAL H^T H` is positive definite (`LDL^T`,
 /// stopped at the first non-positive pivot); with `H` invertible this is
 /// `sym(K) + NEUTRAL I` for `K = Y H^-1` (S2), by congruence (`x = H z`): no
 /// inverse needed, and a singular `H` fails it too.
@@ -87,23 +89,26 @@ fn positive_definite(h: &Cols6, y: &Cols6) -> bool {
             a[i][j] = 0.5 * (dot6(&h[i], &yn[j]) + dot6(&yn[i], &h[j]));
         }
     }
-    // lower-triangular Cholesky in place, by columns
+    // LDL^T in place, by columns, one division per column and no square
+    // root: `a[i][k]` (k < i) becomes `c_ik = L_ik d_k`, and the matrix is
+    // positive definite iff every pivot `d_j` is positive
+    let mut inv = [0.0; 6];
     for j in 0..6 {
-        let d = a[j][j] - a[j][..j].iter().map(|x| x * x).sum::<f64>();
-        if !(d > 0.0) {
+        let dj = a[j][j] - (0..j).map(|k| a[j][k] * a[j][k] * inv[k]).sum::<f64>();
+        if !(dj > 0.0) {
             return false;
         }
-        let inv = 1.0 / d.sqrt();
+        inv[j] = 1.0 / dj;
         for i in j + 1..6 {
-            let x: f64 = a[i][..j].iter().zip(&a[j][..j]).map(|(p, q)| p * q).sum();
-            a[i][j] = (a[i][j] - x) * inv;
+            let x: f64 = (0..j).map(|k| a[i][k] * a[j][k] * inv[k]).sum();
+            a[i][j] -= x;
         }
     }
     true
 }
 
 /// (S1) normalised at the base, the Dirichlet test (if `dirichlet`) and a
-/// Cholesky test of the symmetric part of (S2) at every node (6 x 6
+/// positive-definiteness test of the symmetric part of (S2) at every node (6 x 6
 /// algebra on the stack).
 fn scan(t: &Tangents, dirichlet: bool) -> Scan {
     let nodes = t.s.len();
@@ -171,14 +176,20 @@ pub(super) fn verdict(
     };
     // the frozen tip stiffness (S2) at s = L: its smallest eigenvalue is the
     // last node's min_stiffness and, without springs, the margin
+    // (with springs the mode is (S3)'s: the eigenvalues only)
     if nodes > 1 {
         if let Some(hi) = matrix(&t.h[last]).try_inverse() {
             let kk = matrix(&t.y[last]) * hi;
-            let e = SymmetricEigen::new((kk + kk.transpose()) * 0.5);
-            let i = e.eigenvalues.imin();
-            out.min_stiffness[last] = e.eigenvalues[i];
-            out.mode
-                .copy_from_slice(e.eigenvectors.column(i).as_slice());
+            let sym = (kk + kk.transpose()) * 0.5;
+            if full {
+                out.min_stiffness[last] = sym.symmetric_eigenvalues().min();
+            } else {
+                let e = SymmetricEigen::new(sym);
+                let i = e.eigenvalues.imin();
+                out.min_stiffness[last] = e.eigenvalues[i];
+                out.mode
+                    .copy_from_slice(e.eigenvectors.column(i).as_slice());
+            }
         }
     }
     if !full {
@@ -233,9 +244,15 @@ fn full_tip(t: &Tangents, blocked: &[Vector3<f64>]) -> Option<(f64, [f64; 6])> {
             v
         })
         .collect();
+    let mut mode = [0.0; 6];
+    if basis.is_empty() {
+        // a free tip: (S3) itself (the complement's basis is the identity)
+        let (m, v) = min_sym_pair(&kfull);
+        mode.copy_from_slice(v.as_slice());
+        return Some((m, mode));
+    }
     let q = complement(&basis);
     let (m, v) = min_sym_pair(&(q.transpose() * kfull * &q));
-    let mut mode = [0.0; 6];
     mode.copy_from_slice((&q * v).as_slice());
     Some((m, mode))
 }
