@@ -145,6 +145,14 @@ impl<'a> Shooting<'a> {
         older.is_finite() && older > 0.0 && predicted <= tol.max(self.floor(x, &[]))
     }
 
+    /// Set the `max |r|` history that [`Shooting::predicts_convergence`]
+    /// extrapolates from (older first) in place of this system's own last
+    /// two evaluations: the coarse-grid pre-solve's full-grid rounds
+    /// ([`crate::solve::presolve`]) have their own estimates.
+    pub(crate) fn set_history(&mut self, older: f64, newer: f64) {
+        self.norms = [older, newer];
+    }
+
     /// The residual at `x` from a plain IVP.
     fn plain(&self, x: &[f64]) -> Result<FinalIvp> {
         let nodes = matches!(self.keep, Keep::Nodes | Keep::Verdict { nodes: true, .. });
