@@ -62,19 +62,33 @@ pub(crate) struct Warm<'a> {
     pub jacobian: Option<&'a DMatrix<f64>>,
 }
 
-/// The coarse shooting residual plus a constant defect `d`. Remembers its
-/// last residual, so that Newton's first evaluation at the point where a
-/// chord run stopped ([`chord_then_newton`]) costs no IVP, and `max |r|` of
-/// its first.
+/// The coarse shooting residual plus a constant defect `d`, one system for
+/// all rounds of a pre-solve (the defect changes between them). Remembers
+/// its last coarse residual (before the defect), so that the first
+/// evaluation of a round at the point where the last one stopped, or of
+/// Newton at the point where a chord run stopped ([`chord_then_newton`]),
+/// costs no IVP; and `max |r|` of a round's first evaluation. With
+/// `tangent_first`, the first evaluation of a run that will take a fresh
+/// Jacobian there (a cold start: [`newton_from`] evaluates the residual,
+/// then the Jacobian at the same point) is the tangent IVP, whose residual
+/// is the plain IVP's bit for bit, kept for the Jacobian's call: one
+/// coarse IVP less.
 struct Corrected<'a> {
     sys: Shooting<'a>,
     defect: Vec<f64>,
+    /// The last coarse residual without the defect, at the unknowns.
     last: Option<(Vec<f64>, Vec<f64>)>,
+    /// A tangent evaluation not yet asked for: unknowns, coarse residual
+    /// without the defect, Jacobian.
+    tangent: Option<(Vec<f64>, Vec<f64>, DMatrix<f64>)>,
     first: Option<f64>,
+    tangent_first: bool,
 }
 
 impl Corrected<'_> {
-    fn corrected(&mut self, mut r: Vec<f64>) -> Vec<f64> {
+    /// `r + defect`, noted as the round's first if it is.
+    fn corrected(&mut self, r: &[f64]) -> Vec<f64> {
+        let mut r = r.to_vec();
         r.iter_mut().zip(&self.defect).for_each(|(a, d)| *a += d);
         self.first.get_or_insert(inf_norm(&r));
         r
@@ -85,17 +99,27 @@ impl System for Corrected<'_> {
     fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
         if let Some((xl, rl)) = &self.last {
             if xl == x {
-                return Ok(rl.clone());
+                let rl = rl.clone();
+                return Ok(self.corrected(&rl));
             }
         }
-        let r = self.sys.residual(x)?;
-        let r = self.corrected(r);
-        self.last = Some((x.to_vec(), r.clone()));
+        let raw = if std::mem::take(&mut self.tangent_first) {
+            let (raw, j) = self.sys.residual_and_jacobian(x)?;
+            self.tangent = Some((x.to_vec(), raw.clone(), j));
+            raw
+        } else {
+            self.sys.residual(x)?
+        };
+        let r = self.corrected(&raw);
+        self.last = Some((x.to_vec(), raw));
         Ok(r)
     }
     fn residual_and_jacobian(&mut self, x: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
-        let (r, j) = self.sys.residual_and_jacobian(x)?;
-        Ok((self.corrected(r), j))
+        let (raw, j) = match self.tangent.take() {
+            Some((xt, raw, j)) if xt == x => (raw, j),
+            _ => self.sys.residual_and_jacobian(x)?,
+        };
+        Ok((self.corrected(&raw), j))
     }
     fn floor(&self, x: &[f64], r: &[f64]) -> f64 {
         self.sys.floor(x, r)
@@ -152,31 +176,45 @@ struct PreSolve<'a> {
 }
 
 impl<'a> PreSolve<'a> {
-    /// Coarse Newton on `r_coarse + defect` from `x0`; its result, the
-    /// coarse IVPs used and `max |r_coarse + defect|` at `x0`.
+    /// The coarse system of all rounds, at zero defect.
+    fn coarse_system(&self, n: usize) -> Corrected<'a> {
+        Corrected {
+            sys: Shooting::new(self.robot, self.inputs, self.loads, self.coarse, false),
+            defect: vec![0.0; n],
+            last: None,
+            tangent: None,
+            first: None,
+            tangent_first: false,
+        }
+    }
+
+    /// Coarse Newton on `r_coarse + defect` (`sys`, its defect set) from
+    /// `x0`; its result, the coarse IVPs used and `max |r_coarse + defect|`
+    /// at `x0`.
     fn coarse_run(
         &self,
+        sys: &mut Corrected<'a>,
         x0: &[f64],
-        defect: Vec<f64>,
         jac0: Option<&DMatrix<f64>>,
         work: &Work,
     ) -> (Result<NewtonResult>, usize, f64) {
-        let mut sys = Corrected {
-            sys: Shooting::new(self.robot, self.inputs, self.loads, self.coarse, false),
-            defect,
-            last: None,
-            first: None,
-        };
+        let before = sys.sys.evaluations;
+        sys.first = None;
+        // a cold start away from the last point takes a Jacobian at x0
+        sys.tangent_first = jac0.is_none() && !matches!(&sys.last, Some((xl, _)) if xl == x0);
         let nopts = NewtonOptions {
             tol: 0.1 * self.opts.tol,
             max_iter: COARSE_MAX_ITER.min(self.opts.max_iter),
             ..work.newton_options(self.opts)
         };
         let out = match jac0 {
-            Some(jac) => chord_then_newton(&mut sys, x0, jac, &nopts),
-            _ => newton_from(&mut sys, x0, &nopts, "coarse pre-solve", jac0),
+            Some(jac) => chord_then_newton(sys, x0, jac, &nopts),
+            _ => newton_from(sys, x0, &nopts, "coarse pre-solve", jac0),
         };
-        (out, sys.sys.evaluations, sys.first.unwrap_or(f64::INFINITY))
+        sys.tangent_first = false;
+        sys.tangent = None;
+        let first = sys.first.unwrap_or(f64::INFINITY);
+        (out, sys.sys.evaluations - before, first)
     }
 }
 
@@ -327,12 +365,14 @@ pub(crate) fn presolved_shooting(
     };
     let (mut defect, mut jac) = warm_start(robot, loads, coarse, x0, inputs, warm, work);
     let mut full = Shooting::new(robot, inputs, loads, opts.steps, record);
+    let mut coarse = pre.coarse_system(x0.len());
     let mut x = x0.to_vec();
     let mut iterations = 0;
     let mut last_norm = f64::INFINITY;
     let (warm_defect, mut start_norm) = (warm.map(|_| inf_norm(&defect)), f64::INFINITY);
     for round in 0..MAX_ROUNDS {
-        let (out, evals, first) = pre.coarse_run(&x, defect.clone(), jac.as_ref(), work);
+        coarse.defect.clone_from(&defect);
+        let (out, evals, first) = pre.coarse_run(&mut coarse, &x, jac.as_ref(), work);
         if round == 0 {
             start_norm = first;
         }
