@@ -373,9 +373,7 @@ pub(crate) fn presolved_shooting(
     for round in 0..MAX_ROUNDS {
         coarse.defect.clone_from(&defect);
         let (out, evals, first) = pre.coarse_run(&mut coarse, &x, jac.as_ref(), work);
-        if round == 0 {
-            start_norm = first;
-        }
+        start_norm = if round == 0 { first } else { start_norm };
         if let Some((older, newer)) = round_history(round, warm_defect, start_norm, last_norm) {
             full.set_history(older, newer);
         }
@@ -396,16 +394,9 @@ pub(crate) fn presolved_shooting(
             work.iterations += iterations;
             let last = full.take_last(&x);
             let status = converged_status(norm, opts.tol);
-            let nr = NewtonResult {
-                x,
-                residual: r,
-                norm,
-                floor,
-                status,
-                iterations,
-                evaluations: work.evaluations,
-                jacobian: jac,
-            };
+            let (evaluations, jacobian) = (work.evaluations, jac);
+            #[rustfmt::skip]
+            let nr = NewtonResult { x, residual: r, norm, floor, status, iterations, evaluations, jacobian };
             return Ok((nr, last));
         }
         if !(norm <= 0.1 * last_norm) {
