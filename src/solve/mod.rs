@@ -10,6 +10,7 @@ pub mod guess;
 pub mod limit;
 pub mod newton;
 pub mod options;
+pub mod predict;
 pub mod presolve;
 pub mod residual;
 pub mod shooting;

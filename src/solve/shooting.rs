@@ -149,7 +149,10 @@ pub(crate) fn solve_direct(
     }
     cancel::check()?;
     let mut work = Work::start(opts);
-    let mut x0 = initial_guess(robot, inputs, warm);
+    let mut x0 = match warm {
+        Some(w) => super::predict::predicted_guess(robot, inputs, w),
+        None => initial_guess(robot, inputs, None),
+    };
     if warm.is_none() {
         linear_guess(robot, inputs, loads, &mut x0);
     }
