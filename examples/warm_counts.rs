@@ -18,7 +18,9 @@ fn thread_cpu() -> f64 {
 }
 
 fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
 }
 
 /// Counts of one warm solve from `warm` to `inputs`.
@@ -30,7 +32,9 @@ fn counts(name: &str, robot: &Robot, inputs: &[f64], warm: &Solution) {
     let pred = tcarod::solve::predict::predicted_guess(robot, inputs, warm);
     let l = Loads::of(robot);
     let res = |x: &[f64]| {
-        let (r, _, _) = Shot::new(robot, inputs, &l, o.steps).residual(x, false).unwrap();
+        let (r, _, _) = Shot::new(robot, inputs, &l, o.steps)
+            .residual(x, false)
+            .unwrap();
         r.iter().fold(0.0f64, |m, v| m.max(v.abs()))
     };
     println!(
@@ -61,25 +65,37 @@ fn time(name: &str, robot: &Robot, inputs: &[f64], warm: &Solution) {
         }
         (thread_cpu() - t0) / 10.0
     };
-    let (mut a, mut u, mut g) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut a, mut u, mut g, mut s) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for _ in 0..15 {
-        a.push(med(&mut || drop(solve(robot, inputs, &o, Some(warm)).unwrap())));
+        s.push(med(&mut || {
+            drop(
+                tcarod::shooting::assemble(robot, inputs, &l, &at.unknowns, o.steps, 0, 0).unwrap(),
+            )
+        }));
+        a.push(med(&mut || {
+            drop(solve(robot, inputs, &o, Some(warm)).unwrap())
+        }));
         g.push(med(&mut || {
             drop(tcarod::solve::predict::predicted_guess(robot, inputs, warm))
         }));
         u.push(med(&mut || {
-            drop(Shot::new(robot, inputs, &l, o.steps).residual(&at.unknowns, false).unwrap())
+            drop(
+                Shot::new(robot, inputs, &l, o.steps)
+                    .residual(&at.unknowns, false)
+                    .unwrap(),
+            )
         }));
     }
-    for v in [&mut a, &mut u, &mut g] {
+    for v in [&mut a, &mut u, &mut g, &mut s] {
         v.sort_by(|x, y| x.partial_cmp(y).unwrap());
     }
     println!(
-        "{name:<26} thread CPU: warm {:>6.1} us = {:.2} IVPs (its guess {:.1} us); one IVP {:.1} us",
+        "{name:<26} thread CPU: warm {:>6.1} us = {:.2} IVPs (its guess {:.1} us); one IVP {:.1} us, assembled {:.1} us",
         a[7] * 1e6,
         a[7] / u[7],
         g[7] * 1e6,
-        u[7] * 1e6
+        u[7] * 1e6,
+        s[7] * 1e6
     );
 }
 
@@ -91,6 +107,24 @@ fn main() {
     let s0 = solve(&steel, &STEEL_TENDON_TENSIONS, &o, None).unwrap();
     let up: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
     let timed = std::env::args().any(|a| a == "--time");
+    if std::env::args().any(|a| a == "--assemble") {
+        // a loop for a profiler: assembling the Fig. 6 solution
+        let l = Loads::of(&sq);
+        for _ in 0..20000 {
+            drop(
+                tcarod::shooting::assemble(&sq, &[95.0, 95.0], &l, &s95.unknowns, 100, 0, 0)
+                    .unwrap(),
+            );
+        }
+        return;
+    }
+    if std::env::args().any(|a| a == "--warm-loop") {
+        // a loop for a profiler: the Fig. 6 warm solve
+        for _ in 0..5000 {
+            drop(solve(&sq, &[100.0, 100.0], &o, Some(&s95)).unwrap());
+        }
+        return;
+    }
     for (name, robot, inputs, warm) in [
         ("fig6 square 100 C (95)", &sq, &[100.0, 100.0][..], &s95),
         ("steel tendon +1 %", &steel, &up[..], &s0),

@@ -11,6 +11,7 @@ pub mod limit;
 pub mod newton;
 pub mod options;
 pub mod predict;
+pub mod predict_warm;
 pub mod presolve;
 pub mod residual;
 pub mod shooting;
