@@ -9,7 +9,9 @@ use tcarod::shooting::{initial_guess, solve, sweep, Solution, SolveOptions};
 use tcarod::solve::predict::predicted_guess;
 
 fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
 }
 
 /// Tip distance [m] between a warm and a cold solution of the same
@@ -67,9 +69,16 @@ fn warm_solves_take_fewer_ivps_and_equal_the_cold_ones() {
         assert!(hot.residual <= o.tol.max(hot.floor), "{}", hot.residual);
         assert!(hot.evaluations <= most, "{} IVPs", hot.evaluations);
         assert!(hot.iterations >= 1, "a warm solve 5 C away needs a step");
-        assert!(tip_gap(&hot, &cold) < 1e-9, "{:.2e} m", tip_gap(&hot, &cold));
+        assert!(
+            tip_gap(&hot, &cold) < 1e-9,
+            "{:.2e} m",
+            tip_gap(&hot, &cold)
+        );
         assert_eq!(hot.inputs, p1);
-        assert!(hot.newton_jacobian.is_some(), "the next warm start needs it");
+        assert!(
+            hot.newton_jacobian.is_some(),
+            "the next warm start needs it"
+        );
     }
 }
 
@@ -82,15 +91,17 @@ fn a_warm_fig6_sweep_matches_cold_solves_and_stays_cheap() {
     let mut warm_ivps = 0;
     for (sol, p) in path.iter().zip(&inputs).skip(1) {
         let cold = solve(&robot, p, &o, None).unwrap();
-        assert!(tip_gap(sol, &cold) < 1e-9, "{p:?}: {:.2e} m", tip_gap(sol, &cold));
+        assert!(
+            tip_gap(sol, &cold) < 1e-9,
+            "{p:?}: {:.2e} m",
+            tip_gap(sol, &cold)
+        );
         warm_ivps += sol.evaluations;
     }
-    // 15 warm steps of 5 C: at most 10 IVPs a step on average (the
-    // pre-solve's bound in tests/solver.rs territory is per step; here the
-    // neighbour's Jacobian is handed on unrefreshed along the sweep, so a
-    // creeping staleness would show as fallbacks of 13+ IVPs)
-    eprintln!("sweep: {warm_ivps} warm IVPs");
-    assert!(warm_ivps <= 150, "{warm_ivps} IVPs for 15 warm steps");
+    // 15 warm steps of 5 C: measured 124 IVPs (coarse ones included; 145
+    // when the neighbour's Jacobian was handed on with no refresh, each
+    // stale one ending in a fallback onto the pre-solve): bound 135
+    assert!(warm_ivps <= 135, "{warm_ivps} IVPs for 15 warm steps");
 }
 
 #[test]
@@ -99,12 +110,22 @@ fn a_warm_start_in_the_opposite_direction_and_at_rest_works() {
     let o = SolveOptions::default();
     let hot = solve(&robot, &[100.0, 100.0], &o, None).unwrap();
     // cooling (the predictor's sign) and no change at all (no step: the
-    // warm solution itself, at its own residual)
+    // warm solution itself, at its own residual; measured 1 IVP)
     let down = solve(&robot, &[90.0, 90.0], &o, Some(&hot)).unwrap();
     let cold = solve(&robot, &[90.0, 90.0], &o, None).unwrap();
     assert!(tip_gap(&down, &cold) < 1e-9);
+    // 10 C down: measured 9 IVPs (16 before the warm run refreshed a
+    // Jacobian that contracts too slowly)
+    assert!(down.evaluations <= 11, "{} IVPs 10 C down", down.evaluations);
     let same = solve(&robot, &[100.0, 100.0], &o, Some(&hot)).unwrap();
     assert!(tip_gap(&same, &hot) < 1e-9);
-    eprintln!("at rest: {} IVPs, down {}", same.evaluations, down.evaluations);
-    assert!(same.evaluations <= 2, "{} IVPs at the warm point", same.evaluations);
+    eprintln!(
+        "at rest: {} IVPs, down {}",
+        same.evaluations, down.evaluations
+    );
+    assert!(
+        same.evaluations <= 2,
+        "{} IVPs at the warm point",
+        same.evaluations
+    );
 }

@@ -19,7 +19,8 @@
 //!    columns rescaled to the new tension slopes,
 //!    [`super::presolve::rescale_tension_columns`]) from the known value
 //!    `r_full(x)`, to `max(0.1 tol, coarse floor)`, while at most
-//!    [`CHORD_STEPS_LEFT`] more steps are needed at their contraction;
+//!    [`CHORD_STEPS_LEFT`] more steps are needed at their contraction
+//!    (beyond, once, with a fresh coarse tangent at the point reached);
 //! 3. back to 1 (at most [`MAX_ROUNDS`] full IVPs).
 //!
 //! Any failure (a step that does not contract enough, a full residual that
@@ -78,7 +79,7 @@ pub(crate) fn warm_shooting(
         x: x0.to_vec(),
         iterations: 0,
     };
-    let out = run.correct(opts, &j, work);
+    let out = run.correct(opts, j, work);
     work.evaluations += run.full.evaluations + run.coarse.evaluations;
     work.iterations += run.iterations;
     match out {
@@ -110,7 +111,7 @@ impl WarmRun<'_> {
     fn correct(
         &mut self,
         opts: &SolveOptions,
-        jac: &DMatrix<f64>,
+        mut jac: DMatrix<f64>,
         work: &Work,
     ) -> Result<Option<(NewtonResult, Option<FinalIvp>)>> {
         let mut last_norm = f64::INFINITY;
@@ -136,7 +137,7 @@ impl WarmRun<'_> {
                     status,
                     iterations: 0,
                     evaluations: 0,
-                    jacobian: Some(jac.clone()),
+                    jacobian: Some(jac),
                 };
                 return Ok(Some((nr, last)));
             }
@@ -146,7 +147,7 @@ impl WarmRun<'_> {
             last_norm = norm;
             let rc = self.coarse.residual(&self.x)?;
             let defect: Vec<f64> = rf.iter().zip(&rc).map(|(f, c)| f - c).collect();
-            if !self.chord(opts, jac, &defect, rf, work)? {
+            if !self.chord(opts, &mut jac, &defect, rf, work)? {
                 return Ok(None);
             }
         }
@@ -154,18 +155,23 @@ impl WarmRun<'_> {
     }
 
     /// Chord steps on `r_coarse + defect` from `self.x`, where it is `r`;
-    /// whether they reached the coarse tolerance.
+    /// whether they reached the coarse tolerance. When a step does not
+    /// contract enough (more than [`CHORD_STEPS_LEFT`] still needed) the
+    /// Jacobian is replaced, once, by a fresh coarse tangent at the point
+    /// reached (so that along a sweep, where each solve hands its Jacobian
+    /// on, staleness does not pile up), and the chord steps go on with it.
     fn chord(
         &mut self,
         opts: &SolveOptions,
-        jac: &DMatrix<f64>,
+        jac: &mut DMatrix<f64>,
         defect: &[f64],
         mut r: Vec<f64>,
         work: &Work,
     ) -> Result<bool> {
         let tol = 0.1 * opts.tol;
         let mut res = inf_norm(&r);
-        let lu = jac.clone().lu();
+        let mut lu = jac.clone().lu();
+        let mut refreshed = false;
         while self.iterations < opts.max_iter && !self.spent(work) {
             let Some(dx) = lu
                 .solve(&(-DVector::from_column_slice(&r)))
@@ -177,19 +183,26 @@ impl WarmRun<'_> {
             let mut rt = self.coarse.residual(&xt)?;
             rt.iter_mut().zip(defect).for_each(|(a, d)| *a += d);
             let after = inf_norm(&rt);
-            if !(after < res) {
-                return Ok(false);
-            }
-            self.iterations += 1;
-            (self.x, r) = (xt, rt);
-            if after <= tol.max(self.coarse.floor(&self.x, &r)) {
-                return Ok(true);
+            let accepted = after < res;
+            if accepted {
+                self.iterations += 1;
+                (self.x, r) = (xt, rt);
+                if after <= tol.max(self.coarse.floor(&self.x, &r)) {
+                    return Ok(true);
+                }
             }
             // chord steps still needed at this contraction
-            if (after / tol).ln() / (res / after).ln() > CHORD_STEPS_LEFT {
-                return Ok(false);
+            if !accepted || (after / tol).ln() / (res / after).ln() > CHORD_STEPS_LEFT {
+                if refreshed {
+                    return Ok(false);
+                }
+                let (rc, fresh) = self.coarse.residual_and_jacobian(&self.x)?;
+                r = rc.iter().zip(defect).map(|(a, d)| a + d).collect();
+                *jac = fresh;
+                lu = jac.clone().lu();
+                refreshed = true;
             }
-            res = after;
+            res = inf_norm(&r);
         }
         Ok(false)
     }
