@@ -116,13 +116,13 @@ fn a_warm_start_in_the_opposite_direction_and_at_rest_works() {
     assert!(tip_gap(&down, &cold) < 1e-9);
     // 10 C down: measured 9 IVPs (16 before the warm run refreshed a
     // Jacobian that contracts too slowly)
-    assert!(down.evaluations <= 11, "{} IVPs 10 C down", down.evaluations);
+    assert!(
+        down.evaluations <= 11,
+        "{} IVPs 10 C down",
+        down.evaluations
+    );
     let same = solve(&robot, &[100.0, 100.0], &o, Some(&hot)).unwrap();
     assert!(tip_gap(&same, &hot) < 1e-9);
-    eprintln!(
-        "at rest: {} IVPs, down {}",
-        same.evaluations, down.evaluations
-    );
     assert!(
         same.evaluations <= 2,
         "{} IVPs at the warm point",
