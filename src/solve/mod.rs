@@ -10,6 +10,8 @@ pub mod guess;
 pub mod limit;
 pub mod newton;
 pub mod options;
+pub mod predict;
+pub mod predict_warm;
 pub mod presolve;
 pub mod residual;
 pub mod shooting;

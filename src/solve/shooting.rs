@@ -149,7 +149,10 @@ pub(crate) fn solve_direct(
     }
     cancel::check()?;
     let mut work = Work::start(opts);
-    let mut x0 = initial_guess(robot, inputs, warm);
+    let mut x0 = match warm {
+        Some(w) => super::predict::predicted_guess(robot, inputs, w),
+        None => initial_guess(robot, inputs, None),
+    };
     if warm.is_none() {
         linear_guess(robot, inputs, loads, &mut x0);
     }
@@ -158,7 +161,13 @@ pub(crate) fn solve_direct(
         inputs: &w.inputs,
         jacobian: w.newton_jacobian.as_ref(),
     });
-    match presolved_shooting(robot, inputs, loads, opts, &x0, start, keep, &mut work) {
+    let direct = match start {
+        Some(w) => {
+            super::predict_warm::warm_shooting(robot, inputs, loads, opts, &x0, w, keep, &mut work)
+        }
+        None => presolved_shooting(robot, inputs, loads, opts, &x0, None, keep, &mut work),
+    };
+    match direct {
         Ok((nr, last)) => Ok(Solved::Newton(nr, last, work)),
         Err(e) if is_input_error(&e) || is_budget_error(&e) => Err(e),
         Err(first) => continuation(robot, inputs, loads, opts, warm, &mut work)

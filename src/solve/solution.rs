@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, Matrix3, Vector3};
 use super::newton::Status;
 use super::residual::{Loads, Shot};
 use crate::error::Result;
-use crate::rod::{IvpResult, Robot};
+use crate::rod::{IvpResult, Robot, RodState};
 
 /// A converged forward solution, sampled at the integration nodes.
 #[derive(Debug, Clone)]
@@ -117,21 +117,26 @@ pub(crate) fn assemble_from(
     let body = &robot.body;
     let (kse, kbt) = body.stiffness();
     let na = robot.actuators.len();
+    let n = ivp.nodes.len();
+    let (base_force, base_moment) = match ivp.nodes.first() {
+        Some((_, st0)) => base_wrench(robot, st0, &tau),
+        None => (Vector3::zeros(), Vector3::zeros()),
+    };
     let mut sol = Solution {
-        s: Vec::with_capacity(ivp.nodes.len()),
-        positions: Vec::new(),
-        rotations: Vec::new(),
-        nu: Vec::new(),
-        omega: Vec::new(),
-        internal_force: Vec::new(),
-        internal_moment: Vec::new(),
-        elongation_profile: Vec::new(),
+        s: Vec::with_capacity(n),
+        positions: Vec::with_capacity(n),
+        rotations: Vec::with_capacity(n),
+        nu: Vec::with_capacity(n),
+        omega: Vec::with_capacity(n),
+        internal_force: Vec::with_capacity(n),
+        internal_moment: Vec::with_capacity(n),
+        elongation_profile: Vec::with_capacity(n),
         actuator_paths: vec![Vec::new(); na],
-        tensions: tau.clone(),
-        elongations: ivp.elongation.clone(),
+        tensions: tau,
+        elongations: ivp.elongation,
         inputs: inputs.to_vec(),
-        base_force: Vector3::zeros(),
-        base_moment: Vector3::zeros(),
+        base_force,
+        base_moment,
         iterations,
         evaluations,
         residual: r.iter().fold(0.0, |m: f64, x| m.max(x.abs())),
@@ -144,9 +149,9 @@ pub(crate) fn assemble_from(
         continuation_steps: Vec::new(),
     };
     let tol = 1e-12 * body.length;
-    for (s, st) in &ivp.nodes {
+    for (s, st) in ivp.nodes {
         let rm = st.rotation();
-        sol.s.push(*s);
+        sol.s.push(s);
         sol.positions.push(st.p);
         sol.rotations.push(rm);
         sol.nu.push(st.v);
@@ -154,17 +159,25 @@ pub(crate) fn assemble_from(
         sol.internal_force.push(rm * kse * (st.v - body.nu_star));
         sol.internal_moment
             .push(rm * kbt * (st.u - body.omega_star));
-        sol.elongation_profile.push(st.delta.clone());
+        sol.elongation_profile.push(st.delta);
         for (i, a) in robot.actuators.iter().enumerate() {
-            if *s >= a.s_start - tol && *s <= a.s_end + tol {
-                let (ri, _, _) = a.routing.eval(*s);
+            if s >= a.s_start - tol && s <= a.s_end + tol {
+                let (ri, _, _) = a.routing.eval(s);
                 sol.actuator_paths[i].push(st.p + rm * ri);
             }
         }
     }
-    // Wrench transmitted to the base: body (n, m at s = 0) plus the strings
-    // anchored there, each pulling the base toward the tip with tau t.
-    let st0 = &ivp.nodes[0].1;
+    Ok(sol)
+}
+
+/// Wrench (force \[N\], moment \[N m\] about the base origin, world frame)
+/// transmitted to the base by the body at its first node `st0` and the
+/// strings anchored there, each pulling the base toward the tip with
+/// `tau t`.
+fn base_wrench(robot: &Robot, st0: &RodState, tau: &[f64]) -> (Vector3<f64>, Vector3<f64>) {
+    let body = &robot.body;
+    let (kse, kbt) = body.stiffness();
+    let tol = 1e-12 * body.length;
     let r0 = st0.rotation();
     let mut f = r0 * kse * (st0.v - body.nu_star);
     let mut m = r0 * kbt * (st0.u - body.omega_star) + st0.p.cross(&f);
@@ -177,9 +190,7 @@ pub(crate) fn assemble_from(
             m += (st0.p + r0 * ri).cross(&(t * tau[i]));
         }
     }
-    sol.base_force = f;
-    sol.base_moment = m;
-    Ok(sol)
+    (f, m)
 }
 
 /// Tip pose of a forward solution, without the sampled profile (for

@@ -1,0 +1,138 @@
+//! Warm forward solves of the issue-10 speed cases, counted: `cargo run
+//! --release --example warm_counts` prints, for the Fig. 6 square warm 5 C
+//! away and the steel tendon robot warm after +1 % tension, the IVPs
+//! (full-grid and coarse) and iterations of the warm solve, the distance of
+//! its start from the converged unknowns and the converged result's
+//! difference from the cold solve's. `-- --time`: interleaved thread-CPU
+//! medians of the warm solve and of one plain full-grid IVP.
+use tcarod::experiments::{fig6_square, steel_tendon_robot, STEEL_TENDON_TENSIONS};
+use tcarod::rod::Robot;
+use tcarod::shooting::{initial_guess, solve, Loads, Shot, Solution, SolveOptions};
+
+#[path = "../benches/clock/mod.rs"]
+mod clock;
+
+/// Thread CPU time [s] (Linux; the benches' clock).
+fn thread_cpu() -> f64 {
+    clock::thread_cpu().expect("thread CPU time needs 64-bit Linux")
+}
+
+fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
+/// Counts of one warm solve from `warm` to `inputs`.
+fn counts(name: &str, robot: &Robot, inputs: &[f64], warm: &Solution) {
+    let o = SolveOptions::default();
+    let cold = solve(robot, inputs, &o, None).unwrap();
+    let hot = solve(robot, inputs, &o, Some(warm)).unwrap();
+    let plain = initial_guess(robot, inputs, Some(warm));
+    let pred = tcarod::solve::predict::predicted_guess(robot, inputs, warm);
+    let l = Loads::of(robot);
+    let res = |x: &[f64]| {
+        let (r, _, _) = Shot::new(robot, inputs, &l, o.steps)
+            .residual(x, false)
+            .unwrap();
+        r.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+    };
+    println!(
+        "{name:<26} warm: {} evaluations, {} iterations (cold {} / {}); start |x - x*| keep-tension {:.2e} (residual {:.2e}), predicted {:.2e} (residual {:.2e}); warm - cold: unknowns {:.1e}, tip {:.1e} m",
+        hot.evaluations,
+        hot.iterations,
+        cold.evaluations,
+        cold.iterations,
+        max_abs_diff(&plain, &cold.unknowns),
+        res(&plain),
+        max_abs_diff(&pred, &cold.unknowns),
+        res(&pred),
+        max_abs_diff(&hot.unknowns, &cold.unknowns),
+        (hot.tip_position() - cold.tip_position()).norm(),
+    );
+}
+
+/// Interleaved thread-CPU medians (15 rounds of 10 calls) of the warm
+/// solve and of one plain full-grid IVP at the solution.
+fn time(name: &str, robot: &Robot, inputs: &[f64], warm: &Solution) {
+    let o = SolveOptions::default();
+    let l = Loads::of(robot);
+    let at = solve(robot, inputs, &o, None).unwrap();
+    let med = |f: &mut dyn FnMut()| {
+        let t0 = thread_cpu();
+        for _ in 0..10 {
+            f();
+        }
+        (thread_cpu() - t0) / 10.0
+    };
+    let (mut a, mut u, mut g, mut s) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..15 {
+        s.push(med(&mut || {
+            drop(
+                tcarod::shooting::assemble(robot, inputs, &l, &at.unknowns, o.steps, 0, 0).unwrap(),
+            )
+        }));
+        a.push(med(&mut || {
+            drop(solve(robot, inputs, &o, Some(warm)).unwrap())
+        }));
+        g.push(med(&mut || {
+            drop(tcarod::solve::predict::predicted_guess(robot, inputs, warm))
+        }));
+        u.push(med(&mut || {
+            drop(
+                Shot::new(robot, inputs, &l, o.steps)
+                    .residual(&at.unknowns, false)
+                    .unwrap(),
+            )
+        }));
+    }
+    for v in [&mut a, &mut u, &mut g, &mut s] {
+        v.sort_by(|x, y| x.partial_cmp(y).unwrap());
+    }
+    println!(
+        "{name:<26} thread CPU: warm {:>6.1} us = {:.2} IVPs (its guess {:.1} us); one IVP {:.1} us, assembled {:.1} us",
+        a[7] * 1e6,
+        a[7] / u[7],
+        g[7] * 1e6,
+        u[7] * 1e6,
+        s[7] * 1e6
+    );
+}
+
+fn main() {
+    let o = SolveOptions::default();
+    let sq = fig6_square(true);
+    let s95 = solve(&sq, &[95.0, 95.0], &o, None).unwrap();
+    let steel = steel_tendon_robot();
+    let s0 = solve(&steel, &STEEL_TENDON_TENSIONS, &o, None).unwrap();
+    let up: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
+    let timed = std::env::args().any(|a| a == "--time");
+    if std::env::args().any(|a| a == "--assemble") {
+        // a loop for a profiler: assembling the Fig. 6 solution
+        let l = Loads::of(&sq);
+        for _ in 0..20000 {
+            drop(
+                tcarod::shooting::assemble(&sq, &[95.0, 95.0], &l, &s95.unknowns, 100, 0, 0)
+                    .unwrap(),
+            );
+        }
+        return;
+    }
+    if std::env::args().any(|a| a == "--warm-loop") {
+        // a loop for a profiler: the Fig. 6 warm solve
+        for _ in 0..5000 {
+            drop(solve(&sq, &[100.0, 100.0], &o, Some(&s95)).unwrap());
+        }
+        return;
+    }
+    for (name, robot, inputs, warm) in [
+        ("fig6 square 100 C (95)", &sq, &[100.0, 100.0][..], &s95),
+        ("steel tendon +1 %", &steel, &up[..], &s0),
+    ] {
+        if timed {
+            time(name, robot, inputs, warm);
+        } else {
+            counts(name, robot, inputs, warm);
+        }
+    }
+}

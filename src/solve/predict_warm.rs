@@ -1,0 +1,218 @@
+//! The direct Newton run of a warm forward solve: from the first-order
+//! prediction ([`super::predict`]), defect correction on the coarse grid
+//! with the defect measured AT the prediction.
+//!
+//! The coarse-grid pre-solve ([`super::presolve`]) takes the defect
+//! `d = r_full - r_coarse` of the warm neighbour, integrates a coarse IVP
+//! for it, converges the coarse system from the guess and only then finds,
+//! in its first full-grid IVP, how far the defect moved between the
+//! neighbour and the new solution (Fig. 6, 95 to 100 C: 1.5e-7, so a
+//! second coarse run and a second full IVP follow). From a prediction
+//! already within ~1e-6 of the solution the order is turned round:
+//!
+//! 1. a full-grid IVP at the point `x` (converged if `max |r_full| <=
+//!    max(tol, floor)`, Newton's test) and a coarse one there, so that
+//!    `d = r_full(x) - r_coarse(x)` holds exactly at `x` and moves between
+//!    `x` and the solution by the coarse grid's error in the Jacobian
+//!    times that short distance;
+//! 2. chord steps on `r_coarse + d` with the neighbour's Jacobian (actuator
+//!    columns rescaled to the new tension slopes,
+//!    [`super::presolve::rescale_tension_columns`]) from the known value
+//!    `r_full(x)`, to `max(0.1 tol, coarse floor)`, while at most
+//!    [`CHORD_STEPS_LEFT`] more steps are needed at their contraction
+//!    (beyond, once, with a fresh coarse tangent at the point reached);
+//! 3. back to 1 (at most [`MAX_ROUNDS`] full IVPs).
+//!
+//! Any failure (a step that does not contract enough, a full residual that
+//! does not fall tenfold, an integration error) hands the solve to the
+//! pre-solve ([`super::presolve::presolved_shooting`]) from the point
+//! reached, as without the prediction; the work done counts on top. Every
+//! IVP counts as one evaluation.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::newton::{NewtonResult, Status, System};
+use super::options::SolveOptions;
+use super::presolve::{presolved_shooting, rescale_tension_columns, Warm};
+use super::residual::Loads;
+use super::system::{FinalIvp, Keep, Shooting, Work, COARSE_JACOBIAN_MIN_STEPS};
+use crate::error::{Error, Result};
+use crate::rod::Robot;
+
+/// Full-grid IVPs of the warm run before it hands over to the pre-solve.
+pub const MAX_ROUNDS: usize = 3;
+
+/// Most chord steps still needed, at the contraction of the last one, for
+/// which the chord run goes on (the pre-solve's rule; the same cost
+/// argument: a fresh coarse tangent costs about four coarse IVPs).
+pub const CHORD_STEPS_LEFT: f64 = 4.0;
+
+/// The direct Newton run of a forward solve warm from `warm`, starting at
+/// the predicted guess `x0`: the same contract as
+/// [`presolved_shooting`], which it is without a warm Jacobian, without
+/// the pre-solve or on a grid too short for a coarse one.
+#[allow(clippy::too_many_arguments)] // the shooting problem's parts, as presolved_shooting's
+pub(crate) fn warm_shooting(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    x0: &[f64],
+    warm: Warm<'_>,
+    keep: Keep,
+    work: &mut Work,
+) -> Result<(NewtonResult, Option<FinalIvp>)> {
+    let coarse = opts.steps / 10;
+    let Some(jac) = warm
+        .jacobian
+        .filter(|j| j.nrows() == x0.len() && j.ncols() == x0.len())
+    else {
+        return presolved_shooting(robot, inputs, loads, opts, x0, Some(warm), keep, work);
+    };
+    if coarse < COARSE_JACOBIAN_MIN_STEPS || !opts.presolve {
+        return presolved_shooting(robot, inputs, loads, opts, x0, Some(warm), keep, work);
+    }
+    let j = rescale_tension_columns(robot, jac, (warm.unknowns, warm.inputs), (x0, inputs));
+    let mut run = WarmRun {
+        full: Shooting::new(robot, inputs, loads, opts.steps, keep),
+        coarse: Shooting::new(robot, inputs, loads, coarse, Keep::Tip),
+        x: x0.to_vec(),
+        iterations: 0,
+    };
+    let out = run.correct(opts, j, work);
+    work.evaluations += run.full.evaluations + run.coarse.evaluations;
+    work.iterations += run.iterations;
+    match out {
+        Ok(Some((mut nr, last))) => {
+            nr.evaluations = work.evaluations;
+            nr.iterations = run.iterations;
+            Ok((nr, last))
+        }
+        Err(e @ Error::Interrupted) => Err(e),
+        _ => presolved_shooting(robot, inputs, loads, opts, &run.x, Some(warm), keep, work),
+    }
+}
+
+/// The state of one warm run: the full and coarse systems (each counts its
+/// IVPs), the point reached and the chord steps taken.
+struct WarmRun<'a> {
+    full: Shooting<'a>,
+    coarse: Shooting<'a>,
+    x: Vec<f64>,
+    iterations: usize,
+}
+
+fn inf_norm(r: &[f64]) -> f64 {
+    r.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+impl WarmRun<'_> {
+    /// Steps 1-3 of the module docs; `Ok(None)`: hand over to the pre-solve.
+    fn correct(
+        &mut self,
+        opts: &SolveOptions,
+        mut jac: DMatrix<f64>,
+        work: &Work,
+    ) -> Result<Option<(NewtonResult, Option<FinalIvp>)>> {
+        let mut last_norm = f64::INFINITY;
+        for _ in 0..MAX_ROUNDS {
+            if self.spent(work) {
+                return Ok(None);
+            }
+            let rf = self.full.residual(&self.x)?;
+            let norm = inf_norm(&rf);
+            let floor = self.full.floor(&self.x, &rf);
+            if norm <= opts.tol.max(floor) {
+                let last = self.full.take_last(&self.x);
+                let status = if norm <= opts.tol {
+                    Status::Converged
+                } else {
+                    Status::ConvergedAtFloor
+                };
+                let nr = NewtonResult {
+                    x: self.x.clone(),
+                    residual: rf,
+                    norm,
+                    floor,
+                    status,
+                    iterations: 0,
+                    evaluations: 0,
+                    jacobian: Some(jac),
+                };
+                return Ok(Some((nr, last)));
+            }
+            if !(norm <= 0.1 * last_norm) {
+                return Ok(None);
+            }
+            last_norm = norm;
+            let rc = self.coarse.residual(&self.x)?;
+            let defect: Vec<f64> = rf.iter().zip(&rc).map(|(f, c)| f - c).collect();
+            if !self.chord(opts, &mut jac, &defect, rf, work)? {
+                return Ok(None);
+            }
+        }
+        Ok(None)
+    }
+
+    /// Chord steps on `r_coarse + defect` from `self.x`, where it is `r`;
+    /// whether they reached the coarse tolerance. When a step does not
+    /// contract enough (more than [`CHORD_STEPS_LEFT`] still needed) the
+    /// Jacobian is replaced, once, by a fresh coarse tangent at the point
+    /// reached (so that along a sweep, where each solve hands its Jacobian
+    /// on, staleness does not pile up), and the chord steps go on with it.
+    fn chord(
+        &mut self,
+        opts: &SolveOptions,
+        jac: &mut DMatrix<f64>,
+        defect: &[f64],
+        mut r: Vec<f64>,
+        work: &Work,
+    ) -> Result<bool> {
+        let tol = 0.1 * opts.tol;
+        let mut res = inf_norm(&r);
+        let mut lu = jac.clone().lu();
+        let mut refreshed = false;
+        while self.iterations < opts.max_iter && !self.spent(work) {
+            let Some(dx) = lu
+                .solve(&(-DVector::from_column_slice(&r)))
+                .filter(|d| d.iter().all(|v| v.is_finite()))
+            else {
+                return Ok(false);
+            };
+            let xt: Vec<f64> = self.x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
+            let mut rt = self.coarse.residual(&xt)?;
+            rt.iter_mut().zip(defect).for_each(|(a, d)| *a += d);
+            let after = inf_norm(&rt);
+            let accepted = after < res;
+            if accepted {
+                self.iterations += 1;
+                (self.x, r) = (xt, rt);
+                if after <= tol.max(self.coarse.floor(&self.x, &r)) {
+                    return Ok(true);
+                }
+            }
+            // chord steps still needed at this contraction
+            if !accepted || (after / tol).ln() / (res / after).ln() > CHORD_STEPS_LEFT {
+                if refreshed {
+                    return Ok(false);
+                }
+                let (rc, fresh) = self.coarse.residual_and_jacobian(&self.x)?;
+                r = rc.iter().zip(defect).map(|(a, d)| a + d).collect();
+                *jac = fresh;
+                lu = jac.clone().lu();
+                refreshed = true;
+            }
+            res = inf_norm(&r);
+        }
+        Ok(false)
+    }
+
+    /// Whether the solve's IVP budget or deadline is spent.
+    fn spent(&self, work: &Work) -> bool {
+        let used = work.evaluations + self.full.evaluations + self.coarse.evaluations;
+        (work.max_evaluations > 0 && used >= work.max_evaluations)
+            || work
+                .deadline
+                .is_some_and(|d| std::time::Instant::now() >= d)
+    }
+}
