@@ -299,12 +299,10 @@ const KNOWN_COLD_FAILURES: usize = 0;
 /// Benchmark designs, not past self-weight buckling, on which the Newton
 /// step carries a TCA across its coil-contact onset (its slope rises ~400x
 /// within 0.1 um): from the soft side the full step overshoots by that
-/// factor and backtracking crept along the onset with steps of `1e-4`, at
-/// every homotopy parameter alike (the residual near the reference
-/// configuration is homogeneous in `lambda`). All four failed on main
-/// (a9f65e2: "iteration limit reached; continuation stalled at lambda =
-/// 0"); the limited step (the elongation that gives the tension the linear
-/// model predicted) converges #792 and #932 directly and #443 and #714
+/// factor and backtracking crept along the onset (steps of `1e-4`) at
+/// every homotopy parameter. All four failed on main (a9f65e2, "continuation
+/// stalled at lambda = 0"); the limited step (the elongation that gives the
+/// linear model's tension) converges #792 and #932 directly, #443 and #714
 /// through continuation.
 const COIL_CONTACT_DESIGNS: [usize; 4] = [443, 714, 792, 932];
 
@@ -337,9 +335,8 @@ const SOFTER_PIECE_DESIGNS: [usize; 1] = [783];
 /// (`shooting::STALL_WINDOW`): 85 and 55 IVPs.
 const VALLEY_DESIGNS: [usize; 2] = [714, 257];
 
-/// IVP bound of a [`VALLEY_DESIGNS`] solve: about twice the 85 measured
-/// (room for a changed path), and a ninth of the 915-1,016 of a direct run
-/// that creeps to its iteration limit (which it fails).
+/// IVP bound of a [`VALLEY_DESIGNS`] solve: about twice the 85 measured,
+/// a ninth of the 915-1,016 of a direct run creeping to its limit.
 const VALLEY_MAX_IVPS: usize = 200;
 
 /// Benchmark design #126 (an 84 mm, 16.6 kPa rod, column ratio 4.7, two
@@ -354,13 +351,10 @@ const CREEPING_HOMOTOPY_DESIGN: usize = 126;
 /// IVP bound of [`CREEPING_HOMOTOPY_DESIGN`]: 1.5 x 687, well below 1,807.
 const CREEPING_HOMOTOPY_MAX_IVPS: usize = 1_000;
 
-/// IVP bound of the [`CREEPING_HOMOTOPY_DESIGN`] solve with the quadratic
-/// homotopy predictor and correctors cut at their first failed full step
-/// (`solve::continuation::PREDICTOR_POINTS`, `CORRECTOR_MIN_STEP`): 237
-/// IVPs measured (18 homotopy steps), against 687 (46 steps) with the
-/// secant predictor and full backtracking; the bound sits between them,
-/// so that a return to the old predictor fails. Deterministic: IVPs are
-/// counted, not timed.
+/// IVP bound of [`CREEPING_HOMOTOPY_DESIGN`], quadratic predictor and cut
+/// correctors (`solve::continuation::PREDICTOR_POINTS`, `CORRECTOR_MIN_STEP`):
+/// 237 IVPs (18 steps), against 687 (46) with the secant predictor and full
+/// backtracking; between them, so that the old predictor fails (counts).
 const QUADRATIC_PREDICTOR_MAX_IVPS: usize = 400;
 
 /// Benchmark designs whose homotopy paths have kinks (a tendon going taut
