@@ -291,33 +291,18 @@ fn equilibrium_check_fails_on_a_perturbed_solution() {
 const SUBSET: usize = 40;
 /// Designs of the subset, not past self-weight buckling, that the solver
 /// fails to converge cold (continuation included). Measured; the issue-10
-/// target is 0. On main (bcb9266: FD-Jacobian Newton with Broyden updates, two
-/// grids, input continuation): 2, designs #12 (a helical linear tendon and a
-/// tendon, both anchored inside a 14 kPa body lying sideways under gravity)
-/// and #33 (one straight tendon in a 35 kPa, 154 mm body, gravity, tip load),
-/// "line search failed". With the exact-Jacobian solver (branch `solver`,
-/// 89da0aa): 1, design #21 (a TCA and a linear tendon in a 4.3 MPa body
-/// hanging under gravity): "continuation stalled at lambda = 0", best
-/// residual 7e-5. Still so with branch `robust` (generalised derivatives at
-/// actuators' onsets of tension, refinement on linear convergence, secant
-/// continuation predictor), which converges 988 of the 1,000 designs: #21
-/// fails as before ("iteration limit reached; continuation stalled at
-/// lambda = 0", best residual 7.3e-5). Branch `robust3` (a watchdog step
-/// where backtracking crept along the TCA's coil-contact onset) converges
-/// #21 (via continuation) and 994 of the 1,000: none of the subset fails.
-/// Branch `robust4` (the limited step through the force laws,
-/// `solve::limit`): still none.
+/// target is 0. FD-Jacobian Newton (bcb9266) failed #12 and #33, the first
+/// exact-Jacobian solver (89da0aa) #21 ("continuation stalled at lambda =
+/// 0"); none since the watchdog step (branch `robust3`, see stop notes).
 const KNOWN_COLD_FAILURES: usize = 0;
 
 /// Benchmark designs, not past self-weight buckling, on which the Newton
 /// step carries a TCA across its coil-contact onset (its slope rises ~400x
 /// within 0.1 um): from the soft side the full step overshoots by that
-/// factor and backtracking crept along the onset with steps of `1e-4`, at
-/// every homotopy parameter alike (the residual near the reference
-/// configuration is homogeneous in `lambda`). All four failed on main
-/// (a9f65e2: "iteration limit reached; continuation stalled at lambda =
-/// 0"); the limited step (the elongation that gives the tension the linear
-/// model predicted) converges #792 and #932 directly and #443 and #714
+/// factor and backtracking crept along the onset (steps of `1e-4`) at
+/// every homotopy parameter. All four failed on main (a9f65e2, "continuation
+/// stalled at lambda = 0"); the limited step (the elongation that gives the
+/// linear model's tension) converges #792 and #932 directly, #443 and #714
 /// through continuation.
 const COIL_CONTACT_DESIGNS: [usize; 4] = [443, 714, 792, 932];
 
@@ -350,9 +335,8 @@ const SOFTER_PIECE_DESIGNS: [usize; 1] = [783];
 /// (`shooting::STALL_WINDOW`): 85 and 55 IVPs.
 const VALLEY_DESIGNS: [usize; 2] = [714, 257];
 
-/// IVP bound of a [`VALLEY_DESIGNS`] solve: about twice the 85 measured
-/// (room for a changed path), and a ninth of the 915-1,016 of a direct run
-/// that creeps to its iteration limit (which it fails).
+/// IVP bound of a [`VALLEY_DESIGNS`] solve: about twice the 85 measured,
+/// a ninth of the 915-1,016 of a direct run creeping to its limit.
 const VALLEY_MAX_IVPS: usize = 200;
 
 /// Benchmark design #126 (an 84 mm, 16.6 kPa rod, column ratio 4.7, two
@@ -364,18 +348,22 @@ const VALLEY_MAX_IVPS: usize = 200;
 /// (`solve::continuation::HOMOTOPY_STALL_WINDOW`, `INTERMEDIATE_TOL`): 687.
 const CREEPING_HOMOTOPY_DESIGN: usize = 126;
 
-/// IVP bound of the [`CREEPING_HOMOTOPY_DESIGN`] solve: 1.5 times the 687
-/// measured, and well below the 1,807 of the creeping path.
+/// IVP bound of [`CREEPING_HOMOTOPY_DESIGN`]: 1.5 x 687, well below 1,807.
 const CREEPING_HOMOTOPY_MAX_IVPS: usize = 1_000;
 
-/// IVP bound of the [`CREEPING_HOMOTOPY_DESIGN`] solve with the quadratic
-/// homotopy predictor and correctors cut at their first failed full step
-/// (`solve::continuation::PREDICTOR_POINTS`, `CORRECTOR_MIN_STEP`): 237
-/// IVPs measured (18 homotopy steps), against 687 (46 steps) with the
-/// secant predictor and full backtracking; the bound sits between them,
-/// so that a return to the old predictor fails. Deterministic: IVPs are
-/// counted, not timed.
+/// IVP bound of [`CREEPING_HOMOTOPY_DESIGN`], quadratic predictor and cut
+/// correctors (`solve::continuation::PREDICTOR_POINTS`, `CORRECTOR_MIN_STEP`):
+/// 237 IVPs (18 steps), against 687 (46) with the secant predictor and full
+/// backtracking; between them, so that the old predictor fails (counts).
 const QUADRATIC_PREDICTOR_MAX_IVPS: usize = 400;
+
+/// Benchmark designs whose homotopy paths have kinks (a tendon going taut
+/// or slack): #385 and #273 took 529 and 386 IVPs on main (591ef47),
+/// where 223 of the continuations' 226 correctors started from a
+/// predictor residual >= 10 failed at ~11 IVPs each. Such a predictor is
+/// now refused after its one IVP (`solve::continuation::PREDICTOR_REJECT`):
+/// 381 and 286 IVPs. Bounds between the two (counts, not times).
+const KINKED_PATH_DESIGNS: [(usize, usize); 2] = [(385, 450), (273, 340)];
 
 /// Design `i` of the benchmark is not past buckling, converges cold to the
 /// solver's own test and balances its loads; returns its IVPs.
@@ -447,6 +435,14 @@ fn creeping_homotopy_steps_are_cut_early() {
 fn a_quadratic_predictor_takes_longer_homotopy_steps() {
     let ivps = converges_cold(CREEPING_HOMOTOPY_DESIGN);
     assert!(ivps <= QUADRATIC_PREDICTOR_MAX_IVPS, "{ivps} IVPs");
+}
+
+#[test]
+fn a_predictor_far_from_the_path_is_refused_after_one_ivp() {
+    for (i, max) in KINKED_PATH_DESIGNS {
+        let ivps = converges_cold(i);
+        assert!(ivps <= max, "#{i}: {ivps} IVPs");
+    }
 }
 
 #[test]

@@ -4,6 +4,7 @@
 
 pub mod cancel;
 pub mod continuation;
+mod corrector;
 pub mod equilibrium;
 pub mod fn_system;
 pub mod guess;

@@ -34,7 +34,7 @@ pub use super::residual::{
     base_strains, residual_scales, tension_slope, tensions, Loads, Shot, ONSET_BAND,
 };
 pub use super::solution::{assemble, Solution, TipSolution};
-pub(crate) use super::system::{newton_shooting, solution_from, FinalIvp, Work};
+pub(crate) use super::system::{solution_from, FinalIvp, Work};
 pub use super::system::{Keep, Shooting, COARSE_JACOBIAN_MIN_STEPS, STALL_WINDOW};
 
 /// Solve the forward kinetostatics for actuator `inputs` (temperature \[C\]
