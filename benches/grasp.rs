@@ -66,6 +66,16 @@ fn report(finger: &Robot, groups: &Groups, opts: &SolveOptions) {
             .expect("IVP");
     });
     println!("one IVP of the finger: {:.1} us", ivp * 1e6);
+    let free = median(|| {
+        solve(finger, &sol.inputs, opts, None).expect("free solve");
+    });
+    println!(
+        "free solve at contact        {:>8.1} us = {:>5.1} IVP times, IVPs {:>3}, iterations {:>2}",
+        free * 1e6,
+        free / ivp,
+        sol.evaluations,
+        sol.iterations
+    );
     for (name, method, policy) in CASES {
         let s = spec(policy);
         let (r, _) = s.solve(finger, groups, method, opts).expect("grasp");

@@ -68,6 +68,8 @@ pub(crate) struct Mixed<'a> {
     /// The last recorded plain IVP: unknowns, shooting residual (without
     /// the gap), IVP, tensions.
     last: Option<LastIvp>,
+    /// A residual already integrated at these unknowns ([`Mixed::prime`]).
+    primed: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 /// Unknowns, shooting residual (without the gap), recorded IVP and tensions
@@ -95,7 +97,14 @@ impl<'a> Mixed<'a> {
             record_below: 0.0,
             last_norm: f64::INFINITY,
             last: None,
+            primed: None,
         }
+    }
+
+    /// Answer the next [`System::residual`] at `x` with `r`, the residual
+    /// of the last IVP (the coarse pre-solve's full-grid check).
+    pub(crate) fn prime(&mut self, x: &[f64], r: Vec<f64>) {
+        self.primed = Some((x.to_vec(), r));
     }
 
     /// The last recorded IVP if it was at the augmented unknowns `x`:
@@ -150,6 +159,9 @@ impl<'a> Mixed<'a> {
 
 impl System for Mixed<'_> {
     fn residual(&mut self, x: &[f64]) -> Result<Vec<f64>> {
+        if let Some((_, r)) = self.primed.take().filter(|(xp, _)| xp == x) {
+            return Ok(r);
+        }
         self.evaluations += 1;
         let nx = 6 + self.robot.actuators.len();
         let (inputs, loads, _) = self.problem(x)?;

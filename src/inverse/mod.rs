@@ -15,6 +15,7 @@ use crate::rod::Robot;
 mod blocked;
 mod grasp;
 mod mixed;
+mod mixed_presolve;
 mod sensitivities;
 mod tip;
 
