@@ -9,7 +9,7 @@ use nalgebra::DMatrix;
 use super::newton::{newton_from, NewtonResult, System};
 use super::options::SolveOptions;
 use super::residual::Loads;
-use super::system::{FinalIvp, Keep, Shooting, Work};
+use super::system::{settle, FinalIvp, Keep, Shooting, Work};
 use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
 
@@ -85,32 +85,6 @@ pub(crate) fn correct(
     };
     let nopts = work.newton_options(opts);
     let out = newton_from(&mut c, x0, &nopts, "forward shooting", jac0);
-    work.evaluations += c.sys.evaluations;
-    let out = match out {
-        Ok(nr) => {
-            work.iterations += nr.iterations;
-            let last = c.sys.take_last(&nr.x);
-            Ok((nr, last))
-        }
-        Err(Error::NotConverged {
-            solver,
-            iterations,
-            residual,
-            stop,
-            reason,
-            ..
-        }) => {
-            work.iterations += iterations;
-            Err(Error::NotConverged {
-                solver,
-                iterations: work.iterations,
-                evaluations: work.evaluations,
-                residual,
-                stop,
-                reason,
-            })
-        }
-        Err(e) => Err(e),
-    };
+    let out = settle(&mut c.sys, out, work);
     (out, c.first)
 }

@@ -374,9 +374,20 @@ pub(crate) fn newton_shooting(
     let mut sys = Shooting::new(robot, inputs, loads, opts.steps, keep);
     let nopts = work.newton_options(opts);
     let out = newton_from(&mut sys, x0, &nopts, "forward shooting", jac0);
+    settle(&mut sys, out, work)
+}
+
+/// Newton's outcome `out` on `sys`: adds its IVPs and iterations to `work`
+/// and returns the result with the IVP at the solution, or the error with
+/// the solve's work totals (also after earlier attempts).
+pub(crate) fn settle(
+    sys: &mut Shooting<'_>,
+    out: Result<NewtonResult>,
+    work: &mut Work,
+) -> Result<(NewtonResult, Option<FinalIvp>)> {
     match out {
         Ok(nr) => {
-            work.add(&sys, nr.iterations);
+            work.add(sys, nr.iterations);
             let last = sys.take_last(&nr.x);
             Ok((nr, last))
         }
@@ -388,7 +399,7 @@ pub(crate) fn newton_shooting(
             stop,
             reason,
         }) => {
-            work.add(&sys, iterations);
+            work.add(sys, iterations);
             Err(Error::NotConverged {
                 solver,
                 iterations: work.iterations,
@@ -399,7 +410,7 @@ pub(crate) fn newton_shooting(
             })
         }
         Err(e) => {
-            work.add(&sys, 0);
+            work.add(sys, 0);
             Err(e)
         }
     }
