@@ -79,7 +79,7 @@ pub const CORRECTOR_MIN_STEP: f64 = 0.6;
 pub const MIN_STEP: f64 = 1e-4;
 /// Largest predictor residual `max |r(x0)|` (scaled) a corrector is run
 /// from; a farther predictor is refused after its one IVP, and the step
-/// shortened by [`rejected_step_factor`] (once per point: the retry runs
+/// shortened by `rejected_step_factor` (once per point: the retry runs
 /// in full, since across a kink of the path no step is short enough).
 /// Measured on the 1,000 benchmark designs (2,377 corrector runs of the
 /// continuations, before this): from `r0 >= 10`, 223 of 226 runs failed,

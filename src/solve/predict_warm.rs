@@ -25,7 +25,7 @@
 //!
 //! Any failure (a step that does not contract enough, a full residual that
 //! does not fall tenfold, an integration error) hands the solve to the
-//! pre-solve ([`super::presolve::presolved_shooting`]) from the point
+//! pre-solve (`presolved_shooting`) from the point
 //! reached, as without the prediction; the work done counts on top. Every
 //! IVP counts as one evaluation.
 
