@@ -8,23 +8,11 @@ use nalgebra::DVector;
 use tcarod::problems::{random_design, DEFAULT_SEED};
 use tcarod::rod::Robot;
 use tcarod::shooting::{reference_guess, Loads, Shooting, Shot};
-use tcarod::solve::NewtonOptions;
+use tcarod::solve::{continuation, NewtonOptions};
 
+/// The homotopy problem at `lam` (the solver's own, loads scaled).
 fn at(robot: &Robot, loads: &Loads, inputs: &[f64], lam: f64) -> (Robot, Vec<f64>, Loads) {
-    let mut r = robot.clone();
-    let mut l = *loads;
-    r.body.gravity *= lam;
-    r.body.distributed_force *= lam;
-    r.body.distributed_moment *= lam;
-    l.tip_force *= lam;
-    l.tip_moment *= lam;
-    let from = robot.reference_inputs();
-    let inp = from
-        .iter()
-        .zip(inputs)
-        .map(|(a, b)| a + lam * (b - a))
-        .collect();
-    (r, inp, l)
+    continuation::at(robot, &robot.reference_inputs(), inputs, loads, true, lam)
 }
 
 fn norm(r: &[f64]) -> f64 {

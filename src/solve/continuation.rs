@@ -114,8 +114,11 @@ fn rejected_step_factor(r0: f64) -> f64 {
 /// and no stall window in the direct run.)
 pub const HOMOTOPY_STALL_WINDOW: usize = 2;
 
-/// The robot, inputs and loads at homotopy parameter `lam` in `[0, 1]`.
-fn at(
+/// The robot, inputs and loads at homotopy parameter `lam` in `[0, 1]`:
+/// inputs linear from `from` (the reference inputs) to `inputs`, and with
+/// `scale_loads` the gravity, distributed and tip loads scaled by `lam`
+/// (exactly the given problem at `lam >= 1`).
+pub fn at(
     robot: &Robot,
     from: &[f64],
     inputs: &[f64],

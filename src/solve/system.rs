@@ -153,6 +153,13 @@ impl<'a> Shooting<'a> {
         self.norms = [older, newer];
     }
 
+    /// Predict that the next evaluation converges (a history whose
+    /// extrapolation [`Shooting::predicts_convergence`] is zero): for a run
+    /// that knows its next full-grid IVP is normally its last.
+    pub(crate) fn expect_convergence(&mut self) {
+        self.set_history(1.0, 0.0);
+    }
+
     /// The residual at `x` from a plain IVP.
     fn plain(&self, x: &[f64]) -> Result<FinalIvp> {
         let nodes = matches!(self.keep, Keep::Nodes | Keep::Verdict { nodes: true, .. });
