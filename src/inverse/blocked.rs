@@ -174,12 +174,34 @@ pub fn blocked_variable_from(
     force: f64,
     opts: &SolveOptions,
 ) -> Result<BlockedResult> {
+    direct_from(
+        robot,
+        groups,
+        block,
+        start,
+        force,
+        opts,
+        coarse_steps(opts.steps),
+    )
+}
+
+/// [`blocked_variable_from`] with the pre-solve on `coarse` RK4 steps
+/// (`None`: no pre-solve, full-grid Newton from the predictor).
+pub(crate) fn direct_from(
+    robot: &Robot,
+    groups: &Groups,
+    block: &Block,
+    start: &Solution,
+    force: f64,
+    opts: &SolveOptions,
+    coarse: Option<usize>,
+) -> Result<BlockedResult> {
     one_variable_and_force(robot, groups, force)?;
     let scale = variable_scale(robot, groups);
     let extra = Extra::Variable { force, scale };
     let mut sys = Mixed::new(robot, groups, block, extra.clone(), opts.steps);
     let (x0, jac0) = predictor(&mut sys, start, groups.vars(&start.inputs)[0])?;
-    let Some(coarse) = coarse_steps(opts.steps) else {
+    let Some(coarse) = coarse else {
         return mixed_newton(&mut sys, &x0, Some(&jac0), opts, GRASP, (0, 0));
     };
     let mut cs = Mixed::new(robot, groups, block, extra, coarse);
@@ -193,7 +215,7 @@ pub fn blocked_variable_from(
 const GRASP: &str = "blocked-tip grasp shooting";
 
 /// Scale of the single actuation variable: its range, within `[1, 1000]`.
-fn variable_scale(robot: &Robot, groups: &Groups) -> f64 {
+pub(crate) fn variable_scale(robot: &Robot, groups: &Groups) -> f64 {
     let (lo, hi) = groups.bounds(robot)[0];
     (hi - lo).clamp(1.0, 1e3)
 }
