@@ -5,6 +5,7 @@
 //! (default `problems::DEFAULT_SEED`), `TCAROD_VERBOSE=1` lists each failure
 //! and each equilibrium residual above the target; diagnostics:
 //! `TCAROD_ONLY=3,17` solves only these designs, `TCAROD_STEPS` sets the RK4 steps,
+//! `TCAROD_TIPS=1` prints every converged design's tip position,
 //! `TCAROD_LIST=1` lists every converged design (index, IVP-equivalents,
 //! IVPs, iterations, homotopy steps). `TCAROD_EQUILIBRIUM_TOL=1e-8` solves
 //! every design with that `SolveOptions::equilibrium_tol` (the grid refined
@@ -142,6 +143,7 @@ fn solve_one(
     let result = match r {
         Ok(sol) => {
             let eq = equilibrium(&d.robot, &sol);
+            print_tip(i, &sol);
             if diagnose {
                 eprintln!(
                     "#{i} steps {} residual {:.2e}: {eq:?}\n  {}\n  tensions {:?}",
@@ -203,6 +205,15 @@ fn solve_one(
         cpu,
         result,
         fine,
+    }
+}
+
+/// With `TCAROD_TIPS=1`, print design `i`'s tip position \[m\] (to compare
+/// two builds' solutions design by design).
+fn print_tip(i: usize, sol: &tcarod::shooting::Solution) {
+    if std::env::var("TCAROD_TIPS").is_ok_and(|v| v == "1") {
+        let p = sol.tip_position();
+        eprintln!("TIP #{i} {:.15e} {:.15e} {:.15e}", p.x, p.y, p.z);
     }
 }
 

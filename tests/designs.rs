@@ -365,6 +365,18 @@ const QUADRATIC_PREDICTOR_MAX_IVPS: usize = 400;
 /// 381 and 286 IVPs. Bounds between the two (counts, not times).
 const KINKED_PATH_DESIGNS: [(usize, usize); 2] = [(385, 450), (273, 340)];
 
+/// Benchmark designs whose cold direct run backtracked down to `t = 1e-6`
+/// before handing over to continuation (`solve::shooting::DIRECT_MIN_STEP`):
+/// #385 and #273 took 381 and 286 IVPs with that run (bounds above), 300
+/// and 217 with the direct run cut at `t = 0.1`. Bounds between the two.
+const CUT_DIRECT_DESIGNS: [(usize, usize); 2] = [(385, 340), (273, 250)];
+
+/// A benchmark design past self-weight buckling whose cold direct run
+/// converges only with heavy damping (`t` below `DIRECT_MIN_STEP`), and
+/// whose continuation fails: 41 IVPs when the direct run damped in full,
+/// 299 now (cut run, failed continuation, repeated run).
+const DAMPED_DIRECT_DESIGN: usize = 25;
+
 /// Design `i` of the benchmark is not past buckling, converges cold to the
 /// solver's own test and balances its loads; returns its IVPs.
 fn converges_cold(i: usize) -> usize {
@@ -497,4 +509,30 @@ fn seeded_subset_converges_and_balances() {
     );
     // exact: a fix that converges a known failure must lower the count
     assert_eq!(failed.len(), KNOWN_COLD_FAILURES, "{}", failed.join("\n"));
+}
+
+#[test]
+fn a_direct_run_needing_heavy_damping_hands_over_to_continuation() {
+    for (i, max) in CUT_DIRECT_DESIGNS {
+        let ivps = converges_cold(i);
+        assert!(ivps <= max, "#{i}: {ivps} IVPs");
+    }
+}
+
+#[test]
+fn a_failed_continuation_repeats_the_direct_run_with_full_damping() {
+    let d = random_design(DEFAULT_SEED, DAMPED_DIRECT_DESIGN);
+    assert!(d.past_buckling(), "{}", d.summary());
+    let opts = SolveOptions::default();
+    let sol =
+        solve(&d.robot, &d.inputs, &opts, None).unwrap_or_else(|e| panic!("{}: {e}", d.summary()));
+    assert!(sol.residual <= opts.tol.max(sol.floor), "{}", d.summary());
+    // the solution is the direct run's (no homotopy path recorded), after
+    // a continuation that did work (more IVPs than the 41 of the direct run)
+    assert!(
+        sol.continuation_steps.is_empty(),
+        "{:?}",
+        sol.continuation_steps
+    );
+    assert!(sol.evaluations > 41, "{} IVPs", sol.evaluations);
 }

@@ -122,6 +122,66 @@ pub(crate) fn solve_direct(
     warm: Option<&Solution>,
     keep: Keep,
 ) -> Result<Solved> {
+    validate(robot, inputs, loads, opts, warm)?;
+    cancel::check()?;
+    let mut work = Work::start(opts);
+    let mut x0 = match warm {
+        Some(w) => super::predict::predicted_guess(robot, inputs, w),
+        None => initial_guess(robot, inputs, None),
+    };
+    if warm.is_none() {
+        linear_guess(robot, inputs, loads, &mut x0);
+    }
+    let start = warm.map(|w| Warm {
+        unknowns: &w.unknowns,
+        inputs: &w.inputs,
+        jacobian: w.newton_jacobian.as_ref(),
+    });
+    // a cold direct run that needs heavy damping hands over to continuation
+    let cold_opts = SolveOptions {
+        min_step: opts.min_step.max(DIRECT_MIN_STEP),
+        ..*opts
+    };
+    let direct = match start {
+        Some(w) => {
+            super::predict_warm::warm_shooting(robot, inputs, loads, opts, &x0, w, keep, &mut work)
+        }
+        None => presolved_shooting(robot, inputs, loads, &cold_opts, &x0, None, keep, &mut work),
+    };
+    let first = match direct {
+        Ok((nr, last)) => return Ok(Solved::Newton(nr, last, work)),
+        Err(e) if is_input_error(&e) || is_budget_error(&e) => return Err(e),
+        Err(first) => first,
+    };
+    let cont = match continuation(robot, inputs, loads, opts, warm, &mut work) {
+        Ok(s) => return Ok(Solved::Solution(s)),
+        Err(e) => e,
+    };
+    if warm.is_some()
+        || cold_opts.min_step <= opts.min_step
+        || is_input_error(&cont)
+        || is_budget_error(&cont)
+    {
+        return Err(combined_error(first, cont, &work));
+    }
+    // the cut direct run's full damping (and stall window), the last resort
+    work.stall_window = STALL_WINDOW;
+    match presolved_shooting(robot, inputs, loads, opts, &x0, None, keep, &mut work) {
+        Ok((nr, last)) => Ok(Solved::Newton(nr, last, work)),
+        Err(e) if is_input_error(&e) || is_budget_error(&e) => Err(e),
+        Err(_) => Err(combined_error(first, cont, &work)),
+    }
+}
+
+/// The checks of a solve request: robot, inputs, options, a warm start's
+/// size and finite tip loads.
+fn validate(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+) -> Result<()> {
     robot.validate()?;
     robot.check_inputs(inputs)?;
     opts.validate()?;
@@ -147,34 +207,26 @@ pub(crate) fn solve_direct(
             crate::error::finite(&format!("{name}[{k}]"), *z)?;
         }
     }
-    cancel::check()?;
-    let mut work = Work::start(opts);
-    let mut x0 = match warm {
-        Some(w) => super::predict::predicted_guess(robot, inputs, w),
-        None => initial_guess(robot, inputs, None),
-    };
-    if warm.is_none() {
-        linear_guess(robot, inputs, loads, &mut x0);
-    }
-    let start = warm.map(|w| Warm {
-        unknowns: &w.unknowns,
-        inputs: &w.inputs,
-        jacobian: w.newton_jacobian.as_ref(),
-    });
-    let direct = match start {
-        Some(w) => {
-            super::predict_warm::warm_shooting(robot, inputs, loads, opts, &x0, w, keep, &mut work)
-        }
-        None => presolved_shooting(robot, inputs, loads, opts, &x0, None, keep, &mut work),
-    };
-    match direct {
-        Ok((nr, last)) => Ok(Solved::Newton(nr, last, work)),
-        Err(e) if is_input_error(&e) || is_budget_error(&e) => Err(e),
-        Err(first) => continuation(robot, inputs, loads, opts, warm, &mut work)
-            .map(Solved::Solution)
-            .map_err(|e| combined_error(first, e, &work)),
-    }
+    Ok(())
 }
+
+/// Smallest line-search step of a cold solve's direct Newton run (the
+/// options' `min_step` if larger): a direct run that backtracks further
+/// hands over to continuation at once (which is then the cheaper way;
+/// the stop-24 note measured 56-142 IVPs in direct runs that failed after
+/// backtracking down to `t = 1e-6`). Should the continuation fail too,
+/// the direct run is repeated with the options' own `min_step` (this
+/// saves benchmark design #25, past self-weight buckling, which converges
+/// directly only with heavy damping). Measured on the 1,000 benchmark
+/// designs (`benches/designs.rs`, IVPs per cold solve p90 / p99 / max,
+/// all with 999 converged, 956 of 956 not past buckling): `1e-6` (off)
+/// 115 / 219 / 380; `0.1` 85 / 196 / 315 (this); `0.05` 91 / 192 / 318
+/// (measured before the repeat, with #25 lost);
+/// `0.2` 79 / 192 / 312 and `0.3` 79 / 186 / 291, but these move the
+/// tips of designs past buckling (#830 by 58 mm; with `0.3` #552 and
+/// #282 too) onto another equilibrium branch, while `0.1` moves no tip
+/// by more than 2.6e-13 m.
+pub const DIRECT_MIN_STEP: f64 = 0.1;
 
 /// The error of a solve whose direct Newton run failed with `first` and
 /// whose continuation failed with `cont`: the budget's if the continuation
