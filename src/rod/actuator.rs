@@ -241,16 +241,20 @@ impl ForceLaw for TcaLaw {
             Err(out_of_range(self.input_name(), input, (lo, hi)))
         }
     }
-    /// Exact in the elongation ([`crate::tca::TcaAt::tension_slope`]);
-    /// differenced in the temperature, whose effect runs through the
-    /// material's tabulated moduli.
+    /// Exact in the elongation ([`crate::tca::TcaAt::tension_slope`]) and
+    /// in the temperature ([`crate::tca::TcaAt::tension_temperature_slope`]),
+    /// from one evaluation of the law at `input`.
     fn tension_derivatives(&self, elongation: f64, input: f64) -> Result<(f64, f64, f64)> {
         let at = self.0.at(input)?;
         Ok((
             at.tension(elongation)?,
             at.tension_slope(elongation)?,
-            self.input_slope(elongation, input)?,
+            at.tension_temperature_slope(elongation)?,
         ))
+    }
+    /// Exact: [`crate::tca::TcaAt::tension_temperature_slope`].
+    fn input_slope(&self, elongation: f64, input: f64) -> Result<f64> {
+        self.0.at(input)?.tension_temperature_slope(elongation)
     }
     fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
         let at = self.0.at(input).ok()?;

@@ -37,6 +37,9 @@ pub trait Real:
     /// `true` if the value is finite (derivatives are checked once, at the
     /// end of a tangent pass).
     fn is_finite(&self) -> bool;
+    /// `true` if the value and every derivative are zero (a slack string:
+    /// no terms in eq 25).
+    fn is_zero(&self) -> bool;
     /// Solve the eq-25 system `[[M11, M12], [M12^T, M22]] [v'; u'] = [e; f]`
     /// (symmetric blocks stored whole): in `f64` by block elimination; for a
     /// [`Dual`], the real part is factored ONCE in `f64` and every direction's
@@ -67,6 +70,10 @@ impl Real for f64 {
     #[inline(always)]
     fn is_finite(&self) -> bool {
         f64::is_finite(*self)
+    }
+    #[inline(always)]
+    fn is_zero(&self) -> bool {
+        *self == 0.0
     }
     #[inline(always)]
     fn solve_eq25(m: &Blocks<f64>, e: &V3<f64>, f: &V3<f64>) -> Option<(V3<f64>, V3<f64>)> {
@@ -125,6 +132,10 @@ impl<const N: usize> Real for Dual<N> {
     #[inline(always)]
     fn is_finite(&self) -> bool {
         self.re.is_finite()
+    }
+    #[inline(always)]
+    fn is_zero(&self) -> bool {
+        self.re == 0.0 && self.eps.iter().all(|e| *e == 0.0)
     }
     #[inline(always)]
     fn solve_eq25(m: &Blocks<Self>, e: &V3<Self>, f: &V3<Self>) -> Option<(V3<Self>, V3<Self>)> {

@@ -214,7 +214,7 @@ fn integrate_plain(
     y[10..13].copy_from_slice(u0.as_slice());
     let bps = robot.breakpoints();
     let tol = 1e-12 * len;
-    let mut nodes = Vec::new();
+    let mut nodes = Vec::with_capacity(if record { steps + bps.len() } else { 0 });
     let mut elongation = vec![0.0; na];
     let mut active: Vec<usize> = Vec::with_capacity(na);
     for w in bps.windows(2) {

@@ -307,10 +307,12 @@ impl<'a> RodRhs<'a> {
         }
         let pbrp: V3<T> = v3(|k| pb[k] + rp[k]);
         let upr = cross(u, &pbrp);
+        // one division, not four (on the critical path of every stage)
+        let inv = T::cst(1.0) / nrm;
         Ok(StringAt {
             r,
-            c: tau / nrm,
-            t: v3(|k| pb[k] / nrm),
+            c: tau * inv,
+            t: v3(|k| pb[k] * inv),
             g: v3(|k| upr[k] + rpp[k]), // g_i = omega^(nu + omega^ r + 2 r') + r''
             rate: nrm - lref,           // (24)
             nrm,
@@ -341,6 +343,12 @@ impl<'a> RodRhs<'a> {
         }
         for &i in active {
             let st = self.string_at(s, i, &fr.v, &fr.u, tau[i])?;
+            if tau[i].is_zero() {
+                // A_i = 0: the slack string adds nothing to (25) (each
+                // term below is a product with c = 0)
+                each(i, &st);
+                continue;
+            }
             let StringAt { r, c, t, g, .. } = st;
             // A_i = -tau pb^2 / |pb|^3 = c (I - t t^T), c = tau / |pb| (eq 20:
             // tau t_a' = A_i R^T p_a''). With r^ x = r x x, w = t x r and

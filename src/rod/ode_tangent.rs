@@ -205,6 +205,22 @@ fn string_lanes<const N: usize>(
     }
     let dnrm = dot_cl(&t, &dpb);
     let inv = 1.0 / nrm;
+    let w = [
+        g[0] + (vd[0] + ud[1] * r[2] - ud[2] * r[1]),
+        g[1] + (vd[1] + ud[2] * r[0] - ud[0] * r[2]),
+        g[2] + (vd[2] + ud[0] * r[1] - ud[1] * r[0]),
+    ];
+    let tw = t[0] * w[0] + t[1] * w[1] + t[2] * w[2];
+    if c == 0.0 {
+        // a slack string: only its tension's lanes load the body,
+        // A_i w = c (w - t (t . w)) with dc = dtau / |p_b|
+        let dc = dtau * inv;
+        let mut daw = [Lanes::ZERO; 3];
+        for k in 0..3 {
+            daw[k] = dc * (w[k] - t[k] * tw);
+        }
+        return (daw, dnrm);
+    }
     let dc = (dtau - dnrm * c) * inv;
     let mut dt = [Lanes::ZERO; 3];
     for k in 0..3 {
@@ -216,12 +232,6 @@ fn string_lanes<const N: usize>(
         dg[k] = a[k] + b[k];
     }
     // w = z_i + g_i at fixed x, its part along t removed: A_i w = c (w - t (t . w))
-    let w = [
-        g[0] + (vd[0] + ud[1] * r[2] - ud[2] * r[1]),
-        g[1] + (vd[1] + ud[2] * r[0] - ud[0] * r[2]),
-        g[2] + (vd[2] + ud[0] * r[1] - ud[1] * r[0]),
-    ];
-    let tw = t[0] * w[0] + t[1] * w[1] + t[2] * w[2];
     let dtw = dot_cl(&w, &dt) + dot_cl(&t, &dg);
     let mut daw = [Lanes::ZERO; 3];
     for k in 0..3 {

@@ -8,12 +8,14 @@ use super::super::lanes::Lanes;
 use super::super::ode::StringAt;
 use super::*;
 
-/// The RK4 stages of a tangent pass: values and lanes (`n` states each).
+/// The RK4 stages of a tangent pass: values and lanes (`n` states each),
+/// the four stages and the trial state in one buffer each (two allocations
+/// per pass, not ten).
 struct LaneStages<const N: usize> {
-    k: [Vec<f64>; 4],
-    kl: [Vec<Lanes<N>>; 4],
-    yt: Vec<f64>,
-    ytl: Vec<Lanes<N>>,
+    /// `k1 .. k4` then the trial state `yt`.
+    k: Vec<f64>,
+    /// Their lanes.
+    kl: Vec<Lanes<N>>,
     /// The strings of one evaluation (scratch of [`RodRhs::deriv_lanes`]).
     strings: Vec<StringAt<f64>>,
 }
@@ -21,10 +23,8 @@ struct LaneStages<const N: usize> {
 impl<const N: usize> LaneStages<N> {
     fn new(n: usize, na: usize) -> Self {
         LaneStages {
-            k: std::array::from_fn(|_| vec![0.0; n]),
-            kl: std::array::from_fn(|_| vec![Lanes::ZERO; n]),
-            yt: vec![0.0; n],
-            ytl: vec![Lanes::ZERO; n],
+            k: vec![0.0; 5 * n],
+            kl: vec![Lanes::ZERO; 5 * n],
             strings: Vec::with_capacity(na),
         }
     }
@@ -47,22 +47,18 @@ impl<const N: usize> LaneStages<N> {
     ) -> Result<()> {
         let (h2, h6) = (0.5 * h, h / 6.0);
         let n = y.len();
-        let LaneStages {
-            k,
-            kl,
-            yt,
-            ytl,
-            strings,
-        } = self;
+        let LaneStages { k, kl, strings } = self;
+        let (k, yt) = k.split_at_mut(4 * n);
+        let (kl, ytl) = kl.split_at_mut(4 * n);
         for st in 0..4 {
             let (hs, ss) = [(0.0, s), (h2, s + h2), (h2, s + h2), (h, s + h)][st];
-            let (done, todo) = k.split_at_mut(st);
-            let (donel, todol) = kl.split_at_mut(st);
+            let (done, todo) = k.split_at_mut(st * n);
+            let (donel, todol) = kl.split_at_mut(st * n);
             if st == 0 {
                 yt.copy_from_slice(y);
                 ytl.copy_from_slice(yl);
             } else {
-                let (kp, kpl) = (&done[st - 1], &donel[st - 1]);
+                let (kp, kpl) = (&done[(st - 1) * n..], &donel[(st - 1) * n..]);
                 for j in 0..n {
                     yt[j] = y[j] + hs * kp[j];
                     ytl[j] = yl[j] + kpl[j] * hs;
@@ -74,11 +70,12 @@ impl<const N: usize> LaneStages<N> {
                 taul,
                 active,
                 strings,
-                &mut todo[0],
-                &mut todol[0],
+                &mut todo[..n],
+                &mut todol[..n],
             )?;
         }
-        let ([k1, k2, k3, k4], [l1, l2, l3, l4]) = (&*k, &*kl);
+        let (k1, k2, k3, k4) = (&k[..n], &k[n..2 * n], &k[2 * n..3 * n], &k[3 * n..]);
+        let (l1, l2, l3, l4) = (&kl[..n], &kl[n..2 * n], &kl[2 * n..3 * n], &kl[3 * n..]);
         for j in 0..n {
             y[j] += h6 * (k1[j] + 2.0 * (k2[j] + k3[j]) + k4[j]);
             yl[j] += (l1[j] + (l2[j] + l3[j]) * 2.0 + l4[j]) * h6;

@@ -71,6 +71,45 @@ impl TcaAt<'_> {
         )
         .ok_or_else(|| Error::param("tension [N]", tension, "a tension the contact law reaches"))
     }
+    /// `d tension / d T` [N/C] of [`Self::tension`] at fixed `delta` \[m\],
+    /// exact (for the sensitivities to the temperature inputs):
+    /// [`Self::force_temperature_slope`] for `delta >= 0`; below, the
+    /// contact branch's `F(0)`, `k_s` and `k_c` differentiated as written.
+    pub fn tension_temperature_slope(&self, delta: f64) -> Result<f64> {
+        if delta >= 0.0 {
+            return self.force_temperature_slope(delta);
+        }
+        if !delta.is_finite() {
+            return Err(Error::param("displacement [m]", delta, "a finite number"));
+        }
+        let t = self.tca;
+        let f0 = self.force(0.0)?;
+        let h = 1e-9 * t.coiled_length;
+        let ks = (self.force(h)? - f0) / h;
+        let g0 = self.force_temperature_slope(0.0)?;
+        let dks = (self.force_temperature_slope(h)? - g0) / h;
+        // k_c = E pi max(D - d, d) d / L, or k_s where that is larger
+        let (_, de, _, _, rho0, rho1) = t.material.coefficients();
+        let dd = t.d0 * (rho0 + 2.0 * rho1 * (self.temperature - t.material.t_ref()));
+        let (w, dw) = if t.coil_diameter - self.d >= self.d {
+            (t.coil_diameter - self.d, -dd)
+        } else {
+            (self.d, dd)
+        };
+        let kc = self.contact_stiffness();
+        let dkc = if kc >= ks {
+            PI * (de * w * self.d + self.e * (dw * self.d + w * dd)) / t.coiled_length
+        } else {
+            dks
+        };
+        let eps = Self::CONTACT_SMOOTHING;
+        Ok(if delta >= -eps {
+            g0 + dks * delta - (dkc - dks) * delta * delta / (2.0 * eps)
+        } else {
+            g0 - dks * eps - (dkc - dks) * eps / 2.0 + dkc * (delta + eps)
+        })
+    }
+
     /// `d tension / d delta` [N/m] of [`Self::tension`], exact (for the
     /// shooting solver's tangents): eq (6) differentiated through the pitch
     /// angle `alpha(delta)` of eq (5) for `delta >= 0`, the contact branch's

@@ -222,4 +222,38 @@ impl<'a> TcaAt<'a> {
         let a = self.tca.pitch_angle(delta)?;
         Ok((delta - self.sign() * self.f12(a) * self.tau) / self.f11(a))
     }
+
+    /// `d force / d T` [N/C] at fixed elongation `delta >= 0` \[m\]: eq (6)
+    /// differentiated, exactly, through the temperature laws of `E_T`, `G_T`
+    /// and `d = d0 (1 + rho(T) (T - t_ref))` (eq 1 for `tau`, eqs 3-4 for
+    /// `f11`, `f12`); the pitch angle depends on `delta` only (eq 5).
+    pub fn force_temperature_slope(&self, delta: f64) -> Result<f64> {
+        let f = self.force(delta)?;
+        let t = self.tca;
+        let a = t.pitch_angle(delta)?;
+        let (s, c) = a.sin_cos();
+        let (s2, c2) = (s * s, c * c);
+        let (e, g, d) = (self.e, self.g, self.d);
+        let (_, de, _, dg, rho0, rho1) = t.material.coefficients();
+        let dt = self.temperature - t.material.t_ref();
+        // d d/dT over d: d/d0 = 1 + rho0 dt + rho1 dt^2
+        let dd = t.d0 * (rho0 + 2.0 * rho1 * dt) / d;
+        let n = t.n_coils;
+        let ln = t.fibre_length / n;
+        // f11 = ka p + kb q with ka ~ d^-4, kb ~ d^-2 (eq 3)
+        let ka = 8.0 * n / (PI.powi(3) * d.powi(4)) * ln.powi(3);
+        let kb = 8.0 * n / (PI * d * d) * ln;
+        let p = c2 * c2 / g + 2.0 * s2 * c2 / e;
+        let q = c2 / (2.0 * g) + s2 / (2.0 * e);
+        let dp = -c2 * c2 * dg / (g * g) - 2.0 * s2 * c2 * de / (e * e);
+        let dq = -c2 * dg / (2.0 * g * g) - s2 * de / (2.0 * e * e);
+        let df11 = ka * (dp - 4.0 * dd * p) + kb * (dq - 2.0 * dd * q);
+        // f12 ~ d^-4 / G (eq 4); tau = G (pi d^4 / 32) phi0 (1 - d0/d) / l (eq 1)
+        let f12 = self.f12(a);
+        let df12 = -f12 * (4.0 * dd + dg / g);
+        let dtau = self.tau * (dg / g + 4.0 * dd)
+            + g * PI * d.powi(4) / 32.0 * t.phi0 * (t.d0 / d) * dd / t.fibre_length;
+        let dnum = -self.sign() * (df12 * self.tau + f12 * dtau);
+        Ok((dnum - f * df11) / self.f11(a))
+    }
 }

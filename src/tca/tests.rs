@@ -158,3 +158,49 @@ fn invalid_geometry_rejected() {
     assert!(Tca::new(0.5, 0.11, f64::NAN, 300.0, Chirality::Extension, m.clone()).is_err());
     assert!(Tca::new(0.5, 0.11, 2e-3, -1.0, Chirality::Extension, m).is_err());
 }
+
+#[test]
+fn temperature_slope_matches_central_differences() {
+    // both chiralities, on the law (delta >= 0), at the onset and on both
+    // pieces of the contact branch, in the range and at its ends
+    let eps = TcaAt::CONTACT_SMOOTHING;
+    for chirality in [Chirality::Extension, Chirality::Contraction] {
+        let tca = Tca::new(
+            0.497,
+            0.110,
+            2e-3,
+            300.0,
+            chirality,
+            Material::silver_coated_nylon(),
+        )
+        .unwrap();
+        for temp in [25.0f64, 40.0, 95.0, 160.0] {
+            for delta in [3e-3, 1e-4, 0.0, -0.4 * eps, -3.0 * eps] {
+                let f = |t: f64| tca.at(t).unwrap().tension(delta).unwrap();
+                // one-sided at the range's ends, central inside; h = 1e-3 C:
+                // truncation h^2 |F'''| / 6 and rounding ulp(F) / h are both
+                // below 1e-9 |F'| here (F, F', F''' are smooth polynomials in
+                // T over tens of C), the contact branch's k_s (a difference
+                // over 1e-9 L) adds ~1e-7 relative noise in k_s, ~1e-11 N/C
+                let h: f64 = 1e-3;
+                let (a, b) = ((temp - h).max(25.0), (temp + h).min(160.0));
+                let fd = if b - a > 1.5 * h {
+                    (f(b) - f(a)) / (b - a)
+                } else {
+                    // second-order one-sided difference
+                    let s = if a == temp { 1.0 } else { -1.0 };
+                    s * (-3.0 * f(temp) + 4.0 * f(temp + s * h) - f(temp + 2.0 * s * h)) / (2.0 * h)
+                };
+                let exact = tca
+                    .at(temp)
+                    .unwrap()
+                    .tension_temperature_slope(delta)
+                    .unwrap();
+                assert!(
+                    (exact - fd).abs() < 1e-6 * fd.abs() + 1e-10,
+                    "{chirality:?} {temp} C, delta {delta}: {exact} vs {fd}"
+                );
+            }
+        }
+    }
+}
