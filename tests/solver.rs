@@ -105,10 +105,11 @@ fn steel_tendon_converges_to_the_rounding_floor() {
 #[test]
 fn continuation_records_its_path_and_counts_all_work() {
     let robot = fig6_square(true);
-    // three iterations are too few from the cold guess at 150 C: the direct
-    // solve fails and continuation in inputs and loads takes over
+    // two iterations are too few from the cold guess at 150 C: the direct
+    // solve fails and continuation in inputs and loads takes over (three
+    // were, until the cold pre-solve's first coarse run stopped at 1e-7)
     let opts = SolveOptions {
-        max_iter: 3,
+        max_iter: 2,
         ..Default::default()
     };
     let s = solve(&robot, &[150.0, 150.0], &opts, None).unwrap();
@@ -116,7 +117,7 @@ fn continuation_records_its_path_and_counts_all_work() {
     assert_eq!(*s.continuation_steps.last().unwrap(), 1.0);
     assert!(s.continuation_steps.windows(2).all(|w| w[0] < w[1]));
     // the failed direct attempt's iterations and IVPs are counted too
-    assert!(s.iterations > 3 && s.evaluations > s.iterations);
+    assert!(s.iterations > 2 && s.evaluations > s.iterations);
     let reference = solve(&robot, &[150.0, 150.0], &SolveOptions::default(), None).unwrap();
     assert!((s.tip_position() - reference.tip_position()).norm() < 1e-9);
 }
