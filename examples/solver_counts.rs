@@ -133,25 +133,28 @@ fn run(
     }
 }
 
-fn main() {
-    if std::env::args().any(|a| a == "--compare") {
-        let sq = fig6_square(true);
-        let o = SolveOptions::default();
-        let s95 = solve(&sq, &[95.0, 95.0], &o, None).unwrap();
-        compare("fig6 square 100 C cold", &sq, &[100.0, 100.0], None);
-        compare(
-            "fig6 square 100 C warm (95)",
-            &sq,
-            &[100.0, 100.0],
-            Some(&s95),
-        );
-        let steel = steel_tendon_robot();
-        let s0 = solve(&steel, &STEEL_TENDON_TENSIONS, &o, None).unwrap();
-        let up: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
-        compare("steel tendon cold", &steel, &STEEL_TENDON_TENSIONS, None);
-        compare("steel tendon warm +1 %", &steel, &up, Some(&s0));
-        return;
-    }
+/// `--compare`: the pre-solve against full-grid Newton, cold and warm, on
+/// the Fig. 6 square and the steel tendon robot.
+fn compare_all() {
+    let sq = fig6_square(true);
+    let o = SolveOptions::default();
+    let s95 = solve(&sq, &[95.0, 95.0], &o, None).unwrap();
+    compare("fig6 square 100 C cold", &sq, &[100.0, 100.0], None);
+    compare(
+        "fig6 square 100 C warm (95)",
+        &sq,
+        &[100.0, 100.0],
+        Some(&s95),
+    );
+    let steel = steel_tendon_robot();
+    let s0 = solve(&steel, &STEEL_TENDON_TENSIONS, &o, None).unwrap();
+    let up: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
+    compare("steel tendon cold", &steel, &STEEL_TENDON_TENSIONS, None);
+    compare("steel tendon warm +1 %", &steel, &up, Some(&s0));
+}
+
+/// The soft tendon rod at six tip angles and the steel robot, cold and warm.
+fn tendon_cases() {
     let soft = soft_tendon_robot();
     let o50 = SolveOptions {
         steps: 50,
@@ -178,36 +181,45 @@ fn main() {
         let t: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
         run("steel tendon warm +1 %", &steel, &t, &o, Some(&s));
     }
+}
+
+/// The Fig. 6 square cold and warm; then J and C, exact and the paper's
+/// forward differences, in IVP times.
+fn fig6_cases() {
     let sq = fig6_square(true);
-    if let Some(s) = run("fig6 square 100 C cold", &sq, &[100.0, 100.0], &o, None) {
-        run("fig6 square warm 105 C", &sq, &[105.0, 105.0], &o, Some(&s));
-        // J and C, exact and the paper's forward differences, in IVP times
-        use tcarod::inverse::{sensitivities, sensitivities_fast, Groups, Scheme};
-        let l = tcarod::shooting::Loads::of(&sq);
-        let g = Groups(vec![0, 0]);
-        let unit = ivp_time(&sq, &[100.0, 100.0], 100);
-        for (name, exact) in [("J and C exact", true), ("J and C forward (fast)", false)] {
-            let mut times: Vec<f64> = (0..21)
-                .map(|_| {
-                    let t = Instant::now();
-                    if exact {
-                        sensitivities(&sq, &s, &l, &g, 100, Scheme::Exact).unwrap();
-                    } else {
-                        sensitivities_fast(&sq, &s, &l, &g, 100, Scheme::Forward).unwrap();
-                    }
-                    t.elapsed().as_secs_f64()
-                })
-                .collect();
-            times.sort_by(|a, b| a.partial_cmp(b).unwrap());
-            println!(
-                "{name:<28} {:>9.1} us = {:>6.1} IVP times (one IVP {:.1} us)",
-                times[10] * 1e6,
-                times[10] / unit,
-                unit * 1e6
-            );
-        }
+    let o = SolveOptions::default();
+    let Some(s) = run("fig6 square 100 C cold", &sq, &[100.0, 100.0], &o, None) else {
+        return;
+    };
+    run("fig6 square warm 105 C", &sq, &[105.0, 105.0], &o, Some(&s));
+    use tcarod::inverse::{sensitivities, sensitivities_fast, Groups, Scheme};
+    let l = tcarod::shooting::Loads::of(&sq);
+    let g = Groups(vec![0, 0]);
+    let unit = ivp_time(&sq, &[100.0, 100.0], 100);
+    for (name, exact) in [("J and C exact", true), ("J and C forward (fast)", false)] {
+        let mut times: Vec<f64> = (0..21)
+            .map(|_| {
+                let t = Instant::now();
+                if exact {
+                    sensitivities(&sq, &s, &l, &g, 100, Scheme::Exact).unwrap();
+                } else {
+                    sensitivities_fast(&sq, &s, &l, &g, 100, Scheme::Forward).unwrap();
+                }
+                t.elapsed().as_secs_f64()
+            })
+            .collect();
+        times.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        println!(
+            "{name:<28} {:>9.1} us = {:>6.1} IVP times (one IVP {:.1} us)",
+            times[10] * 1e6,
+            times[10] / unit,
+            unit * 1e6
+        );
     }
-    // Table I grasp temperature (1 g, 8 eq-43 increments), in IVP times of the finger
+}
+
+/// Table I grasp temperature (1 g, 8 eq-43 increments), in IVP times of the finger.
+fn grasp_case() {
     use tcarod::experiments::{
         table1_finger, G0, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL,
     };
@@ -215,6 +227,7 @@ fn main() {
     let finger = table1_finger();
     let normal = nalgebra::Vector3::from(TABLE1_NORMAL);
     let g = Groups(vec![0, 0]);
+    let o = SolveOptions::default();
     let run_grasp = || {
         grasp(
             &finger,
@@ -247,4 +260,14 @@ fn main() {
         r.evaluations,
         r.variables[0]
     );
+}
+
+fn main() {
+    if std::env::args().any(|a| a == "--compare") {
+        compare_all();
+        return;
+    }
+    tendon_cases();
+    fig6_cases();
+    grasp_case();
 }

@@ -22,6 +22,15 @@
 //!    repeated from `x` with the coarse Jacobian (a chord step or two). The
 //!    full residual contracts by the defect's variation, about the coarse
 //!    grid's error in the Jacobian (Fig. 6: 1.4e-6 to ~1e-10 per round).
+//!    A cold start's first round converges the coarse run to 1e-7 only
+//!    (`FIRST_ROUND_TOL`: its root is just a point at which to measure the
+//!    defect, ~1e-7 to 1e-6) and takes `r_full` there not from a full-grid
+//!    IVP but extrapolated from grids of two and three times the coarse
+//!    steps ([`Shot::extrapolated`], half a full-grid IVP, error ~1e-5 of
+//!    the defect); its convergence is then decided by the next round's
+//!    full-grid IVP, the only one of a cold Fig. 6 or steel solve. Other
+//!    full-grid IVPs of a cold first round (the extrapolation failed, or
+//!    the guess was a coarse root) record no nodes.
 //! 3. A failure anywhere (coarse Newton, a full residual that does not
 //!    contract tenfold, [`MAX_ROUNDS`] used) falls back on full-grid
 //!    Newton (`newton_shooting`) from the best point reached; its work is
@@ -35,8 +44,9 @@ use nalgebra::DMatrix;
 
 use super::newton::{newton_from, NewtonOptions, NewtonResult, Status, System};
 use super::options::SolveOptions;
-use super::residual::{tension_slope, Loads, Shot};
-use super::system::{newton_shooting, FinalIvp, Shooting, Work, COARSE_JACOBIAN_MIN_STEPS};
+pub use super::residual::rescale_tension_columns;
+use super::residual::{Loads, Shot};
+use super::system::{newton_shooting, FinalIvp, Keep, Shooting, Work, COARSE_JACOBIAN_MIN_STEPS};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 
@@ -52,6 +62,22 @@ const FALLBACK_NEAR: f64 = 1e-3;
 /// a coarse run that needs more is cut short and the full-grid Newton
 /// takes over).
 const COARSE_MAX_ITER: usize = 20;
+
+/// Tolerance of a cold pre-solve's first coarse run (see the module docs):
+/// a tenth of the steel robot's defect (1.4e-7; Fig. 6: 1.4e-6), so that
+/// the next round's chord steps start from about the defect. Measured at
+/// 1e-6, steel's coarse run stopped at 1.8e-7 and its second round took a
+/// chord step more, which the coarse IVP saved in the first had cost.
+const FIRST_ROUND_TOL: f64 = 1e-7;
+
+/// `keep` without the nodes of plain IVPs.
+fn tip_only(keep: Keep) -> Keep {
+    match keep {
+        Keep::Nodes => Keep::Tip,
+        Keep::Verdict { tol, .. } => Keep::Verdict { tol, nodes: false },
+        k => k,
+    }
+}
 
 /// The warm start of a pre-solve: the neighbouring solution's unknowns,
 /// inputs and Newton Jacobian.
@@ -135,37 +161,6 @@ impl System for Corrected<'_> {
     }
 }
 
-/// `jac` (a Jacobian at `x_from`, inputs `from`) with each actuator column
-/// rescaled to the tension slope at `x_to`, inputs `to`: column `6 + i` is
-/// `(dr/dtau_i) (dtau_i/ddelta_i) L - e_(6+i)`, and `dr/dtau_i` is the
-/// IVP's, which does not depend on the inputs. Columns of a slack actuator
-/// (zero slope) are kept.
-pub fn rescale_tension_columns(
-    robot: &Robot,
-    jac: &DMatrix<f64>,
-    (x_from, from): (&[f64], &[f64]),
-    (x_to, to): (&[f64], &[f64]),
-) -> DMatrix<f64> {
-    let len = robot.body.length;
-    let mut j = jac.clone();
-    for (i, a) in robot.actuators.iter().enumerate() {
-        let c = 6 + i;
-        let slope = |x: &[f64], u: &[f64]| {
-            tension_slope(a.law.as_ref(), x[c] * len, u[i], len, false).map(|s| s.1)
-        };
-        let (Ok(s0), Ok(s1)) = (slope(x_from, from), slope(x_to, to)) else {
-            continue;
-        };
-        if s0 == 0.0 || !(s1 / s0).is_finite() || c >= j.ncols() || c >= j.nrows() {
-            continue;
-        }
-        j[(c, c)] += 1.0;
-        j.column_mut(c).scale_mut(s1 / s0);
-        j[(c, c)] -= 1.0;
-    }
-    j
-}
-
 /// The problem of one pre-solve (see the module docs).
 struct PreSolve<'a> {
     robot: &'a Robot,
@@ -188,6 +183,39 @@ impl<'a> PreSolve<'a> {
         }
     }
 
+    /// The coarse runs' tolerance: `0.1 tol`, or in a cold first round
+    /// `FIRST_ROUND_TOL`.
+    fn tol(&self, cold_first: bool) -> f64 {
+        match cold_first {
+            true => FIRST_ROUND_TOL.max(0.1 * self.opts.tol),
+            false => 0.1 * self.opts.tol,
+        }
+    }
+
+    /// The full-grid residual of a round at the coarse run's point `x`,
+    /// where the coarse residual is `rc`; with `estimate` (a cold first
+    /// round) extrapolated if it can be, and whether it was. `None`: the
+    /// IVP failed. A full-grid IVP of an `estimate` round records no nodes.
+    fn full_residual(
+        &self,
+        full: &mut Shooting<'_>,
+        (x, rc): (&[f64], &[f64]),
+        (estimate, record): (bool, Keep),
+        work: &mut Work,
+    ) -> Result<Option<(Vec<f64>, bool)>> {
+        if estimate {
+            let shot = Shot::new(self.robot, self.inputs, self.loads, self.coarse);
+            let mut ivps = 0;
+            let r = shot.extrapolated(x, rc, self.opts.steps, &mut ivps);
+            work.evaluations += ivps;
+            if let Some(r) = unless_interrupted(r)? {
+                return Ok(Some((r, true)));
+            }
+        }
+        full.set_keep(if estimate { tip_only(record) } else { record });
+        Ok(unless_interrupted(full.residual(x))?.map(|r| (r, false)))
+    }
+
     /// Coarse Newton on `r_coarse + defect` (`sys`, its defect set) from
     /// `x0`; its result, the coarse IVPs used and `max |r_coarse + defect|`
     /// at `x0`.
@@ -196,6 +224,7 @@ impl<'a> PreSolve<'a> {
         sys: &mut Corrected<'a>,
         x0: &[f64],
         jac0: Option<&DMatrix<f64>>,
+        tol: f64,
         work: &Work,
     ) -> (Result<NewtonResult>, usize, f64) {
         let before = sys.sys.evaluations;
@@ -203,7 +232,7 @@ impl<'a> PreSolve<'a> {
         // a cold start away from the last point takes a Jacobian at x0
         sys.tangent_first = jac0.is_none() && !matches!(&sys.last, Some((xl, _)) if xl == x0);
         let nopts = NewtonOptions {
-            tol: 0.1 * self.opts.tol,
+            tol,
             max_iter: COARSE_MAX_ITER.min(self.opts.max_iter),
             ..work.newton_options(self.opts)
         };
@@ -348,7 +377,7 @@ pub(crate) fn presolved_shooting(
     opts: &SolveOptions,
     x0: &[f64],
     warm: Option<Warm<'_>>,
-    record: super::system::Keep,
+    record: Keep,
     work: &mut Work,
 ) -> Result<(NewtonResult, Option<FinalIvp>)> {
     let jac0 = warm.and_then(|w| w.jacobian);
@@ -356,13 +385,8 @@ pub(crate) fn presolved_shooting(
     if coarse < COARSE_JACOBIAN_MIN_STEPS || !opts.presolve {
         return newton_shooting(robot, inputs, loads, opts, x0, jac0, record, work);
     }
-    let pre = PreSolve {
-        robot,
-        inputs,
-        loads,
-        opts,
-        coarse,
-    };
+    #[rustfmt::skip]
+    let pre = PreSolve { robot, inputs, loads, opts, coarse };
     let (mut defect, mut jac) = warm_start(robot, loads, coarse, x0, inputs, warm, work);
     let mut full = Shooting::new(robot, inputs, loads, opts.steps, record);
     let mut coarse = pre.coarse_system(x0.len());
@@ -372,7 +396,10 @@ pub(crate) fn presolved_shooting(
     let (warm_defect, mut start_norm) = (warm.map(|_| inf_norm(&defect)), f64::INFINITY);
     for round in 0..MAX_ROUNDS {
         coarse.defect.clone_from(&defect);
-        let (out, evals, first) = pre.coarse_run(&mut coarse, &x, jac.as_ref(), work);
+        // (a cold start's first round: see the module docs)
+        let cold_first = round == 0 && warm.is_none();
+        let tol = pre.tol(cold_first);
+        let (out, evals, first) = pre.coarse_run(&mut coarse, &x, jac.as_ref(), tol, work);
         start_norm = if round == 0 { first } else { start_norm };
         if let Some((older, newer)) = round_history(round, warm_defect, start_norm, last_norm) {
             full.set_history(older, newer);
@@ -384,12 +411,17 @@ pub(crate) fn presolved_shooting(
         iterations += nr.iterations;
         x = nr.x;
         jac = nr.jacobian.or(jac);
-        let Some(r) = unless_interrupted(full.residual(&x))? else {
+        // extrapolated unless the guess was a coarse root already (a
+        // uniform strain, which RK4 integrates exactly)
+        let estimate = cold_first && nr.iterations > 0;
+        let xr = (x.as_slice(), nr.residual.as_slice());
+        let Some((r, estimated)) = pre.full_residual(&mut full, xr, (estimate, record), work)?
+        else {
             break;
         };
         let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let floor = full.floor(&x, &r);
-        if norm <= opts.tol.max(floor) {
+        if norm <= opts.tol.max(floor) && !estimated {
             work.evaluations += full.evaluations;
             work.iterations += iterations;
             let last = full.take_last(&x);
@@ -412,11 +444,11 @@ pub(crate) fn presolved_shooting(
     // (it is then as good a start as any), else from the guess
     work.evaluations += full.evaluations;
     work.iterations += iterations;
-    if last_norm <= FALLBACK_NEAR {
-        newton_shooting(robot, inputs, loads, opts, &x, jac.as_ref(), record, work)
-    } else {
-        newton_shooting(robot, inputs, loads, opts, x0, jac0, record, work)
-    }
+    let (from, jac) = match last_norm <= FALLBACK_NEAR {
+        true => (x.as_slice(), jac.as_ref()),
+        false => (x0, jac0),
+    };
+    newton_shooting(robot, inputs, loads, opts, from, jac, record, work)
 }
 
 /// The `max |r|` history from which the full-grid evaluation of round

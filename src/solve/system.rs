@@ -160,6 +160,11 @@ impl<'a> Shooting<'a> {
         self.set_history(1.0, 0.0);
     }
 
+    /// Change what the next residual evaluations record.
+    pub(crate) fn set_keep(&mut self, keep: Keep) {
+        self.keep = keep;
+    }
+
     /// The residual at `x` from a plain IVP.
     fn plain(&self, x: &[f64]) -> Result<FinalIvp> {
         let nodes = matches!(self.keep, Keep::Nodes | Keep::Verdict { nodes: true, .. });
