@@ -23,9 +23,6 @@
 //!    (beyond, once, with a fresh coarse tangent at the point reached);
 //! 3. back to 1 (at most [`MAX_ROUNDS`] full IVPs).
 //!
-//! The first full-grid IVP, at a prediction away from the warm point, is
-//! not expected to pass and records no nodes (the last one does, for the
-//! solution's profile: a node record costs about 15 % of an IVP).
 //! Batch rows ([`crate::shooting::solve_tip`]) take the same run from a
 //! neighbouring tip solution ([`tip_shooting`]).
 //!
@@ -81,12 +78,7 @@ pub(crate) fn warm_shooting(
         return presolved_shooting(robot, inputs, loads, opts, x0, Some(warm), keep, work);
     }
     let j = rescale_tension_columns(robot, jac, (warm.unknowns, warm.inputs), (x0, inputs));
-    // a start away from the warm point is not expected to pass: its full
-    // IVP records nothing (a node record costs ~15 % of an IVP)
-    let probe = (x0 != warm.unknowns && keep != Keep::Tip)
-        .then(|| Shooting::new(robot, inputs, loads, opts.steps, Keep::Tip));
     let mut run = WarmRun {
-        probe,
         full: Shooting::new(robot, inputs, loads, opts.steps, keep),
         coarse: Shooting::new(robot, inputs, loads, coarse, Keep::Tip),
         x: x0.to_vec(),
@@ -135,8 +127,6 @@ pub(crate) fn tip_shooting(
 /// The state of one warm run: the full and coarse systems (each counts its
 /// IVPs), the point reached and the chord steps taken.
 struct WarmRun<'a> {
-    /// The first round's full-grid system, if it records less than `full`.
-    probe: Option<Shooting<'a>>,
     full: Shooting<'a>,
     coarse: Shooting<'a>,
     x: Vec<f64>,
@@ -170,10 +160,7 @@ impl WarmRun<'_> {
                 // plain one, less than a missed one (the verdict's own pass).
                 self.full.expect_convergence();
             }
-            let sys = match self.probe.as_mut() {
-                Some(p) if !last_norm.is_finite() => p,
-                _ => &mut self.full,
-            };
+            let sys = &mut self.full;
             let rf = sys.residual(&self.x)?;
             let norm = inf_norm(&rf);
             let floor = sys.floor(&self.x, &rf);
@@ -264,8 +251,7 @@ impl WarmRun<'_> {
 
     /// IVPs integrated by the run.
     fn evaluations(&self) -> usize {
-        let probe = self.probe.as_ref().map_or(0, |p| p.evaluations);
-        probe + self.full.evaluations + self.coarse.evaluations
+        self.full.evaluations + self.coarse.evaluations
     }
 
     /// Whether the solve's IVP budget or deadline is spent.
