@@ -99,6 +99,81 @@ fn time(name: &str, robot: &Robot, inputs: &[f64], warm: &Solution) {
     );
 }
 
+/// The coarse grid's defect `r_full - r_coarse` at the neighbour's solution
+/// and at the new one, and how far it moves between them.
+fn defects(name: &str, robot: &Robot, p_w: &[f64], p: &[f64]) {
+    let o = SolveOptions::default();
+    let l = Loads::of(robot);
+    let w = solve(robot, p_w, &o, None).unwrap();
+    let s = solve(robot, p, &o, None).unwrap();
+    let r =
+        |q: &[f64], x: &[f64], n: usize| Shot::new(robot, q, &l, n).residual(x, false).unwrap().0;
+    let sub = |a: &[f64], b: &[f64]| -> Vec<f64> { a.iter().zip(b).map(|(x, y)| x - y).collect() };
+    let nrm = |a: &[f64]| a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let dw = sub(&r(p_w, &w.unknowns, 100), &r(p_w, &w.unknowns, 10));
+    let ds = sub(&r(p, &s.unknowns, 100), &r(p, &s.unknowns, 10));
+    let rich = |q: &[f64], x: &[f64], a: usize, b: usize| -> Vec<f64> {
+        let f = ((b / a) as f64).powi(4);
+        sub(&r(q, x, b), &r(q, x, a))
+            .iter()
+            .map(|v| v * f / (f - 1.0))
+            .collect()
+    };
+    let dd = sub(&ds, &dw);
+    for (a, b) in [(10, 20), (20, 40), (25, 50)] {
+        let da = sub(
+            &sub(&r(p, &s.unknowns, 100), &r(p, &s.unknowns, a)),
+            &sub(&r(p_w, &w.unknowns, 100), &r(p_w, &w.unknowns, a)),
+        );
+        let est = sub(&rich(p, &s.unknowns, a, b), &rich(p_w, &w.unknowns, a, b));
+        println!(
+            "  {name}: coarse {a}: defect variation {:.2e}, Richardson {a}/{b} error {:.2e}",
+            nrm(&da),
+            nrm(&sub(&da, &est))
+        );
+    }
+    println!(
+        "{name:<26} defect |d_w| {:.2e}, |d*| {:.2e}, |d* - d_w| {:.2e}; |x* - x_w| {:.2e}; floor {:.2e}",
+        nrm(&dw), nrm(&ds), nrm(&dd), max_abs_diff(&s.unknowns, &w.unknowns), s.floor
+    );
+}
+
+/// Batch rows along a sweep (one thread, no verdicts): IVPs a row after the
+/// first, thread CPU a row, and the largest tip distance from cold solves.
+fn batch(name: &str, robot: &Robot, rows: &[Vec<f64>]) {
+    use tcarod::batch::{solve_batch, BatchOptions};
+    let opts = BatchOptions {
+        threads: 1,
+        stability: false,
+        ..BatchOptions::default()
+    };
+    let flat: Vec<f64> = rows.iter().flatten().copied().collect();
+    let out = solve_batch(robot, &flat, None, &opts).unwrap();
+    let mut times: Vec<f64> = (0..5)
+        .map(|_| {
+            let t0 = thread_cpu();
+            drop(solve_batch(robot, &flat, None, &opts).unwrap());
+            (thread_cpu() - t0) / rows.len() as f64
+        })
+        .collect();
+    times.sort_by(|x, y| x.partial_cmp(y).unwrap());
+    let mut gap = 0.0f64;
+    for (q, tip) in rows.iter().zip(&out.tip_positions) {
+        let cold = solve(robot, q, &SolveOptions::default(), None).unwrap();
+        let t = cold.tip_position();
+        gap = gap.max((0..3).fold(0.0f64, |m, k| m.max((tip[k] - t[k]).abs())));
+    }
+    let ivps: u32 = out.evaluations.iter().skip(1).sum();
+    println!(
+        "{name:<26} batch of {} rows: {} converged, {:.2} IVPs a warm row, {:.1} us a row; tips - cold {:.1e} m",
+        rows.len(),
+        out.converged.iter().filter(|c| **c).count(),
+        f64::from(ivps) / (rows.len() - 1) as f64,
+        times[2] * 1e6,
+        gap
+    );
+}
+
 fn main() {
     let o = SolveOptions::default();
     let sq = fig6_square(true);
@@ -107,6 +182,33 @@ fn main() {
     let s0 = solve(&steel, &STEEL_TENDON_TENSIONS, &o, None).unwrap();
     let up: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|x| x * 1.01).collect();
     let timed = std::env::args().any(|a| a == "--time");
+    if std::env::args().any(|a| a == "--batch") {
+        for step in [1.0, 5.0] {
+            let n = (135.0 / step) as usize;
+            let rows: Vec<Vec<f64>> = (0..=n).map(|k| vec![25.0 + step * k as f64; 2]).collect();
+            batch(&format!("fig6 square every {step} C"), &sq, &rows);
+        }
+        let rows: Vec<Vec<f64>> = (0..=50)
+            .map(|k| {
+                STEEL_TENDON_TENSIONS
+                    .iter()
+                    .map(|t| t * (1.0 + 0.01 * k as f64))
+                    .collect()
+            })
+            .collect();
+        batch("steel tendon every 1 %", &steel, &rows);
+        return;
+    }
+    if std::env::args().any(|a| a == "--defect") {
+        defects(
+            "fig6 square 100 C (95)",
+            &sq,
+            &[95.0, 95.0],
+            &[100.0, 100.0],
+        );
+        defects("steel tendon +1 %", &steel, &STEEL_TENDON_TENSIONS, &up);
+        return;
+    }
     if std::env::args().any(|a| a == "--assemble") {
         // a loop for a profiler: assembling the Fig. 6 solution
         let l = Loads::of(&sq);

@@ -23,6 +23,9 @@
 //!    (beyond, once, with a fresh coarse tangent at the point reached);
 //! 3. back to 1 (at most [`MAX_ROUNDS`] full IVPs).
 //!
+//! Batch rows ([`crate::shooting::solve_tip`]) take the same run from a
+//! neighbouring tip solution ([`tip_shooting`]).
+//!
 //! Any failure (a step that does not contract enough, a full residual that
 //! does not fall tenfold, an integration error) hands the solve to the
 //! pre-solve (`presolved_shooting`) from the point
@@ -33,8 +36,10 @@ use nalgebra::{DMatrix, DVector};
 
 use super::newton::{NewtonResult, Status, System};
 use super::options::SolveOptions;
+use super::predict::predict;
 use super::presolve::{presolved_shooting, rescale_tension_columns, Warm};
 use super::residual::Loads;
+use super::solution::TipSolution;
 use super::system::{FinalIvp, Keep, Shooting, Work, COARSE_JACOBIAN_MIN_STEPS};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
@@ -80,7 +85,7 @@ pub(crate) fn warm_shooting(
         iterations: 0,
     };
     let out = run.correct(opts, j, work);
-    work.evaluations += run.full.evaluations + run.coarse.evaluations;
+    work.evaluations += run.evaluations();
     work.iterations += run.iterations;
     match out {
         Ok(Some((mut nr, last))) => {
@@ -91,6 +96,32 @@ pub(crate) fn warm_shooting(
         Err(e @ Error::Interrupted) => Err(e),
         _ => presolved_shooting(robot, inputs, loads, opts, &run.x, Some(warm), keep, work),
     }
+}
+
+/// [`warm_shooting`] for a batch row warm from the tip solution `w`, from
+/// its first-order prediction ([`super::predict::predict`]); nothing but
+/// the tip is recorded.
+pub(crate) fn tip_shooting(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    w: &TipSolution,
+    work: &mut Work,
+) -> Result<(NewtonResult, Option<FinalIvp>)> {
+    let jacobian = w.newton_jacobian.as_ref();
+    let x0 = predict(
+        robot,
+        inputs,
+        (&w.unknowns, &w.tensions, &w.inputs),
+        jacobian,
+    );
+    let start = Warm {
+        unknowns: &w.unknowns,
+        inputs: &w.inputs,
+        jacobian,
+    };
+    warm_shooting(robot, inputs, loads, opts, &x0, start, Keep::Tip, work)
 }
 
 /// The state of one warm run: the full and coarse systems (each counts its
@@ -129,11 +160,12 @@ impl WarmRun<'_> {
                 // plain one, less than a missed one (the verdict's own pass).
                 self.full.expect_convergence();
             }
-            let rf = self.full.residual(&self.x)?;
+            let sys = &mut self.full;
+            let rf = sys.residual(&self.x)?;
             let norm = inf_norm(&rf);
-            let floor = self.full.floor(&self.x, &rf);
+            let floor = sys.floor(&self.x, &rf);
             if norm <= opts.tol.max(floor) {
-                let last = self.full.take_last(&self.x);
+                let last = sys.take_last(&self.x);
                 let status = if norm <= opts.tol {
                     Status::Converged
                 } else {
@@ -217,9 +249,14 @@ impl WarmRun<'_> {
         Ok(false)
     }
 
+    /// IVPs integrated by the run.
+    fn evaluations(&self) -> usize {
+        self.full.evaluations + self.coarse.evaluations
+    }
+
     /// Whether the solve's IVP budget or deadline is spent.
     fn spent(&self, work: &Work) -> bool {
-        let used = work.evaluations + self.full.evaluations + self.coarse.evaluations;
+        let used = work.evaluations + self.evaluations();
         (work.max_evaluations > 0 && used >= work.max_evaluations)
             || work
                 .deadline

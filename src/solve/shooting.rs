@@ -285,7 +285,7 @@ fn combined_error(first: Error, cont: Error, work: &Work) -> Error {
 
 /// [`solve_loaded`] returning only the tip pose (no profile is recorded,
 /// which saves an IVP and its allocations). `warm`: a neighbouring tip
-/// solution. Falls back on [`solve_loaded`] (with its continuation) when the
+/// solution, from which the start is predicted as [`solve`]'s is. Falls back on [`solve_loaded`] (with its continuation) when the
 /// direct Newton solve fails. Inputs are not validated here: call
 /// `robot.check_inputs` first.
 pub fn solve_tip(
@@ -295,21 +295,16 @@ pub fn solve_tip(
     opts: &SolveOptions,
     warm: Option<&TipSolution>,
 ) -> Result<TipSolution> {
-    let mut x0 = warm_guess(
-        robot,
-        inputs,
-        warm.map(|w| (&w.unknowns[..], &w.tensions[..])),
-    );
-    if warm.is_none() {
-        linear_guess(robot, inputs, loads, &mut x0);
-    }
     let mut work = Work::start(opts);
-    let start = warm.map(|w| Warm {
-        unknowns: &w.unknowns,
-        inputs: &w.inputs,
-        jacobian: w.newton_jacobian.as_ref(),
-    });
-    match presolved_shooting(robot, inputs, loads, opts, &x0, start, Keep::Tip, &mut work) {
+    let direct = match warm {
+        Some(w) => super::predict_warm::tip_shooting(robot, inputs, loads, opts, w, &mut work),
+        None => {
+            let mut x0 = initial_guess(robot, inputs, None);
+            linear_guess(robot, inputs, loads, &mut x0);
+            presolved_shooting(robot, inputs, loads, opts, &x0, None, Keep::Tip, &mut work)
+        }
+    };
+    match direct {
         Ok((nr, last)) => {
             let (ivp, tau) = match last {
                 Some(last) => (last.ivp, last.tensions),
