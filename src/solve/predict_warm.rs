@@ -24,7 +24,7 @@
 //! 3. back to 1 (at most [`MAX_ROUNDS`] full IVPs).
 //!
 //! Batch rows ([`crate::shooting::solve_tip`]) take the same run from a
-//! neighbouring tip solution ([`tip_shooting`]).
+//! neighbouring tip solution (`tip_shooting`).
 //!
 //! Any failure (a step that does not contract enough, a full residual that
 //! does not fall tenfold, an integration error) hands the solve to the
