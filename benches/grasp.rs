@@ -11,10 +11,7 @@
 use std::time::Instant;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use nalgebra::Vector3;
-use tcarod::experiments::{
-    table1_finger, G0, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL,
-};
+use tcarod::experiments::{table1_finger, table1_grasp, TABLE1_MASSES};
 use tcarod::inverse::{Grasp, GraspMethod, Groups};
 use tcarod::rod::Robot;
 use tcarod::shooting::{solve, Loads, Shot, SolveOptions};
@@ -22,15 +19,7 @@ use tcarod::stability::Policy;
 
 /// The Table I grasp of the lightest mass under a stability policy.
 fn spec(stability: Policy) -> Grasp {
-    Grasp {
-        normal: Vector3::from(TABLE1_NORMAL),
-        mass: TABLE1_MASSES[0],
-        mu: TABLE1_MU,
-        fingers: TABLE1_FINGERS,
-        gravity: G0,
-        contact: None,
-        stability,
-    }
+    table1_grasp(TABLE1_MASSES[0], stability)
 }
 
 const CASES: [(&str, GraspMethod, Policy); 4] = [

@@ -294,6 +294,22 @@ pub const TABLE1_MASSES: [f64; 3] = [1e-3, 2e-3, 3e-3];
 /// Unit direction a Table I finger presses in (world frame).
 pub const TABLE1_NORMAL: [f64; 3] = [-1.0, 0.0, 0.0];
 
+/// The Table I grasp of one `mass` \[kg\] (one of [`TABLE1_MASSES`]) by
+/// [`table1_finger`]s: friction [`TABLE1_MU`], [`TABLE1_FINGERS`] fingers
+/// pressing along [`TABLE1_NORMAL`], standard gravity, contact at the
+/// reference inputs, with the verdict policy `stability`.
+pub fn table1_grasp(mass: f64, stability: crate::stability::Policy) -> crate::inverse::Grasp {
+    crate::inverse::Grasp {
+        normal: Vector3::from(TABLE1_NORMAL),
+        mass,
+        mu: TABLE1_MU,
+        fingers: TABLE1_FINGERS,
+        gravity: G0,
+        contact: None,
+        stability,
+    }
+}
+
 /// The issue-10 steel tendon robot, a shared speed benchmark (not from the
 /// paper): steel rod `L = 0.5 m`, radius 1 mm, `E = 200 GPa`, `G = 80 GPa`,
 /// 8000 kg/m^3, gravity 9.81 m/s^2 along base-frame `+x`, four straight

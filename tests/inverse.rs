@@ -330,9 +330,7 @@ fn exact_sensitivities_match_differences() {
 /// paper's eq-43 increments converge the same equations.
 #[test]
 fn direct_grasp_agrees_with_the_incremental_method() {
-    use tcarod::experiments::{
-        table1_finger, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL,
-    };
+    use tcarod::experiments::{table1_finger, table1_grasp, TABLE1_MASSES, TABLE1_NORMAL};
     use tcarod::stability::Policy;
     let finger = table1_finger();
     let len = finger.body.length;
@@ -344,13 +342,8 @@ fn direct_grasp_agrees_with_the_incremental_method() {
     ];
     for (m, contact) in cases {
         let spec = Grasp {
-            normal: Vector3::from(TABLE1_NORMAL),
-            mass: m,
-            mu: TABLE1_MU,
-            fingers: TABLE1_FINGERS,
-            gravity: G0,
             contact,
-            stability: Policy::Off,
+            ..table1_grasp(m, Policy::Off)
         };
         let (inc, p_inc) = spec
             .solve(&finger, &groups, GraspMethod::Incremental(8), &o)

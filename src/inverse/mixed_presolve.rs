@@ -140,15 +140,11 @@ pub(crate) fn presolve(
 
 #[cfg(test)]
 mod tests {
-    use nalgebra::Vector3;
-
     use super::*;
-    use crate::experiments::{
-        table1_finger, G0, TABLE1_FINGERS, TABLE1_MASSES, TABLE1_MU, TABLE1_NORMAL,
-    };
+    use crate::experiments::{table1_finger, table1_grasp, TABLE1_MASSES};
     use crate::inverse::blocked::{direct_from, variable_scale};
     use crate::inverse::mixed::{coarse_steps, predictor, Extra};
-    use crate::inverse::{Block, Grasp, GraspMethod, Groups};
+    use crate::inverse::{Block, GraspMethod, Groups};
     use crate::shooting::{solve_loaded, Loads, SolveOptions};
     use crate::stability::Policy;
 
@@ -168,15 +164,7 @@ mod tests {
         soft.body.shear_modulus *= 0.5;
         let groups = Groups(vec![0, 0]);
         let opts = SolveOptions::default();
-        let spec = Grasp {
-            normal: Vector3::from(TABLE1_NORMAL),
-            mass: TABLE1_MASSES[0],
-            mu: TABLE1_MU,
-            fingers: TABLE1_FINGERS,
-            gravity: G0,
-            contact: None,
-            stability: Policy::Off,
-        };
+        let spec = table1_grasp(TABLE1_MASSES[0], Policy::Off);
         let force = spec.force_per_finger().unwrap();
         let inputs = finger.reference_inputs();
         let start = solve_loaded(&finger, &inputs, &Loads::of(&finger), &opts, None).unwrap();
