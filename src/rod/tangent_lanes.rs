@@ -126,8 +126,7 @@ pub(super) fn pass_lanes<const N: usize>(
     macro_rules! node {
         ($s:expr) => {
             if rec {
-                to_duals(&y, &yl, &mut duals);
-                nodes.record(idx, $s, &duals, c0, w);
+                nodes.record_lanes(idx, $s, (&y, &yl), c0, w);
                 idx += 1;
             }
         };
