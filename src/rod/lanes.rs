@@ -10,7 +10,7 @@
 
 use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 
-use super::dual::{v3, Dual, V3};
+use super::dual::{Dual, V3};
 
 /// `N` tangent lanes of one scalar, on a 64-byte boundary (eight lanes are
 /// one aligned AVX-512 load).
@@ -84,64 +84,104 @@ impl<const N: usize> SubAssign for Lanes<N> {
     }
 }
 
-/// `a x b` for lanes `a` and a value `b`.
-#[inline(always)]
-pub(crate) fn cross_lc<const N: usize>(a: &V3<Lanes<N>>, b: &V3<f64>) -> V3<Lanes<N>> {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+impl<const N: usize> Lanes<N> {
+    /// `self * b + c` with one rounding per lane (`f64::mul_add`): one FMA
+    /// instruction per vector where the pass is compiled with FMA
+    /// (`tangent.rs`'s `dispatch`).
+    #[inline(always)]
+    pub(crate) fn fma(self, b: f64, c: Self) -> Self {
+        let mut r = [0.0; N];
+        for ((x, a), cc) in r.iter_mut().zip(&self.0).zip(&c.0) {
+            *x = a.mul_add(b, *cc);
+        }
+        Lanes(r)
+    }
 }
 
-/// `a x b` for a value `a` and lanes `b`.
+/// `sum_m l_m c_m` for lanes `l_m` and values `c_m`: one product, then
+/// fused multiply-adds in the order given.
 #[inline(always)]
-pub(crate) fn cross_cl<const N: usize>(a: &V3<f64>, b: &V3<Lanes<N>>) -> V3<Lanes<N>> {
+pub(crate) fn lin<const N: usize, const M: usize>(t: [(Lanes<N>, f64); M]) -> Lanes<N> {
+    let mut acc = t[0].0 * t[0].1;
+    for &(l, c) in &t[1..] {
+        acc = l.fma(c, acc);
+    }
+    acc
+}
+
+/// `c - a x b` for a value `a` and lanes `b` and `c`.
+#[inline(always)]
+pub(crate) fn sub_cross_cl<const N: usize>(
+    c: &V3<Lanes<N>>,
+    a: &V3<f64>,
+    b: &V3<Lanes<N>>,
+) -> V3<Lanes<N>> {
     [
-        b[2] * a[1] - b[1] * a[2],
-        b[0] * a[2] - b[2] * a[0],
-        b[1] * a[0] - b[0] * a[1],
+        b[1].fma(a[2], b[2].fma(-a[1], c[0])),
+        b[2].fma(a[0], b[0].fma(-a[2], c[1])),
+        b[0].fma(a[1], b[1].fma(-a[0], c[2])),
     ]
 }
 
 /// `a . b` for a value `a` and lanes `b`.
 #[inline(always)]
 pub(crate) fn dot_cl<const N: usize>(a: &V3<f64>, b: &V3<Lanes<N>>) -> Lanes<N> {
-    b[0] * a[0] + b[1] * a[1] + b[2] * a[2]
+    lin([(b[0], a[0]), (b[1], a[1]), (b[2], a[2])])
 }
 
-/// `m a` for lanes `m` (3x3) and a value `a`.
+/// `d(R(q) v) / dq` (3x4; `R` as `rot_t` of `dual.rs`, `v` fixed): with
+/// `R = I + 2 Q(q)`, `Q` quadratic in `q = (w, x, y, z)`, each entry is
+/// `2 sum_j dQ_kj/dq_m v_j`. The lanes of `R v` along `dq` are then one
+/// 4-term combination per row, with no lanes of `R` formed.
 #[inline(always)]
-pub(crate) fn mat_lc<const N: usize>(m: &[V3<Lanes<N>>; 3], a: &V3<f64>) -> V3<Lanes<N>> {
-    v3(|k| m[k][0] * a[0] + m[k][1] * a[1] + m[k][2] * a[2])
-}
-
-/// `m^T a` for lanes `m` (3x3) and a value `a`.
-#[inline(always)]
-pub(crate) fn mat_t_lc<const N: usize>(m: &[V3<Lanes<N>>; 3], a: &V3<f64>) -> V3<Lanes<N>> {
-    v3(|k| m[0][k] * a[0] + m[1][k] * a[1] + m[2][k] * a[2])
-}
-
-/// `m a` for a value `m` (3x3) and lanes `a`.
-#[inline(always)]
-pub(crate) fn mat_cl<const N: usize>(m: &[[f64; 3]; 3], a: &V3<Lanes<N>>) -> V3<Lanes<N>> {
-    v3(|k| a[0] * m[k][0] + a[1] * m[k][1] + a[2] * m[k][2])
-}
-
-/// The lanes of `R(q)` (`rot_t` of `dual.rs`, differentiated) along `dq`:
-/// with `R = I + 2 [[-(yy+zz), xy-wz, xz+wy], [xy+wz, -(xx+zz), yz-wx],
-/// [xz-wy, yz+wx, -(xx+yy)]]`, `d(ab) = a db + b da`.
-#[inline(always)]
-pub(crate) fn rot_lanes<const N: usize>(q: &[f64; 4], dq: &[Lanes<N>; 4]) -> [V3<Lanes<N>>; 3] {
+pub(crate) fn rot_coeffs(q: &[f64; 4], v: &V3<f64>) -> [[f64; 4]; 3] {
     let [w, x, y, z] = q.map(|c| 2.0 * c);
-    let [dw, dx, dy, dz] = *dq;
-    // twice the lanes of each product
-    let (xx, yy, zz) = (dx * x, dy * y, dz * z);
-    let (xy, xz, yz) = (dx * y + dy * x, dx * z + dz * x, dy * z + dz * y);
-    let (wx, wy, wz) = (dw * x + dx * w, dw * y + dy * w, dw * z + dz * w);
+    let [a, b, c] = *v;
     [
-        [-(yy + zz) * 2.0, xy - wz, xz + wy],
-        [xy + wz, -(xx + zz) * 2.0, yz - wx],
-        [xz - wy, yz + wx, -(xx + yy) * 2.0],
+        [
+            y * c - z * b,
+            y * b + z * c,
+            x * b + w * c - 2.0 * y * a,
+            x * c - w * b - 2.0 * z * a,
+        ],
+        [
+            z * a - x * c,
+            y * a - w * c - 2.0 * x * b,
+            x * a + z * c,
+            w * a + y * c - 2.0 * z * b,
+        ],
+        [
+            x * b - y * a,
+            z * a + w * b - 2.0 * x * c,
+            z * b - w * a - 2.0 * y * c,
+            x * a + y * b,
+        ],
     ]
+}
+
+/// `d(R(q)^T a) / dq` (3x4): `Q^T` is `Q` with `w -> -w`, so [`rot_coeffs`]
+/// at `(-w, x, y, z)` with its `d/dw` column negated.
+#[inline(always)]
+pub(crate) fn rot_t_coeffs(q: &[f64; 4], a: &V3<f64>) -> [[f64; 4]; 3] {
+    let mut m = rot_coeffs(&[-q[0], q[1], q[2], q[3]], a);
+    for row in &mut m {
+        row[0] = -row[0];
+    }
+    m
+}
+
+/// `sum_m c_m dq_m` for the coefficient rows of [`rot_coeffs`].
+#[inline(always)]
+pub(crate) fn rot_apply<const N: usize>(c: &[[f64; 4]; 3], dq: &[Lanes<N>; 4]) -> V3<Lanes<N>> {
+    // no closure: one compiled apart would lose the pass's target features
+    let mut out = [Lanes::ZERO; 3];
+    for k in 0..3 {
+        out[k] = lin([
+            (dq[0], c[k][0]),
+            (dq[1], c[k][1]),
+            (dq[2], c[k][2]),
+            (dq[3], c[k][3]),
+        ]);
+    }
+    out
 }

@@ -57,10 +57,10 @@ fn inv_sym3_upper(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
 /// of the Schur complement `S = M22 - M12^T Y`. Factored once per stage and
 /// applied to the state's right-hand side and to every tangent direction's.
 pub(crate) struct Eq25 {
-    m11_inv: [[f64; 3]; 3],
-    m12: [[f64; 3]; 3],
-    y12: [[f64; 3]; 3],
-    s_inv: [[f64; 3]; 3],
+    pub(crate) m11_inv: [[f64; 3]; 3],
+    pub(crate) m12: [[f64; 3]; 3],
+    pub(crate) y12: [[f64; 3]; 3],
+    pub(crate) s_inv: [[f64; 3]; 3],
 }
 
 impl Eq25 {

@@ -20,7 +20,7 @@
 #[cfg(test)]
 use super::dual::Dual;
 use super::dual::{v3, V3};
-use super::lanes::{cross_cl, cross_lc, dot_cl, mat_cl, mat_lc, mat_t_lc, rot_lanes, Lanes};
+use super::lanes::{dot_cl, lin, rot_apply, rot_coeffs, rot_t_coeffs, sub_cross_cl, Lanes};
 use super::ode::{singular, Eq25, Frame, RodRhs, StringAt};
 use super::BASE_STATES;
 use crate::error::Result;
@@ -75,8 +75,8 @@ impl RodRhs<'_> {
             dv: [yl[7], yl[8], yl[9]],
             du: [yl[10], yl[11], yl[12]],
         };
-        let drm = rot_lanes(&[y[3], y[4], y[5], y[6]], &sl.dq);
-        let (mut de, mut df) = self.frame_lanes(&fr, &drm, &sl);
+        let q = [y[3], y[4], y[5], y[6]];
+        let (mut de, mut df) = self.frame_lanes(&fr, &q, &sl);
         for d in dyl[BASE_STATES..].iter_mut() {
             *d = Lanes::ZERO;
         }
@@ -88,18 +88,16 @@ impl RodRhs<'_> {
             Some(fac) => {
                 for (&i, st) in active.iter().zip(strings.iter()) {
                     let (daw, dnrm) = string_lanes(st, &fr.u, (&vd, &ud), &sl, taul[i]);
-                    let rdaw = cross_cl(&st.r, &daw);
                     for k in 0..3 {
                         de[k] -= daw[k];
-                        df[k] -= rdaw[k];
                     }
+                    df = sub_cross_cl(&df, &st.r, &daw);
                     dyl[BASE_STATES + i] = dnrm; // (24)
                 }
-                let (a, b) = fac.solve_n(&de.map(|x| x.0), &df.map(|x| x.0));
-                (a.map(Lanes), b.map(Lanes))
+                fac.solve_lanes(&de, &df)
             }
         };
-        kinematics_lanes(y, &fr, &drm, &sl, dyl);
+        kinematics_lanes(y, &fr, &sl, dyl);
         dyl[7..10].copy_from_slice(&dvd);
         dyl[10..13].copy_from_slice(&dud);
         Ok(())
@@ -107,33 +105,47 @@ impl RodRhs<'_> {
 
     /// The lanes of the actuator-free `[e; f]` of (25) ([`RodRhs::frame`]):
     /// `e = -u x n - R^T f_e`, `f = -u x m - v x n - R^T l_e` with
-    /// `n = K_nu (v - nu*)`, `m = K_omega (u - omega*)`.
+    /// `n = K_nu (v - nu*)`, `m = K_omega (u - omega*)`. Each component is
+    /// a combination of four strain lanes with coefficients from the value
+    /// (`-(du x n + u x K_nu dv)` and so on, cyclic `(i, j, k)`), and
+    /// `R^T f_e` one of the four quaternion lanes.
     #[inline(always)]
     fn frame_lanes<const N: usize>(
         &self,
         fr: &Frame<f64>,
-        drm: &[V3<Lanes<N>>; 3],
+        q: &[f64; 4],
         sl: &StateLanes<N>,
     ) -> (V3<Lanes<N>>, V3<Lanes<N>>) {
         let body = &self.robot.body;
-        let (v, u) = (&fr.v, &fr.u);
-        let nse: V3<f64> = v3(|k| (v[k] - body.nu_star[k]) * self.kse[k]);
-        let nbt: V3<f64> = v3(|k| (u[k] - body.omega_star[k]) * self.kbt[k]);
-        let dnse: V3<Lanes<N>> = v3(|k| sl.dv[k] * self.kse[k]);
-        let dnbt: V3<Lanes<N>> = v3(|k| sl.du[k] * self.kbt[k]);
-        let (a, b) = (cross_lc(&sl.du, &nse), cross_cl(u, &dnse));
-        let mut de: V3<Lanes<N>> = v3(|k| -(a[k] + b[k]));
-        let (a, b) = (cross_lc(&sl.du, &nbt), cross_cl(u, &dnbt));
-        let (c, d) = (cross_lc(&sl.dv, &nse), cross_cl(v, &dnse));
-        let mut df: V3<Lanes<N>> = v3(|k| -(a[k] + b[k]) - (c[k] + d[k]));
+        let (v, u, kse, kbt) = (&fr.v, &fr.u, &self.kse, &self.kbt);
+        let nse: V3<f64> = v3(|k| (v[k] - body.nu_star[k]) * kse[k]);
+        let nbt: V3<f64> = v3(|k| (u[k] - body.omega_star[k]) * kbt[k]);
+        let (du, dv) = (&sl.du, &sl.dv);
+        let mut de = [Lanes::ZERO; 3];
+        let mut df = [Lanes::ZERO; 3];
+        for i in 0..3 {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            de[i] = lin([
+                (du[j], -nse[k]),
+                (du[k], nse[j]),
+                (dv[j], u[k] * kse[j]),
+                (dv[k], -u[j] * kse[k]),
+            ]);
+            df[i] = lin([
+                (du[j], u[k] * kbt[j] - nbt[k]),
+                (du[k], nbt[j] - u[j] * kbt[k]),
+                (dv[j], v[k] * kse[j] - nse[k]),
+                (dv[k], nse[j] - v[j] * kse[k]),
+            ]);
+        }
         if self.has_fe {
-            let rtfe = mat_t_lc(drm, &self.fe.into());
+            let rtfe = rot_apply(&rot_t_coeffs(q, &self.fe.into()), &sl.dq);
             for k in 0..3 {
                 de[k] -= rtfe[k];
             }
         }
         if self.has_le {
-            let rtle = mat_t_lc(drm, &self.le.into());
+            let rtle = rot_apply(&rot_t_coeffs(q, &self.le.into()), &sl.dq);
             for k in 0..3 {
                 df[k] -= rtle[k];
             }
@@ -197,12 +209,13 @@ fn string_lanes<const N: usize>(
         ..
     } = *st;
     // loops, not `v3` closures: a closure here was compiled apart, without
-    // the pass's target features
-    let dur = cross_lc(&sl.du, &r);
-    let mut dpb = [Lanes::ZERO; 3];
-    for k in 0..3 {
-        dpb[k] = sl.dv[k] + dur[k];
-    }
+    // the pass's target features. dp_b = dv + du x r:
+    let (du, dv) = (&sl.du, &sl.dv);
+    let dpb = [
+        du[1].fma(r[2], du[2].fma(-r[1], dv[0])),
+        du[2].fma(r[0], du[0].fma(-r[2], dv[1])),
+        du[0].fma(r[1], du[1].fma(-r[0], dv[2])),
+    ];
     let dnrm = dot_cl(&t, &dpb);
     let inv = 1.0 / nrm;
     let w = [
@@ -211,55 +224,129 @@ fn string_lanes<const N: usize>(
         g[2] + (vd[2] + ud[0] * r[1] - ud[1] * r[0]),
     ];
     let tw = t[0] * w[0] + t[1] * w[1] + t[2] * w[2];
+    // w - t (t . w), the value A_i w / c
+    let wt = [w[0] - t[0] * tw, w[1] - t[1] * tw, w[2] - t[2] * tw];
     if c == 0.0 {
         // a slack string: only its tension's lanes load the body,
         // A_i w = c (w - t (t . w)) with dc = dtau / |p_b|
         let dc = dtau * inv;
-        let mut daw = [Lanes::ZERO; 3];
-        for k in 0..3 {
-            daw[k] = dc * (w[k] - t[k] * tw);
-        }
-        return (daw, dnrm);
+        return ([dc * wt[0], dc * wt[1], dc * wt[2]], dnrm);
     }
-    let dc = (dtau - dnrm * c) * inv;
+    let dc = dnrm.fma(-c, dtau) * inv;
     let mut dt = [Lanes::ZERO; 3];
-    for k in 0..3 {
-        dt[k] = (dpb[k] - dnrm * t[k]) * inv;
-    }
-    let (a, b) = (cross_lc(&sl.du, &pbrp), cross_cl(u, &dpb));
     let mut dg = [Lanes::ZERO; 3];
-    for k in 0..3 {
-        dg[k] = a[k] + b[k];
+    for i in 0..3 {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        dt[i] = dnrm.fma(-t[i], dpb[i]) * inv;
+        // du x (p_b + r') + u x dp_b
+        dg[i] = lin([
+            (du[j], pbrp[k]),
+            (du[k], -pbrp[j]),
+            (dpb[k], u[j]),
+            (dpb[j], -u[k]),
+        ]);
     }
     // w = z_i + g_i at fixed x, its part along t removed: A_i w = c (w - t (t . w))
-    let dtw = dot_cl(&w, &dt) + dot_cl(&t, &dg);
+    let dtw = lin([
+        (dt[0], w[0]),
+        (dt[1], w[1]),
+        (dt[2], w[2]),
+        (dg[0], t[0]),
+        (dg[1], t[1]),
+        (dg[2], t[2]),
+    ]);
     let mut daw = [Lanes::ZERO; 3];
     for k in 0..3 {
-        daw[k] = (dg[k] - dt[k] * tw - dtw * t[k]) * c + dc * (w[k] - t[k] * tw);
+        let inner = dtw.fma(-t[k], dt[k].fma(-tw, dg[k]));
+        daw[k] = inner.fma(c, dc * wt[k]);
     }
     (daw, dnrm)
 }
 
 /// The lanes of the kinematics (22)-(23) into `dyl[0..7]`:
-/// `d(R v) = dR v + R dv` and `dq' = (dq (0, u) + q (0, du)) / 2`.
+/// `d(R v) = (dR/dq v) dq + R dv` and `dq' = (dq (0, u) + q (0, du)) / 2`.
 #[inline(always)]
 fn kinematics_lanes<const N: usize>(
     y: &[f64],
     fr: &Frame<f64>,
-    drm: &[V3<Lanes<N>>; 3],
     sl: &StateLanes<N>,
     dyl: &mut [Lanes<N>],
 ) {
-    let (a, b) = (mat_lc(drm, &fr.v), mat_cl(&fr.rm, &sl.dv));
+    let q = [y[3], y[4], y[5], y[6]];
+    let cq = rot_coeffs(&q, &fr.v);
+    let ([dw, dx, dy, dz], du, dv, rm) = (sl.dq, &sl.du, &sl.dv, &fr.rm);
     for k in 0..3 {
-        dyl[k] = a[k] + b[k]; // (22)
+        // (22)
+        dyl[k] = lin([
+            (dw, cq[k][0]),
+            (dx, cq[k][1]),
+            (dy, cq[k][2]),
+            (dz, cq[k][3]),
+            (dv[0], rm[k][0]),
+            (dv[1], rm[k][1]),
+            (dv[2], rm[k][2]),
+        ]);
     }
-    let [hw, hx, hy, hz] = [y[3], y[4], y[5], y[6]].map(|c| 0.5 * c);
+    let [hw, hx, hy, hz] = q.map(|c| 0.5 * c);
     let hu = fr.u.map(|c| 0.5 * c);
-    let ([dw, dx, dy, dz], du) = (sl.dq, &sl.du);
     // (23): q' = q (0, u) / 2, differentiated
-    dyl[3] = -(dx * hu[0] + dy * hu[1] + dz * hu[2] + du[0] * hx + du[1] * hy + du[2] * hz);
-    dyl[4] = dw * hu[0] + du[0] * hw + dy * hu[2] + du[2] * hy - dz * hu[1] - du[1] * hz;
-    dyl[5] = dw * hu[1] + du[1] * hw + dz * hu[0] + du[0] * hz - dx * hu[2] - du[2] * hx;
-    dyl[6] = dw * hu[2] + du[2] * hw + dx * hu[1] + du[1] * hx - dy * hu[0] - du[0] * hy;
+    dyl[3] = lin([
+        (dx, -hu[0]),
+        (dy, -hu[1]),
+        (dz, -hu[2]),
+        (du[0], -hx),
+        (du[1], -hy),
+        (du[2], -hz),
+    ]);
+    dyl[4] = lin([
+        (dw, hu[0]),
+        (du[0], hw),
+        (dy, hu[2]),
+        (du[2], hy),
+        (dz, -hu[1]),
+        (du[1], -hz),
+    ]);
+    dyl[5] = lin([
+        (dw, hu[1]),
+        (du[1], hw),
+        (dz, hu[0]),
+        (du[0], hz),
+        (dx, -hu[2]),
+        (du[2], -hx),
+    ]);
+    dyl[6] = lin([
+        (dw, hu[2]),
+        (du[2], hw),
+        (dx, hu[1]),
+        (du[1], hx),
+        (dy, -hu[0]),
+        (du[0], -hy),
+    ]);
+}
+
+impl Eq25 {
+    /// [`Eq25::solve`] for the lanes of `[e; f]`, each product fused with its sum.
+    #[inline(always)]
+    fn solve_lanes<const N: usize>(
+        &self,
+        e: &V3<Lanes<N>>,
+        f: &V3<Lanes<N>>,
+    ) -> (V3<Lanes<N>>, V3<Lanes<N>>) {
+        let (mi, m12, y, si) = (&self.m11_inv, &self.m12, &self.y12, &self.s_inv);
+        let (mut a, mut g, mut ud) = ([Lanes::ZERO; 3], [Lanes::ZERO; 3], [Lanes::ZERO; 3]);
+        for p in 0..3 {
+            a[p] = lin([(e[0], mi[p][0]), (e[1], mi[p][1]), (e[2], mi[p][2])]);
+        }
+        for p in 0..3 {
+            g[p] = a[2].fma(-m12[2][p], a[1].fma(-m12[1][p], a[0].fma(-m12[0][p], f[p])));
+        }
+        for p in 0..3 {
+            ud[p] = lin([(g[0], si[p][0]), (g[1], si[p][1]), (g[2], si[p][2])]);
+        }
+        let mut vd = [Lanes::ZERO; 3];
+        for p in 0..3 {
+            vd[p] = ud[2].fma(-y[p][2], ud[1].fma(-y[p][1], ud[0].fma(-y[p][0], a[p])));
+        }
+        (vd, ud)
+    }
 }

@@ -181,9 +181,11 @@ struct Pass<'s, 'a> {
 
 /// [`pass`] compiled for the widest vector unit the CPU has: the
 /// directions of a [`Dual`] are independent lanes, so AVX-512 carries eight
-/// of them per instruction (SSE2, the x86-64 baseline, two). Element-wise
-/// IEEE arithmetic either way (no fused multiply-add is generated), so the
-/// results are bit-for-bit the same.
+/// of them per instruction (SSE2, the x86-64 baseline, two). The lanes'
+/// products are fused with their sums (`f64::mul_add`, one FMA instruction
+/// each where the CPU has FMA, a correctly rounded library call elsewhere),
+/// so every copy gives bit-for-bit the same tangents; the values are the
+/// plain IVP's (no fused operation), bit for bit.
 fn dispatch<const N: usize>(
     p: &Pass<'_, '_>,
     record: Record,
@@ -191,12 +193,13 @@ fn dispatch<const N: usize>(
 ) -> Result<TangentIvp> {
     #[cfg(target_arch = "x86_64")]
     {
-        if std::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU supports AVX-512F (checked just above).
+        let fma = std::is_x86_feature_detected!("fma");
+        if fma && std::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU supports AVX-512F and FMA (checked just above).
             return unsafe { pass_avx512::<N>(p, record, nodes) };
         }
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2 (checked just above).
+        if fma && std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 and FMA (checked just above).
             return unsafe { pass_avx2::<N>(p, record, nodes) };
         }
     }
@@ -221,8 +224,8 @@ macro_rules! pass_with {
         }
     };
 }
-pass_with!(pass_avx512, "avx512f");
-pass_with!(pass_avx2, "avx2");
+pass_with!(pass_avx512, "avx512f,fma");
+pass_with!(pass_avx2, "avx2,fma");
 
 /// The RK4 stages of the reference pass in dual arithmetic (`n` states each).
 struct Stages<const N: usize> {

@@ -4,7 +4,7 @@
 //! combination. The anchor jumps, the recorded nodes and the tip balance
 //! are rare: they run on the dual form of the state ([`Dual`]).
 
-use super::super::lanes::Lanes;
+use super::super::lanes::{lin, Lanes};
 use super::super::ode::StringAt;
 use super::*;
 
@@ -61,7 +61,7 @@ impl<const N: usize> LaneStages<N> {
                 let (kp, kpl) = (&done[(st - 1) * n..], &donel[(st - 1) * n..]);
                 for j in 0..n {
                     yt[j] = y[j] + hs * kp[j];
-                    ytl[j] = yl[j] + kpl[j] * hs;
+                    ytl[j] = kpl[j].fma(hs, yl[j]);
                 }
             }
             fz.deriv_lanes(
@@ -78,15 +78,15 @@ impl<const N: usize> LaneStages<N> {
         let (l1, l2, l3, l4) = (&kl[..n], &kl[n..2 * n], &kl[2 * n..3 * n], &kl[3 * n..]);
         for j in 0..n {
             y[j] += h6 * (k1[j] + 2.0 * (k2[j] + k3[j]) + k4[j]);
-            yl[j] += (l1[j] + (l2[j] + l3[j]) * 2.0 + l4[j]) * h6;
+            yl[j] = ((l2[j] + l3[j]).fma(2.0, l1[j]) + l4[j]).fma(h6, yl[j]);
         }
         // q / |q| and its lanes (dq - q/|q| d|q|) / |q|, d|q| = q . dq / |q|
         let qn = (y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]).sqrt();
         let inv = 1.0 / qn;
-        let dqn = (yl[3] * y[3] + yl[4] * y[4] + yl[5] * y[5] + yl[6] * y[6]) * inv;
+        let dqn = lin([(yl[3], y[3]), (yl[4], y[4]), (yl[5], y[5]), (yl[6], y[6])]) * inv;
         for j in 3..7 {
             y[j] /= qn;
-            yl[j] = (yl[j] - dqn * y[j]) * inv;
+            yl[j] = dqn.fma(-y[j], yl[j]) * inv;
         }
         Ok(())
     }
@@ -126,8 +126,7 @@ pub(super) fn pass_lanes<const N: usize>(
     macro_rules! node {
         ($s:expr) => {
             if rec {
-                to_duals(&y, &yl, &mut duals);
-                nodes.record(idx, $s, &duals, c0, w);
+                nodes.record_lanes(idx, $s, (&y, &yl), c0, w);
                 idx += 1;
             }
         };

@@ -6,6 +6,7 @@ use std::cell::RefCell;
 use nalgebra::DMatrix;
 
 use super::dual::Dual;
+use super::lanes::Lanes;
 
 /// Seed directions of a tangent IVP: each column is one direction, giving
 /// the derivative of the initial strains and of the tensions along it.
@@ -139,6 +140,38 @@ impl TangentNodes {
     /// `d y / d seed` of node `i` as an `n_states x k` matrix.
     pub fn tangent_matrix(&self, i: usize) -> DMatrix<f64> {
         DMatrix::from_column_slice(self.n, self.k, self.get(i).tangent)
+    }
+    /// [`TangentNodes::record`] from the values `y` and their lanes `yl`
+    /// (the hand-linearised pass), with no dual form built: each direction's
+    /// column written in order, appended directly by a pass over all of them.
+    #[inline(always)]
+    pub(super) fn record_lanes<const N: usize>(
+        &mut self,
+        idx: usize,
+        s: f64,
+        (y, yl): (&[f64], &[Lanes<N>]),
+        c0: usize,
+        w: usize,
+    ) {
+        let (n, nk) = (self.n, self.n * self.k);
+        if idx == self.s.len() {
+            self.s.push(s);
+            self.state.extend_from_slice(y);
+            if c0 == 0 && w == self.k {
+                for c in 0..w {
+                    self.tangent.extend(yl.iter().map(|l| l.0[c]));
+                }
+                return;
+            }
+            self.tangent.resize(self.tangent.len() + nk, 0.0);
+        }
+        let t = &mut self.tangent[idx * nk..(idx + 1) * nk];
+        for c in 0..w {
+            let col = &mut t[(c0 + c) * n..(c0 + c + 1) * n];
+            for (x, l) in col.iter_mut().zip(yl) {
+                *x = l.0[c];
+            }
+        }
     }
     /// Record node `idx` of a pass over directions `c0 .. c0 + w`: the first
     /// pass appends the node, the others fill in their columns.
