@@ -20,6 +20,7 @@
 //! (Pseudo-arclength continuation through folds is the stability module's.)
 
 use super::cancel;
+use super::coarse_path::coarse_path;
 use super::corrector::correct;
 use super::newton::NewtonResult;
 use super::shooting::{
@@ -206,7 +207,8 @@ fn budget_error(work: &Work, lam: f64, residual: f64) -> Error {
 }
 
 /// Continuation to `inputs` under `loads` (see the module docs); adds its
-/// work to `work`.
+/// work to `work`. A cold one runs its path on the coarse grid first
+/// ([`coarse_path`]), and today's full-grid path only if that fails.
 pub(crate) fn continuation(
     robot: &Robot,
     inputs: &[f64],
@@ -215,6 +217,31 @@ pub(crate) fn continuation(
     warm: Option<&Solution>,
     work: &mut Work,
 ) -> Result<Solution> {
+    if warm.is_none() {
+        if let Some(s) = coarse_path(robot, inputs, loads, opts, work)? {
+            return Ok(s);
+        }
+    }
+    let (nr, last, path) = follow(robot, inputs, loads, opts, warm, work)?;
+    let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
+    s.continuation_steps = path;
+    Ok(s)
+}
+
+/// The converged end of a homotopy path: Newton's result at `lambda = 1`,
+/// its last IVP and the path (the `lambda` of each converged step).
+type PathEnd = (NewtonResult, Option<FinalIvp>, Vec<f64>);
+
+/// The homotopy path to `inputs` under `loads` on `opts.steps` (see the
+/// module docs); adds its work to `work`.
+pub(crate) fn follow(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+    work: &mut Work,
+) -> Result<PathEnd> {
     let cold = warm.is_none();
     let (from, x, tau, jac) = start(robot, warm);
     let mut at_lam = Track {
@@ -257,9 +284,7 @@ pub(crate) fn continuation(
                 path.push(lt);
                 retry = false;
                 if lt >= 1.0 {
-                    let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
-                    s.continuation_steps = path;
-                    return Ok(s);
+                    return Ok((nr, last, path));
                 }
                 if nr.iterations <= EASY_ITERATIONS {
                     step *= 2.0;
