@@ -135,3 +135,20 @@ pub(crate) fn coarse_path(
     }
     Ok(None)
 }
+
+/// The cold homotopy path alone (no direct run, no finish) on `opts.steps`:
+/// the unknowns it reaches at `lambda = 1` (to `opts.tol`) and the path
+/// (the `lambda` of each converged step). A cold continuation with a
+/// coarse path (see [`path_grid`]) takes exactly this path on
+/// `path_grid(opts)` steps with `tol` [`PATH_END_TOL`]; for tests and
+/// diagnostics.
+pub fn cold_path(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let mut work = Work::start(opts);
+    let (nr, _, path) = follow(robot, inputs, loads, opts, None, &mut work)?;
+    Ok((nr.x, path))
+}
