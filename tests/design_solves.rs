@@ -53,9 +53,12 @@ const SOFTER_PIECE_DESIGNS: [usize; 1] = [783];
 /// (`shooting::STALL_WINDOW`): 85 and 55 IVPs.
 const VALLEY_DESIGNS: [usize; 2] = [714, 257];
 
-/// IVP bound of a [`VALLEY_DESIGNS`] solve: about twice the 85 measured,
-/// a ninth of the 915-1,016 of a direct run creeping to its limit.
-const VALLEY_MAX_IVPS: usize = 200;
+/// IVP bound of a [`VALLEY_DESIGNS`] solve: 1.5 x the 107 (#714; #257:
+/// 59) measured with the coarse homotopy path (`solve::coarse_path`,
+/// whose cheap coarse IVPs count one each; 93 and 52 on the full grid's
+/// path), a sixth of the 915-1,016 of a direct run creeping to its limit.
+/// (Was 200, about twice the 85 measured at stop 20.)
+const VALLEY_MAX_IVPS: usize = 160;
 
 /// Benchmark design #126 (an 84 mm, 16.6 kPa rod, column ratio 4.7, two
 /// TCAs and two tendons, gravity and a tip force) converges only through
@@ -67,6 +70,8 @@ const VALLEY_MAX_IVPS: usize = 200;
 const CREEPING_HOMOTOPY_DESIGN: usize = 126;
 
 /// IVP bound of [`CREEPING_HOMOTOPY_DESIGN`]: 1.5 x 687, well below 1,807.
+/// (Measured with the coarse homotopy path: 261 IVPs, its coarse path's
+/// root finished on the full grid through the intermediate grid.)
 const CREEPING_HOMOTOPY_MAX_IVPS: usize = 1_000;
 
 /// IVP bound of [`CREEPING_HOMOTOPY_DESIGN`], quadratic predictor and cut
@@ -86,8 +91,11 @@ const KINKED_PATH_DESIGNS: [(usize, usize); 2] = [(385, 450), (273, 340)];
 /// Benchmark designs whose cold direct run backtracked down to `t = 1e-6`
 /// before handing over to continuation (`solve::shooting::DIRECT_MIN_STEP`):
 /// #385 and #273 took 381 and 286 IVPs with that run (bounds above), 300
-/// and 217 with the direct run cut at `t = 0.1`. Bounds between the two.
-const CUT_DIRECT_DESIGNS: [(usize, usize); 2] = [(385, 340), (273, 250)];
+/// and 217 with the direct run cut at `t = 0.1`, 274 and 228 with the
+/// path on the coarse grid (`solve::coarse_path`: more IVPs, each a
+/// tenth of the grid; #385 280 -> 85 IVP-equivalents, #273 174 -> 72).
+/// Bounds between these and the uncut run's (#385 was 340).
+const CUT_DIRECT_DESIGNS: [(usize, usize); 2] = [(385, 300), (273, 250)];
 
 /// A benchmark design past self-weight buckling whose cold direct run
 /// converges only with heavy damping (`t` below `DIRECT_MIN_STEP`), and
