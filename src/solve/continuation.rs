@@ -17,6 +17,9 @@
 //! [`PREDICTOR_REJECT`] is refused after its first IVP and the step
 //! shortened at once; see those constants for the measurements. The path (the `lambda` of
 //! each converged step) is recorded in `Solution::continuation_steps`.
+//! A cold path runs on a coarse grid first and is finished on the full
+//! grid ([`crate::solve::coarse_path`]); the full grid's path only if that
+//! fails.
 //! (Pseudo-arclength continuation through folds is the stability module's.)
 
 use super::cancel;
