@@ -17,9 +17,13 @@
 //! [`PREDICTOR_REJECT`] is refused after its first IVP and the step
 //! shortened at once; see those constants for the measurements. The path (the `lambda` of
 //! each converged step) is recorded in `Solution::continuation_steps`.
+//! A cold path runs on a coarse grid first and is finished on the full
+//! grid ([`crate::solve::coarse_path`]); the full grid's path only if that
+//! fails.
 //! (Pseudo-arclength continuation through folds is the stability module's.)
 
 use super::cancel;
+use super::coarse_path::coarse_path;
 use super::corrector::correct;
 use super::newton::NewtonResult;
 use super::shooting::{
@@ -206,7 +210,8 @@ fn budget_error(work: &Work, lam: f64, residual: f64) -> Error {
 }
 
 /// Continuation to `inputs` under `loads` (see the module docs); adds its
-/// work to `work`.
+/// work to `work`. A cold one runs its path on the coarse grid first
+/// ([`coarse_path`]), and today's full-grid path only if that fails.
 pub(crate) fn continuation(
     robot: &Robot,
     inputs: &[f64],
@@ -215,6 +220,31 @@ pub(crate) fn continuation(
     warm: Option<&Solution>,
     work: &mut Work,
 ) -> Result<Solution> {
+    if warm.is_none() {
+        if let Some(s) = coarse_path(robot, inputs, loads, opts, work)? {
+            return Ok(s);
+        }
+    }
+    let (nr, last, path) = follow(robot, inputs, loads, opts, warm, work)?;
+    let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
+    s.continuation_steps = path;
+    Ok(s)
+}
+
+/// The converged end of a homotopy path: Newton's result at `lambda = 1`,
+/// its last IVP and the path (the `lambda` of each converged step).
+type PathEnd = (NewtonResult, Option<FinalIvp>, Vec<f64>);
+
+/// The homotopy path to `inputs` under `loads` on `opts.steps` (see the
+/// module docs); adds its work to `work`.
+pub(crate) fn follow(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+    work: &mut Work,
+) -> Result<PathEnd> {
     let cold = warm.is_none();
     let (from, x, tau, jac) = start(robot, warm);
     let mut at_lam = Track {
@@ -257,9 +287,7 @@ pub(crate) fn continuation(
                 path.push(lt);
                 retry = false;
                 if lt >= 1.0 {
-                    let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
-                    s.continuation_steps = path;
-                    return Ok(s);
+                    return Ok((nr, last, path));
                 }
                 if nr.iterations <= EASY_ITERATIONS {
                     step *= 2.0;

@@ -3,6 +3,7 @@
 //! ([`continuation`]) and cooperative cancellation ([`cancel`]).
 
 pub mod cancel;
+pub mod coarse_path;
 pub mod continuation;
 mod corrector;
 pub mod equilibrium;

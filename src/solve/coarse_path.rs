@@ -1,0 +1,154 @@
+//! A cold homotopy path on a coarse grid, finished on the full grid.
+//!
+//! A continuation's correctors integrate many IVPs (20-37 steps at 5-18
+//! IVPs a corrector on the worst benchmark designs), each on the full grid,
+//! although every point of the path but the last only starts the next
+//! step's predictor ([`super::continuation::INTERMEDIATE_TOL`]). So a cold
+//! continuation first runs its whole path on a grid of
+//! `steps / PATH_GRID_DIVISOR` RK4 steps, to [`PATH_END_TOL`] at
+//! `lambda = 1`, and then finishes on the full grid from the coarse root
+//! with the direct run's coarse-to-full hand-over ([`presolved_shooting`]:
+//! defect correction on the same coarse grid, convergence decided by a
+//! full-grid IVP). Where the coarse root is outside the finish's reach
+//! (benchmark design #126: its full-grid residual there is ~1), Newton on
+//! an intermediate grid of `steps / HOP_GRID_DIVISOR` steps moves it first.
+//! If the coarse path fails, or the finish does not converge, the caller
+//! runs the path on the full grid (its work counted on top), so that no
+//! design converging on the full grid's path is lost.
+//!
+//! A coarse IVP is not a tenth of a full one (the anchors' load
+//! iterations cost the same on any grid): on design #267 a coarse path's
+//! 202 IVPs cost about 90 full-grid IVP times.
+
+use super::continuation::{follow, CORRECTOR_MIN_STEP};
+use super::options::SolveOptions;
+use super::presolve::presolved_shooting;
+use super::residual::Loads;
+use super::shooting::{is_budget_error, is_input_error, Solution};
+use super::system::{newton_shooting, solution_from, Keep, Work, COARSE_JACOBIAN_MIN_STEPS};
+use crate::error::{Error, Result};
+use crate::rod::Robot;
+
+/// The coarse path's grid: `steps / PATH_GRID_DIVISOR` RK4 steps, the
+/// pre-solve's coarse grid (so the finish's first coarse run starts at a
+/// root). Measured on the seven worst benchmark designs (#25, #267, #499,
+/// #385, #153, #341, #126; IVP-equivalents, load 3-4): `10` 78-114 on
+/// the six that converge through continuation; `4` and `5` 111-153; `7`
+/// 92-139 (and #126's finish failed).
+pub const PATH_GRID_DIVISOR: usize = 10;
+
+/// The intermediate grid (`steps / HOP_GRID_DIVISOR`) of a finish whose
+/// first attempt from the coarse root failed (see the module docs): on it
+/// #126 converges from the coarse root and the finish from there.
+pub const HOP_GRID_DIVISOR: usize = 4;
+
+/// Most IVPs of a coarse path (beyond, the full grid's path is run): the
+/// coarse paths of the seven worst benchmark designs took 181-248 IVPs to
+/// reach `lambda = 1`; #112, whose tendon's bending length (2.3 mm) the
+/// coarse grid's 7.3 mm steps do not resolve, crept to `lambda = 0.87` in
+/// 910 (a cap of 400: 515 IVPs in all, 311-403 IVP-equivalents).
+pub const PATH_MAX_IVPS: usize = 300;
+
+/// Tolerance (scaled residual) of the coarse path's last corrector, at
+/// `lambda = 1`: below the pre-solve's first-round tolerance (1e-7), whose
+/// coarse run then takes no step.
+pub const PATH_END_TOL: f64 = 1e-8;
+
+/// The grid (RK4 steps) of a cold continuation's coarse path under `opts`,
+/// `None` if it runs on the full grid only (the pre-solve off, or fewer
+/// than ten times [`COARSE_JACOBIAN_MIN_STEPS`] steps).
+pub fn path_grid(opts: &SolveOptions) -> Option<usize> {
+    let steps = opts.steps / PATH_GRID_DIVISOR;
+    (opts.presolve && steps >= COARSE_JACOBIAN_MIN_STEPS).then_some(steps)
+}
+
+/// Whether `e` ends the solve (no fallback): bad input, budget, interrupt.
+fn ends_solve(e: &Error) -> bool {
+    is_input_error(e) || is_budget_error(e) || matches!(e, Error::Interrupted)
+}
+
+/// `Ok(Some(v))`, `Ok(None)` for an error the caller falls back from, or
+/// the error if it ends the solve.
+fn unless_final<T>(r: Result<T>) -> Result<Option<T>> {
+    match r {
+        Ok(v) => Ok(Some(v)),
+        Err(e) if ends_solve(&e) => Err(e),
+        Err(_) => Ok(None),
+    }
+}
+
+/// The cold continuation on the coarse grid, finished on the full grid
+/// (see the module docs); `None` if it failed (its work is in `work`), an
+/// error if the solve must stop.
+pub(crate) fn coarse_path(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    work: &mut Work,
+) -> Result<Option<Solution>> {
+    let Some(steps) = path_grid(opts) else {
+        return Ok(None);
+    };
+    let end_tol = opts.tol.max(PATH_END_TOL);
+    let copts = SolveOptions {
+        steps,
+        tol: end_tol,
+        ..*opts
+    };
+    // the coarse path's own IVP cap within the solve's budget
+    let budget = work.max_evaluations;
+    let cap = work.evaluations + PATH_MAX_IVPS;
+    work.max_evaluations = if budget == 0 { cap } else { budget.min(cap) };
+    let out = follow(robot, inputs, loads, &copts, None, work);
+    work.max_evaluations = budget;
+    let out = match out {
+        Err(e) if is_budget_error(&e) && !work.exhausted() => return Ok(None),
+        out => out,
+    };
+    let Some((nr, _, path)) = unless_final(out)? else {
+        return Ok(None);
+    };
+    // the finish backtracks as a first corrector attempt does
+    let fopts = SolveOptions {
+        min_step: opts.min_step.max(CORRECTOR_MIN_STEP),
+        ..*opts
+    };
+    let keep = Keep::Nodes;
+    let mut x = nr.x;
+    for hop in [false, true] {
+        if hop {
+            #[rustfmt::skip]
+            let hopts = SolveOptions { steps: opts.steps / HOP_GRID_DIVISOR, tol: end_tol, ..fopts };
+            let out = newton_shooting(robot, inputs, loads, &hopts, &x, None, false, work);
+            let Some((nr, _)) = unless_final(out)? else {
+                return Ok(None);
+            };
+            x = nr.x;
+        }
+        let out = presolved_shooting(robot, inputs, loads, &fopts, &x, None, keep, work);
+        if let Some((nr, last)) = unless_final(out)? {
+            let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
+            s.continuation_steps = path;
+            return Ok(Some(s));
+        }
+    }
+    Ok(None)
+}
+
+/// The cold homotopy path alone (no direct run, no finish) on `opts.steps`:
+/// the unknowns it reaches at `lambda = 1` (to `opts.tol`) and the path
+/// (the `lambda` of each converged step). A cold continuation with a
+/// coarse path (see [`path_grid`]) takes exactly this path on
+/// `path_grid(opts)` steps with `tol` [`PATH_END_TOL`]; for tests and
+/// diagnostics.
+pub fn cold_path(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let mut work = Work::start(opts);
+    let (nr, _, path) = follow(robot, inputs, loads, opts, None, &mut work)?;
+    Ok((nr.x, path))
+}
