@@ -40,6 +40,8 @@
 //! (`Solution.evaluations`); the designs bench's IVP-equivalents are CPU
 //! times and so weigh them by their cost.
 
+use std::ops::ControlFlow;
+
 use nalgebra::DMatrix;
 
 use super::newton::{newton_from, NewtonOptions, NewtonResult, Status, System};
@@ -385,70 +387,156 @@ pub(crate) fn presolved_shooting(
     if coarse < COARSE_JACOBIAN_MIN_STEPS || !opts.presolve {
         return newton_shooting(robot, inputs, loads, opts, x0, jac0, record, work);
     }
-    #[rustfmt::skip]
-    let pre = PreSolve { robot, inputs, loads, opts, coarse };
-    let (mut defect, mut jac) = warm_start(robot, loads, coarse, x0, inputs, warm, work);
-    let mut full = Shooting::new(robot, inputs, loads, opts.steps, record);
-    let mut coarse = pre.coarse_system(x0.len());
-    let mut x = x0.to_vec();
-    let mut iterations = 0;
-    let mut last_norm = f64::INFINITY;
-    let (warm_defect, mut start_norm) = (warm.map(|_| inf_norm(&defect)), f64::INFINITY);
+    let pre = PreSolve {
+        robot,
+        inputs,
+        loads,
+        opts,
+        coarse,
+    };
+    let mut rounds = Rounds::start(&pre, x0, warm, record, work);
     for round in 0..MAX_ROUNDS {
-        coarse.defect.clone_from(&defect);
-        // (a cold start's first round: see the module docs)
-        let cold_first = round == 0 && warm.is_none();
-        let tol = pre.tol(cold_first);
-        let (out, evals, first) = pre.coarse_run(&mut coarse, &x, jac.as_ref(), tol, work);
-        start_norm = if round == 0 { first } else { start_norm };
-        if let Some((older, newer)) = round_history(round, warm_defect, start_norm, last_norm) {
-            full.set_history(older, newer);
-        }
-        work.evaluations += evals;
-        let Some(nr) = unless_interrupted(out)? else {
-            break;
-        };
-        iterations += nr.iterations;
-        x = nr.x;
-        jac = nr.jacobian.or(jac);
-        // extrapolated unless the guess was a coarse root already (a
-        // uniform strain, which RK4 integrates exactly)
-        let estimate = cold_first && nr.iterations > 0;
-        let xr = (x.as_slice(), nr.residual.as_slice());
-        let Some((r, estimated)) = pre.full_residual(&mut full, xr, (estimate, record), work)?
-        else {
-            break;
-        };
-        let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let floor = full.floor(&x, &r);
-        if norm <= opts.tol.max(floor) && !estimated {
-            work.evaluations += full.evaluations;
-            work.iterations += iterations;
-            let last = full.take_last(&x);
-            let status = converged_status(norm, opts.tol);
-            let (evaluations, jacobian) = (work.evaluations, jac);
-            #[rustfmt::skip]
-            let nr = NewtonResult { x, residual: r, norm, floor, status, iterations, evaluations, jacobian };
-            return Ok((nr, last));
-        }
-        if !(norm <= 0.1 * last_norm) {
-            break;
-        }
-        last_norm = norm;
-        // the new defect: r_full(x) - r_coarse(x), r_coarse(x) = nr.residual - defect
-        for ((d, rf), rc) in defect.iter_mut().zip(&r).zip(&nr.residual) {
-            *d += rf - rc;
+        match rounds.round(&pre, round, warm.is_none(), record, work)? {
+            ControlFlow::Break(Some(out)) => return Ok(out),
+            ControlFlow::Break(None) => break,
+            ControlFlow::Continue(()) => {}
         }
     }
     // fall back on full-grid Newton: from the last point if it came near
     // (it is then as good a start as any), else from the guess
-    work.evaluations += full.evaluations;
-    work.iterations += iterations;
-    let (from, jac) = match last_norm <= FALLBACK_NEAR {
-        true => (x.as_slice(), jac.as_ref()),
+    work.evaluations += rounds.full.evaluations;
+    work.iterations += rounds.iterations;
+    let (from, jac) = match rounds.last_norm <= FALLBACK_NEAR {
+        true => (rounds.x.as_slice(), rounds.jac.as_ref()),
         false => (x0, jac0),
     };
     newton_shooting(robot, inputs, loads, opts, from, jac, record, work)
+}
+
+/// The state of a pre-solve's rounds: the full-grid system (its IVPs
+/// counted on `work` at the end), the one coarse system, the defect and
+/// Jacobian the next round starts with, the point reached and the history
+/// of `max |r|`.
+struct Rounds<'a> {
+    full: Shooting<'a>,
+    coarse: Corrected<'a>,
+    defect: Vec<f64>,
+    jac: Option<DMatrix<f64>>,
+    x: Vec<f64>,
+    iterations: usize,
+    /// The last round's full-grid `max |r|`.
+    last_norm: f64,
+    /// `max |r_coarse + d|` at the start of the first round.
+    start_norm: f64,
+    /// Warm: `max |d|` of the warm solution's defect.
+    warm_defect: Option<f64>,
+}
+
+impl<'a> Rounds<'a> {
+    /// Before the first round, from `x0` (warm: its defect and Jacobian).
+    fn start(
+        pre: &PreSolve<'a>,
+        x0: &[f64],
+        warm: Option<Warm<'_>>,
+        record: Keep,
+        work: &mut Work,
+    ) -> Self {
+        let (defect, jac) =
+            warm_start(pre.robot, pre.loads, pre.coarse, x0, pre.inputs, warm, work);
+        Rounds {
+            full: Shooting::new(pre.robot, pre.inputs, pre.loads, pre.opts.steps, record),
+            coarse: pre.coarse_system(x0.len()),
+            warm_defect: warm.map(|_| inf_norm(&defect)),
+            defect,
+            jac,
+            x: x0.to_vec(),
+            iterations: 0,
+            last_norm: f64::INFINITY,
+            start_norm: f64::INFINITY,
+        }
+    }
+
+    /// Round `round` (from 0; `cold`: no warm start): the coarse run, then
+    /// the full-grid residual at its point. `Break(Some)`: converged;
+    /// `Break(None)`: fall back; `Continue`: another round, its defect set.
+    fn round(
+        &mut self,
+        pre: &PreSolve<'a>,
+        round: usize,
+        cold: bool,
+        record: Keep,
+        work: &mut Work,
+    ) -> Result<ControlFlow<Option<(NewtonResult, Option<FinalIvp>)>>> {
+        self.coarse.defect.clone_from(&self.defect);
+        // (a cold start's first round: see the module docs)
+        let cold_first = round == 0 && cold;
+        let tol = pre.tol(cold_first);
+        let (out, evals, first) =
+            pre.coarse_run(&mut self.coarse, &self.x, self.jac.as_ref(), tol, work);
+        if round == 0 {
+            self.start_norm = first;
+        }
+        let history = round_history(round, self.warm_defect, self.start_norm, self.last_norm);
+        if let Some((older, newer)) = history {
+            self.full.set_history(older, newer);
+        }
+        work.evaluations += evals;
+        let Some(nr) = unless_interrupted(out)? else {
+            return Ok(ControlFlow::Break(None));
+        };
+        self.iterations += nr.iterations;
+        self.x = nr.x;
+        self.jac = nr.jacobian.or(self.jac.take());
+        // extrapolated unless the guess was a coarse root already (a
+        // uniform strain, which RK4 integrates exactly)
+        let estimate = cold_first && nr.iterations > 0;
+        let xr = (self.x.as_slice(), nr.residual.as_slice());
+        let Some((r, estimated)) =
+            pre.full_residual(&mut self.full, xr, (estimate, record), work)?
+        else {
+            return Ok(ControlFlow::Break(None));
+        };
+        let norm = inf_norm(&r);
+        let floor = self.full.floor(&self.x, &r);
+        if norm <= pre.opts.tol.max(floor) && !estimated {
+            let out = self.converged(r, (norm, floor), pre.opts.tol, work);
+            return Ok(ControlFlow::Break(Some(out)));
+        }
+        if !(norm <= 0.1 * self.last_norm) {
+            return Ok(ControlFlow::Break(None));
+        }
+        self.last_norm = norm;
+        // the new defect: r_full(x) - r_coarse(x), r_coarse(x) = nr.residual - defect
+        for ((d, rf), rc) in self.defect.iter_mut().zip(&r).zip(&nr.residual) {
+            *d += rf - rc;
+        }
+        Ok(ControlFlow::Continue(()))
+    }
+
+    /// The result of a round whose full-grid residual `residual` converged
+    /// (`max |r|` `norm`, rounding floor `floor`), all work counted.
+    fn converged(
+        &mut self,
+        residual: Vec<f64>,
+        (norm, floor): (f64, f64),
+        tol: f64,
+        work: &mut Work,
+    ) -> (NewtonResult, Option<FinalIvp>) {
+        work.evaluations += self.full.evaluations;
+        work.iterations += self.iterations;
+        let last = self.full.take_last(&self.x);
+        let nr = NewtonResult {
+            x: std::mem::take(&mut self.x),
+            residual,
+            norm,
+            floor,
+            status: converged_status(norm, tol),
+            iterations: self.iterations,
+            evaluations: work.evaluations,
+            jacobian: self.jac.take(),
+        };
+        (nr, last)
+    }
 }
 
 /// The `max |r|` history from which the full-grid evaluation of round
