@@ -44,7 +44,9 @@ use std::ops::ControlFlow;
 
 use nalgebra::DMatrix;
 
-use super::newton::{newton_from, NewtonOptions, NewtonResult, Status, System};
+use super::newton::{
+    chord_then_newton, converged_status, newton_from, NewtonOptions, NewtonResult, System,
+};
 use super::options::SolveOptions;
 pub use super::residual::rescale_tension_columns;
 use super::residual::{Loads, Shot};
@@ -94,7 +96,7 @@ pub(crate) struct Warm<'a> {
 /// all rounds of a pre-solve (the defect changes between them). Remembers
 /// its last coarse residual (before the defect), so that the first
 /// evaluation of a round at the point where the last one stopped, or of
-/// Newton at the point where a chord run stopped ([`chord_then_newton`]),
+/// Newton at the point where a chord run stopped (`chord_then_newton`),
 /// costs no IVP; and `max |r|` of a round's first evaluation. With
 /// `tangent_first`, the first evaluation of a run that will take a fresh
 /// Jacobian there (a cold start: [`newton_from`] evaluates the residual,
@@ -249,95 +251,8 @@ impl<'a> PreSolve<'a> {
     }
 }
 
-/// Most chord steps with a kept coarse Jacobian (the warm neighbour's, or
-/// an earlier round's) still needed, at the contraction of the last one,
-/// for which the chord run goes on; beyond, Newton takes a fresh coarse
-/// tangent. A coarse tangent costs 3.2 (Fig. 6) to 4.3 (steel) coarse IVPs
-/// and Newton from it needs one or two steps, so four chord steps cost
-/// about as much. (Newton's own chord rule refreshes only below a 4x
-/// contraction: along a warm Fig. 6 sweep the neighbour's Jacobian, handed
-/// on from step to step, contracted 5-6x a step, 12 chord steps a run.)
-/// Judged from the first step on, although its contraction is also the
-/// warm start's nonlinearity (steel +1 %: 39x, then 250x; the refresh
-/// costs that solve one IVP more): judged from the second, Fig. 6 warm
-/// sweeps took up to 17 iterations a step (tests/test_fig6.py bounds 12).
-const CHORD_STEPS_LEFT: f64 = 4.0;
-
 fn inf_norm(r: &[f64]) -> f64 {
     r.iter().fold(0.0f64, |m, v| m.max(v.abs()))
-}
-
-/// Chord steps from `x0` with the kept Jacobian `jac` while at most
-/// [`CHORD_STEPS_LEFT`] more are needed at their contraction; then, unless converged,
-/// Newton ([`newton_from`]) from the point reached with a fresh Jacobian.
-/// The result carries the Jacobian last used.
-fn chord_then_newton(
-    sys: &mut Corrected<'_>,
-    x0: &[f64],
-    jac: &DMatrix<f64>,
-    nopts: &NewtonOptions,
-) -> Result<NewtonResult> {
-    let mut x = x0.to_vec();
-    let mut r = sys.residual(&x)?;
-    let mut res = inf_norm(&r);
-    let lu = jac.clone().lu();
-    let mut iterations = 0;
-    loop {
-        let floor = sys.floor(&x, &r);
-        if res <= nopts.tol.max(floor) {
-            return Ok(NewtonResult {
-                x,
-                residual: r,
-                norm: res,
-                floor,
-                status: converged_status(res, nopts.tol),
-                iterations,
-                evaluations: sys.evaluations(),
-                jacobian: Some(jac.clone()),
-            });
-        }
-        if iterations + 1 >= nopts.max_iter || sys.evaluations() >= nopts.max_evaluations {
-            break;
-        }
-        let rv = nalgebra::DVector::from_column_slice(&r);
-        let Some(dx) = lu.solve(&(-rv)).filter(|d| d.iter().all(|v| v.is_finite())) else {
-            break;
-        };
-        let xt: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
-        let rt = match sys.residual(&xt) {
-            Ok(rt) => rt,
-            Err(e @ Error::Interrupted) => return Err(e),
-            Err(_) => break,
-        };
-        let after = inf_norm(&rt);
-        if !(after < res) {
-            break;
-        }
-        iterations += 1;
-        (x, r) = (xt, rt);
-        // chord steps still needed at this contraction
-        let needed = (after / nopts.tol).ln() / (res / after).ln();
-        res = after;
-        if needed > CHORD_STEPS_LEFT {
-            break;
-        }
-    }
-    let rest = NewtonOptions {
-        max_iter: nopts.max_iter.saturating_sub(iterations).max(1),
-        ..*nopts
-    };
-    let mut nr = newton_from(sys, &x, &rest, "coarse pre-solve", None)?;
-    nr.iterations += iterations;
-    Ok(nr)
-}
-
-/// [`Status::Converged`] if `norm <= tol`, else at the floor.
-fn converged_status(norm: f64, tol: f64) -> Status {
-    if norm <= tol {
-        Status::Converged
-    } else {
-        Status::ConvergedAtFloor
-    }
 }
 
 /// The coarse system's initial defect and Jacobian: warm, the warm
