@@ -1,8 +1,10 @@
 //! Iterations, IVPs and wall time of cold (and warm) forward solves of the
 //! issue-10 tendon cases and the Fig. 6 square: `cargo run --release
 //! --example solver_counts` (`-- --compare`: thread-CPU medians with and
-//! without the coarse-grid pre-solve, interleaved). (Wall time of one run each, median of 21: an
-//! indication only; the criterion benches in benches/rod.rs are the timings.)
+//! without the coarse-grid pre-solve, interleaved; `-- --batch-cold`: IVPs
+//! and tips of one-row batches against single cold solves of benchmark
+//! designs). (Wall time of one run each, median of 21: an indication only;
+//! the criterion benches in benches/rod.rs are the timings.)
 use std::time::Instant;
 
 #[path = "../benches/clock/mod.rs"]

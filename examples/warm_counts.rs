@@ -4,7 +4,9 @@
 //! (full-grid and coarse) and iterations of the warm solve, the distance of
 //! its start from the converged unknowns and the converged result's
 //! difference from the cold solve's. `-- --time`: interleaved thread-CPU
-//! medians of the warm solve and of one plain full-grid IVP.
+//! medians of the warm solve and of one plain full-grid IVP. `-- --batch`:
+//! one-thread batch sweeps (Fig. 6 every 1 C and 5 C, steel every 1 %),
+//! IVPs and thread CPU a warm row (`--rows`: each row's IVPs too).
 use tcarod::experiments::{fig6_square, steel_tendon_robot, STEEL_TENDON_TENSIONS};
 use tcarod::rod::Robot;
 use tcarod::shooting::{initial_guess, solve, Loads, Shot, Solution, SolveOptions};

@@ -328,6 +328,10 @@ pub(crate) fn presolved_shooting(
     newton_shooting(robot, inputs, loads, opts, from, jac, record, work)
 }
 
+/// A converged direct run: Newton's result and the IVP at its solution if
+/// that was the last one integrated.
+type Direct = (NewtonResult, Option<FinalIvp>);
+
 /// The state of a pre-solve's rounds: the full-grid system (its IVPs
 /// counted on `work` at the end), the one coarse system, the defect and
 /// Jacobian the next round starts with, the point reached and the history
@@ -381,7 +385,7 @@ impl<'a> Rounds<'a> {
         cold: bool,
         record: Keep,
         work: &mut Work,
-    ) -> Result<ControlFlow<Option<(NewtonResult, Option<FinalIvp>)>>> {
+    ) -> Result<ControlFlow<Option<Direct>>> {
         self.coarse.defect.clone_from(&self.defect);
         // (a cold start's first round: see the module docs)
         let cold_first = round == 0 && cold;
@@ -436,7 +440,7 @@ impl<'a> Rounds<'a> {
         (norm, floor): (f64, f64),
         tol: f64,
         work: &mut Work,
-    ) -> (NewtonResult, Option<FinalIvp>) {
+    ) -> Direct {
         work.evaluations += self.full.evaluations;
         work.iterations += self.iterations;
         let last = self.full.take_last(&self.x);
