@@ -1,8 +1,10 @@
 //! Iterations, IVPs and wall time of cold (and warm) forward solves of the
 //! issue-10 tendon cases and the Fig. 6 square: `cargo run --release
 //! --example solver_counts` (`-- --compare`: thread-CPU medians with and
-//! without the coarse-grid pre-solve, interleaved). (Wall time of one run each, median of 21: an
-//! indication only; the criterion benches in benches/rod.rs are the timings.)
+//! without the coarse-grid pre-solve, interleaved; `-- --batch-cold`: IVPs
+//! and tips of one-row batches against single cold solves of benchmark
+//! designs). (Wall time of one run each, median of 21: an indication only;
+//! the criterion benches in benches/rod.rs are the timings.)
 use std::time::Instant;
 
 #[path = "../benches/clock/mod.rs"]
@@ -262,7 +264,50 @@ fn grasp_case() {
     );
 }
 
+/// Cold batch rows against single cold solves on benchmark designs (the
+/// worst of the stop-26 note, then the first 100): IVPs and tip distance.
+fn batch_cold() {
+    use tcarod::batch::{solve_batch, BatchOptions};
+    use tcarod::problems::{random_design, DEFAULT_SEED};
+    let bo = BatchOptions {
+        threads: 1,
+        stability: false,
+        ..BatchOptions::default()
+    };
+    let o = SolveOptions::default();
+    let (mut single, mut rows, mut gap, mut worse) = (0, 0, 0.0f64, 0);
+    let named = [385, 273, 25, 499, 126, 830, 552, 282];
+    for i in named.into_iter().chain(0..100) {
+        let d = random_design(DEFAULT_SEED, i);
+        let s = solve(&d.robot, &d.inputs, &o, None);
+        let b = solve_batch(&d.robot, &d.inputs, None, &bo);
+        let (Ok(s), Ok(b)) = (s, b) else {
+            println!("#{i}: a solve failed");
+            continue;
+        };
+        let t = s.tip_position();
+        let g = (0..3).fold(0.0f64, |m, k| m.max((b.tip_positions[0][k] - t[k]).abs()));
+        let e = b.evaluations[0] as usize;
+        if named.contains(&i) {
+            println!(
+                "#{i}: single cold {} IVPs, batch row {} IVPs (converged {}), tip gap {g:.1e} m",
+                s.evaluations, e, b.converged[0]
+            );
+        } else {
+            single += s.evaluations;
+            rows += e;
+            gap = gap.max(g);
+            worse += usize::from(e > s.evaluations);
+        }
+    }
+    println!("designs 0-99: single cold {single} IVPs, batch rows {rows} IVPs ({worse} rows more than single), tip gap max {gap:.1e} m");
+}
+
 fn main() {
+    if std::env::args().any(|a| a == "--batch-cold") {
+        batch_cold();
+        return;
+    }
     if std::env::args().any(|a| a == "--compare") {
         compare_all();
         return;

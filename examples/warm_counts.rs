@@ -4,7 +4,9 @@
 //! (full-grid and coarse) and iterations of the warm solve, the distance of
 //! its start from the converged unknowns and the converged result's
 //! difference from the cold solve's. `-- --time`: interleaved thread-CPU
-//! medians of the warm solve and of one plain full-grid IVP.
+//! medians of the warm solve and of one plain full-grid IVP. `-- --batch`:
+//! one-thread batch sweeps (Fig. 6 every 1 C and 5 C, steel every 1 %),
+//! IVPs and thread CPU a warm row (`--rows`: each row's IVPs too).
 use tcarod::experiments::{fig6_square, steel_tendon_robot, STEEL_TENDON_TENSIONS};
 use tcarod::rod::Robot;
 use tcarod::shooting::{initial_guess, solve, Loads, Shot, Solution, SolveOptions};
@@ -149,14 +151,32 @@ fn batch(name: &str, robot: &Robot, rows: &[Vec<f64>]) {
     };
     let flat: Vec<f64> = rows.iter().flatten().copied().collect();
     let out = solve_batch(robot, &flat, None, &opts).unwrap();
-    let mut times: Vec<f64> = (0..5)
-        .map(|_| {
-            let t0 = thread_cpu();
-            drop(solve_batch(robot, &flat, None, &opts).unwrap());
-            (thread_cpu() - t0) / rows.len() as f64
-        })
-        .collect();
+    if std::env::var("TCAROD_TRACE_WARM").is_ok() {
+        return;
+    }
+    // one plain full-grid IVP at the middle row's solution, timed between
+    // the batch runs: the row cost in IVP times is comparable across loads
+    let mid = rows.len() / 2;
+    let o = SolveOptions::default();
+    let at = solve(robot, &rows[mid], &o, None).unwrap();
+    let l = Loads::of(robot);
+    let (mut times, mut ivp) = (Vec::new(), Vec::new());
+    for _ in 0..7 {
+        let t0 = thread_cpu();
+        drop(solve_batch(robot, &flat, None, &opts).unwrap());
+        times.push((thread_cpu() - t0) / rows.len() as f64);
+        let t0 = thread_cpu();
+        for _ in 0..20 {
+            drop(
+                Shot::new(robot, &rows[mid], &l, o.steps)
+                    .residual(&at.unknowns, false)
+                    .unwrap(),
+            );
+        }
+        ivp.push((thread_cpu() - t0) / 20.0);
+    }
     times.sort_by(|x, y| x.partial_cmp(y).unwrap());
+    ivp.sort_by(|x, y| x.partial_cmp(y).unwrap());
     let mut gap = 0.0f64;
     for (q, tip) in rows.iter().zip(&out.tip_positions) {
         let cold = solve(robot, q, &SolveOptions::default(), None).unwrap();
@@ -164,12 +184,16 @@ fn batch(name: &str, robot: &Robot, rows: &[Vec<f64>]) {
         gap = gap.max((0..3).fold(0.0f64, |m, k| m.max((tip[k] - t[k]).abs())));
     }
     let ivps: u32 = out.evaluations.iter().skip(1).sum();
+    if std::env::args().any(|a| a == "--rows") {
+        println!("{name}: IVPs a row {:?}", out.evaluations);
+    }
     println!(
-        "{name:<26} batch of {} rows: {} converged, {:.2} IVPs a warm row, {:.1} us a row; tips - cold {:.1e} m",
+        "{name:<24} batch of {} rows: {} converged, {:.2} IVPs a warm row, {:.1} us a row = {:.2} IVP times; tips - cold {:.1e} m",
         rows.len(),
         out.converged.iter().filter(|c| **c).count(),
         f64::from(ivps) / (rows.len() - 1) as f64,
-        times[2] * 1e6,
+        times[3] * 1e6,
+        times[3] / ivp[3],
         gap
     );
 }

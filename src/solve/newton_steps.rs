@@ -1,12 +1,14 @@
 //! The steps of a Newton run ([`super::newton`]): the direction with its
 //! descent check, the chord step with a kept Jacobian, Armijo backtracking,
-//! and the slow-contraction count that refines the Jacobian.
+//! and the slow-contraction count that refines the Jacobian; and a run of
+//! chord steps with a kept Jacobian that hands over to Newton
+//! ([`chord_then_newton`], the coarse pre-solve's).
 
 use nalgebra::{DMatrix, DVector};
 
 use super::{
-    inf_norm, merit, Run, Step, System, SLOW_CONTRACTION, SLOW_STEPS_BEFORE_REFINE,
-    WATCHDOG_COOLDOWN,
+    inf_norm, merit, newton_from, NewtonOptions, NewtonResult, Run, Status, Step, System,
+    SLOW_CONTRACTION, SLOW_STEPS_BEFORE_REFINE, WATCHDOG_COOLDOWN,
 };
 use crate::error::{Error, Result, StopReason};
 
@@ -238,5 +240,93 @@ impl<S: System> Run<'_, S> {
     fn watchdog_failed(&mut self) -> bool {
         self.cooldown = WATCHDOG_COOLDOWN;
         false
+    }
+}
+
+/// Most chord steps with a kept coarse Jacobian (the warm neighbour's, or
+/// an earlier round's) still needed, at the contraction of the last one,
+/// for which the chord run goes on; beyond, Newton takes a fresh coarse
+/// tangent. A coarse tangent costs 3.2 (Fig. 6) to 4.3 (steel) coarse IVPs
+/// and Newton from it needs one or two steps, so four chord steps cost
+/// about as much. (Newton's own chord rule refreshes only below a 4x
+/// contraction: along a warm Fig. 6 sweep the neighbour's Jacobian, handed
+/// on from step to step, contracted 5-6x a step, 12 chord steps a run.)
+/// Judged from the first step on, although its contraction is also the
+/// warm start's nonlinearity (steel +1 %: 39x, then 250x; the refresh
+/// costs that solve one IVP more): judged from the second, Fig. 6 warm
+/// sweeps took up to 17 iterations a step (tests/test_fig6.py bounds 12).
+pub(crate) const CHORD_STEPS_LEFT: f64 = 4.0;
+
+/// Chord steps from `x0` with the kept Jacobian `jac` (the coarse
+/// pre-solve's, `super::presolve`) while at most
+/// [`CHORD_STEPS_LEFT`] more are needed at their contraction; then, unless converged,
+/// Newton ([`newton_from`]) from the point reached with a fresh Jacobian.
+/// The result carries the Jacobian last used.
+pub(crate) fn chord_then_newton<S: System>(
+    sys: &mut S,
+    x0: &[f64],
+    jac: &DMatrix<f64>,
+    nopts: &NewtonOptions,
+) -> Result<NewtonResult> {
+    let mut x = x0.to_vec();
+    let mut r = sys.residual(&x)?;
+    let mut res = inf_norm(&r);
+    let lu = jac.clone().lu();
+    let mut iterations = 0;
+    loop {
+        let floor = sys.floor(&x, &r);
+        if res <= nopts.tol.max(floor) {
+            return Ok(NewtonResult {
+                x,
+                residual: r,
+                norm: res,
+                floor,
+                status: converged_status(res, nopts.tol),
+                iterations,
+                evaluations: sys.evaluations(),
+                jacobian: Some(jac.clone()),
+            });
+        }
+        if iterations + 1 >= nopts.max_iter || sys.evaluations() >= nopts.max_evaluations {
+            break;
+        }
+        let rv = nalgebra::DVector::from_column_slice(&r);
+        let Some(dx) = lu.solve(&(-rv)).filter(|d| d.iter().all(|v| v.is_finite())) else {
+            break;
+        };
+        let xt: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
+        let rt = match sys.residual(&xt) {
+            Ok(rt) => rt,
+            Err(e @ Error::Interrupted) => return Err(e),
+            Err(_) => break,
+        };
+        let after = inf_norm(&rt);
+        if !(after < res) {
+            break;
+        }
+        iterations += 1;
+        (x, r) = (xt, rt);
+        // chord steps still needed at this contraction
+        let needed = (after / nopts.tol).ln() / (res / after).ln();
+        res = after;
+        if needed > CHORD_STEPS_LEFT {
+            break;
+        }
+    }
+    let rest = NewtonOptions {
+        max_iter: nopts.max_iter.saturating_sub(iterations).max(1),
+        ..*nopts
+    };
+    let mut nr = newton_from(sys, &x, &rest, "coarse pre-solve", None)?;
+    nr.iterations += iterations;
+    Ok(nr)
+}
+
+/// [`Status::Converged`] if `norm <= tol`, else at the floor.
+pub(crate) fn converged_status(norm: f64, tol: f64) -> Status {
+    if norm <= tol {
+        Status::Converged
+    } else {
+        Status::ConvergedAtFloor
     }
 }

@@ -24,7 +24,10 @@
 //! 3. back to 1 (at most [`MAX_ROUNDS`] full IVPs).
 //!
 //! Batch rows ([`crate::shooting::solve_tip`]) take the same run from a
-//! neighbouring tip solution (`tip_shooting`).
+//! neighbouring tip solution (`tip_shooting`), with a policy that refreshes
+//! the Jacobian sooner ([`ChordPolicy::BATCH`]): a row hands its Jacobian
+//! to the next one, so a refresh pays over several rows, while the
+//! neighbour's Jacobian, handed on unchanged, ages row by row.
 //!
 //! Any failure (a step that does not contract enough, a full residual that
 //! does not fall tenfold, an integration error) hands the solve to the
@@ -52,6 +55,48 @@ pub const MAX_ROUNDS: usize = 3;
 /// argument: a fresh coarse tangent costs about four coarse IVPs).
 pub const CHORD_STEPS_LEFT: f64 = 4.0;
 
+/// When the warm run's chord steps replace their Jacobian by a fresh coarse
+/// tangent, and where they stop.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChordPolicy {
+    /// Most chord steps still needed, at the last step's contraction, for
+    /// which the chord steps go on with the Jacobian they have.
+    pub steps_left: f64,
+    /// Chord steps after which, not yet converged, the Jacobian is
+    /// refreshed whatever their contraction (`usize::MAX`: never).
+    pub refresh_after: usize,
+    /// The chord steps' tolerance on `r_coarse + d`, as a fraction of the
+    /// solve's `tol`.
+    pub tol_fraction: f64,
+}
+
+impl ChordPolicy {
+    /// A single warm solve: a refresh (about four coarse IVPs) only when
+    /// more than [`CHORD_STEPS_LEFT`] chord steps are still needed, chord
+    /// steps to `0.1 tol` (Fig. 6 warm 5 C away: 4 chord steps at 39x
+    /// each, no refresh, 7 IVPs; refreshing after two steps: 6 IVPs but
+    /// 3.12-3.37 IVP times against 2.98-3.20).
+    pub const SINGLE: ChordPolicy = ChordPolicy {
+        steps_left: CHORD_STEPS_LEFT,
+        refresh_after: usize::MAX,
+        tol_fraction: 0.1,
+    };
+    /// A batch row, whose Jacobian (refreshed or not) is the next row's: a
+    /// refresh once two chord steps have not converged, or when more than
+    /// two are still needed, and chord steps to `0.5 tol`. Along a sweep a
+    /// row's step is small, so the full residual after the chord steps is
+    /// theirs plus a defect change of ~1e-12 (Fig. 6 every 1 C), which
+    /// `0.5 tol` leaves room for; at `0.1 tol` every other row ended at
+    /// 1.0-1.5e-11 and refreshed for the last tenth. Measured (IVPs a warm
+    /// row, `warm_counts --batch`): Fig. 6 every 1 C 7.82 -> 5.64, every
+    /// 5 C 8.85 -> 6.63, steel every 1 % 5.42 -> 5.04.
+    pub const BATCH: ChordPolicy = ChordPolicy {
+        steps_left: 2.0,
+        refresh_after: 2,
+        tol_fraction: 0.5,
+    };
+}
+
 /// The direct Newton run of a forward solve warm from `warm`, starting at
 /// the predicted guess `x0`: the same contract as
 /// [`presolved_shooting`], which it is without a warm Jacobian, without
@@ -67,6 +112,38 @@ pub(crate) fn warm_shooting(
     keep: Keep,
     work: &mut Work,
 ) -> Result<(NewtonResult, Option<FinalIvp>)> {
+    let run = WarmStart {
+        x0,
+        warm,
+        keep,
+        policy: ChordPolicy::SINGLE,
+    };
+    warm_run(robot, inputs, loads, opts, run, work)
+}
+
+/// Where a warm run starts and how its chord steps go.
+struct WarmStart<'a> {
+    x0: &'a [f64],
+    warm: Warm<'a>,
+    keep: Keep,
+    policy: ChordPolicy,
+}
+
+/// [`warm_shooting`] under any [`ChordPolicy`].
+fn warm_run(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    start: WarmStart<'_>,
+    work: &mut Work,
+) -> Result<(NewtonResult, Option<FinalIvp>)> {
+    let WarmStart {
+        x0,
+        warm,
+        keep,
+        policy,
+    } = start;
     let coarse = opts.steps / 10;
     let Some(jac) = warm
         .jacobian
@@ -83,6 +160,7 @@ pub(crate) fn warm_shooting(
         coarse: Shooting::new(robot, inputs, loads, coarse, Keep::Tip),
         x: x0.to_vec(),
         iterations: 0,
+        policy,
     };
     let out = run.correct(opts, j, work);
     work.evaluations += run.evaluations();
@@ -116,12 +194,17 @@ pub(crate) fn tip_shooting(
         (&w.unknowns, &w.tensions, &w.inputs),
         jacobian,
     );
-    let start = Warm {
-        unknowns: &w.unknowns,
-        inputs: &w.inputs,
-        jacobian,
+    let start = WarmStart {
+        x0: &x0,
+        warm: Warm {
+            unknowns: &w.unknowns,
+            inputs: &w.inputs,
+            jacobian,
+        },
+        keep: Keep::Tip,
+        policy: ChordPolicy::BATCH,
     };
-    warm_shooting(robot, inputs, loads, opts, &x0, start, Keep::Tip, work)
+    warm_run(robot, inputs, loads, opts, start, work)
 }
 
 /// The state of one warm run: the full and coarse systems (each counts its
@@ -131,6 +214,7 @@ struct WarmRun<'a> {
     coarse: Shooting<'a>,
     x: Vec<f64>,
     iterations: usize,
+    policy: ChordPolicy,
 }
 
 fn inf_norm(r: &[f64]) -> f64 {
@@ -198,10 +282,11 @@ impl WarmRun<'_> {
 
     /// Chord steps on `r_coarse + defect` from `self.x`, where it is `r`;
     /// whether they reached the coarse tolerance. When a step does not
-    /// contract enough (more than [`CHORD_STEPS_LEFT`] still needed) the
-    /// Jacobian is replaced, once, by a fresh coarse tangent at the point
-    /// reached (so that along a sweep, where each solve hands its Jacobian
-    /// on, staleness does not pile up), and the chord steps go on with it.
+    /// contract enough (more than the policy's `steps_left` still needed)
+    /// or `refresh_after` steps have not converged, the Jacobian is
+    /// replaced, once, by a fresh coarse tangent at the point reached (so
+    /// that along a sweep, where each solve hands its Jacobian on,
+    /// staleness does not pile up), and the chord steps go on with it.
     fn chord(
         &mut self,
         opts: &SolveOptions,
@@ -210,7 +295,9 @@ impl WarmRun<'_> {
         mut r: Vec<f64>,
         work: &Work,
     ) -> Result<bool> {
-        let tol = 0.1 * opts.tol;
+        let policy = self.policy;
+        let tol = policy.tol_fraction * opts.tol;
+        let mut steps = 0;
         let mut res = inf_norm(&r);
         let mut lu = jac.clone().lu();
         let mut refreshed = false;
@@ -228,16 +315,21 @@ impl WarmRun<'_> {
             let accepted = after < res;
             if accepted {
                 self.iterations += 1;
+                steps += 1;
                 (self.x, r) = (xt, rt);
                 if after <= tol.max(self.coarse.floor(&self.x, &r)) {
                     return Ok(true);
                 }
             }
             // chord steps still needed at this contraction
-            if !accepted || (after / tol).ln() / (res / after).ln() > CHORD_STEPS_LEFT {
-                if refreshed {
+            let left = (after / tol).ln() / (res / after).ln();
+            if refreshed {
+                // a fresh Jacobian that contracts slowly: the hand-over
+                // rule of a single solve, whatever the policy
+                if !accepted || left > CHORD_STEPS_LEFT {
                     return Ok(false);
                 }
+            } else if !accepted || left > policy.steps_left || steps >= policy.refresh_after {
                 let (rc, fresh) = self.coarse.residual_and_jacobian(&self.x)?;
                 r = rc.iter().zip(defect).map(|(a, d)| a + d).collect();
                 *jac = fresh;

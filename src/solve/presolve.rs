@@ -40,9 +40,13 @@
 //! (`Solution.evaluations`); the designs bench's IVP-equivalents are CPU
 //! times and so weigh them by their cost.
 
+use std::ops::ControlFlow;
+
 use nalgebra::DMatrix;
 
-use super::newton::{newton_from, NewtonOptions, NewtonResult, Status, System};
+use super::newton::{
+    chord_then_newton, converged_status, newton_from, NewtonOptions, NewtonResult, System,
+};
 use super::options::SolveOptions;
 pub use super::residual::rescale_tension_columns;
 use super::residual::{Loads, Shot};
@@ -92,7 +96,7 @@ pub(crate) struct Warm<'a> {
 /// all rounds of a pre-solve (the defect changes between them). Remembers
 /// its last coarse residual (before the defect), so that the first
 /// evaluation of a round at the point where the last one stopped, or of
-/// Newton at the point where a chord run stopped ([`chord_then_newton`]),
+/// Newton at the point where a chord run stopped (`chord_then_newton`),
 /// costs no IVP; and `max |r|` of a round's first evaluation. With
 /// `tangent_first`, the first evaluation of a run that will take a fresh
 /// Jacobian there (a cold start: [`newton_from`] evaluates the residual,
@@ -247,95 +251,8 @@ impl<'a> PreSolve<'a> {
     }
 }
 
-/// Most chord steps with a kept coarse Jacobian (the warm neighbour's, or
-/// an earlier round's) still needed, at the contraction of the last one,
-/// for which the chord run goes on; beyond, Newton takes a fresh coarse
-/// tangent. A coarse tangent costs 3.2 (Fig. 6) to 4.3 (steel) coarse IVPs
-/// and Newton from it needs one or two steps, so four chord steps cost
-/// about as much. (Newton's own chord rule refreshes only below a 4x
-/// contraction: along a warm Fig. 6 sweep the neighbour's Jacobian, handed
-/// on from step to step, contracted 5-6x a step, 12 chord steps a run.)
-/// Judged from the first step on, although its contraction is also the
-/// warm start's nonlinearity (steel +1 %: 39x, then 250x; the refresh
-/// costs that solve one IVP more): judged from the second, Fig. 6 warm
-/// sweeps took up to 17 iterations a step (tests/test_fig6.py bounds 12).
-const CHORD_STEPS_LEFT: f64 = 4.0;
-
 fn inf_norm(r: &[f64]) -> f64 {
     r.iter().fold(0.0f64, |m, v| m.max(v.abs()))
-}
-
-/// Chord steps from `x0` with the kept Jacobian `jac` while at most
-/// [`CHORD_STEPS_LEFT`] more are needed at their contraction; then, unless converged,
-/// Newton ([`newton_from`]) from the point reached with a fresh Jacobian.
-/// The result carries the Jacobian last used.
-fn chord_then_newton(
-    sys: &mut Corrected<'_>,
-    x0: &[f64],
-    jac: &DMatrix<f64>,
-    nopts: &NewtonOptions,
-) -> Result<NewtonResult> {
-    let mut x = x0.to_vec();
-    let mut r = sys.residual(&x)?;
-    let mut res = inf_norm(&r);
-    let lu = jac.clone().lu();
-    let mut iterations = 0;
-    loop {
-        let floor = sys.floor(&x, &r);
-        if res <= nopts.tol.max(floor) {
-            return Ok(NewtonResult {
-                x,
-                residual: r,
-                norm: res,
-                floor,
-                status: converged_status(res, nopts.tol),
-                iterations,
-                evaluations: sys.evaluations(),
-                jacobian: Some(jac.clone()),
-            });
-        }
-        if iterations + 1 >= nopts.max_iter || sys.evaluations() >= nopts.max_evaluations {
-            break;
-        }
-        let rv = nalgebra::DVector::from_column_slice(&r);
-        let Some(dx) = lu.solve(&(-rv)).filter(|d| d.iter().all(|v| v.is_finite())) else {
-            break;
-        };
-        let xt: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
-        let rt = match sys.residual(&xt) {
-            Ok(rt) => rt,
-            Err(e @ Error::Interrupted) => return Err(e),
-            Err(_) => break,
-        };
-        let after = inf_norm(&rt);
-        if !(after < res) {
-            break;
-        }
-        iterations += 1;
-        (x, r) = (xt, rt);
-        // chord steps still needed at this contraction
-        let needed = (after / nopts.tol).ln() / (res / after).ln();
-        res = after;
-        if needed > CHORD_STEPS_LEFT {
-            break;
-        }
-    }
-    let rest = NewtonOptions {
-        max_iter: nopts.max_iter.saturating_sub(iterations).max(1),
-        ..*nopts
-    };
-    let mut nr = newton_from(sys, &x, &rest, "coarse pre-solve", None)?;
-    nr.iterations += iterations;
-    Ok(nr)
-}
-
-/// [`Status::Converged`] if `norm <= tol`, else at the floor.
-fn converged_status(norm: f64, tol: f64) -> Status {
-    if norm <= tol {
-        Status::Converged
-    } else {
-        Status::ConvergedAtFloor
-    }
 }
 
 /// The coarse system's initial defect and Jacobian: warm, the warm
@@ -385,70 +302,160 @@ pub(crate) fn presolved_shooting(
     if coarse < COARSE_JACOBIAN_MIN_STEPS || !opts.presolve {
         return newton_shooting(robot, inputs, loads, opts, x0, jac0, record, work);
     }
-    #[rustfmt::skip]
-    let pre = PreSolve { robot, inputs, loads, opts, coarse };
-    let (mut defect, mut jac) = warm_start(robot, loads, coarse, x0, inputs, warm, work);
-    let mut full = Shooting::new(robot, inputs, loads, opts.steps, record);
-    let mut coarse = pre.coarse_system(x0.len());
-    let mut x = x0.to_vec();
-    let mut iterations = 0;
-    let mut last_norm = f64::INFINITY;
-    let (warm_defect, mut start_norm) = (warm.map(|_| inf_norm(&defect)), f64::INFINITY);
+    let pre = PreSolve {
+        robot,
+        inputs,
+        loads,
+        opts,
+        coarse,
+    };
+    let mut rounds = Rounds::start(&pre, x0, warm, record, work);
     for round in 0..MAX_ROUNDS {
-        coarse.defect.clone_from(&defect);
-        // (a cold start's first round: see the module docs)
-        let cold_first = round == 0 && warm.is_none();
-        let tol = pre.tol(cold_first);
-        let (out, evals, first) = pre.coarse_run(&mut coarse, &x, jac.as_ref(), tol, work);
-        start_norm = if round == 0 { first } else { start_norm };
-        if let Some((older, newer)) = round_history(round, warm_defect, start_norm, last_norm) {
-            full.set_history(older, newer);
-        }
-        work.evaluations += evals;
-        let Some(nr) = unless_interrupted(out)? else {
-            break;
-        };
-        iterations += nr.iterations;
-        x = nr.x;
-        jac = nr.jacobian.or(jac);
-        // extrapolated unless the guess was a coarse root already (a
-        // uniform strain, which RK4 integrates exactly)
-        let estimate = cold_first && nr.iterations > 0;
-        let xr = (x.as_slice(), nr.residual.as_slice());
-        let Some((r, estimated)) = pre.full_residual(&mut full, xr, (estimate, record), work)?
-        else {
-            break;
-        };
-        let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let floor = full.floor(&x, &r);
-        if norm <= opts.tol.max(floor) && !estimated {
-            work.evaluations += full.evaluations;
-            work.iterations += iterations;
-            let last = full.take_last(&x);
-            let status = converged_status(norm, opts.tol);
-            let (evaluations, jacobian) = (work.evaluations, jac);
-            #[rustfmt::skip]
-            let nr = NewtonResult { x, residual: r, norm, floor, status, iterations, evaluations, jacobian };
-            return Ok((nr, last));
-        }
-        if !(norm <= 0.1 * last_norm) {
-            break;
-        }
-        last_norm = norm;
-        // the new defect: r_full(x) - r_coarse(x), r_coarse(x) = nr.residual - defect
-        for ((d, rf), rc) in defect.iter_mut().zip(&r).zip(&nr.residual) {
-            *d += rf - rc;
+        match rounds.round(&pre, round, warm.is_none(), record, work)? {
+            ControlFlow::Break(Some(out)) => return Ok(out),
+            ControlFlow::Break(None) => break,
+            ControlFlow::Continue(()) => {}
         }
     }
     // fall back on full-grid Newton: from the last point if it came near
     // (it is then as good a start as any), else from the guess
-    work.evaluations += full.evaluations;
-    work.iterations += iterations;
-    let (from, jac) = match last_norm <= FALLBACK_NEAR {
-        true => (x.as_slice(), jac.as_ref()),
+    work.evaluations += rounds.full.evaluations;
+    work.iterations += rounds.iterations;
+    let (from, jac) = match rounds.last_norm <= FALLBACK_NEAR {
+        true => (rounds.x.as_slice(), rounds.jac.as_ref()),
         false => (x0, jac0),
     };
     newton_shooting(robot, inputs, loads, opts, from, jac, record, work)
+}
+
+/// A converged direct run: Newton's result and the IVP at its solution if
+/// that was the last one integrated.
+type Direct = (NewtonResult, Option<FinalIvp>);
+
+/// The state of a pre-solve's rounds: the full-grid system (its IVPs
+/// counted on `work` at the end), the one coarse system, the defect and
+/// Jacobian the next round starts with, the point reached and the history
+/// of `max |r|`.
+struct Rounds<'a> {
+    full: Shooting<'a>,
+    coarse: Corrected<'a>,
+    defect: Vec<f64>,
+    jac: Option<DMatrix<f64>>,
+    x: Vec<f64>,
+    iterations: usize,
+    /// The last round's full-grid `max |r|`.
+    last_norm: f64,
+    /// `max |r_coarse + d|` at the start of the first round.
+    start_norm: f64,
+    /// Warm: `max |d|` of the warm solution's defect.
+    warm_defect: Option<f64>,
+}
+
+impl<'a> Rounds<'a> {
+    /// Before the first round, from `x0` (warm: its defect and Jacobian).
+    fn start(
+        pre: &PreSolve<'a>,
+        x0: &[f64],
+        warm: Option<Warm<'_>>,
+        record: Keep,
+        work: &mut Work,
+    ) -> Self {
+        let (defect, jac) =
+            warm_start(pre.robot, pre.loads, pre.coarse, x0, pre.inputs, warm, work);
+        Rounds {
+            full: Shooting::new(pre.robot, pre.inputs, pre.loads, pre.opts.steps, record),
+            coarse: pre.coarse_system(x0.len()),
+            warm_defect: warm.map(|_| inf_norm(&defect)),
+            defect,
+            jac,
+            x: x0.to_vec(),
+            iterations: 0,
+            last_norm: f64::INFINITY,
+            start_norm: f64::INFINITY,
+        }
+    }
+
+    /// Round `round` (from 0; `cold`: no warm start): the coarse run, then
+    /// the full-grid residual at its point. `Break(Some)`: converged;
+    /// `Break(None)`: fall back; `Continue`: another round, its defect set.
+    fn round(
+        &mut self,
+        pre: &PreSolve<'a>,
+        round: usize,
+        cold: bool,
+        record: Keep,
+        work: &mut Work,
+    ) -> Result<ControlFlow<Option<Direct>>> {
+        self.coarse.defect.clone_from(&self.defect);
+        // (a cold start's first round: see the module docs)
+        let cold_first = round == 0 && cold;
+        let tol = pre.tol(cold_first);
+        let (out, evals, first) =
+            pre.coarse_run(&mut self.coarse, &self.x, self.jac.as_ref(), tol, work);
+        if round == 0 {
+            self.start_norm = first;
+        }
+        let history = round_history(round, self.warm_defect, self.start_norm, self.last_norm);
+        if let Some((older, newer)) = history {
+            self.full.set_history(older, newer);
+        }
+        work.evaluations += evals;
+        let Some(nr) = unless_interrupted(out)? else {
+            return Ok(ControlFlow::Break(None));
+        };
+        self.iterations += nr.iterations;
+        self.x = nr.x;
+        self.jac = nr.jacobian.or(self.jac.take());
+        // extrapolated unless the guess was a coarse root already (a
+        // uniform strain, which RK4 integrates exactly)
+        let estimate = cold_first && nr.iterations > 0;
+        let xr = (self.x.as_slice(), nr.residual.as_slice());
+        let Some((r, estimated)) =
+            pre.full_residual(&mut self.full, xr, (estimate, record), work)?
+        else {
+            return Ok(ControlFlow::Break(None));
+        };
+        let norm = inf_norm(&r);
+        let floor = self.full.floor(&self.x, &r);
+        if norm <= pre.opts.tol.max(floor) && !estimated {
+            let out = self.converged(r, (norm, floor), pre.opts.tol, work);
+            return Ok(ControlFlow::Break(Some(out)));
+        }
+        if !(norm <= 0.1 * self.last_norm) {
+            return Ok(ControlFlow::Break(None));
+        }
+        self.last_norm = norm;
+        // the new defect: r_full(x) - r_coarse(x), r_coarse(x) = nr.residual - defect
+        for ((d, rf), rc) in self.defect.iter_mut().zip(&r).zip(&nr.residual) {
+            *d += rf - rc;
+        }
+        Ok(ControlFlow::Continue(()))
+    }
+
+    /// The result of a round whose full-grid residual `residual` converged
+    /// (`max |r|` `norm`, rounding floor `floor`), all work counted.
+    fn converged(
+        &mut self,
+        residual: Vec<f64>,
+        (norm, floor): (f64, f64),
+        tol: f64,
+        work: &mut Work,
+    ) -> Direct {
+        work.evaluations += self.full.evaluations;
+        work.iterations += self.iterations;
+        let last = self.full.take_last(&self.x);
+        let nr = NewtonResult {
+            x: std::mem::take(&mut self.x),
+            residual,
+            norm,
+            floor,
+            status: converged_status(norm, tol),
+            iterations: self.iterations,
+            evaluations: work.evaluations,
+            jacobian: self.jac.take(),
+        };
+        (nr, last)
+    }
 }
 
 /// The `max |r|` history from which the full-grid evaluation of round

@@ -285,9 +285,11 @@ fn combined_error(first: Error, cont: Error, work: &Work) -> Error {
 
 /// [`solve_loaded`] returning only the tip pose (no profile is recorded,
 /// which saves an IVP and its allocations). `warm`: a neighbouring tip
-/// solution, from which the start is predicted as [`solve`]'s is. Falls back on [`solve_loaded`] (with its continuation) when the
-/// direct Newton solve fails. Inputs are not validated here: call
-/// `robot.check_inputs` first.
+/// solution, from which the start is predicted as [`solve`]'s is. Cold,
+/// the same direct run (cut at [`DIRECT_MIN_STEP`]), continuation and
+/// repeat as a single cold solve's (`solve_direct`). Warm, falls back on
+/// [`solve_loaded`] (with its continuation) when the direct Newton solve
+/// fails. Inputs are not validated here: call `robot.check_inputs` first.
 pub fn solve_tip(
     robot: &Robot,
     inputs: &[f64],
@@ -295,37 +297,17 @@ pub fn solve_tip(
     opts: &SolveOptions,
     warm: Option<&TipSolution>,
 ) -> Result<TipSolution> {
-    let mut work = Work::start(opts);
-    let direct = match warm {
-        Some(w) => super::predict_warm::tip_shooting(robot, inputs, loads, opts, w, &mut work),
-        None => {
-            let mut x0 = initial_guess(robot, inputs, None);
-            linear_guess(robot, inputs, loads, &mut x0);
-            presolved_shooting(robot, inputs, loads, opts, &x0, None, Keep::Tip, &mut work)
-        }
+    let Some(w) = warm else {
+        return match solve_direct(robot, inputs, loads, opts, None, Keep::Tip)? {
+            Solved::Newton(nr, last, work) => {
+                tip_solution(robot, inputs, loads, opts, (nr, last), work)
+            }
+            Solved::Solution(s) => Ok(TipSolution::from_solution(s)),
+        };
     };
-    match direct {
-        Ok((nr, last)) => {
-            let (ivp, tau) = match last {
-                Some(last) => (last.ivp, last.tensions),
-                None => {
-                    work.evaluations += 1;
-                    let (_, ivp, tau) =
-                        Shot::new(robot, inputs, loads, opts.steps).residual(&nr.x, false)?;
-                    (ivp, tau)
-                }
-            };
-            Ok(TipSolution {
-                position: ivp.tip.p,
-                rotation: ivp.tip.rotation(),
-                unknowns: nr.x,
-                tensions: tau,
-                inputs: inputs.to_vec(),
-                iterations: work.iterations,
-                evaluations: work.evaluations,
-                newton_jacobian: nr.jacobian,
-            })
-        }
+    let mut work = Work::start(opts);
+    match super::predict_warm::tip_shooting(robot, inputs, loads, opts, w, &mut work) {
+        Ok(out) => tip_solution(robot, inputs, loads, opts, out, work),
         Err(e) if is_input_error(&e) || is_budget_error(&e) => Err(e),
         Err(_) => {
             // the fallback gets what is left of the budget
@@ -337,25 +319,45 @@ pub fn solve_tip(
                 }),
                 ..*opts
             };
-            let w = match warm {
-                Some(w) => Some(assemble(
-                    robot,
-                    &w.inputs,
-                    loads,
-                    &w.unknowns,
-                    opts.steps,
-                    0,
-                    0,
-                )?),
-                None => None,
-            };
+            let w = assemble(robot, &w.inputs, loads, &w.unknowns, opts.steps, 0, 0)?;
             let mut s =
-                TipSolution::from_solution(solve_loaded(robot, inputs, loads, &rest, w.as_ref())?);
+                TipSolution::from_solution(solve_loaded(robot, inputs, loads, &rest, Some(&w))?);
             s.iterations += work.iterations;
             s.evaluations += work.evaluations;
             Ok(s)
         }
     }
+}
+
+/// The tip solution of a converged direct run: the tip of its last IVP if
+/// that was at the solution, else of one more (counted).
+fn tip_solution(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    (nr, last): (NewtonResult, Option<FinalIvp>),
+    mut work: Work,
+) -> Result<TipSolution> {
+    let (ivp, tau) = match last {
+        Some(last) => (last.ivp, last.tensions),
+        None => {
+            work.evaluations += 1;
+            let (_, ivp, tau) =
+                Shot::new(robot, inputs, loads, opts.steps).residual(&nr.x, false)?;
+            (ivp, tau)
+        }
+    };
+    Ok(TipSolution {
+        position: ivp.tip.p,
+        rotation: ivp.tip.rotation(),
+        unknowns: nr.x,
+        tensions: tau,
+        inputs: inputs.to_vec(),
+        iterations: work.iterations,
+        evaluations: work.evaluations,
+        newton_jacobian: nr.jacobian,
+    })
 }
 
 /// Solve along a sequence of input vectors, each warm-started from the
