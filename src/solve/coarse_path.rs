@@ -7,7 +7,7 @@
 //! continuation first runs its whole path on a grid of
 //! `steps / PATH_GRID_DIVISOR` RK4 steps, to [`PATH_END_TOL`] at
 //! `lambda = 1`, and then finishes on the full grid from the coarse root
-//! with the direct run's coarse-to-full hand-over ([`presolved_shooting`]:
+//! with the direct run's coarse-to-full hand-over (`presolve::presolved_shooting`:
 //! defect correction on the same coarse grid, convergence decided by a
 //! full-grid IVP). Where the coarse root is outside the finish's reach
 //! (benchmark design #126: its full-grid residual there is ~1), Newton on
