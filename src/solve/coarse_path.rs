@@ -118,8 +118,12 @@ pub(crate) fn coarse_path(
     let mut x = nr.x;
     for hop in [false, true] {
         if hop {
-            #[rustfmt::skip]
-            let hopts = SolveOptions { steps: opts.steps / HOP_GRID_DIVISOR, tol: end_tol, ..fopts };
+            let steps = opts.steps / HOP_GRID_DIVISOR;
+            let hopts = SolveOptions {
+                steps,
+                tol: end_tol,
+                ..fopts
+            };
             let out = newton_shooting(robot, inputs, loads, &hopts, &x, None, false, work);
             let Some((nr, _)) = unless_final(out)? else {
                 return Ok(None);
