@@ -399,6 +399,7 @@ pub use super::fn_system::FnSystem;
 
 #[path = "newton_steps.rs"]
 mod steps;
+pub use steps::CHORD_STEPS_LEFT;
 pub(crate) use steps::{chord_then_newton, converged_status};
 
 #[cfg(test)]

@@ -255,7 +255,7 @@ impl<S: System> Run<'_, S> {
 /// warm start's nonlinearity (steel +1 %: 39x, then 250x; the refresh
 /// costs that solve one IVP more): judged from the second, Fig. 6 warm
 /// sweeps took up to 17 iterations a step (tests/test_fig6.py bounds 12).
-pub(crate) const CHORD_STEPS_LEFT: f64 = 4.0;
+pub const CHORD_STEPS_LEFT: f64 = 4.0;
 
 /// Chord steps from `x0` with the kept Jacobian `jac` (the coarse
 /// pre-solve's, `super::presolve`) while at most

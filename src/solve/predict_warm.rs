@@ -51,9 +51,10 @@ use crate::rod::Robot;
 pub const MAX_ROUNDS: usize = 3;
 
 /// Most chord steps still needed, at the contraction of the last one, for
-/// which the chord run goes on (the pre-solve's rule; the same cost
-/// argument: a fresh coarse tangent costs about four coarse IVPs).
-pub const CHORD_STEPS_LEFT: f64 = 4.0;
+/// which the chord run goes on: the pre-solve's rule, defined once in
+/// [`mod@crate::solve::newton`] (the same cost argument: a fresh coarse
+/// tangent costs about four coarse IVPs).
+pub use super::newton::CHORD_STEPS_LEFT;
 
 /// When the warm run's chord steps replace their Jacobian by a fresh coarse
 /// tangent, and where they stop.
