@@ -57,9 +57,9 @@ pub struct BatchOutput {
     /// Actuator tensions \[N\], `n_rows x n_actuators` row-major (NaN where
     /// a solve failed).
     pub tensions: Vec<f64>,
-    /// Newton iterations of each solve.
+    /// Newton iterations of each solve (of a failed one: those it spent).
     pub iterations: Vec<u32>,
-    /// IVPs integrated by each solve.
+    /// IVPs integrated by each solve (of a failed one: those it spent).
     pub evaluations: Vec<u32>,
     /// Whether each solve converged.
     pub converged: Vec<bool>,
@@ -170,6 +170,21 @@ impl<'a> ChunkOut<'a> {
         if let Some(v) = verdict {
             self.stable[j] = v.stable;
             self.margin[j] = v.margin;
+        }
+    }
+
+    /// Row `j` of a solve that failed with `e`: the work it spent
+    /// (iterations, IVPs), not zeros, so a row's cost is counted whether it
+    /// converged or not.
+    fn set_failed(&mut self, j: usize, e: &Error) {
+        if let Error::NotConverged {
+            iterations,
+            evaluations,
+            ..
+        } = e
+        {
+            self.iters[j] = *iterations as u32;
+            self.evals[j] = *evaluations as u32;
         }
     }
 }
@@ -398,7 +413,8 @@ fn solve_chunk(
                 warm = Some(s);
             }
             Err(Error::Interrupted) => return Err(Error::Interrupted),
-            Err(_) => {
+            Err(e) => {
+                out.set_failed(j, &e);
                 warm = None;
             }
         }

@@ -177,3 +177,23 @@ def test_failed_rows_have_status_one_and_nan_pose() -> None:
     assert res.tensions is not None and res.tensions.shape == (6, 2)
     assert np.isnan(res.tensions[bad]).all() and not np.isnan(res.tensions[~bad]).any()
     assert not res.success and "did not converge" in res.message
+    # a failed row reports the work it spent (each row integrates at least one IVP), not zeros
+    assert (res.evaluations[bad] >= 1).all(), res.evaluations
+    # the repr summarises (a batch may hold millions of rows): counts, never arrays
+    text = repr(res)
+    assert text.startswith("<BatchResult: 6 rows") and f"converged {int(np.count_nonzero(~bad))}/6" in text, text
+    assert "[" not in text and len(text) < 300, text
+
+
+def test_batch_repr_and_notebook_view_summarise_without_arrays() -> None:
+    robot = fig6_square_robot()
+    res = solve_batch(robot, _sweep(400), chunk_size=400)
+    text = repr(res)
+    # 400 rows x 10 fields would print as truncated numpy arrays; the summary is one short line
+    assert len(text) < 300 and "\n" not in text and "array(" not in text, text
+    assert "400 rows" in text and "converged 400/400" in text and "actuators 2" in text, text
+    assert f"max {int(res.evaluations.max())}" in text and "stable 400/400" in text, text
+    lo = res.tip_positions.min(axis=0) * 1e3
+    assert f"{lo[0]:.4g}.." in text  # the tip range [mm] is the converged rows' min..max
+    page = res._repr_html_()
+    assert page.startswith("<div><b>tcarod BatchResult</b>") and "<td>converged</td><td>400/400</td>" in page

@@ -55,7 +55,8 @@ class BatchResult:
     Naming follows the per-solve results in the plural: ``tip_positions``
     ``(n, 3)`` [m] (``Solution.tip_position`` per solve) and ``tip_rotations``
     ``(n, 3, 3)`` (body to world), world frame, NaN where a solve did not
-    converge; ``iterations`` and ``evaluations`` (IVPs) ``(n,)``;
+    converge; ``iterations`` and ``evaluations`` (IVPs) ``(n,)`` (of a row
+    that did not converge: the work it spent);
     ``converged`` ``(n,)``; ``inputs`` ``(n, n_actuators)`` (temperature [C]
     for TCAs) and ``wrenches`` ``(n, 6)`` (tip force [N], moment [N m]) or
     ``None``: what was solved. ``tensions`` ``(n, n_actuators)`` [N]:
@@ -102,6 +103,37 @@ class BatchResult:
         return True
 
     __hash__ = None  # type: ignore[assignment]  # mutable arrays inside
+
+    def _summary(self) -> list[tuple[str, str]]:
+        """``(name, value)`` pairs of the repr and the notebook table: counts
+        and ranges, never whole arrays (a batch may hold millions of rows)."""
+        n = len(self)
+        ok = int(np.count_nonzero(self.converged))
+        out = [("rows", str(n)), ("converged", f"{ok}/{n}")]
+        if self.inputs is not None:
+            out.append(("actuators", str(self.inputs.shape[1])))
+        if n:
+            out.append(("iterations", f"median {np.median(self.iterations):g}, max {int(self.iterations.max())}"))
+            out.append(("IVPs", f"median {np.median(self.evaluations):g}, max {int(self.evaluations.max())}"))
+        if ok:
+            tips = self.tip_positions[self.converged] * 1e3
+            lo, hi = tips.min(axis=0), tips.max(axis=0)
+            out.append(("tip range [mm]", ", ".join(f"{a:.4g}..{b:.4g}" for a, b in zip(lo, hi))))
+        if self.stable is not None:
+            out.append(("stable", f"{int(np.count_nonzero(self.stable))}/{n}"))
+        return out
+
+    def __repr__(self) -> str:
+        """A one-line summary (counts and ranges; the arrays are the fields)."""
+        body = "; ".join(f"{k} {v}" if k != "rows" else f"{v} rows" for k, v in self._summary())
+        return f"<BatchResult: {body}>"
+
+    def _repr_html_(self) -> str:
+        """The notebook view: the summary as a table."""
+        import html
+
+        rows = "".join(f"<tr><td>{html.escape(k)}</td><td>{html.escape(v)}</td></tr>" for k, v in self._summary())
+        return f"<div><b>tcarod BatchResult</b><table>{rows}</table></div>"
 
     @property
     def success(self) -> bool:
