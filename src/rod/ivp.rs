@@ -3,9 +3,9 @@
 
 use nalgebra::{Quaternion, Vector3};
 
-use super::ode::RodRhs;
+use super::ode::{all_finite, RodRhs};
 use super::{rot, Robot, RodState, BASE_STATES};
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 /// Everything an IVP needs besides the state: robot, tensions, loads.
 pub struct IvpSpec<'a> {
@@ -239,6 +239,14 @@ fn integrate_plain(
             axpy(yt, y, h, k3);
             fz.deriv(s + h, yt, &active, k4)?;
             rk4_update(y, k1, k2, k3, k4, h6);
+            // once per step, not per stage: a non-finite rate in any stage
+            // makes `y` non-finite (the quaternion's norm included)
+            if !all_finite(y) {
+                return Err(Error::Integration {
+                    s: s + h,
+                    reason: "non-finite derivative".into(),
+                });
+            }
             if record && k + 1 < m {
                 nodes.push((s + h, RodState::from_slice(y)));
             }

@@ -12,6 +12,8 @@ use crate::error::{Error, Result};
 pub(crate) struct ActuatorConstants {
     /// `(r, r^, L_i)` for a straight routing; `None` for a helix (evaluated per stage).
     pub(crate) straight: Option<(Vector3<f64>, Matrix3<f64>, f64)>,
+    /// `|r|^2` \[m^2\] of a straight routing (0 for a helix).
+    pub(crate) rr: f64,
 }
 
 /// The eq-25 right-hand side of one IVP: the robot, its actuator tensions
@@ -149,8 +151,8 @@ impl<'a> RodRhs<'a> {
         let acts = robot
             .actuators
             .iter()
-            .map(|a| ActuatorConstants {
-                straight: match a.routing {
+            .map(|a| {
+                let straight = match a.routing {
                     Routing::Straight { x, y } => {
                         let r = Vector3::new(x, y, 0.0);
                         let l = a
@@ -159,7 +161,9 @@ impl<'a> RodRhs<'a> {
                         Some((r, r.cross_matrix(), l))
                     }
                     Routing::Helix { .. } => None,
-                },
+                };
+                let rr = straight.map_or(0.0, |(r, _, _)| norm2(&r.into()));
+                ActuatorConstants { straight, rr }
             })
             .collect();
         RodRhs {
@@ -203,22 +207,29 @@ impl<'a> RodRhs<'a> {
         }
     }
 
-    /// `(r, r', r'', L_i)` of actuator `i` at `s` (constants of a straight routing).
+    /// `(r, |r|^2, (r', r''), L_i)` of actuator `i` at `s`: the constants of
+    /// a straight routing, with `None` for its vanishing `r'` and `r''`.
     #[inline(always)]
-    pub(crate) fn routing_at(&self, i: usize, s: f64) -> (V3<f64>, V3<f64>, V3<f64>, f64) {
-        match self.acts[i].straight {
-            Some((r, _, l)) => (r.into(), [0.0; 3], [0.0; 3], l),
+    pub(crate) fn routing_at(&self, i: usize, s: f64) -> (V3<f64>, f64, Option<Bend>, f64) {
+        let a = &self.acts[i];
+        match a.straight {
+            Some((r, _, l)) => (r.into(), a.rr, None, l),
             None => {
                 let (r, rp, rpp) = self.robot.actuators[i].routing.eval(s);
-                (r.into(), rp.into(), rpp.into(), self.ref_rate(i, s))
+                let r: V3<f64> = r.into();
+                let bend = Some((rp.into(), rpp.into()));
+                (r, norm2(&r), bend, self.ref_rate(i, s))
             }
         }
     }
 
-    /// `dy/ds` (eqs 22-31) with the IVP's tensions, in `f64`.
+    /// `dy/ds` (eqs 22-31) with the IVP's tensions, in `f64`, WITHOUT the
+    /// finiteness check of [`RodRhs::kinematics`]: the caller checks its
+    /// state once per RK4 step instead (`all_finite`: a non-finite rate
+    /// makes the stepped state non-finite).
     #[inline(always)]
     pub(crate) fn deriv(&self, s: f64, y: &[f64], active: &[usize], dy: &mut [f64]) -> Result<()> {
-        self.deriv_generic(s, y, self.tensions, active, dy)
+        self.deriv_with::<f64, false>(s, y, self.tensions, active, dy)
     }
 
     /// `dy/ds` (eqs 22-31) with tensions `tau` and the actuators in `active`
@@ -241,6 +252,19 @@ impl<'a> RodRhs<'a> {
         active: &[usize],
         dy: &mut [T],
     ) -> Result<()> {
+        self.deriv_with::<T, true>(s, y, tau, active, dy)
+    }
+
+    /// [`RodRhs::deriv_generic`], with its finiteness check if `CHECK`.
+    #[inline(always)]
+    fn deriv_with<T: Real, const CHECK: bool>(
+        &self,
+        s: f64,
+        y: &[T],
+        tau: &[T],
+        active: &[usize],
+        dy: &mut [T],
+    ) -> Result<()> {
         let fr = self.frame(y);
         for d in dy[BASE_STATES..].iter_mut() {
             *d = T::cst(0.0);
@@ -255,7 +279,11 @@ impl<'a> RodRhs<'a> {
                 self.assemble(s, &fr, tau, active, |i, st| dy[BASE_STATES + i] = st.rate)?;
             T::solve_eq25(&m, &e, &f).ok_or_else(|| singular(s))?
         };
-        self.kinematics(s, y, &fr, &vd, &ud, dy)
+        self.rates(y, &fr, &vd, &ud, dy);
+        if CHECK {
+            finite(s, dy)?;
+        }
+        Ok(())
     }
 
     /// The actuator-free part of (25) at the state `y`: `R`, the strains and
@@ -295,9 +323,14 @@ impl<'a> RodRhs<'a> {
         u: &V3<T>,
         tau: T,
     ) -> Result<StringAt<T>> {
-        let (r, rp, rpp, lref) = self.routing_at(i, s);
+        let (r, rr, bend, lref) = self.routing_at(i, s);
         let ucr = cross_c(u, &r);
-        let pb: V3<T> = v3(|k| v[k] + ucr[k] + rp[k]); // eq (19), body frame
+        // eq (19), body frame; a straight routing's `r' = r'' = 0` is not
+        // added (which changes no value but the sign of a zero)
+        let mut pb: V3<T> = v3(|k| v[k] + ucr[k]);
+        if let Some((rp, _)) = &bend {
+            pb = v3(|k| pb[k] + rp[k]);
+        }
         let nrm = dot(&pb, &pb).sqrt();
         if !(nrm.re() > 1e-12) {
             return Err(Error::Integration {
@@ -305,16 +338,24 @@ impl<'a> RodRhs<'a> {
                 reason: format!("actuator {i} has zero length rate"),
             });
         }
-        let pbrp: V3<T> = v3(|k| pb[k] + rp[k]);
-        let upr = cross(u, &pbrp);
+        let (pbrp, g) = match &bend {
+            // g_i = omega^(nu + omega^ r + 2 r') + r''
+            Some((rp, rpp)) => {
+                let pbrp: V3<T> = v3(|k| pb[k] + rp[k]);
+                let upr = cross(u, &pbrp);
+                (pbrp, v3(|k| upr[k] + rpp[k]))
+            }
+            None => (pb, cross(u, &pb)),
+        };
         // one division, not four (on the critical path of every stage)
         let inv = T::cst(1.0) / nrm;
         Ok(StringAt {
             r,
+            rr,
             c: tau * inv,
             t: v3(|k| pb[k] * inv),
-            g: v3(|k| upr[k] + rpp[k]), // g_i = omega^(nu + omega^ r + 2 r') + r''
-            rate: nrm - lref,           // (24)
+            g,
+            rate: nrm - lref, // (24)
             nrm,
             pbrp,
         })
@@ -349,7 +390,7 @@ impl<'a> RodRhs<'a> {
                 each(i, &st);
                 continue;
             }
-            let StringAt { r, c, t, g, .. } = st;
+            let StringAt { r, rr, c, t, g, .. } = st;
             // A_i = -tau pb^2 / |pb|^3 = c (I - t t^T), c = tau / |pb| (eq 20:
             // tau t_a' = A_i R^T p_a''). With r^ x = r x x, w = t x r and
             // r^ r^ = r r^T - |r|^2 I:
@@ -360,7 +401,7 @@ impl<'a> RodRhs<'a> {
             let ag: V3<T> = v3(|k| g[k] * c - ct[k] * tg); // A_i g_i
             let rag = c_cross(&r, &ag);
             let cr: V3<T> = v3(|k| c * r[k]);
-            let cr2 = c * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+            let cr2 = c * rr;
             let cw: V3<T> = v3(|k| w[k] * c);
             for p in 0..3 {
                 for q in p..3 {
@@ -402,6 +443,13 @@ impl<'a> RodRhs<'a> {
         ud: &V3<T>,
         dy: &mut [T],
     ) -> Result<()> {
+        self.rates(y, fr, vd, ud, dy);
+        finite(s, dy)
+    }
+
+    /// [`RodRhs::kinematics`] without the check.
+    #[inline(always)]
+    fn rates<T: Real>(&self, y: &[T], fr: &Frame<T>, vd: &V3<T>, ud: &V3<T>, dy: &mut [T]) {
         let (rm, v, u) = (&fr.rm, &fr.v, &fr.u);
         for k in 0..3 {
             dy[k] = rm[k][0] * v[0] + rm[k][1] * v[1] + rm[k][2] * v[2]; // (22)
@@ -414,14 +462,47 @@ impl<'a> RodRhs<'a> {
         dy[6] = (qw * u[2] + qx * u[1] - qy * u[0]) * 0.5;
         dy[7..10].copy_from_slice(vd);
         dy[10..13].copy_from_slice(ud);
-        if !dy.iter().fold(0.0, |acc, x| acc + x.re() * 0.0).is_finite() {
-            return Err(Error::Integration {
-                s,
-                reason: "non-finite derivative".into(),
-            });
-        }
-        Ok(())
     }
+}
+
+/// An error unless every rate in `dy` is finite.
+#[inline(always)]
+fn finite<T: Real>(s: f64, dy: &[T]) -> Result<()> {
+    if !all_finite(dy) {
+        return Err(Error::Integration {
+            s,
+            reason: "non-finite derivative".into(),
+        });
+    }
+    Ok(())
+}
+
+/// `true` if every value in `x` is finite: `sum x * 0` is NaN exactly when
+/// some entry is not finite, summed in four independent chains (no branch
+/// per entry, no dependency chain as long as the state).
+#[inline(always)]
+pub(crate) fn all_finite<T: Real>(x: &[T]) -> bool {
+    let mut acc = [0.0f64; 4];
+    let chunks = x.chunks_exact(4);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for k in 0..4 {
+            acc[k] += c[k].re() * 0.0;
+        }
+    }
+    for (a, r) in acc.iter_mut().zip(rest) {
+        *a += r.re() * 0.0;
+    }
+    (acc[0] + acc[1] + acc[2] + acc[3]).is_finite()
+}
+
+/// `r'` and `r''` of a curved routing (body frame).
+pub(crate) type Bend = (V3<f64>, V3<f64>);
+
+/// `|r|^2`, summed in the order `r0 r0 + r1 r1 + r2 r2`.
+#[inline(always)]
+fn norm2(r: &V3<f64>) -> f64 {
+    r[0] * r[0] + r[1] * r[1] + r[2] * r[2]
 }
 
 /// The error of a singular system (25).
@@ -451,6 +532,8 @@ pub(crate) struct Frame<T> {
 pub(crate) struct StringAt<T> {
     /// Offset `r_i` \[m\], body frame.
     pub(crate) r: V3<f64>,
+    /// `|r_i|^2` \[m^2\].
+    pub(crate) rr: f64,
     /// `c = tau / |p_b|`, with `A_i = c (I - t t^T)`.
     pub(crate) c: T,
     /// Unit tangent `t = p_b / |p_b|` (body frame).
