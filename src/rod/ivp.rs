@@ -68,6 +68,41 @@ fn rk4_update(y: &mut [f64], k1: &[f64], k2: &[f64], k3: &[f64], k4: &[f64], h6:
     }
 }
 
+/// One RK4 step from `s` with `[h, h/2, h/6]`, the quaternion renormalised,
+/// then `y` checked; `ks` (5 n) is scratch for the stages and their state.
+#[inline(always)]
+fn rk4_step(
+    fz: &RodRhs<'_>,
+    s: f64,
+    [h, h2, h6]: [f64; 3],
+    active: &[usize],
+    y: &mut [f64],
+    ks: &mut [f64],
+) -> Result<()> {
+    let n = y.len();
+    let (k1, rest) = ks.split_at_mut(n);
+    let (k2, rest) = rest.split_at_mut(n);
+    let (k3, rest) = rest.split_at_mut(n);
+    let (k4, yt) = rest.split_at_mut(n);
+    fz.deriv(s, y, active, k1)?;
+    axpy(yt, y, h2, k1);
+    fz.deriv(s + h2, yt, active, k2)?;
+    axpy(yt, y, h2, k2);
+    fz.deriv(s + h2, yt, active, k3)?;
+    axpy(yt, y, h, k3);
+    fz.deriv(s + h, yt, active, k4)?;
+    rk4_update(y, k1, k2, k3, k4, h6);
+    // once per step, not per stage: a non-finite rate in any stage makes
+    // `y` non-finite (the quaternion's norm included)
+    if !all_finite(y) {
+        return Err(Error::Integration {
+            s: s + h,
+            reason: "non-finite derivative".into(),
+        });
+    }
+    Ok(())
+}
+
 /// At a breakpoint `a` inside the body: record the elongation of the strings
 /// ending there, then apply all anchor and kink loads at `a` together.
 fn anchors_at(
@@ -204,11 +239,7 @@ fn integrate_plain(
         heap = vec![0.0; 6 * n];
         &mut heap
     };
-    let (y, rest) = all.split_at_mut(n);
-    let (k1, rest) = rest.split_at_mut(n);
-    let (k2, rest) = rest.split_at_mut(n);
-    let (k3, rest) = rest.split_at_mut(n);
-    let (k4, yt) = rest.split_at_mut(n);
+    let (y, ks) = all.split_at_mut(n);
     y[3] = 1.0;
     y[7..10].copy_from_slice(v0.as_slice());
     y[10..13].copy_from_slice(u0.as_slice());
@@ -228,25 +259,10 @@ fn integrate_plain(
         spanning(robot, a, b, tol, &mut active);
         let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
         let h = (b - a) / m as f64;
-        let (h2, h6) = (0.5 * h, h / 6.0);
+        let hs = [h, 0.5 * h, h / 6.0];
         for k in 0..m {
             let s = a + k as f64 * h;
-            fz.deriv(s, y, &active, k1)?;
-            axpy(yt, y, h2, k1);
-            fz.deriv(s + h2, yt, &active, k2)?;
-            axpy(yt, y, h2, k2);
-            fz.deriv(s + h2, yt, &active, k3)?;
-            axpy(yt, y, h, k3);
-            fz.deriv(s + h, yt, &active, k4)?;
-            rk4_update(y, k1, k2, k3, k4, h6);
-            // once per step, not per stage: a non-finite rate in any stage
-            // makes `y` non-finite (the quaternion's norm included)
-            if !all_finite(y) {
-                return Err(Error::Integration {
-                    s: s + h,
-                    reason: "non-finite derivative".into(),
-                });
-            }
+            rk4_step(&fz, s, hs, &active, y, ks)?;
             if record && k + 1 < m {
                 nodes.push((s + h, RodState::from_slice(y)));
             }
