@@ -281,3 +281,48 @@ fn integrate_plain(
         nodes,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rod::{Body, Section};
+
+    /// The finiteness check runs once per RK4 step, not per stage: a
+    /// non-finite rate in a stage must still end the IVP with an error
+    /// rather than a non-finite tip. With no actuator, no string check
+    /// or singular (25) can catch the NaN first; only the check can.
+    #[test]
+    fn a_non_finite_rate_in_a_stage_is_an_error() {
+        let body = Body::new(
+            0.04,
+            Section::Circle { diameter: 8e-3 },
+            37.8e3,
+            0.5,
+            1040.0,
+        );
+        let robot = Robot::new(body.unwrap(), vec![]).unwrap();
+        let spec = IvpSpec {
+            robot: &robot,
+            tensions: &[],
+            tip_force: Vector3::zeros(),
+            tip_moment: Vector3::zeros(),
+            steps: 10,
+        };
+        let ok = integrate(
+            &spec,
+            &Vector3::new(0.0, 0.0, 1.0),
+            &Vector3::zeros(),
+            false,
+        );
+        assert!(ok.is_ok());
+        let u0 = Vector3::new(f64::NAN, 0.0, 0.0);
+        match integrate(&spec, &Vector3::new(0.0, 0.0, 1.0), &u0, false) {
+            Err(Error::Integration { s, reason }) => {
+                assert!(reason.contains("non-finite"), "{reason}");
+                // caught at the end of the first step (s = L / 10)
+                assert!((s - 0.004).abs() < 1e-12, "{s}");
+            }
+            other => panic!("expected an integration error, got {other:?}"),
+        }
+    }
+}
