@@ -3,9 +3,9 @@
 
 use nalgebra::{Quaternion, Vector3};
 
-use super::ode::RodRhs;
+use super::ode::{all_finite, RodRhs};
 use super::{rot, Robot, RodState, BASE_STATES};
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 /// Everything an IVP needs besides the state: robot, tensions, loads.
 pub struct IvpSpec<'a> {
@@ -66,6 +66,41 @@ fn rk4_update(y: &mut [f64], k1: &[f64], k2: &[f64], k3: &[f64], k4: &[f64], h6:
     for yq in &mut y[3..7] {
         *yq /= qn;
     }
+}
+
+/// One RK4 step from `s` with `[h, h/2, h/6]`, the quaternion renormalised,
+/// then `y` checked; `ks` (5 n) is scratch for the stages and their state.
+#[inline(always)]
+fn rk4_step(
+    fz: &RodRhs<'_>,
+    s: f64,
+    [h, h2, h6]: [f64; 3],
+    active: &[usize],
+    y: &mut [f64],
+    ks: &mut [f64],
+) -> Result<()> {
+    let n = y.len();
+    let (k1, rest) = ks.split_at_mut(n);
+    let (k2, rest) = rest.split_at_mut(n);
+    let (k3, rest) = rest.split_at_mut(n);
+    let (k4, yt) = rest.split_at_mut(n);
+    fz.deriv(s, y, active, k1)?;
+    axpy(yt, y, h2, k1);
+    fz.deriv(s + h2, yt, active, k2)?;
+    axpy(yt, y, h2, k2);
+    fz.deriv(s + h2, yt, active, k3)?;
+    axpy(yt, y, h, k3);
+    fz.deriv(s + h, yt, active, k4)?;
+    rk4_update(y, k1, k2, k3, k4, h6);
+    // once per step, not per stage: a non-finite rate in any stage makes
+    // `y` non-finite (the quaternion's norm included)
+    if !all_finite(y) {
+        return Err(Error::Integration {
+            s: s + h,
+            reason: "non-finite derivative".into(),
+        });
+    }
+    Ok(())
 }
 
 /// At a breakpoint `a` inside the body: record the elongation of the strings
@@ -204,11 +239,7 @@ fn integrate_plain(
         heap = vec![0.0; 6 * n];
         &mut heap
     };
-    let (y, rest) = all.split_at_mut(n);
-    let (k1, rest) = rest.split_at_mut(n);
-    let (k2, rest) = rest.split_at_mut(n);
-    let (k3, rest) = rest.split_at_mut(n);
-    let (k4, yt) = rest.split_at_mut(n);
+    let (y, ks) = all.split_at_mut(n);
     y[3] = 1.0;
     y[7..10].copy_from_slice(v0.as_slice());
     y[10..13].copy_from_slice(u0.as_slice());
@@ -228,17 +259,10 @@ fn integrate_plain(
         spanning(robot, a, b, tol, &mut active);
         let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
         let h = (b - a) / m as f64;
-        let (h2, h6) = (0.5 * h, h / 6.0);
+        let hs = [h, 0.5 * h, h / 6.0];
         for k in 0..m {
             let s = a + k as f64 * h;
-            fz.deriv(s, y, &active, k1)?;
-            axpy(yt, y, h2, k1);
-            fz.deriv(s + h2, yt, &active, k2)?;
-            axpy(yt, y, h2, k2);
-            fz.deriv(s + h2, yt, &active, k3)?;
-            axpy(yt, y, h, k3);
-            fz.deriv(s + h, yt, &active, k4)?;
-            rk4_update(y, k1, k2, k3, k4, h6);
+            rk4_step(&fz, s, hs, &active, y, ks)?;
             if record && k + 1 < m {
                 nodes.push((s + h, RodState::from_slice(y)));
             }
@@ -256,4 +280,49 @@ fn integrate_plain(
         tip_moment_residual: rm,
         nodes,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rod::{Body, Section};
+
+    /// The finiteness check runs once per RK4 step, not per stage: a
+    /// non-finite rate in a stage must still end the IVP with an error
+    /// rather than a non-finite tip. With no actuator, no string check
+    /// or singular (25) can catch the NaN first; only the check can.
+    #[test]
+    fn a_non_finite_rate_in_a_stage_is_an_error() {
+        let body = Body::new(
+            0.04,
+            Section::Circle { diameter: 8e-3 },
+            37.8e3,
+            0.5,
+            1040.0,
+        );
+        let robot = Robot::new(body.unwrap(), vec![]).unwrap();
+        let spec = IvpSpec {
+            robot: &robot,
+            tensions: &[],
+            tip_force: Vector3::zeros(),
+            tip_moment: Vector3::zeros(),
+            steps: 10,
+        };
+        let ok = integrate(
+            &spec,
+            &Vector3::new(0.0, 0.0, 1.0),
+            &Vector3::zeros(),
+            false,
+        );
+        assert!(ok.is_ok());
+        let u0 = Vector3::new(f64::NAN, 0.0, 0.0);
+        match integrate(&spec, &Vector3::new(0.0, 0.0, 1.0), &u0, false) {
+            Err(Error::Integration { s, reason }) => {
+                assert!(reason.contains("non-finite"), "{reason}");
+                // caught at the end of the first step (s = L / 10)
+                assert!((s - 0.004).abs() < 1e-12, "{s}");
+            }
+            other => panic!("expected an integration error, got {other:?}"),
+        }
+    }
 }

@@ -25,6 +25,7 @@ mod actuator;
 mod anchors;
 mod body;
 pub mod dual;
+mod eq25;
 mod ivp;
 mod lanes;
 mod ode;

@@ -1,17 +1,20 @@
 //! The right-hand side of the rod's ODE, eqs 22-31, with the actuator
 //! tensions frozen for one IVP.
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 
 use super::dual::{c_cross, cross, cross_c, dot, rot_t, rt_mul, v3, Blocks, Real, V3};
+pub(crate) use super::eq25::Eq25;
 use super::{Robot, Routing, BASE_STATES};
 use crate::error::{Error, Result};
 
-/// Per-actuator constants of one IVP: a straight actuator's offset, its
-/// cross-product matrix and reference length rate do not change along `s`.
+/// Per-actuator constants of one IVP: a straight actuator's offset and
+/// reference length rate do not change along `s`.
 pub(crate) struct ActuatorConstants {
-    /// `(r, r^, L_i)` for a straight routing; `None` for a helix (evaluated per stage).
-    pub(crate) straight: Option<(Vector3<f64>, Matrix3<f64>, f64)>,
+    /// `(r, L_i)` for a straight routing; `None` for a helix (evaluated per stage).
+    pub(crate) straight: Option<(Vector3<f64>, f64)>,
+    /// `|r|^2` \[m^2\] of a straight routing (0 for a helix).
+    pub(crate) rr: f64,
 }
 
 /// The eq-25 right-hand side of one IVP: the robot, its actuator tensions
@@ -31,115 +34,6 @@ pub(crate) struct RodRhs<'a> {
     pub(crate) acts: Vec<ActuatorConstants>,
 }
 
-/// Inverse of a symmetric 3x3 matrix (upper triangle read) by cofactors, `None` if singular.
-#[inline(always)]
-fn inv_sym3_upper(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
-    let (a, b, c) = (m[0][0], m[0][1], m[0][2]);
-    let (d, e) = (m[1][1], m[1][2]);
-    let f = m[2][2];
-    let c00 = d * f - e * e;
-    let c01 = c * e - b * f;
-    let c02 = b * e - c * d;
-    let det = a * c00 + b * c01 + c * c02;
-    if !(det.is_finite() && det != 0.0) {
-        return None;
-    }
-    let id = 1.0 / det;
-    let c11 = (a * f - c * c) * id;
-    let c12 = (b * c - a * e) * id;
-    let c22 = (a * d - b * b) * id;
-    let (c00, c01, c02) = (c00 * id, c01 * id, c02 * id);
-    Some([[c00, c01, c02], [c01, c11, c12], [c02, c12, c22]])
-}
-
-/// The block factorisation of the symmetric eq-25 matrix
-/// `[[M11, M12], [M12^T, M22]]`: `M11^-1`, `Y = M11^-1 M12` and the inverse
-/// of the Schur complement `S = M22 - M12^T Y`. Factored once per stage and
-/// applied to the state's right-hand side and to every tangent direction's.
-pub(crate) struct Eq25 {
-    pub(crate) m11_inv: [[f64; 3]; 3],
-    pub(crate) m12: [[f64; 3]; 3],
-    pub(crate) y12: [[f64; 3]; 3],
-    pub(crate) s_inv: [[f64; 3]; 3],
-}
-
-impl Eq25 {
-    /// Factor the blocks `[M11, M12, M22]` (symmetric ones stored whole); `None` if singular.
-    #[inline(always)]
-    pub(crate) fn factor(m: &Blocks<f64>) -> Option<Self> {
-        let (m11, m12, m22) = (&m[0], m[1], &m[2]);
-        let m11_inv = inv_sym3_upper(m11)?;
-        let mut y12 = [[0.0; 3]; 3];
-        for p in 0..3 {
-            for q in 0..3 {
-                y12[p][q] = m11_inv[p][0] * m12[0][q]
-                    + m11_inv[p][1] * m12[1][q]
-                    + m11_inv[p][2] * m12[2][q];
-            }
-        }
-        let mut sc = [[0.0; 3]; 3];
-        for p in 0..3 {
-            for q in p..3 {
-                sc[p][q] = m22[p][q]
-                    - (m12[0][p] * y12[0][q] + m12[1][p] * y12[1][q] + m12[2][p] * y12[2][q]);
-            }
-        }
-        let s_inv = inv_sym3_upper(&sc)?;
-        Some(Eq25 {
-            m11_inv,
-            m12,
-            y12,
-            s_inv,
-        })
-    }
-
-    /// `[v'; u']` for the right-hand side `[e; f]`: `a = M11^-1 e`,
-    /// `u' = S^-1 (f - M12^T a)`, `v' = a - Y u'`.
-    #[inline(always)]
-    pub(crate) fn solve(&self, e: &V3<f64>, f: &V3<f64>) -> (V3<f64>, V3<f64>) {
-        let (mi, m12, y, si) = (&self.m11_inv, &self.m12, &self.y12, &self.s_inv);
-        let a: V3<f64> = v3(|p| mi[p][0] * e[0] + mi[p][1] * e[1] + mi[p][2] * e[2]);
-        let g: V3<f64> = v3(|p| f[p] - (m12[0][p] * a[0] + m12[1][p] * a[1] + m12[2][p] * a[2]));
-        let ud: V3<f64> = v3(|p| si[p][0] * g[0] + si[p][1] * g[1] + si[p][2] * g[2]);
-        let vd: V3<f64> = v3(|p| a[p] - (y[p][0] * ud[0] + y[p][1] * ud[1] + y[p][2] * ud[2]));
-        (vd, ud)
-    }
-
-    /// [`Eq25::solve`] for `N` right-hand sides at once (`e[p][k]`: component `p`, direction `k`).
-    #[inline(always)]
-    pub(crate) fn solve_n<const N: usize>(
-        &self,
-        e: &[[f64; N]; 3],
-        f: &[[f64; N]; 3],
-    ) -> ([[f64; N]; 3], [[f64; N]; 3]) {
-        let (mi, m12, y, si) = (&self.m11_inv, &self.m12, &self.y12, &self.s_inv);
-        let mut a = [[0.0; N]; 3];
-        let mut g = *f;
-        let mut ud = [[0.0; N]; 3];
-        for p in 0..3 {
-            for k in 0..N {
-                a[p][k] = mi[p][0] * e[0][k] + mi[p][1] * e[1][k] + mi[p][2] * e[2][k];
-            }
-        }
-        for p in 0..3 {
-            for k in 0..N {
-                g[p][k] -= m12[0][p] * a[0][k] + m12[1][p] * a[1][k] + m12[2][p] * a[2][k];
-            }
-        }
-        for p in 0..3 {
-            for k in 0..N {
-                ud[p][k] = si[p][0] * g[0][k] + si[p][1] * g[1][k] + si[p][2] * g[2][k];
-            }
-        }
-        for p in 0..3 {
-            for k in 0..N {
-                a[p][k] -= y[p][0] * ud[0][k] + y[p][1] * ud[1][k] + y[p][2] * ud[2][k];
-            }
-        }
-        (a, ud)
-    }
-}
-
 impl<'a> RodRhs<'a> {
     pub(crate) fn new(robot: &'a Robot, tensions: &'a [f64]) -> Self {
         let body = &robot.body;
@@ -149,17 +43,19 @@ impl<'a> RodRhs<'a> {
         let acts = robot
             .actuators
             .iter()
-            .map(|a| ActuatorConstants {
-                straight: match a.routing {
+            .map(|a| {
+                let straight = match a.routing {
                     Routing::Straight { x, y } => {
                         let r = Vector3::new(x, y, 0.0);
                         let l = a
                             .length_ratio
                             .unwrap_or_else(|| (body.nu_star + body.omega_star.cross(&r)).norm());
-                        Some((r, r.cross_matrix(), l))
+                        Some((r, l))
                     }
                     Routing::Helix { .. } => None,
-                },
+                };
+                let rr = straight.map_or(0.0, |(r, _)| norm2(&r.into()));
+                ActuatorConstants { straight, rr }
             })
             .collect();
         RodRhs {
@@ -203,22 +99,29 @@ impl<'a> RodRhs<'a> {
         }
     }
 
-    /// `(r, r', r'', L_i)` of actuator `i` at `s` (constants of a straight routing).
+    /// `(r, |r|^2, (r', r''), L_i)` of actuator `i` at `s`: the constants of
+    /// a straight routing, with `None` for its vanishing `r'` and `r''`.
     #[inline(always)]
-    pub(crate) fn routing_at(&self, i: usize, s: f64) -> (V3<f64>, V3<f64>, V3<f64>, f64) {
-        match self.acts[i].straight {
-            Some((r, _, l)) => (r.into(), [0.0; 3], [0.0; 3], l),
+    pub(crate) fn routing_at(&self, i: usize, s: f64) -> (V3<f64>, f64, Option<Bend>, f64) {
+        let a = &self.acts[i];
+        match a.straight {
+            Some((r, l)) => (r.into(), a.rr, None, l),
             None => {
                 let (r, rp, rpp) = self.robot.actuators[i].routing.eval(s);
-                (r.into(), rp.into(), rpp.into(), self.ref_rate(i, s))
+                let r: V3<f64> = r.into();
+                let bend = Some((rp.into(), rpp.into()));
+                (r, norm2(&r), bend, self.ref_rate(i, s))
             }
         }
     }
 
-    /// `dy/ds` (eqs 22-31) with the IVP's tensions, in `f64`.
+    /// `dy/ds` (eqs 22-31) with the IVP's tensions, in `f64`, WITHOUT the
+    /// finiteness check of [`RodRhs::kinematics`]: the caller checks its
+    /// state once per RK4 step instead (`all_finite`: a non-finite rate
+    /// makes the stepped state non-finite).
     #[inline(always)]
     pub(crate) fn deriv(&self, s: f64, y: &[f64], active: &[usize], dy: &mut [f64]) -> Result<()> {
-        self.deriv_generic(s, y, self.tensions, active, dy)
+        self.deriv_with::<f64, false>(s, y, self.tensions, active, dy)
     }
 
     /// `dy/ds` (eqs 22-31) with tensions `tau` and the actuators in `active`
@@ -241,6 +144,19 @@ impl<'a> RodRhs<'a> {
         active: &[usize],
         dy: &mut [T],
     ) -> Result<()> {
+        self.deriv_with::<T, true>(s, y, tau, active, dy)
+    }
+
+    /// [`RodRhs::deriv_generic`], with its finiteness check if `CHECK`.
+    #[inline(always)]
+    fn deriv_with<T: Real, const CHECK: bool>(
+        &self,
+        s: f64,
+        y: &[T],
+        tau: &[T],
+        active: &[usize],
+        dy: &mut [T],
+    ) -> Result<()> {
         let fr = self.frame(y);
         for d in dy[BASE_STATES..].iter_mut() {
             *d = T::cst(0.0);
@@ -255,7 +171,11 @@ impl<'a> RodRhs<'a> {
                 self.assemble(s, &fr, tau, active, |i, st| dy[BASE_STATES + i] = st.rate)?;
             T::solve_eq25(&m, &e, &f).ok_or_else(|| singular(s))?
         };
-        self.kinematics(s, y, &fr, &vd, &ud, dy)
+        self.rates(y, &fr, &vd, &ud, dy);
+        if CHECK {
+            finite(s, dy)?;
+        }
+        Ok(())
     }
 
     /// The actuator-free part of (25) at the state `y`: `R`, the strains and
@@ -295,9 +215,14 @@ impl<'a> RodRhs<'a> {
         u: &V3<T>,
         tau: T,
     ) -> Result<StringAt<T>> {
-        let (r, rp, rpp, lref) = self.routing_at(i, s);
+        let (r, rr, bend, lref) = self.routing_at(i, s);
         let ucr = cross_c(u, &r);
-        let pb: V3<T> = v3(|k| v[k] + ucr[k] + rp[k]); // eq (19), body frame
+        // eq (19), body frame; a straight routing's `r' = r'' = 0` is not
+        // added (which changes no value but the sign of a zero)
+        let mut pb: V3<T> = v3(|k| v[k] + ucr[k]);
+        if let Some((rp, _)) = &bend {
+            pb = v3(|k| pb[k] + rp[k]);
+        }
         let nrm = dot(&pb, &pb).sqrt();
         if !(nrm.re() > 1e-12) {
             return Err(Error::Integration {
@@ -305,16 +230,24 @@ impl<'a> RodRhs<'a> {
                 reason: format!("actuator {i} has zero length rate"),
             });
         }
-        let pbrp: V3<T> = v3(|k| pb[k] + rp[k]);
-        let upr = cross(u, &pbrp);
+        let (pbrp, g) = match &bend {
+            // g_i = omega^(nu + omega^ r + 2 r') + r''
+            Some((rp, rpp)) => {
+                let pbrp: V3<T> = v3(|k| pb[k] + rp[k]);
+                let upr = cross(u, &pbrp);
+                (pbrp, v3(|k| upr[k] + rpp[k]))
+            }
+            None => (pb, cross(u, &pb)),
+        };
         // one division, not four (on the critical path of every stage)
         let inv = T::cst(1.0) / nrm;
         Ok(StringAt {
             r,
+            rr,
             c: tau * inv,
             t: v3(|k| pb[k] * inv),
-            g: v3(|k| upr[k] + rpp[k]), // g_i = omega^(nu + omega^ r + 2 r') + r''
-            rate: nrm - lref,           // (24)
+            g,
+            rate: nrm - lref, // (24)
             nrm,
             pbrp,
         })
@@ -349,7 +282,7 @@ impl<'a> RodRhs<'a> {
                 each(i, &st);
                 continue;
             }
-            let StringAt { r, c, t, g, .. } = st;
+            let StringAt { r, rr, c, t, g, .. } = st;
             // A_i = -tau pb^2 / |pb|^3 = c (I - t t^T), c = tau / |pb| (eq 20:
             // tau t_a' = A_i R^T p_a''). With r^ x = r x x, w = t x r and
             // r^ r^ = r r^T - |r|^2 I:
@@ -360,7 +293,7 @@ impl<'a> RodRhs<'a> {
             let ag: V3<T> = v3(|k| g[k] * c - ct[k] * tg); // A_i g_i
             let rag = c_cross(&r, &ag);
             let cr: V3<T> = v3(|k| c * r[k]);
-            let cr2 = c * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+            let cr2 = c * rr;
             let cw: V3<T> = v3(|k| w[k] * c);
             for p in 0..3 {
                 for q in p..3 {
@@ -402,6 +335,13 @@ impl<'a> RodRhs<'a> {
         ud: &V3<T>,
         dy: &mut [T],
     ) -> Result<()> {
+        self.rates(y, fr, vd, ud, dy);
+        finite(s, dy)
+    }
+
+    /// [`RodRhs::kinematics`] without the check.
+    #[inline(always)]
+    fn rates<T: Real>(&self, y: &[T], fr: &Frame<T>, vd: &V3<T>, ud: &V3<T>, dy: &mut [T]) {
         let (rm, v, u) = (&fr.rm, &fr.v, &fr.u);
         for k in 0..3 {
             dy[k] = rm[k][0] * v[0] + rm[k][1] * v[1] + rm[k][2] * v[2]; // (22)
@@ -414,14 +354,47 @@ impl<'a> RodRhs<'a> {
         dy[6] = (qw * u[2] + qx * u[1] - qy * u[0]) * 0.5;
         dy[7..10].copy_from_slice(vd);
         dy[10..13].copy_from_slice(ud);
-        if !dy.iter().fold(0.0, |acc, x| acc + x.re() * 0.0).is_finite() {
-            return Err(Error::Integration {
-                s,
-                reason: "non-finite derivative".into(),
-            });
-        }
-        Ok(())
     }
+}
+
+/// An error unless every rate in `dy` is finite.
+#[inline(always)]
+fn finite<T: Real>(s: f64, dy: &[T]) -> Result<()> {
+    if !all_finite(dy) {
+        return Err(Error::Integration {
+            s,
+            reason: "non-finite derivative".into(),
+        });
+    }
+    Ok(())
+}
+
+/// `true` if every value in `x` is finite: `sum x * 0` is NaN exactly when
+/// some entry is not finite, summed in four independent chains (no branch
+/// per entry, no dependency chain as long as the state).
+#[inline(always)]
+pub(crate) fn all_finite<T: Real>(x: &[T]) -> bool {
+    let mut acc = [0.0f64; 4];
+    let chunks = x.chunks_exact(4);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for k in 0..4 {
+            acc[k] += c[k].re() * 0.0;
+        }
+    }
+    for (a, r) in acc.iter_mut().zip(rest) {
+        *a += r.re() * 0.0;
+    }
+    (acc[0] + acc[1] + acc[2] + acc[3]).is_finite()
+}
+
+/// `r'` and `r''` of a curved routing (body frame).
+pub(crate) type Bend = (V3<f64>, V3<f64>);
+
+/// `|r|^2`, summed in the order `r0 r0 + r1 r1 + r2 r2`.
+#[inline(always)]
+fn norm2(r: &V3<f64>) -> f64 {
+    r[0] * r[0] + r[1] * r[1] + r[2] * r[2]
 }
 
 /// The error of a singular system (25).
@@ -451,6 +424,8 @@ pub(crate) struct Frame<T> {
 pub(crate) struct StringAt<T> {
     /// Offset `r_i` \[m\], body frame.
     pub(crate) r: V3<f64>,
+    /// `|r_i|^2` \[m^2\].
+    pub(crate) rr: f64,
     /// `c = tau / |p_b|`, with `A_i = c (I - t t^T)`.
     pub(crate) c: T,
     /// Unit tangent `t = p_b / |p_b|` (body frame).
