@@ -156,9 +156,10 @@ pub(crate) fn assemble_from(
         sol.rotations.push(rm);
         sol.nu.push(st.v);
         sol.omega.push(st.u);
-        sol.internal_force.push(rm * kse * (st.v - body.nu_star));
+        // (R (K w), not (R K) w: the 3x3 product per node is not needed)
+        sol.internal_force.push(rm * (kse * (st.v - body.nu_star)));
         sol.internal_moment
-            .push(rm * kbt * (st.u - body.omega_star));
+            .push(rm * (kbt * (st.u - body.omega_star)));
         sol.elongation_profile.push(st.delta);
         for (i, a) in robot.actuators.iter().enumerate() {
             if s >= a.s_start - tol && s <= a.s_end + tol {
