@@ -303,7 +303,76 @@ fn batch_cold() {
     println!("designs 0-99: single cold {single} IVPs, batch rows {rows} IVPs ({worse} rows more than single), tip gap max {gap:.1e} m");
 }
 
+/// `--loop fig6|steel N`: N cold solves and nothing else (for `perf record`).
+fn cold_loop(which: &str, n: usize) {
+    if which == "designs" {
+        use tcarod::problems::{random_design, DEFAULT_SEED};
+        let o = SolveOptions::default();
+        let mut ivps = 0;
+        for i in 0..n {
+            let d = random_design(DEFAULT_SEED, i);
+            ivps += solve(&d.robot, &d.inputs, &o, None).map_or(0, |s| s.evaluations);
+        }
+        println!("designs 0-{}: {ivps} IVPs", n - 1);
+        return;
+    }
+    let (robot, inputs) = match which {
+        "steel" => (steel_tendon_robot(), STEEL_TENDON_TENSIONS.to_vec()),
+        _ => (fig6_square(true), vec![100.0, 100.0]),
+    };
+    let o = SolveOptions::default();
+    for _ in 0..n {
+        drop(std::hint::black_box(
+            solve(&robot, &inputs, &o, None).unwrap(),
+        ));
+    }
+}
+
+/// `--parts`: thread-CPU medians of the IVPs a cold solve is made of
+/// (plain on 10, 20, 30, 100 steps, recorded on 100, tangent on 10), in
+/// plain full-grid IVP times.
+fn parts() {
+    let cases = [
+        ("fig6", fig6_square(true), vec![100.0, 100.0]),
+        (
+            "steel",
+            steel_tendon_robot(),
+            STEEL_TENDON_TENSIONS.to_vec(),
+        ),
+    ];
+    for (name, robot, inputs) in cases {
+        let s = solve(&robot, &inputs, &SolveOptions::default(), None).unwrap();
+        let l = tcarod::shooting::Loads::of(&robot);
+        let shot = |n| tcarod::shooting::Shot::new(&robot, &inputs, &l, n);
+        let x = &s.unknowns;
+        let t = |f: &dyn Fn()| cpu_median(21, f);
+        let unit = t(&|| drop(shot(100).residual(x, false).unwrap()));
+        let mut line = format!("{name:<6} one IVP {:.1} us:", unit * 1e6);
+        for n in [10, 20, 30] {
+            let c = t(&|| drop(shot(n).residual(x, false).unwrap()));
+            line += &format!(" plain {n} {:.3}", c / unit);
+        }
+        let c = t(&|| drop(shot(100).residual(x, true).unwrap()));
+        line += &format!(" recorded 100 {:.3}", c / unit);
+        let c = t(&|| drop(shot(10).jacobian(x, false).unwrap()));
+        line += &format!(" tangent 10 {:.3}", c / unit);
+        let c = t(&|| drop(solve(&robot, &inputs, &SolveOptions::default(), None).unwrap()));
+        println!("{line} cold solve {:.3}", c / unit);
+    }
+}
+
 fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if args.iter().any(|a| a == "--parts") {
+        parts();
+        return;
+    }
+    if let Some(i) = args.iter().position(|a| a == "--loop") {
+        let which = args.get(i + 1).map_or("fig6", String::as_str);
+        let n = args.get(i + 2).and_then(|a| a.parse().ok()).unwrap_or(2000);
+        cold_loop(which, n);
+        return;
+    }
     if std::env::args().any(|a| a == "--batch-cold") {
         batch_cold();
         return;

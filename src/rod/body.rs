@@ -140,7 +140,8 @@ impl Body {
             ("tip_moment [N m]", &self.tip_moment),
         ];
         for (name, v) in vecs {
-            for (k, x) in v.iter().enumerate() {
+            // (the name formatted only for the error: validated every solve)
+            for (k, x) in v.iter().enumerate().filter(|(_, x)| !x.is_finite()) {
                 finite(&format!("{name}[{k}]"), *x)?;
             }
         }

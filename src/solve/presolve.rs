@@ -74,15 +74,6 @@ const COARSE_MAX_ITER: usize = 20;
 /// chord step more, which the coarse IVP saved in the first had cost.
 const FIRST_ROUND_TOL: f64 = 1e-7;
 
-/// `keep` without the nodes of plain IVPs.
-fn tip_only(keep: Keep) -> Keep {
-    match keep {
-        Keep::Nodes => Keep::Tip,
-        Keep::Verdict { tol, .. } => Keep::Verdict { tol, nodes: false },
-        k => k,
-    }
-}
-
 /// The warm start of a pre-solve: the neighbouring solution's unknowns,
 /// inputs and Newton Jacobian.
 #[derive(Debug, Clone, Copy)]
@@ -216,7 +207,7 @@ impl<'a> PreSolve<'a> {
                 return Ok(Some((r, true)));
             }
         }
-        full.set_keep(if estimate { tip_only(record) } else { record });
+        full.set_keep(if estimate { record.tip_only() } else { record });
         Ok(unless_interrupted(full.residual(x))?.map(|r| (r, false)))
     }
 
@@ -408,7 +399,7 @@ impl<'a> Rounds<'a> {
         self.jac = nr.jacobian.or(self.jac.take());
         // extrapolated unless the guess was a coarse root already (a
         // uniform strain, which RK4 integrates exactly)
-        let estimate = cold_first && nr.iterations > 0;
+        let estimate = cold_first && nr.iterations > 0 && !nr.residual.is_empty();
         let xr = (self.x.as_slice(), nr.residual.as_slice());
         let Some((r, estimated)) =
             pre.full_residual(&mut self.full, xr, (estimate, record), work)?
@@ -425,8 +416,17 @@ impl<'a> Rounds<'a> {
             return Ok(ControlFlow::Break(None));
         }
         self.last_norm = norm;
-        // the new defect: r_full(x) - r_coarse(x), r_coarse(x) = nr.residual - defect
-        for ((d, rf), rc) in self.defect.iter_mut().zip(&r).zip(&nr.residual) {
+        // (the coarse run's last chord step unevaluated: its residual now)
+        work.evaluations += usize::from(nr.residual.is_empty());
+        let rc = match nr.residual.is_empty() {
+            true => unless_interrupted(self.coarse.residual(&self.x))?,
+            false => Some(nr.residual),
+        };
+        let Some(rc) = rc else {
+            return Ok(ControlFlow::Break(None));
+        };
+        // the new defect: r_full(x) - r_coarse(x), r_coarse(x) = rc - defect
+        for ((d, rf), rc) in self.defect.iter_mut().zip(&r).zip(&rc) {
             *d += rf - rc;
         }
         Ok(ControlFlow::Continue(()))

@@ -116,22 +116,40 @@ pub(crate) fn assemble_from(
 ) -> Result<Solution> {
     let body = &robot.body;
     let (kse, kbt) = body.stiffness();
-    let na = robot.actuators.len();
-    let n = ivp.nodes.len();
     let (base_force, base_moment) = match ivp.nodes.first() {
         Some((_, st0)) => base_wrench(robot, st0, &tau),
         None => (Vector3::zeros(), Vector3::zeros()),
     };
-    let mut sol = Solution {
-        s: Vec::with_capacity(n),
-        positions: Vec::with_capacity(n),
-        rotations: Vec::with_capacity(n),
-        nu: Vec::with_capacity(n),
-        omega: Vec::with_capacity(n),
-        internal_force: Vec::with_capacity(n),
-        internal_moment: Vec::with_capacity(n),
-        elongation_profile: Vec::with_capacity(n),
-        actuator_paths: vec![Vec::new(); na],
+    let nodes = ivp.nodes;
+    let rotations: Vec<Matrix3<f64>> = field(&nodes, |st| st.rotation());
+    let tol = 1e-12 * body.length;
+    let actuator_paths = robot
+        .actuators
+        .iter()
+        .map(|a| {
+            let span = |s: f64| s >= a.s_start - tol && s <= a.s_end + tol;
+            (nodes.iter().zip(&rotations))
+                .filter(|((s, _), _)| span(*s))
+                .map(|((s, st), rm)| st.p + rm * a.routing.eval(*s).0)
+                .collect()
+        })
+        .collect();
+    // (R (K w), not (R K) w: the 3x3 product per node is not needed)
+    let load = |k: &Matrix3<f64>, w: fn(&RodState, &crate::rod::Body) -> Vector3<f64>| {
+        (nodes.iter().zip(&rotations))
+            .map(|((_, st), rm)| rm * (k * w(st, body)))
+            .collect()
+    };
+    Ok(Solution {
+        s: nodes.iter().map(|(s, _)| *s).collect(),
+        positions: field(&nodes, |st| st.p),
+        nu: field(&nodes, |st| st.v),
+        omega: field(&nodes, |st| st.u),
+        internal_force: load(&kse, |st, b| st.v - b.nu_star),
+        internal_moment: load(&kbt, |st, b| st.u - b.omega_star),
+        rotations,
+        actuator_paths,
+        elongation_profile: nodes.into_iter().map(|(_, st)| st.delta).collect(),
         tensions: tau,
         elongations: ivp.elongation,
         inputs: inputs.to_vec(),
@@ -147,27 +165,13 @@ pub(crate) fn assemble_from(
         status: Status::Converged,
         floor: 0.0,
         continuation_steps: Vec::new(),
-    };
-    let tol = 1e-12 * body.length;
-    for (s, st) in ivp.nodes {
-        let rm = st.rotation();
-        sol.s.push(s);
-        sol.positions.push(st.p);
-        sol.rotations.push(rm);
-        sol.nu.push(st.v);
-        sol.omega.push(st.u);
-        sol.internal_force.push(rm * kse * (st.v - body.nu_star));
-        sol.internal_moment
-            .push(rm * kbt * (st.u - body.omega_star));
-        sol.elongation_profile.push(st.delta);
-        for (i, a) in robot.actuators.iter().enumerate() {
-            if s >= a.s_start - tol && s <= a.s_end + tol {
-                let (ri, _, _) = a.routing.eval(s);
-                sol.actuator_paths[i].push(st.p + rm * ri);
-            }
-        }
-    }
-    Ok(sol)
+    })
+}
+
+/// `f` of every node's state, in order (one tight pass per field of a
+/// [`Solution`]).
+fn field<T>(nodes: &[(f64, RodState)], f: impl Fn(&RodState) -> T) -> Vec<T> {
+    nodes.iter().map(|(_, st)| f(st)).collect()
 }
 
 /// Wrench (force \[N\], moment \[N m\] about the base origin, world frame)

@@ -53,6 +53,17 @@ pub enum Keep {
     },
 }
 
+impl Keep {
+    /// This without the nodes of plain IVPs.
+    pub(crate) fn tip_only(self) -> Keep {
+        match self {
+            Keep::Nodes => Keep::Tip,
+            Keep::Verdict { tol, .. } => Keep::Verdict { tol, nodes: false },
+            k => k,
+        }
+    }
+}
+
 impl From<bool> for Keep {
     fn from(nodes: bool) -> Self {
         if nodes {
