@@ -12,15 +12,24 @@
 //! full-grid IVP). Where the coarse root is outside the finish's reach
 //! (benchmark design #126: its full-grid residual there is ~1), Newton on
 //! an intermediate grid of `steps / HOP_GRID_DIVISOR` steps moves it first.
-//! If the coarse path fails, or the finish does not converge, the caller
-//! runs the path on the full grid (its work counted on top), so that no
-//! design converging on the full grid's path is lost.
+//! If the coarse path stalls (its step quartered below the smallest: a
+//! fold of the path), it goes on on the full grid from the point where it
+//! stalled (`fold`); if it stalls there too, the solve's continuation has
+//! failed without a full-grid path from `lambda = 0`, which would stall at
+//! the same fold (benchmark design #25, past buckling: 506 -> 297 IVPs).
+//! If the coarse path reaches its IVP cap, or the finish does not
+//! converge, the caller runs the path on the full grid from `lambda = 0`
+//! (its work counted on top), so that no design converging on the full
+//! grid's path is lost.
 //!
 //! A coarse IVP is not a tenth of a full one (the anchors' load
 //! iterations cost the same on any grid): on design #267 a coarse path's
 //! 202 IVPs cost about 90 full-grid IVP times.
 
-use super::continuation::{follow, CORRECTOR_MIN_STEP};
+use super::continuation::{
+    at, follow, follow_from, start, step_options, Track, CORRECTOR_MIN_STEP,
+};
+use super::corrector::correct;
 use super::options::SolveOptions;
 use super::presolve::presolved_shooting;
 use super::residual::Loads;
@@ -78,8 +87,9 @@ fn unless_final<T>(r: Result<T>) -> Result<Option<T>> {
 }
 
 /// The cold continuation on the coarse grid, finished on the full grid
-/// (see the module docs); `None` if it failed (its work is in `work`), an
-/// error if the solve must stop.
+/// (see the module docs); `None` if the caller is to run the full grid's
+/// path (its work is in `work`), an error if the solve must stop or the
+/// path stalled at a fold on both grids (see [`fold`]).
 pub(crate) fn coarse_path(
     robot: &Robot,
     inputs: &[f64],
@@ -90,38 +100,49 @@ pub(crate) fn coarse_path(
     let Some(steps) = path_grid(opts) else {
         return Ok(None);
     };
-    let end_tol = opts.tol.max(PATH_END_TOL);
     let copts = SolveOptions {
         steps,
-        tol: end_tol,
+        tol: opts.tol.max(PATH_END_TOL),
         ..*opts
     };
+    let (from, x, tau, jac) = start(robot, None);
+    let mut track = Track::new(0.0, x, tau, jac, 0.25);
     // the coarse path's own IVP cap within the solve's budget
     let budget = work.max_evaluations;
     let cap = work.evaluations + PATH_MAX_IVPS;
     work.max_evaluations = if budget == 0 { cap } else { budget.min(cap) };
-    let out = follow(robot, inputs, loads, &copts, None, work);
+    let out = follow_from(robot, inputs, loads, &copts, &from, true, &mut track, work);
     work.max_evaluations = budget;
-    let out = match out {
-        Err(e) if is_budget_error(&e) && !work.exhausted() => return Ok(None),
-        out => out,
-    };
-    let Some((nr, _, path)) = unless_final(out)? else {
-        return Ok(None);
-    };
+    match out {
+        Err(e) if is_budget_error(&e) && !work.exhausted() => Ok(None),
+        Err(e) if ends_solve(&e) => Err(e),
+        Err(_) => fold(robot, inputs, loads, opts, &from, track, work),
+        Ok((nr, _, path)) => finish(robot, inputs, loads, opts, nr.x, path, work),
+    }
+}
+
+/// The finish on the full grid from the coarse root `x` (see the module
+/// docs); `path`: the coarse path's.
+fn finish(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    mut x: Vec<f64>,
+    path: Vec<f64>,
+    work: &mut Work,
+) -> Result<Option<Solution>> {
     // the finish backtracks as a first corrector attempt does
     let fopts = SolveOptions {
         min_step: opts.min_step.max(CORRECTOR_MIN_STEP),
         ..*opts
     };
     let keep = Keep::Nodes;
-    let mut x = nr.x;
     for hop in [false, true] {
         if hop {
-            let steps = opts.steps / HOP_GRID_DIVISOR;
             let hopts = SolveOptions {
-                steps,
-                tol: end_tol,
+                steps: opts.steps / HOP_GRID_DIVISOR,
+                tol: opts.tol.max(PATH_END_TOL),
                 ..fopts
             };
             let out = newton_shooting(robot, inputs, loads, &hopts, &x, None, false, work);
@@ -138,6 +159,56 @@ pub(crate) fn coarse_path(
         }
     }
     Ok(None)
+}
+
+/// A coarse path that stalled at `track` (its steps quartered below
+/// `MIN_STEP`: a fold of the path, or a kink the coarse grid does not
+/// resolve) goes on on the full grid from there: the point is corrected
+/// on the full grid (from the coarse Jacobian, backtracking in full), and
+/// the path followed on from it. If that path stalls too, the fold is the
+/// full grid's and a full-grid path from `lambda = 0` would stall there as
+/// well: the error is returned (the caller's last resort follows). `None`
+/// (the full grid's path from `lambda = 0` is run) if the path stalled at
+/// `lambda = 0` or the correction failed. Measured on the 1,000 benchmark
+/// designs: only #25 (past buckling) stalls, at `lambda = 0.5531` after
+/// 207 coarse IVPs; the correction takes 2 IVPs (predictor residual
+/// 2.4e-4), the full grid's path stalls there after 16 more, and the solve
+/// costs 297 IVPs, against 506 with a full-grid path from `lambda = 0`
+/// (227 IVPs, stalled at `lambda = 0.665`).
+fn fold(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    mut track: Track,
+    work: &mut Work,
+) -> Result<Option<Solution>> {
+    if track.lam <= 0.0 {
+        return Ok(None);
+    }
+    let (r, inp, l) = at(robot, from, inputs, loads, true, track.lam);
+    let sopts = step_options(opts, false, true);
+    let jac = track.jac.as_ref();
+    let (out, _) = correct(
+        &r,
+        &inp,
+        &l,
+        &sopts,
+        &track.x,
+        jac,
+        false,
+        f64::INFINITY,
+        work,
+    );
+    let Some((nr, last)) = unless_final(out)? else {
+        return Ok(None);
+    };
+    track.regrid(nr, last, &r, &inp)?;
+    let (nr, last, path) = follow_from(robot, inputs, loads, opts, from, true, &mut track, work)?;
+    let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
+    s.continuation_steps = path;
+    Ok(Some(s))
 }
 
 /// The cold homotopy path alone (no direct run, no finish) on `opts.steps`:

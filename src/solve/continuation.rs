@@ -19,7 +19,7 @@
 //! each converged step) is recorded in `Solution::continuation_steps`.
 //! A cold path runs on a coarse grid first and is finished on the full
 //! grid ([`crate::solve::coarse_path`]); the full grid's path only if that
-//! fails.
+//! fails (from where the coarse path stalled, if it did).
 //! (Pseudo-arclength continuation through folds is the stability module's.)
 
 use super::cancel;
@@ -233,7 +233,7 @@ pub(crate) fn continuation(
 
 /// The converged end of a homotopy path: Newton's result at `lambda = 1`,
 /// its last IVP and the path (the `lambda` of each converged step).
-type PathEnd = (NewtonResult, Option<FinalIvp>, Vec<f64>);
+pub(crate) type PathEnd = (NewtonResult, Option<FinalIvp>, Vec<f64>);
 
 /// The homotopy path to `inputs` under `loads` on `opts.steps` (see the
 /// module docs); adds its work to `work`.
@@ -247,16 +247,26 @@ pub(crate) fn follow(
 ) -> Result<PathEnd> {
     let cold = warm.is_none();
     let (from, x, tau, jac) = start(robot, warm);
-    let mut at_lam = Track {
-        lam: 0.0,
-        x,
-        tau,
-        jac,
-        prev: Vec::new(),
-    };
+    let mut track = Track::new(0.0, x, tau, jac, if cold { 0.25 } else { 0.5 });
+    follow_from(robot, inputs, loads, opts, &from, cold, &mut track, work)
+}
+
+/// The homotopy path from `track`'s point on (inputs from `from`, loads
+/// scaled if `cold`) on `opts.steps`; adds its work to `work`. On return
+/// (either way) `track` holds the last converged point before `lambda = 1`,
+/// the step and the path so far.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn follow_from(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    cold: bool,
+    at_lam: &mut Track,
+    work: &mut Work,
+) -> Result<PathEnd> {
     work.stall_window = HOMOTOPY_STALL_WINDOW;
-    let mut step: f64 = if cold { 0.25 } else { 0.5 };
-    let mut path = Vec::new();
     let mut last_err: Option<Error> = None;
     // best residual of the failed Newton runs (for the budget error)
     let mut best = f64::INFINITY;
@@ -270,27 +280,29 @@ pub(crate) fn follow(
         if work.exhausted() {
             return Err(budget_error(work, lam, best));
         }
-        let lt = (lam + step).min(1.0);
-        let (r, inp, l) = at(robot, &from, inputs, loads, cold, lt);
+        let lt = (lam + at_lam.step).min(1.0);
+        let (r, inp, l) = at(robot, from, inputs, loads, cold, lt);
         let x0 = at_lam.predictor(&r, &inp, lt);
         let step_opts = step_options(opts, lt >= 1.0, retry);
         let (jac, last) = (at_lam.jac.as_ref(), lt >= 1.0);
         let (out, first) = correct(&r, &inp, &l, &step_opts, &x0, jac, last, reject, work);
         if let Some(r0) = first.filter(|&r0| r0 > reject) {
             reject = f64::INFINITY;
-            step = (step * rejected_step_factor(r0)).max(MIN_STEP);
+            at_lam.step = (at_lam.step * rejected_step_factor(r0)).max(MIN_STEP);
             continue;
         }
         reject = PREDICTOR_REJECT;
         match out {
             Ok((nr, last)) => {
-                path.push(lt);
                 retry = false;
                 if lt >= 1.0 {
+                    let mut path = at_lam.path.clone();
+                    path.push(lt);
                     return Ok((nr, last, path));
                 }
+                at_lam.path.push(lt);
                 if nr.iterations <= EASY_ITERATIONS {
-                    step *= 2.0;
+                    at_lam.step *= 2.0;
                 }
                 at_lam.advance(lt, nr, last, &r, &inp)?;
             }
@@ -306,8 +318,8 @@ pub(crate) fn follow(
                 }
                 last_err = Some(e);
                 retry = true;
-                step *= 0.25;
-                if step < MIN_STEP {
+                at_lam.step *= 0.25;
+                if at_lam.step < MIN_STEP {
                     break;
                 }
             }
@@ -317,17 +329,38 @@ pub(crate) fn follow(
 }
 
 /// The last converged point of a homotopy: `lambda`, the unknowns, the
-/// tensions \[N\] and the Newton Jacobian there, and up to
-/// [`PREDICTOR_POINTS`] - 1 earlier `(lambda, unknowns)`, oldest first.
-struct Track {
-    lam: f64,
-    x: Vec<f64>,
-    tau: Vec<f64>,
-    jac: Option<nalgebra::DMatrix<f64>>,
-    prev: Vec<(f64, Vec<f64>)>,
+/// tensions \[N\] and the Newton Jacobian there, up to
+/// [`PREDICTOR_POINTS`] - 1 earlier `(lambda, unknowns)`, oldest first,
+/// the next step and the path so far (the `lambda` of each converged step).
+pub(crate) struct Track {
+    pub lam: f64,
+    pub x: Vec<f64>,
+    pub tau: Vec<f64>,
+    pub jac: Option<nalgebra::DMatrix<f64>>,
+    pub prev: Vec<(f64, Vec<f64>)>,
+    pub step: f64,
+    pub path: Vec<f64>,
 }
 
 impl Track {
+    /// The start of a path at `lam` (no earlier points, no path yet).
+    pub(crate) fn new(
+        lam: f64,
+        x: Vec<f64>,
+        tau: Vec<f64>,
+        jac: Option<nalgebra::DMatrix<f64>>,
+        step: f64,
+    ) -> Self {
+        Track {
+            lam,
+            x,
+            tau,
+            jac,
+            prev: Vec::new(),
+            step,
+            path: Vec::new(),
+        }
+    }
     /// The predictor at `lt` (see [`predictor`]) for the robot and inputs there.
     fn predictor(&self, robot: &Robot, inputs: &[f64], lt: f64) -> Vec<f64> {
         predictor(robot, inputs, &self.x, &self.tau, &self.prev, self.lam, lt)
@@ -358,6 +391,30 @@ impl Track {
         }
         Ok(())
     }
+    /// Move the point to `nr`, the same point corrected on another grid
+    /// (robot and inputs at `self.lam`): the earlier points move by the
+    /// same correction (the grids' difference varies slowly along the path).
+    pub(crate) fn regrid(
+        &mut self,
+        nr: NewtonResult,
+        last: Option<FinalIvp>,
+        robot: &Robot,
+        inputs: &[f64],
+    ) -> Result<()> {
+        let shift: Vec<f64> = nr.x.iter().zip(&self.x).map(|(a, b)| a - b).collect();
+        for (_, p) in self.prev.iter_mut() {
+            p.iter_mut().zip(&shift).for_each(|(v, s)| *v += s);
+        }
+        self.tau = match last {
+            Some(last) => last.tensions,
+            None => tensions_at(robot, inputs, &nr.x, robot.body.length)?,
+        };
+        self.x = nr.x;
+        if nr.jacobian.is_some() {
+            self.jac = nr.jacobian;
+        }
+        Ok(())
+    }
 }
 
 /// Options of one homotopy step: intermediate steps are predictors,
@@ -371,7 +428,7 @@ impl Track {
 /// The first attempt at a step (`retry` false) backtracks only down to
 /// [`CORRECTOR_MIN_STEP`]; a retry after a failed step backtracks as the
 /// options say.
-fn step_options(opts: &SolveOptions, last: bool, retry: bool) -> SolveOptions {
+pub(crate) fn step_options(opts: &SolveOptions, last: bool, retry: bool) -> SolveOptions {
     let min_step = if retry {
         opts.min_step
     } else {
@@ -397,9 +454,9 @@ fn tensions_at(robot: &Robot, inputs: &[f64], x: &[f64], len: f64) -> Result<Vec
 
 /// The start of the path: the inputs, unknowns, tensions and Jacobian of
 /// the warm solution, or of the reference configuration.
-type Start = (Vec<f64>, Vec<f64>, Vec<f64>, Option<nalgebra::DMatrix<f64>>);
+pub(crate) type Start = (Vec<f64>, Vec<f64>, Vec<f64>, Option<nalgebra::DMatrix<f64>>);
 
-fn start(robot: &Robot, warm: Option<&Solution>) -> Start {
+pub(crate) fn start(robot: &Robot, warm: Option<&Solution>) -> Start {
     match warm {
         Some(w) => (
             w.inputs.clone(),
