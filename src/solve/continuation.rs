@@ -305,6 +305,14 @@ pub(crate) fn follow_from(
                     at_lam.step *= 2.0;
                 }
                 at_lam.advance(lt, nr, last, &r, &inp)?;
+                if at_lam.watch.is_some_and(|w| lt >= w.lam) {
+                    let w = at_lam.watch.take().expect("checked");
+                    let checked = w.check(&r, &inp, &l, &at_lam.x, work);
+                    if let Err(Error::NotConverged { residual, .. }) = &checked {
+                        at_lam.unresolved = Some(*residual);
+                    }
+                    checked?;
+                }
             }
             Err(e) if is_input_error(&e) => return Err(e),
             Err(Error::NotConverged {
@@ -340,6 +348,50 @@ pub(crate) struct Track {
     pub prev: Vec<(f64, Vec<f64>)>,
     pub step: f64,
     pub path: Vec<f64>,
+    /// A check of the grid at the first point past its `lambda` (see [`Watch`]).
+    pub watch: Option<Watch>,
+    /// The residual of the failed [`Watch`] the path stopped at.
+    pub unresolved: Option<f64>,
+}
+
+/// A check of a coarse path's grid: at the first converged point at or
+/// past `lam`, one IVP on `steps` RK4 steps; the path stops (an error) if
+/// its `max |r|` there exceeds `tol`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Watch {
+    pub lam: f64,
+    pub steps: usize,
+    pub tol: f64,
+}
+
+impl Watch {
+    /// The check at the converged `x` of the robot, inputs and loads there;
+    /// its IVP is counted on `work`.
+    fn check(
+        &self,
+        robot: &Robot,
+        inputs: &[f64],
+        loads: &Loads,
+        x: &[f64],
+        work: &mut Work,
+    ) -> Result<()> {
+        use super::newton::System;
+        let mut sys = super::system::Shooting::new(robot, inputs, loads, self.steps, false);
+        let r = sys.residual(x);
+        work.evaluations += sys.evaluations();
+        let n = r?.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if n <= self.tol {
+            return Ok(());
+        }
+        Err(Error::NotConverged {
+            solver: "forward shooting",
+            iterations: work.iterations,
+            evaluations: work.evaluations,
+            residual: n,
+            stop: StopReason::Other,
+            reason: "the coarse grid does not resolve the path".into(),
+        })
+    }
 }
 
 impl Track {
@@ -359,6 +411,8 @@ impl Track {
             prev: Vec::new(),
             step,
             path: Vec::new(),
+            watch: None,
+            unresolved: None,
         }
     }
     /// The predictor at `lt` (see [`predictor`]) for the robot and inputs there.
