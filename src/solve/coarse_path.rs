@@ -12,15 +12,33 @@
 //! full-grid IVP). Where the coarse root is outside the finish's reach
 //! (benchmark design #126: its full-grid residual there is ~1), Newton on
 //! an intermediate grid of `steps / HOP_GRID_DIVISOR` steps moves it first.
-//! If the coarse path fails, or the finish does not converge, the caller
-//! runs the path on the full grid (its work counted on top), so that no
-//! design converging on the full grid's path is lost.
+//! The coarse grid does not resolve every design's path: where its error
+//! (the full grid's residual at a coarse point) is large early, it would
+//! be out of the finish's reach at `lambda = 1`. So the path checks it
+//! once, with one full-grid IVP at `lambda = 1/8` ([`WATCH_LAMBDA`]), and
+//! if it exceeds [`WATCH_TOL`] goes on on the full grid from there
+//! (`resume`; from `lambda = 0` if the point is beyond a corrector's reach,
+//! [`RESUME_MAX`]): benchmark designs #112, #940, #861, #894, #54 (coarse
+//! root 4.7-25 from the full grid's, or a coarse path creeping to its
+//! cap) 1,205 -> 627 IVPs together.
+//! If the coarse path stalls (its step quartered below the smallest: a
+//! fold of the path), it goes on on the full grid from the point where it
+//! stalled (`fold`); if it stalls there too, the solve's continuation has
+//! failed without a full-grid path from `lambda = 0`, which would stall at
+//! the same fold (benchmark design #25, past buckling: 506 -> 297 IVPs).
+//! If the coarse path reaches its IVP cap, or the finish does not
+//! converge, the caller runs the path on the full grid from `lambda = 0`
+//! (its work counted on top), so that no design converging on the full
+//! grid's path is lost.
 //!
 //! A coarse IVP is not a tenth of a full one (the anchors' load
 //! iterations cost the same on any grid): on design #267 a coarse path's
 //! 202 IVPs cost about 90 full-grid IVP times.
 
-use super::continuation::{follow, CORRECTOR_MIN_STEP};
+use super::continuation::{
+    at, follow, follow_from, start, step_options, Track, Watch, CORRECTOR_MIN_STEP,
+};
+use super::corrector::correct;
 use super::options::SolveOptions;
 use super::presolve::presolved_shooting;
 use super::residual::Loads;
@@ -48,6 +66,41 @@ pub const HOP_GRID_DIVISOR: usize = 4;
 /// coarse grid's 7.3 mm steps do not resolve, crept to `lambda = 0.87` in
 /// 910 (a cap of 400: 515 IVPs in all, 311-403 IVP-equivalents).
 pub const PATH_MAX_IVPS: usize = 300;
+
+/// The coarse path checks its grid once, at its first converged point at
+/// or past this `lambda`: one full-grid IVP there, whose `max |r|` (scaled)
+/// is the coarse grid's error at that point of the path. It grows along
+/// the path about as `lambda^2` (measured on #940, #861, #894: x 8-9 from
+/// `lambda` 0.22-0.25 to 0.73-0.84), and the finish reaches coarse roots
+/// up to a full-grid `max |r|` of about 1 (#126's failed from 1.9 at
+/// `lambda = 0.97`, before its hop). Measured at the coarse points of the
+/// 20 worst benchmark designs at `lambda` 0.19-0.31: the five whose
+/// finish failed (#940, #861, #894, #54) or whose path crept to its cap
+/// (#112) 0.36-7.3, #560 0.25-0.72, the other fourteen at most 0.009.
+/// At `1/8` the check is early (less coarse path lost) and well above the
+/// noise of the intermediate points (converged to
+/// [`super::continuation::INTERMEDIATE_TOL`], 1e-4). On the 1,000 designs
+/// (IVPs per solve): #112 414 -> 139, #940 220 -> 149, #861 199 -> 111,
+/// #894 209 -> 133, #54 163 -> 95, #560 147 -> 145, #107 136 -> 140,
+/// every other continuation +1 (the check's IVP); at `1/4` (tolerance
+/// 1/16): #112 154, #940 173, #560 154.
+pub const WATCH_LAMBDA: f64 = 0.125;
+
+/// Largest full-grid `max |r|` (scaled) at the check ([`WATCH_LAMBDA`])
+/// under which the coarse path goes on: `WATCH_LAMBDA^2`, so that its
+/// error, growing as `lambda^2`, stays within the finish's reach of about
+/// 1 at `lambda = 1`.
+pub const WATCH_TOL: f64 = WATCH_LAMBDA * WATCH_LAMBDA;
+
+/// Largest check residual from which a coarse path stopped by its check
+/// resumes on the full grid at the checked point (`resume`); beyond, the
+/// full grid's path runs from `lambda = 0`. Within one unit a point is in
+/// a corrector's reach (measured: from 0.38 and 0.72 in 5 and 9 IVPs, #107
+/// and #560); from 7.3 it is not (#112: failed after 37 IVPs). Measured
+/// on the 1,000 designs with the check at `lambda = 1/4`: resuming every
+/// stopped path, #112 191 IVPs; resuming within 1, 154 (and #861 199 ->
+/// 113, against 144 with no resume).
+pub const RESUME_MAX: f64 = 1.0;
 
 /// Tolerance (scaled residual) of the coarse path's last corrector, at
 /// `lambda = 1`: below the pre-solve's first-round tolerance (1e-7), whose
@@ -78,8 +131,9 @@ fn unless_final<T>(r: Result<T>) -> Result<Option<T>> {
 }
 
 /// The cold continuation on the coarse grid, finished on the full grid
-/// (see the module docs); `None` if it failed (its work is in `work`), an
-/// error if the solve must stop.
+/// (see the module docs); `None` if the caller is to run the full grid's
+/// path (its work is in `work`), an error if the solve must stop or the
+/// path stalled at a fold on both grids (see [`fold`]).
 pub(crate) fn coarse_path(
     robot: &Robot,
     inputs: &[f64],
@@ -90,38 +144,58 @@ pub(crate) fn coarse_path(
     let Some(steps) = path_grid(opts) else {
         return Ok(None);
     };
-    let end_tol = opts.tol.max(PATH_END_TOL);
     let copts = SolveOptions {
         steps,
-        tol: end_tol,
+        tol: opts.tol.max(PATH_END_TOL),
         ..*opts
     };
+    let (from, x, tau, jac) = start(robot, None);
+    let mut track = Track::new(0.0, x, tau, jac, 0.25);
+    track.watch = Some(Watch {
+        lam: WATCH_LAMBDA,
+        steps: opts.steps,
+        tol: WATCH_TOL,
+    });
     // the coarse path's own IVP cap within the solve's budget
     let budget = work.max_evaluations;
     let cap = work.evaluations + PATH_MAX_IVPS;
     work.max_evaluations = if budget == 0 { cap } else { budget.min(cap) };
-    let out = follow(robot, inputs, loads, &copts, None, work);
+    let out = follow_from(robot, inputs, loads, &copts, &from, true, &mut track, work);
     work.max_evaluations = budget;
-    let out = match out {
-        Err(e) if is_budget_error(&e) && !work.exhausted() => return Ok(None),
-        out => out,
-    };
-    let Some((nr, _, path)) = unless_final(out)? else {
-        return Ok(None);
-    };
+    match out {
+        Err(e) if is_budget_error(&e) && !work.exhausted() => Ok(None),
+        Err(e) if ends_solve(&e) => Err(e),
+        Err(_) => match track.unresolved {
+            Some(r) if r <= RESUME_MAX => resume(robot, inputs, loads, opts, &from, track, work),
+            Some(_) => Ok(None),
+            None => fold(robot, inputs, loads, opts, &from, track, work),
+        },
+        Ok((nr, _, path)) => finish(robot, inputs, loads, opts, nr.x, path, work),
+    }
+}
+
+/// The finish on the full grid from the coarse root `x` (see the module
+/// docs); `path`: the coarse path's.
+fn finish(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    mut x: Vec<f64>,
+    path: Vec<f64>,
+    work: &mut Work,
+) -> Result<Option<Solution>> {
     // the finish backtracks as a first corrector attempt does
     let fopts = SolveOptions {
         min_step: opts.min_step.max(CORRECTOR_MIN_STEP),
         ..*opts
     };
     let keep = Keep::Nodes;
-    let mut x = nr.x;
     for hop in [false, true] {
         if hop {
-            let steps = opts.steps / HOP_GRID_DIVISOR;
             let hopts = SolveOptions {
-                steps,
-                tol: end_tol,
+                steps: opts.steps / HOP_GRID_DIVISOR,
+                tol: opts.tol.max(PATH_END_TOL),
                 ..fopts
             };
             let out = newton_shooting(robot, inputs, loads, &hopts, &x, None, false, work);
@@ -138,6 +212,90 @@ pub(crate) fn coarse_path(
         }
     }
     Ok(None)
+}
+
+/// A coarse path stopped by its check at `track` (see [`WATCH_LAMBDA`])
+/// goes on on the full grid from there (see [`regrid`]); `None` (the full
+/// grid's path from `lambda = 0` is run) if the correction or that path
+/// fails.
+fn resume(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    mut track: Track,
+    work: &mut Work,
+) -> Result<Option<Solution>> {
+    if !regrid(robot, inputs, loads, opts, from, &mut track, work)? {
+        return Ok(None);
+    }
+    let out = follow_from(robot, inputs, loads, opts, from, true, &mut track, work);
+    let Some((nr, last, path)) = unless_final(out)? else {
+        return Ok(None);
+    };
+    let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
+    s.continuation_steps = path;
+    Ok(Some(s))
+}
+
+/// Corrects `track`'s point on the full grid `opts.steps` (to the
+/// intermediate tolerance, from the coarse Jacobian, backtracking in full)
+/// and moves the track there (see [`Track::regrid`]); `false` if the
+/// correction failed.
+fn regrid(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    track: &mut Track,
+    work: &mut Work,
+) -> Result<bool> {
+    let (r, inp, l) = at(robot, from, inputs, loads, true, track.lam);
+    let sopts = step_options(opts, false, true);
+    let (x, jac) = (&track.x, track.jac.as_ref());
+    let (out, _) = correct(&r, &inp, &l, &sopts, x, jac, false, f64::INFINITY, work);
+    let Some((nr, last)) = unless_final(out)? else {
+        return Ok(false);
+    };
+    track.regrid(nr, last, &r, &inp)?;
+    Ok(true)
+}
+
+/// A coarse path that stalled at `track` (its steps quartered below
+/// `MIN_STEP`: a fold of the path, or a kink the coarse grid does not
+/// resolve) goes on on the full grid from there: the point is corrected
+/// on the full grid (from the coarse Jacobian, backtracking in full), and
+/// the path followed on from it. If that path stalls too, the fold is the
+/// full grid's and a full-grid path from `lambda = 0` would stall there as
+/// well: the error is returned (the caller's last resort follows). `None`
+/// (the full grid's path from `lambda = 0` is run) if the path stalled at
+/// `lambda = 0` or the correction failed. Measured on the 1,000 benchmark
+/// designs: only #25 (past buckling) stalls, at `lambda = 0.5531` after
+/// 207 coarse IVPs; the correction takes 2 IVPs (predictor residual
+/// 2.4e-4), the full grid's path stalls there after 16 more, and the solve
+/// costs 297 IVPs, against 506 with a full-grid path from `lambda = 0`
+/// (227 IVPs, stalled at `lambda = 0.665`).
+fn fold(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    mut track: Track,
+    work: &mut Work,
+) -> Result<Option<Solution>> {
+    if track.lam <= 0.0 {
+        return Ok(None);
+    }
+    if !regrid(robot, inputs, loads, opts, from, &mut track, work)? {
+        return Ok(None);
+    }
+    let (nr, last, path) = follow_from(robot, inputs, loads, opts, from, true, &mut track, work)?;
+    let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
+    s.continuation_steps = path;
+    Ok(Some(s))
 }
 
 /// The cold homotopy path alone (no direct run, no finish) on `opts.steps`:

@@ -19,7 +19,7 @@
 //! each converged step) is recorded in `Solution::continuation_steps`.
 //! A cold path runs on a coarse grid first and is finished on the full
 //! grid ([`crate::solve::coarse_path`]); the full grid's path only if that
-//! fails.
+//! fails (from where the coarse path stalled, if it did).
 //! (Pseudo-arclength continuation through folds is the stability module's.)
 
 use super::cancel;
@@ -27,9 +27,9 @@ use super::coarse_path::coarse_path;
 use super::corrector::correct;
 use super::newton::NewtonResult;
 use super::shooting::{
-    is_input_error, reference_guess, solution_from, tensions, FinalIvp, Loads, Solution,
-    SolveOptions, Work,
+    is_input_error, reference_guess, solution_from, FinalIvp, Loads, Solution, SolveOptions, Work,
 };
+pub(crate) use super::track::{Track, Watch};
 use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
 
@@ -156,7 +156,7 @@ pub fn at(
 /// last, and `(lam, x)`) extrapolated to `lt` when there are any (see
 /// [`PREDICTOR_POINTS`]), else `x` with the actuator elongations that keep
 /// the tensions `tau` at the step's inputs (see `initial_guess`).
-fn predictor(
+pub(crate) fn predictor(
     robot: &Robot,
     inputs: &[f64],
     x: &[f64],
@@ -233,7 +233,7 @@ pub(crate) fn continuation(
 
 /// The converged end of a homotopy path: Newton's result at `lambda = 1`,
 /// its last IVP and the path (the `lambda` of each converged step).
-type PathEnd = (NewtonResult, Option<FinalIvp>, Vec<f64>);
+pub(crate) type PathEnd = (NewtonResult, Option<FinalIvp>, Vec<f64>);
 
 /// The homotopy path to `inputs` under `loads` on `opts.steps` (see the
 /// module docs); adds its work to `work`.
@@ -247,16 +247,26 @@ pub(crate) fn follow(
 ) -> Result<PathEnd> {
     let cold = warm.is_none();
     let (from, x, tau, jac) = start(robot, warm);
-    let mut at_lam = Track {
-        lam: 0.0,
-        x,
-        tau,
-        jac,
-        prev: Vec::new(),
-    };
+    let mut track = Track::new(0.0, x, tau, jac, if cold { 0.25 } else { 0.5 });
+    follow_from(robot, inputs, loads, opts, &from, cold, &mut track, work)
+}
+
+/// The homotopy path from `track`'s point on (inputs from `from`, loads
+/// scaled if `cold`) on `opts.steps`; adds its work to `work`. On return
+/// (either way) `track` holds the last converged point before `lambda = 1`,
+/// the step and the path so far.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn follow_from(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    cold: bool,
+    at_lam: &mut Track,
+    work: &mut Work,
+) -> Result<PathEnd> {
     work.stall_window = HOMOTOPY_STALL_WINDOW;
-    let mut step: f64 = if cold { 0.25 } else { 0.5 };
-    let mut path = Vec::new();
     let mut last_err: Option<Error> = None;
     // best residual of the failed Newton runs (for the budget error)
     let mut best = f64::INFINITY;
@@ -270,29 +280,39 @@ pub(crate) fn follow(
         if work.exhausted() {
             return Err(budget_error(work, lam, best));
         }
-        let lt = (lam + step).min(1.0);
-        let (r, inp, l) = at(robot, &from, inputs, loads, cold, lt);
+        let lt = (lam + at_lam.step).min(1.0);
+        let (r, inp, l) = at(robot, from, inputs, loads, cold, lt);
         let x0 = at_lam.predictor(&r, &inp, lt);
         let step_opts = step_options(opts, lt >= 1.0, retry);
         let (jac, last) = (at_lam.jac.as_ref(), lt >= 1.0);
         let (out, first) = correct(&r, &inp, &l, &step_opts, &x0, jac, last, reject, work);
         if let Some(r0) = first.filter(|&r0| r0 > reject) {
             reject = f64::INFINITY;
-            step = (step * rejected_step_factor(r0)).max(MIN_STEP);
+            at_lam.step = (at_lam.step * rejected_step_factor(r0)).max(MIN_STEP);
             continue;
         }
         reject = PREDICTOR_REJECT;
         match out {
             Ok((nr, last)) => {
-                path.push(lt);
                 retry = false;
                 if lt >= 1.0 {
+                    let mut path = at_lam.path.clone();
+                    path.push(lt);
                     return Ok((nr, last, path));
                 }
+                at_lam.path.push(lt);
                 if nr.iterations <= EASY_ITERATIONS {
-                    step *= 2.0;
+                    at_lam.step *= 2.0;
                 }
                 at_lam.advance(lt, nr, last, &r, &inp)?;
+                if at_lam.watch.is_some_and(|w| lt >= w.lam) {
+                    let w = at_lam.watch.take().expect("checked");
+                    let checked = w.check(&r, &inp, &l, &at_lam.x, work);
+                    if let Err(Error::NotConverged { residual, .. }) = &checked {
+                        at_lam.unresolved = Some(*residual);
+                    }
+                    checked?;
+                }
             }
             Err(e) if is_input_error(&e) => return Err(e),
             Err(Error::NotConverged {
@@ -306,58 +326,14 @@ pub(crate) fn follow(
                 }
                 last_err = Some(e);
                 retry = true;
-                step *= 0.25;
-                if step < MIN_STEP {
+                at_lam.step *= 0.25;
+                if at_lam.step < MIN_STEP {
                     break;
                 }
             }
         }
     }
     Err(stall_error(last_err, work, at_lam.lam))
-}
-
-/// The last converged point of a homotopy: `lambda`, the unknowns, the
-/// tensions \[N\] and the Newton Jacobian there, and up to
-/// [`PREDICTOR_POINTS`] - 1 earlier `(lambda, unknowns)`, oldest first.
-struct Track {
-    lam: f64,
-    x: Vec<f64>,
-    tau: Vec<f64>,
-    jac: Option<nalgebra::DMatrix<f64>>,
-    prev: Vec<(f64, Vec<f64>)>,
-}
-
-impl Track {
-    /// The predictor at `lt` (see [`predictor`]) for the robot and inputs there.
-    fn predictor(&self, robot: &Robot, inputs: &[f64], lt: f64) -> Vec<f64> {
-        predictor(robot, inputs, &self.x, &self.tau, &self.prev, self.lam, lt)
-    }
-    /// Move to the converged point `nr` at `lt` (robot and inputs there;
-    /// `last`: its last IVP, whose tensions are taken if it is at `nr.x`).
-    fn advance(
-        &mut self,
-        lt: f64,
-        nr: NewtonResult,
-        last: Option<FinalIvp>,
-        robot: &Robot,
-        inputs: &[f64],
-    ) -> Result<()> {
-        let tau = match last {
-            Some(last) => last.tensions,
-            None => tensions_at(robot, inputs, &nr.x, robot.body.length)?,
-        };
-        self.prev
-            .push((self.lam, std::mem::replace(&mut self.x, nr.x)));
-        if self.prev.len() >= PREDICTOR_POINTS {
-            self.prev.remove(0);
-        }
-        self.lam = lt;
-        self.tau = tau;
-        if nr.jacobian.is_some() {
-            self.jac = nr.jacobian;
-        }
-        Ok(())
-    }
 }
 
 /// Options of one homotopy step: intermediate steps are predictors,
@@ -371,7 +347,7 @@ impl Track {
 /// The first attempt at a step (`retry` false) backtracks only down to
 /// [`CORRECTOR_MIN_STEP`]; a retry after a failed step backtracks as the
 /// options say.
-fn step_options(opts: &SolveOptions, last: bool, retry: bool) -> SolveOptions {
+pub(crate) fn step_options(opts: &SolveOptions, last: bool, retry: bool) -> SolveOptions {
     let min_step = if retry {
         opts.min_step
     } else {
@@ -389,17 +365,11 @@ fn step_options(opts: &SolveOptions, last: bool, retry: bool) -> SolveOptions {
     }
 }
 
-/// Actuator tensions \[N\] at the scaled unknowns `x` (elongations `x[6..] L`).
-fn tensions_at(robot: &Robot, inputs: &[f64], x: &[f64], len: f64) -> Result<Vec<f64>> {
-    let delta: Vec<f64> = x[6..].iter().map(|d| d * len).collect();
-    tensions(robot, inputs, &delta)
-}
-
 /// The start of the path: the inputs, unknowns, tensions and Jacobian of
 /// the warm solution, or of the reference configuration.
-type Start = (Vec<f64>, Vec<f64>, Vec<f64>, Option<nalgebra::DMatrix<f64>>);
+pub(crate) type Start = (Vec<f64>, Vec<f64>, Vec<f64>, Option<nalgebra::DMatrix<f64>>);
 
-fn start(robot: &Robot, warm: Option<&Solution>) -> Start {
+pub(crate) fn start(robot: &Robot, warm: Option<&Solution>) -> Start {
     match warm {
         Some(w) => (
             w.inputs.clone(),

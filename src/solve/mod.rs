@@ -19,5 +19,6 @@ pub mod residual;
 pub mod shooting;
 pub mod solution;
 pub mod system;
+mod track;
 
 pub use newton::{newton, FnSystem, NewtonOptions, NewtonResult, Status, System};
