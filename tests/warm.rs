@@ -210,9 +210,10 @@ fn a_cold_batch_row_is_a_single_cold_solve() {
     // benchmark design #385 (its direct run is cut at
     // `shooting::DIRECT_MIN_STEP` and continuation takes over: 274 IVPs with
     // the coarse homotopy path, 300 without; a batch row with the options'
-    // damping took 411) and #25 (past buckling: the cut run and both
-    // continuation paths fail, the run with full damping converges; 506
-    // IVPs): the same path, so the same IVPs and tip
+    // damping took 411) and #25 (past buckling: the cut run and the
+    // continuation fail (the coarse path stalls at a fold, and the full grid
+    // from there), the run with full damping converges; 298 IVPs): the same
+    // path, so the same IVPs and tip
     for i in [385, 25] {
         let d = random_design(DEFAULT_SEED, i);
         let single = solve(&d.robot, &d.inputs, &SolveOptions::default(), None).unwrap();

@@ -66,13 +66,14 @@ impl Robot {
     pub fn validate(&self) -> Result<()> {
         self.body.validate()?;
         self.validate_anchors()?;
+        // names are formatted only for an error (this runs on every solve)
         for (i, a) in self.actuators.iter().enumerate() {
-            let name = format!("actuators[{i}]");
             if !self.spacer_disks {
-                routing_in_section(&self.body.section, &a.routing, &format!("{name}.routing"))?;
+                let name = || format!("actuators[{i}].routing");
+                routing_in_section(&self.body.section, &a.routing, name)?;
             }
             if let Some(tca) = a.law.tca() {
-                tca_fits_span(tca.coiled_length(), a, &format!("{name}.tca"))?;
+                tca_fits_span(tca.coiled_length(), a, || format!("actuators[{i}].tca"))?;
             }
         }
         Ok(())
@@ -165,19 +166,26 @@ impl Robot {
     }
 }
 
-/// Error unless the routing of actuator `name` lies inside the section
+/// Error unless the routing of actuator `name()` lies inside the section
 /// (on or inside the edge; checked in 64 directions for a helix).
-fn routing_in_section(section: &Section, routing: &Routing, name: &str) -> Result<()> {
-    let points: Vec<(f64, f64)> = match *routing {
-        Routing::Straight { x, y } => vec![(x, y)],
-        Routing::Helix { radius, .. } => (0..64)
-            .map(|k| {
+fn routing_in_section(
+    section: &Section,
+    routing: &Routing,
+    name: impl Fn() -> String,
+) -> Result<()> {
+    let points = if matches!(routing, Routing::Helix { .. }) {
+        64
+    } else {
+        1
+    };
+    for k in 0..points {
+        let (x, y) = match *routing {
+            Routing::Straight { x, y } => (x, y),
+            Routing::Helix { radius, .. } => {
                 let t = k as f64 * std::f64::consts::TAU / 64.0;
                 (radius * t.cos(), radius * t.sin())
-            })
-            .collect(),
-    };
-    for (x, y) in points {
+            }
+        };
         let r = x.hypot(y);
         if r == 0.0 {
             continue;
@@ -185,7 +193,7 @@ fn routing_in_section(section: &Section, routing: &Routing, name: &str) -> Resul
         let edge = section.edge_distance(y.atan2(x));
         if r > edge * (1.0 + 1e-9) {
             return Err(Error::input(
-                name,
+                &name(),
                 format!(
                     "routing offset {r:.6e} m at ({x:.6e}, {y:.6e}) m lies outside the section \
                      (edge at {edge:.6e} m in that direction)"
@@ -197,12 +205,12 @@ fn routing_in_section(section: &Section, routing: &Routing, name: &str) -> Resul
 }
 
 /// Error unless a TCA of coiled length `coiled_length` \[m\] fits the span
-/// `s_end - s_start` \[m\] of actuator `name`.
-fn tca_fits_span(coiled_length: f64, actuator: &Actuator, name: &str) -> Result<()> {
+/// `s_end - s_start` \[m\] of actuator `name()`.
+fn tca_fits_span(coiled_length: f64, actuator: &Actuator, name: impl Fn() -> String) -> Result<()> {
     let span = actuator.s_end - actuator.s_start;
     if coiled_length > SPAN_SLACK * span {
         return Err(Error::input(
-            name,
+            &name(),
             format!(
                 "the TCA's coiled_length {coiled_length} m exceeds its anchored span s_end - s_start = {span} m \
                  (by more than 10%); shorten the TCA or move its anchors"
@@ -256,12 +264,11 @@ mod tests {
     #[test]
     fn routing_outside_a_14_mm_body_is_rejected() {
         let s = Section::Circle { diameter: 14e-3 };
-        assert!(routing_in_section(&s, &Routing::Straight { x: 5e-3, y: 0.0 }, "a").is_ok());
-        let e = routing_in_section(
-            &s,
-            &Routing::Straight { x: 20e-3, y: 0.0 },
-            "actuators[0].routing",
-        )
+        let a = || "a".to_string();
+        assert!(routing_in_section(&s, &Routing::Straight { x: 5e-3, y: 0.0 }, a).is_ok());
+        let e = routing_in_section(&s, &Routing::Straight { x: 20e-3, y: 0.0 }, || {
+            "actuators[0].routing".to_string()
+        })
         .unwrap_err();
         assert!(e.to_string().contains("actuators[0].routing"));
         assert!(routing_in_section(
@@ -271,7 +278,7 @@ mod tests {
                 rate: 1.0,
                 phase: 0.0
             },
-            "a"
+            a
         )
         .is_err());
     }
