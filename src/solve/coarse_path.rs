@@ -24,8 +24,9 @@
 //! If the coarse path stalls (its step quartered below the smallest: a
 //! fold of the path), it goes on on the full grid from the point where it
 //! stalled (`fold`); if it stalls there too, the solve's continuation has
-//! failed without a full-grid path from `lambda = 0`, which would stall at
-//! the same fold (benchmark design #25, past buckling: 506 -> 297 IVPs).
+//! failed without a full-grid path from `lambda = 0`, which meets the same
+//! fold (benchmark design #25, past buckling: the coarse path stalls at
+//! `lambda = 0.553`, the full grid's own path at 0.665; 506 -> 297 IVPs).
 //! If the coarse path reaches its IVP cap, or the finish does not
 //! converge, the caller runs the path on the full grid from `lambda = 0`
 //! (its work counted on top), so that no design converging on the full
@@ -268,8 +269,9 @@ fn regrid(
 /// resolve) goes on on the full grid from there: the point is corrected
 /// on the full grid (from the coarse Jacobian, backtracking in full), and
 /// the path followed on from it. If that path stalls too, the fold is the
-/// full grid's and a full-grid path from `lambda = 0` would stall there as
-/// well: the error is returned (the caller's last resort follows). `None`
+/// full grid's and a full-grid path from `lambda = 0` meets it as well
+/// (not at the same `lambda`: see below): the error is returned (the
+/// caller's last resort follows). `None`
 /// (the full grid's path from `lambda = 0` is run) if the path stalled at
 /// `lambda = 0` or the correction failed. Measured on the 1,000 benchmark
 /// designs: only #25 (past buckling) stalls, at `lambda = 0.5531` after
