@@ -17,13 +17,13 @@
 //! be out of the finish's reach at `lambda = 1`. So the path checks it
 //! once, with one full-grid IVP at `lambda = 1/8` ([`WATCH_LAMBDA`]), and
 //! if it exceeds [`WATCH_TOL`] goes on on the full grid from there
-//! (`resume`; from `lambda = 0` if the point is beyond a corrector's reach,
+//! (`on_full_grid`; from `lambda = 0` if the point is beyond a corrector's reach,
 //! [`RESUME_MAX`]): benchmark designs #112, #940, #861, #894, #54 (coarse
 //! root 4.7-25 from the full grid's, or a coarse path creeping to its
 //! cap) 1,205 -> 627 IVPs together.
 //! If the coarse path stalls (its step quartered below the smallest: a
 //! fold of the path), it goes on on the full grid from the point where it
-//! stalled (`fold`); if it stalls there too, the solve's continuation has
+//! stalled (`on_full_grid`); if it stalls there too, the solve's continuation has
 //! failed without a full-grid path from `lambda = 0`, which meets the same
 //! fold (benchmark design #25, past buckling: the coarse path stalls at
 //! `lambda = 0.553`, the full grid's own path at 0.665; 506 -> 297 IVPs).
@@ -94,7 +94,7 @@ pub const WATCH_LAMBDA: f64 = 0.125;
 pub const WATCH_TOL: f64 = WATCH_LAMBDA * WATCH_LAMBDA;
 
 /// Largest check residual from which a coarse path stopped by its check
-/// resumes on the full grid at the checked point (`resume`); beyond, the
+/// resumes on the full grid at the checked point (`on_full_grid`); beyond, the
 /// full grid's path runs from `lambda = 0`. Within one unit a point is in
 /// a corrector's reach (measured: from 0.38 and 0.72 in 5 and 9 IVPs, #107
 /// and #560); from 7.3 it is not (#112: failed after 37 IVPs). Measured
@@ -134,7 +134,7 @@ fn unless_final<T>(r: Result<T>) -> Result<Option<T>> {
 /// The cold continuation on the coarse grid, finished on the full grid
 /// (see the module docs); `None` if the caller is to run the full grid's
 /// path (its work is in `work`), an error if the solve must stop or the
-/// path stalled at a fold on both grids (see [`fold`]).
+/// path stalled at a fold on both grids (see [`on_full_grid`]).
 pub(crate) fn coarse_path(
     robot: &Robot,
     inputs: &[f64],
@@ -167,9 +167,11 @@ pub(crate) fn coarse_path(
         Err(e) if is_budget_error(&e) && !work.exhausted() => Ok(None),
         Err(e) if ends_solve(&e) => Err(e),
         Err(_) => match track.unresolved {
-            Some(r) if r <= RESUME_MAX => resume(robot, inputs, loads, opts, &from, track, work),
+            Some(r) if r <= RESUME_MAX => {
+                on_full_grid(robot, inputs, loads, opts, &from, (track, false), work)
+            }
             Some(_) => Ok(None),
-            None => fold(robot, inputs, loads, opts, &from, track, work),
+            None => on_full_grid(robot, inputs, loads, opts, &from, (track, true), work),
         },
         Ok((nr, _, path)) => finish(robot, inputs, loads, opts, nr.x, path, work),
     }
@@ -215,24 +217,48 @@ fn finish(
     Ok(None)
 }
 
-/// A coarse path stopped by its check at `track` (see [`WATCH_LAMBDA`])
-/// goes on on the full grid from there (see [`regrid`]); `None` (the full
-/// grid's path from `lambda = 0` is run) if the correction or that path
-/// fails.
-fn resume(
+/// The coarse path goes on on the full grid from `track`, after its check
+/// stopped it (see [`WATCH_LAMBDA`]) or, `at_fold`, after it stalled.
+///
+/// Stopped by its check: the point is corrected on the full grid
+/// ([`regrid`]) and the path followed on from it; `None` (the full grid's
+/// path from `lambda = 0` is run) if the correction or that path fails.
+///
+/// At a fold (the coarse path's steps quartered below `MIN_STEP`: a fold
+/// of the path, or a kink the coarse grid does not resolve) the same, but
+/// if the full grid's path stalls too, the fold is the full grid's and a
+/// full-grid path from `lambda = 0` meets it as well (not at the same
+/// `lambda`: see below): the error is returned (the caller's last resort
+/// follows). `None` if the path stalled at `lambda = 0` or the correction
+/// failed. Measured on the 1,000 benchmark designs: only #25 (past
+/// buckling) stalls, at `lambda = 0.5531` after 207 coarse IVPs; the
+/// correction takes 2 IVPs (predictor residual 2.4e-4), the full grid's
+/// path stalls there after 16 more, and the solve costs 297 IVPs, against
+/// 506 with a full-grid path from `lambda = 0` (227 IVPs, stalled at
+/// `lambda = 0.665`).
+fn on_full_grid(
     robot: &Robot,
     inputs: &[f64],
     loads: &Loads,
     opts: &SolveOptions,
     from: &[f64],
-    mut track: Track,
+    (mut track, at_fold): (Track, bool),
     work: &mut Work,
 ) -> Result<Option<Solution>> {
+    if at_fold && track.lam <= 0.0 {
+        return Ok(None);
+    }
     if !regrid(robot, inputs, loads, opts, from, &mut track, work)? {
         return Ok(None);
     }
     let out = follow_from(robot, inputs, loads, opts, from, true, &mut track, work);
-    let Some((nr, last, path)) = unless_final(out)? else {
+    // a path stalled at a fold on both grids is the solve's continuation failure
+    let out = if at_fold {
+        Some(out?)
+    } else {
+        unless_final(out)?
+    };
+    let Some((nr, last, path)) = out else {
         return Ok(None);
     };
     let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
@@ -262,42 +288,6 @@ fn regrid(
     };
     track.regrid(nr, last, &r, &inp)?;
     Ok(true)
-}
-
-/// A coarse path that stalled at `track` (its steps quartered below
-/// `MIN_STEP`: a fold of the path, or a kink the coarse grid does not
-/// resolve) goes on on the full grid from there: the point is corrected
-/// on the full grid (from the coarse Jacobian, backtracking in full), and
-/// the path followed on from it. If that path stalls too, the fold is the
-/// full grid's and a full-grid path from `lambda = 0` meets it as well
-/// (not at the same `lambda`: see below): the error is returned (the
-/// caller's last resort follows). `None`
-/// (the full grid's path from `lambda = 0` is run) if the path stalled at
-/// `lambda = 0` or the correction failed. Measured on the 1,000 benchmark
-/// designs: only #25 (past buckling) stalls, at `lambda = 0.5531` after
-/// 207 coarse IVPs; the correction takes 2 IVPs (predictor residual
-/// 2.4e-4), the full grid's path stalls there after 16 more, and the solve
-/// costs 297 IVPs, against 506 with a full-grid path from `lambda = 0`
-/// (227 IVPs, stalled at `lambda = 0.665`).
-fn fold(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    from: &[f64],
-    mut track: Track,
-    work: &mut Work,
-) -> Result<Option<Solution>> {
-    if track.lam <= 0.0 {
-        return Ok(None);
-    }
-    if !regrid(robot, inputs, loads, opts, from, &mut track, work)? {
-        return Ok(None);
-    }
-    let (nr, last, path) = follow_from(robot, inputs, loads, opts, from, true, &mut track, work)?;
-    let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
-    s.continuation_steps = path;
-    Ok(Some(s))
 }
 
 /// The cold homotopy path alone (no direct run, no finish) on `opts.steps`:
