@@ -324,5 +324,25 @@ mod tests {
             }
             other => panic!("expected an integration error, got {other:?}"),
         }
+        // with a taut string the NaN reaches the string's length rate first
+        // (the next stage): the same reason, not "zero length rate"
+        let tendon = crate::rod::Actuator::new(
+            crate::rod::Routing::straight(2e-3, 0.0).unwrap(),
+            0.0,
+            0.04,
+            std::sync::Arc::new(crate::rod::ConstantTension),
+        );
+        let robot = Robot::new(robot.body.clone(), vec![tendon]).unwrap();
+        let spec = IvpSpec {
+            robot: &robot,
+            tensions: &[0.01],
+            ..spec
+        };
+        match integrate(&spec, &Vector3::new(0.0, 0.0, 1.0), &u0, false) {
+            Err(Error::Integration { reason, .. }) => {
+                assert!(reason.contains("non-finite"), "{reason}")
+            }
+            other => panic!("expected an integration error, got {other:?}"),
+        }
     }
 }

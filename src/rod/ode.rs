@@ -225,10 +225,13 @@ impl<'a> RodRhs<'a> {
         }
         let nrm = dot(&pb, &pb).sqrt();
         if !(nrm.re() > 1e-12) {
-            return Err(Error::Integration {
-                s,
-                reason: format!("actuator {i} has zero length rate"),
-            });
+            // a non-finite state reaches here first since the IVP checks
+            // finiteness once per RK4 step, not per stage
+            let reason = match nrm.re().is_finite() {
+                true => format!("actuator {i} has zero length rate"),
+                false => "non-finite derivative".into(),
+            };
+            return Err(Error::Integration { s, reason });
         }
         let (pbrp, g) = match &bend {
             // g_i = omega^(nu + omega^ r + 2 r') + r''

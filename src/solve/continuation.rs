@@ -305,14 +305,7 @@ pub(crate) fn follow_from(
                     at_lam.step *= 2.0;
                 }
                 at_lam.advance(lt, nr, last, &r, &inp)?;
-                if at_lam.watch.is_some_and(|w| lt >= w.lam) {
-                    let w = at_lam.watch.take().expect("checked");
-                    let checked = w.check(&r, &inp, &l, &at_lam.x, work);
-                    if let Err(Error::NotConverged { residual, .. }) = &checked {
-                        at_lam.unresolved = Some(*residual);
-                    }
-                    checked?;
-                }
+                at_lam.check_grid(&r, &inp, &l, work)?;
             }
             Err(e) if is_input_error(&e) => return Err(e),
             Err(Error::NotConverged {

@@ -118,6 +118,29 @@ impl Track {
         }
         Ok(())
     }
+    /// The grid check ([`Watch`]) at the point just reached, if it is the
+    /// first at or past the check's `lambda` (robot, inputs and loads
+    /// there): an error if it fails, with its residual in `unresolved`
+    /// (infinite if its IVP failed: not a fold, so never handed over as one).
+    pub(crate) fn check_grid(
+        &mut self,
+        robot: &Robot,
+        inputs: &[f64],
+        loads: &Loads,
+        work: &mut Work,
+    ) -> Result<()> {
+        let Some(w) = self.watch.filter(|w| self.lam >= w.lam) else {
+            return Ok(());
+        };
+        self.watch = None;
+        let checked = w.check(robot, inputs, loads, &self.x, work);
+        self.unresolved = match &checked {
+            Ok(()) => None,
+            Err(Error::NotConverged { residual, .. }) => Some(*residual),
+            Err(_) => Some(f64::INFINITY),
+        };
+        checked
+    }
     /// Move the point to `nr`, the same point corrected on another grid
     /// (robot and inputs at `self.lam`): the earlier points move by the
     /// same correction (the grids' difference varies slowly along the path).
