@@ -291,6 +291,8 @@ pub(crate) fn chord_then_newton<S: System>(
     let mut res = inf_norm(&r);
     let lu = jac.clone().lu();
     let mut iterations = 0;
+    // the next step's residual predicted from the last one's contraction
+    let mut predicted = f64::INFINITY;
     loop {
         let floor = sys.floor(&x, &r);
         if res <= nopts.tol.max(floor) {
@@ -304,6 +306,16 @@ pub(crate) fn chord_then_newton<S: System>(
                 evaluations: sys.evaluations(),
                 jacobian: Some(jac.clone()),
             });
+        }
+        if predicted <= UNEVALUATED_MARGIN * nopts.tol.max(floor) {
+            if let Some(nr) = unevaluated_step(&lu, (x.as_slice(), &r), predicted, floor, jac) {
+                return Ok(NewtonResult {
+                    iterations: iterations + 1,
+                    evaluations: sys.evaluations(),
+                    status: converged_status(predicted, nopts.tol),
+                    ..nr
+                });
+            }
         }
         if iterations + 1 >= nopts.max_iter || sys.evaluations() >= nopts.max_evaluations {
             break;
@@ -326,21 +338,10 @@ pub(crate) fn chord_then_newton<S: System>(
         (x, r) = (xt, rt);
         // chord steps still needed at this contraction
         let needed = (after / nopts.tol).ln() / (res / after).ln();
-        let predicted = after * (after / res);
+        predicted = after * (after / res);
         res = after;
         if needed > CHORD_STEPS_LEFT {
             break;
-        }
-        let floor = sys.floor(&x, &r);
-        if res > nopts.tol.max(floor) && predicted <= UNEVALUATED_MARGIN * nopts.tol.max(floor) {
-            if let Some(nr) = unevaluated_step(&lu, (x.as_slice(), &r), predicted, floor, jac) {
-                return Ok(NewtonResult {
-                    iterations: iterations + 1,
-                    evaluations: sys.evaluations(),
-                    status: converged_status(predicted, nopts.tol),
-                    ..nr
-                });
-            }
         }
     }
     let rest = NewtonOptions {
