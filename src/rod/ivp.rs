@@ -4,7 +4,7 @@
 use nalgebra::{Quaternion, Vector3};
 
 use super::ode::{all_finite, RodRhs};
-use super::{rot, Robot, RodState, BASE_STATES};
+use super::{rot, FlatNodes, Robot, RodState, BASE_STATES};
 use crate::error::{Error, Result};
 
 /// Everything an IVP needs besides the state: robot, tensions, loads.
@@ -189,6 +189,34 @@ pub fn integrate(
     u0: &Vector3<f64>,
     record: bool,
 ) -> Result<IvpResult> {
+    if !record {
+        return dispatch(spec, v0, u0, None);
+    }
+    let (mut ivp, nodes) = integrate_flat(spec, v0, u0)?;
+    ivp.nodes = nodes.to_states();
+    Ok(ivp)
+}
+
+/// [`integrate`] recording its nodes flat (one allocation for all of
+/// them; the result's own `nodes` stay empty).
+pub(crate) fn integrate_flat(
+    spec: &IvpSpec<'_>,
+    v0: &Vector3<f64>,
+    u0: &Vector3<f64>,
+) -> Result<(IvpResult, FlatNodes)> {
+    let mut nodes = FlatNodes::default();
+    let ivp = dispatch(spec, v0, u0, Some(&mut nodes))?;
+    Ok((ivp, nodes))
+}
+
+/// The compiled copy of [`integrate_plain`] for this CPU.
+#[inline(always)]
+fn dispatch(
+    spec: &IvpSpec<'_>,
+    v0: &Vector3<f64>,
+    u0: &Vector3<f64>,
+    record: Option<&mut FlatNodes>,
+) -> Result<IvpResult> {
     #[cfg(target_arch = "x86_64")]
     {
         if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
@@ -209,18 +237,19 @@ unsafe fn integrate_avx2(
     spec: &IvpSpec<'_>,
     v0: &Vector3<f64>,
     u0: &Vector3<f64>,
-    record: bool,
+    record: Option<&mut FlatNodes>,
 ) -> Result<IvpResult> {
     integrate_plain(spec, v0, u0, record)
 }
 
-/// The body of [`integrate`], inlined into each compiled copy.
+/// The body of [`integrate`], inlined into each compiled copy; the nodes
+/// into `record` if given.
 #[inline(always)]
 fn integrate_plain(
     spec: &IvpSpec<'_>,
     v0: &Vector3<f64>,
     u0: &Vector3<f64>,
-    record: bool,
+    mut record: Option<&mut FlatNodes>,
 ) -> Result<IvpResult> {
     let robot = spec.robot;
     let body = &robot.body;
@@ -245,7 +274,9 @@ fn integrate_plain(
     y[10..13].copy_from_slice(u0.as_slice());
     let bps = robot.breakpoints();
     let tol = 1e-12 * len;
-    let mut nodes = Vec::with_capacity(if record { steps + bps.len() } else { 0 });
+    if let Some(rec) = record.as_mut() {
+        rec.reserve(n, steps + bps.len());
+    }
     let mut elongation = vec![0.0; na];
     let mut active: Vec<usize> = Vec::with_capacity(na);
     for w in bps.windows(2) {
@@ -253,8 +284,8 @@ fn integrate_plain(
         if a > 0.0 {
             anchors_at(robot, &fz, a, y, &mut elongation, tol)?;
         }
-        if record {
-            nodes.push((a, RodState::from_slice(y)));
+        if let Some(rec) = record.as_mut() {
+            rec.push(a, y);
         }
         spanning(robot, a, b, tol, &mut active);
         let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
@@ -263,22 +294,21 @@ fn integrate_plain(
         for k in 0..m {
             let s = a + k as f64 * h;
             rk4_step(&fz, s, hs, &active, y, ks)?;
-            if record && k + 1 < m {
-                nodes.push((s + h, RodState::from_slice(y)));
+            if let Some(rec) = record.as_mut().filter(|_| k + 1 < m) {
+                rec.push(s + h, y);
             }
         }
     }
     let (rf, rm) = tip_balance(spec, &fz, y, &mut elongation, tol);
-    let tip = RodState::from_slice(y);
-    if record {
-        nodes.push((len, tip.clone()));
+    if let Some(rec) = record.as_mut() {
+        rec.push(len, y);
     }
     Ok(IvpResult {
-        tip,
+        tip: RodState::from_slice(y),
         elongation,
         tip_force_residual: rf,
         tip_moment_residual: rm,
-        nodes,
+        nodes: Vec::new(),
     })
 }
 

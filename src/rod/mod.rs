@@ -37,6 +37,7 @@ mod tangent_nodes;
 
 pub use actuator::{Actuator, ConstantTension, ForceLaw, LinearTendon, Routing, TcaLaw};
 pub use body::{Body, Shear, DEFAULT_POISSON};
+pub(crate) use ivp::integrate_flat;
 pub use ivp::{integrate, IvpResult, IvpSpec};
 pub use robot::{Robot, BASE_STATES};
 pub use section::Section;
@@ -91,5 +92,73 @@ impl RodState {
     /// Rotation matrix `R` (body to world).
     pub fn rotation(&self) -> Matrix3<f64> {
         rot(&self.q)
+    }
+}
+
+/// The recorded nodes of one IVP, flat (one allocation for all of them):
+/// arc lengths \[m\] and the state vectors, `n` values per node in the
+/// IVP's order (`p`, `q`, `v`, `u`, `delta`, as [`RodState`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FlatNodes {
+    /// Arc length of each node \[m\].
+    pub s: Vec<f64>,
+    /// The states, `n` per node.
+    pub y: Vec<f64>,
+    /// Values per node.
+    pub n: usize,
+}
+
+impl FlatNodes {
+    /// Room for `nodes` nodes of `n` values each.
+    pub(crate) fn reserve(&mut self, n: usize, nodes: usize) {
+        self.n = n;
+        self.s.reserve(nodes);
+        self.y.reserve(n * nodes);
+    }
+    /// Append the node `(s, y)`.
+    #[inline(always)]
+    pub(crate) fn push(&mut self, s: f64, y: &[f64]) {
+        self.s.push(s);
+        self.y.extend_from_slice(y);
+    }
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.s.len()
+    }
+    /// Whether there is no node.
+    pub fn is_empty(&self) -> bool {
+        self.s.is_empty()
+    }
+    /// The state vector of node `k`.
+    pub fn state(&self, k: usize) -> &[f64] {
+        &self.y[k * self.n..(k + 1) * self.n]
+    }
+    /// The state vectors, in order.
+    pub fn states(&self) -> impl Iterator<Item = &[f64]> {
+        self.y.chunks_exact(self.n.max(1))
+    }
+    /// The nodes as `(s, state)` pairs.
+    pub fn to_states(&self) -> Vec<(f64, RodState)> {
+        (self.s.iter().zip(self.states()))
+            .map(|(&s, y)| (s, RodState::from_slice(y)))
+            .collect()
+    }
+    /// The nodes `(s, state)`, flat.
+    pub fn from_states(nodes: &[(f64, RodState)]) -> Self {
+        let n = nodes
+            .first()
+            .map_or(0, |(_, st)| BASE_STATES + st.delta.len());
+        let mut out = FlatNodes::default();
+        out.reserve(n, nodes.len());
+        for (s, st) in nodes {
+            out.s.push(*s);
+            out.y.extend_from_slice(st.p.as_slice());
+            // (`y` holds `q` as `w, x, y, z`; nalgebra's `coords` are `x, y, z, w`)
+            out.y.extend_from_slice(&[st.q.w, st.q.i, st.q.j, st.q.k]);
+            out.y.extend_from_slice(st.v.as_slice());
+            out.y.extend_from_slice(st.u.as_slice());
+            out.y.extend_from_slice(&st.delta);
+        }
+        out
     }
 }

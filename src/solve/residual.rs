@@ -6,7 +6,8 @@ use nalgebra::{DMatrix, Vector3};
 
 use crate::error::{Error, Result};
 use crate::rod::{
-    integrate, integrate_tangent, IvpResult, IvpSpec, Robot, TangentIvp, TangentSeeds,
+    integrate, integrate_flat, integrate_tangent, FlatNodes, IvpResult, IvpSpec, Robot, TangentIvp,
+    TangentSeeds,
 };
 
 /// Residual, its exact Jacobian, the tangent IVP and the tensions of one evaluation.
@@ -96,13 +97,37 @@ impl<'a> Shot<'a> {
     /// One IVP from scaled unknowns `x`: the scaled residual, the IVP (with
     /// its nodes if `record`) and the tensions \[N\].
     pub fn residual(&self, x: &[f64], record: bool) -> Result<(Vec<f64>, IvpResult, Vec<f64>)> {
+        self.residual_by(x, |spec, v0, u0| integrate(spec, v0, u0, record))
+    }
+
+    /// [`Shot::residual`] with the IVP's nodes recorded flat (its own
+    /// `nodes` empty).
+    pub(crate) fn residual_flat(
+        &self,
+        x: &[f64],
+    ) -> Result<(Vec<f64>, IvpResult, Vec<f64>, FlatNodes)> {
+        let mut nodes = FlatNodes::default();
+        let (r, ivp, tau) = self.residual_by(x, |spec, v0, u0| {
+            let (ivp, flat) = integrate_flat(spec, v0, u0)?;
+            nodes = flat;
+            Ok(ivp)
+        })?;
+        Ok((r, ivp, tau, nodes))
+    }
+
+    /// The residual at `x` of the IVP `ivp(spec, v0, u0)`.
+    fn residual_by(
+        &self,
+        x: &[f64],
+        ivp: impl FnOnce(&IvpSpec<'_>, &Vector3<f64>, &Vector3<f64>) -> Result<IvpResult>,
+    ) -> Result<(Vec<f64>, IvpResult, Vec<f64>)> {
         let len = self.robot.body.length;
         let na = self.robot.actuators.len();
         let (v0, u0) = base_strains(x, len);
         let delta: Vec<f64> = x[6..6 + na].iter().map(|d| d * len).collect();
         let tau = tensions(self.robot, self.inputs, &delta)?;
         let spec = self.loads.ivp(self.robot, &tau, self.steps);
-        let ivp = integrate(&spec, &v0, &u0, record)?;
+        let ivp = ivp(&spec, &v0, &u0)?;
         let r = scaled_residual(self.robot, &ivp, &delta);
         Ok((r, ivp, tau))
     }

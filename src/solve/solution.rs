@@ -1,12 +1,12 @@
 //! A converged forward solution sampled at the integration nodes, its
 //! assembly from the converged unknowns, and the tip-only result of batches.
 
-use nalgebra::{DMatrix, Matrix3, Vector3};
+use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3};
 
 use super::newton::Status;
 use super::residual::{Loads, Shot};
 use crate::error::Result;
-use crate::rod::{IvpResult, Robot, RodState};
+use crate::rod::{rot, FlatNodes, IvpResult, Robot, BASE_STATES};
 
 /// A converged forward solution, sampled at the integration nodes.
 #[derive(Debug, Clone)]
@@ -25,8 +25,9 @@ pub struct Solution {
     pub internal_force: Vec<Vector3<f64>>,
     /// Internal moment `m = R K_omega (omega - omega*)` \[N m\], world frame.
     pub internal_moment: Vec<Vector3<f64>>,
-    /// Elongation of each actuator up to each node \[m\] (`nodes x actuators`).
-    pub elongation_profile: Vec<Vec<f64>>,
+    /// Elongation of each actuator up to each node \[m\] (`nodes x
+    /// actuators`: row `k` is node `k`).
+    pub elongation_profile: DMatrix<f64>,
     /// Actuator paths `p + R r_i(s)` \[m\] at the nodes within each actuator's span.
     pub actuator_paths: Vec<Vec<Vector3<f64>>>,
     /// Actuator tensions \[N\] (negative: the actuator pushes).
@@ -85,19 +86,16 @@ pub fn assemble(
     iterations: usize,
     evaluations: usize,
 ) -> Result<Solution> {
-    let (r, ivp, tau) = Shot::new(robot, inputs, loads, steps).residual(x, true)?;
-    assemble_from(
+    let (r, ivp, tau, nodes) = Shot::new(robot, inputs, loads, steps).residual_flat(x)?;
+    let counts = (steps, iterations, evaluations);
+    Ok(assemble_flat(
         robot,
-        inputs,
-        loads,
-        x,
-        steps,
-        iterations,
-        evaluations,
+        (inputs, loads, x),
+        counts,
         r,
-        ivp,
+        (ivp, nodes),
         tau,
-    )
+    ))
 }
 
 /// [`assemble`] from the recorded IVP at `x` (residual `r`, tensions `tau`).
@@ -111,45 +109,69 @@ pub(crate) fn assemble_from(
     iterations: usize,
     evaluations: usize,
     r: Vec<f64>,
-    ivp: IvpResult,
+    mut ivp: IvpResult,
     tau: Vec<f64>,
 ) -> Result<Solution> {
+    let nodes = FlatNodes::from_states(&std::mem::take(&mut ivp.nodes));
+    let counts = (steps, iterations, evaluations);
+    Ok(assemble_flat(
+        robot,
+        (inputs, loads, x),
+        counts,
+        r,
+        (ivp, nodes),
+        tau,
+    ))
+}
+
+/// [`assemble`] from the IVP at `x` with its nodes recorded flat (residual
+/// `r`, tensions `tau`); `counts`: RK4 steps, iterations, evaluations.
+pub(crate) fn assemble_flat(
+    robot: &Robot,
+    (inputs, loads, x): (&[f64], &Loads, &[f64]),
+    (steps, iterations, evaluations): (usize, usize, usize),
+    r: Vec<f64>,
+    (ivp, nodes): (IvpResult, FlatNodes),
+    tau: Vec<f64>,
+) -> Solution {
     let body = &robot.body;
     let (kse, kbt) = body.stiffness();
-    let (base_force, base_moment) = match ivp.nodes.first() {
-        Some((_, st0)) => base_wrench(robot, st0, &tau),
-        None => (Vector3::zeros(), Vector3::zeros()),
+    let (base_force, base_moment) = match nodes.is_empty() {
+        false => base_wrench(robot, nodes.state(0), &tau),
+        true => (Vector3::zeros(), Vector3::zeros()),
     };
-    let nodes = ivp.nodes;
-    let rotations: Vec<Matrix3<f64>> = field(&nodes, |st| st.rotation());
+    let rotations: Vec<Matrix3<f64>> = field(&nodes, |y| rot(&quat(y)));
     let tol = 1e-12 * body.length;
     let actuator_paths = robot
         .actuators
         .iter()
         .map(|a| {
             let span = |s: f64| s >= a.s_start - tol && s <= a.s_end + tol;
-            (nodes.iter().zip(&rotations))
-                .filter(|((s, _), _)| span(*s))
-                .map(|((s, st), rm)| st.p + rm * a.routing.eval(*s).0)
+            (nodes.s.iter().zip(nodes.states()).zip(&rotations))
+                .filter(|((s, _), _)| span(**s))
+                .map(|((s, y), rm)| vec3(y, 0) + rm * a.routing.eval(*s).0)
                 .collect()
         })
         .collect();
     // (R (K w), not (R K) w: the 3x3 product per node is not needed)
-    let load = |k: &Matrix3<f64>, w: fn(&RodState, &crate::rod::Body) -> Vector3<f64>| {
-        (nodes.iter().zip(&rotations))
-            .map(|((_, st), rm)| rm * (k * w(st, body)))
+    let load = |k: &Matrix3<f64>, at: usize, w0: &Vector3<f64>| {
+        (nodes.states().zip(&rotations))
+            .map(|(y, rm)| rm * (k * (vec3(y, at) - w0)))
             .collect()
     };
-    Ok(Solution {
-        s: nodes.iter().map(|(s, _)| *s).collect(),
-        positions: field(&nodes, |st| st.p),
-        nu: field(&nodes, |st| st.v),
-        omega: field(&nodes, |st| st.u),
-        internal_force: load(&kse, |st, b| st.v - b.nu_star),
-        internal_moment: load(&kbt, |st, b| st.u - b.omega_star),
+    let na = robot.actuators.len();
+    let elongation_profile =
+        DMatrix::from_fn(nodes.len(), na, |k, i| nodes.state(k)[BASE_STATES + i]);
+    Solution {
+        positions: field(&nodes, |y| vec3(y, 0)),
+        nu: field(&nodes, |y| vec3(y, 7)),
+        omega: field(&nodes, |y| vec3(y, 10)),
+        internal_force: load(&kse, 7, &body.nu_star),
+        internal_moment: load(&kbt, 10, &body.omega_star),
+        s: nodes.s,
         rotations,
         actuator_paths,
-        elongation_profile: nodes.into_iter().map(|(_, st)| st.delta).collect(),
+        elongation_profile,
         tensions: tau,
         elongations: ivp.elongation,
         inputs: inputs.to_vec(),
@@ -165,33 +187,46 @@ pub(crate) fn assemble_from(
         status: Status::Converged,
         floor: 0.0,
         continuation_steps: Vec::new(),
-    })
+    }
 }
 
-/// `f` of every node's state, in order (one tight pass per field of a
-/// [`Solution`]).
-fn field<T>(nodes: &[(f64, RodState)], f: impl Fn(&RodState) -> T) -> Vec<T> {
-    nodes.iter().map(|(_, st)| f(st)).collect()
+/// The 3-vector at `y[at..at + 3]`.
+#[inline(always)]
+fn vec3(y: &[f64], at: usize) -> Vector3<f64> {
+    Vector3::new(y[at], y[at + 1], y[at + 2])
+}
+
+/// The orientation quaternion of a state vector `y`.
+#[inline(always)]
+fn quat(y: &[f64]) -> Quaternion<f64> {
+    Quaternion::new(y[3], y[4], y[5], y[6])
+}
+
+/// `f` of every node's state vector, in order (one tight pass per field
+/// of a [`Solution`]).
+fn field<T>(nodes: &FlatNodes, f: impl Fn(&[f64]) -> T) -> Vec<T> {
+    nodes.states().map(f).collect()
 }
 
 /// Wrench (force \[N\], moment \[N m\] about the base origin, world frame)
-/// transmitted to the base by the body at its first node `st0` and the
-/// strings anchored there, each pulling the base toward the tip with
-/// `tau t`.
-fn base_wrench(robot: &Robot, st0: &RodState, tau: &[f64]) -> (Vector3<f64>, Vector3<f64>) {
+/// transmitted to the base by the body at its first node (state vector
+/// `y0`) and the strings anchored there, each pulling the base toward the
+/// tip with `tau t`.
+fn base_wrench(robot: &Robot, y0: &[f64], tau: &[f64]) -> (Vector3<f64>, Vector3<f64>) {
     let body = &robot.body;
     let (kse, kbt) = body.stiffness();
     let tol = 1e-12 * body.length;
-    let r0 = st0.rotation();
-    let mut f = r0 * kse * (st0.v - body.nu_star);
-    let mut m = r0 * kbt * (st0.u - body.omega_star) + st0.p.cross(&f);
+    let (p0, v0, u0) = (vec3(y0, 0), vec3(y0, 7), vec3(y0, 10));
+    let r0 = rot(&quat(y0));
+    let mut f = r0 * kse * (v0 - body.nu_star);
+    let mut m = r0 * kbt * (u0 - body.omega_star) + p0.cross(&f);
     for (i, a) in robot.actuators.iter().enumerate() {
         if a.s_start <= tol {
             let (ri, rp, _) = a.routing.eval(0.0);
-            let pb = st0.v + st0.u.cross(&ri) + rp;
+            let pb = v0 + u0.cross(&ri) + rp;
             let t = r0 * pb / pb.norm();
             f += t * tau[i];
-            m += (st0.p + r0 * ri).cross(&(t * tau[i]));
+            m += (p0 + r0 * ri).cross(&(t * tau[i]));
         }
     }
     (f, m)

@@ -9,9 +9,9 @@ use nalgebra::DMatrix;
 use super::newton::{newton_from, NewtonOptions, NewtonResult, System};
 use super::options::SolveOptions;
 use super::residual::{residual_scales, scaled_residual, tensions, Loads, Shot};
-use super::solution::{assemble, assemble_from, Solution};
+use super::solution::{assemble, assemble_flat, assemble_from, Solution};
 use crate::error::{Error, Result};
-use crate::rod::{IvpResult, Robot};
+use crate::rod::{FlatNodes, IvpResult, Robot};
 use crate::stability::{verdict_pass, Equilibrium, VerdictPass};
 
 /// The residual, IVP and tensions \[N\] of one evaluation (at the point
@@ -21,8 +21,10 @@ use crate::stability::{verdict_pass, Equilibrium, VerdictPass};
 pub(crate) struct FinalIvp {
     /// Scaled residual.
     pub residual: Vec<f64>,
-    /// The IVP (its nodes if recorded).
+    /// The IVP (its nodes if recorded by the stability verdict's pass).
     pub ivp: IvpResult,
+    /// The plain IVP's nodes, recorded flat, if asked for ([`Keep`]).
+    pub nodes: Option<FlatNodes>,
     /// Actuator tensions \[N\].
     pub tensions: Vec<f64>,
     /// The verdict's recorded tangent integration whose real part `ivp` is.
@@ -178,11 +180,21 @@ impl<'a> Shooting<'a> {
 
     /// The residual at `x` from a plain IVP.
     fn plain(&self, x: &[f64]) -> Result<FinalIvp> {
-        let nodes = matches!(self.keep, Keep::Nodes | Keep::Verdict { nodes: true, .. });
-        let (residual, ivp, tensions) = self.shot.residual(x, nodes)?;
+        let record = matches!(self.keep, Keep::Nodes | Keep::Verdict { nodes: true, .. });
+        let (residual, ivp, tensions, nodes) = match record {
+            true => {
+                let (r, ivp, tau, nodes) = self.shot.residual_flat(x)?;
+                (r, ivp, tau, Some(nodes))
+            }
+            false => {
+                let (r, ivp, tau) = self.shot.residual(x, false)?;
+                (r, ivp, tau, None)
+            }
+        };
         Ok(FinalIvp {
             residual,
             ivp,
+            nodes,
             tensions,
             verdict: None,
         })
@@ -208,6 +220,7 @@ impl<'a> Shooting<'a> {
         Ok(FinalIvp {
             residual: r,
             ivp,
+            nodes: None,
             tensions: tau,
             verdict: Some(Box::new(pass)),
         })
@@ -451,6 +464,16 @@ pub(crate) fn solution_from(
     work: &mut Work,
 ) -> Result<Solution> {
     let mut s = match last {
+        Some(FinalIvp {
+            residual: r,
+            ivp,
+            nodes: Some(nodes),
+            tensions: tau,
+            ..
+        }) if !nodes.is_empty() => {
+            let problem = (inputs, loads, nr.x.as_slice());
+            assemble_flat(robot, problem, (opts.steps, 0, 0), r, (ivp, nodes), tau)
+        }
         Some(FinalIvp {
             residual: r,
             ivp,

@@ -39,11 +39,7 @@ pub(crate) fn checked_solution(sol: Solution) -> Result<Solution> {
             .chain(&sol.elongations)
             .chain(&sol.unknowns)
             .all(|x| x.is_finite())
-        && sol
-            .elongation_profile
-            .iter()
-            .flatten()
-            .all(|x| x.is_finite())
+        && sol.elongation_profile.iter().all(|x| x.is_finite())
         && sol.residual.is_finite();
     if ok {
         Ok(sol)
@@ -207,13 +203,13 @@ impl PySolution {
     #[getter]
     fn elongation_profile<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let na = self.inner.tensions.len();
+        // (nodes x actuators, column-major: rows to the flat row-major array)
         let flat: Vec<f64> = self
             .inner
             .elongation_profile
-            .iter()
-            .flatten()
-            .copied()
-            .collect();
+            .transpose()
+            .as_slice()
+            .to_vec();
         PyArray1::from_vec(py, flat)
             .reshape([self.inner.s.len(), na])
             .expect("n x na")
