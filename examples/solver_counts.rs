@@ -329,8 +329,9 @@ fn cold_loop(which: &str, n: usize) {
 }
 
 /// `--parts`: thread-CPU medians of the IVPs a cold solve is made of
-/// (plain on 10, 20, 30, 100 steps, recorded on 100, tangent on 10), in
-/// plain full-grid IVP times.
+/// (plain on 10, 20, 30, 100 steps, recorded on 100 with `RodState` nodes,
+/// recorded and assembled into a `Solution` as a solve's last IVP, tangent
+/// on 10), in plain full-grid IVP times.
 fn parts() {
     let cases = [
         ("fig6", fig6_square(true), vec![100.0, 100.0]),
@@ -354,6 +355,9 @@ fn parts() {
         }
         let c = t(&|| drop(shot(100).residual(x, true).unwrap()));
         line += &format!(" recorded 100 {:.3}", c / unit);
+        // the solve's own recorded IVP: nodes flat, then the Solution
+        let c = t(&|| drop(tcarod::shooting::assemble(&robot, &inputs, &l, x, 100, 0, 0).unwrap()));
+        line += &format!(" assembled 100 {:.3}", c / unit);
         let c = t(&|| drop(shot(10).jacobian(x, false).unwrap()));
         line += &format!(" tangent 10 {:.3}", c / unit);
         let c = t(&|| drop(solve(&robot, &inputs, &SolveOptions::default(), None).unwrap()));
