@@ -47,9 +47,7 @@ use super::options::SolveOptions;
 use super::presolve::presolved_shooting;
 use super::residual::Loads;
 use super::shooting::{is_budget_error, is_input_error, Solution};
-use super::system::{
-    newton_shooting, solution_from, Keep, Work, COARSE_JACOBIAN_MIN_STEPS,
-};
+use super::system::{newton_shooting, solution_from, Keep, Work, COARSE_JACOBIAN_MIN_STEPS};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 
@@ -114,12 +112,13 @@ pub const RESUME_MAX: f64 = 1.0;
 /// full grid once (to `lambda^2` at the checked point, the rule of
 /// [`WATCH_TOL`]), and is finished on the full grid by Newton from its
 /// root; a grid that fails its check hands over to the next, the last to
-/// the full grid's path. The seven benchmark designs whose coarse check
-/// fails (measured at 19:35-19:41 UTC, load 4.1-4.5, IVP-equivalents
+/// the full grid's path. On the eight benchmark designs whose coarse check
+/// fails (measured at 19:35-19:52 UTC, load 4.1-7, IVP-equivalents
 /// median of 6 runs interleaved with main 2acabf7, and IVPs): `[4, 2]`
 /// #940 142 -> 92 (149 -> 126 IVPs), #112 149 -> 94 (139 -> 112), #560
 /// 126 -> 94 (145 -> 127), #107 112 -> 70 (140 -> 120), #861 94 -> 50 (111
-/// -> 104), #894 87 -> 67 (133 -> 126), #54 79 -> 68 (95 -> 102). `[2]`
+/// -> 104), #894 87 -> 67 (133 -> 126), #54 79 -> 68 (95 -> 102), #190
+/// 69 -> 66 (71 -> 84); every other design's path is unchanged. `[2]`
 /// alone: #940 99, #112 95, #560 101, #107 90 (119-125 IVPs); `[4]` alone
 /// fails its check on #940, #112, #861, #54 (and then the full grid's path
 /// ran); `[3]` failed on #112. Physically: #112's tendon bending length is
@@ -323,7 +322,8 @@ fn middle_path(
         tol: lam * lam,
         scaled: true,
     });
-    let (nr, _, path) = match follow_from(robot, inputs, loads, &mopts, from, true, &mut mid, work) {
+    let (nr, _, path) = match follow_from(robot, inputs, loads, &mopts, from, true, &mut mid, work)
+    {
         Err(e) if ends_solve(&e) => return Err(e),
         Err(_) if mid.unresolved.is_some() => return Ok(Middle::Unresolved(mid)),
         Err(_) => return Ok(Middle::Failed),

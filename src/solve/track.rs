@@ -183,4 +183,3 @@ fn tensions_at(robot: &Robot, inputs: &[f64], x: &[f64], len: f64) -> Result<Vec
     let delta: Vec<f64> = x[6..].iter().map(|d| d * len).collect();
     tensions(robot, inputs, &delta)
 }
-
