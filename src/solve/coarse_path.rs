@@ -243,7 +243,7 @@ fn finish(
 /// The outcome of a path on a middle grid (see [`on_middle_grid`]).
 enum Middle {
     /// Converged, finished on the full grid.
-    Done(Solution),
+    Done(Box<Solution>),
     /// Its check failed at the track's point (residual in `unresolved`).
     Unresolved(Track),
     /// Its path or its finish failed otherwise.
@@ -269,7 +269,7 @@ fn on_middle_grid(
     let mut at = (track.clone(), r);
     for div in MIDDLE_GRID_DIVISORS {
         match middle_path(robot, inputs, loads, opts, from, &at, div, work)? {
-            Middle::Done(s) => return Ok(Some(s)),
+            Middle::Done(s) => return Ok(Some(*s)),
             Middle::Unresolved(t) => {
                 let rt = t.unresolved.unwrap_or(f64::INFINITY);
                 if rt <= RESUME_MAX {
@@ -341,7 +341,7 @@ fn middle_path(
     };
     let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
     s.continuation_steps = path;
-    Ok(Middle::Done(s))
+    Ok(Middle::Done(Box::new(s)))
 }
 
 /// The coarse path goes on on the full grid from `track`, after its check
