@@ -12,15 +12,107 @@
 //! (6-direction dual numbers); its tangents follow by the implicit function
 //! theorem.
 
-use nalgebra::{Matrix6, Vector6};
-
 use super::dual::{c_cross, cross_c, dot, Dual, Real, V3};
 use super::ode::RodRhs;
 use crate::error::{Error, Result};
 
-/// `(index, before-side weight, after-side weight)` of a string at an
-/// anchor: `P_i = tau_i (a t_i(s+) - b t_i(s-))`.
-type Term = (usize, f64, f64);
+/// A string at an anchor, its routing evaluated there once (not per
+/// residual evaluation): `P_i = tau_i (a t_i(s+) - b t_i(s-))`.
+#[derive(Clone, Copy, Default)]
+struct Anchored {
+    /// Actuator index.
+    i: usize,
+    /// Before-side weight `b`.
+    b: f64,
+    /// After-side weight `a`.
+    a: f64,
+    /// Routing `r` \[m\] and `r'` at the anchor.
+    r: V3<f64>,
+    rp: V3<f64>,
+    /// Tension \[N\] (value only).
+    tau: f64,
+    /// The before side's `(P, r x P)`, constant while the post-jump strains
+    /// are iterated (zero if `b == 0`).
+    pre: (V3<f64>, V3<f64>),
+}
+
+/// Strings kept on the stack at one anchor (more spill to the heap).
+const INLINE: usize = 8;
+
+/// Residual test of the jump (dimensionless, as in the original loop).
+const JUMP_TOL: f64 = 1e-14;
+/// A residual accepted when the full Newton step no longer reduces it
+/// (the rounding floor of large strains lies between the two).
+const JUMP_FLOOR: f64 = 1e-12;
+
+/// nalgebra's LU with partial pivoting (`Matrix6::lu`), written out for
+/// the 6x6 jump Jacobian: the same operations in the same order (the
+/// multipliers by the pivot's reciprocal, the updates `-u c + a`), so the
+/// same factors and solutions bit for bit, without the generic views.
+struct Lu6 {
+    /// `L` (unit diagonal, below) and `U` (on and above), row-major.
+    a: [[f64; 6]; 6],
+    /// Row swapped with row `i` at step `i`.
+    piv: [usize; 6],
+}
+
+impl Lu6 {
+    /// Factors `a`.
+    fn new(mut a: [[f64; 6]; 6]) -> Self {
+        let mut piv = [0; 6];
+        for i in 0..6 {
+            // first largest |entry| on or below the diagonal (icamax)
+            let (mut p, mut big) = (i, a[i][i].abs());
+            for (j, row) in a.iter().enumerate().skip(i + 1) {
+                if row[i].abs() > big {
+                    (p, big) = (j, row[i].abs());
+                }
+            }
+            let diag = a[p][i];
+            piv[i] = i;
+            if diag == 0.0 {
+                continue;
+            }
+            piv[i] = p;
+            a.swap(i, p);
+            let inv = 1.0 / diag;
+            let pivot_row = a[i];
+            for row in a.iter_mut().skip(i + 1) {
+                let c = row[i] * inv;
+                row[i] = c;
+                for k in i + 1..6 {
+                    row[k] = -pivot_row[k] * c + row[k];
+                }
+            }
+        }
+        Lu6 { a, piv }
+    }
+
+    /// `x` with `A x = b`; `None` if `U` has a zero on its diagonal.
+    fn solve(&self, mut b: [f64; 6]) -> Option<[f64; 6]> {
+        let a = &self.a;
+        for (i, &p) in self.piv.iter().enumerate() {
+            b.swap(i, p);
+        }
+        for i in 0..5 {
+            let c = b[i];
+            for j in i + 1..6 {
+                b[j] = -c * a[j][i] + b[j];
+            }
+        }
+        for i in (0..6).rev() {
+            if a[i][i] == 0.0 {
+                return None;
+            }
+            let c = b[i] / a[i][i];
+            b[i] = c;
+            for j in 0..i {
+                b[j] = -c * a[j][i] + b[j];
+            }
+        }
+        Some(b)
+    }
+}
 
 /// A 6-vector of dual numbers seeded with the unit directions at `w`.
 fn seeded(w: &[f64; 6]) -> [Dual<6>; 6] {
@@ -31,11 +123,46 @@ fn seeded(w: &[f64; 6]) -> [Dual<6>; 6] {
     })
 }
 
+/// `(P, r x P)` of one side of string `t` with strains `st = (v, u)`:
+/// `P = tau weight p / |p|`, `p = v + u x r + r'` (eq 19).
+#[inline(always)]
+fn side<T: Real>(t: &Anchored, weight: f64, st: &[T; 6], tau: T) -> (V3<T>, V3<T>) {
+    let (v, u) = ([st[0], st[1], st[2]], [st[3], st[4], st[5]]);
+    let ucr = cross_c(&u, &t.r);
+    let pb: V3<T> = std::array::from_fn(|k| v[k] + ucr[k] + t.rp[k]);
+    let nrm = dot(&pb, &pb).sqrt();
+    let p: V3<T> = std::array::from_fn(|k| pb[k] / nrm * tau * weight);
+    let rxp = c_cross(&t.r, &p);
+    (p, rxp)
+}
+
+/// Largest absolute entry.
+fn amax(r: &[f64; 6]) -> f64 {
+    r.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+/// The singular-system error at `s`.
+fn singular(s: f64) -> Error {
+    Error::Integration {
+        s,
+        reason: "singular anchor-load system".into(),
+    }
+}
+
 impl RodRhs<'_> {
-    /// The strings anchored at or passing `s`; zero tensions left out unless `with_zero`.
-    fn anchor_terms(&self, s: f64, with_zero: bool) -> Vec<Term> {
+    /// Calls `f` with the strings anchored at or passing `s`, their
+    /// tensions `tau(i)`; zero tensions left out unless `with_zero`.
+    fn with_terms<R>(
+        &self,
+        s: f64,
+        with_zero: bool,
+        tau: impl Fn(usize) -> f64,
+        f: impl FnOnce(&mut [Anchored]) -> R,
+    ) -> R {
         let tol = 1e-12 * self.robot.body.length;
-        let mut terms = Vec::new();
+        let mut buf = [Anchored::default(); INLINE];
+        let mut heap = Vec::new();
+        let mut n = 0;
         for (i, act) in self.robot.actuators.iter().enumerate() {
             if !with_zero && self.tensions[i] == 0.0 {
                 continue;
@@ -45,49 +172,51 @@ impl RodRhs<'_> {
             let passes = act.s_start < s - tol && act.s_end > s + tol;
             let b = if ends || passes { 1.0 } else { 0.0 };
             let a = if starts || passes { 1.0 } else { 0.0 };
-            if b != 0.0 || a != 0.0 {
-                terms.push((i, b, a));
+            if b == 0.0 && a == 0.0 {
+                continue;
             }
+            let (r, rp, _) = act.routing.eval(s);
+            let (r, rp) = (r.into(), rp.into());
+            let (tau, pre) = (tau(i), ([0.0; 3], [0.0; 3]));
+            let t = Anchored {
+                i,
+                b,
+                a,
+                r,
+                rp,
+                tau,
+                pre,
+            };
+            if n < INLINE {
+                buf[n] = t;
+            } else {
+                if n == INLINE {
+                    heap.extend_from_slice(&buf);
+                }
+                heap.push(t);
+            }
+            n += 1;
         }
-        terms
+        if n <= INLINE {
+            f(&mut buf[..n])
+        } else {
+            f(&mut heap)
+        }
     }
 
-    /// Residual of the anchor jump at `s` for post-jump strains `w = (v, u)`,
-    /// pre-jump strains `w0` and tensions `tau`: `v - v0 + K_nu^-1 P` and
-    /// `(u - u0 + K_omega^-1 sum r_i x P_i) L` (dimensionless).
-    fn anchor_residual<T: Real>(
+    /// `v - v0 + K_nu^-1 f` and `(u - u0 + K_omega^-1 m) L` (dimensionless).
+    #[inline(always)]
+    fn jump_residual<T: Real, U: Real>(
         &self,
-        s: f64,
-        terms: &[Term],
         w: &[T; 6],
-        w0: &[T; 6],
-        tau: &[T],
-    ) -> [T; 6] {
+        w0: &[U; 6],
+        f: &V3<T>,
+        m: &V3<T>,
+    ) -> [T; 6]
+    where
+        T: std::ops::Sub<U, Output = T>,
+    {
         let len = self.robot.body.length;
-        let zero = T::cst(0.0);
-        let (mut f, mut m) = ([zero; 3], [zero; 3]);
-        let mut add = |i: usize, weight: f64, st: &[T; 6]| {
-            let (r, rp, _) = self.robot.actuators[i].routing.eval(s);
-            let (r, rp): (V3<f64>, V3<f64>) = (r.into(), rp.into());
-            let (v, u) = ([st[0], st[1], st[2]], [st[3], st[4], st[5]]);
-            let ucr = cross_c(&u, &r);
-            let pb: V3<T> = std::array::from_fn(|k| v[k] + ucr[k] + rp[k]); // eq (19)
-            let nrm = dot(&pb, &pb).sqrt();
-            let p: V3<T> = std::array::from_fn(|k| pb[k] / nrm * tau[i] * weight);
-            let rxp = c_cross(&r, &p);
-            for k in 0..3 {
-                f[k] += p[k];
-                m[k] += rxp[k];
-            }
-        };
-        for &(i, b, a) in terms {
-            if b != 0.0 {
-                add(i, -b, w0);
-            }
-            if a != 0.0 {
-                add(i, a, w);
-            }
-        }
         std::array::from_fn(|k| {
             if k < 3 {
                 w[k] - w0[k] + f[k] * self.kse_inv[k]
@@ -97,47 +226,109 @@ impl RodRhs<'_> {
         })
     }
 
-    /// The post-jump strains at the anchor node `s`: Newton's method on
-    /// [`RodRhs::anchor_residual`] with its exact Jacobian, backtracking
-    /// when a full step does not reduce the residual (converges in a few
-    /// iterations even where plain fixed-point iteration diverges).
-    pub(crate) fn anchor_loads(&self, s: f64, y: &mut [f64]) -> Result<()> {
-        let terms = self.anchor_terms(s, false);
-        if terms.is_empty() {
-            return Ok(());
+    /// Residual of the anchor jump for post-jump strains `w = (v, u)`,
+    /// pre-jump strains `w0` and tensions `tau` (all sides evaluated; the
+    /// tangent pass's derivatives with respect to `w0` and `tau`).
+    fn anchor_residual<T: Real>(
+        &self,
+        terms: &[Anchored],
+        w: &[T; 6],
+        w0: &[T; 6],
+        tau: &[T],
+    ) -> [T; 6] {
+        let zero = T::cst(0.0);
+        let (mut f, mut m) = ([zero; 3], [zero; 3]);
+        for t in terms {
+            for (weight, st) in [(-t.b, w0), (t.a, w)] {
+                if weight != 0.0 {
+                    let (p, rxp) = side(t, weight, st, tau[t.i]);
+                    for k in 0..3 {
+                        f[k] += p[k];
+                        m[k] += rxp[k];
+                    }
+                }
+            }
         }
-        let w0: [f64; 6] = std::array::from_fn(|k| y[7 + k]);
-        let w0d: [Dual<6>; 6] = w0.map(Dual::cst);
-        let taud: Vec<Dual<6>> = self.tensions.iter().map(|&t| Dual::cst(t)).collect();
-        let amax = |r: &[f64; 6]| r.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let mut w = w0;
-        let mut r = self.anchor_residual(s, &terms, &w, &w0, self.tensions);
+        self.jump_residual(w, w0, &f, &m)
+    }
+
+    /// [`RodRhs::anchor_residual`] at fixed `w0` and tensions, the before
+    /// sides taken from `Anchored::pre` (same operations in the same order,
+    /// so the same value bit for bit).
+    fn after_residual<T: Real>(&self, terms: &[Anchored], w: &[T; 6], w0: &[f64; 6]) -> [T; 6]
+    where
+        T: std::ops::Sub<f64, Output = T>,
+    {
+        let zero = T::cst(0.0);
+        let (mut f, mut m) = ([zero; 3], [zero; 3]);
+        for t in terms {
+            if t.b != 0.0 {
+                for k in 0..3 {
+                    f[k] = f[k] + t.pre.0[k];
+                    m[k] = m[k] + t.pre.1[k];
+                }
+            }
+            if t.a != 0.0 {
+                let (p, rxp) = side(t, t.a, w, T::cst(t.tau));
+                for k in 0..3 {
+                    f[k] += p[k];
+                    m[k] += rxp[k];
+                }
+            }
+        }
+        self.jump_residual(w, w0, &f, &m)
+    }
+
+    /// Fills every string's before side at `w0`.
+    fn prepare(terms: &mut [Anchored], w0: &[f64; 6]) {
+        for t in terms.iter_mut() {
+            if t.b != 0.0 {
+                t.pre = side(t, -t.b, w0, t.tau);
+            }
+        }
+    }
+
+    /// The post-jump strains for pre-jump strains `w0`: Newton's method on
+    /// the jump residual with its exact Jacobian, backtracking when a full
+    /// step does not reduce the residual (converges in a few iterations
+    /// even where plain fixed-point iteration diverges). Stops at
+    /// [`JUMP_TOL`], or at the rounding floor: a residual at most
+    /// [`JUMP_FLOOR`] that a full step no longer reduces. Returns the
+    /// strains and the Newton iterations taken.
+    fn jump(&self, s: f64, terms: &mut [Anchored], w0: &[f64; 6]) -> Result<([f64; 6], usize)> {
+        Self::prepare(terms, w0);
+        let terms = &*terms;
+        let mut w = *w0;
+        let mut r = self.after_residual(terms, &w, w0);
         let mut done = false;
-        for _ in 0..50 {
-            if amax(&r) < 1e-14 {
+        let mut iterations = 0;
+        'newton: for _ in 0..50 {
+            if amax(&r) < JUMP_TOL {
                 done = true;
                 break;
             }
-            let g = self.anchor_residual(s, &terms, &seeded(&w), &w0d, &taud);
-            let jac = Matrix6::from_fn(|i, j| g[i].eps[j]);
-            let rhs = -Vector6::from_column_slice(&r);
-            let dw = jac.lu().solve(&rhs).ok_or_else(|| Error::Integration {
-                s,
-                reason: "singular anchor-load system".into(),
-            })?;
+            iterations += 1;
+            let g = self.after_residual(terms, &seeded(&w), w0);
+            let jac = Lu6::new(g.map(|gi| gi.eps));
+            let dw = jac.solve(r.map(|x| -x)).ok_or_else(|| singular(s))?;
             let mut t = 1.0;
             loop {
                 let wt: [f64; 6] = std::array::from_fn(|k| w[k] + dw[k] * t);
-                let rt = self.anchor_residual(s, &terms, &wt, &w0, self.tensions);
+                let rt = self.after_residual(terms, &wt, w0);
                 if amax(&rt) < amax(&r) || t < 1e-4 {
                     w = wt;
                     r = rt;
                     break;
                 }
+                if t == 1.0 && amax(&r) <= JUMP_FLOOR {
+                    // at the rounding floor: no step can do better
+                    done = true;
+                    break 'newton;
+                }
                 t *= 0.5;
             }
         }
-        if !done && amax(&r) > 1e-12 {
+        if !done && amax(&r) > JUMP_FLOOR {
             return Err(Error::Integration {
                 s,
                 reason: format!("anchor loads did not converge (residual {:.3e})", amax(&r)),
@@ -149,8 +340,33 @@ impl RodRhs<'_> {
                 reason: "non-finite strains after anchor loads".into(),
             });
         }
+        Ok((w, iterations))
+    }
+
+    /// The post-jump strains at the anchor node `s` (by `RodRhs::jump`),
+    /// written into `y`.
+    pub(crate) fn anchor_loads(&self, s: f64, y: &mut [f64]) -> Result<()> {
+        let w0: [f64; 6] = std::array::from_fn(|k| y[7 + k]);
+        let w = self.post_jump(s, &w0)?;
         y[7..13].copy_from_slice(&w);
         Ok(())
+    }
+
+    /// The post-jump strains at `s` for pre-jump strains `w0` (`w0` itself
+    /// where no string with a tension is anchored or kinked).
+    fn post_jump(&self, s: f64, w0: &[f64; 6]) -> Result<[f64; 6]> {
+        let tensions = self.tensions;
+        self.with_terms(
+            s,
+            false,
+            |i| tensions[i],
+            |terms| {
+                if terms.is_empty() {
+                    return Ok(*w0);
+                }
+                Ok(self.jump(s, terms, w0)?.0)
+            },
+        )
     }
 
     /// The anchor jump at `s` on a dual state: the real part by
@@ -164,33 +380,40 @@ impl RodRhs<'_> {
         y: &mut [Dual<N>],
         tau: &[Dual<N>],
     ) -> Result<()> {
-        let terms = self.anchor_terms(s, true);
-        let mut yr: Vec<f64> = y.iter().map(|d| d.re).collect();
-        self.anchor_loads(s, &mut yr)?;
-        if terms.is_empty() {
-            return Ok(());
+        let w0: [f64; 6] = std::array::from_fn(|k| y[7 + k].re);
+        let ws = self.post_jump(s, &w0)?;
+        let out = self.with_terms(
+            s,
+            true,
+            |i| tau[i].re,
+            |terms| {
+                if terms.is_empty() {
+                    return Ok(None);
+                }
+                Self::prepare(terms, &w0);
+                let g6 = self.after_residual(terms, &seeded(&ws), &w0);
+                let lu = Lu6::new(g6.map(|gi| gi.eps));
+                // G_w0 dw0 + G_tau dtau at fixed w
+                let wn: [Dual<N>; 6] = ws.map(Dual::cst);
+                let w0n: [Dual<N>; 6] = std::array::from_fn(|k| y[7 + k]);
+                let gn = self.anchor_residual(terms, &wn, &w0n, tau);
+                let mut out: [Dual<N>; 6] = wn;
+                for d in 0..N {
+                    let dw = lu.solve(gn.map(|g| -g.eps[d])).ok_or_else(|| singular(s))?;
+                    for k in 0..6 {
+                        out[k].eps[d] = dw[k];
+                    }
+                }
+                Ok(Some(out))
+            },
+        )?;
+        if let Some(out) = out {
+            y[7..13].copy_from_slice(&out);
         }
-        let ws: [f64; 6] = std::array::from_fn(|k| yr[7 + k]);
-        let w06: [Dual<6>; 6] = std::array::from_fn(|k| Dual::cst(y[7 + k].re));
-        let tau6: Vec<Dual<6>> = tau.iter().map(|t| Dual::cst(t.re)).collect();
-        let g6 = self.anchor_residual(s, &terms, &seeded(&ws), &w06, &tau6);
-        let lu = Matrix6::from_fn(|r, c| g6[r].eps[c]).lu();
-        // G_w0 dw0 + G_tau dtau at fixed w
-        let wn: [Dual<N>; 6] = ws.map(Dual::cst);
-        let w0n: [Dual<N>; 6] = std::array::from_fn(|k| y[7 + k]);
-        let gn = self.anchor_residual(s, &terms, &wn, &w0n, tau);
-        let mut out: [Dual<N>; 6] = wn;
-        for d in 0..N {
-            let rhs = Vector6::from_fn(|r, _| -gn[r].eps[d]);
-            let dw = lu.solve(&rhs).ok_or_else(|| Error::Integration {
-                s,
-                reason: "singular anchor-load system".into(),
-            })?;
-            for k in 0..6 {
-                out[k].eps[d] = dw[k];
-            }
-        }
-        y[7..13].copy_from_slice(&out);
         Ok(())
     }
 }
+
+#[cfg(test)]
+#[path = "anchors_tests.rs"]
+mod tests;

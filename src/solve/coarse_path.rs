@@ -16,11 +16,14 @@
 //! (the full grid's residual at a coarse point) is large early, it would
 //! be out of the finish's reach at `lambda = 1`. So the path checks it
 //! once, with one full-grid IVP at `lambda = 1/8` ([`WATCH_LAMBDA`]), and
-//! if it exceeds [`WATCH_TOL`] goes on on the full grid from there
-//! (`on_full_grid`; from `lambda = 0` if the point is beyond a corrector's reach,
-//! [`RESUME_MAX`]): benchmark designs #112, #940, #861, #894, #54 (coarse
+//! if it exceeds [`WATCH_TOL`] goes on on a finer grid from there (from
+//! `lambda = 0` if the point is beyond a corrector's reach,
+//! [`RESUME_MAX`]): first on the middle grids of
+//! [`MIDDLE_GRID_DIVISORS`], each checked in the same way and finished on
+//! the full grid, and only if they fail on the full grid
+//! (`on_full_grid`): benchmark designs #112, #940, #861, #894, #54 (coarse
 //! root 4.7-25 from the full grid's, or a coarse path creeping to its
-//! cap) 1,205 -> 627 IVPs together.
+//! cap) 1,205 -> 570 IVPs together (627 on the full grid's path).
 //! If the coarse path stalls (its step quartered below the smallest: a
 //! fold of the path), it goes on on the full grid from the point where it
 //! stalled (`on_full_grid`); if it stalls there too, the solve's continuation has
@@ -103,6 +106,28 @@ pub const WATCH_TOL: f64 = WATCH_LAMBDA * WATCH_LAMBDA;
 /// 113, against 144 with no resume).
 pub const RESUME_MAX: f64 = 1.0;
 
+/// The middle grids (`steps / d` RK4 steps, in turn) of a path whose coarse
+/// grid failed its check (see [`on_middle_grid`]): each goes on from the
+/// last checked point (or from `lambda = 0`), checks itself against the
+/// full grid once (to `lambda^2` at the checked point, the rule of
+/// [`WATCH_TOL`]), and is finished on the full grid by Newton from its
+/// root; a grid that fails its check hands over to the next, the last to
+/// the full grid's path. On the eight benchmark designs whose coarse check
+/// fails (measured at 19:35-19:52 UTC, load 4.1-7, IVP-equivalents
+/// median of 6 runs interleaved with main 2acabf7, and IVPs): `[4, 2]`
+/// #940 142 -> 92 (149 -> 126 IVPs), #112 149 -> 94 (139 -> 112), #560
+/// 126 -> 94 (145 -> 127), #107 112 -> 70 (140 -> 120), #861 94 -> 50 (111
+/// -> 104), #894 87 -> 67 (133 -> 126), #54 79 -> 68 (95 -> 102), #190
+/// 69 -> 66 (71 -> 84); every other design's path is unchanged. `[2]`
+/// alone: #940 99, #112 95, #560 101, #107 90 (119-125 IVPs); `[4]` alone
+/// fails its check on #940, #112, #861, #54 (and then the full grid's path
+/// ran); `[3]` failed on #112. Physically: #112's tendon bending length is
+/// 2.3 mm, the coarse grid's step 7.3 mm, steps/4 2.9 mm (its check
+/// residual 0.12 at `lambda = 1/4`, 1.9 extrapolated to `lambda = 1`), steps/2
+/// 1.5 mm (passes). A finish by defect correction on the middle grid (as
+/// the pre-solve's on the coarse one) took 15-30 IVPs against 5-13.
+pub const MIDDLE_GRID_DIVISORS: [usize; 2] = [4, 2];
+
 /// Tolerance (scaled residual) of the coarse path's last corrector, at
 /// `lambda = 1`: below the pre-solve's first-round tolerance (1e-7), whose
 /// coarse run then takes no step.
@@ -156,6 +181,7 @@ pub(crate) fn coarse_path(
         lam: WATCH_LAMBDA,
         steps: opts.steps,
         tol: WATCH_TOL,
+        scaled: false,
     });
     // the coarse path's own IVP cap within the solve's budget
     let budget = work.max_evaluations;
@@ -167,10 +193,7 @@ pub(crate) fn coarse_path(
         Err(e) if is_budget_error(&e) && !work.exhausted() => Ok(None),
         Err(e) if ends_solve(&e) => Err(e),
         Err(_) => match track.unresolved {
-            Some(r) if r <= RESUME_MAX => {
-                on_full_grid(robot, inputs, loads, opts, &from, (track, false), work)
-            }
-            Some(_) => Ok(None),
+            Some(r) => on_middle_grid(robot, inputs, loads, opts, &from, (track, r), work),
             None => on_full_grid(robot, inputs, loads, opts, &from, (track, true), work),
         },
         Ok((nr, _, path)) => finish(robot, inputs, loads, opts, nr.x, path, work),
@@ -215,6 +238,110 @@ fn finish(
         }
     }
     Ok(None)
+}
+
+/// The outcome of a path on a middle grid (see [`on_middle_grid`]).
+enum Middle {
+    /// Converged, finished on the full grid.
+    Done(Box<Solution>),
+    /// Its check failed at the track's point (residual in `unresolved`).
+    Unresolved(Track),
+    /// Its path or its finish failed otherwise.
+    Failed,
+}
+
+/// The path after the coarse grid's check failed with residual `r` at
+/// `track`'s point (see [`MIDDLE_GRID_DIVISORS`]): on each middle grid in
+/// turn, from the last checked point if it is within a corrector's reach
+/// ([`RESUME_MAX`]), else from `lambda = 0`, until one passes its check and
+/// is finished on the full grid. If none is, what the coarse path did
+/// before: the full grid's path from the coarse point (`on_full_grid`) or,
+/// `None`, from `lambda = 0`.
+fn on_middle_grid(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    (track, r): (Track, f64),
+    work: &mut Work,
+) -> Result<Option<Solution>> {
+    let mut at = (track.clone(), r);
+    for div in MIDDLE_GRID_DIVISORS {
+        match middle_path(robot, inputs, loads, opts, from, &at, div, work)? {
+            Middle::Done(s) => return Ok(Some(*s)),
+            Middle::Unresolved(t) => {
+                let rt = t.unresolved.unwrap_or(f64::INFINITY);
+                if rt <= RESUME_MAX {
+                    at = (t, rt);
+                }
+            }
+            Middle::Failed => break,
+        }
+    }
+    match r <= RESUME_MAX {
+        true => on_full_grid(robot, inputs, loads, opts, from, (track, false), work),
+        false => Ok(None),
+    }
+}
+
+/// The path on the middle grid `opts.steps / div` from `track`'s point
+/// (corrected there, if its check residual `r` is within [`RESUME_MAX`]) or
+/// from `lambda = 0`, checked against the full grid at its first point past
+/// the start (at least [`WATCH_LAMBDA`]) to `lambda^2` there, and finished on
+/// the full grid by Newton from its root with its Jacobian.
+#[allow(clippy::too_many_arguments)]
+fn middle_path(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    (track, r): &(Track, f64),
+    div: usize,
+    work: &mut Work,
+) -> Result<Middle> {
+    let mopts = SolveOptions {
+        steps: opts.steps / div,
+        tol: opts.tol.max(PATH_END_TOL),
+        ..*opts
+    };
+    let (_, x, tau, jac) = start(robot, None);
+    let mut mid = Track::new(0.0, x, tau, jac, 0.25);
+    if *r <= RESUME_MAX {
+        let mut t = track.clone();
+        t.unresolved = None;
+        if regrid(robot, inputs, loads, &mopts, from, &mut t, work)? {
+            mid = t;
+        }
+    }
+    let lam = mid.lam.max(WATCH_LAMBDA);
+    mid.watch = Some(Watch {
+        lam,
+        steps: opts.steps,
+        tol: lam * lam,
+        scaled: true,
+    });
+    let (nr, _, path) = match follow_from(robot, inputs, loads, &mopts, from, true, &mut mid, work)
+    {
+        Err(e) if ends_solve(&e) => return Err(e),
+        Err(_) if mid.unresolved.is_some() => return Ok(Middle::Unresolved(mid)),
+        Err(_) => return Ok(Middle::Failed),
+        Ok(v) => v,
+    };
+    // the finish backtracks as a first corrector attempt does
+    let fopts = SolveOptions {
+        min_step: opts.min_step.max(CORRECTOR_MIN_STEP),
+        ..*opts
+    };
+    let jac = nr.jacobian.as_ref().or(mid.jac.as_ref());
+    let out = newton_shooting(robot, inputs, loads, &fopts, &nr.x, jac, Keep::Nodes, work);
+    let Some((nr, last)) = unless_final(out)? else {
+        return Ok(Middle::Failed);
+    };
+    let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
+    s.continuation_steps = path;
+    Ok(Middle::Done(Box::new(s)))
 }
 
 /// The coarse path goes on on the full grid from `track`, after its check

@@ -14,6 +14,7 @@ use crate::rod::Robot;
 /// tensions \[N\] and the Newton Jacobian there, up to
 /// [`PREDICTOR_POINTS`] - 1 earlier `(lambda, unknowns)`, oldest first,
 /// the next step and the path so far (the `lambda` of each converged step).
+#[derive(Clone)]
 pub(crate) struct Track {
     pub lam: f64,
     pub x: Vec<f64>,
@@ -30,12 +31,15 @@ pub(crate) struct Track {
 
 /// A check of a coarse path's grid: at the first converged point at or
 /// past `lam`, one IVP on `steps` RK4 steps; the path stops (an error) if
-/// its `max |r|` there exceeds `tol`.
+/// its `max |r|` there exceeds `tol`, or if `scaled`, `tol (lambda / lam)^2`
+/// at the point's `lambda` (the grid's error grows about as `lambda^2`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Watch {
     pub lam: f64,
     pub steps: usize,
     pub tol: f64,
+    /// Whether `tol` grows as `lambda^2` from `lam` to the checked point.
+    pub scaled: bool,
 }
 
 impl Watch {
@@ -133,6 +137,13 @@ impl Track {
             return Ok(());
         };
         self.watch = None;
+        let w = match w.scaled {
+            true => Watch {
+                tol: w.tol * (self.lam / w.lam).powi(2),
+                ..w
+            },
+            false => w,
+        };
         let checked = w.check(robot, inputs, loads, &self.x, work);
         self.unresolved = match &checked {
             Ok(()) => None,

@@ -1,0 +1,159 @@
+//! Tests of the anchor jumps: the cached routing and before sides against
+//! a per-evaluation reference, the rounding-floor exit, the written-out LU.
+
+use std::sync::Arc;
+
+use super::*;
+use crate::experiments::fig6_square;
+use crate::rod::{Actuator, ConstantTension, Robot, Routing};
+
+/// Fig. 6's body with a straight string ending at 0.6 L, a helix
+/// passing it and a helix starting there: every kind of anchor term.
+fn anchored_robot() -> Robot {
+    let sq = fig6_square(true);
+    let len = sq.body.length;
+    let (law, x) = (Arc::new(ConstantTension), 3e-3);
+    let helix = |phase| Routing::Helix {
+        radius: x,
+        rate: 40.0,
+        phase,
+    };
+    let acts = vec![
+        Actuator::new(Routing::Straight { x, y: 0.0 }, 0.0, 0.6 * len, law.clone()),
+        Actuator::new(helix(0.2), 0.2 * len, len, law.clone()),
+        Actuator::new(helix(2.0), 0.6 * len, len, law),
+    ];
+    Robot::new(sq.body.clone(), acts).unwrap()
+}
+
+/// The jump residual as before the routing was cached: every string's
+/// routing evaluated at every call, every side from the strains.
+fn reference<T: Real>(fz: &RodRhs<'_>, s: f64, w: &[T; 6], w0: &[T; 6], tau: &[T]) -> [T; 6] {
+    let zero = T::cst(0.0);
+    let (mut f, mut m) = ([zero; 3], [zero; 3]);
+    fz.with_terms(
+        s,
+        false,
+        |_| 0.0,
+        |terms| {
+            for t in terms.iter() {
+                let (r, rp, _) = fz.robot.actuators[t.i].routing.eval(s);
+                let u = Anchored {
+                    r: r.into(),
+                    rp: rp.into(),
+                    ..*t
+                };
+                for (weight, st) in [(-t.b, w0), (t.a, w)] {
+                    if weight != 0.0 {
+                        let (p, rxp) = side(&u, weight, st, tau[t.i]);
+                        for k in 0..3 {
+                            f[k] += p[k];
+                            m[k] += rxp[k];
+                        }
+                    }
+                }
+            }
+        },
+    );
+    fz.jump_residual(w, w0, &f, &m)
+}
+
+fn strains(k: f64) -> [f64; 6] {
+    [1e-3 * k, -2e-3, 1.0 + 0.01 * k, 3.0 * k, -2.0, 0.5 + k]
+}
+
+#[test]
+fn the_cached_residual_and_jacobian_are_the_per_evaluation_ones_bit_for_bit() {
+    let robot = anchored_robot();
+    let tensions = [0.05, 0.02, 0.03];
+    let fz = RodRhs::new(&robot, &tensions);
+    let s = 0.6 * robot.body.length;
+    let w0 = strains(0.3);
+    let taud: Vec<Dual<6>> = tensions.map(Dual::cst).to_vec();
+    for k in [0.0, 0.25, 1.0, -2.0] {
+        let w = strains(0.3 + k);
+        fz.with_terms(
+            s,
+            false,
+            |i| tensions[i],
+            |terms| {
+                assert_eq!(terms.len(), 3);
+                RodRhs::prepare(terms, &w0);
+                // same operations in the same order: equal, not just close
+                let cached = fz.after_residual(terms, &w, &w0);
+                assert_eq!(cached, reference(&fz, s, &w, &w0, &tensions));
+                let cached = fz.after_residual(terms, &seeded(&w), &w0);
+                let old = reference(&fz, s, &seeded(&w), &w0.map(Dual::cst), &taud);
+                assert_eq!(cached, old);
+            },
+        );
+    }
+}
+
+#[test]
+fn the_jump_solves_the_per_evaluation_residual_in_a_few_iterations() {
+    let robot = anchored_robot();
+    let tensions = [0.05, 0.02, 0.03];
+    let fz = RodRhs::new(&robot, &tensions);
+    let s = 0.6 * robot.body.length;
+    let w0 = strains(0.3);
+    let (w, its) = fz
+        .with_terms(s, false, |i| tensions[i], |t| fz.jump(s, t, &w0))
+        .unwrap();
+    let r = reference(&fz, s, &w, &w0, &tensions);
+    // the loop's own test, on the independent residual
+    assert!(amax(&r) < JUMP_TOL, "{r:?}");
+    // a real jump (the kinks move the strains), by Newton's few steps
+    assert!(amax(&std::array::from_fn(|k| w[k] - w0[k])) > 1e-3);
+    assert!((1..=6).contains(&its), "{its}");
+}
+
+#[test]
+fn a_jump_at_its_rounding_floor_stops_there() {
+    let robot = anchored_robot();
+    let tensions = [0.05, 0.02, 0.03];
+    let fz = RodRhs::new(&robot, &tensions);
+    let s = 0.6 * robot.body.length;
+    // curvatures of 3e4 1/m: one ulp of u L is ~4e-13, so the residual
+    // cannot reach JUMP_TOL (1e-14) but reaches JUMP_FLOOR (1e-12)
+    let w0 = [1e-3, -2e-3, 1.0, 3.0e4, -2.0e4, 5.0e3];
+    let (w, its) = fz
+        .with_terms(s, false, |i| tensions[i], |t| fz.jump(s, t, &w0))
+        .unwrap();
+    let r = amax(&reference(&fz, s, &w, &w0, &tensions));
+    eprintln!("floor case: residual {r:e}, iterations {its}");
+    assert!(r >= JUMP_TOL, "not at a floor: {r:e}");
+    assert!(r <= JUMP_FLOOR, "{r:e}");
+    // stops at the first step that does not reduce it (the loop used to
+    // run all 50 iterations, each with 14 halvings)
+    assert!(its <= 8, "{its}");
+}
+
+#[test]
+fn the_written_out_lu_is_nalgebras_bit_for_bit() {
+    use nalgebra::{Matrix6, Vector6};
+    // a deterministic pseudo-random sequence (no rand dependency)
+    let mut x = 0.5f64;
+    let mut next = move || {
+        x = (x * 9301.0 + 0.49297).fract();
+        2.0 * x - 1.0
+    };
+    for case in 0..200 {
+        let mut a: [[f64; 6]; 6] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
+        if case % 4 == 0 {
+            a[2] = a[0]; // ties in the pivot search
+        }
+        if case % 5 == 1 {
+            a.iter_mut().for_each(|row| row[3] = 0.0); // exactly singular
+        }
+        let b: [f64; 6] = std::array::from_fn(|_| next());
+        let m = Matrix6::from_fn(|i, j| a[i][j]);
+        let theirs = m.lu().solve(&Vector6::from_column_slice(&b));
+        let ours = Lu6::new(a).solve(b);
+        // the same operations in the same order: equal, not just close
+        assert_eq!(ours.is_some(), theirs.is_some(), "case {case}");
+        if let (Some(o), Some(t)) = (ours, theirs) {
+            assert_eq!(o.as_slice(), t.as_slice(), "case {case}");
+        }
+    }
+}
