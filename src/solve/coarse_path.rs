@@ -107,7 +107,7 @@ pub const WATCH_TOL: f64 = WATCH_LAMBDA * WATCH_LAMBDA;
 pub const RESUME_MAX: f64 = 1.0;
 
 /// The middle grids (`steps / d` RK4 steps, in turn) of a path whose coarse
-/// grid failed its check (see [`on_middle_grid`]): each goes on from the
+/// grid failed its check (see `on_middle_grid`): each goes on from the
 /// last checked point (or from `lambda = 0`), checks itself against the
 /// full grid once (to `lambda^2` at the checked point, the rule of
 /// [`WATCH_TOL`]), and is finished on the full grid by Newton from its
@@ -120,8 +120,10 @@ pub const RESUME_MAX: f64 = 1.0;
 /// -> 104), #894 87 -> 67 (133 -> 126), #54 79 -> 68 (95 -> 102), #190
 /// 69 -> 66 (71 -> 84); every other design's path is unchanged. `[2]`
 /// alone: #940 99, #112 95, #560 101, #107 90 (119-125 IVPs); `[4]` alone
-/// fails its check on #940, #112, #861, #54 (and then the full grid's path
-/// ran); `[3]` failed on #112. Physically: #112's tendon bending length is
+/// fails its check on #940 and #112 (and then the full grid's path ran);
+/// `[3]` failed on #112. With the check's tolerance fixed at its first
+/// `lambda` (`lambda^2` there, not at the checked point) #861 and #54
+/// failed on steps/4 too: #861 62, #54 76. Physically: #112's tendon bending length is
 /// 2.3 mm, the coarse grid's step 7.3 mm, steps/4 2.9 mm (its check
 /// residual 0.12 at `lambda = 1/4`, 1.9 extrapolated to `lambda = 1`), steps/2
 /// 1.5 mm (passes). A finish by defect correction on the middle grid (as
@@ -240,7 +242,7 @@ fn finish(
     Ok(None)
 }
 
-/// The outcome of a path on a middle grid (see [`on_middle_grid`]).
+/// The outcome of a path on a middle grid (see `on_middle_grid`).
 enum Middle {
     /// Converged, finished on the full grid.
     Done(Box<Solution>),
