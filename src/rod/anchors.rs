@@ -139,15 +139,10 @@ impl RodRhs<'_> {
 
     /// `v - v0 + K_nu^-1 f` and `(u - u0 + K_omega^-1 m) L` (dimensionless).
     #[inline(always)]
-    fn jump_residual<T: Real, U: Real>(
-        &self,
-        w: &[T; 6],
-        w0: &[U; 6],
-        f: &V3<T>,
-        m: &V3<T>,
-    ) -> [T; 6]
+    fn jump_residual<T, U>(&self, w: &[T; 6], w0: &[U; 6], f: &V3<T>, m: &V3<T>) -> [T; 6]
     where
-        T: std::ops::Sub<U, Output = T>,
+        T: Real + std::ops::Sub<U, Output = T>,
+        U: Real,
     {
         let len = self.robot.body.length;
         std::array::from_fn(|k| {
@@ -188,10 +183,7 @@ impl RodRhs<'_> {
     /// [`RodRhs::anchor_residual`] at fixed `w0` and tensions, the before
     /// sides taken from `Anchored::pre` (same operations in the same order,
     /// so the same value bit for bit).
-    fn after_residual<T: Real>(&self, terms: &[Anchored], w: &[T; 6], w0: &[f64; 6]) -> [T; 6]
-    where
-        T: std::ops::Sub<f64, Output = T>,
-    {
+    fn after_residual<T: Real>(&self, terms: &[Anchored], w: &[T; 6], w0: &[f64; 6]) -> [T; 6] {
         let zero = T::cst(0.0);
         let (mut f, mut m) = ([zero; 3], [zero; 3]);
         for t in terms {
