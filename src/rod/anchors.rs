@@ -12,6 +12,8 @@
 //! (6-direction dual numbers); its tangents follow by the implicit function
 //! theorem.
 
+use nalgebra::{Matrix6, Vector6};
+
 use super::dual::{c_cross, cross_c, dot, Dual, Real, V3};
 use super::ode::RodRhs;
 use crate::error::{Error, Result};
@@ -44,75 +46,6 @@ const JUMP_TOL: f64 = 1e-14;
 /// A residual accepted when the full Newton step no longer reduces it
 /// (the rounding floor of large strains lies between the two).
 const JUMP_FLOOR: f64 = 1e-12;
-
-/// nalgebra's LU with partial pivoting (`Matrix6::lu`), written out for
-/// the 6x6 jump Jacobian: the same operations in the same order (the
-/// multipliers by the pivot's reciprocal, the updates `-u c + a`), so the
-/// same factors and solutions bit for bit, without the generic views.
-struct Lu6 {
-    /// `L` (unit diagonal, below) and `U` (on and above), row-major.
-    a: [[f64; 6]; 6],
-    /// Row swapped with row `i` at step `i`.
-    piv: [usize; 6],
-}
-
-impl Lu6 {
-    /// Factors `a`.
-    fn new(mut a: [[f64; 6]; 6]) -> Self {
-        let mut piv = [0; 6];
-        for i in 0..6 {
-            // first largest |entry| on or below the diagonal (icamax)
-            let (mut p, mut big) = (i, a[i][i].abs());
-            for (j, row) in a.iter().enumerate().skip(i + 1) {
-                if row[i].abs() > big {
-                    (p, big) = (j, row[i].abs());
-                }
-            }
-            let diag = a[p][i];
-            piv[i] = i;
-            if diag == 0.0 {
-                continue;
-            }
-            piv[i] = p;
-            a.swap(i, p);
-            let inv = 1.0 / diag;
-            let pivot_row = a[i];
-            for row in a.iter_mut().skip(i + 1) {
-                let c = row[i] * inv;
-                row[i] = c;
-                for k in i + 1..6 {
-                    row[k] = -pivot_row[k] * c + row[k];
-                }
-            }
-        }
-        Lu6 { a, piv }
-    }
-
-    /// `x` with `A x = b`; `None` if `U` has a zero on its diagonal.
-    fn solve(&self, mut b: [f64; 6]) -> Option<[f64; 6]> {
-        let a = &self.a;
-        for (i, &p) in self.piv.iter().enumerate() {
-            b.swap(i, p);
-        }
-        for i in 0..5 {
-            let c = b[i];
-            for j in i + 1..6 {
-                b[j] = -c * a[j][i] + b[j];
-            }
-        }
-        for i in (0..6).rev() {
-            if a[i][i] == 0.0 {
-                return None;
-            }
-            let c = b[i] / a[i][i];
-            b[i] = c;
-            for j in 0..i {
-                b[j] = -c * a[j][i] + b[j];
-            }
-        }
-        Some(b)
-    }
-}
 
 /// A 6-vector of dual numbers seeded with the unit directions at `w`.
 fn seeded(w: &[f64; 6]) -> [Dual<6>; 6] {
@@ -206,15 +139,10 @@ impl RodRhs<'_> {
 
     /// `v - v0 + K_nu^-1 f` and `(u - u0 + K_omega^-1 m) L` (dimensionless).
     #[inline(always)]
-    fn jump_residual<T: Real, U: Real>(
-        &self,
-        w: &[T; 6],
-        w0: &[U; 6],
-        f: &V3<T>,
-        m: &V3<T>,
-    ) -> [T; 6]
+    fn jump_residual<T, U>(&self, w: &[T; 6], w0: &[U; 6], f: &V3<T>, m: &V3<T>) -> [T; 6]
     where
-        T: std::ops::Sub<U, Output = T>,
+        T: Real + std::ops::Sub<U, Output = T>,
+        U: Real,
     {
         let len = self.robot.body.length;
         std::array::from_fn(|k| {
@@ -255,10 +183,7 @@ impl RodRhs<'_> {
     /// [`RodRhs::anchor_residual`] at fixed `w0` and tensions, the before
     /// sides taken from `Anchored::pre` (same operations in the same order,
     /// so the same value bit for bit).
-    fn after_residual<T: Real>(&self, terms: &[Anchored], w: &[T; 6], w0: &[f64; 6]) -> [T; 6]
-    where
-        T: std::ops::Sub<f64, Output = T>,
-    {
+    fn after_residual<T: Real>(&self, terms: &[Anchored], w: &[T; 6], w0: &[f64; 6]) -> [T; 6] {
         let zero = T::cst(0.0);
         let (mut f, mut m) = ([zero; 3], [zero; 3]);
         for t in terms {
@@ -309,8 +234,9 @@ impl RodRhs<'_> {
             }
             iterations += 1;
             let g = self.after_residual(terms, &seeded(&w), w0);
-            let jac = Lu6::new(g.map(|gi| gi.eps));
-            let dw = jac.solve(r.map(|x| -x)).ok_or_else(|| singular(s))?;
+            let jac = Matrix6::from_fn(|i, j| g[i].eps[j]);
+            let rhs = -Vector6::from_column_slice(&r);
+            let dw = jac.lu().solve(&rhs).ok_or_else(|| singular(s))?;
             let mut t = 1.0;
             loop {
                 let wt: [f64; 6] = std::array::from_fn(|k| w[k] + dw[k] * t);
@@ -392,14 +318,15 @@ impl RodRhs<'_> {
                 }
                 Self::prepare(terms, &w0);
                 let g6 = self.after_residual(terms, &seeded(&ws), &w0);
-                let lu = Lu6::new(g6.map(|gi| gi.eps));
+                let lu = Matrix6::from_fn(|r, c| g6[r].eps[c]).lu();
                 // G_w0 dw0 + G_tau dtau at fixed w
                 let wn: [Dual<N>; 6] = ws.map(Dual::cst);
                 let w0n: [Dual<N>; 6] = std::array::from_fn(|k| y[7 + k]);
                 let gn = self.anchor_residual(terms, &wn, &w0n, tau);
                 let mut out: [Dual<N>; 6] = wn;
                 for d in 0..N {
-                    let dw = lu.solve(gn.map(|g| -g.eps[d])).ok_or_else(|| singular(s))?;
+                    let rhs = Vector6::from_fn(|r, _| -gn[r].eps[d]);
+                    let dw = lu.solve(&rhs).ok_or_else(|| singular(s))?;
                     for k in 0..6 {
                         out[k].eps[d] = dw[k];
                     }
