@@ -116,6 +116,14 @@ impl TangentNodes {
             tangent,
         }
     }
+    /// The recorded states alone, flat (the IVP's nodes: the real parts).
+    pub(crate) fn to_flat(&self) -> super::FlatNodes {
+        super::FlatNodes {
+            s: self.s.clone(),
+            y: self.state.clone(),
+            n: self.n,
+        }
+    }
     /// Number of nodes.
     pub fn len(&self) -> usize {
         self.s.len()

@@ -21,9 +21,10 @@ use crate::stability::{verdict_pass, Equilibrium, VerdictPass};
 pub(crate) struct FinalIvp {
     /// Scaled residual.
     pub residual: Vec<f64>,
-    /// The IVP (its nodes if recorded by the stability verdict's pass).
+    /// The IVP (no node list).
     pub ivp: IvpResult,
-    /// The plain IVP's nodes, recorded flat, if asked for ([`Keep`]).
+    /// Its nodes, recorded flat: a plain IVP's if asked for ([`Keep`]), a
+    /// stability verdict's pass's always.
     pub nodes: Option<FlatNodes>,
     /// Actuator tensions \[N\].
     pub tensions: Vec<f64>,
@@ -220,7 +221,7 @@ impl<'a> Shooting<'a> {
         Ok(FinalIvp {
             residual: r,
             ivp,
-            nodes: None,
+            nodes: Some(pass.ivp_nodes()),
             tensions: tau,
             verdict: Some(Box::new(pass)),
         })

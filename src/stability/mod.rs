@@ -111,7 +111,7 @@
 use nalgebra::Vector3;
 
 use crate::error::{Error, Result};
-use crate::rod::{IvpResult, Robot};
+use crate::rod::{FlatNodes, IvpResult, Robot};
 use crate::shooting::{Loads, Solution};
 
 mod landing;
@@ -253,22 +253,22 @@ pub fn stability_at(
     blocked: &[Vector3<f64>],
 ) -> Result<Stability> {
     let full = check(robot, eq, blocked)?;
-    let (t, _, _) = tangents::exact_tangents(robot, eq, full, false)?;
+    let (t, _, _, _) = tangents::exact_tangents(robot, eq, full, false)?;
     Ok(verdict::verdict(t, robot.body.length, blocked, full, 1))
 }
 
 /// [`stability_at`] of a free tip, with the IVP of the verdict's tangent
-/// integration (its real part, nodes recorded) and the tensions \[N\]: what
-/// assembles the [`Solution`] at these unknowns without another IVP.
+/// integration (its real part), its nodes (flat) and the tensions \[N\]:
+/// what assembles the [`Solution`] at these unknowns without another IVP.
 pub(crate) fn stability_profiled(
     robot: &Robot,
     eq: &Equilibrium<'_>,
-) -> Result<(Stability, IvpResult, Vec<f64>)> {
+) -> Result<(Stability, (IvpResult, FlatNodes), Vec<f64>)> {
     let full = check(robot, eq, &[])?;
-    let (t, ivp, tau) = tangents::exact_tangents(robot, eq, full, true)?;
+    let (t, ivp, tau, nodes) = tangents::exact_tangents(robot, eq, full, true)?;
     Ok((
         verdict::verdict(t, robot.body.length, &[], full, 1),
-        ivp,
+        (ivp, nodes.unwrap_or_default()),
         tau,
     ))
 }
@@ -284,9 +284,17 @@ pub(crate) struct VerdictPass {
     full: bool,
 }
 
+impl VerdictPass {
+    /// The IVP's nodes (the pass's recorded states), flat.
+    pub(crate) fn ivp_nodes(&self) -> FlatNodes {
+        self.pass.ivp_nodes()
+    }
+}
+
 /// The recorded tangent integration of [`stability_at`] (free tip) at
 /// `eq` under the actuator tensions `tau` \[N\] (the shooting residual's),
-/// the IVP's nodes recorded too; with that IVP. `robot` must be valid (the
+/// its states recorded (the IVP's nodes, [`VerdictPass::ivp_nodes`]); with
+/// that IVP. `robot` must be valid (the
 /// solver's, validated by its solve).
 pub(crate) fn verdict_pass(
     robot: &Robot,
@@ -294,7 +302,7 @@ pub(crate) fn verdict_pass(
     tau: &[f64],
 ) -> Result<(VerdictPass, IvpResult)> {
     let full = check_equilibrium(robot, eq, &[])?;
-    let (pass, ivp) = tangents::integrate_pass(robot, eq, full, true, Some(tau))?;
+    let (pass, ivp) = tangents::integrate_pass(robot, eq, full, Some(tau))?;
     Ok((VerdictPass { pass, full }, ivp))
 }
 

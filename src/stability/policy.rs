@@ -23,7 +23,7 @@ use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
 use crate::solve::equilibrium::refine_to_equilibrium;
 use crate::solve::newton::NewtonResult;
 use crate::solve::shooting::{solution_from, solve_direct, FinalIvp, Keep, Solved, Work};
-use crate::solve::solution::assemble_from;
+use crate::solve::solution::assemble_flat;
 
 /// What a solve does with the stability verdict of the equilibrium found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -195,10 +195,19 @@ fn profiled(
     let (st, ivp, tau, evaluations) = match last {
         Some(FinalIvp {
             ivp,
+            nodes,
             tensions,
             verdict: Some(pass),
             ..
-        }) => (verdict_of(robot, &pass), ivp, tensions, work.evaluations),
+        }) => {
+            let nodes = nodes.unwrap_or_else(|| pass.ivp_nodes());
+            (
+                verdict_of(robot, &pass),
+                (ivp, nodes),
+                tensions,
+                work.evaluations,
+            )
+        }
         _ => {
             let eq = Equilibrium {
                 unknowns: &nr.x,
@@ -213,7 +222,14 @@ fn profiled(
     };
     let (x, steps, it) = (&nr.x, opts.steps, work.iterations);
     let r = nr.residual.clone();
-    let mut sol = assemble_from(robot, inputs, loads, x, steps, it, evaluations, r, ivp, tau)?;
+    let mut sol = assemble_flat(
+        robot,
+        (inputs, loads, x),
+        (steps, it, evaluations),
+        r,
+        ivp,
+        tau,
+    );
     sol.newton_jacobian = nr.jacobian;
     sol.status = nr.status;
     sol.floor = nr.floor;

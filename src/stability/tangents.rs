@@ -7,7 +7,8 @@ use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3, Vector6};
 use super::Equilibrium;
 use crate::error::Result;
 use crate::rod::{
-    integrate_tangent, rot, IvpResult, Record, Robot, RodState, TangentNodes, TangentSeeds,
+    integrate_tangent, rot, FlatNodes, IvpResult, Record, Robot, RodState, TangentNodes,
+    TangentSeeds,
 };
 use crate::shooting::{base_strains, residual_scales, Loads, Shot, Solution};
 
@@ -258,13 +259,13 @@ pub(crate) struct Pass {
 
 /// The tangent IVP of the verdict along the six base strains and, if
 /// `actuators`, the `N` actuator elongation guesses too, every node
-/// recorded (the IVP's own nodes too if `profile`); with the IVP itself.
+/// recorded (states and tangents; the IVP's nodes are the states,
+/// [`Pass::ivp_nodes`]); with the IVP itself (no node list).
 /// `tau`: the tensions, if known (else from the force laws).
 pub(super) fn integrate_pass(
     robot: &Robot,
     eq: &Equilibrium<'_>,
     actuators: bool,
-    profile: bool,
     tau: Option<&[f64]>,
 ) -> Result<(Pass, IvpResult)> {
     let na = robot.actuators.len();
@@ -272,12 +273,7 @@ pub(super) fn integrate_pass(
     let (seeds, tau, dtau) = seeds(robot, eq, nz, tau)?;
     let spec = eq.loads.ivp(robot, &tau, eq.steps);
     let (v0, u0) = base_strains(eq.unknowns, robot.body.length);
-    let record = if profile {
-        Record::All
-    } else {
-        Record::Tangents
-    };
-    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
+    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, Record::Tangents)?;
     let pass = Pass {
         nodes: tan.nodes,
         elongation: tan.elongation,
@@ -286,6 +282,14 @@ pub(super) fn integrate_pass(
         actuators,
     };
     Ok((pass, tan.ivp))
+}
+
+impl Pass {
+    /// The IVP's nodes (the recorded states), flat: what assembles a
+    /// [`Solution`] without another IVP or a node-by-node copy.
+    pub(crate) fn ivp_nodes(&self) -> FlatNodes {
+        self.nodes.to_flat()
+    }
 }
 
 /// The tangents at every node of a recorded pass.
@@ -352,16 +356,17 @@ pub(super) fn tangents_of(robot: &Robot, pass: &Pass) -> Tangents {
 }
 
 /// Exact tangents from one recorded tangent IVP ([`integrate_pass`]); with
-/// them the IVP itself (its nodes recorded if `profile`) and the tensions
-/// \[N\].
+/// them the IVP itself, the tensions \[N\] and, if `profile`, the IVP's
+/// nodes ([`Pass::ivp_nodes`]).
 pub(super) fn exact_tangents(
     robot: &Robot,
     eq: &Equilibrium<'_>,
     actuators: bool,
     profile: bool,
-) -> Result<(Tangents, IvpResult, Vec<f64>)> {
-    let (pass, ivp) = integrate_pass(robot, eq, actuators, profile, None)?;
-    Ok((tangents_of(robot, &pass), ivp, pass.tau))
+) -> Result<(Tangents, IvpResult, Vec<f64>, Option<FlatNodes>)> {
+    let (pass, ivp) = integrate_pass(robot, eq, actuators, None)?;
+    let nodes = profile.then(|| pass.ivp_nodes());
+    Ok((tangents_of(robot, &pass), ivp, pass.tau, nodes))
 }
 
 /// Data of one recorded IVP at each node: position, rotation, total wrench.
