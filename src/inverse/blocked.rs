@@ -10,7 +10,7 @@ use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
 use crate::shooting::{initial_guess, solve_loaded, Loads, Shot, Solution, SolveOptions};
 use crate::solve::newton::newton_from;
-use crate::solve::solution::assemble_from;
+use crate::solve::solution::assemble_flat;
 use crate::stability::{stability, unstable_error, Policy, Stability};
 
 /// A blocked tip: the tip's displacement along `normal` (unit, world) is held
@@ -249,21 +249,13 @@ fn mixed_newton(
         Some(last) => (last, nr.evaluations),
         None => {
             let shot = Shot::new(robot, &inputs, &loads, opts.steps);
-            (shot.residual(&nr.x[..nx], true)?, nr.evaluations + 1)
+            let (r, ivp, tau, nodes) = shot.residual_flat(&nr.x[..nx])?;
+            ((r, (ivp, nodes), tau), nr.evaluations + 1)
         }
     };
-    let mut sol = assemble_from(
-        robot,
-        &inputs,
-        &loads,
-        &nr.x[..nx],
-        opts.steps,
-        nr.iterations,
-        evaluations,
-        r,
-        ivp,
-        tau,
-    )?;
+    let problem = (inputs.as_slice(), &loads, &nr.x[..nx]);
+    let counts = (opts.steps, nr.iterations, evaluations);
+    let mut sol = assemble_flat(robot, problem, counts, r, ivp, tau);
     sol.status = nr.status;
     sol.floor = nr.floor;
     let res = BlockedResult {

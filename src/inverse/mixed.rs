@@ -23,7 +23,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::{load_scales, Block, Groups};
 use crate::error::Result;
-use crate::rod::{integrate_tangent, IvpResult, Robot, TangentSeeds};
+use crate::rod::{integrate_tangent, FlatNodes, IvpResult, Robot, TangentSeeds};
 use crate::shooting::{base_strains, residual_scales, Loads, Shot, System};
 use crate::solve::system::COARSE_JACOBIAN_MIN_STEPS;
 
@@ -65,16 +65,15 @@ pub(crate) struct Mixed<'a> {
     pub(crate) record_below: f64,
     /// `max |r|` of the last plain IVP.
     last_norm: f64,
-    /// The last recorded plain IVP: unknowns, shooting residual (without
-    /// the gap), IVP, tensions.
-    last: Option<LastIvp>,
+    /// The unknowns and [`Recorded`] evaluation of the last recorded IVP.
+    last: Option<(Vec<f64>, Recorded)>,
     /// A residual already integrated at these unknowns ([`Mixed::prime`]).
     primed: Option<(Vec<f64>, Vec<f64>)>,
 }
 
-/// Unknowns, shooting residual (without the gap), recorded IVP and tensions
-/// of one evaluation.
-type LastIvp = (Vec<f64>, Vec<f64>, IvpResult, Vec<f64>);
+/// Shooting residual (without the gap), the IVP with its nodes (flat) and
+/// tensions \[N\] of one recorded evaluation.
+pub(crate) type Recorded = (Vec<f64>, (IvpResult, FlatNodes), Vec<f64>);
 
 impl<'a> Mixed<'a> {
     /// The system of `robot` held by `block`, on `steps` RK4 steps.
@@ -108,10 +107,10 @@ impl<'a> Mixed<'a> {
     }
 
     /// The last recorded IVP if it was at the augmented unknowns `x`:
-    /// `(shooting residual, ivp, tensions)`.
-    pub(crate) fn take_last(&mut self, x: &[f64]) -> Option<(Vec<f64>, IvpResult, Vec<f64>)> {
+    /// `(shooting residual, (ivp, its nodes), tensions)`.
+    pub(crate) fn take_last(&mut self, x: &[f64]) -> Option<Recorded> {
         match self.last.take() {
-            Some((xl, r, ivp, tau)) if xl == x => Some((r, ivp, tau)),
+            Some((xl, rec)) if xl == x => Some(rec),
             _ => None,
         }
     }
@@ -166,11 +165,17 @@ impl System for Mixed<'_> {
         let nx = 6 + self.robot.actuators.len();
         let (inputs, loads, _) = self.problem(x)?;
         let record = self.last_norm <= self.record_below;
-        let (mut r, ivp, tau) =
-            Shot::new(self.robot, &inputs, &loads, self.steps).residual(&x[..nx], record)?;
+        let shot = Shot::new(self.robot, &inputs, &loads, self.steps);
+        let (mut r, ivp, tau, nodes) = match record {
+            true => shot.residual_flat(&x[..nx])?,
+            false => {
+                let (r, ivp, tau) = shot.residual(&x[..nx], false)?;
+                (r, ivp, tau, FlatNodes::default())
+            }
+        };
         let gap = self.gap(&ivp.tip.p);
         // kept only if recorded: the shooting residual without the gap
-        self.last = record.then(|| (x.to_vec(), r.clone(), ivp, tau.clone()));
+        self.last = record.then(|| (x.to_vec(), (r.clone(), (ivp, nodes), tau.clone())));
         r.push(gap);
         self.last_norm = r.iter().fold(0.0, |m, v| m.max(v.abs()));
         self.tau = tau;

@@ -98,32 +98,6 @@ pub fn assemble(
     ))
 }
 
-/// [`assemble`] from the recorded IVP at `x` (residual `r`, tensions `tau`).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn assemble_from(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    x: &[f64],
-    steps: usize,
-    iterations: usize,
-    evaluations: usize,
-    r: Vec<f64>,
-    mut ivp: IvpResult,
-    tau: Vec<f64>,
-) -> Result<Solution> {
-    let nodes = FlatNodes::from_states(&std::mem::take(&mut ivp.nodes));
-    let counts = (steps, iterations, evaluations);
-    Ok(assemble_flat(
-        robot,
-        (inputs, loads, x),
-        counts,
-        r,
-        (ivp, nodes),
-        tau,
-    ))
-}
-
 /// [`assemble`] from the IVP at `x` with its nodes recorded flat (residual
 /// `r`, tensions `tau`); `counts`: RK4 steps, iterations, evaluations.
 pub(crate) fn assemble_flat(

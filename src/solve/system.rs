@@ -9,7 +9,7 @@ use nalgebra::DMatrix;
 use super::newton::{newton_from, NewtonOptions, NewtonResult, System};
 use super::options::SolveOptions;
 use super::residual::{residual_scales, scaled_residual, tensions, Loads, Shot};
-use super::solution::{assemble, assemble_flat, assemble_from, Solution};
+use super::solution::{assemble, assemble_flat, Solution};
 use crate::error::{Error, Result};
 use crate::rod::{FlatNodes, IvpResult, Robot};
 use crate::stability::{verdict_pass, Equilibrium, VerdictPass};
@@ -474,14 +474,6 @@ pub(crate) fn solution_from(
         }) if !nodes.is_empty() => {
             let problem = (inputs, loads, nr.x.as_slice());
             assemble_flat(robot, problem, (opts.steps, 0, 0), r, (ivp, nodes), tau)
-        }
-        Some(FinalIvp {
-            residual: r,
-            ivp,
-            tensions: tau,
-            ..
-        }) if !ivp.nodes.is_empty() => {
-            assemble_from(robot, inputs, loads, &nr.x, opts.steps, 0, 0, r, ivp, tau)?
         }
         _ => {
             work.evaluations += 1;
