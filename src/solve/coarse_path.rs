@@ -25,11 +25,15 @@
 //! root 4.7-25 from the full grid's, or a coarse path creeping to its
 //! cap) 1,205 -> 570 IVPs together (627 on the full grid's path).
 //! If the coarse path stalls (its step quartered below the smallest: a
-//! fold of the path), it goes on on the full grid from the point where it
-//! stalled (`on_full_grid`); if it stalls there too, the solve's continuation has
-//! failed without a full-grid path from `lambda = 0`, which meets the same
-//! fold (benchmark design #25, past buckling: the coarse path stalls at
-//! `lambda = 0.553`, the full grid's own path at 0.665; 506 -> 297 IVPs).
+//! fold of the path), its point is corrected on the full grid; if the
+//! coarse grid resolves it there (to [`WATCH_TOL`]) the fold is the full
+//! grid's too and the solve's continuation has failed at once, else the
+//! path goes on on the full grid from that point (`on_full_grid`), and if
+//! it stalls there too, the continuation has failed. Either way without
+//! a full-grid path from `lambda = 0`, which meets the same fold
+//! (benchmark design #25, past buckling: the coarse path stalls at
+//! `lambda = 0.553`, the full grid's own path at 0.665; 506 -> 297 ->
+//! 280 IVPs).
 //! If the coarse path reaches its IVP cap, or the finish does not
 //! converge, the caller runs the path on the full grid from `lambda = 0`
 //! (its work counted on top), so that no design converging on the full
@@ -194,9 +198,9 @@ pub(crate) fn coarse_path(
     match out {
         Err(e) if is_budget_error(&e) && !work.exhausted() => Ok(None),
         Err(e) if ends_solve(&e) => Err(e),
-        Err(_) => match track.unresolved {
+        Err(e) => match track.unresolved {
             Some(r) => on_middle_grid(robot, inputs, loads, opts, &from, (track, r), work),
-            None => on_full_grid(robot, inputs, loads, opts, &from, (track, true), work),
+            None => on_full_grid(robot, inputs, loads, opts, &from, (track, Some(e)), work),
         },
         Ok((nr, _, path)) => finish(robot, inputs, loads, opts, nr.x, path, work),
     }
@@ -282,7 +286,7 @@ fn on_middle_grid(
         }
     }
     match r <= RESUME_MAX {
-        true => on_full_grid(robot, inputs, loads, opts, from, (track, false), work),
+        true => on_full_grid(robot, inputs, loads, opts, from, (track, None), work),
         false => Ok(None),
     }
 }
@@ -313,7 +317,7 @@ fn middle_path(
     if *r <= RESUME_MAX {
         let mut t = track.clone();
         t.unresolved = None;
-        if regrid(robot, inputs, loads, &mopts, from, &mut t, work)? {
+        if regrid(robot, inputs, loads, &mopts, from, &mut t, work)?.is_some() {
             mid = t;
         }
     }
@@ -353,16 +357,21 @@ fn middle_path(
 /// ([`regrid`]) and the path followed on from it; `None` (the full grid's
 /// path from `lambda = 0` is run) if the correction or that path fails.
 ///
-/// At a fold (the coarse path's steps quartered below `MIN_STEP`: a fold
-/// of the path, or a kink the coarse grid does not resolve) the same, but
-/// if the full grid's path stalls too, the fold is the full grid's and a
-/// full-grid path from `lambda = 0` meets it as well (not at the same
-/// `lambda`: see below): the error is returned (the caller's last resort
-/// follows). `None` if the path stalled at `lambda = 0` or the correction
-/// failed. Measured on the 1,000 benchmark designs: only #25 (past
-/// buckling) stalls, at `lambda = 0.5531` after 207 coarse IVPs; the
-/// correction takes 2 IVPs (predictor residual 2.4e-4), the full grid's
-/// path stalls there after 16 more, and the solve costs 297 IVPs, against
+/// At a fold (`fold`: the coarse path's stall error, its steps quartered
+/// below `MIN_STEP`: a fold of the path, or a kink the coarse grid does
+/// not resolve) the point is corrected on the full grid too. If the full
+/// grid's residual at the coarse point is within [`WATCH_TOL`] (the check
+/// rule: the coarse grid resolves the path there) the fold is the full
+/// grid's, and `fold` is returned at once (the caller's last resort
+/// follows); else the path goes on on the full grid, and if it stalls
+/// too, its error is returned. A full-grid path from `lambda = 0` meets
+/// the same fold (not at the same `lambda`: see below). `None` if the path
+/// stalled at `lambda = 0` or the correction failed. Measured on the
+/// 1,000 benchmark designs: only #25 (past buckling) stalls, at
+/// `lambda = 0.5531` after 207 coarse IVPs; the correction takes 2 IVPs
+/// from a full-grid residual of 2.4e-4 (1/65 of [`WATCH_TOL`]); the
+/// full grid's path stalled there after 16 more (its first step, `6e-5`,
+/// failed), so the solve costs 280 IVPs, against 298 with that path and
 /// 506 with a full-grid path from `lambda = 0` (227 IVPs, stalled at
 /// `lambda = 0.665`).
 fn on_full_grid(
@@ -371,14 +380,19 @@ fn on_full_grid(
     loads: &Loads,
     opts: &SolveOptions,
     from: &[f64],
-    (mut track, at_fold): (Track, bool),
+    (mut track, fold): (Track, Option<Error>),
     work: &mut Work,
 ) -> Result<Option<Solution>> {
+    let at_fold = fold.is_some();
     if at_fold && track.lam <= 0.0 {
         return Ok(None);
     }
-    if !regrid(robot, inputs, loads, opts, from, &mut track, work)? {
+    let Some(r0) = regrid(robot, inputs, loads, opts, from, &mut track, work)? else {
         return Ok(None);
+    };
+    if let Some(e) = fold.filter(|_| r0 <= WATCH_TOL) {
+        // the coarse grid resolves the path at its fold: the full grid's fold
+        return Err(e);
     }
     let out = follow_from(robot, inputs, loads, opts, from, true, &mut track, work);
     // a path stalled at a fold on both grids is the solve's continuation failure
@@ -397,8 +411,9 @@ fn on_full_grid(
 
 /// Corrects `track`'s point on the full grid `opts.steps` (to the
 /// intermediate tolerance, from the coarse Jacobian, backtracking in full)
-/// and moves the track there (see [`Track::regrid`]); `false` if the
-/// correction failed.
+/// and moves the track there (see [`Track::regrid`]); the full grid's
+/// `max |r|` (scaled) at the point before the correction (the other grid's
+/// error there), `None` if the correction failed.
 fn regrid(
     robot: &Robot,
     inputs: &[f64],
@@ -407,16 +422,16 @@ fn regrid(
     from: &[f64],
     track: &mut Track,
     work: &mut Work,
-) -> Result<bool> {
+) -> Result<Option<f64>> {
     let (r, inp, l) = at(robot, from, inputs, loads, true, track.lam);
     let sopts = step_options(opts, false, true);
     let (x, jac) = (&track.x, track.jac.as_ref());
-    let (out, _) = correct(&r, &inp, &l, &sopts, x, jac, false, f64::INFINITY, work);
+    let (out, r0) = correct(&r, &inp, &l, &sopts, x, jac, false, f64::INFINITY, work);
     let Some((nr, last)) = unless_final(out)? else {
-        return Ok(false);
+        return Ok(None);
     };
     track.regrid(nr, last, &r, &inp)?;
-    Ok(true)
+    Ok(Some(r0.unwrap_or(f64::INFINITY)))
 }
 
 /// The cold homotopy path alone (no direct run, no finish) on `opts.steps`:
