@@ -288,6 +288,11 @@ fn integrate_plain(
             rec.push(a, y);
         }
         spanning(robot, a, b, tol, &mut active);
+        // the stages' rates of the actuators not spanning [a, b] are zero
+        // (`RodRhs::deriv` leaves them as they are)
+        for k in ks.chunks_exact_mut(n) {
+            k[BASE_STATES..].fill(0.0);
+        }
         let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
         let h = (b - a) / m as f64;
         let hs = [h, 0.5 * h, h / 6.0];

@@ -119,6 +119,12 @@ impl<'a> RodRhs<'a> {
     /// finiteness check of [`RodRhs::kinematics`]: the caller checks its
     /// state once per RK4 step instead (`all_finite`: a non-finite rate
     /// makes the stepped state non-finite).
+    ///
+    /// The elongation rates of the actuators not in `active` are NOT
+    /// written: the caller keeps them zero in `dy` (the IVP zeroes its
+    /// stages once per grid interval). Zeroing them here, a slice of
+    /// run-time length, compiled to a `memset` call per stage, and the
+    /// call's clobbered registers to spills around it.
     #[inline(always)]
     pub(crate) fn deriv(&self, s: f64, y: &[f64], active: &[usize], dy: &mut [f64]) -> Result<()> {
         self.deriv_with::<f64, false>(s, y, self.tensions, active, dy)
@@ -144,10 +150,14 @@ impl<'a> RodRhs<'a> {
         active: &[usize],
         dy: &mut [T],
     ) -> Result<()> {
+        for d in dy[BASE_STATES..].iter_mut() {
+            *d = T::cst(0.0);
+        }
         self.deriv_with::<T, true>(s, y, tau, active, dy)
     }
 
-    /// [`RodRhs::deriv_generic`], with its finiteness check if `CHECK`.
+    /// [`RodRhs::deriv_generic`], with its finiteness check if `CHECK`,
+    /// the inactive actuators' rates left as `dy` holds them.
     #[inline(always)]
     fn deriv_with<T: Real, const CHECK: bool>(
         &self,
@@ -158,9 +168,6 @@ impl<'a> RodRhs<'a> {
         dy: &mut [T],
     ) -> Result<()> {
         let fr = self.frame(y);
-        for d in dy[BASE_STATES..].iter_mut() {
-            *d = T::cst(0.0);
-        }
         let (vd, ud): (V3<T>, V3<T>) = if active.is_empty() {
             (
                 v3(|k| fr.e[k] * self.kse_inv[k]),

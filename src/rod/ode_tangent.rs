@@ -37,7 +37,9 @@ impl RodRhs<'_> {
     /// IVP's own code), and its tangents into `dyl` along the lanes `yl` of
     /// `y` and `taul` of the tensions: the exact derivatives of the same map
     /// (to rounding), as [`RodRhs::deriv_generic`] in [`Dual`] arithmetic
-    /// gives them. `strings` is scratch.
+    /// gives them. `strings` is scratch. As in [`RodRhs::deriv`], the
+    /// rates of the actuators not in `active` (and their lanes) are not
+    /// written: the caller keeps them zero.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(crate) fn deriv_lanes<const N: usize>(
@@ -52,9 +54,6 @@ impl RodRhs<'_> {
     ) -> Result<()> {
         // the value: `deriv_generic` in f64, keeping the factorisation and strings
         let fr = self.frame(y);
-        for d in dy[BASE_STATES..].iter_mut() {
-            *d = 0.0;
-        }
         strings.clear();
         let (vd, ud, fac) = if active.is_empty() {
             let vd = v3(|k| fr.e[k] * self.kse_inv[k]);
@@ -77,9 +76,6 @@ impl RodRhs<'_> {
         };
         let q = [y[3], y[4], y[5], y[6]];
         let (mut de, mut df) = self.frame_lanes(&fr, &q, &sl);
-        for d in dyl[BASE_STATES..].iter_mut() {
-            *d = Lanes::ZERO;
-        }
         let (dvd, dud) = match fac {
             None => (
                 v3(|k| de[k] * self.kse_inv[k]),

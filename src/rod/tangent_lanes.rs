@@ -29,6 +29,18 @@ impl<const N: usize> LaneStages<N> {
         }
     }
 
+    /// Zero the stages' rates of the actuators (and their lanes), which
+    /// [`RodRhs::deriv_lanes`] writes for the active ones only: once per
+    /// grid interval, where the active set may change.
+    fn clear_rates(&mut self, n: usize) {
+        for k in self.k.chunks_exact_mut(n) {
+            k[BASE_STATES..].fill(0.0);
+        }
+        for k in self.kl.chunks_exact_mut(n) {
+            k[BASE_STATES..].fill(Lanes::ZERO);
+        }
+    }
+
     /// One RK4 step of length `h` from `s`, then the quaternion
     /// renormalised: the values by the operations of
     /// [`super::super::integrate`] in its order, the lanes by the same
@@ -54,19 +66,20 @@ impl<const N: usize> LaneStages<N> {
             let (hs, ss) = [(0.0, s), (h2, s + h2), (h2, s + h2), (h, s + h)][st];
             let (done, todo) = k.split_at_mut(st * n);
             let (donel, todol) = kl.split_at_mut(st * n);
-            if st == 0 {
-                yt.copy_from_slice(y);
-                ytl.copy_from_slice(yl);
+            // the first stage reads the state itself (no copy into `yt`)
+            let at: (&[f64], &[Lanes<N>]) = if st == 0 {
+                (y, yl)
             } else {
                 let (kp, kpl) = (&done[(st - 1) * n..], &donel[(st - 1) * n..]);
                 for j in 0..n {
                     yt[j] = y[j] + hs * kp[j];
                     ytl[j] = kpl[j].fma(hs, yl[j]);
                 }
-            }
+                (yt, ytl)
+            };
             fz.deriv_lanes(
                 ss,
-                (yt, ytl),
+                at,
                 taul,
                 active,
                 strings,
@@ -148,6 +161,7 @@ pub(super) fn pass_lanes<const N: usize>(
         }
         node!(a);
         spanning(robot, a, b, tol, &mut active);
+        st.clear_rates(n);
         let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
         let h = (b - a) / m as f64;
         for kk in 0..m {
