@@ -2,7 +2,7 @@
 //! exact Jacobian from the tangents of the discrete RK4 map; the tension
 //! slopes of the force laws, with their onsets of tension.
 
-use nalgebra::{DMatrix, Vector3};
+use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::error::{Error, Result};
 use crate::rod::{
@@ -12,6 +12,21 @@ use crate::rod::{
 
 /// Residual, its exact Jacobian, the tangent IVP and the tensions of one evaluation.
 type ResidualAndJacobian = (Vec<f64>, DMatrix<f64>, TangentIvp, Vec<f64>);
+
+/// The taut piece of a slack actuator's law, extended to its elongation,
+/// with the residual's response to its tension (for a semismooth step that
+/// crosses the onset, [`crate::solve::system::Shooting`]'s `limit_step`).
+#[derive(Debug, Clone)]
+pub(crate) struct SlackTangent {
+    /// The actuator.
+    pub index: usize,
+    /// The taut side's slope \[N/m\] at the onset.
+    pub slope: f64,
+    /// The onset's elongation \[m\] (zero tension, the taut side from there).
+    pub onset: f64,
+    /// `dr / d tau` of the scaled residual \[1/N\].
+    pub response: DVector<f64>,
+}
 
 /// Tensions \[N\] of all actuators for guessed elongations `delta` \[m\].
 pub fn tensions(robot: &Robot, inputs: &[f64], delta: &[f64]) -> Result<Vec<f64>> {
@@ -176,18 +191,24 @@ impl<'a> Shot<'a> {
     /// the force laws' derivatives), `(6 + N) x (6 + N)`. With `record`, the
     /// IVP's nodes carry `d y(s) / d x` (see [`crate::rod::TangentNode`]).
     pub fn jacobian(&self, x: &[f64], record: bool) -> Result<ResidualAndJacobian> {
-        Ok(self.jacobian_side(x, record, false)?.0)
+        Ok(self.jacobian_side(x, record, false, false)?.0 .0)
     }
 
     /// [`Shot::jacobian`] with the side of the generalised derivative at an
     /// actuator's onset of tension (see [`tension_slope`]); also returns
-    /// whether any actuator is at its onset.
+    /// whether any actuator is at its onset. With `taut`, the tangent of a
+    /// slack actuator (zero tension and slope) is seeded with its law's taut
+    /// slope at the onset ([`crate::rod::ForceLaw::elongation`] of zero
+    /// tension), its response `dr / d tau` returned, and its column reset to
+    /// the slack one, `-e_(6+i)` (the columns are independent tangents: the
+    /// Jacobian is the same as without).
     pub(crate) fn jacobian_side(
         &self,
         x: &[f64],
         record: bool,
         slack: bool,
-    ) -> Result<(ResidualAndJacobian, bool)> {
+        taut: bool,
+    ) -> Result<((ResidualAndJacobian, bool), Vec<SlackTangent>)> {
         let len = self.robot.body.length;
         let na = self.robot.actuators.len();
         let nx = 6 + na;
@@ -195,6 +216,7 @@ impl<'a> Shot<'a> {
         let mut tau = Vec::with_capacity(na);
         let mut seeds = TangentSeeds::zeros(na, nx);
         let mut onset = false;
+        let mut slack_dirs = Vec::new();
         for k in 0..3 {
             seeds.nu0[(k, k)] = 1.0;
             seeds.omega0[(k, 3 + k)] = 1.0 / len;
@@ -205,6 +227,22 @@ impl<'a> Shot<'a> {
             onset |= at;
             tau.push(t);
             seeds.tensions[(i, 6 + i)] = dt_de * len;
+            if taut && t == 0.0 && dt_de == 0.0 {
+                if let Some(d0) = a.law.elongation(0.0, self.inputs[i]) {
+                    match a.law.tension_derivatives(d0, self.inputs[i]) {
+                        Ok((_, k, _)) if k > 0.0 && k.is_finite() && d0.is_finite() => {
+                            seeds.tensions[(i, 6 + i)] = k * len;
+                            slack_dirs.push(SlackTangent {
+                                index: i,
+                                slope: k,
+                                onset: d0,
+                                response: DVector::zeros(0),
+                            });
+                        }
+                        _ => {}
+                    }
+                }
+            }
         }
         let spec = self.loads.ivp(self.robot, &tau, self.steps);
         let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
@@ -227,7 +265,15 @@ impl<'a> Shot<'a> {
             }
             jac[(6 + i, 6 + i)] -= 1.0;
         }
-        Ok(((r, jac, tan, tau), onset))
+        for sd in &mut slack_dirs {
+            let c = 6 + sd.index;
+            let mut g = jac.column(c).clone_owned();
+            g[c] += 1.0;
+            sd.response = g / (sd.slope * len);
+            jac.column_mut(c).fill(0.0);
+            jac[(c, c)] = -1.0;
+        }
+        Ok((((r, jac, tan, tau), onset), slack_dirs))
     }
 }
 
