@@ -28,6 +28,58 @@ pub(crate) struct SlackTangent {
     pub response: DVector<f64>,
 }
 
+/// The Newton step `dx` (Jacobian `jac` at `x`, residual `r`) recomputed
+/// where it carries a slack actuator taut (for
+/// [`crate::solve::system::Shooting`]'s `limit_step`): a semismooth
+/// Newton step (Qi and Sun, Math. Prog. 58, 1993) with the law's slope
+/// of the side the step goes to, the taut piece extended to `x`,
+/// `tau ~ k (d' - d0)` (`k` the taut slope, `d0` the onset): column
+/// `6 + i` becomes `g k L - e_(6+i)` (`g = dr / d tau_i`, from the
+/// Jacobian's tangent, [`SlackTangent`]) and the residual moves by `g k
+/// (d - d0)`. The slack Jacobian predicts no tension, so its step
+/// overshoots into a tension that throws the body far off (measured on
+/// benchmark designs #153 and #341: a tendon at its onset flipped
+/// between slack and taut, each line search accepting `t ~ 4e-3`).
+/// `slack`: the Jacobian's slack actuators (at `x`), `len` the body
+/// length \[m\]. Taken only where the recomputed step also lands taut for
+/// each such actuator; else `None`.
+pub(crate) fn taut_step(
+    len: f64,
+    slack: &[SlackTangent],
+    x: &[f64],
+    dx: &[f64],
+    r: &[f64],
+    jac: &DMatrix<f64>,
+) -> Option<Vec<f64>> {
+    if slack.is_empty() || jac.nrows() != jac.ncols() {
+        return None;
+    }
+    let mut jm = jac.clone();
+    let mut rm = DVector::from_column_slice(r);
+    let mut crossed = Vec::new();
+    for s in slack {
+        let c = 6 + s.index;
+        let (d, dd) = (x[c] * len, dx[c] * len);
+        if !(d + dd > s.onset) {
+            continue;
+        }
+        rm += &s.response * (s.slope * (d - s.onset));
+        let mut col = &s.response * (s.slope * len);
+        col[c] -= 1.0;
+        jm.set_column(c, &col);
+        crossed.push(s);
+    }
+    if crossed.is_empty() {
+        return None;
+    }
+    let step = jm.lu().solve(&(-rm))?;
+    let taut = crossed.iter().all(|s| {
+        let c = 6 + s.index;
+        (x[c] + step[c]) * len > s.onset
+    });
+    (taut && step.iter().all(|v| v.is_finite())).then(|| step.iter().copied().collect())
+}
+
 /// Tensions \[N\] of all actuators for guessed elongations `delta` \[m\].
 pub fn tensions(robot: &Robot, inputs: &[f64], delta: &[f64]) -> Result<Vec<f64>> {
     robot

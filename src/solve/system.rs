@@ -4,11 +4,13 @@
 
 use std::time::Instant;
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 use super::newton::{newton_from, NewtonOptions, NewtonResult, System};
 use super::options::SolveOptions;
-use super::residual::{residual_scales, scaled_residual, tensions, Loads, Shot, SlackTangent};
+use super::residual::{
+    residual_scales, scaled_residual, taut_step, tensions, Loads, Shot, SlackTangent,
+};
 use super::solution::{assemble, assemble_flat, Solution};
 use crate::error::{Error, Result};
 use crate::rod::{FlatNodes, IvpResult, Robot};
@@ -288,11 +290,12 @@ impl System for Shooting<'_> {
     }
     fn limit_step(&self, x: &[f64], dx: &[f64], r: &[f64], jac: &DMatrix<f64>) -> Option<Vec<f64>> {
         let (robot, inputs) = (self.shot.robot, self.shot.inputs);
-        if let Some(d) = self.taut_step(x, dx, r, jac) {
-            return super::limit::limited_step(robot, inputs, x, &d)
-                .or_else(|| Some(x.iter().zip(&d).map(|(a, b)| a + b).collect()));
-        }
-        match super::limit::piece_step(robot, inputs, x, dx, r, jac) {
+        let (at, slack) = &self.slack_tangents;
+        let taut = (at.as_slice() == x).then(|| taut_step(robot.body.length, slack, x, dx, r, jac));
+        match taut
+            .flatten()
+            .or_else(|| super::limit::piece_step(robot, inputs, x, dx, r, jac))
+        {
             Some(d) => super::limit::limited_step(robot, inputs, x, &d)
                 .or_else(|| Some(x.iter().zip(&d).map(|(a, b)| a + b).collect())),
             None => super::limit::limited_step(robot, inputs, x, dx),
@@ -339,53 +342,6 @@ impl System for Shooting<'_> {
     }
     fn evaluations(&self) -> usize {
         self.evaluations
-    }
-}
-
-impl Shooting<'_> {
-    /// The Newton step `dx` (Jacobian `jac` at `x`, residual `r`)
-    /// recomputed where it carries a slack actuator taut: a semismooth
-    /// Newton step (Qi and Sun, Math. Prog. 58, 1993) with the law's slope
-    /// of the side the step goes to, the taut piece extended to `x`,
-    /// `tau ~ k (d' - d0)` (`k` the taut slope, `d0` the onset): column
-    /// `6 + i` becomes `g k L - e_(6+i)` (`g = dr / d tau_i`, from the
-    /// Jacobian's tangent, [`SlackTangent`]) and the residual moves by `g k
-    /// (d - d0)`. The slack Jacobian predicts no tension, so its step
-    /// overshoots into a tension that throws the body far off (measured on
-    /// benchmark designs #153 and #341: a tendon at its onset flipped
-    /// between slack and taut, each line search accepting `t ~ 4e-3`).
-    /// Taken only where the recomputed step also lands taut for each such
-    /// actuator; else `None`.
-    fn taut_step(&self, x: &[f64], dx: &[f64], r: &[f64], jac: &DMatrix<f64>) -> Option<Vec<f64>> {
-        let (at, slack) = &self.slack_tangents;
-        if slack.is_empty() || at.as_slice() != x || jac.nrows() != jac.ncols() {
-            return None;
-        }
-        let len = self.shot.robot.body.length;
-        let mut jm = jac.clone();
-        let mut rm = DVector::from_column_slice(r);
-        let mut crossed = Vec::new();
-        for s in slack {
-            let c = 6 + s.index;
-            let (d, dd) = (x[c] * len, dx[c] * len);
-            if !(d + dd > s.onset) {
-                continue;
-            }
-            rm += &s.response * (s.slope * (d - s.onset));
-            let mut col = &s.response * (s.slope * len);
-            col[c] -= 1.0;
-            jm.set_column(c, &col);
-            crossed.push(s);
-        }
-        if crossed.is_empty() {
-            return None;
-        }
-        let step = jm.lu().solve(&(-rm))?;
-        let taut = crossed.iter().all(|s| {
-            let c = 6 + s.index;
-            (x[c] + step[c]) * len > s.onset
-        });
-        (taut && step.iter().all(|v| v.is_finite())).then(|| step.iter().copied().collect())
     }
 }
 
