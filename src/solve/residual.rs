@@ -2,7 +2,7 @@
 //! exact Jacobian from the tangents of the discrete RK4 map; the tension
 //! slopes of the force laws, with their onsets of tension.
 
-use nalgebra::{DMatrix, Vector3};
+use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::error::{Error, Result};
 use crate::rod::{
@@ -12,6 +12,73 @@ use crate::rod::{
 
 /// Residual, its exact Jacobian, the tangent IVP and the tensions of one evaluation.
 type ResidualAndJacobian = (Vec<f64>, DMatrix<f64>, TangentIvp, Vec<f64>);
+
+/// The taut piece of a slack actuator's law, extended to its elongation,
+/// with the residual's response to its tension (for a semismooth step that
+/// crosses the onset, [`crate::solve::system::Shooting`]'s `limit_step`).
+#[derive(Debug, Clone)]
+pub(crate) struct SlackTangent {
+    /// The actuator.
+    pub index: usize,
+    /// The taut side's slope \[N/m\] at the onset.
+    pub slope: f64,
+    /// The onset's elongation \[m\] (zero tension, the taut side from there).
+    pub onset: f64,
+    /// `dr / d tau` of the scaled residual \[1/N\].
+    pub response: DVector<f64>,
+}
+
+/// The Newton step `dx` (Jacobian `jac` at `x`, residual `r`) recomputed
+/// where it carries a slack actuator taut (for
+/// [`crate::solve::system::Shooting`]'s `limit_step`): a semismooth
+/// Newton step (Qi and Sun, Math. Prog. 58, 1993) with the law's slope
+/// of the side the step goes to, the taut piece extended to `x`,
+/// `tau ~ k (d' - d0)` (`k` the taut slope, `d0` the onset): column
+/// `6 + i` becomes `g k L - e_(6+i)` (`g = dr / d tau_i`, from the
+/// Jacobian's tangent, [`SlackTangent`]) and the residual moves by `g k
+/// (d - d0)`. The slack Jacobian predicts no tension, so its step
+/// overshoots into a tension that throws the body far off (measured on
+/// benchmark designs #153 and #341: a tendon at its onset flipped
+/// between slack and taut, each line search accepting `t ~ 4e-3`).
+/// `slack`: the Jacobian's slack actuators (at `x`), `len` the body
+/// length \[m\]. Taken only where the recomputed step also lands taut for
+/// each such actuator; else `None`.
+pub(crate) fn taut_step(
+    len: f64,
+    slack: &[SlackTangent],
+    x: &[f64],
+    dx: &[f64],
+    r: &[f64],
+    jac: &DMatrix<f64>,
+) -> Option<Vec<f64>> {
+    if slack.is_empty() || jac.nrows() != jac.ncols() {
+        return None;
+    }
+    let mut jm = jac.clone();
+    let mut rm = DVector::from_column_slice(r);
+    let mut crossed = Vec::new();
+    for s in slack {
+        let c = 6 + s.index;
+        let (d, dd) = (x[c] * len, dx[c] * len);
+        if !(d + dd > s.onset) {
+            continue;
+        }
+        rm += &s.response * (s.slope * (d - s.onset));
+        let mut col = &s.response * (s.slope * len);
+        col[c] -= 1.0;
+        jm.set_column(c, &col);
+        crossed.push(s);
+    }
+    if crossed.is_empty() {
+        return None;
+    }
+    let step = jm.lu().solve(&(-rm))?;
+    let taut = crossed.iter().all(|s| {
+        let c = 6 + s.index;
+        (x[c] + step[c]) * len > s.onset
+    });
+    (taut && step.iter().all(|v| v.is_finite())).then(|| step.iter().copied().collect())
+}
 
 /// Tensions \[N\] of all actuators for guessed elongations `delta` \[m\].
 pub fn tensions(robot: &Robot, inputs: &[f64], delta: &[f64]) -> Result<Vec<f64>> {
@@ -176,18 +243,24 @@ impl<'a> Shot<'a> {
     /// the force laws' derivatives), `(6 + N) x (6 + N)`. With `record`, the
     /// IVP's nodes carry `d y(s) / d x` (see [`crate::rod::TangentNode`]).
     pub fn jacobian(&self, x: &[f64], record: bool) -> Result<ResidualAndJacobian> {
-        Ok(self.jacobian_side(x, record, false)?.0)
+        Ok(self.jacobian_side(x, record, false, false)?.0 .0)
     }
 
     /// [`Shot::jacobian`] with the side of the generalised derivative at an
     /// actuator's onset of tension (see [`tension_slope`]); also returns
-    /// whether any actuator is at its onset.
+    /// whether any actuator is at its onset. With `taut`, the tangent of a
+    /// slack actuator (zero tension and slope) is seeded with its law's taut
+    /// slope at the onset ([`crate::rod::ForceLaw::elongation`] of zero
+    /// tension), its response `dr / d tau` returned, and its column reset to
+    /// the slack one, `-e_(6+i)` (the columns are independent tangents: the
+    /// Jacobian is the same as without).
     pub(crate) fn jacobian_side(
         &self,
         x: &[f64],
         record: bool,
         slack: bool,
-    ) -> Result<(ResidualAndJacobian, bool)> {
+        taut: bool,
+    ) -> Result<((ResidualAndJacobian, bool), Vec<SlackTangent>)> {
         let len = self.robot.body.length;
         let na = self.robot.actuators.len();
         let nx = 6 + na;
@@ -195,6 +268,7 @@ impl<'a> Shot<'a> {
         let mut tau = Vec::with_capacity(na);
         let mut seeds = TangentSeeds::zeros(na, nx);
         let mut onset = false;
+        let mut slack_dirs = Vec::new();
         for k in 0..3 {
             seeds.nu0[(k, k)] = 1.0;
             seeds.omega0[(k, 3 + k)] = 1.0 / len;
@@ -205,6 +279,22 @@ impl<'a> Shot<'a> {
             onset |= at;
             tau.push(t);
             seeds.tensions[(i, 6 + i)] = dt_de * len;
+            if taut && t == 0.0 && dt_de == 0.0 {
+                if let Some(d0) = a.law.elongation(0.0, self.inputs[i]) {
+                    match a.law.tension_derivatives(d0, self.inputs[i]) {
+                        Ok((_, k, _)) if k > 0.0 && k.is_finite() && d0.is_finite() => {
+                            seeds.tensions[(i, 6 + i)] = k * len;
+                            slack_dirs.push(SlackTangent {
+                                index: i,
+                                slope: k,
+                                onset: d0,
+                                response: DVector::zeros(0),
+                            });
+                        }
+                        _ => {}
+                    }
+                }
+            }
         }
         let spec = self.loads.ivp(self.robot, &tau, self.steps);
         let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
@@ -227,7 +317,15 @@ impl<'a> Shot<'a> {
             }
             jac[(6 + i, 6 + i)] -= 1.0;
         }
-        Ok(((r, jac, tan, tau), onset))
+        for sd in &mut slack_dirs {
+            let c = 6 + sd.index;
+            let mut g = jac.column(c).clone_owned();
+            g[c] += 1.0;
+            sd.response = g / (sd.slope * len);
+            jac.column_mut(c).fill(0.0);
+            jac[(c, c)] = -1.0;
+        }
+        Ok((((r, jac, tan, tau), onset), slack_dirs))
     }
 }
 

@@ -8,7 +8,9 @@ use nalgebra::DMatrix;
 
 use super::newton::{newton_from, NewtonOptions, NewtonResult, System};
 use super::options::SolveOptions;
-use super::residual::{residual_scales, scaled_residual, tensions, Loads, Shot};
+use super::residual::{
+    residual_scales, scaled_residual, taut_step, tensions, Loads, Shot, SlackTangent,
+};
 use super::solution::{assemble, assemble_flat, Solution};
 use crate::error::{Error, Result};
 use crate::rod::{FlatNodes, IvpResult, Robot};
@@ -100,6 +102,8 @@ pub struct Shooting<'a> {
     at_onset: bool,
     /// Take the slack side's derivative at an onset (see [`crate::solve::residual::tension_slope`]).
     slack_onset: bool,
+    /// The unknowns of the last Jacobian and its slack actuators' taut pieces.
+    slack_tangents: (Vec<f64>, Vec<SlackTangent>),
 }
 
 /// Fewest RK4 steps of the coarse-grid Newton Jacobian (below ten times
@@ -133,6 +137,7 @@ impl<'a> Shooting<'a> {
             norms: [f64::INFINITY; 2],
             at_onset: false,
             slack_onset: false,
+            slack_tangents: (Vec::new(), Vec::new()),
         }
     }
     /// The last residual evaluation if it was at `x`.
@@ -264,8 +269,8 @@ impl System for Shooting<'_> {
         let out = self
             .shot
             .with_steps(steps)
-            .jacobian_side(x, false, self.slack_onset);
-        let ((r, j, _, _), onset) = match out {
+            .jacobian_side(x, false, self.slack_onset, true);
+        let (((r, j, _, _), onset), slack) = match out {
             // the coarse grid does not resolve the design (RK4 is unstable
             // where a step exceeds ~2.8 of the shortest length of the rod's
             // ODE, e.g. the bending length `sqrt(EI / tau)` of a soft body
@@ -275,16 +280,22 @@ impl System for Shooting<'_> {
             Err(Error::Integration { .. }) if self.jacobian_steps.take().is_some() => {
                 self.evaluations += 1;
                 self.tangent_evaluations += 1;
-                self.shot.jacobian_side(x, false, self.slack_onset)?
+                self.shot.jacobian_side(x, false, self.slack_onset, true)?
             }
             out => out?,
         };
         self.at_onset = onset;
+        self.slack_tangents = (x.to_vec(), slack);
         Ok((r, j))
     }
     fn limit_step(&self, x: &[f64], dx: &[f64], r: &[f64], jac: &DMatrix<f64>) -> Option<Vec<f64>> {
         let (robot, inputs) = (self.shot.robot, self.shot.inputs);
-        match super::limit::piece_step(robot, inputs, x, dx, r, jac) {
+        let (at, slack) = &self.slack_tangents;
+        let taut = (at.as_slice() == x).then(|| taut_step(robot.body.length, slack, x, dx, r, jac));
+        match taut
+            .flatten()
+            .or_else(|| super::limit::piece_step(robot, inputs, x, dx, r, jac))
+        {
             Some(d) => super::limit::limited_step(robot, inputs, x, &d)
                 .or_else(|| Some(x.iter().zip(&d).map(|(a, b)| a + b).collect())),
             None => super::limit::limited_step(robot, inputs, x, dx),
