@@ -434,3 +434,7 @@ pub(crate) fn scaled_residual(robot: &Robot, ivp: &IvpResult, delta: &[f64]) -> 
     }
     r
 }
+
+#[cfg(test)]
+#[path = "residual_tests.rs"]
+mod tests;
