@@ -33,7 +33,8 @@
 //! a full-grid path from `lambda = 0`, which meets the same fold
 //! (benchmark design #25, past buckling: the coarse path stalls at
 //! `lambda = 0.553`, the full grid's own path at 0.665; 506 -> 297 ->
-//! 280 IVPs).
+//! 282 IVPs; 295 with the semismooth onset step, which changes its
+//! direct run's and coarse path's iterates).
 //! If the coarse path reaches its IVP cap, or the finish does not
 //! converge, the caller runs the path on the full grid from `lambda = 0`
 //! (its work counted on top), so that no design converging on the full
@@ -371,7 +372,8 @@ fn middle_path(
 /// `lambda = 0.5531` after 207 coarse IVPs; the correction takes 2 IVPs
 /// from a full-grid residual of 2.4e-4 (1/65 of [`WATCH_TOL`]); the
 /// full grid's path stalled there after 16 more (its first step, `6e-5`,
-/// failed), so the solve costs 280 IVPs, against 298 with that path and
+/// failed), so the solve costs 282 IVPs (295 with the semismooth onset
+/// step, `solve::residual::taut_step`), against 298 with that path and
 /// 506 with a full-grid path from `lambda = 0` (227 IVPs, stalled at
 /// `lambda = 0.665`).
 fn on_full_grid(
