@@ -122,10 +122,7 @@ pub(crate) fn piece_step(
         let mut g = jm.column(j).clone_owned();
         g[j] += 1.0;
         g /= k * len;
-        rm += &g * (t1 - k1 * dd - t0);
-        let mut col = &g * (k1 * len);
-        col[j] -= 1.0;
-        jm.set_column(j, &col);
+        relinearise(&mut jm, &mut rm, j, &g, k1 * len, t1 - k1 * dd - t0);
         changed = true;
     }
     if !changed {
@@ -135,6 +132,26 @@ pub(crate) fn piece_step(
     step.iter()
         .all(|v| v.is_finite())
         .then(|| step.iter().copied().collect())
+}
+
+/// One actuator's law re-linearised on another piece, in a Newton system
+/// `jm dx = -rm`: column `j` (the actuator's elongation) becomes
+/// `g slope - e_j` (`g = dr / d tau`, `slope` the piece's `d tau / d x_j`)
+/// and the residual moves by `g shift` (the piece's tension at `x` minus
+/// the Jacobian's). Shared by [`piece_step`] and
+/// [`crate::solve::residual::taut_step`].
+pub(crate) fn relinearise(
+    jm: &mut DMatrix<f64>,
+    rm: &mut DVector<f64>,
+    j: usize,
+    g: &DVector<f64>,
+    slope: f64,
+    shift: f64,
+) {
+    *rm += g * shift;
+    let mut col = g * slope;
+    col[j] -= 1.0;
+    jm.set_column(j, &col);
 }
 
 #[cfg(test)]

@@ -63,10 +63,8 @@ pub(crate) fn taut_step(
         if !(d + dd > s.onset) {
             continue;
         }
-        rm += &s.response * (s.slope * (d - s.onset));
-        let mut col = &s.response * (s.slope * len);
-        col[c] -= 1.0;
-        jm.set_column(c, &col);
+        let (slope, shift) = (s.slope * len, s.slope * (d - s.onset));
+        super::limit::relinearise(&mut jm, &mut rm, c, &s.response, slope, shift);
         crossed.push(s);
     }
     if crossed.is_empty() {
