@@ -300,3 +300,32 @@ def test_tiny_and_huge_but_valid_geometry_never_returns_nan() -> None:
         Tca(1e-300, 1e-301, 1e-300, 1e-300)
     with pytest.raises(ValueError):
         Tca(0.497, 0.110, 2e-3, 300.0, material=Material(youngs_modulus=1e9, shear_modulus=1e8, expansion=1e300))
+
+
+@pytest.mark.parametrize(
+    ("make", "bad", "allowed"),
+    [
+        (lambda: tcarod.Actuator.tendon(tcarod.Routing.straight(1e-3, 0.0)), NAN, "input >= 0 (finite)"),
+        (lambda: tcarod.Actuator.linear_tendon(100.0, tcarod.Routing.straight(1e-3, 0.0)), INF, "a finite input"),
+    ],
+    ids=["tendon", "linear_tendon"],
+)
+def test_an_unbounded_input_range_is_stated_without_the_double_maximum(
+    make: Callable[[], tcarod.Actuator], bad: float, allowed: str
+) -> None:
+    """A law whose input has no upper bound says "finite", not f64::MAX's 309 digits."""
+    body = tcarod.Body(0.1, tcarod.Section.circle(10e-3), 1e6)
+    robot = tcarod.Robot(body, [make()])
+    with pytest.raises(ValueError, match=r"invalid inputs\[0\]") as info:
+        robot.solve([bad])
+    assert allowed in str(info.value)
+    assert "179769" not in str(info.value)
+
+
+def test_an_offset_outside_the_section_points_to_spacer_disks() -> None:
+    """The issue-10 steel tendon robot's tendons (15.06 mm off a 1 mm rod) need spacer disks: the error says so."""
+    body = tcarod.Body(0.5, tcarod.Section.circle(2e-3), 200e9, shear_modulus=80e9)
+    tendon = tcarod.Actuator.tendon(tcarod.Routing.straight(15.06e-3, 0.0))
+    with pytest.raises(ValueError, match=r"actuators\[0\]\.routing.*spacer_disks=True"):
+        tcarod.Robot(body, [tendon])
+    assert tcarod.Robot(body, [tendon], spacer_disks=True).solve([15.0]).success

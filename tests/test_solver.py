@@ -43,13 +43,21 @@ def _interrupt_after(seconds: float) -> threading.Timer:
     return timer
 
 
-@pytest.mark.parametrize("threads", [1, 2])
-def test_ctrl_c_interrupts_a_long_batch(threads: int) -> None:
+@pytest.mark.parametrize(
+    ("threads", "n", "after"),
+    [
+        (1, 200_000, 0.2),  # minutes of work on one core
+        (2, 200_000, 0.2),
+        # the 2M rows, interrupted while they are checked and their
+        # outputs allocated (0.3-1 s before any solve; polled there too)
+        (1, 2_000_000, 0.05),
+    ],
+)
+def test_ctrl_c_interrupts_a_long_batch(threads: int, n: int, after: float) -> None:
     robot = fig6_square_robot()
-    n = 200_000  # minutes of work on one core
     t = np.linspace(40.0, 150.0, n)
     inputs = np.column_stack([t, t])
-    timer = _interrupt_after(0.2)
+    timer = _interrupt_after(after)
     start = time.monotonic()
     try:
         with pytest.raises(KeyboardInterrupt):

@@ -191,9 +191,16 @@ pub trait ForceLaw: Send + Sync + Debug {
     }
 }
 
-/// The error of an `input` outside a law's valid interval `(lo, hi)`.
+/// The error of an `input` outside a law's valid interval `(lo, hi)`; a
+/// side at `f64::MIN` / `f64::MAX` is stated as "finite", not as 309 digits.
 fn out_of_range(name: &'static str, input: f64, (lo, hi): (f64, f64)) -> Error {
-    Error::param(name, input, format!("{lo} <= input <= {hi}"))
+    let allowed = match (lo > f64::MIN, hi < f64::MAX) {
+        (true, true) => format!("{lo} <= input <= {hi}"),
+        (true, false) => format!("input >= {lo} (finite)"),
+        (false, true) => format!("input <= {hi} (finite)"),
+        (false, false) => "a finite input".to_string(),
+    };
+    Error::param(name, input, allowed)
 }
 
 /// The TCA law (eq 13) at the input temperature \[C\]: tension from the TCA's

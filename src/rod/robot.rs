@@ -196,7 +196,9 @@ fn routing_in_section(
                 &name(),
                 format!(
                     "routing offset {r:.6e} m at ({x:.6e}, {y:.6e}) m lies outside the section \
-                     (edge at {edge:.6e} m in that direction)"
+                     (edge at {edge:.6e} m in that direction); for actuators guided by spacer \
+                     disks outside the backbone use `Robot(..., spacer_disks=True)` \
+                     (Rust: `Robot::with_spacer_disks`)"
                 ),
             ));
         }
