@@ -13,7 +13,7 @@ use tcarod::shooting::{solve, SolveOptions};
 /// (`TCAROD_TIPS=1 benches/designs.rs`) \[m\].
 const LONG_PATH_DESIGN: usize = 126;
 const MAIN_TIP_M: [f64; 3] = [
-    6.904_982_016_919_770e-2,
+    6.904_982_016_919_77e-2,
     2.850_578_959_649_629e-2,
     1.653_887_210_611_713e-2,
 ];
