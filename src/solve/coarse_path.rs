@@ -11,7 +11,9 @@
 //! defect correction on the same coarse grid, convergence decided by a
 //! full-grid IVP). Where the coarse root is outside the finish's reach
 //! (benchmark design #126: its full-grid residual there is ~1), Newton on
-//! an intermediate grid of `steps / HOP_GRID_DIVISOR` steps moves it first.
+//! an intermediate grid of `steps / HOP_GRID_DIVISOR` steps moves it first,
+//! and the finish from there takes its Jacobians on that grid
+//! (`solve::hop_finish`).
 //! The coarse grid does not resolve every design's path: where its error
 //! (the full grid's residual at a coarse point) is large early, it would
 //! be out of the finish's reach at `lambda = 1`. So the path checks it
@@ -48,6 +50,7 @@ use super::continuation::{
     at, follow, follow_from, start, step_options, Track, Watch, CORRECTOR_MIN_STEP,
 };
 use super::corrector::correct;
+use super::hop_finish::finish_on_grid;
 use super::options::SolveOptions;
 use super::presolve::presolved_shooting;
 use super::residual::Loads;
@@ -224,6 +227,8 @@ fn finish(
         ..*opts
     };
     let keep = Keep::Nodes;
+    // after a hop: its grid and Jacobian (see `hop_finish`)
+    let mut hopped = None;
     for hop in [false, true] {
         if hop {
             let hopts = SolveOptions {
@@ -236,8 +241,14 @@ fn finish(
                 return Ok(None);
             };
             x = nr.x;
+            hopped = Some((hopts.steps, nr.jacobian));
         }
-        let out = presolved_shooting(robot, inputs, loads, &fopts, &x, None, keep, work);
+        let out = match &hopped {
+            Some((s, j)) => {
+                finish_on_grid(robot, inputs, loads, &fopts, &x, j.as_ref(), *s, keep, work)
+            }
+            None => presolved_shooting(robot, inputs, loads, &fopts, &x, None, keep, work),
+        };
         if let Some((nr, last)) = unless_final(out)? {
             let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
             s.continuation_steps = path;

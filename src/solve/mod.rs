@@ -9,6 +9,7 @@ mod corrector;
 pub mod equilibrium;
 pub mod fn_system;
 pub mod guess;
+mod hop_finish;
 pub mod limit;
 pub mod newton;
 pub mod options;
