@@ -29,7 +29,9 @@
 //! If the coarse path stalls (its step quartered below the smallest: a
 //! fold of the path), its point is corrected on the full grid; if the
 //! coarse grid resolves it there (to [`WATCH_TOL`]) the fold is the full
-//! grid's too and the solve's continuation has failed at once, else the
+//! grid's too, and the body snaps through to another branch
+//! (`track::snap`, the path on from there on the coarse grid) or, if that
+//! fails, the solve's continuation has failed at once; else the
 //! path goes on on the full grid from that point (`on_full_grid`), and if
 //! it stalls there too, the continuation has failed. Either way without
 //! a full-grid path from `lambda = 0`, which meets the same fold
@@ -56,6 +58,7 @@ use super::presolve::presolved_shooting;
 use super::residual::Loads;
 use super::shooting::{is_budget_error, is_input_error, Solution};
 use super::system::{newton_shooting, solution_from, Keep, Work, COARSE_JACOBIAN_MIN_STEPS};
+use super::track::snap;
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 
@@ -152,7 +155,7 @@ pub fn path_grid(opts: &SolveOptions) -> Option<usize> {
 }
 
 /// Whether `e` ends the solve (no fallback): bad input, budget, interrupt.
-fn ends_solve(e: &Error) -> bool {
+pub(crate) fn ends_solve(e: &Error) -> bool {
     is_input_error(e) || is_budget_error(e) || matches!(e, Error::Interrupted)
 }
 
@@ -374,19 +377,17 @@ fn middle_path(
 /// not resolve) the point is corrected on the full grid too. If the full
 /// grid's residual at the coarse point is within [`WATCH_TOL`] (the check
 /// rule: the coarse grid resolves the path there) the fold is the full
-/// grid's, and `fold` is returned at once (the caller's last resort
-/// follows); else the path goes on on the full grid, and if it stalls
-/// too, its error is returned. A full-grid path from `lambda = 0` meets
-/// the same fold (not at the same `lambda`: see below). `None` if the path
-/// stalled at `lambda = 0` or the correction failed. Measured on the
-/// 1,000 benchmark designs: only #25 (past buckling) stalls, at
-/// `lambda = 0.5531` after 207 coarse IVPs; the correction takes 2 IVPs
-/// from a full-grid residual of 2.4e-4 (1/65 of [`WATCH_TOL`]); the
-/// full grid's path stalled there after 16 more (its first step, `6e-5`,
-/// failed), so the solve costs 282 IVPs (295 with the semismooth onset
-/// step, `solve::residual::taut_step`), against 298 with that path and
-/// 506 with a full-grid path from `lambda = 0` (227 IVPs, stalled at
-/// `lambda = 0.665`).
+/// grid's: the body snaps through to the branch past it ([`snap`], then
+/// [`snapped`]), and if that fails `fold` is returned (the caller's last
+/// resort follows); else the path goes on on the full grid, and if it
+/// stalls too, its error is returned. `None` if the path stalled at
+/// `lambda = 0` or the correction failed. Measured on the 1,000
+/// benchmark designs: only #25 (past buckling) stalls, at
+/// `lambda = 0.5531` after 208 coarse IVPs; the correction takes 2 IVPs
+/// from a full-grid residual of 2.4e-4 (1/65 of [`WATCH_TOL`]). Its last
+/// resort (295 IVPs in all) ended on the upright branch, unstable; the
+/// snap ends on a stable one (357 IVPs); the full grid's path on from the
+/// fold stalled after 16 more IVPs, and from `lambda = 0` at 0.665.
 fn on_full_grid(
     robot: &Robot,
     inputs: &[f64],
@@ -404,7 +405,14 @@ fn on_full_grid(
         return Ok(None);
     };
     if let Some(e) = fold.filter(|_| r0 <= WATCH_TOL) {
-        // the coarse grid resolves the path at its fold: the full grid's fold
+        // the coarse grid resolves the path at its fold: the full grid's
+        // fold; the body snaps through to another branch, or the caller's
+        // last resort follows
+        if let Some(t) = snap(robot, inputs, loads, opts, from, &track, work)? {
+            if let Some(s) = snapped(robot, inputs, loads, opts, from, t, work)? {
+                return Ok(Some(s));
+            }
+        }
         return Err(e);
     }
     let out = follow_from(robot, inputs, loads, opts, from, true, &mut track, work);
@@ -420,6 +428,40 @@ fn on_full_grid(
     let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
     s.continuation_steps = path;
     Ok(Some(s))
+}
+
+/// The path from the point past a fold's snap-through ([`snap`], on the
+/// full grid) to `lambda = 1` on the coarse grid (capped as the coarse
+/// path is), finished on the full grid (see [`finish`]); `None` (the
+/// caller's full-grid path from `lambda = 0`) if either fails.
+fn snapped(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    mut track: Track,
+    work: &mut Work,
+) -> Result<Option<Solution>> {
+    let Some(steps) = path_grid(opts) else {
+        return Ok(None);
+    };
+    let copts = SolveOptions {
+        steps,
+        tol: opts.tol.max(PATH_END_TOL),
+        ..*opts
+    };
+    let budget = work.max_evaluations;
+    let cap = work.evaluations + PATH_MAX_IVPS;
+    work.max_evaluations = if budget == 0 { cap } else { budget.min(cap) };
+    let out = follow_from(robot, inputs, loads, &copts, from, true, &mut track, work);
+    work.max_evaluations = budget;
+    match out {
+        Err(e) if is_budget_error(&e) && !work.exhausted() => Ok(None),
+        Err(e) if ends_solve(&e) => Err(e),
+        Err(_) => Ok(None),
+        Ok((nr, _, path)) => finish(robot, inputs, loads, opts, nr.x, path, work),
+    }
 }
 
 /// Corrects `track`'s point on the full grid `opts.steps` (to the
