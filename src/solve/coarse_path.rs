@@ -58,7 +58,7 @@ use super::presolve::presolved_shooting;
 use super::residual::Loads;
 use super::shooting::{is_budget_error, is_input_error, Solution};
 use super::system::{newton_shooting, solution_from, Keep, Work, COARSE_JACOBIAN_MIN_STEPS};
-use super::track::snap;
+use super::track::{snap, snapped};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 
@@ -215,7 +215,7 @@ pub(crate) fn coarse_path(
 
 /// The finish on the full grid from the coarse root `x` (see the module
 /// docs); `path`: the coarse path's.
-fn finish(
+pub(super) fn finish(
     robot: &Robot,
     inputs: &[f64],
     loads: &Loads,
@@ -428,40 +428,6 @@ fn on_full_grid(
     let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
     s.continuation_steps = path;
     Ok(Some(s))
-}
-
-/// The path from the point past a fold's snap-through ([`snap`], on the
-/// full grid) to `lambda = 1` on the coarse grid (capped as the coarse
-/// path is), finished on the full grid (see [`finish`]); `None` (the
-/// caller's full-grid path from `lambda = 0`) if either fails.
-fn snapped(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    from: &[f64],
-    mut track: Track,
-    work: &mut Work,
-) -> Result<Option<Solution>> {
-    let Some(steps) = path_grid(opts) else {
-        return Ok(None);
-    };
-    let copts = SolveOptions {
-        steps,
-        tol: opts.tol.max(PATH_END_TOL),
-        ..*opts
-    };
-    let budget = work.max_evaluations;
-    let cap = work.evaluations + PATH_MAX_IVPS;
-    work.max_evaluations = if budget == 0 { cap } else { budget.min(cap) };
-    let out = follow_from(robot, inputs, loads, &copts, from, true, &mut track, work);
-    work.max_evaluations = budget;
-    match out {
-        Err(e) if is_budget_error(&e) && !work.exhausted() => Ok(None),
-        Err(e) if ends_solve(&e) => Err(e),
-        Err(_) => Ok(None),
-        Ok((nr, _, path)) => finish(robot, inputs, loads, opts, nr.x, path, work),
-    }
 }
 
 /// Corrects `track`'s point on the full grid `opts.steps` (to the

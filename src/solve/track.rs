@@ -3,11 +3,12 @@
 //! path so far) and the one check of a coarse path's grid ([`Watch`]); see
 //! [`crate::solve::continuation`] and [`crate::solve::coarse_path`].
 
-use super::continuation::{at, predictor, step_options, PREDICTOR_POINTS};
+use super::coarse_path::{ends_solve, finish, path_grid, PATH_END_TOL, PATH_MAX_IVPS};
+use super::continuation::{at, follow_from, predictor, step_options, PREDICTOR_POINTS};
 use super::corrector::correct;
 use super::newton::{NewtonResult, System};
 use super::options::SolveOptions;
-use super::shooting::{tensions, FinalIvp, Loads, Work};
+use super::shooting::{is_budget_error, tensions, FinalIvp, Loads, Solution, Work};
 use super::system::Shooting;
 use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
@@ -267,4 +268,38 @@ pub(crate) fn snap(
         return Ok(Some(snapped));
     }
     Ok(None)
+}
+
+/// The path from the point past a fold's snap-through ([`snap`], on the
+/// full grid) to `lambda = 1` on the coarse grid (capped as the coarse
+/// path is), finished on the full grid (see `coarse_path::finish`); `None` (the
+/// caller's full-grid path from `lambda = 0`) if either fails.
+pub(super) fn snapped(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    mut track: Track,
+    work: &mut Work,
+) -> Result<Option<Solution>> {
+    let Some(steps) = path_grid(opts) else {
+        return Ok(None);
+    };
+    let copts = SolveOptions {
+        steps,
+        tol: opts.tol.max(PATH_END_TOL),
+        ..*opts
+    };
+    let budget = work.max_evaluations;
+    let cap = work.evaluations + PATH_MAX_IVPS;
+    work.max_evaluations = if budget == 0 { cap } else { budget.min(cap) };
+    let out = follow_from(robot, inputs, loads, &copts, from, true, &mut track, work);
+    work.max_evaluations = budget;
+    match out {
+        Err(e) if is_budget_error(&e) && !work.exhausted() => Ok(None),
+        Err(e) if ends_solve(&e) => Err(e),
+        Err(_) => Ok(None),
+        Ok((nr, _, path)) => finish(robot, inputs, loads, opts, nr.x, path, work),
+    }
 }
