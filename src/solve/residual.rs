@@ -42,7 +42,12 @@ pub(crate) struct SlackTangent {
 /// between slack and taut, each line search accepting `t ~ 4e-3`).
 /// `slack`: the Jacobian's slack actuators (at `x`), `len` the body
 /// length \[m\]. Taken only where the recomputed step also lands taut for
-/// each such actuator; else `None`.
+/// each actuator taken taut; one that it lands slack is taken slack again
+/// and the step re-solved (the pieces chosen as a piecewise-linear solver
+/// does, Katzenelson 1965: measured on benchmark design #267, two tendons
+/// slack at a corrector's Jacobian, its step carrying both taut; the
+/// taut model carried one back slack, so no semismooth step was taken and
+/// the corrector failed); `None` where no actuator is left taut.
 pub(crate) fn taut_step(
     len: f64,
     slack: &[SlackTangent],
@@ -54,28 +59,55 @@ pub(crate) fn taut_step(
     if slack.is_empty() || jac.nrows() != jac.ncols() {
         return None;
     }
-    let mut jm = jac.clone();
-    let mut rm = DVector::from_column_slice(r);
-    let mut crossed = Vec::new();
-    for s in slack {
-        let c = 6 + s.index;
-        let (d, dd) = (x[c] * len, dx[c] * len);
-        if !(d + dd > s.onset) {
-            continue;
-        }
-        let (slope, shift) = (s.slope * len, s.slope * (d - s.onset));
-        super::limit::relinearise(&mut jm, &mut rm, c, &s.response, slope, shift);
-        crossed.push(s);
-    }
-    if crossed.is_empty() {
-        return None;
-    }
-    let step = jm.lu().solve(&(-rm))?;
-    let taut = crossed.iter().all(|s| {
+    let lands_taut = |s: &SlackTangent, step: &[f64]| {
         let c = 6 + s.index;
         (x[c] + step[c]) * len > s.onset
-    });
-    (taut && step.iter().all(|v| v.is_finite())).then(|| step.iter().copied().collect())
+    };
+    // the actuators taken taut: those the last step carries taut, until
+    // the step's pieces agree with where it lands (Katzenelson's
+    // iteration; at most one pass per slack actuator)
+    let mut taut: Vec<bool> = slack.iter().map(|s| lands_taut(s, dx)).collect();
+    for _ in 0..slack.len() {
+        if !taut.contains(&true) {
+            return None;
+        }
+        let step = taut_model_step(len, slack, &taut, x, r, jac)?;
+        let landed: Vec<bool> = slack.iter().map(|s| lands_taut(s, &step)).collect();
+        // an actuator taken slack that the step carries taut stays slack
+        // (its slack piece is the Jacobian's own: the caller's step)
+        let agree = taut.iter().zip(&landed).all(|(&t, &l)| !t || l);
+        if agree {
+            return Some(step);
+        }
+        for (t, l) in taut.iter_mut().zip(&landed) {
+            *t &= *l;
+        }
+    }
+    None
+}
+
+/// The Newton step of `jac dx = -r` with the slack actuators flagged in
+/// `taut` re-linearised on their taut pieces (see [`taut_step`]); `None`
+/// if singular or not finite.
+fn taut_model_step(
+    len: f64,
+    slack: &[SlackTangent],
+    taut: &[bool],
+    x: &[f64],
+    r: &[f64],
+    jac: &DMatrix<f64>,
+) -> Option<Vec<f64>> {
+    let mut jm = jac.clone();
+    let mut rm = DVector::from_column_slice(r);
+    for (s, _) in slack.iter().zip(taut).filter(|(_, &t)| t) {
+        let c = 6 + s.index;
+        let (slope, shift) = (s.slope * len, s.slope * (x[c] * len - s.onset));
+        super::limit::relinearise(&mut jm, &mut rm, c, &s.response, slope, shift);
+    }
+    let step = jm.lu().solve(&(-rm))?;
+    step.iter()
+        .all(|v| v.is_finite())
+        .then(|| step.iter().copied().collect())
 }
 
 /// Tensions \[N\] of all actuators for guessed elongations `delta` \[m\].

@@ -66,3 +66,56 @@ fn no_taut_step_where_the_step_stays_slack_or_the_taut_model_lands_slack() {
     assert!(taut_step(len, std::slice::from_ref(&slack), &x, &crosses, &r, &jac).is_none());
     assert!(taut_step(len, &[], &x, &crosses, &r, &jac).is_none());
 }
+
+/// Two slack actuators (unknowns 6 and 7) 3 mm below their onsets; the
+/// second's elongation row does not respond to either tension, so every
+/// model's step puts it at `x_7 + r_7`, 2 mm below the onset.
+fn two_slack_case() -> (f64, Vec<SlackTangent>, Vec<f64>, Vec<f64>, DMatrix<f64>) {
+    let (len, a, x7, r7, jac7) = slack_case(0.5);
+    let mut jac = DMatrix::zeros(8, 8);
+    jac.view_mut((0, 0), (7, 7)).copy_from(&jac7);
+    jac[(7, 7)] = -1.0;
+    let mut ga = a.response.clone().insert_row(7, 0.0);
+    ga[6] = 0.5;
+    let a = SlackTangent { response: ga, ..a };
+    let mut gb = DVector::from_column_slice(&[-0.1, 0.2, 0.3, -0.05, 0.1, 0.4, 0.0, 0.0]);
+    gb[6] = 0.0; // no response of row 6 either: its step is the one-actuator case's
+    let b = SlackTangent {
+        index: 1,
+        slope: 80.0,
+        onset: 1e-3,
+        response: gb,
+    };
+    let mut x = x7;
+    x.push(-2e-3 / len);
+    let mut r = r7;
+    r.push(0.005); // s_7 = r_7: -2 mm + 1 mm, still slack
+    (len, vec![a, b], x, r, jac)
+}
+
+/// A step carrying two slack actuators taut whose taut model lands one of
+/// them slack again: that one is taken slack and the step re-solved with
+/// the other's taut piece alone (main's step gave up: `None`).
+#[test]
+fn a_taut_model_that_lands_an_actuator_slack_is_re_solved_with_it_slack() {
+    let (len, slack, x, r, jac) = two_slack_case();
+    let dx = vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.05, 0.05]; // both cross
+    let step = taut_step(len, &slack, &x, &dx, &r, &jac).expect("one actuator lands taut");
+    // the model with the first actuator's taut piece only, zero to
+    // rounding (an 8x8 LU solve of entries of order one: 1e-12)
+    let (a, b) = (&slack[0], &slack[1]);
+    let s = DVector::from_column_slice(&step);
+    let da = (x[6] + step[6]) * len;
+    let model =
+        DVector::from_column_slice(&r) + &jac * &s + &a.response * (a.slope * (da - a.onset));
+    assert!(model.amax() < 1e-12, "model residual {}", model.amax());
+    assert!((step[6] - 0.071 / 4.0).abs() < 1e-14, "s_6 {}", step[6]);
+    assert!(da > a.onset, "the first lands taut: {da}");
+    let db = (x[7] + step[7]) * len;
+    assert!(db < b.onset, "the second stays slack: {db}");
+    assert!(
+        (step[7] - r[7]).abs() < 1e-15,
+        "its slack row: s_7 {}",
+        step[7]
+    );
+}

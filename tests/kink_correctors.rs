@@ -1,0 +1,42 @@
+//! A benchmark design whose direct run starts with three linear tendons at
+//! their onsets (a cold start, zero tension): the slack side's Jacobian
+//! (after a failed line search) gives a step that carries all three taut,
+//! and the taut model carries one of them back slack (traced, main
+//! ae9fcd6). The semismooth step re-solved with that tendon slack
+//! (`solve::residual::taut_step`, Katzenelson's iteration over the
+//! pieces) converges without continuation; main's gave up there.
+use tcarod::problems::{random_design, DEFAULT_SEED};
+use tcarod::shooting::{solve, SolveOptions};
+
+/// Benchmark design #414 (a 17.6 mm, 568 kPa rectangular rod, three linear
+/// tendons, two of them helical, and a constant-tension tendon; gravity
+/// and a tip force).
+const DESIGN: usize = 414;
+
+/// IVP bound of [`DESIGN`]: 29 measured (stop 31, no continuation);
+/// main ae9fcd6 took 72 IVPs and 3 continuation steps (the semismooth
+/// step gave up where its taut model landed a tendon slack). The bound
+/// leaves room for another iteration sequence near the kinks and fails if
+/// the solve falls back to continuation's cost.
+const MAX_IVPS: usize = 45;
+
+#[test]
+fn a_taut_model_landing_a_tendon_slack_converges_without_continuation() {
+    let opts = SolveOptions::default();
+    let d = random_design(DEFAULT_SEED, DESIGN);
+    assert!(!d.past_buckling(), "{}", d.summary());
+    let sol =
+        solve(&d.robot, &d.inputs, &opts, None).unwrap_or_else(|e| panic!("{}: {e}", d.summary()));
+    assert!(sol.residual <= opts.tol.max(sol.floor), "{}", d.summary());
+    assert!(
+        sol.continuation_steps.is_empty(),
+        "{}: {} continuation steps",
+        d.summary(),
+        sol.continuation_steps.len()
+    );
+    assert!(
+        sol.evaluations <= MAX_IVPS,
+        "#{DESIGN}: {} IVPs (bound {MAX_IVPS})",
+        sol.evaluations
+    );
+}
