@@ -248,7 +248,7 @@ pub(crate) fn snap(
         let (out, _) = correct(&r, &inp, &l, &sopts, &x0, None, false, f64::INFINITY, work);
         let (nr, last) = match out {
             Ok(v) => v,
-            Err(e) if super::coarse_path::ends_solve(&e) => return Err(e),
+            Err(e) if ends_solve(&e) => return Err(e),
             Err(_) => continue,
         };
         let jump =
@@ -272,8 +272,9 @@ pub(crate) fn snap(
 
 /// The path from the point past a fold's snap-through ([`snap`], on the
 /// full grid) to `lambda = 1` on the coarse grid (capped as the coarse
-/// path is), finished on the full grid (see `coarse_path::finish`); `None` (the
-/// caller's full-grid path from `lambda = 0`) if either fails.
+/// path is), finished on the full grid (see `coarse_path::finish`); `None`
+/// if either fails (the fold's error is returned and the solve's last
+/// resort follows).
 pub(super) fn snapped(
     robot: &Robot,
     inputs: &[f64],
