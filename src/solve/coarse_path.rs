@@ -49,7 +49,7 @@
 //! 202 IVPs cost about 90 full-grid IVP times.
 
 use super::continuation::{
-    at, follow, follow_from, start, step_options, Track, Watch, CORRECTOR_MIN_STEP,
+    at, follow, follow_from, start, step_options, PathEnd, Track, Watch, CORRECTOR_MIN_STEP,
 };
 use super::corrector::correct;
 use super::hop_finish::finish_on_grid;
@@ -180,14 +180,9 @@ pub(crate) fn coarse_path(
     opts: &SolveOptions,
     work: &mut Work,
 ) -> Result<Option<Solution>> {
-    let Some(steps) = path_grid(opts) else {
+    if path_grid(opts).is_none() {
         return Ok(None);
-    };
-    let copts = SolveOptions {
-        steps,
-        tol: opts.tol.max(PATH_END_TOL),
-        ..*opts
-    };
+    }
     let (from, x, tau, jac) = start(robot, None);
     let mut track = Track::new(0.0, x, tau, jac, 0.25);
     track.watch = Some(Watch {
@@ -196,12 +191,9 @@ pub(crate) fn coarse_path(
         tol: WATCH_TOL,
         scaled: false,
     });
-    // the coarse path's own IVP cap within the solve's budget
-    let budget = work.max_evaluations;
-    let cap = work.evaluations + PATH_MAX_IVPS;
-    work.max_evaluations = if budget == 0 { cap } else { budget.min(cap) };
-    let out = follow_from(robot, inputs, loads, &copts, &from, true, &mut track, work);
-    work.max_evaluations = budget;
+    let Some(out) = follow_coarse(robot, inputs, loads, opts, &from, &mut track, work) else {
+        return Ok(None);
+    };
     match out {
         Err(e) if is_budget_error(&e) && !work.exhausted() => Ok(None),
         Err(e) if ends_solve(&e) => Err(e),
@@ -211,6 +203,34 @@ pub(crate) fn coarse_path(
         },
         Ok((nr, _, path)) => finish(robot, inputs, loads, opts, nr.x, path, work),
     }
+}
+
+/// `track` followed on the coarse grid ([`path_grid`], to at least
+/// [`PATH_END_TOL`]) within the coarse path's own IVP cap
+/// ([`PATH_MAX_IVPS`]) inside the solve's budget; `None` without a coarse
+/// grid. Shared by the path from `lambda = 0` and the one past a fold's
+/// snap-through (`track::snapped`).
+pub(super) fn follow_coarse(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    track: &mut Track,
+    work: &mut Work,
+) -> Option<Result<PathEnd>> {
+    let steps = path_grid(opts)?;
+    let copts = SolveOptions {
+        steps,
+        tol: opts.tol.max(PATH_END_TOL),
+        ..*opts
+    };
+    let budget = work.max_evaluations;
+    let cap = work.evaluations + PATH_MAX_IVPS;
+    work.max_evaluations = if budget == 0 { cap } else { budget.min(cap) };
+    let out = follow_from(robot, inputs, loads, &copts, from, true, track, work);
+    work.max_evaluations = budget;
+    Some(out)
 }
 
 /// The finish on the full grid from the coarse root `x` (see the module

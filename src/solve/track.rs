@@ -3,8 +3,8 @@
 //! path so far) and the one check of a coarse path's grid ([`Watch`]); see
 //! [`crate::solve::continuation`] and [`crate::solve::coarse_path`].
 
-use super::coarse_path::{ends_solve, finish, path_grid, PATH_END_TOL, PATH_MAX_IVPS};
-use super::continuation::{at, follow_from, predictor, step_options, PREDICTOR_POINTS};
+use super::coarse_path::{ends_solve, finish, follow_coarse};
+use super::continuation::{at, predictor, step_options, PREDICTOR_POINTS};
 use super::corrector::correct;
 use super::newton::{NewtonResult, System};
 use super::options::SolveOptions;
@@ -284,19 +284,9 @@ pub(super) fn snapped(
     mut track: Track,
     work: &mut Work,
 ) -> Result<Option<Solution>> {
-    let Some(steps) = path_grid(opts) else {
+    let Some(out) = follow_coarse(robot, inputs, loads, opts, from, &mut track, work) else {
         return Ok(None);
     };
-    let copts = SolveOptions {
-        steps,
-        tol: opts.tol.max(PATH_END_TOL),
-        ..*opts
-    };
-    let budget = work.max_evaluations;
-    let cap = work.evaluations + PATH_MAX_IVPS;
-    work.max_evaluations = if budget == 0 { cap } else { budget.min(cap) };
-    let out = follow_from(robot, inputs, loads, &copts, from, true, &mut track, work);
-    work.max_evaluations = budget;
     match out {
         Err(e) if is_budget_error(&e) && !work.exhausted() => Ok(None),
         Err(e) if ends_solve(&e) => Err(e),
