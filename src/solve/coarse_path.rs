@@ -406,7 +406,7 @@ fn middle_path(
 /// `lambda = 0.5531` after 208 coarse IVPs; the correction takes 2 IVPs
 /// from a full-grid residual of 2.4e-4 (1/65 of [`WATCH_TOL`]). Its last
 /// resort (295 IVPs in all) ended on the upright branch, unstable; the
-/// snap ends on a stable one (357 IVPs); the full grid's path on from the
+/// snap ends on a stable one (329 IVPs); the full grid's path on from the
 /// fold stalled after 16 more IVPs, and from `lambda = 0` at 0.665.
 fn on_full_grid(
     robot: &Robot,
