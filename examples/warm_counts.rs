@@ -6,7 +6,9 @@
 //! difference from the cold solve's. `-- --time`: interleaved thread-CPU
 //! medians of the warm solve and of one plain full-grid IVP. `-- --batch`:
 //! one-thread batch sweeps (Fig. 6 every 1 C and 5 C, steel every 1 %),
-//! IVPs and thread CPU a warm row (`--rows`: each row's IVPs too).
+//! IVPs and thread CPU a warm row (`--rows`: each row's IVPs too), and
+//! the same rows as `sweep` and `sweep_checked` (the verdict's `report`
+//! policy, Python's `Robot.sweep`): IVPs a warm row and thread CPU a row.
 use tcarod::experiments::{fig6_square, steel_tendon_robot, STEEL_TENDON_TENSIONS};
 use tcarod::rod::Robot;
 use tcarod::shooting::{initial_guess, solve, Loads, Shot, Solution, SolveOptions};
@@ -198,6 +200,83 @@ fn batch(name: &str, robot: &Robot, rows: &[Vec<f64>]) {
     );
 }
 
+/// The rows of [`batch`] as `sweep` and as `sweep_checked` under the
+/// `report` policy (Python's `Robot.sweep`), each beside the same rows
+/// chained through single warm solves (`solve`, `solve_checked`: the
+/// single solves' chord policy), interleaved: IVPs a warm row, thread CPU
+/// a row (median of 7) in IVP times, and the largest tip distance.
+fn sweeps(name: &str, robot: &Robot, rows: &[Vec<f64>]) {
+    use tcarod::stability::{solve_checked, sweep_checked, Checked, Policy};
+    let o = SolveOptions::default();
+    let l = Loads::of(robot);
+    let chained = || {
+        let mut out: Vec<Solution> = Vec::new();
+        for q in rows {
+            let s = solve(robot, q, &o, out.last()).unwrap();
+            out.push(s);
+        }
+        out
+    };
+    let chained_checked = || {
+        let mut out: Vec<Checked> = Vec::new();
+        for q in rows {
+            let w = out.last().map(|c| &c.solution);
+            out.push(solve_checked(robot, q, &l, &o, w, Policy::Report).unwrap());
+        }
+        out.into_iter().map(|c| c.solution).collect::<Vec<_>>()
+    };
+    let swept = || tcarod::shooting::sweep(robot, rows, &o).unwrap();
+    let swept_checked = || {
+        let c = sweep_checked(robot, rows, &o, Policy::Report).unwrap();
+        c.into_iter().map(|c| c.solution).collect::<Vec<_>>()
+    };
+    let runs: [(&str, &dyn Fn() -> Vec<Solution>); 4] = [
+        ("solve chained", &chained),
+        ("sweep", &swept),
+        ("solve_checked chained", &chained_checked),
+        ("sweep_checked", &swept_checked),
+    ];
+    let first: Vec<Vec<Solution>> = runs.iter().map(|(_, f)| f()).collect();
+    let mid = rows.len() / 2;
+    let mut t = vec![Vec::new(); runs.len() + 1];
+    for _ in 0..7 {
+        for (k, (_, f)) in runs.iter().enumerate() {
+            let t0 = thread_cpu();
+            drop(f());
+            t[k].push((thread_cpu() - t0) / rows.len() as f64);
+        }
+        let t0 = thread_cpu();
+        for _ in 0..20 {
+            drop(
+                Shot::new(robot, &rows[mid], &l, o.steps)
+                    .residual(&first[0][mid].unknowns, false)
+                    .unwrap(),
+            );
+        }
+        t[runs.len()].push((thread_cpu() - t0) / 20.0);
+    }
+    for v in &mut t {
+        v.sort_by(|x, y| x.partial_cmp(y).unwrap());
+    }
+    let ivp = t[runs.len()][3];
+    for (k, (what, _)) in runs.iter().enumerate() {
+        let ivps: usize = first[k].iter().skip(1).map(|s| s.evaluations).sum();
+        let gap = first[k].iter().zip(&first[0]).fold(0.0f64, |m, (a, b)| {
+            m.max((a.tip_position() - b.tip_position()).abs().max())
+        });
+        if std::env::args().any(|a| a == "--rows") {
+            let e: Vec<usize> = first[k].iter().map(|s| s.evaluations).collect();
+            println!("{name}: {what}: IVPs a row {e:?}");
+        }
+        println!(
+            "{name:<24} {what:<22} {:.2} IVPs a warm row, {:.2} IVP times a row (one IVP {:.1} us); tips - chained solves {gap:.1e} m",
+            ivps as f64 / (rows.len() - 1) as f64,
+            t[k][3] / ivp,
+            ivp * 1e6,
+        );
+    }
+}
+
 fn main() {
     let o = SolveOptions::default();
     let sq = fig6_square(true);
@@ -211,6 +290,7 @@ fn main() {
             let n = (135.0 / step) as usize;
             let rows: Vec<Vec<f64>> = (0..=n).map(|k| vec![25.0 + step * k as f64; 2]).collect();
             batch(&format!("fig6 square every {step} C"), &sq, &rows);
+            sweeps(&format!("fig6 square every {step} C"), &sq, &rows);
         }
         let rows: Vec<Vec<f64>> = (0..=50)
             .map(|k| {
@@ -221,6 +301,7 @@ fn main() {
             })
             .collect();
         batch("steel tendon every 1 %", &steel, &rows);
+        sweeps("steel tendon every 1 %", &steel, &rows);
         return;
     }
     if std::env::args().any(|a| a == "--defect") {
@@ -239,6 +320,17 @@ fn main() {
         for _ in 0..20000 {
             drop(
                 tcarod::shooting::assemble(&sq, &[95.0, 95.0], &l, &s95.unknowns, 100, 0, 0)
+                    .unwrap(),
+            );
+        }
+        return;
+    }
+    if std::env::args().any(|a| a == "--sweep-loop") {
+        // a loop for a profiler: Fig. 6 every 1 C under the report policy
+        let rows: Vec<Vec<f64>> = (0..=135).map(|k| vec![25.0 + k as f64; 2]).collect();
+        for _ in 0..40 {
+            drop(
+                tcarod::stability::sweep_checked(&sq, &rows, &o, tcarod::stability::Policy::Report)
                     .unwrap(),
             );
         }

@@ -99,9 +99,11 @@ impl ChordPolicy {
 }
 
 /// The direct Newton run of a forward solve warm from `warm`, starting at
-/// the predicted guess `x0`: the same contract as
-/// [`presolved_shooting`], which it is without a warm Jacobian, without
-/// the pre-solve or on a grid too short for a coarse one.
+/// the predicted guess `x0`, its chord steps under `policy`
+/// ([`ChordPolicy::SINGLE`] for a single solve, [`ChordPolicy::BATCH`]
+/// along a sweep): the same contract as [`presolved_shooting`], which it
+/// is without a warm Jacobian, without the pre-solve or on a grid too
+/// short for a coarse one.
 #[allow(clippy::too_many_arguments)] // the shooting problem's parts, as presolved_shooting's
 pub(crate) fn warm_shooting(
     robot: &Robot,
@@ -109,7 +111,7 @@ pub(crate) fn warm_shooting(
     loads: &Loads,
     opts: &SolveOptions,
     x0: &[f64],
-    warm: Warm<'_>,
+    (warm, policy): (Warm<'_>, ChordPolicy),
     keep: Keep,
     work: &mut Work,
 ) -> Result<(NewtonResult, Option<FinalIvp>)> {
@@ -117,7 +119,7 @@ pub(crate) fn warm_shooting(
         x0,
         warm,
         keep,
-        policy: ChordPolicy::SINGLE,
+        policy,
     };
     warm_run(robot, inputs, loads, opts, run, work)
 }

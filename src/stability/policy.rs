@@ -19,10 +19,13 @@ use super::landing::{land, Route};
 use super::{stability, stability_profiled, verdict_of, Equilibrium, Stability};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
-use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
+use crate::shooting::{Loads, Solution, SolveOptions};
 use crate::solve::equilibrium::refine_to_equilibrium;
 use crate::solve::newton::NewtonResult;
-use crate::solve::shooting::{solution_from, solve_direct, FinalIvp, Keep, Solved, Work};
+use crate::solve::predict_warm::ChordPolicy;
+use crate::solve::shooting::{
+    solution_from, solve_along, solve_direct, FinalIvp, Keep, Solved, Work,
+};
 use crate::solve::solution::assemble_flat;
 
 /// What a solve does with the stability verdict of the equilibrium found.
@@ -111,8 +114,24 @@ pub fn solve_checked(
     warm: Option<&Solution>,
     policy: Policy,
 ) -> Result<Checked> {
+    let warm = warm.map(|w| (w, ChordPolicy::SINGLE));
+    checked_along(robot, inputs, loads, opts, warm, policy)
+}
+
+/// [`solve_checked`] with the warm run's chord steps under the policy
+/// given with the warm solution ([`ChordPolicy::BATCH`] for a sweep's row).
+fn checked_along(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    along: Option<(&Solution, ChordPolicy)>,
+    policy: Policy,
+) -> Result<Checked> {
+    let warm = along.map(|(w, _)| w);
+    let chord = along.map_or(ChordPolicy::SINGLE, |(_, c)| c);
     if policy == Policy::Off {
-        let sol = solve_loaded(robot, inputs, loads, opts, warm)?;
+        let sol = solve_along(robot, inputs, loads, opts, warm, chord)?;
         return Ok(Checked {
             solution: refine_to_equilibrium(robot, inputs, opts, sol)?,
             stability: None,
@@ -126,7 +145,7 @@ pub fn solve_checked(
         tol: opts.tol,
         nodes: !final_newton,
     };
-    let (sol, st) = match solve_direct(robot, inputs, loads, opts, warm, keep)? {
+    let (sol, st) = match solve_direct(robot, inputs, loads, opts, warm, keep, chord)? {
         Solved::Newton(nr, last, work) if final_newton => {
             profiled(robot, inputs, loads, opts, nr, last, work)?
         }
@@ -249,7 +268,8 @@ pub fn unstable_error(sol: &Solution, st: &Stability) -> Error {
 }
 
 /// Solve along rows of `inputs`, each warm-started from the previous
-/// solution handed back, under `policy` (as `shooting::sweep`, which it
+/// solution handed back (its Jacobian taken on, [`ChordPolicy::BATCH`], as
+/// in `shooting::sweep`), under `policy` (as `shooting::sweep`, which it
 /// replaces when a verdict is wanted). With [`Policy::Continue`] the sweep
 /// follows what a physical robot does quasi-statically: where its
 /// equilibrium is lost it lands on a stable one and goes on from there.
@@ -263,8 +283,8 @@ pub fn sweep_checked(
     let mut out: Vec<Checked> = Vec::with_capacity(inputs.len());
     for q in inputs {
         crate::solve::cancel::check()?;
-        let warm = out.last().map(|c| &c.solution);
-        let c = solve_checked(robot, q, &loads, opts, warm, policy)?;
+        let warm = out.last().map(|c| (&c.solution, ChordPolicy::BATCH));
+        let c = checked_along(robot, q, &loads, opts, warm, policy)?;
         out.push(c);
     }
     Ok(out)
