@@ -104,6 +104,30 @@ def test_blocked_temperature_at_the_top_of_the_range(fig8_setup) -> None:  # typ
         blocked_temperature(robot, point, MINUS_X, 1.05 * top.force, free, groups=[0, 0])
 
 
+def test_blocked_force_through_a_linear_tendons_onset() -> None:
+    # Two opposing linear tendons (200 N/m, 3 mm off the axis): pulled 0.5 mm
+    # and 0, the free rod bends toward +x and stretches the outer tendon taut
+    # (4.5 mN). A wall 30 % of the tip's deflection back pushes the tip in,
+    # which slackens it: the mixed solve has to cross that tendon's onset,
+    # a kink of its tension law, without the forward solve's semismooth
+    # step. Measured 3 iterations, 9 IVPs, the outer tendon exactly slack.
+    from tcarod import Actuator, Body, Robot, Routing, Section
+
+    body = Body(0.2, Section.circle(10e-3), 1e6, poisson=0.5, density=1000.0, gravity=(0.0, 0.0, 0.0))
+    robot = Robot(body, [Actuator.linear_tendon(200.0, Routing.straight(x, 0.0)) for x in (3e-3, -3e-3)])
+    free = robot.solve([5e-4, 0.0])
+    assert free.tensions[1] > 1e-3  # [N] taut in the free bend
+    tip = free.tip_position
+    wall = tip - [0.3 * tip[0], 0.0, 0.0]
+    held = blocked_force(robot, wall, (1.0, 0.0, 0.0), [5e-4, 0.0], groups=[0, 1])
+    assert held.success and held.force > 0.0  # [N] the tip presses on the wall
+    assert held.solution.tensions[1] == 0.0  # slack: on the law's zero piece, exactly
+    assert held.solution.tip_position[0] == pytest.approx(wall[0], abs=1e-9 * 0.2)
+    # 3 measured; 8 leaves room for a changed line search but fails a solve
+    # that stalls at the kink
+    assert held.nit <= 8, held
+
+
 @settings(max_examples=8, deadline=None)  # each example: two ~5 ms mixed solves
 @given(st.floats(60.0, 155.0), st.floats(0.5, 5.0))
 def test_blocked_force_rises_with_temperature(t: float, dt: float) -> None:
