@@ -11,7 +11,7 @@ use super::options::SolveOptions;
 use super::residual::{
     residual_scales, scaled_residual, taut_step, tensions, Loads, Shot, SlackTangent,
 };
-use super::solution::{assemble, assemble_flat, Solution};
+pub(crate) use super::solution::solution_from;
 use crate::error::{Error, Result};
 use crate::rod::{FlatNodes, IvpResult, Robot};
 use crate::stability::{verdict_pass, Equilibrium, VerdictPass};
@@ -476,39 +476,4 @@ pub(crate) fn settle(
             Err(e)
         }
     }
-}
-
-/// A [`Solution`] from a converged Newton result (integrating once more,
-/// recorded, unless the last IVP at the solution is given with its nodes).
-pub(crate) fn solution_from(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    nr: NewtonResult,
-    last: Option<FinalIvp>,
-    work: &mut Work,
-) -> Result<Solution> {
-    let mut s = match last {
-        Some(FinalIvp {
-            residual: r,
-            ivp,
-            nodes: Some(nodes),
-            tensions: tau,
-            ..
-        }) if !nodes.is_empty() => {
-            let problem = (inputs, loads, nr.x.as_slice());
-            assemble_flat(robot, problem, (opts.steps, 0, 0), r, (ivp, nodes), tau)
-        }
-        _ => {
-            work.evaluations += 1;
-            assemble(robot, inputs, loads, &nr.x, opts.steps, 0, 0)?
-        }
-    };
-    s.iterations = work.iterations;
-    s.evaluations = work.evaluations;
-    s.newton_jacobian = nr.jacobian;
-    s.status = nr.status;
-    s.floor = nr.floor;
-    Ok(s)
 }
