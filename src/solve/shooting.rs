@@ -169,7 +169,13 @@ pub(crate) fn solve_direct(
             keep,
             &mut work,
         ),
-        None => presolved_shooting(robot, inputs, loads, &cold_opts, &x0, None, keep, &mut work),
+        None => {
+            work.refine_within = DIRECT_REFINE_WITHIN;
+            let out =
+                presolved_shooting(robot, inputs, loads, &cold_opts, &x0, None, keep, &mut work);
+            work.refine_within = f64::INFINITY;
+            out
+        }
     };
     let first = match direct {
         Ok((nr, last)) => return Ok(Solved::Newton(nr, last, work)),
@@ -251,6 +257,23 @@ fn validate(
 /// #282 too) onto another equilibrium branch, while `0.1` moves no tip
 /// by more than 2.6e-13 m.
 pub const DIRECT_MIN_STEP: f64 = 0.1;
+
+/// Largest scaled `max |r|` at which a cold solve's direct Newton run takes
+/// the full grid's Jacobian after a line search failed with the coarse
+/// grid's (see `Shooting::refine`); a run that has not come this near a
+/// root hands over to continuation instead. Far from a root a failed line
+/// search is the residual's nonlinearity, not the coarse Jacobian's error
+/// (~1e-4 relative), and the full grid's tangents (several IVP times each)
+/// do not cure it: benchmark design #560's direct run took 9 of them while
+/// `max |r|` wandered between 2.5 and 15, 22 full-grid IVPs, then failed.
+/// Measured on the 1,000 benchmark designs (`benches/designs.rs`, total
+/// IVPs, solves via continuation; every run 999 converged, 956 of 956 not
+/// past buckling, no tip moved by more than 2.1e-13 m): off 36,041, 159;
+/// `0` (never) 35,887, 183 (#469 97 -> 193); `1` 35,781, 167; `3` 35,719,
+/// 165; `5` (this) 35,657, 160 (#560 127 -> 100, #159 100 -> 86, #499
+/// 249 -> 235, #888 45 -> 126 the only one worse by more than 0); `10`
+/// 35,914, 159.
+pub const DIRECT_REFINE_WITHIN: f64 = 5.0;
 
 /// The error of a solve whose direct Newton run failed with `first` and
 /// whose continuation failed with `cont`: the budget's if the continuation

@@ -3,8 +3,10 @@
 
 use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3};
 
-use super::newton::Status;
+use super::newton::{NewtonResult, Status};
+use super::options::SolveOptions;
 use super::residual::{Loads, Shot};
+use super::system::{FinalIvp, Work};
 use crate::error::Result;
 use crate::rod::{rot, FlatNodes, IvpResult, Robot, BASE_STATES};
 
@@ -235,4 +237,39 @@ impl TipSolution {
             newton_jacobian: s.newton_jacobian,
         }
     }
+}
+
+/// A [`Solution`] from a converged Newton result (integrating once more,
+/// recorded, unless the last IVP at the solution is given with its nodes).
+pub(crate) fn solution_from(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    nr: NewtonResult,
+    last: Option<FinalIvp>,
+    work: &mut Work,
+) -> Result<Solution> {
+    let mut s = match last {
+        Some(FinalIvp {
+            residual: r,
+            ivp,
+            nodes: Some(nodes),
+            tensions: tau,
+            ..
+        }) if !nodes.is_empty() => {
+            let problem = (inputs, loads, nr.x.as_slice());
+            assemble_flat(robot, problem, (opts.steps, 0, 0), r, (ivp, nodes), tau)
+        }
+        _ => {
+            work.evaluations += 1;
+            assemble(robot, inputs, loads, &nr.x, opts.steps, 0, 0)?
+        }
+    };
+    s.iterations = work.iterations;
+    s.evaluations = work.evaluations;
+    s.newton_jacobian = nr.jacobian;
+    s.status = nr.status;
+    s.floor = nr.floor;
+    Ok(s)
 }

@@ -11,7 +11,7 @@ use super::options::SolveOptions;
 use super::residual::{
     residual_scales, scaled_residual, taut_step, tensions, Loads, Shot, SlackTangent,
 };
-use super::solution::{assemble, assemble_flat, Solution};
+pub(crate) use super::solution::solution_from;
 use crate::error::{Error, Result};
 use crate::rod::{FlatNodes, IvpResult, Robot};
 use crate::stability::{verdict_pass, Equilibrium, VerdictPass};
@@ -100,6 +100,11 @@ pub struct Shooting<'a> {
     norms: [f64; 2],
     /// Whether the last Jacobian had an actuator at its onset of tension.
     at_onset: bool,
+    /// Smallest `max |r|` of its residual evaluations.
+    best_norm: f64,
+    /// The full grid's Jacobian is taken ([`System::refine`]) only once
+    /// `best_norm` is at or below this (see `Work::refine_within`).
+    refine_within: f64,
     /// Take the slack side's derivative at an onset (see [`crate::solve::residual::tension_slope`]).
     slack_onset: bool,
     /// The unknowns of the last Jacobian and its slack actuators' taut pieces.
@@ -135,6 +140,8 @@ impl<'a> Shooting<'a> {
             jacobian_steps,
             last: None,
             norms: [f64::INFINITY; 2],
+            best_norm: f64::INFINITY,
+            refine_within: f64::INFINITY,
             at_onset: false,
             slack_onset: false,
             slack_tangents: (Vec::new(), Vec::new()),
@@ -255,6 +262,7 @@ impl System for Shooting<'_> {
         let r = last.residual.clone();
         let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         self.norms = [self.norms[1], norm];
+        self.best_norm = self.best_norm.min(norm);
         self.last = Some((x.to_vec(), last));
         Ok(r)
     }
@@ -305,7 +313,8 @@ impl System for Shooting<'_> {
     /// onset of tension, the slack side's derivative there (see
     /// [`crate::solve::residual::tension_slope`]).
     fn refine(&mut self) -> bool {
-        if self.jacobian_steps.take().is_some() {
+        if self.jacobian_steps.is_some() && self.best_norm <= self.refine_within {
+            self.jacobian_steps = None;
             return true;
         }
         if self.at_onset && !self.slack_onset {
@@ -358,6 +367,9 @@ pub(crate) struct Work {
     /// Stall window of the next Newton runs (see
     /// [`NewtonOptions::stall_window`]).
     pub stall_window: usize,
+    /// The next Newton runs take the full grid's Jacobian after a failed
+    /// line search only once their `max |r|` has come to this.
+    pub refine_within: f64,
 }
 
 impl Work {
@@ -367,6 +379,7 @@ impl Work {
             max_evaluations: opts.max_evaluations,
             deadline: opts.time_limit.map(|t| Instant::now() + t),
             stall_window: STALL_WINDOW,
+            refine_within: f64::INFINITY,
             ..Default::default()
         }
     }
@@ -420,6 +433,7 @@ pub(crate) fn newton_shooting(
     work: &mut Work,
 ) -> Result<(NewtonResult, Option<FinalIvp>)> {
     let mut sys = Shooting::new(robot, inputs, loads, opts.steps, keep);
+    sys.refine_within = work.refine_within;
     let nopts = work.newton_options(opts);
     let out = newton_from(&mut sys, x0, &nopts, "forward shooting", jac0);
     settle(&mut sys, out, work)
@@ -462,39 +476,4 @@ pub(crate) fn settle(
             Err(e)
         }
     }
-}
-
-/// A [`Solution`] from a converged Newton result (integrating once more,
-/// recorded, unless the last IVP at the solution is given with its nodes).
-pub(crate) fn solution_from(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    nr: NewtonResult,
-    last: Option<FinalIvp>,
-    work: &mut Work,
-) -> Result<Solution> {
-    let mut s = match last {
-        Some(FinalIvp {
-            residual: r,
-            ivp,
-            nodes: Some(nodes),
-            tensions: tau,
-            ..
-        }) if !nodes.is_empty() => {
-            let problem = (inputs, loads, nr.x.as_slice());
-            assemble_flat(robot, problem, (opts.steps, 0, 0), r, (ivp, nodes), tau)
-        }
-        _ => {
-            work.evaluations += 1;
-            assemble(robot, inputs, loads, &nr.x, opts.steps, 0, 0)?
-        }
-    };
-    s.iterations = work.iterations;
-    s.evaluations = work.evaluations;
-    s.newton_jacobian = nr.jacobian;
-    s.status = nr.status;
-    s.floor = nr.floor;
-    Ok(s)
 }
