@@ -94,7 +94,7 @@ pub struct Checked {
     pub continued: Option<Continued>,
 }
 
-/// [`solve_loaded`] (with the accuracy control of
+/// [`solve_loaded`](crate::shooting::solve_loaded) (with the accuracy control of
 /// [`SolveOptions::equilibrium_tol`]) under a stability [`Policy`] (free tip).
 ///
 /// With a verdict, Newton's IVPs record no nodes: the verdict's tangent
