@@ -114,22 +114,28 @@ pub fn solve_checked(
     warm: Option<&Solution>,
     policy: Policy,
 ) -> Result<Checked> {
-    let warm = warm.map(|w| (w, ChordPolicy::SINGLE));
-    checked_along(robot, inputs, loads, opts, warm, policy)
+    checked_along(
+        robot,
+        inputs,
+        loads,
+        opts,
+        warm,
+        policy,
+        ChordPolicy::SINGLE,
+    )
 }
 
-/// [`solve_checked`] with the warm run's chord steps under the policy
-/// given with the warm solution ([`ChordPolicy::BATCH`] for a sweep's row).
+/// [`solve_checked`] with the warm run's chord steps under `chord`
+/// ([`ChordPolicy::BATCH`] for a sweep's row).
 fn checked_along(
     robot: &Robot,
     inputs: &[f64],
     loads: &Loads,
     opts: &SolveOptions,
-    along: Option<(&Solution, ChordPolicy)>,
+    warm: Option<&Solution>,
     policy: Policy,
+    chord: ChordPolicy,
 ) -> Result<Checked> {
-    let warm = along.map(|(w, _)| w);
-    let chord = along.map_or(ChordPolicy::SINGLE, |(_, c)| c);
     if policy == Policy::Off {
         let sol = solve_along(robot, inputs, loads, opts, warm, chord)?;
         return Ok(Checked {
@@ -283,8 +289,8 @@ pub fn sweep_checked(
     let mut out: Vec<Checked> = Vec::with_capacity(inputs.len());
     for q in inputs {
         crate::solve::cancel::check()?;
-        let warm = out.last().map(|c| (&c.solution, ChordPolicy::BATCH));
-        let c = checked_along(robot, q, &loads, opts, warm, policy)?;
+        let warm = out.last().map(|c| &c.solution);
+        let c = checked_along(robot, q, &loads, opts, warm, policy, ChordPolicy::BATCH)?;
         out.push(c);
     }
     Ok(out)
