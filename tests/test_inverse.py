@@ -104,6 +104,15 @@ def test_blocked_temperature_at_the_top_of_the_range(fig8_setup) -> None:  # typ
         blocked_temperature(robot, point, MINUS_X, 1.05 * top.force, free, groups=[0, 0])
 
 
+def _opposing_linear_tendons(length: float, radius: float, k_outer: float, k_inner: float):  # type: ignore[no-untyped-def]
+    """A 1 MPa rod [m] with two linear tendons [N/m] 3 mm off its axis, opposing."""
+    from tcarod import Actuator, Body, Robot, Routing, Section
+
+    body = Body(length, Section.circle(radius), 1e6, poisson=0.5, density=1000.0, gravity=(0.0, 0.0, 0.0))
+    acts = [Actuator.linear_tendon(k, Routing.straight(x, 0.0)) for k, x in ((k_outer, 3e-3), (k_inner, -3e-3))]
+    return Robot(body, acts)
+
+
 def test_blocked_force_through_a_linear_tendons_onset() -> None:
     # Two opposing linear tendons (200 N/m, 3 mm off the axis): pulled 0.5 mm
     # and 0, the free rod bends toward +x and stretches the outer tendon taut
@@ -111,10 +120,7 @@ def test_blocked_force_through_a_linear_tendons_onset() -> None:
     # which slackens it: the mixed solve has to cross that tendon's onset,
     # a kink of its tension law, without the forward solve's semismooth
     # step. Measured 3 iterations, 9 IVPs, the outer tendon exactly slack.
-    from tcarod import Actuator, Body, Robot, Routing, Section
-
-    body = Body(0.2, Section.circle(10e-3), 1e6, poisson=0.5, density=1000.0, gravity=(0.0, 0.0, 0.0))
-    robot = Robot(body, [Actuator.linear_tendon(200.0, Routing.straight(x, 0.0)) for x in (3e-3, -3e-3)])
+    robot = _opposing_linear_tendons(0.2, 10e-3, 200.0, 200.0)
     free = robot.solve([5e-4, 0.0])
     assert free.tensions[1] > 1e-3  # [N] taut in the free bend
     tip = free.tip_position
@@ -126,6 +132,42 @@ def test_blocked_force_through_a_linear_tendons_onset() -> None:
     # 3 measured; 8 leaves room for a changed line search but fails a solve
     # that stalls at the kink
     assert held.nit <= 8, held
+
+
+@pytest.mark.parametrize("pulls", [(5e-4, -1e-4), (-1e-4, 5e-4), (5e-4, -4.4e-5)])
+def test_tip_position_reaches_a_shape_with_a_slack_tendon(pulls: tuple[float, float]) -> None:
+    # Two opposing linear tendons (200 N/m); the target is the tip of a solve
+    # in which one tendon is released past its onset (slack, tension 0) or
+    # just short of it (0.5 mN): the inverse starts from both at their onset
+    # (pulls 0, straight rod) and must step across the kink of the slack law.
+    # The slack pull is not unique (any pull past the onset gives the same
+    # shape), so only the tip is checked. Measured 2 iterations, 9 IVPs, tip
+    # error 1e-9 to 5e-9 m from every start tried.
+    robot = _opposing_linear_tendons(0.2, 10e-3, 200.0, 200.0)
+    goal = robot.solve(list(pulls))
+    assert min(goal.tensions) < 1e-3  # [N] one tendon slack or nearly
+    r = tip_position(robot, goal.tip_position)
+    assert r.reached and r.status == 0, r
+    assert r.error <= 1e-7  # [m] the default tol
+    assert np.allclose(r.solution.tip_position, goal.tip_position, atol=1e-7)
+    assert r.nit <= 5, r  # 2 measured; a solve stalling at the kink takes the 50 allowed
+
+
+def test_grasp_through_a_linear_tendons_onset() -> None:
+    # A tendon finger (one variable: both tendons' pull [m], 200 and 100 N/m,
+    # opposing): at contact (pulls 0) both sit exactly at their onset, the
+    # kink of the slack law. Eq 44 fixes the force, mu n F = m g; the
+    # incremental (eq 43) and direct solves must converge to the same pull.
+    # Measured 2.088072e-03 m both ways, direct in 20 IVPs, incremental 55.
+    robot = _opposing_linear_tendons(0.1, 8e-3, 200.0, 100.0)
+    inc = grasp(1e-3, robot, normal=(1.0, 0.0, 0.0), groups=[0, 0])
+    direct = grasp(1e-3, robot, normal=(1.0, 0.0, 0.0), groups=[0, 0], method="direct")
+    assert inc.blocked.force == pytest.approx(1e-3 * 9.81 / (1.1 * 2), rel=1e-12)  # eq 44
+    assert min(inc.blocked.solution.tensions) > 0.0  # [N] both taut past their onset
+    # both solve the same equations to tol 1e-10: the pulls agree to far below
+    # the 2 mm they are (1e-9 m is 5e-7 relative)
+    assert direct.temperature_c == pytest.approx(inc.temperature_c, abs=1e-9)
+    assert direct.blocked.nfev < inc.blocked.nfev
 
 
 @settings(max_examples=8, deadline=None)  # each example: two ~5 ms mixed solves
