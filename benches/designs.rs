@@ -386,7 +386,17 @@ fn listing(out: &[Outcome]) {
     }
 }
 
-/// The one `JSON ` line.
+/// `x` as a JSON number (`sci`: exponent form) with `digits` decimals, or
+/// `null` where it is undefined (a quantile of no values: NaN).
+fn jnum(x: f64, digits: usize, sci: bool) -> String {
+    match (x.is_finite(), sci) {
+        (false, _) => "null".to_string(),
+        (true, true) => format!("{x:.digits$e}"),
+        (true, false) => format!("{x:.digits$}"),
+    }
+}
+
+/// The one `JSON ` line (strict JSON: an empty quantile is `null`).
 fn json(st: &Stats<'_>, out: &[Outcome], n: usize, seed: u64) {
     let (ivp, ive, it, eq) = (&st.ivp, &st.ive, &st.it, &st.eq);
     let (not_past, ok_not_past, via_cont, eq_bad) =
@@ -398,29 +408,40 @@ fn json(st: &Stats<'_>, out: &[Outcome], n: usize, seed: u64) {
         .iter()
         .map(|(r, k, p)| format!("{{\"reason\":{:?},\"count\":{k},\"past_buckling\":{p}}}", r))
         .collect();
+    let q = |v: &[f64], digits: usize, sci: bool| {
+        [0.5, 0.9, 0.99, 1.0].map(|p| jnum(quantile(v, p), digits, sci))
+    };
+    let (ivp, ive, it, cpu) = (
+        q(ivp, 0, false),
+        q(ive, 2, false),
+        q(it, 0, false),
+        q(&st.cpu, 6, true),
+    );
+    let (eq_max, fine_max) = (
+        jnum(quantile(eq, 1.0), 3, true),
+        jnum(quantile(&fine, 1.0), 3, true),
+    );
     println!(
         "JSON {{\"bench\":\"designs\",\"n\":{n},\"seed\":{seed},\"past_buckling\":{},\"converged\":{},\"converged_not_past\":{ok_not_past},\"not_past\":{not_past},\
-\"via_continuation\":{via_cont},\"ivp\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"ivp_equivalents\":{{\"median\":{:.2},\"p90\":{:.2},\"p99\":{:.2},\"max\":{:.2}}},\"iterations\":{{\"median\":{},\"max\":{}}},\
-\"cpu_s\":{{\"median\":{:.6e},\"p99\":{:.6e},\"max\":{:.6e},\"total\":{:.3}}},\"equilibrium\":{{\"max\":{:.3e},\"above_tol\":{eq_bad},\"fine_resolved\":{},\"fine_above_tol\":{fine_bad},\"fine_max\":{:.3e}}},\"failures\":[{}]}}",
+\"via_continuation\":{via_cont},\"ivp\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"ivp_equivalents\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"iterations\":{{\"median\":{},\"max\":{}}},\
+\"cpu_s\":{{\"median\":{},\"p99\":{},\"max\":{},\"total\":{:.3}}},\"equilibrium\":{{\"max\":{eq_max},\"above_tol\":{eq_bad},\"fine_resolved\":{},\"fine_above_tol\":{fine_bad},\"fine_max\":{fine_max}}},\"failures\":[{}]}}",
         n - not_past,
         st.ok.len(),
-        quantile(ivp, 0.5),
-        quantile(ivp, 0.9),
-        quantile(ivp, 0.99),
-        quantile(ivp, 1.0),
-        quantile(ive, 0.5),
-        quantile(ive, 0.9),
-        quantile(ive, 0.99),
-        quantile(ive, 1.0),
-        quantile(it, 0.5),
-        quantile(it, 1.0),
-        quantile(&st.cpu, 0.5),
-        quantile(&st.cpu, 0.99),
-        quantile(&st.cpu, 1.0),
+        ivp[0],
+        ivp[1],
+        ivp[2],
+        ivp[3],
+        ive[0],
+        ive[1],
+        ive[2],
+        ive[3],
+        it[0],
+        it[3],
+        cpu[0],
+        cpu[2],
+        cpu[3],
         st.cpu.iter().sum::<f64>(),
-        quantile(eq, 1.0),
         fine.len(),
-        quantile(&fine, 1.0),
         fails_json.join(",")
     );
 }
