@@ -7,7 +7,8 @@
 //! `TCAROD_ONLY=3,17` solves only these designs, `TCAROD_STEPS` sets the RK4 steps,
 //! `TCAROD_TIPS=1` prints every converged design's tip position,
 //! `TCAROD_LIST=1` lists every converged design (index, IVP-equivalents,
-//! IVPs, iterations, homotopy steps). `TCAROD_EQUILIBRIUM_TOL=1e-8` solves
+//! IVPs, iterations, homotopy steps, `past` if past buckling), `TCAROD_REPEAT`
+//! (default 3) sets the timed repeats. `TCAROD_EQUILIBRIUM_TOL=1e-8` solves
 //! every design with that `SolveOptions::equilibrium_tol` (the grid refined
 //! until the global equilibrium check holds; the issue's accuracy target),
 //! so that the statistics are those of the controlled solve (IVP-equivalents
@@ -19,7 +20,10 @@
 //! count of converged solves that needed it is printed. IVPs are
 //! `Solution.evaluations` (a tangent IVP, which carries the Jacobian, counts
 //! as one); IVP-equivalents are the solve's CPU time over the CPU time of one
-//! plain IVP of the same design at its solution (mean of 5). Times are thread-CPU
+//! plain IVP of the same design at its solution (mean of 5), the median of
+//! `TCAROD_REPEAT` (default 3) such pairs, solve then IVPs, interleaved (a
+//! single pair swung by up to 30 % on the shared machine: #298 82 and 104
+//! in two runs of the same binary). Times are thread-CPU
 //! times from `clock_gettime(CLOCK_THREAD_CPUTIME_ID)` (declared here: no
 //! `libc` dependency), or wall time from `Instant` where that is unavailable. Prints a table and one `JSON ` line.
 use std::time::Instant;
@@ -31,20 +35,9 @@ use tcarod::Error;
 #[path = "clock/mod.rs"]
 mod clock;
 use clock::thread_cpu;
-
-/// Quantile `q` of sorted data (nearest rank).
-fn quantile(sorted: &[f64], q: f64) -> f64 {
-    if sorted.is_empty() {
-        return f64::NAN;
-    }
-    let k = ((q * sorted.len() as f64).ceil() as usize).clamp(1, sorted.len());
-    sorted[k - 1]
-}
-
-fn sorted(mut v: Vec<f64>) -> Vec<f64> {
-    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
-    v
-}
+#[path = "designs_report/mod.rs"]
+mod designs_report;
+use designs_report::{quantile, report, sorted, Converged, Outcome};
 
 fn reason(e: &Error) -> String {
     match e {
@@ -57,30 +50,6 @@ fn reason(e: &Error) -> String {
     }
 }
 
-/// A converged solve: IVPs (`Solution.evaluations`), iterations, equilibrium
-/// residual, IVP-equivalents (CPU time / CPU time of one plain IVP at the
-/// solution), whether continuation was needed.
-struct Converged {
-    ivps: usize,
-    iterations: usize,
-    equilibrium: f64,
-    ivp_equivalents: f64,
-    /// Homotopy steps taken (0: the direct Newton run converged).
-    continuation_steps: usize,
-}
-
-struct Outcome {
-    index: usize,
-    past: bool,
-    cpu: f64,
-    result: Result<Converged, String>,
-    /// For converged designs above the equilibrium target: the cold solve
-    /// again with `equilibrium_tol` = the target (the grid refined until the
-    /// check holds), its equilibrium error and its IVP-equivalents (`None`:
-    /// below the target, or the controlled solve failed).
-    fine: Option<(f64, f64)>,
-}
-
 fn main() {
     let n: usize = std::env::var("TCAROD_DESIGNS")
         .ok()
@@ -91,6 +60,11 @@ fn main() {
         .and_then(|v| v.parse().ok())
         .unwrap_or(DEFAULT_SEED);
     let verbose = std::env::var("TCAROD_VERBOSE").is_ok_and(|v| v == "1");
+    let repeat: usize = std::env::var("TCAROD_REPEAT")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(3)
+        .max(1);
     let mut opts = SolveOptions::default();
     if let Some(steps) = std::env::var("TCAROD_STEPS")
         .ok()
@@ -120,19 +94,26 @@ fn main() {
     let n = indices.len();
     for &i in &indices {
         let d = random_design(seed, i);
-        out.push(solve_one(&d, &opts, verbose, only.is_some(), &now));
+        out.push(solve_one(
+            &d,
+            &opts,
+            (verbose, only.is_some()),
+            repeat,
+            &now,
+        ));
     }
     let wall = wall.elapsed().as_secs_f64();
     report(&out, n, seed, clock, wall);
 }
 
-/// Solve design `d` cold, time it, check its equilibrium (and, above the
-/// target, solve it again with the grid refined until the check holds).
+/// Solve design `d` cold, time it (`repeat` times), check its equilibrium
+/// (and, above the target, solve it again with the grid refined until the
+/// check holds); `verbose`, `diagnose` print more.
 fn solve_one(
     d: &Design,
     opts: &SolveOptions,
-    verbose: bool,
-    diagnose: bool,
+    (verbose, diagnose): (bool, bool),
+    repeat: usize,
     now: &dyn Fn() -> f64,
 ) -> Outcome {
     let i = d.index;
@@ -153,16 +134,8 @@ fn solve_one(
                     sol.tensions
                 );
             }
-            // one plain IVP at the solution, 5 times
-            let loads = Loads::of(&d.robot);
-            let t1 = now();
-            for _ in 0..5 {
-                let _ = std::hint::black_box(
-                    Shot::new(&d.robot, &d.inputs, &loads, opts.steps)
-                        .residual(&sol.unknowns, false),
-                );
-            }
-            let ivp = (now() - t1) / 5.0;
+            let ivp = plain_ivp_cpu(d, &opts, &sol.unknowns, now);
+            let ive = ivp_equivalents(d, &opts, (cpu, ivp), repeat, &sol.unknowns, now);
             let fine = (eq.relative > EQUILIBRIUM_TOL)
                 .then(|| controlled(d, &opts, now))
                 .flatten()
@@ -172,7 +145,7 @@ fn solve_one(
                     ivps: sol.evaluations,
                     iterations: sol.iterations,
                     equilibrium: eq.relative,
-                    ivp_equivalents: cpu / ivp,
+                    ivp_equivalents: ive,
                     continuation_steps: sol.continuation_steps.len(),
                 },
                 fine,
@@ -208,6 +181,38 @@ fn solve_one(
     }
 }
 
+/// CPU time \[s\] of one plain IVP of design `d` at `unknowns` (mean of 5).
+fn plain_ivp_cpu(d: &Design, opts: &SolveOptions, unknowns: &[f64], now: &dyn Fn() -> f64) -> f64 {
+    let loads = Loads::of(&d.robot);
+    let shot = Shot::new(&d.robot, &d.inputs, &loads, opts.steps);
+    let t1 = now();
+    for _ in 0..5 {
+        let _ = std::hint::black_box(shot.residual(unknowns, false));
+    }
+    (now() - t1) / 5.0
+}
+
+/// The median over `repeat` (solve CPU / plain IVP CPU) pairs, the first
+/// `(cpu, ivp)` already measured; each further pair times the same
+/// (deterministic) cold solve again, then the IVP.
+fn ivp_equivalents(
+    d: &Design,
+    opts: &SolveOptions,
+    (cpu, ivp): (f64, f64),
+    repeat: usize,
+    unknowns: &[f64],
+    now: &dyn Fn() -> f64,
+) -> f64 {
+    let mut ratios = vec![cpu / ivp];
+    for _ in 1..repeat {
+        let t0 = now();
+        let _ = std::hint::black_box(solve(&d.robot, &d.inputs, opts, None));
+        let cpu = now() - t0;
+        ratios.push(cpu / plain_ivp_cpu(d, opts, unknowns, now));
+    }
+    quantile(&sorted(ratios), 0.5)
+}
+
 /// With `TCAROD_TIPS=1`, print design `i`'s tip position \[m\] (to compare
 /// two builds' solutions design by design).
 fn print_tip(i: usize, sol: &tcarod::shooting::Solution) {
@@ -227,221 +232,4 @@ fn controlled(d: &Design, opts: &SolveOptions, now: &dyn Fn() -> f64) -> Option<
     let t0 = now();
     let s = solve(&d.robot, &d.inputs, &fo, None).ok()?;
     Some((equilibrium(&d.robot, &s).relative, now() - t0))
-}
-
-/// The benchmark's statistics over all outcomes.
-struct Stats<'a> {
-    ok: Vec<&'a Converged>,
-    via_cont: usize,
-    not_past: usize,
-    ok_not_past: usize,
-    ivp: Vec<f64>,
-    it: Vec<f64>,
-    eq: Vec<f64>,
-    ive: Vec<f64>,
-    cpu: Vec<f64>,
-    cpu_ok: Vec<f64>,
-    /// (reason, count, of them past buckling)
-    fails: Vec<(String, usize, usize)>,
-    eq_bad: usize,
-}
-
-fn stats(out: &[Outcome]) -> Stats<'_> {
-    let ok: Vec<&Converged> = out.iter().filter_map(|o| o.result.as_ref().ok()).collect();
-    let via_cont = ok.iter().filter(|c| c.continuation_steps > 0).count();
-    let not_past = out.iter().filter(|o| !o.past).count();
-    let ok_not_past = out.iter().filter(|o| !o.past && o.result.is_ok()).count();
-    let ivp = sorted(ok.iter().map(|r| r.ivps as f64).collect());
-    let it = sorted(ok.iter().map(|r| r.iterations as f64).collect());
-    let eq = sorted(ok.iter().map(|r| r.equilibrium).collect());
-    let ive = sorted(ok.iter().map(|r| r.ivp_equivalents).collect());
-    let cpu = sorted(out.iter().map(|o| o.cpu).collect());
-    let cpu_ok = sorted(
-        out.iter()
-            .filter(|o| o.result.is_ok())
-            .map(|o| o.cpu)
-            .collect(),
-    );
-    let mut fails: Vec<(String, usize, usize)> = Vec::new();
-    for o in out {
-        if let Err(r) = &o.result {
-            match fails.iter_mut().find(|f| &f.0 == r) {
-                Some(f) => {
-                    f.1 += 1;
-                    f.2 += usize::from(o.past);
-                }
-                None => fails.push((r.clone(), 1, usize::from(o.past))),
-            }
-        }
-    }
-    fails.sort_by_key(|f| std::cmp::Reverse(f.1));
-    let eq_bad = eq.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
-    Stats {
-        ok,
-        via_cont,
-        not_past,
-        ok_not_past,
-        ivp,
-        it,
-        eq,
-        ive,
-        cpu,
-        cpu_ok,
-        fails,
-        eq_bad,
-    }
-}
-
-fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
-    let st = stats(out);
-    let (ok, ivp, it, eq, ive) = (&st.ok, &st.ivp, &st.it, &st.eq, &st.ive);
-    let (cpu, cpu_ok, fails) = (&st.cpu, &st.cpu_ok, &st.fails);
-    let (not_past, ok_not_past, via_cont, eq_bad) =
-        (st.not_past, st.ok_not_past, st.via_cont, st.eq_bad);
-    println!("designs: {n} (seed {seed:#x}), {} past self-weight buckling; clock: {clock}; wall {wall:.1} s", n - not_past);
-    println!("converged cold: {} / {n} all, {ok_not_past} / {not_past} not past buckling; {via_cont} of them via continuation", ok.len());
-    println!(
-        "IVPs per converged solve: median {} p90 {} p99 {} max {}",
-        quantile(ivp, 0.5),
-        quantile(ivp, 0.9),
-        quantile(ivp, 0.99),
-        quantile(ivp, 1.0)
-    );
-    println!(
-        "IVP-equivalents (CPU of the solve / CPU of one plain IVP at its solution): median {:.1} p90 {:.1} p99 {:.1} max {:.1}",
-        quantile(ive, 0.5),
-        quantile(ive, 0.9),
-        quantile(ive, 0.99),
-        quantile(ive, 1.0)
-    );
-    println!(
-        "iterations: median {} p90 {} p99 {} max {}",
-        quantile(it, 0.5),
-        quantile(it, 0.9),
-        quantile(it, 0.99),
-        quantile(it, 1.0)
-    );
-    println!(
-        "CPU per solve (all) [ms]: median {:.3} p99 {:.1} max {:.1}; converged only: median {:.3} p99 {:.1} max {:.1}; total {:.1} s",
-        quantile(cpu, 0.5) * 1e3,
-        quantile(cpu, 0.99) * 1e3,
-        quantile(cpu, 1.0) * 1e3,
-        quantile(cpu_ok, 0.5) * 1e3,
-        quantile(cpu_ok, 0.99) * 1e3,
-        quantile(cpu_ok, 1.0) * 1e3,
-        cpu.iter().sum::<f64>()
-    );
-    println!(
-        "equilibrium (relative) of converged: median {:.1e} p99 {:.1e} max {:.1e}; {eq_bad} above {EQUILIBRIUM_TOL:.0e}",
-        quantile(eq, 0.5),
-        quantile(eq, 0.99),
-        quantile(eq, 1.0)
-    );
-    let fine = sorted(out.iter().filter_map(|o| o.fine.map(|f| f.0)).collect());
-    let fine_bad = fine.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
-    let fine_ive = sorted(out.iter().filter_map(|o| o.fine.map(|f| f.1)).collect());
-    println!(
-        "  of the {eq_bad} above: re-solved cold with equilibrium_tol {EQUILIBRIUM_TOL:.0e}: {} converged (max {:.1e}), {fine_bad} still above; IVP-equivalents median {:.1} max {:.1}",
-        fine.len(),
-        quantile(&fine, 1.0),
-        quantile(&fine_ive, 0.5),
-        quantile(&fine_ive, 1.0)
-    );
-    for (r, k, p) in fails.iter() {
-        println!("  failed: {k:4} ({p} past buckling)  {r}");
-    }
-    listing(out);
-    json(&st, out, n, seed);
-}
-
-/// Each failing design (index, past buckling, reason) and the 20 converged
-/// designs with the most IVP-equivalents (index, IVP-equivalents, IVPs,
-/// iterations, homotopy steps).
-fn listing(out: &[Outcome]) {
-    for o in out {
-        if let Err(r) = &o.result {
-            let past = if o.past { "past buckling" } else { "not past" };
-            println!("  FAIL #{} ({past}): {r}", o.index);
-        }
-    }
-    let mut worst: Vec<(usize, &Converged)> = out
-        .iter()
-        .filter_map(|o| o.result.as_ref().ok().map(|c| (o.index, c)))
-        .collect();
-    if std::env::var("TCAROD_LIST").is_ok_and(|v| v == "1") {
-        for (i, c) in &worst {
-            println!(
-                "  DESIGN #{i} {:.1} {} {} {}",
-                c.ivp_equivalents, c.ivps, c.iterations, c.continuation_steps
-            );
-        }
-    }
-    worst.sort_by(|a, b| b.1.ivp_equivalents.total_cmp(&a.1.ivp_equivalents));
-    println!("  worst 20 by IVP-equivalents: #index ive ivps iterations homotopy-steps");
-    for (i, c) in worst.iter().take(20) {
-        println!(
-            "  WORST #{i} {:.1} {} {} {}",
-            c.ivp_equivalents, c.ivps, c.iterations, c.continuation_steps
-        );
-    }
-}
-
-/// `x` as a JSON number (`sci`: exponent form) with `digits` decimals, or
-/// `null` where it is undefined (a quantile of no values: NaN).
-fn jnum(x: f64, digits: usize, sci: bool) -> String {
-    match (x.is_finite(), sci) {
-        (false, _) => "null".to_string(),
-        (true, true) => format!("{x:.digits$e}"),
-        (true, false) => format!("{x:.digits$}"),
-    }
-}
-
-/// The one `JSON ` line (strict JSON: an empty quantile is `null`).
-fn json(st: &Stats<'_>, out: &[Outcome], n: usize, seed: u64) {
-    let (ivp, ive, it, eq) = (&st.ivp, &st.ive, &st.it, &st.eq);
-    let (not_past, ok_not_past, via_cont, eq_bad) =
-        (st.not_past, st.ok_not_past, st.via_cont, st.eq_bad);
-    let fine = sorted(out.iter().filter_map(|o| o.fine.map(|f| f.0)).collect());
-    let fine_bad = fine.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
-    let fails_json: Vec<String> = st
-        .fails
-        .iter()
-        .map(|(r, k, p)| format!("{{\"reason\":{:?},\"count\":{k},\"past_buckling\":{p}}}", r))
-        .collect();
-    let q = |v: &[f64], digits: usize, sci: bool| {
-        [0.5, 0.9, 0.99, 1.0].map(|p| jnum(quantile(v, p), digits, sci))
-    };
-    let (ivp, ive, it, cpu) = (
-        q(ivp, 0, false),
-        q(ive, 2, false),
-        q(it, 0, false),
-        q(&st.cpu, 6, true),
-    );
-    let (eq_max, fine_max) = (
-        jnum(quantile(eq, 1.0), 3, true),
-        jnum(quantile(&fine, 1.0), 3, true),
-    );
-    println!(
-        "JSON {{\"bench\":\"designs\",\"n\":{n},\"seed\":{seed},\"past_buckling\":{},\"converged\":{},\"converged_not_past\":{ok_not_past},\"not_past\":{not_past},\
-\"via_continuation\":{via_cont},\"ivp\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"ivp_equivalents\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"iterations\":{{\"median\":{},\"max\":{}}},\
-\"cpu_s\":{{\"median\":{},\"p99\":{},\"max\":{},\"total\":{:.3}}},\"equilibrium\":{{\"max\":{eq_max},\"above_tol\":{eq_bad},\"fine_resolved\":{},\"fine_above_tol\":{fine_bad},\"fine_max\":{fine_max}}},\"failures\":[{}]}}",
-        n - not_past,
-        st.ok.len(),
-        ivp[0],
-        ivp[1],
-        ivp[2],
-        ivp[3],
-        ive[0],
-        ive[1],
-        ive[2],
-        ive[3],
-        it[0],
-        it[3],
-        cpu[0],
-        cpu[2],
-        cpu[3],
-        st.cpu.iter().sum::<f64>(),
-        fine.len(),
-        fails_json.join(",")
-    );
 }
