@@ -12,10 +12,11 @@
 //! (6-direction dual numbers); its tangents follow by the implicit function
 //! theorem.
 
-use nalgebra::{Matrix6, Vector6};
+use nalgebra::Vector3;
 
 use super::dual::{c_cross, cross_c, dot, Dual, Real, V3};
-use super::ode::RodRhs;
+use super::eq25::Eq25;
+use super::ode::{add_string, RodRhs};
 use crate::error::{Error, Result};
 
 /// A string at an anchor, its routing evaluated there once (not per
@@ -47,15 +48,6 @@ const JUMP_TOL: f64 = 1e-14;
 /// (the rounding floor of large strains lies between the two).
 const JUMP_FLOOR: f64 = 1e-12;
 
-/// A 6-vector of dual numbers seeded with the unit directions at `w`.
-fn seeded(w: &[f64; 6]) -> [Dual<6>; 6] {
-    std::array::from_fn(|k| {
-        let mut e = [0.0; 6];
-        e[k] = 1.0;
-        Dual::new(w[k], e)
-    })
-}
-
 /// `(P, r x P)` of one side of string `t` with strains `st = (v, u)`:
 /// `P = tau weight p / |p|`, `p = v + u x r + r'` (eq 19).
 #[inline(always)]
@@ -67,6 +59,24 @@ fn side<T: Real>(t: &Anchored, weight: f64, st: &[T; 6], tau: T) -> (V3<T>, V3<T
     let p: V3<T> = std::array::from_fn(|k| pb[k] / nrm * tau * weight);
     let rxp = c_cross(&t.r, &p);
     (p, rxp)
+}
+
+/// A factored jump Newton matrix `D (K + G)` ([`RodRhs::jump_matrix`]):
+/// `K + G` by blocks, and `D^-1` as a vector.
+struct JumpMatrix {
+    eq25: Eq25,
+    /// `D^-1 = diag(K_nu, K_omega / L)`.
+    d: [f64; 6],
+}
+
+impl JumpMatrix {
+    /// `dw` with `D (K + G) dw = -r`.
+    fn newton_step(&self, r: &[f64; 6]) -> [f64; 6] {
+        let e: V3<f64> = std::array::from_fn(|k| -r[k] * self.d[k]);
+        let f: V3<f64> = std::array::from_fn(|k| -r[k + 3] * self.d[k + 3]);
+        let (dv, du) = self.eq25.solve(&e, &f);
+        [dv[0], dv[1], dv[2], du[0], du[1], du[2]]
+    }
 }
 
 /// Largest absolute entry.
@@ -204,6 +214,36 @@ impl RodRhs<'_> {
         self.jump_residual(w, w0, &f, &m)
     }
 
+    /// The Newton matrix of the jump residual at post-jump strains `w`,
+    /// factored: `G_w = D (K + G)` with `D = diag(K_nu^-1, L K_omega^-1)`,
+    /// `K = diag(K_nu, K_omega)` and `G` the derivative of the after
+    /// sides' `(F, r x F)` with respect to `w`, which has the eq-25
+    /// blocks of each string (`ode::add_string`, with `c = tau a / |p|`):
+    /// `K + G` is symmetric and factored as eq 25 is (`Eq25`). (The
+    /// before sides do not depend on `w`.) `None` if singular.
+    fn jump_matrix(&self, terms: &[Anchored], w: &[f64; 6]) -> Option<JumpMatrix> {
+        let (v, u) = ([w[0], w[1], w[2]], [w[3], w[4], w[5]]);
+        let diag = |k: &Vector3<f64>| {
+            std::array::from_fn(|p| std::array::from_fn(|q| k[p] * f64::from(p == q)))
+        };
+        let mut m = [diag(&self.kse), [[0.0; 3]; 3], diag(&self.kbt)];
+        for t in terms.iter().filter(|t| t.a != 0.0) {
+            let ucr = cross_c(&u, &t.r);
+            let pb: V3<f64> = std::array::from_fn(|k| v[k] + ucr[k] + t.rp[k]);
+            let nrm = dot(&pb, &pb).sqrt();
+            let tt: V3<f64> = pb.map(|x| x / nrm);
+            add_string(&mut m, t.tau * t.a / nrm, &tt, &t.r, dot(&t.r, &t.r));
+        }
+        let d: [f64; 6] = std::array::from_fn(|k| match k < 3 {
+            true => self.kse[k],
+            false => self.kbt[k - 3] / self.robot.body.length,
+        });
+        Some(JumpMatrix {
+            eq25: Eq25::factor(&m)?,
+            d,
+        })
+    }
+
     /// Fills every string's before side at `w0`.
     fn prepare(terms: &mut [Anchored], w0: &[f64; 6]) {
         for t in terms.iter_mut() {
@@ -233,10 +273,10 @@ impl RodRhs<'_> {
                 break;
             }
             iterations += 1;
-            let g = self.after_residual(terms, &seeded(&w), w0);
-            let jac = Matrix6::from_fn(|i, j| g[i].eps[j]);
-            let rhs = -Vector6::from_column_slice(&r);
-            let dw = jac.lu().solve(&rhs).ok_or_else(|| singular(s))?;
+            let dw = self
+                .jump_matrix(terms, &w)
+                .ok_or_else(|| singular(s))?
+                .newton_step(&r);
             let mut t = 1.0;
             loop {
                 let wt: [f64; 6] = std::array::from_fn(|k| w[k] + dw[k] * t);
@@ -316,17 +356,14 @@ impl RodRhs<'_> {
                 if terms.is_empty() {
                     return Ok(None);
                 }
-                Self::prepare(terms, &w0);
-                let g6 = self.after_residual(terms, &seeded(&ws), &w0);
-                let lu = Matrix6::from_fn(|r, c| g6[r].eps[c]).lu();
+                let jac = self.jump_matrix(terms, &ws).ok_or_else(|| singular(s))?;
                 // G_w0 dw0 + G_tau dtau at fixed w
                 let wn: [Dual<N>; 6] = ws.map(Dual::cst);
                 let w0n: [Dual<N>; 6] = std::array::from_fn(|k| y[7 + k]);
                 let gn = self.anchor_residual(terms, &wn, &w0n, tau);
                 let mut out: [Dual<N>; 6] = wn;
                 for d in 0..N {
-                    let rhs = Vector6::from_fn(|r, _| -gn[r].eps[d]);
-                    let dw = lu.solve(&rhs).ok_or_else(|| singular(s))?;
+                    let dw = jac.newton_step(&gn.map(|g| g.eps[d]));
                     for k in 0..6 {
                         out[k].eps[d] = dw[k];
                     }

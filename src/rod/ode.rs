@@ -293,37 +293,14 @@ impl<'a> RodRhs<'a> {
                 continue;
             }
             let StringAt { r, rr, c, t, g, .. } = st;
-            // A_i = -tau pb^2 / |pb|^3 = c (I - t t^T), c = tau / |pb| (eq 20:
-            // tau t_a' = A_i R^T p_a''). With r^ x = r x x, w = t x r and
-            // r^ r^ = r r^T - |r|^2 I:
-            //   A_i r^ = c (r^ - t w^T),  r^ A_i r^ = c (r r^T - |r|^2 I + w w^T).
-            let w = cross_c(&t, &r);
-            let ct: V3<T> = v3(|k| t[k] * c);
+            let ct = add_string(&mut m, c, &t, &r, rr);
             let tg = dot(&t, &g);
             let ag: V3<T> = v3(|k| g[k] * c - ct[k] * tg); // A_i g_i
             let rag = c_cross(&r, &ag);
-            let cr: V3<T> = v3(|k| c * r[k]);
-            let cr2 = c * rr;
-            let cw: V3<T> = v3(|k| w[k] * c);
             for p in 0..3 {
-                for q in p..3 {
-                    m[0][p][q] -= ct[p] * t[q]; // (26): M11 += c I - c t t^T
-                    m[2][p][q] -= cr[p] * r[q] + cw[p] * w[q]; // (29): M22 += c |r|^2 I - c r r^T - c w w^T
-                }
-                m[0][p][p] += c;
-                m[2][p][p] += cr2;
-                for q in 0..3 {
-                    m[1][p][q] += ct[p] * w[q]; // (27): M12 += -c r^ + c t w^T; (28) is its transpose
-                }
                 e[p] -= ag[p]; // (30)
                 f[p] -= rag[p]; // (31)
             }
-            m[1][0][1] += cr[2];
-            m[1][0][2] -= cr[1];
-            m[1][1][0] -= cr[2];
-            m[1][1][2] += cr[0];
-            m[1][2][0] += cr[1];
-            m[1][2][1] -= cr[0];
             each(i, &st);
         }
         for (p, q) in [(1, 0), (2, 0), (2, 1)] {
@@ -414,6 +391,46 @@ pub(crate) fn singular(s: f64) -> Error {
         reason: "singular stiffness system (25): actuator compression exceeds the body's stiffness"
             .into(),
     }
+}
+
+/// Adds a string's terms to the eq-25 blocks `m` (upper triangles of `M11`
+/// and `M22`, `M12` whole): `M11 += A`, `M12 += -A r^`, `M22 += -r^ A r^`
+/// with `A = -tau pb^2 / |pb|^3 = c (I - t t^T)`, `c = tau / |pb|` (eq 20:
+/// `tau t_a' = A R^T p_a''`); returns `c t`. With `r^ x = r x x`,
+/// `w = t x r` and `r^ r^ = r r^T - |r|^2 I` (`rr = |r|^2`):
+/// `A r^ = c (r^ - t w^T)`, `r^ A r^ = c (r r^T - |r|^2 I + w w^T)`. Also
+/// the Jacobian of an anchor's string loads (`rod::anchors`).
+#[inline(always)]
+pub(crate) fn add_string<T: Real>(
+    m: &mut Blocks<T>,
+    c: T,
+    t: &V3<T>,
+    r: &V3<f64>,
+    rr: f64,
+) -> V3<T> {
+    let w = cross_c(t, r);
+    let ct: V3<T> = v3(|k| t[k] * c);
+    let cr: V3<T> = v3(|k| c * r[k]);
+    let cr2 = c * rr;
+    let cw: V3<T> = v3(|k| w[k] * c);
+    for p in 0..3 {
+        for q in p..3 {
+            m[0][p][q] -= ct[p] * t[q]; // (26): M11 += c I - c t t^T
+            m[2][p][q] -= cr[p] * r[q] + cw[p] * w[q]; // (29): M22 += c |r|^2 I - c r r^T - c w w^T
+        }
+        m[0][p][p] += c;
+        m[2][p][p] += cr2;
+        for q in 0..3 {
+            m[1][p][q] += ct[p] * w[q]; // (27): M12 += -c r^ + c t w^T; (28) is its transpose
+        }
+    }
+    m[1][0][1] += cr[2];
+    m[1][0][2] -= cr[1];
+    m[1][1][0] -= cr[2];
+    m[1][1][2] += cr[0];
+    m[1][2][0] += cr[1];
+    m[1][2][1] -= cr[0];
+    ct
 }
 
 /// The actuator-free part of (25) at one state ([`RodRhs::frame`]).
