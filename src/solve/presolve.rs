@@ -67,20 +67,12 @@ const FALLBACK_NEAR: f64 = 1e-3;
 /// takes over).
 const COARSE_MAX_ITER: usize = 20;
 
-/// Tolerance of a cold pre-solve's first coarse run (see the module docs).
-/// Its point only has to lie near enough the coarse root that the defect
-/// measured there differs from the one at the solution by much less than
-/// `tol`. The defect varies with `x` at about the coarse grid's error in
-/// the Jacobian: ~2e-6 on Fig. 6, where a first round stopped at `max |r|`
-/// 3.3e-4 gave a second-round full residual of 6.0e-10 (so a third round);
-/// from 1e-5 that is ~2e-11. Measured against 1e-7 (the stop-32 value):
-/// the steel robot stops at 1.8e-7, a chord step earlier, and still
-/// converges in the second round (7 -> 6 IVPs; residual 1.7e-10 against
-/// its rounding floor 8.9e-10; at 1e-6 this once cost a chord step more in
-/// the second round, before that round's last step went unevaluated);
-/// Fig. 6 unchanged (3.3e-4 to 7.7e-9 in one step, 9 IVPs); the 1,000
-/// benchmark designs 35,629 -> 34,634 IVPs (1e-6: 35,108; 1e-4: 34,144,
-/// but only 3x below Fig. 6's 3.3e-4).
+/// Tolerance of a cold pre-solve's first coarse run (module docs): its
+/// point need only be near enough the coarse root that the defect there is
+/// the solution's to well within `tol` (it varies at ~2e-6 of `max |r|` on
+/// Fig. 6: from 3.3e-4 a third round was needed). Against 1e-7: steel 7 ->
+/// 6 IVPs (it stops at 1.8e-7), Fig. 6 the same 9, 1,000 designs 35,629 ->
+/// 34,634 IVPs (1e-6: 35,108; 1e-4: 34,144, but 3x from Fig. 6's 3.3e-4).
 const FIRST_ROUND_TOL: f64 = 1e-5;
 
 /// The warm start of a pre-solve: the neighbouring solution's unknowns,
