@@ -268,13 +268,11 @@ pub(crate) fn follow_from(
 ) -> Result<PathEnd> {
     work.stall_window = HOMOTOPY_STALL_WINDOW;
     let mut last_err: Option<Error> = None;
-    // best residual of the failed Newton runs (for the budget error)
-    let mut best = f64::INFINITY;
-    // whether the last step failed (its retry backtracks in full)
+    let mut best = f64::INFINITY; // of the failed Newton runs (for the budget error)
+                                  // whether the last step failed (its retry backtracks in full)
     let mut retry = false;
-    // the predictor bound at this point (refused once: the retry runs in full)
-    let mut reject = PREDICTOR_REJECT;
-    // the lambdas short of 1 at which a retry failed (see `retried_before`)
+    let mut reject = PREDICTOR_REJECT; // refused once at a point: the retry runs in full
+                                       // the lambdas short of 1 at which a retry failed (see `retried_before`)
     let mut failed: Vec<f64> = Vec::new();
     while at_lam.lam < 1.0 {
         cancel::check()?;
@@ -327,9 +325,7 @@ pub(crate) fn follow_from(
                     best = best.min(*residual);
                 }
                 last_err = Some(e);
-                if retry && lt < 1.0 {
-                    failed.push(lt);
-                }
+                failed.extend((retry && lt < 1.0).then_some(lt));
                 retry = true;
                 at_lam.step *= 0.25;
                 if at_lam.step < MIN_STEP {
