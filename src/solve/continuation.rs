@@ -268,12 +268,12 @@ pub(crate) fn follow_from(
 ) -> Result<PathEnd> {
     work.stall_window = HOMOTOPY_STALL_WINDOW;
     let mut last_err: Option<Error> = None;
-    // best residual of the failed Newton runs (for the budget error)
-    let mut best = f64::INFINITY;
-    // whether the last step failed (its retry backtracks in full)
+    let mut best = f64::INFINITY; // of the failed Newton runs (for the budget error)
+                                  // whether the last step failed (its retry backtracks in full)
     let mut retry = false;
-    // the predictor bound at this point (refused once: the retry runs in full)
-    let mut reject = PREDICTOR_REJECT;
+    let mut reject = PREDICTOR_REJECT; // refused once at a point: the retry runs in full
+                                       // the lambdas short of 1 at which a retry failed (see `retried_before`)
+    let mut failed: Vec<f64> = Vec::new();
     while at_lam.lam < 1.0 {
         cancel::check()?;
         let lam = at_lam.lam;
@@ -281,6 +281,13 @@ pub(crate) fn follow_from(
             return Err(budget_error(work, lam, best));
         }
         let lt = (lam + at_lam.step).min(1.0);
+        if retry && retried_before(&failed, lt) {
+            at_lam.step *= 0.25;
+            if at_lam.step < MIN_STEP {
+                break;
+            }
+            continue;
+        }
         let (r, inp, l) = at(robot, from, inputs, loads, cold, lt);
         let x0 = at_lam.predictor(&r, &inp, lt);
         let step_opts = step_options(opts, lt >= 1.0, retry);
@@ -318,6 +325,7 @@ pub(crate) fn follow_from(
                     best = best.min(*residual);
                 }
                 last_err = Some(e);
+                failed.extend((retry && lt < 1.0).then_some(lt));
                 retry = true;
                 at_lam.step *= 0.25;
                 if at_lam.step < MIN_STEP {
@@ -327,6 +335,26 @@ pub(crate) fn follow_from(
         }
     }
     Err(stall_error(last_err, work, at_lam.lam))
+}
+
+/// Whether a retry (full backtracking) to `lt` failed before on this path
+/// (`failed`: the `lambda` of each failed retry short of 1): a retry is
+/// then not run again (the step is quartered as after its failure). Steps
+/// halve and double by powers of two, so a path quartering its way to a
+/// fold aims its retries at the same `lambda` from successive points, and
+/// past the fold each of them fails alike: benchmark design #25 (past
+/// buckling, fold at `lambda = 0.5531` on the coarse grid) ran its retry
+/// to 0.55469 from 0.54688 (24 IVPs) and again from 0.55273 (32), and to
+/// 0.55322 from 0.55273 and again from 0.55310 (25 each, the same
+/// predictor residual 0.00398 and best residual 0.00203). Skipping the
+/// repeats: #25 329 -> 272 IVPs, its tip bit for bit the same; #341
+/// 149 -> 153 (a stalled retry there was needed again); no other of the
+/// 1,000 designs changed. Skipping every step at or past the smallest
+/// `lambda` of a failed retry (not only the same one, and first attempts
+/// too) gave #25 253 but lost 12 designs (9 not past buckling): a retry
+/// failing at a kink of the path is passed later from a nearer point.
+fn retried_before(failed: &[f64], lt: f64) -> bool {
+    failed.contains(&lt)
 }
 
 /// Options of one homotopy step: intermediate steps are predictors,
