@@ -142,7 +142,7 @@ pub const RESUME_MAX: f64 = 1.0;
 pub const MIDDLE_GRID_DIVISORS: [usize; 2] = [4, 2];
 
 /// Tolerance (scaled residual) of the coarse path's last corrector, at
-/// `lambda = 1`: below the pre-solve's first-round tolerance (1e-7), whose
+/// `lambda = 1`: below the pre-solve's first-round tolerance (1e-5), whose
 /// coarse run then takes no step.
 pub const PATH_END_TOL: f64 = 1e-8;
 
