@@ -269,11 +269,9 @@ pub(crate) fn follow_from(
     work.stall_window = HOMOTOPY_STALL_WINDOW;
     let mut last_err: Option<Error> = None;
     let mut best = f64::INFINITY; // of the failed Newton runs (for the budget error)
-                                  // whether the last step failed (its retry backtracks in full)
-    let mut retry = false;
+    let mut retry = false; // the last step failed: its retry backtracks in full
     let mut reject = PREDICTOR_REJECT; // refused once at a point: the retry runs in full
-                                       // the lambdas short of 1 at which a retry failed (see `retried_before`)
-    let mut failed: Vec<f64> = Vec::new();
+    let mut failed: Vec<f64> = Vec::new(); // lambdas < 1 of failed retries (`retried_before`)
     while at_lam.lam < 1.0 {
         cancel::check()?;
         let lam = at_lam.lam;
@@ -353,6 +351,9 @@ pub(crate) fn follow_from(
 /// `lambda` of a failed retry (not only the same one, and first attempts
 /// too) gave #25 253 but lost 12 designs (9 not past buckling): a retry
 /// failing at a kink of the path is passed later from a nearer point.
+/// The test is exact equality on purpose: a repeat is the same sum of
+/// the same dyadic steps, the same float (a step shortened by a refused
+/// predictor's factor rarely lands on one again, and then the retry runs).
 fn retried_before(failed: &[f64], lt: f64) -> bool {
     failed.contains(&lt)
 }
