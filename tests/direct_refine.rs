@@ -2,7 +2,9 @@
 //! without full-grid Jacobians (`shooting::DIRECT_REFINE_WITHIN`): its
 //! line search failed with the coarse grid's Jacobian because the residual
 //! is nonlinear there, which the full grid's tangents (several IVP times
-//! each) do not cure.
+//! each) do not cure; and a direct run whose first coarse Newton run fails
+//! from the cold guess hands over without retracing it on the full grid
+//! (`presolve::handed_over`).
 use tcarod::problems::{random_design, DEFAULT_SEED};
 use tcarod::shooting::{solve, SolveOptions};
 
@@ -63,4 +65,87 @@ fn a_direct_run_far_from_a_root_hands_over_without_full_grid_jacobians() {
             sol.evaluations
         );
     }
+}
+
+/// Benchmark design #319 (not past buckling): its direct run's first
+/// coarse Newton run, from the cold guess, stalls (`max |r|` 3.8 after
+/// three damped steps), and the coarse grid resolves the design there
+/// (full-grid residual at the guess within 1.1 % of the coarse one).
+/// Main c233d58 then ran full-grid Newton from the guess, which retraced
+/// the coarse iterates with the coarse, the full and the slack-side
+/// Jacobians and failed alike (29 IVPs, 53 % of its solve time), before
+/// continuation; now the run hands over at once (`presolve::handed_over`).
+/// 130 IVPs measured, 159 on main; the bound 140 fails if the retrace
+/// comes back. Its tip on main c233d58 (`TCAROD_TIPS=1
+/// benches/designs.rs`) \[m\]: the same continuation, so bit for bit the
+/// same (measured).
+const HANDED_OVER: (usize, usize, [f64; 3]) = (
+    319,
+    140,
+    [
+        -4.406_670_617_270_772e-3,
+        1.022_343_581_405_42e-2,
+        1.027_377_662_433_26e-2,
+    ],
+);
+
+#[test]
+fn a_failed_cold_coarse_run_hands_over_without_a_full_grid_retrace() {
+    let opts = SolveOptions::default();
+    let (i, max_ivps, tip) = HANDED_OVER;
+    let d = random_design(DEFAULT_SEED, i);
+    let sol = solve(&d.robot, &d.inputs, &opts, None)
+        .unwrap_or_else(|e| panic!("#{i} {}: {e}", d.summary()));
+    assert!(sol.residual <= opts.tol.max(sol.floor), "#{i}");
+    assert!(!sol.continuation_steps.is_empty(), "#{i}");
+    let p = sol.tip_position();
+    for (k, (a, b)) in [p.x, p.y, p.z].iter().zip(tip).enumerate() {
+        assert!(
+            (a - b).abs() <= TIP_TOL_M,
+            "#{i} tip[{k}] {a:e} against {b:e}"
+        );
+    }
+    assert!(
+        sol.evaluations <= max_ivps,
+        "#{i}: {} IVPs (bound {max_ivps})",
+        sol.evaluations
+    );
+}
+
+/// Benchmark design #411: its cold guess has a tendon exactly at its onset
+/// of tension. The taut side's Newton step fails its line search, and so
+/// did the watchdog's step from its trial point; the watchdog's Jacobian
+/// there (no onset) hid the guess's onset from `System::refine`, so the
+/// coarse run gave up without trying the slack side's derivative, which
+/// converges. Main c233d58 found it only on the full grid, after retracing
+/// the failure twice (30 IVPs); with the hand-over
+/// (`presolve::handed_over`) it would go to continuation. The onset is now
+/// that of the current point's Jacobian: the direct run converges on the
+/// coarse grid's slack side, 20 IVPs measured; bound 24. Tip on main \[m\]:
+/// the same root (measured within 6.5e-14 m).
+#[test]
+fn a_cold_guess_at_a_tendons_onset_takes_the_slack_side_on_the_coarse_grid() {
+    const DESIGN: usize = 411;
+    const MAX_IVPS: usize = 24;
+    const MAIN_TIP_M: [f64; 3] = [
+        -1.633_205_267_178_51e-3,
+        -5.004_709_455_454_196e-3,
+        7.777_262_226_777_917e-3,
+    ];
+    let opts = SolveOptions::default();
+    let d = random_design(DEFAULT_SEED, DESIGN);
+    let sol =
+        solve(&d.robot, &d.inputs, &opts, None).unwrap_or_else(|e| panic!("{}: {e}", d.summary()));
+    assert!(sol.residual <= opts.tol.max(sol.floor));
+    // the direct run converged: no continuation path
+    assert!(
+        sol.continuation_steps.is_empty(),
+        "{:?}",
+        sol.continuation_steps
+    );
+    let p = sol.tip_position();
+    for (k, (a, b)) in [p.x, p.y, p.z].iter().zip(MAIN_TIP_M).enumerate() {
+        assert!((a - b).abs() <= TIP_TOL_M, "tip[{k}] {a:e} against {b:e}");
+    }
+    assert!(sol.evaluations <= MAX_IVPS, "{} IVPs", sol.evaluations);
 }

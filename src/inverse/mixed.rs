@@ -189,7 +189,7 @@ impl System for Mixed<'_> {
         Ok((t.residual, t.jacobian))
     }
 
-    fn refine(&mut self) -> bool {
+    fn refine(&mut self, _x: &[f64]) -> bool {
         self.jacobian_steps.take().is_some()
     }
 

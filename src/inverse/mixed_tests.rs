@@ -30,7 +30,7 @@ fn augmented_jacobian_matches_central_differences() {
     ];
     for (extra, e) in extras {
         let mut sys = Mixed::new(&robot, &groups, &block, extra, 100);
-        assert!(sys.refine()); // the full grid's Jacobian
+        assert!(sys.refine(&start.unknowns)); // the full grid's Jacobian
         let mut x = start.unknowns.clone();
         x.push(e);
         x[3] *= 1.1; // off the root: all terms of the tangent count

@@ -69,8 +69,8 @@ impl System for Corrector<'_> {
     fn limit_step(&self, x: &[f64], dx: &[f64], r: &[f64], jac: &DMatrix<f64>) -> Option<Vec<f64>> {
         self.sys.limit_step(x, dx, r, jac)
     }
-    fn refine(&mut self) -> bool {
-        self.sys.refine()
+    fn refine(&mut self, x: &[f64]) -> bool {
+        self.sys.refine(x)
     }
 }
 

@@ -71,13 +71,13 @@ impl System for GridJacobian<'_> {
             None => self.sys.limit_step(x, dx, r, jac),
         }
     }
-    fn refine(&mut self) -> bool {
+    fn refine(&mut self, x: &[f64]) -> bool {
         if self.jac_grid.take().is_some() {
             // to the full grid's own Jacobian (not its coarse one)
-            self.sys.refine();
+            self.sys.refine(x);
             return true;
         }
-        self.sys.refine()
+        self.sys.refine(x)
     }
 }
 

@@ -95,9 +95,10 @@ pub trait System {
     ) -> Option<Vec<f64>> {
         None
     }
-    /// Switch to a more accurate Jacobian, if the system has one; `true` if
-    /// it did (then a failed line search is retried with it).
-    fn refine(&mut self) -> bool {
+    /// Switch to a more accurate Jacobian at the current point `x`, if the
+    /// system has one; `true` if it did (then a failed line search is
+    /// retried with it).
+    fn refine(&mut self, _x: &[f64]) -> bool {
         false
     }
 }

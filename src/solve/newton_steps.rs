@@ -54,7 +54,7 @@ impl<S: System> Run<'_, S> {
     fn note_full_step(&mut self, before: f64, after: f64) {
         if after > SLOW_CONTRACTION * before {
             self.slow += 1;
-            if self.slow >= SLOW_STEPS_BEFORE_REFINE && self.sys.refine() {
+            if self.slow >= SLOW_STEPS_BEFORE_REFINE && self.sys.refine(&self.x) {
                 self.jacobian = None;
                 self.slow = 0;
             }
@@ -148,7 +148,7 @@ impl<S: System> Run<'_, S> {
             // touch, and a quadratic model there shrinks the step too far
             t *= 0.5;
             if t < self.opts.min_step || self.over_budget() {
-                if t < self.opts.min_step && self.sys.refine() {
+                if t < self.opts.min_step && self.sys.refine(&self.x) {
                     self.jacobian = None;
                     return Ok(Some(Step::Redo));
                 }

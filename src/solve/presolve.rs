@@ -34,7 +34,10 @@
 //! 3. A failure anywhere (coarse Newton, a full residual that does not
 //!    contract tenfold, [`MAX_ROUNDS`] used) falls back on full-grid
 //!    Newton (`newton_shooting`) from the best point reached; its work is
-//!    counted on top.
+//!    counted on top. Except in a cold solve's direct run
+//!    (`Work::cold_direct`): there a failed first coarse run, from the
+//!    guess, ends the run (`handed_over`), and the solve goes on by
+//!    continuation.
 //!
 //! Every IVP counts as one evaluation, coarse ones included
 //! (`Solution.evaluations`); the designs bench's IVP-equivalents are CPU
@@ -50,6 +53,7 @@ use super::newton::{
 use super::options::SolveOptions;
 pub use super::residual::rescale_tension_columns;
 use super::residual::{Loads, Shot};
+use super::shooting::handed_over;
 use super::system::{newton_shooting, FinalIvp, Keep, Shooting, Work, COARSE_JACOBIAN_MIN_STEPS};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
@@ -149,8 +153,8 @@ impl System for Corrected<'_> {
     fn evaluations(&self) -> usize {
         self.sys.evaluations
     }
-    fn refine(&mut self) -> bool {
-        self.sys.refine()
+    fn refine(&mut self, x: &[f64]) -> bool {
+        self.sys.refine(x)
     }
     fn limit_step(&self, x: &[f64], dx: &[f64], r: &[f64], jac: &DMatrix<f64>) -> Option<Vec<f64>> {
         self.sys.limit_step(x, dx, r, jac) // the force laws do not depend on the grid
@@ -392,6 +396,10 @@ impl<'a> Rounds<'a> {
             self.full.set_history(older, newer);
         }
         work.evaluations += evals;
+        let out = match out {
+            Err(e) if cold_first && work.cold_direct => return Err(handed_over(e, work)),
+            out => out,
+        };
         let Some(nr) = unless_interrupted(out)? else {
             return Ok(ControlFlow::Break(None));
         };

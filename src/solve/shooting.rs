@@ -170,10 +170,10 @@ pub(crate) fn solve_direct(
             &mut work,
         ),
         None => {
-            work.refine_within = DIRECT_REFINE_WITHIN;
+            (work.refine_within, work.cold_direct) = (DIRECT_REFINE_WITHIN, true);
             let out =
                 presolved_shooting(robot, inputs, loads, &cold_opts, &x0, None, keep, &mut work);
-            work.refine_within = f64::INFINITY;
+            (work.refine_within, work.cold_direct) = (f64::INFINITY, false);
             out
         }
     };
@@ -274,6 +274,51 @@ pub const DIRECT_MIN_STEP: f64 = 0.1;
 /// 249 -> 235, #888 45 -> 126 the only one worse by more than 0); `10`
 /// 35,914, 159.
 pub const DIRECT_REFINE_WITHIN: f64 = 5.0;
+
+/// The error with which a cold direct run ends when its first coarse
+/// Newton run, from the guess, failed with `e` (`work` holds its IVPs; a
+/// Newton failure is given the solve's totals): the direct run hands over
+/// to continuation without full-grid Newton from the guess. Where the
+/// coarse grid resolves the design, that Newton run retraces the coarse
+/// iterates and fails alike, with each of its Jacobians (coarse, full,
+/// slack side). Measured on the 1,000 benchmark designs
+/// (`benches/designs.rs`): of the 167 direct runs whose first coarse run
+/// failed its line search or stalled, 159 failed on the full grid too,
+/// after 15 IVPs (median), a quarter to a half of the worst designs'
+/// solve time (#319 53 %, #267 36 %, #25 25 %); the other 8 (#46, #52,
+/// #57, #122, #158, #199, #446, #448) converge through continuation to
+/// the same equilibrium (tips within 8.7e-13 m), at up to 45
+/// IVP-equivalents (#158, was 26). The one direct run whose first coarse
+/// IVP failed (#112: anchor loads unconverged on 7.3 mm steps, its
+/// tendon's bending length 2.3 mm) failed on the full grid too, after 13
+/// IVPs (112 -> 99). Total IVPs 34,579 -> 32,415; IVP-equivalents p90 /
+/// p99 / max 38 / 64 / 108-124 -> 24.5 / 51 / 84-95 (#25, past
+/// buckling). Handing over only from a coarse best `max |r|` of at least
+/// 0.1, 0.3 or 1, or only where the full grid's residual at the guess
+/// is within 10 % of the coarse one (an IVP more), kept more of the
+/// retracing runs (p90 28-31).
+pub(crate) fn handed_over(e: Error, work: &mut Work) -> Error {
+    match e {
+        Error::NotConverged {
+            iterations,
+            residual,
+            stop,
+            reason,
+            ..
+        } => {
+            work.iterations += iterations;
+            Error::NotConverged {
+                solver: "forward shooting",
+                iterations: work.iterations,
+                evaluations: work.evaluations,
+                residual,
+                stop,
+                reason: format!("{reason} (coarse grid, from the cold guess)"),
+            }
+        }
+        e => e,
+    }
+}
 
 /// The error of a solve whose direct Newton run failed with `first` and
 /// whose continuation failed with `cont`: the budget's if the continuation

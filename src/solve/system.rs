@@ -98,8 +98,9 @@ pub struct Shooting<'a> {
     last: Option<(Vec<f64>, FinalIvp)>,
     /// `max |r|` of the last two residual evaluations (older first).
     norms: [f64; 2],
-    /// Whether the last Jacobian had an actuator at its onset of tension.
-    at_onset: bool,
+    /// The unknowns of the last two Jacobians (newest last) and whether
+    /// each had an actuator at its onset of tension (see `refine`).
+    onsets: Vec<(Vec<f64>, bool)>,
     /// Smallest `max |r|` of its residual evaluations.
     best_norm: f64,
     /// The full grid's Jacobian is taken ([`System::refine`]) only once
@@ -142,7 +143,7 @@ impl<'a> Shooting<'a> {
             norms: [f64::INFINITY; 2],
             best_norm: f64::INFINITY,
             refine_within: f64::INFINITY,
-            at_onset: false,
+            onsets: Vec::with_capacity(2),
             slack_onset: false,
             slack_tangents: (Vec::new(), Vec::new()),
         }
@@ -292,7 +293,10 @@ impl System for Shooting<'_> {
             }
             out => out?,
         };
-        self.at_onset = onset;
+        if self.onsets.len() == 2 {
+            self.onsets.remove(0);
+        }
+        self.onsets.push((x.to_vec(), onset));
         self.slack_tangents = (x.to_vec(), slack);
         Ok((r, j))
     }
@@ -311,13 +315,23 @@ impl System for Shooting<'_> {
     }
     /// First the full grid's Jacobian; then, if an actuator was at its
     /// onset of tension, the slack side's derivative there (see
-    /// [`crate::solve::residual::tension_slope`]).
-    fn refine(&mut self) -> bool {
+    /// [`crate::solve::residual::tension_slope`]). The onset is that of
+    /// the Jacobian at `x`, if one of the last two was taken there, else
+    /// of the last one: a watchdog's Jacobian at its trial point must not
+    /// hide the current point's onset (measured: design #411 of the
+    /// benchmark, whose cold guess has a tendon at its onset, failed its
+    /// coarse run on the taut side and converged on the full grid only
+    /// after two more failed line searches, on the slack side).
+    fn refine(&mut self, x: &[f64]) -> bool {
         if self.jacobian_steps.is_some() && self.best_norm <= self.refine_within {
             self.jacobian_steps = None;
             return true;
         }
-        if self.at_onset && !self.slack_onset {
+        let at_onset = match self.onsets.iter().rev().find(|(p, _)| p == x) {
+            Some((_, onset)) => *onset,
+            None => self.onsets.last().is_some_and(|(_, onset)| *onset),
+        };
+        if at_onset && !self.slack_onset {
             self.slack_onset = true;
             return true;
         }
@@ -370,6 +384,10 @@ pub(crate) struct Work {
     /// The next Newton runs take the full grid's Jacobian after a failed
     /// line search only once their `max |r|` has come to this.
     pub refine_within: f64,
+    /// The next pre-solve is a cold solve's direct run: if its first coarse
+    /// Newton run fails, the run fails with it (no full-grid Newton from
+    /// the guess; see [`crate::solve::presolve`]).
+    pub cold_direct: bool,
 }
 
 impl Work {
