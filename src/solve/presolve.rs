@@ -36,8 +36,8 @@
 //!    Newton (`newton_shooting`) from the best point reached; its work is
 //!    counted on top. Except in a cold solve's direct run
 //!    (`Work::cold_direct`): there a failed first coarse run, from the
-//!    guess, ends the run (`handed_over`), and the solve goes on by
-//!    continuation.
+//!    guess, ends the run (`shooting::handed_over`), and the solve goes
+//!    on by continuation.
 //!
 //! Every IVP counts as one evaluation, coarse ones included
 //! (`Solution.evaluations`); the designs bench's IVP-equivalents are CPU

@@ -287,16 +287,17 @@ pub const DIRECT_REFINE_WITHIN: f64 = 5.0;
 /// after 15 IVPs (median), a quarter to a half of the worst designs'
 /// solve time (#319 53 %, #267 36 %, #25 25 %); the other 8 (#46, #52,
 /// #57, #122, #158, #199, #446, #448) converge through continuation to
-/// the same equilibrium (tips within 8.7e-13 m), at up to 45
-/// IVP-equivalents (#158, was 26). The one direct run whose first coarse
-/// IVP failed (#112: anchor loads unconverged on 7.3 mm steps, its
-/// tendon's bending length 2.3 mm) failed on the full grid too, after 13
-/// IVPs (112 -> 99). Total IVPs 34,579 -> 32,415; IVP-equivalents p90 /
-/// p99 / max 38 / 64 / 108-124 -> 24.5 / 51 / 84-95 (#25, past
-/// buckling). Handing over only from a coarse best `max |r|` of at least
-/// 0.1, 0.3 or 1, or only where the full grid's residual at the guess
-/// is within 10 % of the coarse one (an IVP more), kept more of the
-/// retracing runs (p90 28-31).
+/// the same equilibrium (tips within 8.7e-13 m), at up to 46
+/// IVP-equivalents (#158, was 25). The one direct run whose first coarse
+/// run failed in an IVP (#112: anchor loads unconverged on 7.3 mm steps,
+/// its tendon's bending length 2.3 mm) failed on the full grid too, after
+/// 13 IVPs (112 -> 99). Total IVPs 34,579 -> 32,415; IVP-equivalents
+/// (2 runs each, interleaved) p90 38.2-39.1 -> 24.4-25.7, p99 64.7-68.2
+/// -> 49.6-51.3, max 111-128 -> 97-99 (#25, past buckling). Handing over
+/// only from a coarse best `max |r|` of at least 0.1, 0.3 or 1, or only
+/// where the full grid's residual at the guess is within 10 % of the
+/// coarse one (an IVP more), kept more of the retracing runs (p90
+/// 28.1-30.7).
 pub(crate) fn handed_over(e: Error, work: &mut Work) -> Error {
     match e {
         Error::NotConverged {
