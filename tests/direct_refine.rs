@@ -44,27 +44,39 @@ const CASES: [(usize, usize, [f64; 3]); 2] = [
 
 #[test]
 fn a_direct_run_far_from_a_root_hands_over_without_full_grid_jacobians() {
-    let opts = SolveOptions::default();
     for (i, max_ivps, tip) in CASES {
-        let d = random_design(DEFAULT_SEED, i);
-        let sol = solve(&d.robot, &d.inputs, &opts, None)
-            .unwrap_or_else(|e| panic!("#{i} {}: {e}", d.summary()));
-        assert!(sol.residual <= opts.tol.max(sol.floor), "#{i}");
-        // through continuation (its steps recorded), not the direct run
-        assert!(!sol.continuation_steps.is_empty(), "#{i}");
-        let p = sol.tip_position();
-        for (k, (a, b)) in [p.x, p.y, p.z].iter().zip(tip).enumerate() {
-            assert!(
-                (a - b).abs() <= TIP_TOL_M,
-                "#{i} tip[{k}] {a:e} against {b:e}"
-            );
-        }
+        check(i, max_ivps, tip, true);
+    }
+}
+
+/// Solve benchmark design `i` cold with the default options and check
+/// that it converges to tol (or its floor), through continuation or not
+/// (`via_continuation`: its path recorded or empty), to the tip `tip`
+/// \[m\] within [`TIP_TOL_M`], in at most `max_ivps` IVPs.
+fn check(i: usize, max_ivps: usize, tip: [f64; 3], via_continuation: bool) {
+    let opts = SolveOptions::default();
+    let d = random_design(DEFAULT_SEED, i);
+    let sol = solve(&d.robot, &d.inputs, &opts, None)
+        .unwrap_or_else(|e| panic!("#{i} {}: {e}", d.summary()));
+    assert!(sol.residual <= opts.tol.max(sol.floor), "#{i}");
+    assert_eq!(
+        !sol.continuation_steps.is_empty(),
+        via_continuation,
+        "#{i}: path {:?}",
+        sol.continuation_steps
+    );
+    let p = sol.tip_position();
+    for (k, (a, b)) in [p.x, p.y, p.z].iter().zip(tip).enumerate() {
         assert!(
-            sol.evaluations <= max_ivps,
-            "#{i}: {} IVPs (bound {max_ivps})",
-            sol.evaluations
+            (a - b).abs() <= TIP_TOL_M,
+            "#{i} tip[{k}] {a:e} against {b:e}"
         );
     }
+    assert!(
+        sol.evaluations <= max_ivps,
+        "#{i}: {} IVPs (bound {max_ivps})",
+        sol.evaluations
+    );
 }
 
 /// Benchmark design #319 (not past buckling): its direct run's first
@@ -91,25 +103,8 @@ const HANDED_OVER: (usize, usize, [f64; 3]) = (
 
 #[test]
 fn a_failed_cold_coarse_run_hands_over_without_a_full_grid_retrace() {
-    let opts = SolveOptions::default();
     let (i, max_ivps, tip) = HANDED_OVER;
-    let d = random_design(DEFAULT_SEED, i);
-    let sol = solve(&d.robot, &d.inputs, &opts, None)
-        .unwrap_or_else(|e| panic!("#{i} {}: {e}", d.summary()));
-    assert!(sol.residual <= opts.tol.max(sol.floor), "#{i}");
-    assert!(!sol.continuation_steps.is_empty(), "#{i}");
-    let p = sol.tip_position();
-    for (k, (a, b)) in [p.x, p.y, p.z].iter().zip(tip).enumerate() {
-        assert!(
-            (a - b).abs() <= TIP_TOL_M,
-            "#{i} tip[{k}] {a:e} against {b:e}"
-        );
-    }
-    assert!(
-        sol.evaluations <= max_ivps,
-        "#{i}: {} IVPs (bound {max_ivps})",
-        sol.evaluations
-    );
+    check(i, max_ivps, tip, true);
 }
 
 /// Benchmark design #411: its cold guess has a tendon exactly at its onset
@@ -132,20 +127,6 @@ fn a_cold_guess_at_a_tendons_onset_takes_the_slack_side_on_the_coarse_grid() {
         -5.004_709_455_454_196e-3,
         7.777_262_226_777_917e-3,
     ];
-    let opts = SolveOptions::default();
-    let d = random_design(DEFAULT_SEED, DESIGN);
-    let sol =
-        solve(&d.robot, &d.inputs, &opts, None).unwrap_or_else(|e| panic!("{}: {e}", d.summary()));
-    assert!(sol.residual <= opts.tol.max(sol.floor));
-    // the direct run converged: no continuation path
-    assert!(
-        sol.continuation_steps.is_empty(),
-        "{:?}",
-        sol.continuation_steps
-    );
-    let p = sol.tip_position();
-    for (k, (a, b)) in [p.x, p.y, p.z].iter().zip(MAIN_TIP_M).enumerate() {
-        assert!((a - b).abs() <= TIP_TOL_M, "tip[{k}] {a:e} against {b:e}");
-    }
-    assert!(sol.evaluations <= MAX_IVPS, "{} IVPs", sol.evaluations);
+    // the direct run converges: no continuation path
+    check(DESIGN, MAX_IVPS, MAIN_TIP_M, false);
 }
