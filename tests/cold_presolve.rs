@@ -11,7 +11,7 @@ use tcarod::shooting::{solve, Shot, SolveOptions};
 /// Cold solves of the first 100 benchmark designs: 3,452 IVPs in all
 /// (coarse ones included), against 3,543 with the first round to 1e-7
 /// (both measured at stop 34, with the direct run's hand-over after a
-/// failed first coarse run, `presolve::handed_over`; at stop 33, before
+/// failed first coarse run, `shooting::handed_over`; at stop 33, before
 /// it, 3,725 against 3,810); the bound lies between, so going back fails
 /// it. The same 100 designs converge either way, each to tol (or its
 /// rounding floor) on the full grid.

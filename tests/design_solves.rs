@@ -119,7 +119,7 @@ const FOLD_DESIGN: usize = 25;
 /// the margin (16) is about one more failed full-grid corrector (16 IVPs
 /// at this fold). Was 288 (272 measured) while the direct run retraced
 /// its failed coarse Newton run on the full grid (31 IVPs in all;
-/// `presolve::handed_over`), so that route fails it; before that 345 (329
+/// `shooting::handed_over`), so that route fails it; before that 345 (329
 /// measured, a failed retry repeated at the same `lambda`,
 /// `continuation::retried_before`); the last resort's 295 fails it too
 /// (and its shape the verdict).

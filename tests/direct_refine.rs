@@ -4,7 +4,7 @@
 //! is nonlinear there, which the full grid's tangents (several IVP times
 //! each) do not cure; and a direct run whose first coarse Newton run fails
 //! from the cold guess hands over without retracing it on the full grid
-//! (`presolve::handed_over`).
+//! (`shooting::handed_over`).
 use tcarod::problems::{random_design, DEFAULT_SEED};
 use tcarod::shooting::{solve, SolveOptions};
 
@@ -86,7 +86,7 @@ fn check(i: usize, max_ivps: usize, tip: [f64; 3], via_continuation: bool) {
 /// Main c233d58 then ran full-grid Newton from the guess, which retraced
 /// the coarse iterates with the coarse, the full and the slack-side
 /// Jacobians and failed alike (29 IVPs, 53 % of its solve time), before
-/// continuation; now the run hands over at once (`presolve::handed_over`).
+/// continuation; now the run hands over at once (`shooting::handed_over`).
 /// 130 IVPs measured, 159 on main; the bound 140 fails if the retrace
 /// comes back. Its tip on main c233d58 (`TCAROD_TIPS=1
 /// benches/designs.rs`) \[m\]: the same continuation, so bit for bit the
@@ -114,7 +114,7 @@ fn a_failed_cold_coarse_run_hands_over_without_a_full_grid_retrace() {
 /// coarse run gave up without trying the slack side's derivative, which
 /// converges. Main c233d58 found it only on the full grid, after retracing
 /// the failure twice (30 IVPs); with the hand-over
-/// (`presolve::handed_over`) it would go to continuation. The onset is now
+/// (`shooting::handed_over`) it would go to continuation. The onset is now
 /// that of the current point's Jacobian: the direct run converges on the
 /// coarse grid's slack side, 20 IVPs measured; bound 24. Tip on main \[m\]:
 /// the same root (measured within 6.5e-14 m).
