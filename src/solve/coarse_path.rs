@@ -27,18 +27,19 @@
 //! root 4.7-25 from the full grid's, or a coarse path creeping to its
 //! cap) 1,205 -> 570 IVPs together (627 on the full grid's path).
 //! If the coarse path stalls (its step quartered below the smallest: a
-//! fold of the path), its point is corrected on the full grid; if the
-//! coarse grid resolves it there (to [`WATCH_TOL`]) the fold is the full
-//! grid's too, and the body snaps through to another branch
-//! (`track::snap`, the path on from there on the coarse grid) or, if that
-//! fails, the solve's continuation has failed at once; else the
-//! path goes on on the full grid from that point (`on_full_grid`), and if
-//! it stalls there too, the continuation has failed. Either way without
-//! a full-grid path from `lambda = 0`, which meets the same fold
-//! (benchmark design #25, past buckling: the coarse path stalls at
-//! `lambda = 0.553`, the full grid's own path at 0.665; 506 -> 297 ->
-//! 282 IVPs; 295 with the semismooth onset step, which changes its
-//! direct run's and coarse path's iterates).
+//! fold of the path), one full-grid IVP at its point checks the grid; if
+//! the coarse grid resolves the point (to [`WATCH_TOL`]) the fold is the
+//! full grid's too, and the body snaps through to another branch
+//! (`track::snap`, on the coarse grid, and the path on from there) or, if
+//! that fails, the solve's continuation has failed at once; else the
+//! point is corrected on the full grid and the path goes on there
+//! (`on_full_grid`), and if it stalls there too, the continuation has
+//! failed. Either way without a full-grid path from `lambda = 0`, which
+//! meets the same fold (benchmark design #25, past buckling: the coarse
+//! path stalls at `lambda = 0.553`, the full grid's own path at 0.665;
+//! 506 -> 297 -> 282 IVPs; 295 with the semismooth onset step, which
+//! changes its direct run's and coarse path's iterates; the snap on the
+//! coarse grid, 16 -> 4 IVP times).
 //! If the coarse path reaches its IVP cap, or the finish does not
 //! converge, the caller runs the path on the full grid from `lambda = 0`
 //! (its work counted on top), so that no design converging on the full
@@ -394,20 +395,25 @@ fn middle_path(
 ///
 /// At a fold (`fold`: the coarse path's stall error, its steps quartered
 /// below `MIN_STEP`: a fold of the path, or a kink the coarse grid does
-/// not resolve) the point is corrected on the full grid too. If the full
-/// grid's residual at the coarse point is within [`WATCH_TOL`] (the check
+/// not resolve) one full-grid IVP at the coarse point first
+/// ([`resolves_fold`]). If its residual is within [`WATCH_TOL`] (the check
 /// rule: the coarse grid resolves the path there) the fold is the full
-/// grid's: the body snaps through to the branch past it ([`snap`], then
-/// [`snapped`]), and if that fails `fold` is returned (the caller's last
-/// resort follows); else the path goes on on the full grid, and if it
-/// stalls too, its error is returned. `None` if the path stalled at
-/// `lambda = 0` or the correction failed. Measured on the 1,000
-/// benchmark designs: only #25 (past buckling) stalls, at
-/// `lambda = 0.5531` after 208 coarse IVPs; the correction takes 2 IVPs
-/// from a full-grid residual of 2.4e-4 (1/65 of [`WATCH_TOL`]). Its last
-/// resort (295 IVPs in all) ended on the upright branch, unstable; the
-/// snap ends on a stable one (329 IVPs); the full grid's path on from the
-/// fold stalled after 16 more IVPs, and from `lambda = 0` at 0.665.
+/// grid's: the body snaps through to the branch past it, on the coarse
+/// grid ([`snap`] from the coarse point and Jacobian, then [`snapped`]),
+/// and if that fails `fold` is returned (the caller's last resort
+/// follows). Else the point is corrected on the full grid and the path
+/// goes on there; if it stalls too, its error is returned. `None` if the
+/// path stalled at `lambda = 0` or the correction failed. Measured on the
+/// 1,000 benchmark designs: only #25 (past buckling) stalls, at
+/// `lambda = 0.5531` after 135 coarse IVPs (167 before
+/// [`super::continuation::RETRY_MIN_STEP`]), with a full-grid residual of
+/// 1.4e-4 there (1/100 of [`WATCH_TOL`]). Its last resort (295 IVPs in
+/// all) ended on the upright branch, unstable; the snap ends on a stable
+/// one; the full grid's path on from the fold stalled after 16 more IVPs,
+/// and from `lambda = 0` at 0.665. The snap on the full grid (from the
+/// point corrected there, 2 IVPs) took 12 full-grid IVPs (4 of them
+/// tangents), 16 IVP times of #25's 97-99; on the coarse grid 13 coarse
+/// IVPs, 4 IVP times, to the same equilibrium (tip within 1e-15 m).
 fn on_full_grid(
     robot: &Robot,
     inputs: &[f64],
@@ -421,19 +427,24 @@ fn on_full_grid(
     if at_fold && track.lam <= 0.0 {
         return Ok(None);
     }
-    let Some(r0) = regrid(robot, inputs, loads, opts, from, &mut track, work)? else {
-        return Ok(None);
-    };
-    if let Some(e) = fold.filter(|_| r0 <= WATCH_TOL) {
-        // the coarse grid resolves the path at its fold: the full grid's
-        // fold; the body snaps through to another branch, or the caller's
-        // last resort follows
-        if let Some(t) = snap(robot, inputs, loads, opts, from, &track, work)? {
-            if let Some(s) = snapped(robot, inputs, loads, opts, from, t, work)? {
-                return Ok(Some(s));
+    if let Some(e) = fold {
+        if resolves_fold(robot, inputs, loads, opts, from, &track, work)? {
+            // the full grid's fold: the body snaps through to another
+            // branch, or the caller's last resort follows
+            let copts = SolveOptions {
+                steps: path_grid(opts).unwrap_or(opts.steps),
+                ..*opts
+            };
+            if let Some(t) = snap(robot, inputs, loads, &copts, from, &track, work)? {
+                if let Some(s) = snapped(robot, inputs, loads, opts, from, t, work)? {
+                    return Ok(Some(s));
+                }
             }
+            return Err(e);
         }
-        return Err(e);
+    }
+    if regrid(robot, inputs, loads, opts, from, &mut track, work)?.is_none() {
+        return Ok(None);
     }
     let out = follow_from(robot, inputs, loads, opts, from, true, &mut track, work);
     // a path stalled at a fold on both grids is the solve's continuation failure
@@ -448,6 +459,33 @@ fn on_full_grid(
     let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
     s.continuation_steps = path;
     Ok(Some(s))
+}
+
+/// Whether the full grid `opts.steps` resolves the coarse path at its
+/// fold (`track`'s point): its `max |r|` (scaled) there, one IVP, within
+/// [`WATCH_TOL`] (the rule of the path's check). A failed IVP is no
+/// (the path goes on on the full grid, whose correction fails alike).
+fn resolves_fold(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    from: &[f64],
+    track: &Track,
+    work: &mut Work,
+) -> Result<bool> {
+    let (r, inp, l) = at(robot, from, inputs, loads, true, track.lam);
+    let watch = Watch {
+        lam: track.lam,
+        steps: opts.steps,
+        tol: WATCH_TOL,
+        scaled: false,
+    };
+    match watch.check(&r, &inp, &l, &track.x, work) {
+        Ok(()) => Ok(true),
+        Err(e) if ends_solve(&e) => Err(e),
+        Err(_) => Ok(false),
+    }
 }
 
 /// Corrects `track`'s point on the full grid `opts.steps` (to the
@@ -465,7 +503,7 @@ fn regrid(
     work: &mut Work,
 ) -> Result<Option<f64>> {
     let (r, inp, l) = at(robot, from, inputs, loads, true, track.lam);
-    let sopts = step_options(opts, false, true);
+    let sopts = step_options(opts, false, 0.0);
     let (x, jac) = (&track.x, track.jac.as_ref());
     let (out, r0) = correct(&r, &inp, &l, &sopts, x, jac, false, f64::INFINITY, work);
     let Some((nr, last)) = unless_final(out)? else {

@@ -68,10 +68,8 @@ pub const PREDICTOR_POINTS: usize = 3;
 /// predictor from which the full Newton step fails the Armijo test lies
 /// outside the corrector's reach, and backtracking from there cost 10-84
 /// IVPs per failed step (measured: #126, #273, #385 of the benchmark);
-/// the step is quartered at once. A retry after a failure backtracks in
-/// full (down to the solve's `min_step`): where the path has a kink (a
-/// tendon going taut or slack, coils touching) small steps need damping.
-/// Measured on the 1,000 designs with the quadratic predictor
+/// the step is quartered at once. A retry after a failure backtracks
+/// further, to [`RETRY_MIN_STEP`]. Measured on the 1,000 designs with the quadratic predictor
 /// ([`PREDICTOR_POINTS`]), IVPs per solve p90 / p99 / max: full
 /// backtracking everywhere 97 / 301 / 643; 0.6 on every attempt 88 / 197
 /// / 474 but lost #153 (not past buckling) and #267, #381; 0.6 on first
@@ -79,6 +77,25 @@ pub const PREDICTOR_POINTS: usize = 3;
 /// step too (this) 90 / 212 / 485; each of the last two with the same
 /// 999 designs converged. 0.3 (one halving): 91 / 235 / 581.
 pub const CORRECTOR_MIN_STEP: f64 = 0.6;
+/// Smallest line-search step of a homotopy corrector's retry, after a
+/// failed attempt at a longer step (see `step_options`): 0.3 allows one
+/// halving. Where the path has a kink (a tendon going taut or slack, coils
+/// touching) a retry's full step may overshoot it. Backtracking further
+/// (it was, down to the solve's `min_step`, before the watchdog and the
+/// limited step of `newton_steps` handled kinks) now mostly creeps where
+/// no point is within reach: benchmark design #25 (past buckling, fold at
+/// `lambda = 0.5531` on the coarse grid) spent 69 of its coarse path's 167
+/// IVPs (20 IVP times) in three retries that failed after 20-25 IVPs
+/// each, accepting steps at `t` = 1/16 to 1/128. Measured on the 1,000
+/// benchmark designs (total IVPs; designs changed; each with the same 999
+/// converged and 166 via continuation, tips within 1.5e-14 m): the
+/// default `min_step` (1e-6) 32,415; `0.01` 32,370 (4); `0.06` 32,330
+/// (9); `0.24` 32,284 (14); `0.3` 32,219 (22: 21 down, #25 258 -> 226,
+/// and #740 116 -> 120); `0.6` (no backtracking, as a first attempt)
+/// 32,170 (27: 3 up, #342 and #560 by 8). IVP-equivalents of #25 (two runs
+/// of 9 repeats, interleaved): 80-87 -> 71 at `0.3` and at `0.6`; the
+/// other designs' maxima within the runs' noise.
+pub const RETRY_MIN_STEP: f64 = 0.3;
 /// Smallest homotopy step.
 pub const MIN_STEP: f64 = 1e-4;
 /// Largest predictor residual `max |r(x0)|` (scaled) a corrector is run
@@ -269,7 +286,7 @@ pub(crate) fn follow_from(
     work.stall_window = HOMOTOPY_STALL_WINDOW;
     let mut last_err: Option<Error> = None;
     let mut best = f64::INFINITY; // of the failed Newton runs (for the budget error)
-    let mut retry = false; // the last step failed: its retry backtracks in full
+    let mut retry = false; // the last step failed: its retry backtracks further
     let mut reject = PREDICTOR_REJECT; // refused once at a point: the retry runs in full
     let mut failed: Vec<f64> = Vec::new(); // lambdas < 1 of failed retries (`retried_before`)
     while at_lam.lam < 1.0 {
@@ -288,7 +305,12 @@ pub(crate) fn follow_from(
         }
         let (r, inp, l) = at(robot, from, inputs, loads, cold, lt);
         let x0 = at_lam.predictor(&r, &inp, lt);
-        let step_opts = step_options(opts, lt >= 1.0, retry);
+        let least = if retry {
+            RETRY_MIN_STEP
+        } else {
+            CORRECTOR_MIN_STEP
+        };
+        let step_opts = step_options(opts, lt >= 1.0, least);
         let (jac, last) = (at_lam.jac.as_ref(), lt >= 1.0);
         let (out, first) = correct(&r, &inp, &l, &step_opts, &x0, jac, last, reject, work);
         if let Some(r0) = first.filter(|&r0| r0 > reject) {
@@ -335,7 +357,7 @@ pub(crate) fn follow_from(
     Err(stall_error(last_err, work, at_lam.lam))
 }
 
-/// Whether a retry (full backtracking) to `lt` failed before on this path
+/// Whether a retry (backtracking further) to `lt` failed before on this path
 /// (`failed`: the `lambda` of each failed retry short of 1): a retry is
 /// then not run again (the step is quartered as after its failure). Steps
 /// halve and double by powers of two, so a path quartering its way to a
@@ -366,15 +388,12 @@ fn retried_before(failed: &[f64], lt: f64) -> bool {
 /// finishing it. Measured on the 1,000 benchmark designs (IVPs per solve,
 /// same converged set): the full limit gave p99 1,434 and max 2,278, half
 /// of it p99 1,043 and max 1,744; 12 iterations lost #126 and #861.
-/// The first attempt at a step (`retry` false) backtracks only down to
-/// [`CORRECTOR_MIN_STEP`]; a retry after a failed step backtracks as the
-/// options say.
-pub(crate) fn step_options(opts: &SolveOptions, last: bool, retry: bool) -> SolveOptions {
-    let min_step = if retry {
-        opts.min_step
-    } else {
-        opts.min_step.max(CORRECTOR_MIN_STEP)
-    };
+/// The line search backtracks down to `least_step` (or the options'
+/// `min_step`, if larger): [`CORRECTOR_MIN_STEP`] on a step's first
+/// attempt, [`RETRY_MIN_STEP`] on a retry, `0` (in full) where a point is
+/// corrected in place (a grid's change, a fold's snap-through).
+pub(crate) fn step_options(opts: &SolveOptions, last: bool, least_step: f64) -> SolveOptions {
+    let min_step = opts.min_step.max(least_step);
     if last {
         SolveOptions { min_step, ..*opts }
     } else {

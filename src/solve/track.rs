@@ -195,6 +195,8 @@ fn tensions_at(robot: &Robot, inputs: &[f64], x: &[f64], len: f64) -> Result<Vec
 /// Traced on benchmark design #25 (stop 31, full grid, fold
 /// at `lambda = 0.55312`): from `d lambda = 1e-3`, `|t| = 0.2` reaches the
 /// other branch (0.89 from the fold's point); from `1e-2`, `|t| = 0.4`.
+/// On the coarse grid (where the snap runs now, see
+/// `coarse_path::on_full_grid`) the first step reaches it too.
 const SNAP_STEPS: [(f64, f64); 4] = [(1e-3, 0.2), (1e-3, -0.2), (1e-2, 0.4), (1e-2, -0.4)];
 
 /// The first step of the path from the snap's point, `1/64` (on #25 a
@@ -236,7 +238,7 @@ pub(crate) fn snap(
         return Ok(None);
     };
     let k = svd.singular_values.imin();
-    let sopts = step_options(opts, false, true);
+    let sopts = step_options(opts, false, 0.0);
     let sign = ahead(track, v_t.row(k).iter());
     for (dl, t) in SNAP_STEPS.map(|(dl, t)| (dl, sign * t)) {
         let lt = (track.lam + dl).min(1.0);
@@ -276,8 +278,9 @@ pub(crate) fn snap(
 /// path's last move (`track`'s point minus the one before it; `1` if there
 /// is none): a body loaded past a fold snaps on in the direction it was
 /// moving. On benchmark design #25 the corrector from `-0.2 v` (that
-/// sign) reaches the branch past the fold in 12 IVPs; the one from
-/// `+0.2 v`, tried first before, failed after 28 (357 -> 329 IVPs).
+/// sign) reaches the branch past the fold in 12 IVPs (full grid; 13 on
+/// the coarse grid); the one from `+0.2 v`, tried first before, failed
+/// after 28 (357 -> 329 IVPs).
 fn ahead<'a>(track: &Track, v: impl Iterator<Item = &'a f64>) -> f64 {
     let Some((_, p)) = track.prev.last() else {
         return 1.0;
@@ -290,7 +293,7 @@ fn ahead<'a>(track: &Track, v: impl Iterator<Item = &'a f64>) -> f64 {
 }
 
 /// The path from the point past a fold's snap-through ([`snap`], on the
-/// full grid) to `lambda = 1` on the coarse grid (capped as the coarse
+/// coarse grid) to `lambda = 1` on the coarse grid (capped as the coarse
 /// path is), finished on the full grid (see `coarse_path::finish`); `None`
 /// if either fails (the fold's error is returned and the solve's last
 /// resort follows).
