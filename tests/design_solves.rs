@@ -109,7 +109,7 @@ const CUT_DIRECT_DESIGNS: [(usize, usize); 2] = [(385, 300), (273, 250)];
 /// grid from where it stalled; 282 once a fold the coarse grid resolves
 /// was not followed on the full grid; 295 with the semismooth step across
 /// a tendon's onset. Since stop 31 the body snaps through at the fold
-/// (`solve::track::snap`) to the branch that hangs bent (its tip 0.187 m
+/// (`solve::fold::snap`) to the branch that hangs bent (its tip 0.187 m
 /// from the upright one's), stable at `lambda = 1` (margin +0.62).
 const FOLD_DESIGN: usize = 25;
 

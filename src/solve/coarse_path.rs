@@ -23,17 +23,17 @@
 //! [`RESUME_MAX`]): first on the middle grids of
 //! [`MIDDLE_GRID_DIVISORS`], each checked in the same way and finished on
 //! the full grid, and only if they fail on the full grid
-//! (`on_full_grid`): benchmark designs #112, #940, #861, #894, #54 (coarse
+//! (`fold::on_full_grid`): benchmark designs #112, #940, #861, #894, #54 (coarse
 //! root 4.7-25 from the full grid's, or a coarse path creeping to its
 //! cap) 1,205 -> 570 IVPs together (627 on the full grid's path).
 //! If the coarse path stalls (its step quartered below the smallest: a
 //! fold of the path), one full-grid IVP at its point checks the grid; if
 //! the coarse grid resolves the point (to [`WATCH_TOL`]) the fold is the
 //! full grid's too, and the body snaps through to another branch
-//! (`track::snap`, on the coarse grid, and the path on from there) or, if
+//! (`fold::snap`, on the coarse grid, and the path on from there) or, if
 //! that fails, the solve's continuation has failed at once; else the
 //! point is corrected on the full grid and the path goes on there
-//! (`on_full_grid`), and if it stalls there too, the continuation has
+//! (`fold::on_full_grid`), and if it stalls there too, the continuation has
 //! failed. Either way without a full-grid path from `lambda = 0`, which
 //! meets the same fold (benchmark design #25, past buckling: the coarse
 //! path stalls at `lambda = 0.553`, the full grid's own path at 0.665;
@@ -49,17 +49,14 @@
 //! iterations cost the same on any grid): on design #267 a coarse path's
 //! 202 IVPs cost about 90 full-grid IVP times.
 
-use super::continuation::{
-    at, follow, follow_from, start, step_options, PathEnd, Track, Watch, CORRECTOR_MIN_STEP,
-};
-use super::corrector::correct;
+use super::continuation::{follow, follow_from, start, PathEnd, Track, Watch, CORRECTOR_MIN_STEP};
+use super::fold::{on_full_grid, regrid};
 use super::hop_finish::finish_on_grid;
 use super::options::SolveOptions;
 use super::presolve::presolved_shooting;
 use super::residual::Loads;
 use super::shooting::{is_budget_error, is_input_error, Solution};
 use super::system::{newton_shooting, solution_from, Keep, Work, COARSE_JACOBIAN_MIN_STEPS};
-use super::track::{snap, snapped};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 
@@ -109,7 +106,7 @@ pub const WATCH_LAMBDA: f64 = 0.125;
 pub const WATCH_TOL: f64 = WATCH_LAMBDA * WATCH_LAMBDA;
 
 /// Largest check residual from which a coarse path stopped by its check
-/// resumes on the full grid at the checked point (`on_full_grid`); beyond, the
+/// resumes on the full grid at the checked point (`fold::on_full_grid`); beyond, the
 /// full grid's path runs from `lambda = 0`. Within one unit a point is in
 /// a corrector's reach (measured: from 0.38 and 0.72 in 5 and 9 IVPs, #107
 /// and #560); from 7.3 it is not (#112: failed after 37 IVPs). Measured
@@ -162,7 +159,7 @@ pub(crate) fn ends_solve(e: &Error) -> bool {
 
 /// `Ok(Some(v))`, `Ok(None)` for an error the caller falls back from, or
 /// the error if it ends the solve.
-fn unless_final<T>(r: Result<T>) -> Result<Option<T>> {
+pub(super) fn unless_final<T>(r: Result<T>) -> Result<Option<T>> {
     match r {
         Ok(v) => Ok(Some(v)),
         Err(e) if ends_solve(&e) => Err(e),
@@ -210,7 +207,7 @@ pub(crate) fn coarse_path(
 /// [`PATH_END_TOL`]) within the coarse path's own IVP cap
 /// ([`PATH_MAX_IVPS`]) inside the solve's budget; `None` without a coarse
 /// grid. Shared by the path from `lambda = 0` and the one past a fold's
-/// snap-through (`track::snapped`).
+/// snap-through (`fold::snapped`).
 pub(super) fn follow_coarse(
     robot: &Robot,
     inputs: &[f64],
@@ -297,7 +294,7 @@ enum Middle {
 /// turn, from the last checked point if it is within a corrector's reach
 /// ([`RESUME_MAX`]), else from `lambda = 0`, until one passes its check and
 /// is finished on the full grid. If none is, what the coarse path did
-/// before: the full grid's path from the coarse point (`on_full_grid`) or,
+/// before: the full grid's path from the coarse point (`fold::on_full_grid`) or,
 /// `None`, from `lambda = 0`.
 fn on_middle_grid(
     robot: &Robot,
@@ -384,133 +381,6 @@ fn middle_path(
     let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
     s.continuation_steps = path;
     Ok(Middle::Done(Box::new(s)))
-}
-
-/// The coarse path goes on on the full grid from `track`, after its check
-/// stopped it (see [`WATCH_LAMBDA`]) or, `at_fold`, after it stalled.
-///
-/// Stopped by its check: the point is corrected on the full grid
-/// ([`regrid`]) and the path followed on from it; `None` (the full grid's
-/// path from `lambda = 0` is run) if the correction or that path fails.
-///
-/// At a fold (`fold`: the coarse path's stall error, its steps quartered
-/// below `MIN_STEP`: a fold of the path, or a kink the coarse grid does
-/// not resolve) one full-grid IVP at the coarse point first
-/// ([`resolves_fold`]). If its residual is within [`WATCH_TOL`] (the check
-/// rule: the coarse grid resolves the path there) the fold is the full
-/// grid's: the body snaps through to the branch past it, on the coarse
-/// grid ([`snap`] from the coarse point and Jacobian, then [`snapped`]),
-/// and if that fails `fold` is returned (the caller's last resort
-/// follows). Else the point is corrected on the full grid and the path
-/// goes on there; if it stalls too, its error is returned. `None` if the
-/// path stalled at `lambda = 0` or the correction failed. Measured on the
-/// 1,000 benchmark designs: only #25 (past buckling) stalls, at
-/// `lambda = 0.5531` after 135 coarse IVPs (167 before
-/// [`super::continuation::RETRY_MIN_STEP`]), with a full-grid residual of
-/// 1.4e-4 there (1/100 of [`WATCH_TOL`]). Its last resort (295 IVPs in
-/// all) ended on the upright branch, unstable; the snap ends on a stable
-/// one; the full grid's path on from the fold stalled after 16 more IVPs,
-/// and from `lambda = 0` at 0.665. The snap on the full grid (from the
-/// point corrected there, 2 IVPs) took 12 full-grid IVPs (4 of them
-/// tangents), 16 IVP times of #25's 97-99; on the coarse grid 13 coarse
-/// IVPs, 4 IVP times, to the same equilibrium (tip within 1e-15 m).
-fn on_full_grid(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    from: &[f64],
-    (mut track, fold): (Track, Option<Error>),
-    work: &mut Work,
-) -> Result<Option<Solution>> {
-    let at_fold = fold.is_some();
-    if at_fold && track.lam <= 0.0 {
-        return Ok(None);
-    }
-    if let Some(e) = fold {
-        if resolves_fold(robot, inputs, loads, opts, from, &track, work)? {
-            // the full grid's fold: the body snaps through to another
-            // branch, or the caller's last resort follows
-            let copts = SolveOptions {
-                steps: path_grid(opts).unwrap_or(opts.steps),
-                ..*opts
-            };
-            if let Some(t) = snap(robot, inputs, loads, &copts, from, &track, work)? {
-                if let Some(s) = snapped(robot, inputs, loads, opts, from, t, work)? {
-                    return Ok(Some(s));
-                }
-            }
-            return Err(e);
-        }
-    }
-    if regrid(robot, inputs, loads, opts, from, &mut track, work)?.is_none() {
-        return Ok(None);
-    }
-    let out = follow_from(robot, inputs, loads, opts, from, true, &mut track, work);
-    // a path stalled at a fold on both grids is the solve's continuation failure
-    let out = if at_fold {
-        Some(out?)
-    } else {
-        unless_final(out)?
-    };
-    let Some((nr, last, path)) = out else {
-        return Ok(None);
-    };
-    let mut s = solution_from(robot, inputs, loads, opts, nr, last, work)?;
-    s.continuation_steps = path;
-    Ok(Some(s))
-}
-
-/// Whether the full grid `opts.steps` resolves the coarse path at its
-/// fold (`track`'s point): its `max |r|` (scaled) there, one IVP, within
-/// [`WATCH_TOL`] (the rule of the path's check). A failed IVP is no
-/// (the path goes on on the full grid, whose correction fails alike).
-fn resolves_fold(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    from: &[f64],
-    track: &Track,
-    work: &mut Work,
-) -> Result<bool> {
-    let (r, inp, l) = at(robot, from, inputs, loads, true, track.lam);
-    let watch = Watch {
-        lam: track.lam,
-        steps: opts.steps,
-        tol: WATCH_TOL,
-        scaled: false,
-    };
-    match watch.check(&r, &inp, &l, &track.x, work) {
-        Ok(()) => Ok(true),
-        Err(e) if ends_solve(&e) => Err(e),
-        Err(_) => Ok(false),
-    }
-}
-
-/// Corrects `track`'s point on the full grid `opts.steps` (to the
-/// intermediate tolerance, from the coarse Jacobian, backtracking in full)
-/// and moves the track there (see [`Track::regrid`]); the full grid's
-/// `max |r|` (scaled) at the point before the correction (the other grid's
-/// error there), `None` if the correction failed.
-fn regrid(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    from: &[f64],
-    track: &mut Track,
-    work: &mut Work,
-) -> Result<Option<f64>> {
-    let (r, inp, l) = at(robot, from, inputs, loads, true, track.lam);
-    let sopts = step_options(opts, false, 0.0);
-    let (x, jac) = (&track.x, track.jac.as_ref());
-    let (out, r0) = correct(&r, &inp, &l, &sopts, x, jac, false, f64::INFINITY, work);
-    let Some((nr, last)) = unless_final(out)? else {
-        return Ok(None);
-    };
-    track.regrid(nr, last, &r, &inp)?;
-    Ok(Some(r0.unwrap_or(f64::INFINITY)))
 }
 
 /// The cold homotopy path alone (no direct run, no finish) on `opts.steps`:

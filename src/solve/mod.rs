@@ -8,6 +8,7 @@ pub mod continuation;
 mod corrector;
 pub mod equilibrium;
 pub mod fn_system;
+mod fold;
 pub mod guess;
 mod hop_finish;
 pub mod limit;
