@@ -8,15 +8,16 @@
 use tcarod::problems::{random_design, DEFAULT_SEED};
 use tcarod::shooting::{solve, Shot, SolveOptions};
 
-/// Cold solves of the first 100 benchmark designs: 3,415 IVPs in all
-/// (coarse ones included), against 3,506 with the first round to 1e-7
+/// Cold solves of the first 100 benchmark designs: 3,408 IVPs in all
+/// (coarse ones included), against 3,499 with the first round to 1e-7
 /// (both measured at stop 35, with homotopy retries backtracking once,
-/// `continuation::RETRY_MIN_STEP`; at stop 34, before it, 3,452 against
-/// 3,543; at stop 33, before the direct run's hand-over after a failed
-/// first coarse run, `shooting::handed_over`, 3,725 against 3,810); the
-/// bound lies between, so going back fails it. The same 100 designs
-/// converge either way, each to tol (or its rounding floor) on the full
-/// grid.
+/// `continuation::RETRY_MIN_STEP`, and no watchdog step in full-step
+/// runs, `newton::WATCHDOG_MIN_STEP`; at stop 34, before them, 3,452
+/// against 3,543; at stop 33, before the direct run's hand-over after a
+/// failed first coarse run, `shooting::handed_over`, 3,725 against
+/// 3,810); the bound lies between, so going back fails it. The same 100
+/// designs converge either way, each to tol (or its rounding floor) on
+/// the full grid.
 #[test]
 fn cold_designs_take_fewer_ivps_with_a_looser_first_round() {
     const MOST_IVPS: usize = 3_460;

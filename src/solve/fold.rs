@@ -35,14 +35,15 @@ use crate::rod::Robot;
 /// path stalled at `lambda = 0` or the correction failed. Measured on the
 /// 1,000 benchmark designs: only #25 (past buckling) stalls, at
 /// `lambda = 0.5531` after 135 coarse IVPs (167 before
-/// [`super::continuation::RETRY_MIN_STEP`]), with a full-grid residual of
+/// [`super::continuation::RETRY_MIN_STEP`]; both before the watchdog's
+/// `WATCHDOG_MIN_STEP`, `super::newton`), with a full-grid residual of
 /// 1.4e-4 there (1/100 of [`WATCH_TOL`]). Its last resort (295 IVPs in
 /// all) ended on the upright branch, unstable; the snap ends on a stable
 /// one; the full grid's path on from the fold stalled after 16 more IVPs,
 /// and from `lambda = 0` at 0.665. The snap on the full grid (from the
 /// point corrected there, 2 IVPs) took 12 full-grid IVPs (4 of them
 /// tangents), 16 IVP times of #25's 97-99; on the coarse grid 13 coarse
-/// IVPs, 4 IVP times, to the same equilibrium (tip within 1e-15 m).
+/// IVPs, 4 IVP times, to the same equilibrium (tip within 1.3e-15 m).
 pub(super) fn on_full_grid(
     robot: &Robot,
     inputs: &[f64],

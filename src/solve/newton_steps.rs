@@ -8,7 +8,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::{
     inf_norm, merit, newton_from, NewtonOptions, NewtonResult, Run, Status, Step, System,
-    SLOW_CONTRACTION, SLOW_STEPS_BEFORE_REFINE, WATCHDOG_COOLDOWN,
+    SLOW_CONTRACTION, SLOW_STEPS_BEFORE_REFINE, WATCHDOG_COOLDOWN, WATCHDOG_MIN_STEP,
 };
 use crate::error::{Error, Result, StopReason};
 
@@ -203,9 +203,11 @@ impl<S: System> Run<'_, S> {
     /// benchmark: 50 iterations, each accepted at `t = 4e-6`); the
     /// Jacobian at `x1` has the slope of the side the root lies on.
     /// Off after a failed attempt for [`WATCHDOG_COOLDOWN`] iterations, on
-    /// non-square systems, and for the last iteration.
+    /// non-square systems, for the last iteration, and in a run that takes
+    /// full steps only ([`WATCHDOG_MIN_STEP`]).
     fn watchdog(&mut self, x1: &[f64], r1: &[f64], bound: f64) -> Result<bool> {
         if self.cooldown > 0
+            || self.opts.min_step > WATCHDOG_MIN_STEP
             || self.iterations + 1 >= self.opts.max_iter
             || x1.len() != r1.len()
             || self.over_budget()

@@ -16,7 +16,8 @@ pub struct SolveOptions {
     /// Newton iteration limit (per Newton run: the direct solve and each
     /// continuation step).
     pub max_iter: usize,
-    /// Smallest line-search step before giving up.
+    /// Smallest line-search step before giving up; above 1/2 (full steps
+    /// only) the watchdog step is off too.
     pub min_step: f64,
     /// IVP budget of one solve, continuation included (a tangent IVP counts
     /// as one); exhausting it raises [`Error::NotConverged`] with
