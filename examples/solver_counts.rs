@@ -1,7 +1,8 @@
 //! Iterations, IVPs and wall time of cold (and warm) forward solves of the
-//! issue-10 tendon cases and the Fig. 6 square: `cargo run --release
-//! --example solver_counts` (`-- --compare`: thread-CPU medians with and
-//! without the coarse-grid pre-solve, interleaved; `-- --batch-cold`: IVPs
+//! tendon speed benchmarks (`experiments::steel_tendon_robot`,
+//! `experiments::soft_tendon_robot`) and the Fig. 6 square: `cargo run
+//! --release --example solver_counts` (`-- --compare`: thread-CPU medians
+//! with and without the coarse-grid pre-solve, interleaved; `-- --batch-cold`: IVPs
 //! and tips of one-row batches against single cold solves of benchmark
 //! designs). (Wall time of one run each, median of 21: an indication only;
 //! the criterion benches in benches/rod.rs are the timings.)
@@ -264,8 +265,9 @@ fn grasp_case() {
     );
 }
 
-/// Cold batch rows against single cold solves on benchmark designs (the
-/// worst of the stop-26 note, then the first 100): IVPs and tip distance.
+/// Cold batch rows against single cold solves on benchmark designs (a few
+/// whose cold solves are among the costliest of the set, each reported,
+/// then the first 100 in total): IVPs and tip distance.
 fn batch_cold() {
     use tcarod::batch::{solve_batch, BatchOptions};
     use tcarod::problems::{random_design, DEFAULT_SEED};

@@ -1,9 +1,13 @@
 //! Trace of the cold homotopy of one benchmark design (diagnostics for the
 //! continuation's step control): `cargo run --release --example
-//! trace_homotopy -- 126`. Follows the path accurately (exact full-grid
-//! Newton, steps of 1/128), then, from points on it, compares predictors
-//! (secant, quadratic through three points, tangent) at several step lengths by the residual
-//! sequence of undamped exact Newton from each.
+//! trace_homotopy -- INDEX`, the design's index in the set of
+//! `tcarod::problems::random_design` (the default is a soft, heavily loaded
+//! body whose homotopy path bends strongly). Follows the path accurately
+//! (exact full-grid Newton, steps of 1/128), then, from points on it,
+//! compares predictors (secant, quadratic through three points, tangent) at
+//! several step lengths by the residual sequence of undamped exact Newton
+//! from each. The quadratic predictor of `solve::continuation` rests on this
+//! comparison (`docs/choices.md`, the solver's quadratic predictor).
 use nalgebra::DVector;
 use tcarod::problems::{random_design, Design, DEFAULT_SEED};
 use tcarod::rod::Robot;

@@ -1,4 +1,4 @@
-//! Warm forward solves of the issue-10 speed cases, counted: `cargo run
+//! Warm forward solves of the speed benchmarks, counted: `cargo run
 //! --release --example warm_counts` prints, for the Fig. 6 square warm 5 C
 //! away and the steel tendon robot warm after +1 % tension, the IVPs
 //! (full-grid and coarse) and iterations of the warm solve, the distance of

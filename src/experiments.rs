@@ -11,8 +11,8 @@ use crate::material::Material;
 use crate::rod::{Actuator, Body, Robot, Routing, Section, TcaLaw};
 use crate::tca::{Chirality, Tca};
 
-/// Fig. 5 TCA, `threads` = 3 or 4 (NOTES.md section 1: `l` and `L` swapped in
-/// the paper's text; `L = 110 mm` coiled, `l = 497 / 471 mm` fibre).
+/// Fig. 5 TCA, `threads` = 3 or 4 (`l` and `L` are swapped in Section V-A's
+/// text, see `docs/choices.md`; `L = 110 mm` coiled, `l = 497 / 471 mm` fibre).
 pub fn fig5_tca(threads: u32) -> Tca {
     let (l, turns, d) = match threads {
         3 => (0.497, 300.0, 2.0e-3),
@@ -57,7 +57,8 @@ pub const MANIPULATOR_TURNS: f64 = 76.4;
 pub const TURNS_ANCHOR_LENGTH: f64 = 0.040;
 
 /// How to read the paper's "N = 76.4 rotations" for a manipulator TCA whose
-/// U shape makes two legs (the paper does not say; issue 13).
+/// U shape makes two legs (the paper does not say; the evidence for each
+/// reading is in `docs/table1.md`, the choice in `docs/choices.md`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TurnsReading {
     /// 76.4 turns per fabricated TCA; a U-shaped TCA's two legs share them
@@ -310,11 +311,12 @@ pub fn table1_grasp(mass: f64, stability: crate::stability::Policy) -> crate::in
     }
 }
 
-/// The issue-10 steel tendon robot, a shared speed benchmark (not from the
-/// paper): steel rod `L = 0.5 m`, radius 1 mm, `E = 200 GPa`, `G = 80 GPa`,
-/// 8000 kg/m^3, gravity 9.81 m/s^2 along base-frame `+x`, four straight
-/// constant-tension tendons at 15.06 mm offset at 0/90/180/270 deg ending at
-/// the tip. Inputs: the tensions \[N\], [`STEEL_TENDON_TENSIONS`].
+/// The steel tendon robot, a speed benchmark shared by the tests and the
+/// benches (not from the paper): steel rod `L = 0.5 m`, radius 1 mm,
+/// `E = 200 GPa`, `G = 80 GPa`, 8000 kg/m^3, gravity 9.81 m/s^2 along
+/// base-frame `+x`, four straight constant-tension tendons at 15.06 mm
+/// offset at 0/90/180/270 deg ending at the tip. Inputs: the tensions
+/// \[N\], [`STEEL_TENDON_TENSIONS`].
 pub fn steel_tendon_robot() -> Robot {
     use crate::rod::ConstantTension;
     let length = 0.5;
@@ -350,9 +352,10 @@ pub fn steel_tendon_robot() -> Robot {
 /// Tendon tensions \[N\] of [`steel_tendon_robot`]'s benchmark case.
 pub const STEEL_TENDON_TENSIONS: [f64; 4] = [15.0, 0.0, 0.0, 0.0];
 
-/// The issue-10 soft tendon rod: 0.2 m long, 10 mm diameter, 1 MPa
-/// (Poisson 0.5), weightless, one straight constant-tension tendon at
-/// [`SOFT_TENDON_OFFSET`] from the centre line to the tip.
+/// The soft tendon rod, a speed benchmark of large deflections (not from
+/// the paper): 0.2 m long, 10 mm diameter, 1 MPa (Poisson 0.5), weightless,
+/// one straight constant-tension tendon at [`SOFT_TENDON_OFFSET`] from the
+/// centre line to the tip.
 pub fn soft_tendon_robot() -> Robot {
     use crate::rod::ConstantTension;
     let length = 0.2;

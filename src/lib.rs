@@ -40,7 +40,7 @@ pub mod shooting;
 pub mod solve;
 pub mod stability;
 pub mod tca;
-/// The caps per call under their former name (`limits`).
+/// [`limits`] under the alias `validate` (hidden from the docs).
 #[doc(hidden)]
 pub use limits as validate;
 

@@ -1,4 +1,4 @@
-//! Caps on the work of one call (issue 12): far above any robot of the
+//! Caps on the work of one call: far above any robot of the
 //! paper, far below what could exhaust memory or run unbounded. The core
 //! checks them ([`crate::batch::BatchOptions::validate`],
 //! [`SolveOptions::check_limits`], ...); the Python bindings read integer

@@ -46,14 +46,15 @@ impl Linear {
 }
 
 /// Coefficients of the fibre-diameter fit `d/d0 = a T^2 + b T + c` (T in C) of
-/// Sun & Zhao's `TCA_moduli_creeped.m` (NOTES.md section 5).
+/// Sun & Zhao's `TCA_moduli_creeped.m` (the MATLAB code of their T-RO 2022
+/// paper; see the sources in `docs/choices.md`).
 const DIAMETER_FIT: (f64, f64, f64) = (3.542e-6, -6.705e-5, 1.00169);
 
 /// Measured radial (transverse) coefficient of thermal expansion of oriented
 /// nylon 6,6: `(T [C], alpha_r [1/K])`, an *instantaneous* coefficient
 /// `(1/d) dd/dT`. Choy et al. 1984, as transcribed in `getMaterialProperties.m`
-/// of `imcginty/TCPM-Optimal-Force-Tracking` (arrays `T2`, `alpha2`; NOTES.md
-/// section 5).
+/// of `imcginty/TCPM-Optimal-Force-Tracking` (arrays `T2`, `alpha2`; see the
+/// sources in `docs/choices.md`).
 pub const NYLON66_RADIAL_CTE: [(f64, f64); 8] = [
     (-41.0, 10.84e-5),
     (1.0, 12.81e-5),
@@ -186,7 +187,8 @@ impl Material {
     }
 
     /// The silver-coated nylon 6,6 sewing thread of the paper (Shieldex
-    /// 235/35 4-ply), with the documented defaults of NOTES.md section 5:
+    /// 235/35 4-ply), with the defaults listed in `docs/choices.md` (the TCA
+    /// law's material):
     ///
     /// * `E_T(25 C) = 1.198e9 Pa` and `G_T(25 C) = 2.218e8 Pa`: Sun & Zhao,
     ///   T-RO 2022 code (`rod_const_EG.m`).
@@ -199,9 +201,9 @@ impl Material {
     ///   `TCA_moduli_creeped.m` exactly (normalised to 25 C): `rho(25 C) =
     ///   1.098e-4 1/C`, slope `3.534e-6 1/C^2`, `rho(160 C) = 5.87e-4 1/C`.
     ///   The paper calls `rho` linear in `T`; a linear `rho(T)` with a quadratic
-    ///   `d(T)` is exactly that. (NOTES.md's constant `5.9e-4 1/C` agrees at
-    ///   160 C and overstates the expansion below it; pass it with
-    ///   `rho_slope = 0` to compare.)
+    ///   `d(T)` is exactly that. (A constant `5.9e-4 1/C`, fitted to the
+    ///   same quadratic, agrees at 160 C and overstates the expansion below
+    ///   it; pass it with `rho_slope = 0` to compare.)
     /// * valid range 25-160 C: the range of the experiments and of the fits;
     ///   160 C is the annealing temperature. Reference (ambient) 25 C.
     pub fn silver_coated_nylon() -> Self {
@@ -398,7 +400,9 @@ mod tests {
             let want = q(t) / q(25.0);
             assert!((m.diameter_ratio(t).unwrap() - want).abs() < 1e-14, "{t}");
         }
-        // NOTES.md: d/d0 is 1.082 at 160 C relative to 1.002 at 25 C.
+        // the fit's own values at the ends of the range, d/d0 = 1.0816 at
+        // 160 C and 1.0022 at 25 C (absolute, as the quadratic gives them):
+        // their ratio
         assert!((m.diameter_ratio(160.0).unwrap() - 1.0816 / 1.0022).abs() < 1e-3);
     }
 
@@ -435,7 +439,7 @@ mod tests {
                 );
             }
         }
-        // the default's d'/d over 95-135 C is 5.90e-4 .. 8.41e-4 1/C (issue 13 quotes d'/d0,
+        // the default's d'/d over 95-135 C is 5.90e-4 .. 8.41e-4 1/C (d'/d0 there:
         // 6.0e-4 .. 8.9e-4), above the largest measured radial CTE of oriented nylon 6,6
         // (4.37e-4 at 160 C); values by hand from rho(25 C) = 1.098e-4, slope 3.534e-6
         let d = Material::silver_coated_nylon();

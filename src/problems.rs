@@ -1,4 +1,4 @@
-//! Test problems shared by the tests and the benches (issue 10): a seeded
+//! Test problems shared by the tests and the benches: a seeded
 //! generator of random, physically valid designs, a classifier for bodies past
 //! self-weight buckling, and a global equilibrium check of a converged
 //! solution.
@@ -52,7 +52,8 @@ use crate::material::Material;
 use crate::rod::{Actuator, Body, ConstantTension, LinearTendon, Robot, Routing, Section, TcaLaw};
 use crate::tca::{Chirality, Tca};
 
-/// Seed of the benchmark set (`benches/designs.rs`, `tests/designs.rs`).
+/// Seed of the benchmark set (`benches/designs.rs`,
+/// `tests/integration/designs.rs`).
 pub const DEFAULT_SEED: u64 = 0x7ca5_0d10_2026_0010;
 
 /// Critical `psi A g L^3 / (E I)` of an upright clamped-free column buckling

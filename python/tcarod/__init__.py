@@ -34,7 +34,7 @@ from .inverse import (
     jacobian_and_compliance,
     tip_position,
 )
-from . import _display  # noqa: F401  registers notebook display formatters inside IPython (issue 14)
+from . import _display  # noqa: F401  registers notebook display formatters inside IPython
 
 __all__ = [
     "ConvergenceError",

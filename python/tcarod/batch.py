@@ -38,7 +38,8 @@ __all__ = ["BatchResult", "fig6_square_robot", "iter_batches", "solve_batch"]
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 BoolArray = npt.NDArray[np.bool_]
-# The rod bindings (Robot, Body, ...) have no stubs yet: typed as Any here.
+# A batch takes a robot or a zero-argument factory returning one (Dask workers
+# rebuild it): typed loosely as Any.
 _c: Any = _core
 Robot = Any
 RobotLike = Union[Robot, Callable[[], Robot]]

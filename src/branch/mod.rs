@@ -1,4 +1,6 @@
-//! Branch following (issue 16): pseudo-arclength continuation of the
+//! Branch following (beyond the paper; `docs/stability.md`): Keller's
+//! pseudo-arclength continuation (Keller 1977, "Numerical solution of
+//! bifurcation and nonlinear eigenvalue problems") of the
 //! shooting equilibria in one scalar parameter, through limit points, with
 //! folds, bifurcations and the stability of each point; and a sweep that
 //! stays on stable equilibria and reports where the physical robot jumps.

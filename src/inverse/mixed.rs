@@ -409,9 +409,9 @@ pub(crate) fn predictor(
         // the force laws' slopes at the predicted point (a TCA's slope in
         // its elongation and temperature changes with the temperature; the
         // rod's columns change little): Newton's first chord step from `x`
-        // then contracts (measured on the Table I grasp: with the start's
-        // slopes it grew the residual from 2.7e-2 to 3.6e-2 and a fresh
-        // Jacobian was taken)
+        // then contracts (on the Table I grasp the start's slopes instead
+        // make that step grow the residual, 2.7e-2 to 3.6e-2, so that a
+        // fresh Jacobian is needed)
         let mut at_x = jac.clone();
         if actuator_columns(sys, &x, &t.per_tension, &mut at_x).is_ok() {
             jac = at_x;

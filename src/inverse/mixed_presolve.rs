@@ -178,8 +178,8 @@ mod tests {
         let mut coarse = Mixed::new(&soft, &groups, &block, extra, steps);
         let (x0, jac0) = predictor(&mut full, &start, groups.vars(&start.inputs)[0]).unwrap();
         let pre = presolve(&mut full, &mut coarse, &x0, jac0.clone(), &opts.newton());
-        // handed over short of the tolerance (measured: rounds at max |r|
-        // 0.53, 0.038, then 0.0084, not a tenth of 0.038: handed over at
+        // handed over short of the tolerance (here the rounds reach max |r|
+        // 0.53, 0.038, then 0.0084, not a tenth of 0.038: the hand-over is at
         // 0.038; the first round is always taken, here from a predictor at
         // 0.027)
         let handed = inf_norm(&full.residual(&pre.x).unwrap());
@@ -191,8 +191,9 @@ mod tests {
 
         // the full-grid Newton finishes from there: the same temperature as
         // the default path. Both hold the tip on the block to 1e-10 L, and
-        // the tip moves ~2e-5 m per C along the normal (tests/inverse.rs),
-        // so the temperatures agree far inside 1e-6 C.
+        // the tip moves ~2e-5 m per C along the normal
+        // (tests/integration/inverse.rs), so the temperatures agree far
+        // inside 1e-6 C.
         let nr = newton_from(
             &mut full,
             &pre.x,

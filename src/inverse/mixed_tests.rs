@@ -41,10 +41,11 @@ fn augmented_jacobian_matches_central_differences() {
         for (a, b) in r.iter().zip(&r0) {
             assert!((a - b).abs() < 1e-12 * b.abs().max(1.0), "{a} vs {b}");
         }
-        // New here: the elongation columns, the extra column and the gap
-        // row. (The strain columns of the tip balance are the forward
-        // solver's, checked in tests/tangent.rs; differenced, their stiff
-        // shear entries carry truncation errors ~1e-5.)
+        // Checked here: the elongation columns, the extra column and the gap
+        // row, which only the augmented system has. (The strain columns of
+        // the tip balance are the forward solver's, checked in
+        // tests/integration/tangent.rs; differenced, their stiff shear
+        // entries carry truncation errors ~1e-5.)
         let n = x.len();
         for c in 0..n {
             // central step eps^(1/3) of the unknown's size; the stiff TCA

@@ -1,5 +1,7 @@
-//! Reading Python arguments: the strict contract of issue 12 (real numbers,
-//! integer counts, sequences), one reader per kind, shared by every class.
+//! Reading Python arguments strictly (real numbers, integer counts,
+//! sequences): a wrong Python type is a `TypeError`, a value out of range a
+//! `ValueError` naming the argument and its range, never a silent
+//! conversion. One reader per kind, shared by every class.
 
 use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -9,7 +11,7 @@ use crate::error::Error;
 use crate::limits::{CountLimit, EVALUATIONS, ITERATIONS, STEPS, TIME_LIMIT_ALLOWED};
 use crate::shooting::SolveOptions;
 
-/// A real-number argument with the strict contract of issue 12: `float`,
+/// A real-number argument, read strictly: `float`,
 /// `int` (beyond the double range: `+-inf`, rejected downstream with a
 /// `ValueError` naming the argument), NumPy reals, anything with
 /// `__float__` that is not complex. `str`, `bytes`, `None` and complex

@@ -206,11 +206,11 @@ fn fig5_threads(obj: &Bound<'_, PyAny>) -> PyResult<u32> {
     Ok(count("threads", obj, 3, 4)? as u32)
 }
 
-/// The issue-10 tendon robots (not from the paper): `"steel"` (L 0.5 m,
-/// radius 1 mm, E 200 GPa, G 80 GPa, 8000 kg/m^3, gravity along `+x`, four
-/// tendons at 15.06 mm on spacer disks; benchmark tensions
-/// `fixture_constants()["steel_tendon_tensions"]` [N]) or `"soft"` (0.2 m,
-/// 10 mm, 1 MPa, one tendon at 4 mm).
+/// The tendon robots of the speed benchmarks (not from the paper):
+/// `"steel"` (L 0.5 m, radius 1 mm, E 200 GPa, G 80 GPa, 8000 kg/m^3,
+/// gravity along `+x`, four tendons at 15.06 mm on spacer disks; benchmark
+/// tensions `fixture_constants()["steel_tendon_tensions"]` [N]) or
+/// `"soft"` (0.2 m, 10 mm, 1 MPa, one tendon at 4 mm).
 #[pyfunction]
 fn fixture_tendon_robot(name: &str) -> PyResult<PyRobot> {
     let robot = match name {

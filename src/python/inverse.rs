@@ -202,7 +202,7 @@ fn tip_position(
 }
 
 /// The Python result; its solution carries the core's stability verdict
-/// with the tip held along the block normal (issue 16: an unstable one warns).
+/// with the tip held along the block normal (an unstable one warns).
 fn blocked(
     py: Python<'_>,
     robot: &Bound<'_, PyRobot>,

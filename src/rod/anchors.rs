@@ -42,7 +42,8 @@ struct Anchored {
 /// Strings kept on the stack at one anchor (more spill to the heap).
 const INLINE: usize = 8;
 
-/// Residual test of the jump (dimensionless, as in the original loop).
+/// Tolerance on the max-norm of the jump residual (dimensionless: strain
+/// mismatches, the curvatures times `L`; see `RodRhs::jump_residual`).
 const JUMP_TOL: f64 = 1e-14;
 /// A residual accepted when the full Newton step no longer reduces it
 /// (the rounding floor of large strains lies between the two).

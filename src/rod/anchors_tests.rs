@@ -26,8 +26,8 @@ fn anchored_robot() -> Robot {
     Robot::new(sq.body.clone(), acts).unwrap()
 }
 
-/// The jump residual as before the routing was cached: every string's
-/// routing evaluated at every call, every side from the strains.
+/// An independent jump residual without the cached routing: every
+/// string's routing evaluated at every call, every side from the strains.
 fn reference<T: Real>(fz: &RodRhs<'_>, s: f64, w: &[T; 6], w0: &[T; 6], tau: &[T]) -> [T; 6] {
     let zero = T::cst(0.0);
     let (mut f, mut m) = ([zero; 3], [zero; 3]);
@@ -141,8 +141,8 @@ fn a_jump_at_its_rounding_floor_stops_there() {
     let r = amax(&reference(&fz, s, &w, &w0, &TENSIONS));
     assert!(r >= JUMP_TOL, "not at a floor: {r:e}");
     assert!(r <= JUMP_FLOOR, "{r:e}");
-    // stops at the first step that does not reduce it (the loop used to
-    // run all 50 iterations, each with 14 halvings)
+    // stops at the first step that does not reduce it, not after the
+    // iteration limit with every step backtracked in vain
     assert!(its <= 8, "{its}");
 }
 

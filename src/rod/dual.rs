@@ -281,8 +281,8 @@ impl<const N: usize> SubAssign for Dual<N> {
 }
 
 /// `[f(0), f(1), f(2)]`: `std::array::from_fn` for 3-vectors, written out
-/// so that it is always inlined (`from_fn` over a [`Dual`] was not, which
-/// kept the tangent pass's lanes from vectorising).
+/// so that it is always inlined (`from_fn` over a [`Dual`] need not be, and
+/// an outlined call keeps the tangent pass's lanes from vectorising).
 #[inline(always)]
 pub(crate) fn v3<T>(f: impl Fn(usize) -> T) -> [T; 3] {
     [f(0), f(1), f(2)]

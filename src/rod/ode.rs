@@ -123,8 +123,8 @@ impl<'a> RodRhs<'a> {
     /// The elongation rates of the actuators not in `active` are NOT
     /// written: the caller keeps them zero in `dy` (the IVP zeroes its
     /// stages once per grid interval). Zeroing them here, a slice of
-    /// run-time length, compiled to a `memset` call per stage, and the
-    /// call's clobbered registers to spills around it.
+    /// run-time length, would compile to a `memset` call per stage, with
+    /// spills of the registers the call clobbers around it.
     #[inline(always)]
     pub(crate) fn deriv(&self, s: f64, y: &[f64], active: &[usize], dy: &mut [f64]) -> Result<()> {
         self.deriv_with::<f64, false>(s, y, self.tensions, active, dy)

@@ -6,9 +6,9 @@
 //! Uniform bodies: `K_nu' = K_omega' = 0`, `nu*' = omega*' = 0`.
 //! Sign of the `nu^ K_nu (nu - nu*)` term of eq (31): the paper prints `+`;
 //! the Cosserat moment balance `m' + p' x n + l = 0` (Antman; Rucker &
-//! Webster 2011, which the paper follows) gives `-`, as the code has always
-//! used and the peer and analytic tests confirm (e.g. shear-bending coupling
-//! of the clamped-free beam).
+//! Webster 2011, which the paper follows) gives `-`, which the code uses and
+//! the analytic tests confirm (`tests/integration/analytic.rs`, e.g. the
+//! shear-bending coupling of the clamped-free beam).
 
 use nalgebra::{Matrix3, Matrix6, Quaternion, Vector3, Vector6};
 
@@ -146,7 +146,8 @@ mod tests {
         Robot::new(body, acts).unwrap()
     }
 
-    /// A deterministic pseudo-random number in [-1, 1).
+    /// A deterministic pseudo-random number in [-1, 1): Knuth's MMIX
+    /// linear congruential generator, its top 53 bits.
     fn rnd(k: &mut u64) -> f64 {
         *k = k
             .wrapping_mul(6364136223846793005)

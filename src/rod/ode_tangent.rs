@@ -204,7 +204,7 @@ fn string_lanes<const N: usize>(
         pbrp,
         ..
     } = *st;
-    // loops, not `v3` closures: a closure here was compiled apart, without
+    // loops, not `v3` closures: a closure here may be compiled apart, without
     // the pass's target features. dp_b = dv + du x r:
     let (du, dv) = (&sl.du, &sl.dv);
     let dpb = [

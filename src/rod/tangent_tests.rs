@@ -1,6 +1,7 @@
 //! Tests of the tangent pass: the linearised right-hand side against the
 //! reference pass in dual arithmetic throughout, and the values against the
-//! plain IVP (the finite-difference oracles are in `tests/tangent.rs`).
+//! plain IVP (the finite-difference oracles are in
+//! `tests/integration/tangent.rs`).
 
 use std::sync::Arc;
 

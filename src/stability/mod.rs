@@ -1,4 +1,5 @@
-//! Elastic stability of a shooting equilibrium (beyond the paper; issue 16).
+//! Elastic stability of a shooting equilibrium (beyond the paper; see
+//! `docs/stability.md`).
 //!
 //! # Criterion
 //!

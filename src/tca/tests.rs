@@ -39,9 +39,9 @@ fn contact_law_is_continuous_and_monotone() {
 #[test]
 fn contact_elongation_inverts_the_contact_law() {
     // on the smoothed onset, at its end and deep in contact: tension(d) = t
-    // back to the elongation (the linear (t - F(0)) / k_c it replaces was off
-    // by eps (k_c - k_s) / (2 k_c), half the smoothing width, which moved
-    // warm starts off converged solutions in coil contact)
+    // back to the elongation exactly (the linear (t - F(0)) / k_c would be
+    // off by eps (k_c - k_s) / (2 k_c), half the smoothing width, enough to
+    // move a warm start off a converged solution in coil contact)
     let t = fig5_three_thread();
     let at = t.at(60.0).unwrap();
     let e = TcaAt::CONTACT_SMOOTHING;

@@ -38,4 +38,4 @@ def fixture_fig5_half_tca(threads: Literal[3, 4]) -> Tca:
     """One folded half of the Fig. 5 TCA: ``Tca.segment(0.5)`` of the whole."""
 
 def fixture_tendon_robot(name: Literal["steel", "soft"]) -> Robot:
-    """The issue-10 tendon robots: ``"steel"`` (on spacer disks) or ``"soft"``."""
+    """The speed-benchmark tendon robots (not from the paper): ``"steel"`` (on spacer disks) or ``"soft"``."""

@@ -12,7 +12,7 @@ from ._solution import Solution
 
 # ---------------------------------------------------------------------------
 # Inverse kinetostatics (src/python/inverse.rs; paper Section IV, eqs 34-43).
-# `Robot` and `Solution` are the rod classes stubbed above. Tip poses are
+# `Robot` and `Solution` are the rod classes of _rod.pyi / _solution.pyi. Tip poses are
 # `[dp (m); dtheta (rad)]` in the world frame; tip wrenches `[F (N); M (N m)]`.
 # `groups[i]` is the actuation variable driving actuator `i` (the two legs of
 # a U-shaped TCA share one temperature: `groups=[0, 0]`); default: one

@@ -10,7 +10,7 @@ from ._solution import Solution
 from ._tca import Tca
 
 # ---------------------------------------------------------------------------
-# Forward kinetostatics (src/python/rod.rs; paper Section III, eqs 7-33).
+# Forward kinetostatics (src/python/rod/; paper Section III, eqs 7-33).
 # World frame: base at the origin, reference tangent +z. Vectors given to or
 # returned by these classes are length-3 world-frame vectors unless noted;
 # body-frame offsets (routing) span the cross-section (x, y). Actuator forces

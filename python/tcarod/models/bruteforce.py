@@ -16,7 +16,7 @@ paper's method) can be checked and timed against them
 * :func:`brute_force_tip_position`: the temperatures minimising the tip error
   ``|p(L) - target|`` (Nelder-Mead, ``minimize``, inputs clipped to their range).
 
-scipy is needed (``pip install 'tcarod[test]'``).
+scipy is needed (the ``fit`` extra: ``pip install 'tcarod[fit]'``).
 """
 
 from __future__ import annotations

@@ -162,7 +162,7 @@ def calibrate(
     Several experiments (e.g. two loads) are fitted together by passing a
     sequence of :class:`TcaExperiment` and one data array per experiment.
 
-    Needs scipy (``pip install scipy``). Raises ``ValueError`` on unknown
+    Needs scipy (the ``fit`` extra: ``pip install 'tcarod[fit]'``). Raises ``ValueError`` on unknown
     names, mismatched data or fewer points than parameters + 1.
     """
     optimize = require("scipy.optimize")  # optional dependency: only calibration needs it

@@ -204,7 +204,7 @@ def force_line(
     ``m g / (mu n)`` [N] against temperature [C]. Returns ``(slope [N/C],
     zero-force intercept [C])``: how fast a finger's force rises after
     contact, and where it touches. The paper's Table I predictions give
-    0.209 mN/C and 72.3 C, its experiment 0.218 mN/C and 75.8 C."""
+    0.209 mN/C and 72.3 C, its experiment 0.223 mN/C and 76.7 C."""
     f = [m * gravity / (mu * fingers) for m in masses_kg]
     t = [float(x) for x in temperatures_c]
     if len(f) != len(t) or len(f) < 2:

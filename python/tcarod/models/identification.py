@@ -1,4 +1,4 @@
-"""Identification of the Table I set-up (issue 13): at most two free
+"""Identification of the Table I set-up: at most two free
 parameters, fitted separately to the paper's model predictions and to the
 experiment, each with leave-one-out errors and a plausibility check.
 
@@ -69,7 +69,7 @@ CTE_FACTOR_RANGE: Final[tuple[float, float]] = (0.5, 2.0)
 _AMBIENT_C: Final[float] = 25.0
 _CTE_SOURCE: Final[str] = (
     "d'(T)/d(T) of the scaled rho(T) within 0.5x-2x of the measured radial CTE of oriented nylon 6,6 "
-    "(Choy et al. 1984, NOTES.md 5) at 64, 92, 116, 137 C; 0.5x is about unoriented (isotropic) "
+    "(Choy et al. 1984, see docs/table1.md) at 64, 92, 116, 137 C; 0.5x is about unoriented (isotropic) "
     "PA66, ~8e-5 1/K (typical datasheet value)"
 )
 _CONTACT_SOURCE: Final[str] = (
@@ -231,7 +231,8 @@ class Identification:
         return self.reading.base_material().with_expansion_scale(k)
 
     def to_json(self) -> dict[str, Any]:
-        """The issue-13 contract: reading, fitted_to, parameters, rms_c, leave_one_out_c (+ detail)."""
+        """JSON-serialisable: reading, fitted_to, parameters, rms_c, leave_one_out_c, and the detail
+        (targets, fitted temperatures [C], CTE ratios, evaluations)."""
         return {
             "reading": self.reading.text,
             "turns_reading": self.reading.turns_reading,

@@ -15,7 +15,8 @@ Turns of a U-shaped TCA (:data:`TURNS_READINGS`; the paper does not say):
   Fig. 5 TCA's halves share theirs. The paper calls the U "a TCA" (V-B),
   "a single extension TCA" (V-C) and each finger "actuated by one TCA"
   (V-D); it considers the halves "as separate TCAs" only to give their length.
-* ``"per_leg"``: 76.4 turns in every leg (the reading before issue 13).
+* ``"per_leg"``: 76.4 turns in every leg, the literal reading of "N = 76.4"
+  for each of the two TCAs the U is split into.
 * ``"per_length"``: a twist density, 76.4 turns per 40 mm (the circle's
   single 40 mm TCA), so a leg of length ``L`` has ``76.4 L / 40 mm``.
 

@@ -2,8 +2,9 @@
 
 The paper does not print the TCA material values behind its Table I
 predictions (93.7 / 114.8 / 136.3 C for 1 / 2 / 3 g); with tcarod's documented
-default material (README, NOTES.md section 5) the same model predicts about
-38 / 47 / 54 C. Two questions, answered separately:
+default material (``docs/choices.md``) and the default set-up of
+``docs/table1.md`` (contact at 72.33 C, 76.4 turns per U-shaped TCA) the same
+model predicts 80.9 / 88.7 / 96.0 C. Two questions, answered separately:
 
 1. :func:`table1_sensitivity`: which material or geometry parameter moves the
    prediction most? Each parameter is scaled by ``1 +- step`` (default 10 %),

@@ -2,7 +2,8 @@
 Robots driven by voltages (steady states, quasi-static shape trajectories) are
 in :mod:`tcarod.models.trajectory`; the plots in :mod:`tcarod.plotting`.
 
-Model (Sun & Zhao, T-RO 2022 code, ``thermal_model.m``; NOTES.md section 5)::
+Model (``thermal_model.m`` of the code released with Sun & Zhao, IEEE T-RO
+38(2), 2022; see ``docs/choices.md``, Sources)::
 
     m c_p dT/dt = V^2 / R - h A (T - T_amb)
 
@@ -13,12 +14,12 @@ Model (Sun & Zhao, T-RO 2022 code, ``thermal_model.m``; NOTES.md section 5)::
 * ``density = 1127 kg/m^3``, ``c_p = 2000 J/(kg K)``, ``h = 23 W/(m^2 K)``.
 
 The time constant ``m c_p / (h A) = density c_p r / (2 h)`` does not depend on
-the length or the number of threads: 4.90 s with these coefficients. NOTES.md
-quotes "about 3-4 s"; the coefficients above do not give that. (The source
-code computes its mass as ``density^2 V / 1000``, 1.127 times the threads'
-mass, from *one* fibre of radius ``r_t`` with three fibres' surface; its time
-constant is about ``18400 r_t`` s/m, 3-4 s for ``r_t`` = 0.16-0.22 mm.) This
-module follows the coefficients as stated; pass your own to change them.
+the length or the number of threads: 4.90 s with these coefficients, not the
+"about 3-4 s" quoted with them. (The source code computes its mass as
+``density^2 V / 1000``, 1.127 times the threads' mass, from *one* fibre of
+radius ``r_t`` with three fibres' surface; its time constant is about
+``18400 r_t`` s/m, 3-4 s for ``r_t`` = 0.16-0.22 mm.) This module follows the
+coefficients as stated; pass your own to change them.
 
 Resistance is a **required** input, with no default: a TCA's resistance
 depends on the thread, the number of threads, the twist and the coiling, and

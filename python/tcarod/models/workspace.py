@@ -1,11 +1,11 @@
 """Workspace maps: the tip positions a robot reaches over a grid of actuator
 inputs (temperatures [C] for TCAs), as arrays and as a 3-D scatter plot.
 
-The solves go through one function, :func:`solve_rows`, which today walks the
-grid with :meth:`Robot.sweep` (each solve warm-started from the previous one,
-rows ordered as a snake so that neighbours differ in one input) and falls back
-to one cold solve per point if a sweep stops. A batch API can replace its body
-without touching the rest.
+The solves go through one function, :func:`solve_rows`, which walks the grid
+with :meth:`Robot.sweep` (each solve warm-started from the previous one, rows
+ordered as a snake so that neighbours differ in one input) and, if the sweep
+stops, solves the points one at a time (warm-started from the last success,
+else cold).
 """
 
 from __future__ import annotations
@@ -109,8 +109,8 @@ class Workspace:
         return np.asarray(np.arccos(np.clip(self.tip_tangents[:, 2], -1.0, 1.0)), dtype=np.float64)
 
 
-#: RK4 steps per solve of a workspace map: a map needs tip positions, and 10
-#: steps already put the Fig. 6 tip within 1 um of a 5,000-step reference.
+#: Most RK4 steps per solve of a workspace map: a map needs tip positions, and
+#: 10 steps already put the Fig. 6 tip within 1 um of a 5,000-step reference.
 MAX_MAP_STEPS = 1000
 
 

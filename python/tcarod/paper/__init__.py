@@ -14,7 +14,7 @@ fig6       bending radius vs temperature      :mod:`tcarod.paper.fig6`
 fig8       blocked-tip force                  :mod:`tcarod.paper.fig8`
 table1     grip temperatures (eq 44)          :mod:`tcarod.paper.table1`
 fig1b      3-TCA manipulator workspace        :mod:`tcarod.paper.fig1b`
-buckling   loss of stability (issue 16)       :mod:`tcarod.paper.buckling`
+buckling   loss of stability (beyond paper)   :mod:`tcarod.paper.buckling`
 =========  =================================  ===========================
 
 :data:`REGISTRY` (the names of ``tcarod reproduce NAME``) is written out

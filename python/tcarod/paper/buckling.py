@@ -1,11 +1,11 @@
-"""Beyond the paper (issue 16): buckling and loss of stability of soft bodies.
+"""Beyond the paper: buckling and loss of stability of soft bodies.
 
 Two studies, registered as ``tcarod reproduce buckling``:
 
 1. **Self-weight buckling of an upright soft column.** A 50 mm EcoFlex 10
    column (10 x 9 mm rectangle, so that it buckles about its weak axis),
-   clamped base-down, under growing gravity (gravity scale 0.1 -> 3, i.e.
-   rho A g L^3 / EI from 0.5 to 15). The straight branch is followed through
+   clamped base-down, under growing gravity (gravity scale from 0.1 to 3,
+   i.e. rho A g L^3 / EI from 0.5 to 15). The straight branch is followed through
    Greenhill's load rho A g L^3 / EI = 7.837 (a bifurcation; stable below,
    unstable above); a stable sweep jumps onto the post-buckled branch there
    and follows it as it bends over.
@@ -120,7 +120,7 @@ class BucklingResult:
             f"  rho A g L^3/EI at 1 g: {self.column_weight_per_g:.3f}",
             f"  straight branch loses stability at rho A g L^3/EI = {q:.4f} "
             f"(Greenhill {GREENHILL}: {100 * (q / GREENHILL - 1):+.3f} %; a stubby column, L/h = 5.6:"
-            " shear and axial compliance lower it; a slender one matches to 0.02 %, tests/stability.rs)",
+            " shear and axial compliance lower it; a slender one matches to 0.02 %, tests/integration/stability.rs)",
             f"  stable sweep: {len(self.column_sweep)} points, jumps at gravity scale "
             + ", ".join(f"{p:.4f}" for p, _, _ in self.column_sweep.jumps),
             "  tip at 3 g (post-buckled) [mm]: "

@@ -1,7 +1,7 @@
 """Fig. 5 of the paper (Section V-A): extension TCAs under dead weights.
 
 The fixture :data:`FIG5` holds what the paper specifies (TCAs, loads,
-temperatures; no published numbers, NOTES.md 4); :func:`predict_fig5` runs the
+temperatures; the paper prints no numbers for Fig. 5); :func:`predict_fig5` runs the
 TCA law on one folded half of each TCA and returns a :class:`Fig5Result`
 (``table()``, ``to_json()``, ``plot(path)``).
 """
@@ -64,7 +64,7 @@ class Fig5Experiment:
     tcas: tuple[TcaSpec, ...]
     loads: tuple[DeadWeight, ...]
     temperatures_c: tuple[float, ...] = PAPER_TEMPERATURES_C
-    #: ``None``: the paper prints no numeric data for Fig. 5 (NOTES.md 4); the
+    #: ``None``: the paper prints no numeric data for Fig. 5; the
     #: curves exist only as a plot. Fill with digitised :class:`PublishedCurve`
     #: objects if such data become available.
     published_data: tuple[PublishedCurve, ...] | None = None
@@ -90,8 +90,8 @@ def _paper_tca(threads: Literal[3, 4]) -> TcaSpec:
     return TcaSpec(f"{threads} threads", threads, t.fibre_length, t.coiled_length, t.coil_diameter, t.turns)
 
 
-#: The paper's Fig. 5 experiment (Section V-A; ``l`` and ``L`` un-swapped per
-#: NOTES.md 1: coiled length ``L = 110 mm``, fibre length ``l = 497 / 471 mm``;
+#: The paper's Fig. 5 experiment (Section V-A, whose text swaps ``l`` and ``L``;
+#: see docs/choices.md: coiled length ``L = 110 mm``, fibre length ``l = 497 / 471 mm``;
 #: the TCAs from the core). Friction equivalents 2.5 g (5 g case) and 5 g (10 g case).
 FIG5: Final[Fig5Experiment] = Fig5Experiment(
     tcas=(_paper_tca(3), _paper_tca(4)),

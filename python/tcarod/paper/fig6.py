@@ -82,7 +82,7 @@ _ASSUMPTIONS: Final[tuple[str, ...]] = (
     "Each TCA (and each U leg) runs the whole body length, anchored at base and tip.",
     "Turns: 76.4 per fabricated TCA (default reading 'per_tca'): the circle's single TCA has 76.4, each "
     "leg of the square's U-shaped TCA 38.2 (tcarod.models.manipulators; the other readings are shown beside).",
-    "TCA material: Material.silver_coated_nylon() (values the paper does not print; see README).",
+    "TCA material: Material.silver_coated_nylon() (values the paper does not print; see docs/choices.md).",
 )
 
 
@@ -126,7 +126,7 @@ class Fig6Experiment:
     manipulators: tuple[Fig6Manipulator, ...]
     temperatures_c: tuple[float, ...] = PAPER_TEMPERATURES_C
     assumptions: tuple[str, ...] = _ASSUMPTIONS
-    #: ``None``: the paper prints no numeric data for Fig. 6 (NOTES.md 4).
+    #: ``None``: the paper prints no numeric data for Fig. 6.
     published_data: tuple[PublishedCurve, ...] | None = None
     published_data_note: str = "The paper prints no numeric data for Fig. 6, only the plotted curves."
     name: str = "fig6"

@@ -77,7 +77,7 @@ class Fig8Experiment:
     gravity_m_per_s2: tuple[float, float, float] = UPRIGHT
     #: The paper's only number for Fig. 8: rms of model minus mean measured force [N].
     published_rms_n: float = 0.74e-3
-    #: ``None``: the paper prints no data points for Fig. 8 (NOTES.md 4).
+    #: ``None``: the paper prints no data points for Fig. 8.
     published_data: None = None
     published_data_note: str = (
         "The paper prints no data points for Fig. 8, only the plot and the rms difference "

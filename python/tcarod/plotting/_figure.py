@@ -1,4 +1,4 @@
-"""The figure helpers every plot shares: a new Agg ``Figure`` and PNG output.
+"""What every plot shares: a new Agg ``Figure`` and PNG output.
 
 Figures are built with matplotlib's object-oriented API (``Figure`` rendered by
 the Agg canvas), never through ``pyplot``: nothing here needs a display or

@@ -31,7 +31,8 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The forward solution and its helpers (the `_solution` part of the module).
+/// The forward solution, its unpickling and the plot hook (the `_solution`
+/// part of the module).
 pub(crate) fn register_solution(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySolution>()?;
     m.add_function(wrap_pyfunction!(restore::restore_solution, m)?)?;

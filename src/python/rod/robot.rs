@@ -86,7 +86,7 @@ impl PyRobot {
     /// Newton tolerance on the dimensionless residual; `max_iter`: Newton
     /// iterations (1 to 100,000); `warm_start`: a nearby `Solution` of this
     /// robot, or of a robot with the same actuators under other loads (load
-    /// continuation). `stability` (issue 16): `"report"` (default: the
+    /// continuation). `stability`: `"report"` (default: the
     /// verdict is part of the solve, one tangent IVP, cached in
     /// `Solution.stable`; an unstable equilibrium also emits
     /// `UnstableEquilibriumWarning`), `"require"` (raise

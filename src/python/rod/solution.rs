@@ -65,7 +65,7 @@ pub(crate) fn checked_solution(sol: Solution) -> Result<Solution> {
 pub struct PySolution {
     pub(crate) inner: Solution,
     pub(crate) robot: Py<PyRobot>,
-    /// Cached stability verdict `(stable, margin)` (issue 16).
+    /// Cached stability verdict `(stable, margin)` (`crate::stability`).
     pub(crate) verdict: OnceLock<(bool, f64)>,
     /// World directions along which the tip translation is held (the block
     /// normal of a blocked-tip solution; empty for a free tip).
@@ -416,7 +416,8 @@ impl PartialEq for PySolution {
 
 /// The Python function behind `Solution.plot`, registered by the package at
 /// import (`tcarod._display`): plotting lives in Python and the bindings never
-/// import back up into it (issue 11).
+/// import back up into it (the package imports `tcarod._core`, never the
+/// other way round, so there is no import cycle).
 static PLOTTER: pyo3::sync::PyOnceLock<Py<PyAny>> = pyo3::sync::PyOnceLock::new();
 
 /// Register the function `Solution.plot` calls (not public API; the first

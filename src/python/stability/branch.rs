@@ -1,4 +1,4 @@
-//! Bindings of branch following and of the stable sweep (issue 16).
+//! Bindings of branch following and of the stable sweep (`src/branch/`).
 
 use std::sync::Arc;
 

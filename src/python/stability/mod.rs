@@ -1,4 +1,5 @@
-//! Bindings of the stability verdict and of branch following (issue 16).
+//! Bindings of the stability verdict and of branch following (beyond the
+//! paper; the criterion is in `src/stability/mod.rs` and `docs/stability.md`).
 
 use nalgebra::Vector3;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};

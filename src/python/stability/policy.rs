@@ -1,7 +1,7 @@
 //! The stability policy of `Robot.solve` / `Robot.sweep` and the verdict of
-//! blocked-tip solutions (issue 16): a solution handed back carries its
-//! verdict, and an unstable one is announced (warning, error) or replaced by
-//! a stable one at the same inputs.
+//! blocked-tip solutions (the core's is `src/stability/policy.rs`): a
+//! solution handed back carries its verdict, and an unstable one is
+//! announced (warning, error) or replaced by a stable one at the same inputs.
 
 use std::ffi::CString;
 

@@ -14,7 +14,7 @@
 //! machine), as the Python hypothesis strategy of `tests/test_rod_properties.py`
 //! draws them; global equilibrium over random designs is `tests/designs.rs`.
 //! Frame: base at the origin, reference tangent +z. SI units, temperatures in C.
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 

@@ -12,7 +12,7 @@
 //!   straight path give the same answer as that path.
 //!
 //! Frame: base at the origin, reference tangent +z. SI units.
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 

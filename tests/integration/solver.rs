@@ -1,7 +1,7 @@
 //! The Newton solver's contract: few iterations on the issue-10 tendon
 //! cases, convergence to the rounding floor, continuation with its path,
 //! cancellation, honest work counts.
-mod common;
+use crate::common;
 
 use common::solve_default;
 use nalgebra::Vector3;

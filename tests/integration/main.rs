@@ -1,0 +1,30 @@
+//! The Rust integration tests, one test crate (one link, one binary): each
+//! module is one concern, listed with what it checks in `tests/README.md`.
+//! Physics is tested here against the core's fixtures
+//! (`tcarod::experiments`, `tcarod::problems`); `common` holds the small
+//! helpers the modules share.
+
+mod common;
+
+mod analytic;
+mod cold_presolve;
+mod design_solves;
+mod designs;
+mod direct_refine;
+mod homotopy_steps;
+mod inverse;
+mod kink_correctors;
+mod long_paths;
+mod model_rules;
+mod paper;
+mod perf;
+mod properties;
+mod rod;
+mod sensitivities;
+mod solver;
+mod stability;
+mod stability_batch;
+mod stability_policy;
+mod tangent;
+mod tca_law;
+mod warm;
