@@ -1,6 +1,7 @@
-"""Issue 14 target: a 10,000-solve sweep on a Dask cluster with 2 process
-workers equals the serial result bit for bit. Prints the timings and the
-verdict; the test suite runs the same check on 1,000 rows
+"""A 10,000-solve sweep on a Dask cluster with 2 process workers equals the
+serial result bit for bit (the chunks, and so the warm-start chains, are the
+same). Prints the timings and the verdict; the test suite runs the same check
+on 1,000 rows
 (tests/test_pickle.py::test_batch_on_dask_process_workers_equals_serial_bit_for_bit).
 
     python benches/dask_batch.py [rows]

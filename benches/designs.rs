@@ -1,5 +1,5 @@
-//! Issue-10 benchmark: cold solves of the seeded random designs of
-//! `tcarod::problems` (`cargo bench --bench designs`).
+//! The solver's design benchmark: cold solves of the seeded random designs
+//! of `tcarod::problems` (`cargo bench --bench designs`).
 //!
 //! Environment: `TCAROD_DESIGNS` (default 1000) designs, `TCAROD_SEED`
 //! (default `problems::DEFAULT_SEED`), `TCAROD_VERBOSE=1` lists each failure
@@ -10,7 +10,7 @@
 //! IVPs, iterations, homotopy steps, `past` if past buckling), `TCAROD_REPEAT`
 //! (default 3) sets the timed repeats. `TCAROD_EQUILIBRIUM_TOL=1e-8` solves
 //! every design with that `SolveOptions::equilibrium_tol` (the grid refined
-//! until the global equilibrium check holds; the issue's accuracy target),
+//! until the global equilibrium check holds: the accuracy target),
 //! so that the statistics are those of the controlled solve (IVP-equivalents
 //! stay in units of one plain IVP on the `TCAROD_STEPS` grid).
 //!
@@ -21,11 +21,11 @@
 //! `Solution.evaluations` (a tangent IVP, which carries the Jacobian, counts
 //! as one); IVP-equivalents are the solve's CPU time over the CPU time of one
 //! plain IVP of the same design at its solution (mean of 5), the median of
-//! `TCAROD_REPEAT` (default 3) such pairs, solve then IVPs, interleaved (a
-//! single pair swung by up to 30 % on the shared machine: #298 82 and 104
-//! in two runs of the same binary). Times are thread-CPU
-//! times from `clock_gettime(CLOCK_THREAD_CPUTIME_ID)` (declared here: no
-//! `libc` dependency), or wall time from `Instant` where that is unavailable. Prints a table and one `JSON ` line.
+//! `TCAROD_REPEAT` (default 3) such pairs, solve then IVPs, interleaved (on a
+//! shared machine a single pair can swing by 30 %). Times are thread-CPU
+//! times from `clock_gettime(CLOCK_THREAD_CPUTIME_ID)` (`clock/mod.rs`), or
+//! wall time from `Instant` where that is unavailable. Prints a table and one
+//! `JSON ` line.
 use std::time::Instant;
 
 use tcarod::problems::{equilibrium, random_design, Design, DEFAULT_SEED, EQUILIBRIUM_TOL};

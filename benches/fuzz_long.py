@@ -1,4 +1,4 @@
-"""Long fuzz profile of tcarod's public Python API (issue 12).
+"""Long fuzz profile of tcarod's public Python API.
 
     nice python benches/fuzz_long.py [--calls 100000] [--timeout 10] [--seed 0] [--workers 2]
 

@@ -4,7 +4,8 @@ per stage for eq (25), ``scipy.optimize.root`` for the shooting), used as the
 baseline of ``tcarod bench`` and checked against the Rust core by
 ``tests/test_batch.py``.
 
-Same equations and conventions as ``src/rod.rs`` / ``src/shooting.rs``: state
+Same equations and conventions as ``src/rod/ode.rs`` (eqs 22-31) and
+``src/solve/residual.rs`` (eqs 32-33): state
 ``[p, q (quaternion), v, u, delta_1, delta_2]``, unknowns
 ``[v(0), L u(0), delta_1 / L, delta_2 / L]``, scaled tip residuals (32)-(33)
 and elongation agreement. The TCA force law comes from ``tcarod.Tca`` (the

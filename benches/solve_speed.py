@@ -1,7 +1,9 @@
-"""Solver speed on the issue-10 target cases, from the public Python API.
+"""Solver speed on the solver's target cases, from the public Python API.
 
 Run as a script (``python benches/solve_speed.py [--repeats N] [--json]``).
-Cases (100 RK4 steps, default tolerances, one thread):
+Cases (100 RK4 steps, default tolerances, one thread, and the API's default
+stability verdict, ``stability="report"``: one tangent integration per solve
+on top of the solve itself):
 
 * ``fig6_cold``: Fig. 6 square manipulator (40 mm, upright, gravity), both
   TCA legs at 100 C, solved from the straight guess (target <= 200 us);
@@ -10,7 +12,8 @@ Cases (100 RK4 steps, default tolerances, one thread):
 * ``fig6_jc`` / ``fig6_jc_exact``: J and C (eqs 39-42) at the 100 C
   solution, both legs one variable, by forward differences (the paper's) and
   from the tangent IVP (``_core.sensitivities(..., "exact")``; the
-  ``tcarod.inverse`` wrapper does not take it yet) (target <= 3 IVP times);
+  ``tcarod.inverse`` wrapper offers the difference schemes only) (target
+  <= 3 IVP times);
 * ``grasp_1g``: Table I grasp temperature for 1 g (target <= 1 ms);
 * ``steel_cold``: the steel tendon robot (L 0.5 m, r 1 mm, E 200 GPa, G 80
   GPa, 8000 kg/m^3, gravity 9.81 m/s^2 along base-frame +x, four straight
@@ -49,7 +52,7 @@ from tcarod.models.manipulators import square_manipulator
 #: Temperature [C] of the Fig. 6 cases and the warm start's offset [C].
 FIG6_TEMPERATURE_C = 100.0
 WARM_STEP_C = 5.0
-#: Steel tendon robot (issue 10).
+#: Tensions [N] of the steel tendon robot's four tendons.
 STEEL_TENSIONS_N = list(_core.fixture_constants()["steel_tendon_tensions"])
 STEPS = 100
 #: Minimum CPU time of one sample [s].
@@ -57,7 +60,7 @@ MIN_SAMPLE_S = 2e-3
 
 
 def steel_tendon_robot() -> Robot:
-    """The issue-10 steel tendon robot (the core's fixture; see the module docstring)."""
+    """The steel tendon robot (the core's fixture; see the module docstring)."""
     return _core.fixture_tendon_robot("steel")
 
 

@@ -1,4 +1,4 @@
-//! Benches of the stability verdict (issue 16): a warm solve of the Fig. 6
+//! Benches of the stability verdict: a warm solve of the Fig. 6
 //! square at 100 C without the verdict (`Policy::Off`) and with it
 //! (`Policy::Report`, the default), the verdict alone, and the tangent IVP
 //! it must not exceed (the solver's exact Jacobian on the full grid, no
@@ -6,8 +6,8 @@
 //!
 //! First an interleaved run (each round times every contender once, by
 //! thread CPU time; medians over the rounds) prints the cost target's
-//! ratio `(report - off) / tangent IVP` (set `TCAROD_ROUNDS`, default 300);
-//! then criterion (wall clock).
+//! ratio `(report - off) / tangent IVP` (set `TCAROD_ROUNDS`, default 300)
+//! and the same as one `JSON ` line; then criterion (wall clock).
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -148,6 +148,17 @@ fn verdict(c: &mut Criterion) {
         }
         println!(
             "(report - off) / tangent IVP = {:.3}; verdict / tangent IVP = {:.3}",
+            (m[1] - m[0]) / m[3],
+            m[2] / m[3]
+        );
+        let medians: Vec<String> = cs
+            .iter()
+            .zip(&m)
+            .map(|((name, _), t)| format!("\"{name}\":{t:.9e}"))
+            .collect();
+        println!(
+            "JSON {{\"bench\":\"stability\",\"rounds\":{rounds},\"thread_cpu_median_s\":{{{}}},\"report_minus_off_per_tangent\":{:.4},\"verdict_per_tangent\":{:.4}}}",
+            medians.join(","),
             (m[1] - m[0]) / m[3],
             m[2] / m[3]
         );

@@ -1,6 +1,6 @@
-//! Issue-16 benchmark: every converged solution of the seeded random designs
-//! of `tcarod::problems` carries a stability verdict, and warm sweeps that
-//! end elsewhere than cold solves are explained by it
+//! Stability over the design set: every converged solution of the seeded
+//! random designs of `tcarod::problems` carries a stability verdict, and warm
+//! sweeps that end elsewhere than cold solves are explained by it
 //! (`cargo bench --bench stability_designs`).
 //!
 //! For each design: a cold solve at its inputs (from the reference guess,
@@ -20,6 +20,7 @@
 //! one tangent IVP at the solution without recorded nodes
 //! (`shooting::Shot::jacobian` on the full grid: the exact Newton Jacobian),
 //! each the median of 3, interleaved; and the same over one plain IVP.
+//! Prints the counts and one `JSON ` line with the same numbers.
 use std::time::Instant;
 
 use tcarod::problems::{random_design, Design, DEFAULT_SEED};
@@ -195,9 +196,37 @@ fn main() {
         "cold and warm tips differ by > 1 % L: {} (one of the pair unstable: {}, of which cold unstable / warm stable: {}; both stable: {}; both unstable: {}); still apart after both continue to stable: {}",
         t.differ, t.one_unstable, t.cold_unstable_warm_stable, t.both_stable, t.both_unstable, t.differ_continued
     );
+    let (per_tangent, per_ivp) = (median(t.per_tangent), median(t.per_ivp));
     println!(
-        "verdict cost: median {:.3} tangent IVPs (full grid, no recording), {:.2} plain IVPs (thread-CPU ratios, median of 3 each, {samples} solutions)",
-        median(t.per_tangent),
-        median(t.per_ivp)
+        "verdict cost: median {per_tangent:.3} tangent IVPs (full grid, no recording), {per_ivp:.2} plain IVPs (thread-CPU ratios, median of 3 each, {samples} solutions)"
     );
+    println!(
+        "JSON {{\"bench\":\"stability_designs\",\"n\":{n},\"seed\":{seed},\"cold_converged\":{},\"warm_converged\":{},\"solutions\":{},\"with_verdict\":{},\"stable_cold\":{},\"stable_warm\":{},\
+\"differ\":{},\"one_unstable\":{},\"cold_unstable_warm_stable\":{},\"both_stable\":{},\"both_unstable\":{},\"differ_after_continue\":{},\
+\"verdict_per_tangent_ivp\":{},\"verdict_per_plain_ivp\":{},\"cost_samples\":{samples}}}",
+        t.cold_ok,
+        t.warm_ok,
+        t.solutions,
+        t.with_verdict,
+        t.stable_cold,
+        t.stable_warm,
+        t.differ,
+        t.one_unstable,
+        t.cold_unstable_warm_stable,
+        t.both_stable,
+        t.both_unstable,
+        t.differ_continued,
+        jnum(per_tangent),
+        jnum(per_ivp)
+    );
+}
+
+/// `x` with four decimals as a JSON number, or `null` if it is not finite
+/// (the median of no samples).
+fn jnum(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x:.4}")
+    } else {
+        "null".to_string()
+    }
 }

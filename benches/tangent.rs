@@ -1,13 +1,13 @@
-//! The tangent pass's cost (issues 10 and 16): the hand-linearised lanes
-//! (`RodRhs::deriv_lanes`, the default) against the reference pass
-//! in dual arithmetic throughout (`tcarod::rod::with_dual_rhs`), interleaved
+//! The tangent pass's cost: the hand-linearised lanes (`RodRhs::deriv_lanes`,
+//! the default) against the reference pass in dual arithmetic throughout
+//! (`tcarod::rod::with_dual_rhs`), interleaved
 //! in one run by thread CPU time, on the Fig. 6 square at
 //! `rows::BENCH_TEMPERATURE` (100 RK4 steps): one plain IVP, tangent passes
 //! of 6 and 8 directions (tip only), the exact shooting Jacobian
 //! (`rows` "tangent"), exact J and C ("jc_exact"), and the steel tendon
 //! robot's cold and warm solves (their Newton Jacobians are tangent passes).
 //! `cargo bench --bench tangent` (`TCAROD_ROUNDS`, default 300, rounds;
-//! `TCAROD_REF=0` times the new path only, for profiling it with perf).
+//! `TCAROD_REF=0` times the lane pass only, for profiling it with perf).
 use std::hint::black_box;
 
 #[allow(dead_code)]
@@ -83,10 +83,10 @@ fn main() {
         ("steel_cold".into(), operation("steel_cold").unwrap()),
         ("steel_warm".into(), operation("steel_warm").unwrap()),
     ];
-    // TCAROD_REF=0: the new path only (for profiling it with perf)
+    // TCAROD_REF=0: the lane pass only (for profiling it with perf)
     let with_ref = std::env::var("TCAROD_REF").map_or(true, |v| v != "0");
     let n = cs.len();
-    // (name, dual?) per contender: every operation twice, new then reference
+    // (name, dual?) per contender: every operation twice, lanes then reference
     let mut t = vec![vec![Vec::new(); 2]; n];
     for _ in 0..rounds {
         for (k, (_, f)) in cs.iter_mut().enumerate() {
@@ -112,7 +112,7 @@ fn main() {
     println!("interleaved thread-CPU medians over {rounds} rounds (Fig. 6 square, 100 steps)");
     println!(
         "{:>11} {:>10} {:>6} {:>10} {:>6} {:>6}",
-        "", "new us", "IVPs", "ref us", "IVPs", "ratio"
+        "", "lanes us", "IVPs", "ref us", "IVPs", "ratio"
     );
     println!("{:>11} {:>10.1} {:>6.2}", "ivp", ivp * 1e6, 1.0);
     for (k, (name, _)) in cs.iter().enumerate().skip(1) {

@@ -2,21 +2,26 @@
 
 * on_config: the optional page ``table1.md`` (written separately) is listed in
   the nav only when it exists, so a strict build never points at a missing page.
-* on_pre_build: figures and tables of the paper's experiments are generated
-  from the installed tcarod (``tcarod reproduce NAME --out docs/figures``; the
-  printed table goes to ``docs/figures/NAME.txt``), and the notebooks of
-  ``examples/`` are copied to ``docs/gallery/`` for mkdocs-jupyter, which
-  executes them (never from its cache: the outputs depend on the installed
-  tcarod). Both folders are build outputs (.gitignore).
+* on_pre_build: the figures and tables of the paper's experiments
+  (``tcarod reproduce``: ``NAME.png`` and the printed table ``NAME.txt``) go to
+  ``docs/figures/``, and the notebooks of ``examples/``, executed, go to
+  ``docs/gallery/``, which mkdocs-jupyter renders without executing them
+  again. Both come from the installed tcarod. Under ``make test``
+  (``TCAROD_TEST_ARTIFACTS`` set) the tests of the same run have already
+  drawn the figures and executed the notebooks; the hook takes their outputs
+  (a notebook only if its code cells are those of ``examples/``) and makes
+  only what is missing. Both folders are build outputs (.gitignore).
 * on_post_build: if the Rust crate docs exist (``cargo doc --no-deps``, run by
   ``make docs``), they are copied to ``site/rust/``.
 """
 
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -49,26 +54,68 @@ def on_config(config: Any) -> Any:
     return config
 
 
-def on_pre_build(config: Any) -> None:
-    # mkdocs-jupyter caches executed notebooks by their source; the outputs
-    # also depend on the installed tcarod, so every build executes afresh.
-    shutil.rmtree(ROOT / ".cache" / "mkdocs-jupyter", ignore_errors=True)
+def _artifacts() -> Path | None:
+    path = os.environ.get("TCAROD_TEST_ARTIFACTS")
+    return Path(path) if path else None
+
+
+def _figures() -> None:
+    """docs/figures/NAME.png and NAME.txt for every experiment on the site."""
     FIGURES.mkdir(exist_ok=True)
+    artifacts = _artifacts()
+    made = artifacts / "reproduce" / "tcarod-output" if artifacts else None
+    missing = []
     for name in EXPERIMENTS:
+        files = [made / f"{name}{ext}" for ext in (".png", ".txt")] if made else []
+        if files and all(f.is_file() for f in files):
+            for f in files:
+                shutil.copy2(f, FIGURES / f.name)
+        else:
+            missing.append(name)
+    if missing:
         run = subprocess.run(
-            [sys.executable, "-m", "tcarod", "reproduce", name, "--out", str(FIGURES)],
+            [sys.executable, "-m", "tcarod", "reproduce", *missing, "--out", str(FIGURES)],
             capture_output=True,
             text=True,
             check=False,
         )
         if run.returncode != 0:
-            raise RuntimeError(f"tcarod reproduce {name} failed:\n{run.stderr}")
-        (FIGURES / f"{name}.txt").write_text(run.stdout, encoding="utf-8")
+            raise RuntimeError(f"tcarod reproduce {' '.join(missing)} failed:\n{run.stderr}")
+
+
+def _code(book: Any) -> list[str]:
+    return [c.source for c in book.cells if c.cell_type == "code"]
+
+
+def _gallery() -> None:
+    """docs/gallery/NAME.ipynb: every notebook of examples/, executed."""
+    import nbclient
+    import nbformat
+
     if GALLERY.exists():
         shutil.rmtree(GALLERY)
     GALLERY.mkdir()
-    for nb in sorted((ROOT / "examples").glob("*.ipynb")):
-        shutil.copy2(nb, GALLERY / nb.name)
+    artifacts = _artifacts()
+    for path in sorted((ROOT / "examples").glob("*.ipynb")):
+        source = nbformat.read(path, as_version=4)
+        executed = artifacts / "notebooks" / path.name if artifacts else None
+        if executed is not None and executed.is_file():
+            book = nbformat.read(executed, as_version=4)
+            if _code(book) == _code(source):
+                nbformat.write(book, GALLERY / path.name)
+                continue
+        with tempfile.TemporaryDirectory() as cwd:  # files the notebook writes go here
+            nbclient.NotebookClient(
+                source, kernel_name="python3", timeout=300, resources={"metadata": {"path": cwd}}
+            ).execute()
+        nbformat.write(source, GALLERY / path.name)
+
+
+def on_pre_build(config: Any) -> None:
+    # jupyter_core warns unless the platformdirs layout is chosen explicitly.
+    os.environ.setdefault("JUPYTER_PLATFORM_DIRS", "1")
+    _figures()
+    _gallery()
 
 
 def on_post_build(config: Any) -> None:

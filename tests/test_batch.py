@@ -10,6 +10,7 @@ import json
 import sys
 from pathlib import Path
 from types import ModuleType
+from typing import Any
 
 import numpy as np
 import pytest
@@ -106,16 +107,13 @@ def test_batch_rejects_bad_input() -> None:
         solve_batch(robot, [[50.0, 50.0]], chunk_size=0)
 
 
-def test_dask_client_gives_the_local_results() -> None:
-    distributed = pytest.importorskip("distributed")
+@pytest.mark.xdist_group("dask")
+def test_dask_client_gives_the_local_results(dask_client: Any) -> None:
     robot = fig6_square_robot()
     q = _sweep(12)
     local = solve_batch(robot, q, chunk_size=3)
-    with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
-    ) as cluster:
-        with distributed.Client(cluster) as client:
-            remote = solve_batch(fig6_square_robot, q, chunk_size=3, client=client)
+    # a robot factory: each worker process builds its own robot
+    remote = solve_batch(fig6_square_robot, q, chunk_size=3, client=dask_client)
     assert remote == local  # every array (tensions included), exactly
 
 
@@ -136,12 +134,17 @@ def test_bench_rows_and_cli_json(capsys: pytest.CaptureFixture[str]) -> None:
     assert len(times) == 2 and all(t > 0 for t in times)
     with pytest.raises(ValueError, match="unknown bench row"):
         _core.bench_time("nope")
-    assert main(["bench", "--json", "--repeats", "1", "--min-time", "0", "--batch", "8", "--no-baseline"]) == 0
+    # the memory batch on 1,000 rows here (the default 100,000 is for `tcarod bench`)
+    argv = ["bench", "--json", "--repeats", "1", "--min-time", "0", "--batch", "8", "--memory-rows", "1000"]
+    assert main([*argv, "--no-baseline"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert [r["name"] for r in doc["rows"]] == names
     assert set(doc["batch_throughput"]) == {"threads_1", "threads_2"}
     assert doc["python_overhead"]["python_warm_solve_s"] > 0
     assert doc["numpy_baseline"] is None
+    mem = doc["batch_memory"]
+    assert mem["rows"] == 1000 and mem["all_converged"]
+    assert mem["peak_rss_increase_mb"] >= 0 and mem["peak_rss_mb"] > 0
 
 
 def test_batch_result_carries_inputs_status_and_a_table() -> None:

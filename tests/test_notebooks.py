@@ -3,6 +3,10 @@ bottom by nbclient on a real Jupyter kernel (ipykernel, this interpreter), must
 finish without an error, and every cell that draws a figure must have produced
 an image/png output -- what a reader of the notebook (or of the docs site,
 which renders the same notebooks) sees.
+
+Under ``make test`` (``TCAROD_TEST_ARTIFACTS`` set) each executed notebook is
+also saved to ``$TCAROD_TEST_ARTIFACTS/notebooks/``, where the docs build of
+the same run takes it (docs/_hooks.py) instead of executing it again.
 """
 
 from __future__ import annotations
@@ -66,3 +70,9 @@ def test_notebook_runs_and_shows_its_figures(path: Path, tmp_path: Path) -> None
     for cell in figure_cells:
         kinds = {k for o in cell.outputs for k in o.get("data", {})}
         assert "image/png" in kinds, f"{path.name}: figure cell shows no image ({sorted(kinds)}):\n{cell.source}"
+
+    artifacts = os.environ.get("TCAROD_TEST_ARTIFACTS")
+    if artifacts:
+        executed = Path(artifacts) / "notebooks"
+        executed.mkdir(parents=True, exist_ok=True)
+        nbformat.write(book, executed / path.name)

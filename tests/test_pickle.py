@@ -212,16 +212,14 @@ def test_robot_and_solution_travel_to_a_spawned_process_pool() -> None:
     assert warm_there == warm_here
 
 
-def test_batch_on_dask_process_workers_equals_serial_bit_for_bit() -> None:
-    distributed = pytest.importorskip("distributed")
-    # 1,000 rows here (about 10 s with worker start-up on a shared 2-core
-    # machine); benches/dask_batch.py runs the 10,000-row sweep of issue 14.
+@pytest.mark.xdist_group("dask")
+def test_batch_on_dask_process_workers_equals_serial_bit_for_bit(dask_client: Any) -> None:
+    # 1,000 rows: ten chunks over two process workers, so the robot is pickled
+    # to both; benches/dask_batch.py runs a 10,000-row sweep.
     t = np.linspace(25.0, 160.0, 1000)
     q = np.column_stack([t, t[::-1]])
     serial = solve_batch(SQUARE, q, chunk_size=100, threads=1)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
-        with distributed.Client(cluster) as client:
-            remote = solve_batch(SQUARE, q, chunk_size=100, client=client)
+    remote = solve_batch(SQUARE, q, chunk_size=100, client=dask_client)
     assert serial.success and len(serial) == 1000
     assert remote == serial  # every array, exactly
 

@@ -23,7 +23,7 @@ pub const BENCH_TEMPERATURE: f64 = 100.0;
 /// Temperature step \[C\] of the warm-start row.
 pub const WARM_STEP: f64 = 5.0;
 /// RK4 steps of the "within 1 um of a 5,000-step reference" row (measured by
-/// `tests/perf.rs`: at most 0.43 um over 40-160 C).
+/// `tests/integration/perf.rs`: at most 0.43 um over 40-160 C).
 pub const ACCURATE_STEPS: usize = 10;
 
 /// One row of the table: name, what it times, its target \[s\].
@@ -71,8 +71,8 @@ pub const ROWS: [Row; 6] = [
     },
 ];
 
-/// Rows of the solver issue (benches/rod.rs only, not in the performance
-/// table): exact J and C, one tangent IVP, the steel tendon robot
+/// The solver's rows (benches/rod.rs only, not in `tcarod bench`'s table):
+/// exact J and C, one tangent IVP, the steel tendon robot
 /// ([`steel_tendon_robot`]) cold and warm after +1 % tension.
 pub const SOLVER_ROWS: [Row; 4] = [
     Row {

@@ -2,10 +2,29 @@
 
 Rows (Fig. 6 square manipulator, 2 TCAs, gravity, 100 RK4 steps unless the
 row says otherwise, one core) are timed in Rust (``_core.bench_time``; the
-problems are ``tcarod::bench``, shared with the criterion benches) as the
-median of ``--repeats`` runs. Besides the rows: the Python call overhead on a
-warm solve, batch throughput on 1 and 2 threads, and the ratio to the NumPy/SciPy
-baseline (``benches/numpy_baseline.py`` of a source checkout, if present).
+problems are defined in ``benches/rows/mod.rs`` of the source tree, shared
+with the criterion benches) as the median of ``--repeats`` runs. Besides the
+rows: the Python call overhead on a warm solve, batch throughput on 1 and 2
+threads, the peak memory of a 100,000-row batch, and the ratio to the
+NumPy/SciPy baseline (``benches/numpy_baseline.py`` of a source checkout, if
+present).
+
+Peak memory (``batch_memory`` in the JSON document; ``--memory-rows``, 0
+skips it): a fresh interpreter imports tcarod, builds the robot and the
+``(rows, 2)`` input array of a 40-140 C sweep, then solves it with
+:func:`tcarod.batch.solve_batch` (all cores, default chunks, no stability
+verdict) and returns the tip poses. ``peak_rss_increase_mb`` is the increase
+of that process's peak resident set size (``resource.getrusage`` ``ru_maxrss``,
+KiB on Linux) over the batch: everything the batch allocates, Rust and NumPy
+alike. A fresh process is used so that the peak before the batch is that of
+the imports only, not of an earlier, larger measurement; a batch too small to
+rise above that peak reads 0. ``python_peak_mb`` is
+the peak of the allocations traced by :mod:`tracemalloc` during the batch:
+Python objects and buffers NumPy allocates itself; result arrays whose buffers
+Rust allocated and hands to NumPy are not traced, so this is a lower bound of
+the Python-visible memory, and the RSS figure is the one to quote (it
+includes tracemalloc's own bookkeeping, small for a batch's few large
+arrays). MB are 10^6 bytes.
 
 ``--json`` prints one JSON document instead of the table (times in s).
 """
@@ -15,7 +34,9 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import json
+import os
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -31,6 +52,10 @@ from .batch import fig6_square_robot, solve_batch
 __all__ = ["add_parser", "measure", "run"]
 
 BASELINE = Path(__file__).resolve().parents[2] / "benches" / "numpy_baseline.py"
+#: Rows of the peak-memory batch (``--memory-rows``).
+MEMORY_ROWS = 100_000
+#: Bytes per MB in the reported memory figures.
+MB = 1e6
 
 
 def add_parser(sub: Any) -> None:
@@ -45,6 +70,13 @@ def add_parser(sub: Any) -> None:
     p.add_argument("--min-time", type=float, default=0.05, metavar="S", help="seconds per run (default 0.05)")
     p.add_argument(
         "--batch", type=int, default=2000, metavar="N", help="solves per throughput batch (default 2000; 0: skip)"
+    )
+    p.add_argument(
+        "--memory-rows",
+        type=int,
+        default=MEMORY_ROWS,
+        metavar="N",
+        help=f"rows of the peak-memory batch, solved in a fresh process (default {MEMORY_ROWS}; 0: skip)",
     )
     p.add_argument("--no-baseline", action="store_true", help="skip the (slow) NumPy/SciPy baseline")
     p.add_argument("--progress", action="store_true", help="show a progress bar for the throughput batches")
@@ -78,8 +110,69 @@ def _load_baseline() -> ModuleType | None:
     return mod
 
 
+def _peak_rss_bytes() -> int:
+    """Peak resident set size of this process so far [bytes] (``ru_maxrss``: KiB on Linux, bytes on macOS)."""
+    import resource
+
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return int(peak) if sys.platform == "darwin" else int(peak) * 1024
+
+
+def _memory_child(rows: int) -> None:
+    """Body of the peak-memory process: one ``rows``-row sweep batch; prints one JSON line."""
+    import tracemalloc
+
+    robot = fig6_square_robot(True)
+    temps = np.linspace(40.0, 140.0, rows)
+    q = np.column_stack([temps, temps])
+    before = _peak_rss_bytes()
+    tracemalloc.start()
+    t0 = time.perf_counter()
+    res = solve_batch(robot, q, stability="off")
+    seconds = time.perf_counter() - t0
+    after = _peak_rss_bytes()
+    python_peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    doc = {
+        "rows": rows,
+        "threads": _core.default_threads(),
+        "seconds": seconds,
+        "all_converged": bool(res.converged.all()),
+        "peak_rss_before_mb": before / MB,
+        "peak_rss_mb": after / MB,
+        "peak_rss_increase_mb": (after - before) / MB,
+        "python_peak_mb": python_peak / MB,
+    }
+    print(json.dumps(doc))
+
+
+def _batch_memory(rows: int) -> dict[str, Any] | None:
+    """Peak memory of a ``rows``-row batch, measured in a fresh interpreter (see the module docstring)."""
+    if sys.platform == "win32":  # no ``resource`` module
+        return None
+    package_root = str(Path(__file__).resolve().parents[1])
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (package_root, env.get("PYTHONPATH", "")) if p)
+    code = "import sys; from tcarod.bench import _memory_child; _memory_child(int(sys.argv[1]))"
+    proc = subprocess.run([sys.executable, "-c", code, str(rows)], capture_output=True, text=True, env=env, check=False)
+    if proc.returncode != 0:
+        tail = " ".join(proc.stderr.strip().splitlines()[-3:])
+        raise ChildProcessError(f"the peak-memory batch failed (exit status {proc.returncode}): {tail}")
+    doc: dict[str, Any] = json.loads(proc.stdout.strip().splitlines()[-1])
+    doc["method"] = (
+        "increase of the peak RSS (getrusage ru_maxrss) of a fresh process over the batch; "
+        "python_peak_mb: tracemalloc peak during the batch"
+    )
+    return doc
+
+
 def measure(
-    repeats: int = 7, min_time: float = 0.05, batch: int = 2000, baseline: bool = True, progress: bool = False
+    repeats: int = 7,
+    min_time: float = 0.05,
+    batch: int = 2000,
+    baseline: bool = True,
+    progress: bool = False,
+    memory_rows: int = MEMORY_ROWS,
 ) -> dict[str, Any]:
     """Measure everything ``tcarod bench`` prints; returns the JSON document."""
     rows = []
@@ -125,6 +218,7 @@ def measure(
                 "solves_per_s": batch / dt,
                 "all_converged": bool(res.converged.all()),
             }
+    memory = _batch_memory(memory_rows) if memory_rows > 0 else None
     numpy: dict[str, Any] | None = None
     if baseline:
         mod = _load_baseline()
@@ -147,6 +241,7 @@ def measure(
         "rows": rows,
         "python_overhead": overhead,
         "batch_throughput": throughput,
+        "batch_memory": memory,
         "numpy_baseline": numpy,
     }
 
@@ -167,6 +262,13 @@ def _table(doc: dict[str, Any]) -> str:
     )
     for k, v in doc["batch_throughput"].items():
         lines.append(f"batch of {v['solves']} sweep solves, {k.replace('_', ' ')}: {v['solves_per_s']:.0f} solves/s")
+    m = doc["batch_memory"]
+    if m is not None:
+        lines.append(
+            f"batch of {m['rows']} sweep solves returning tip poses, {m['threads']} threads: peak RSS "
+            f"+{m['peak_rss_increase_mb']:.1f} MB over the batch (process peak {m['peak_rss_mb']:.1f} MB; "
+            f"traced Python/NumPy allocations {m['python_peak_mb']:.1f} MB)"
+        )
     nb = doc["numpy_baseline"]
     if nb is not None:
         lines.append(
@@ -180,17 +282,18 @@ def run(args: argparse.Namespace) -> int:
     """Run ``tcarod bench`` with parsed arguments; returns the exit status."""
     import math
 
-    from ._optional import require
-
     if not (
         1 <= args.repeats <= 10_000
         and math.isfinite(args.min_time)
         and 0 <= args.min_time <= 60
         and 0 <= args.batch <= 1_000_000
+        and 0 <= args.memory_rows <= 1_000_000
     ):
-        raise ValueError("--repeats must be in 1..10000, --min-time in [0, 60] s, --batch in 0..1000000")
+        raise ValueError(
+            "--repeats must be in 1..10000, --min-time in [0, 60] s, --batch and --memory-rows in 0..1000000"
+        )
     if args.progress:
         require("tqdm")  # one line naming the extra, before any work
-    doc = measure(args.repeats, args.min_time, args.batch, not args.no_baseline, args.progress)
+    doc = measure(args.repeats, args.min_time, args.batch, not args.no_baseline, args.progress, args.memory_rows)
     print(json.dumps(doc, indent=2, allow_nan=False) if args.json else _table(doc))
     return 0

@@ -2,8 +2,9 @@
 ``tcarod solve DESIGN.toml [DESIGN.toml ...] [--temperature T [T ...]] [--out DIR] [--json]``.
 
 ``tcarod reproduce fig5`` prints the predicted table of the paper's Fig. 5 and
-writes ``DIR/fig5.png`` (default ``DIR`` = ``tcarod-output``). Without a name,
-every registered experiment (:data:`tcarod.paper.REGISTRY`) is run.
+writes the figure ``DIR/fig5.png`` and the table ``DIR/fig5.txt`` (default
+``DIR`` = ``tcarod-output``). Without a name, every registered experiment
+(:data:`tcarod.paper.REGISTRY`) is run.
 
 With ``--json`` the only output on stdout is one JSON document::
 
@@ -17,7 +18,7 @@ when the paper prints none).
 
 ``tcarod solve`` with several designs solves each in turn; with ``--json``
 it prints ``{"tcarod_version": ..., "designs": [<one document per design>]}``
-(one design: that design's document, as before).
+(one design: that design's document).
 
 Exit status: 0 on success; 2 on bad arguments, on a ``ValueError`` or
 ``tcarod.ConvergenceError`` from the model, if an output cannot be written, or
@@ -55,9 +56,9 @@ def _parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     rep = sub.add_parser(
         "reproduce",
-        help="predict the paper's experiments: print a table, write a PNG",
+        help="predict the paper's experiments: print a table, write a PNG and the table",
         description="Predict the paper's experiments: print a table per experiment and write "
-        "DIR/NAME.png. Without NAME, run every registered experiment.",
+        "DIR/NAME.png and DIR/NAME.txt (the table). Without NAME, run every registered experiment.",
     )
     rep.add_argument(
         "names",
@@ -69,7 +70,7 @@ def _parser() -> argparse.ArgumentParser:
         "--out",
         metavar="DIR",
         default=DEFAULT_OUT_DIR,
-        help=f"directory for the PNG files (default: {DEFAULT_OUT_DIR}/)",
+        help=f"directory for the PNG and table files (default: {DEFAULT_OUT_DIR}/)",
     )
     rep.add_argument(
         "--json",
@@ -171,7 +172,8 @@ def _reproduce(names: Sequence[str], out_dir: Path, as_json: bool) -> int:
     results: dict[str, tuple[ExperimentResult, Path]] = {}
     for name in names or sorted(REGISTRY):
         result = REGISTRY[name]()
-        png = result.plot(out_dir / f"{name}.png")
+        png = result.plot(out_dir / f"{name}.png")  # creates out_dir
+        (out_dir / f"{name}.txt").write_text(result.table() + "\n", encoding="utf-8")
         results[name] = (result, png)
     if as_json:
         doc: dict[str, Any] = {
