@@ -323,7 +323,8 @@ def test_an_unbounded_input_range_is_stated_without_the_double_maximum(
 
 
 def test_an_offset_outside_the_section_points_to_spacer_disks() -> None:
-    """The issue-10 steel tendon robot's tendons (15.06 mm off a 1 mm rod) need spacer disks: the error says so."""
+    """The steel tendon robot's tendons (``tcarod::experiments::steel_tendon_robot``: 15.06 mm off a rod of
+    1 mm radius) need spacer disks: the error says so."""
     body = tcarod.Body(0.5, tcarod.Section.circle(2e-3), 200e9, shear_modulus=80e9)
     tendon = tcarod.Actuator.tendon(tcarod.Routing.straight(15.06e-3, 0.0))
     with pytest.raises(ValueError, match=r"actuators\[0\]\.routing.*spacer_disks=True"):

@@ -1,7 +1,8 @@
-"""Batch rows carry the stability verdict (issue 16): ``solve_batch(...,
-stability="report")`` (the default) gives every converged row ``stable`` and
-``margin``, the same verdict as ``Robot.solve``; ``stability="off"`` says "not
-computed" (``None``)."""
+"""Batch rows carry the stability verdict (docs/stability.md, "The stability
+of every solve"): ``solve_batch(..., stability="report")`` (the default) gives
+every converged row ``stable`` and ``margin``, the same verdict as
+``Robot.solve``; ``stability="off"`` says "not computed" (``None``). The
+physics of the verdict is tested in tests/integration/stability_batch.rs."""
 
 from __future__ import annotations
 
@@ -11,14 +12,15 @@ import pytest
 from tcarod.batch import BatchResult, fig6_square_robot, iter_batches, solve_batch
 
 # the upright column past self-weight buckling (rho A g L^3 / (E I) = 10 >
-# Greenhill's 7.837), without actuators, as in the Solution tests
+# Greenhill's 7.837), without actuators, as in tests/test_solution_stability.py
 from test_solution_stability import heavy_column  # noqa: E402  (tests/ is on sys.path under pytest)
 
 
 def test_buckled_column_rows_are_unstable() -> None:
     robot = heavy_column()
     # no tip wrench: the cold solve of the perfect column stays straight,
-    # an equilibrium past self-weight buckling, so unstable
+    # an equilibrium past self-weight buckling, so unstable (on the axis to
+    # rounding: 1e-9 m)
     res = solve_batch(robot, np.zeros((3, 0)), np.zeros((3, 6)))
     assert res.stable is not None and res.margin is not None
     assert res.converged.all()

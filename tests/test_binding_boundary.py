@@ -1,6 +1,8 @@
-"""Bad input at the binding boundary (issue 12): every index and size that
-comes from Python is validated before the core sees it (split from
-test_bad_input.py)."""
+"""Bad input at the binding boundary: every index and size that comes from
+Python is validated before the core sees it, and geometry that cannot be
+built (routings outside the section, TCAs longer than their span,
+millimetres passed as metres) is refused or warned about. The TCA law's own
+bad-input contract is tests/test_bad_input.py."""
 
 from __future__ import annotations
 
@@ -28,7 +30,7 @@ from tcarod.batch import fig6_square_robot, solve_batch
 
 NAN, INF = math.nan, math.inf
 
-# ------------------------------------------------- issue 12: binding boundary
+# ------------------------------------------------------------ binding boundary
 #
 # Rod, inverse and batch bindings: every index and size from Python is
 # validated before the core sees it. ValueError names the argument and the
@@ -42,7 +44,8 @@ SQUARE_NG = fig6_square_robot(gravity=False)
 
 
 class _LyingLength:
-    """A sequence claiming 2**62 items (once a `capacity overflow` panic)."""
+    """A sequence claiming 2**62 items: trusting ``__len__`` to size a buffer
+    would panic with ``capacity overflow``."""
 
     def __len__(self) -> int:
         return 2**62
@@ -123,7 +126,8 @@ def test_groups_of_the_wrong_type_are_type_errors(bad: object) -> None:
 
 
 def test_blocked_temperature_with_a_solution_of_a_different_robot() -> None:
-    # issue 12's shortest PanicException reproducer
+    # a start Solution of another robot (other unknowns): a ValueError naming
+    # `start`, never a PanicException from the core
     other = Robot(SQUARE_NG.body, [Actuator.tendon(Routing.straight(0.003, 0.0))]).solve([0.01])
     tip = SQUARE_NG.solve([25.0, 25.0]).tip_position
     with pytest.raises(ValueError, match="start: a Solution of a different robot"):
@@ -174,7 +178,7 @@ def test_wrong_classes_are_type_errors() -> None:
         SQUARE.solve([30.0, 30.0], warm_start=SQUARE)  # type: ignore[arg-type]
 
 
-# ---------------------------------------------------- issue 14: geometric sanity
+# ------------------------------------------------------------ geometric sanity
 
 
 def test_routing_outside_the_section_is_a_value_error() -> None:

@@ -1,4 +1,7 @@
-"""Calibration of TCA parameters from displacement-temperature data (synthetic)."""
+"""Calibration of TCA parameters from displacement-temperature data
+(``tcarod.models.calibration``, SciPy least squares), on synthetic data from
+the model itself: exact data recovers the truth, noisy data within a stated
+multiple of the standard error, and the interval narrows with more data."""
 
 from __future__ import annotations
 
@@ -42,9 +45,9 @@ def test_noisy_data_recovery_within_stated_multiple_of_standard_error(seed: int)
     assert r.success
     truth = np.array([TRUE["expansion_scale"], TRUE["friction_mass_kg"]])
     z = np.abs(r.estimate - truth) / r.standard_error
-    # A correct linearised SE gives |z| ~ N(0,1); in a 20-seed study (README)
-    # the largest |z| at this size was 1.9. 4 standard errors leaves room for
-    # the kink at the onset of extension, where the model is not linear.
+    # A correct linearised SE gives |z| ~ N(0,1); over 20 seeds at this size
+    # the largest measured |z| is 1.9. 4 standard errors leaves room for the
+    # kink at the onset of extension, where the model is not linear.
     assert np.all(z < 4.0), z
     # the noise estimate matches the noise put in (n - p = 26 dof: +-30 %)
     assert 0.035e-3 < r.residual_std_m < 0.065e-3
@@ -79,7 +82,8 @@ def test_two_loads_fit_modulus_slope_expansion_and_friction_ratio() -> None:
     ys = [e.predict(t, BASE, true) + rng.normal(0.0, 0.02e-3, t.size) for e in exps]
     r = calibrate(exps, [t, t], ys, fit=tuple(true))
     z = np.abs(r.estimate - np.array(list(true.values()))) / r.standard_error
-    # 20-seed study (README): max |z| 2.3 at this size and noise; 4 SE as above
+    # over 20 seeds at this size and noise the largest measured |z| is 2.3;
+    # 4 SE as above
     assert np.all(z < 4.0), z
     # the expansion is pinned to about 1 % (CI half-width), the slope only to
     # about +-1 MPa/C: the modulus enters only through f11 F, F is small

@@ -157,7 +157,7 @@ def test_model_errors_exit_2_with_one_line(
     assert captured.out == ""
 
 
-# ---------------------------------------------------------------- issue 14
+# ---------------------------------------------------------------- tcarod solve: several designs
 
 DESIGNS = Path(__file__).resolve().parent.parent / "examples" / "designs"
 TWO = [str(DESIGNS / "fig6_square.toml"), str(DESIGNS / "fig1b_three_tca.toml")]

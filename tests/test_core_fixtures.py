@@ -1,5 +1,6 @@
-"""The paper's fixtures bound from the core (issue 11): the same objects as
-the Python builders, and eq 44 (``grasp_temperature``) bound."""
+"""The paper's fixtures bound from the core (``tcarod::experiments``): the
+same objects as the Python builders (``tcarod.models.manipulators``), and
+eq 44 (``grasp_temperature``) bound."""
 
 from __future__ import annotations
 
@@ -28,6 +29,7 @@ def test_fixture_constants_and_tcas() -> None:
     assert k["table1_contact_temperature"] == pytest.approx(72.3333333333, abs=1e-9)
     whole, half = _core.fixture_fig5_tca(3), _core.fixture_fig5_half_tca(3)
     assert half == whole.segment(0.5)
+    # per_length keeps 76.4 turns per 40 mm: 76.4 x 26 / 40 = 49.66 per 26 mm leg, rounding only
     assert _core.fixture_leg_turns(0.026, 2, "per_length") == pytest.approx(49.66, abs=1e-12)
 
 

@@ -17,7 +17,7 @@ RESULT = predict_fig5()
 
 
 def test_fixture_matches_the_paper() -> None:
-    # Section V-A, with l and L un-swapped (NOTES.md 1)
+    # Section V-A, with l and L un-swapped (docs/choices.md, "l and L are swapped in Section V-A's text")
     three, four = FIG5.tcas
     assert (three.threads, three.coiled_length_m, three.fibre_length_m, three.coil_diameter_m, three.turns) == (
         3,
@@ -100,6 +100,7 @@ def test_final_displacement_is_positive_and_below_straight_fibre_limit() -> None
         assert c.final_temperature_c == 160.0
         d = c.displacement_at_final_temperature_m
         limit = c.straight_fibre_limit_m
+        # the same quantity, computed by the same function: exact (rel=0)
         assert limit == pytest.approx(c.case.half_tca().max_displacement, rel=0)
         assert 0.0 < d < limit
         # millimetres to centimetres, as the paper's TCAs move (a loose sanity
@@ -111,6 +112,7 @@ def test_onset_helper_returns_none_outside_range() -> None:
     half = FIG5.cases[0].half_tca()
     assert onset_temperature_c(half, -50.0) is None  # never opens by 160 C
     assert onset_temperature_c(half, 0.01) is None  # open already at 25 C (tension)
+    # inside the range it is the law's own onset: exact (abs=0)
     assert onset_temperature_c(half, -0.03) == pytest.approx(half.onset_temperature(-0.03), abs=0)
 
 
@@ -162,8 +164,8 @@ def test_whole_and_half_predictions_relate() -> None:
 
 
 def test_measured_cte_material_option() -> None:
-    # the measured radial CTE of oriented nylon 6,6 is about half the default's d'/d
-    # (issue 13): less untwisting, so every onset is later and the 160 C stroke smaller
+    # the measured radial CTE of oriented nylon 6,6 (Choy et al. 1984; docs/table1.md) is about
+    # half the default's d'/d: less untwisting, so every onset is later and the 160 C stroke smaller
     from tcarod.tca import Material
 
     default = FIG5.predict()
@@ -173,4 +175,5 @@ def test_measured_cte_material_option() -> None:
         assert b.onset_temperature_c > a.onset_temperature_c, a.case.label
         # the free stroke scales roughly with d/d0 - 1 at 160 C: 3.7 % (measured) against 7.9 % (default)
         ratio = b.displacement_at_final_temperature_m / a.displacement_at_final_temperature_m
+        # a band around that rough scaling, 3.7 / 7.9 = 0.47
         assert 0.4 < ratio < 0.55, (a.case.label, ratio)

@@ -126,7 +126,8 @@ def test_cold_and_warm_sweeps_agree(result: Fig6Result) -> None:
             # previous solution's exact Jacobian (chord steps, one plain IVP each,
             # counted as iterations), so a warm step takes 3-12 here; cold steps
             # take fewer but costlier iterations (a tangent IVP each), so the
-            # work comparison is in IVPs: tests/properties.rs
+            # work comparison is in IVPs: fig6_sweeps_converge_cold_and_warm in
+            # tests/integration/solver.rs
             assert max(curve.iterations_warm[1:]) <= 12
 
 

@@ -1,5 +1,7 @@
-"""Issue 13: the measured-CTE material option, like-with-like plausibility
-checks, and the Table I identification (tcarod.models.identification)."""
+"""The measured-CTE material option (Choy et al. 1984's radial CTE of
+oriented nylon 6,6), like-with-like plausibility checks, and the Table I
+identification (tcarod.models.identification). The numbers and ranges are
+those of docs/table1.md ("Identification")."""
 
 from __future__ import annotations
 
@@ -31,6 +33,7 @@ CHOY = Material.measured_radial_cte_data()
 def test_measured_cte_data_and_interpolation() -> None:
     assert (32.0, 15.50e-5) in CHOY and (160.0, 43.68e-5) in CHOY
     assert Material.measured_radial_cte(137.0) == 36.35e-5
+    # linear interpolation, midway between two data points: rounding only
     assert Material.measured_radial_cte(126.5) == pytest.approx(0.5 * (30.48e-5 + 36.35e-5), rel=1e-14)
     for bad in (161.0, -50.0, math.nan):
         with pytest.raises(ValueError, match="temperature"):
@@ -55,7 +58,7 @@ def test_measured_cte_preset_compares_like_with_like() -> None:
         assert abs(cte_ratio(m, t) - 1.0) < (0.16 if t < 60.0 else 0.08), t
     d = Material.silver_coated_nylon()
     # the default's d'/d exceeds the largest measured radial CTE above ~71 C and is
-    # 1.95-2.38x the measured value at the same temperature over 64-137 C (issue 13)
+    # 1.95-2.38x the measured value at the same temperature over 64-137 C (docs/table1.md)
     assert d.instantaneous_expansion(75.0) > 43.68e-5 > d.instantaneous_expansion(65.0)
     assert all(1.9 < cte_ratio(d, t) < 2.4 for t in CTE_CHECK_TEMPERATURES_C)
     # its *mean* coefficient rho(T) since 25 C is a different quantity: lower than d'/d
@@ -65,6 +68,7 @@ def test_measured_cte_preset_compares_like_with_like() -> None:
 def test_with_expansion_scale() -> None:
     m = Material.nylon66_measured_cte()
     half = m.with_expansion_scale(0.5)
+    # d/d0 - 1 is linear in the expansion coefficients: halved, up to rounding
     assert half.diameter_ratio(140.0) - 1.0 == pytest.approx(0.5 * (m.diameter_ratio(140.0) - 1.0), rel=1e-12)
     assert half.coefficients[:4] == m.coefficients[:4]
     for bad in (0.0, -1.0, math.inf):
@@ -101,11 +105,12 @@ def ident() -> Identification:
 def test_identification_meets_the_issue_target(ident: Identification) -> None:
     p = ident.parameters
     assert set(p) == {"contact_temperature_c", "rho_scale"}
-    # issue-13 target: plausible parameters, rms <= 3 C, every leave-one-out error <= 5 C
+    # the target: plausible parameters, rms <= 3 C, every leave-one-out error <= 5 C
+    # (docs/table1.md reports rms 0.71 C and leave-one-out errors up to 3.6 C)
     assert ident.all_plausible
     assert ident.rms_c <= 3.0
     assert len(ident.leave_one_out_c) == 3 and all(math.isfinite(v) and abs(v) <= 5.0 for v in ident.leave_one_out_c)
-    # the numbers obtained (03:40 UTC run: 66.17 C, 0.610, rms 0.71 C): the optimiser stops at
+    # the numbers obtained (docs/table1.md: 66.2 C, 0.610, rms 0.71 C): the optimiser stops at
     # xtol 1e-8 on a model solved to ~1e-8 C, so 0.5 C and 0.01 leave room for platform rounding
     assert p["contact_temperature_c"].value == pytest.approx(66.17, abs=0.5)
     assert p["rho_scale"].value == pytest.approx(0.610, abs=0.01)

@@ -79,6 +79,7 @@ def test_tip_position_unreachable_target_returns_closest_configuration(square40)
     assert res.at_bound == [True]
     assert res.variables == pytest.approx([25.0], abs=1e-9)  # closest: not heated at all
     free = square40.solve([25.0, 25.0])
+    # the same configuration as the free solve at the bound, to its tolerance
     assert res.error == pytest.approx(float(np.linalg.norm(free.tip_position - [0.02, 0.0, 0.03])), rel=1e-9)
 
 
@@ -86,6 +87,7 @@ def test_blocked_force_and_both_inverse_methods_round_trip(fig8_setup) -> None: 
     robot, free, point = fig8_setup
     at_100 = blocked_force(robot, point, MINUS_X, 100.0, groups=[0, 0])
     assert at_100.force > 0.0  # heated past the taut temperature: the tip presses on the wire
+    # the mixed solve holds the tip on the plane to its tolerance, 1e-9 of the 26 mm length
     assert at_100.solution.tip_position[0] == pytest.approx(point[0], abs=1e-9 * 0.026)
     inc = blocked_temperature(robot, point, MINUS_X, at_100.force, free, groups=[0, 0])
     direct = blocked_temperature_direct(robot, point, MINUS_X, at_100.force, groups=[0, 0])
@@ -99,6 +101,7 @@ def test_blocked_temperature_at_the_top_of_the_range(fig8_setup) -> None:  # typ
     robot, free, point = fig8_setup
     top = blocked_force(robot, point, MINUS_X, [160.0], groups=[0, 0])
     inc = blocked_temperature(robot, point, MINUS_X, top.force, free, groups=[0, 0])
+    # as above: a tip gap of 1e-9 L is far below 1e-6 C
     assert inc.variables[0] == pytest.approx(160.0, abs=1e-6)
     with pytest.raises(ValueError, match="outside"):
         blocked_temperature(robot, point, MINUS_X, 1.05 * top.force, free, groups=[0, 0])
@@ -128,6 +131,7 @@ def test_blocked_force_through_a_linear_tendons_onset() -> None:
     held = blocked_force(robot, wall, (1.0, 0.0, 0.0), [5e-4, 0.0], groups=[0, 1])
     assert held.success and held.force > 0.0  # [N] the tip presses on the wall
     assert held.solution.tensions[1] == 0.0  # slack: on the law's zero piece, exactly
+    # on the wall to the mixed solve's tolerance, 1e-9 of the 0.2 m length
     assert held.solution.tip_position[0] == pytest.approx(wall[0], abs=1e-9 * 0.2)
     # 3 measured; 8 leaves room for a changed line search but fails a solve
     # that stalls at the kink
@@ -149,6 +153,7 @@ def test_tip_position_reaches_a_shape_with_a_slack_tendon(pulls: tuple[float, fl
     r = tip_position(robot, goal.tip_position)
     assert r.reached and r.status == 0, r
     assert r.error <= 1e-7  # [m] the default tol
+    # the same tolerance on every coordinate
     assert np.allclose(r.solution.tip_position, goal.tip_position, atol=1e-7)
     assert r.nit <= 5, r  # 2 measured; a solve stalling at the kink takes the 50 allowed
 
@@ -184,6 +189,7 @@ def test_grasp_eq44_and_monotone_in_mass() -> None:
     temps = [grasp_temperature(m) for m in (1e-3, 2e-3, 3e-3)]
     assert 25.0 < temps[0] < temps[1] < temps[2] < 160.0
     g = grasp(2e-3)
+    # eq 44 in closed form (rounding only); the blocked solve presses with it to 1e-12
     assert g.force_per_finger_n == pytest.approx(2e-3 * 9.81 / (1.1 * 2), rel=1e-15)
     assert g.blocked.force == pytest.approx(g.force_per_finger_n, rel=1e-12)
     assert g.temperature_c == temps[1]
@@ -294,7 +300,7 @@ def test_brute_force_tip_position_agrees_with_finite_differences(square40) -> No
     assert bf.forward_solves > 3 * fd.iterations
 
 
-# ------------------------------------------------ SciPy-style results (issue 14)
+# ------------------------------------------------------------ SciPy-style results
 
 FIG6 = fig6_square_robot()
 

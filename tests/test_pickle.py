@@ -1,4 +1,4 @@
-"""Every public object of tcarod._core pickles, copies and compares (issue 14).
+"""Every public object of tcarod._core pickles, copies and compares.
 
 State comes from the constructor arguments (a Solution from its robot and
 converged shooting unknowns, rebuilt by one deterministic IVP), so a

@@ -1,4 +1,4 @@
-"""Plots: overlays on one axes (issue 14) and notebook display without magics."""
+"""Plots: overlays on one axes and notebook display without magics."""
 
 from __future__ import annotations
 

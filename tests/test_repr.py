@@ -1,4 +1,6 @@
-"""Reprs in Python syntax, run-time docstrings with units, real signatures (issue 14)."""
+"""Reprs in Python syntax that rebuild the object, run-time docstrings with
+units on every class, method and property of the bindings, and real
+signatures (no ``*args, **kwargs`` or ``...``) for help() and IDEs."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Pre-tension of contraction TCAs (`Actuator.tca(..., pretension_n=...)`, issue 14).
+"""Pre-tension of contraction TCAs (`Actuator.tca(..., pretension_n=...)`).
 
 A contraction TCA installed with its coils touching cannot get shorter when
 heated: it only presses harder on its own coils, so the body barely moves.
@@ -60,11 +60,13 @@ def test_pretension_sets_the_length_ratio_and_stretches_the_tca_at_ambient() -> 
     stretch = TCA.displacement(0.3, 25.0)
     ratio = 1.0 - stretch / LENGTH
     same = Robot(BODY, [Actuator.tca(TCA, Routing.straight(3e-3, 0.0), length_ratio=ratio)])
+    # the same equations from the same ratio: rounding only
     np.testing.assert_allclose(same.solve([25.0]).tip_position, cold.tip_position, rtol=0, atol=1e-12)
 
 
 def test_zero_pretension_is_the_plain_actuator() -> None:
     a, b = _robot(0.0).solve([120.0]), _robot(None).solve([120.0])
+    # no stretch, the reference length: the same equations, rounding only
     np.testing.assert_allclose(a.tip_position, b.tip_position, rtol=0, atol=1e-12)
 
 

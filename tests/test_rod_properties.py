@@ -11,9 +11,10 @@ checked through the Python API with hypothesis, and the solve's errors.
 * failures raise ConvergenceError with ``residual`` and ``iterations``; bad
   input raises ValueError naming the field.
 
-The same properties on seeded designs, the signs, interior anchors, coil
-contact and the Fig. 6 sweeps are the Rust tests in tests/properties.rs; here
-they are checked at the API (hypothesis designs built from Python objects).
+The same properties on seeded designs, the signs, interior anchors and coil
+contact are the Rust tests in tests/integration/properties.rs (the Fig. 6
+sweeps in tests/integration/solver.rs); here they are checked at the API
+(hypothesis designs built from Python objects).
 
 Frame: base at the origin, reference tangent +z. SI units, temperatures in C.
 """
@@ -38,7 +39,8 @@ G0 = 9.81
 TCA40 = manipulator_tca(0.040)  # the paper's manipulator TCA for a 40 mm body
 
 # Modest example counts: each example is a few shooting solves of ~ms each; the
-# physics is also checked on 40 seeded designs per property in tests/properties.rs.
+# physics is also checked on 40 seeded designs per property in
+# tests/integration/properties.rs.
 SETTINGS = settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
@@ -47,7 +49,8 @@ SETTINGS = settings(max_examples=15, deadline=None, suppress_health_check=[Healt
 
 def span_tca(s_start: float, s_end: float | None, length: float) -> Tca:
     """The paper's manipulator TCA cut to the span it is anchored over (a TCA
-    may not be longer than its span: src/validate.rs), twist per length kept."""
+    may not be longer than its span: ``tca_fits_span`` in src/rod/robot.rs),
+    twist per length kept."""
     span = (length if s_end is None else s_end) - s_start
     return Tca.from_pitch_angle(span, math.radians(15.0), 1.7e-3, 76.4 * span / 0.04)
 
@@ -118,7 +121,8 @@ def designs(draw: st.DrawFn, nested: bool = False) -> Design:
     ``nested=True``: random anchors. ``nested=False``: one actuator with a random
     span, or several that run base to tip or along consecutive disjoint pieces,
     so that no anchor inside the body is shared or passed by another actuator
-    (see ``anchor_inside_the_body_with_other_strings_keeps_equilibrium`` in tests/properties.rs)."""
+    (see ``anchor_inside_the_body_with_other_strings_keeps_equilibrium`` in
+    tests/integration/properties.rs)."""
     length = draw(st.floats(0.02, 0.06))
     if draw(st.booleans()):
         d = draw(st.floats(7e-3, 12e-3))
@@ -156,7 +160,7 @@ def designs(draw: st.DrawFn, nested: bool = False) -> Design:
             s0, s1 = 0.0, None
         # tendon tension up to tau r L / EI ~ 0.5 (bends ~30 degrees)
         # TCAs from 40 C: near 25 C a load that closes the coils makes Newton fail
-        # (tca_pressed_into_coil_contact_converges in tests/properties.rs)
+        # (tca_pressed_into_coil_contact_converges in tests/integration/properties.rs)
         value = draw(st.floats(40.0, 120.0)) if kind == "tca" else draw(st.floats(0.0, 0.5 * ei / (length * 5e-3)))
         acts.append(ActuatorSpec(kind, x, y, s0, s1, value))
     # Self-weight: an upright column buckles at rho A g L^3 / EI = 7.84; keep the
@@ -239,6 +243,7 @@ def test_reference_temperature_keeps_reference_shape(design: Design, precurvatur
     sol = robot.solve(robot.reference_inputs)
     assert robot.reference_inputs == [25.0] * len(acts)
     # The reference guess is the exact solution: zero residual, no Newton step.
+    # The tolerances below are rounding of the reference configuration.
     assert sol.iterations == 0
     np.testing.assert_allclose(sol.omega, np.tile(omega_star, (len(sol.s), 1)), rtol=0.0, atol=1e-12)
     np.testing.assert_allclose(sol.nu, np.tile([0.0, 0.0, 1.0], (len(sol.s), 1)), rtol=0.0, atol=1e-12)
@@ -287,6 +292,7 @@ def test_mirrored_layout_mirrors_shape(design: Design, upright: bool) -> None:
     # same equations mirrored; each solve meets its tolerance (strain 1e-10 ->
     # positions ~L * 1e-10 * (K ratio) ~1e-11 m); 1e-9 m leaves a margin of ~100
     np.testing.assert_allclose(b.positions, a.positions * mirror, rtol=0.0, atol=1e-9)
+    # tensions: the same solve tolerance, relative (with a floor near zero tension)
     np.testing.assert_allclose(b.tensions, a.tensions, rtol=1e-7, atol=1e-12)
 
 
@@ -320,7 +326,7 @@ def test_rotated_layout_rotates_shape(design: Design, angle: float, helix: bool)
     inputs = [tension * (k + 1) / len(design.actuators) for k in range(len(design.actuators))]
     a = robot(0.0).solve(inputs)
     b = robot(angle).solve(inputs)
-    # tolerance as for the mirror test
+    # tolerance as for the mirror test; rotation entries (order 1) to 1e-7
     np.testing.assert_allclose(b.positions, a.positions @ rot.T, rtol=0.0, atol=1e-9)
     np.testing.assert_allclose(b.tip_rotation, rot @ a.tip_rotation @ rot.T, rtol=0.0, atol=1e-7)
 
@@ -343,6 +349,7 @@ def test_opposite_equal_tcas_only_stretch(temperature: float, offset: float, ang
     # solver tolerance: curvature ~1e-10 / L = 2.5e-9 1/m; 1e-7 leaves margin)
     np.testing.assert_allclose(sol.omega[:, :2], 0.0, atol=1e-7)
     np.testing.assert_allclose(sol.positions[:, :2], 0.0, atol=1e-10)
+    # equal by symmetry, to the solve tolerance relative to the tension
     assert sol.tensions[0] == pytest.approx(sol.tensions[1], rel=1e-8, abs=1e-15)
     if temperature > 26.0:
         # heated extension TCAs push (tension < 0): the body is stretched

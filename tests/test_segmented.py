@@ -1,5 +1,7 @@
-"""Segmented (distributed) actuation: one TCA as segments in series, each
-anchored to the body at its ends and at its own temperature."""
+"""Segmented (distributed) actuation (``tcarod.models.segmented``; docs/extensions.md):
+one TCA as segments in series, each anchored to the body at its ends and at
+its own temperature. Interior anchors load the body with point forces and
+the kinks of strings passing them (docs/choices.md, "String mechanics")."""
 
 from __future__ import annotations
 
@@ -24,6 +26,7 @@ def _robot(
 
 
 def test_segment_bounds_are_consecutive() -> None:
+    # sums of the fractions times the span: rounding only
     b = segment_bounds([0.5, 0.25, 0.25], 0.01, 0.05)
     assert b == [(0.01, 0.03), (0.03, 0.04), (0.04, 0.05)]
     assert segment_bounds(3, 0.0, 0.06)[-1][1] == 0.06
@@ -37,6 +40,7 @@ def test_segments_are_scaled_copies_of_the_tca() -> None:
     tca = FIG1B.tca()
     acts = segmented_actuators(tca, Routing.straight(4e-3, 0.0), [0.5, 0.3, 0.2], 0.0, LENGTH)
     assert [a.s_start for a in acts] == pytest.approx([0.0, 0.03, 0.048], abs=1e-15)
+    # a segment scales l, L and N by its fraction: the same alpha0 and d0, rounding only
     for a, frac in zip(acts, [0.5, 0.3, 0.2]):
         seg = a.tca_model
         assert isinstance(seg, _core.Tca)  # the binding keeps the core class
@@ -61,6 +65,7 @@ def test_uniform_temperature_pure_moment_no_gravity_equals_one_tca() -> None:
     whole = whole_robot.solve(f1.inputs(temps))  # type: ignore[attr-defined]
     seg = seg_robot.solve(f4.inputs(temps))  # type: ignore[attr-defined]
     assert np.linalg.norm(whole.tip_position - seg.tip_position) < 1e-9
+    # each segment carries the whole TCA's tension, to the solve tolerance (relative)
     assert np.allclose(seg.tensions[:4], whole.tensions[0], rtol=1e-7)
     k_whole = np.interp(seg.s, whole.s, whole.omega[:, 1])
     assert np.max(np.abs(seg.omega[:, 1] - k_whole)) < 1e-6  # [1/m], of ~9 1/m
@@ -76,8 +81,9 @@ def _gravity_difference(temperature_c: float = 100.0) -> tuple[float, float]:
     """Tip distance [m] and largest curvature difference [1/m] between one
     whole TCA and four segments at one temperature, body horizontal (gravity
     along body +x, toward the TCA). Only the segmented TCA is in the body, so
-    no other string passes over the segment anchors (where the core misses a
-    kink force, see tests/test_rod_properties.py)."""
+    no other string passes over the segment anchors: the difference is the
+    segments' own (the kink forces of passing strings are tested in
+    tests/integration/properties.rs)."""
     g = (9.81, 0.0, 0.0)
     whole = _single_tca_robot(1, g).solve([temperature_c])
     seg = _single_tca_robot(4, g).solve([temperature_c] * 4)
@@ -138,8 +144,9 @@ def test_one_heated_segment_bends_only_its_own_span(k: int) -> None:
 
 
 def test_gravity_tip_moment_and_heating_converge_and_balance() -> None:
-    # Used to stall at the kink of the TCA law at coil contact (the unheated
-    # TCAs are pressed by the weight); the contact onset is now C1-smoothed.
+    # The unheated TCAs are pressed into coil contact by the weight: Newton
+    # converges through the contact onset because the law is C1-smoothed there
+    # (docs/choices.md, "Coil contact inside a body").
     robot, f = _robot(1, gravity=True, tip_moment=(0.0, 2e-4, 0.0))
     sol = robot.solve(f.inputs([60.0, 25.0, 25.0]))  # type: ignore[attr-defined]
     body = robot.body
@@ -151,8 +158,9 @@ def test_gravity_tip_moment_and_heating_converge_and_balance() -> None:
 
 def test_segmented_horizontal_cold_converges_and_balances() -> None:
     # A horizontal body with a TCA in four segments at ambient: the weight bends
-    # it and presses/stretches the segments; the interior anchor loads used to
-    # defeat a fixed-point iteration (now a Newton solve per anchor).
+    # it and presses/stretches the segments; the loads at each interior anchor
+    # are solved together by a small Newton iteration (docs/choices.md,
+    # "String mechanics").
     robot = _single_tca_robot(4, (9.81, 0.0, 0.0))
     sol = robot.solve([25.0] * 4)
     body = robot.body
@@ -162,7 +170,7 @@ def test_segmented_horizontal_cold_converges_and_balances() -> None:
     assert sol.tip_position[0] > 0.0  # sags along gravity (+x here)
 
 
-# ------------------------------------------------------------------ bad input (issue 12)
+# ------------------------------------------------------------------ bad input
 
 
 @pytest.mark.parametrize(

@@ -1,9 +1,11 @@
-"""`Solution.stable` and `Solution.stability_margin` (issue 16): the verdict
-is computed by the solve (policy ``stability="report"``, the default) or, with
-``stability="off"``, on first access with the solution's own robot; cached,
-equal to `tcarod.models.stability`, and survives pickle. The policies ``report``,
+"""`Solution.stable` and `Solution.stability_margin` (docs/stability.md, "The
+stability of every solve"): the verdict is computed by the solve (policy
+``stability="report"``, the default) or, with ``stability="off"``, on first
+access with the solution's own robot; cached, equal to
+`tcarod.models.stability`, and survives pickle. The policies ``report``,
 ``require``, ``continue`` and ``off`` of `Robot.solve` and `Robot.sweep`, and
-the blocked-tip verdict."""
+the blocked-tip verdict. The physics is tested in
+tests/integration/stability.rs and tests/integration/stability_policy.rs."""
 
 from __future__ import annotations
 
@@ -117,6 +119,8 @@ def test_continue_moves_to_a_stable_shape_at_the_same_inputs() -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # the handed-back shape is stable: no warning
         sol = robot.solve([], stability="continue")
+    # margins above -NEUTRAL = -1e-6 count as stable (src/stability/mod.rs: a
+    # symmetry mode of the bent column is neutral, zero up to numerical noise)
     assert sol.stable is True and sol.stability_margin > -1e-6
     c = sol.continued
     assert isinstance(c, core.Continuation)
@@ -161,6 +165,7 @@ def test_sweep_policies() -> None:
     cont = robot.sweep([[], []], stability="continue")
     assert [s.stable for s in cont] == [True, True]
     assert cont[0].continued is not None and cont[1].continued is None
+    # the same equilibrium, warm-started from itself: to the solve tolerance
     assert np.allclose(cont[0].tip_position, cont[1].tip_position, atol=1e-9)
     off = robot.sweep([[], []], stability="off")
     assert all("stable=" not in repr(s) for s in off)
@@ -182,7 +187,7 @@ def test_blocked_tip_solution_carries_the_blocked_verdict() -> None:
     assert sol.stable == held.stable and sol.stability_margin == held.margin
     # holding the tip can only stiffen: the blocked margin is no smaller
     # than the free one at the same shape (restriction of a quadratic form)
-    assert held.margin >= core.stability(robot, sol).margin - 1e-12
+    assert held.margin >= core.stability(robot, sol).margin - 1e-12  # rounding only
     back = pickle.loads(pickle.dumps(sol))
     assert back.stability_margin == held.margin  # the block normal survives pickle
 

@@ -48,8 +48,8 @@ def _interrupt_after(seconds: float) -> threading.Timer:
     [
         (1, 200_000, 0.2),  # minutes of work on one core
         (2, 200_000, 0.2),
-        # the issue's 2M rows, interrupted while they are checked and their
-        # outputs allocated (0.3-1 s before any solve; polled there too)
+        # 2M rows, interrupted while they are checked and their outputs
+        # allocated (0.3-1 s before any solve; polled there too)
         (1, 2_000_000, 0.05),
     ],
 )
@@ -97,8 +97,8 @@ def test_solution_reports_status_floor_and_path() -> None:
     # order-one strains on a 0.1 m body)
     assert np.abs(deep.tip_position - sol.tip_position).max() < 1e-9
     # two iterations are too few from the cold guess at 140 C (at 150 C they
-    # suffice since the pre-solve's first coarse run stops at 1e-5): the path
-    # of the continuation is recorded, increasing to 1
+    # suffice: the pre-solve's first coarse run stops at 1e-5): the path of
+    # the continuation is recorded, increasing to 1
     cont = robot.solve([140.0, 140.0], max_iter=2)
     path = cont.continuation_steps
     assert path.size >= 1 and path[-1] == 1.0 and (np.diff(path) > 0).all()
@@ -143,7 +143,8 @@ def test_equilibrium_tol_refines_the_grid() -> None:
 
     # a 25 mm body, gravity, a tendon on a tight helix (1.3 turns in 5 mm):
     # RK4's truncation error on 100 steps is far above 1e-8 of the loads (the
-    # physics of the check is tested in tests/designs.rs); here the binding
+    # physics of the check is tested in tests/integration/designs.rs); here the
+    # binding
     body = Body(
         0.0249,
         Section.rectangle(1.87e-3, 2.14e-3),

@@ -1,4 +1,6 @@
-"""Electro-thermal model of a Joule-heated TCA, and voltage-driven shapes."""
+"""Electro-thermal model of a Joule-heated TCA (``tcarod.models.thermal``: a
+lumped heat balance with the coefficients of Sun & Zhao's code, see
+docs/choices.md "Beyond the paper"), and voltage-driven shapes."""
 
 from __future__ import annotations
 
@@ -25,6 +27,7 @@ def test_lumped_parameters_and_time_constant() -> None:
     r = 0.1e-3
     m = 1127.0 * 3 * math.pi * r * r * L_FIBRE
     a = 3 * 2 * math.pi * r * L_FIBRE
+    # closed forms: rounding only
     assert MODEL.mass_kg == pytest.approx(m, rel=1e-14)
     assert MODEL.area_m2 == pytest.approx(a, rel=1e-14)
     # tau = m c_p / (h A) = density c_p r / (2 h): independent of l and threads
@@ -38,7 +41,7 @@ def test_lumped_parameters_and_time_constant() -> None:
 def test_resistance_is_required_and_checked() -> None:
     with pytest.raises(TypeError):
         ThermalModel(fibre_length_m=0.2, threads=3)  # type: ignore[call-arg]
-    # None is a wrong type (issue 12: None -> TypeError), naming the argument
+    # None is a wrong type, so TypeError (the package's bad-input contract), naming the argument
     with pytest.raises(TypeError, match="resistance"):
         ThermalModel(fibre_length_m=0.2, threads=3, resistance=None)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="resistance"):
@@ -48,6 +51,7 @@ def test_resistance_is_required_and_checked() -> None:
 def test_steady_state_is_analytic_and_inverse() -> None:
     v = 2.0
     expected = 25.0 + v * v / (60.0 * MODEL.conductance_w_per_k)
+    # the steady state in closed form, and its inverse: rounding only
     assert MODEL.steady_temperature(v) == pytest.approx(expected, rel=1e-14)
     assert MODEL.steady_voltage(expected) == pytest.approx(v, rel=1e-12)
     with pytest.raises(ValueError, match="t_max"):
@@ -63,6 +67,7 @@ def test_step_response_reaches_63_percent_at_tau() -> None:
     assert traj.method.startswith("analytic")
     rise = (traj.temperature_c - 25.0) / (tss - 25.0)
     assert rise[0] == 0.0
+    # the analytic solution is these exponentials: rounding only
     assert rise[1] == pytest.approx(1 - math.exp(-1), rel=1e-12)
     assert rise[2] == pytest.approx(1 - math.exp(-10), rel=1e-12)
     assert traj.exceeds_t_max_at_s is None
@@ -129,6 +134,7 @@ def test_voltages_drive_the_robot_and_trajectory_ends_at_steady_shape(tmp_path: 
     models = [MODEL] * 3
     volts = [MODEL.steady_voltage(120.0), 0.0, MODEL.steady_voltage(60.0)]
     steady = solve_with_voltages(robot, models, volts)
+    # the voltages are steady_voltage of these temperatures, exact to round-off: 1e-9 C
     assert np.allclose(steady.inputs, [120.0, 25.0, 60.0], atol=1e-9)
     profiles = [VoltageProfile.step(v) for v in volts]
     t = np.linspace(0.0, 12 * MODEL.time_constant_s, 25)
@@ -163,7 +169,7 @@ def test_strain_dependent_resistance_couples_heating_and_shape() -> None:
     assert b.temperatures_c[-1, 0] < a.temperatures_c[-1, 0] - 0.1
 
 
-# ------------------------------------------------------------------ bad input (issue 12)
+# ------------------------------------------------------------------ bad input
 
 
 @pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
@@ -186,7 +192,7 @@ def test_transient_rejects_unphysical_initial_temperature(bad: float) -> None:
 
 
 def test_profile_starting_at_minus_1e300_returns_promptly() -> None:
-    # used to loop for ever (1e300 s of RK4 steps); now a capped, documented ValueError
+    # 1e300 s of RK4 steps would never end: the step count is capped, with a documented ValueError
     profile = VoltageProfile((-1e300, 0.0), (0.0, 1.0))
     model_t = ThermalModel(0.3, 3, LinearResistance(60.0, 0.002))
     with pytest.raises(ValueError, match="RK4 steps"):

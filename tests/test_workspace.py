@@ -1,4 +1,6 @@
-"""Workspace maps: grid order, results, and the bounded-work contract (issue 12)."""
+"""Workspace maps (``tcarod.models.workspace``): grid order, results, and the
+bounded-work contract (a grid beyond ``MAX_GRID_POINTS`` is refused before any
+solve)."""
 
 from __future__ import annotations
 
@@ -26,6 +28,7 @@ def test_workspace_map_is_symmetric_for_the_mirrored_legs() -> None:
     k_a = int(np.flatnonzero((ws.temperatures_c == [100.0, 25.0]).all(axis=1))[0])
     k_b = int(np.flatnonzero((ws.temperatures_c == [25.0, 100.0]).all(axis=1))[0])
     a, b = ws.tip_positions_m[k_a], ws.tip_positions_m[k_b]
+    # mirrored equations: equal to the solver tolerance (1e-10 in strain, ~1e-12 m)
     assert a[1] == pytest.approx(-b[1], abs=1e-12) and a[0] == pytest.approx(b[0], abs=1e-12)  # solver tolerance
     assert plot_workspace(ws).axes
 

@@ -1,6 +1,7 @@
 """Run one fuzzed :class:`~fuzz.strategies.Call` and classify its outcome.
 
-Outcome classes (issue 12's contract):
+Outcome classes (the bad-input contract of every entry point: a result or
+an error naming the argument, never a crash):
 
 * within the contract: ``ok`` (the result holds only finite numbers; a
   documented NaN row of a batch or workspace whose solve did not converge is

@@ -1,6 +1,6 @@
-//! Small helpers shared by the integration test modules (a module pulls them
-//! in with `use crate::common;`). The paper's fixtures themselves come from the
-//! core (`tcarod::experiments`, `tcarod::problems`).
+//! Constants, builders and comparisons shared by the integration test modules
+//! (a module pulls them in with `use crate::common;`). The paper's fixtures
+//! themselves come from the core (`tcarod::experiments`, `tcarod::problems`).
 #![allow(dead_code)]
 
 use std::sync::Arc;

@@ -1,4 +1,7 @@
-//! Checks of the inverse kinetostatics against brute force.
+//! Checks of the inverse kinetostatics (paper Section IV, eqs 37-44) against
+//! brute force: J and C by central differences of full BVP solves, the
+//! blocked-tip temperature (eq 43) against a direct solve, the tip-position
+//! inverse (eq 40), the grasp (eq 44), and the exact sensitivities.
 use nalgebra::{DMatrix, Vector3};
 use tcarod::experiments::{fig6_circle, fig6_square, square_manipulator, G0};
 use tcarod::inverse::*;
@@ -164,7 +167,8 @@ fn incremental_blocked_temperature_matches_direct_solve() {
             inc.variables[0],
             dir.variables[0]
         );
-        // and the force solve at that temperature returns the force
+        // and the force solve at that temperature returns the force, to 1e-6
+        // of it (both solves converged to 1e-10 in scaled units)
         let f = blocked_force(&robot, &groups, &block, &dir.variables, &opts(), None).unwrap();
         assert!(
             (f.force - force).abs() < 1e-9 * force.max(1e-3) * 1e3,
@@ -190,6 +194,7 @@ fn tip_position_inverse_reaches_reachable_and_reports_unreachable_targets() {
     )
     .unwrap();
     assert!(res.reached, "{res:?}");
+    // the inverse stops at its default tip tolerance, 1e-7 m
     assert!((res.solution.tip_position() - truth.tip_position()).norm() < 1e-7);
     // the tip cannot move toward +x: extension TCAs at +x only bend toward -x
     let far = Vector3::new(0.02, 0.0, 0.03);
@@ -204,6 +209,7 @@ fn tip_position_inverse_reaches_reachable_and_reports_unreachable_targets() {
     .unwrap();
     assert!(!res.reached);
     assert!(res.at_bound.iter().all(|&b| b), "{:?}", res.variables);
+    // the closest configuration is the unheated body: clamped at the 25 C bound
     assert!(res.variables.iter().all(|&t| (t - 25.0).abs() < 1e-9));
 }
 
@@ -226,6 +232,7 @@ fn grasp_temperature_rises_with_mass() {
             &opts(),
         )
         .unwrap();
+        // eq 44: F = m g / (mu n), computed in closed form: rounding only
         assert!((r.force - m * G0 / 2.2).abs() < 1e-15);
         assert!(r.variables[0] > last);
         last = r.variables[0];
@@ -266,7 +273,7 @@ fn incremental_blocked_temperature_reaches_the_top_of_the_range() {
 /// (the paper's eqs 39-42) on TCA bodies with gravity, and against brute
 /// force (differences of full solves) on the steel tendon robot, whose
 /// residual is too stiff in shear for differenced IVPs (step eps^(1/3) puts
-/// a 25 % error in its shear columns; see tests/tangent.rs).
+/// a 25 % error in its shear columns; see tests/integration/tangent.rs).
 #[test]
 fn exact_sensitivities_match_differences() {
     use tcarod::experiments::{steel_tendon_robot, STEEL_TENDON_TENSIONS};
@@ -411,6 +418,7 @@ fn blocked_solves_carry_the_stability_verdict() {
     let dir = blocked_variable_from(&robot, &groups, &block, &start, f.force, &opts()).unwrap();
     let old = blocked_variable_direct(&robot, &groups, &block, f.force, 80.0, &opts(), None);
     for r in [inc, dir, old.unwrap()] {
+        // each closes the tip gap to 1e-9 L: the temperature to far below 1e-5 C
         assert!((r.variables[0] - 100.0).abs() < 1e-5, "{}", r.variables[0]);
         assert!(r.stability.as_ref().is_some_and(|s| s.stable));
     }

@@ -1,8 +1,9 @@
-//! The Rust integration tests, one test crate (one link, one binary): each
-//! module is one concern, listed with what it checks in `tests/README.md`.
-//! Physics is tested here against the core's fixtures
-//! (`tcarod::experiments`, `tcarod::problems`); `common` holds the small
-//! helpers the modules share.
+//! The Rust integration tests, one test crate (one link, one binary; run with
+//! `cargo test --profile fast`): each module is one concern, listed with what
+//! it checks in `tests/README.md`. Physics is tested here against the core's
+//! fixtures (`tcarod::experiments`, `tcarod::problems`); `common` holds the
+//! constants, builders and comparisons the modules share. Unit tests live
+//! beside the code in `src/`.
 
 mod common;
 

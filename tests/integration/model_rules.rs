@@ -1,5 +1,7 @@
-//! The model's construction rules live in the core (issue 11): a Rust user
-//! gets the same validation as a Python user, with the same argument names.
+//! The model's construction rules live in the core (`src/rod/`, `src/tca/`,
+//! `tcarod::experiments`): a Rust user gets the same validation as a Python
+//! user, with the same argument names (`tests/test_bad_input.py` and
+//! `tests/test_binding_boundary.py` check them through the bindings).
 use std::sync::Arc;
 
 use tcarod::experiments::{
@@ -48,6 +50,7 @@ fn poisson_or_shear_modulus_not_both() {
     // neither: incompressible silicone, G = E / 3
     let s = Shear::from_options(None, None).unwrap();
     let b = Body::with_shear(0.04, Section::circle(8e-3).unwrap(), 30e3, s, 0.0).unwrap();
+    // 30e3 / 3: rounding only
     assert!((b.shear_modulus - 10e3).abs() < 1e-9);
     let s = Shear::from_options(None, Some(7e3)).unwrap();
     let b = Body::with_shear(0.04, Section::circle(8e-3).unwrap(), 30e3, s, 0.0).unwrap();
@@ -65,7 +68,7 @@ fn robot_resolves_the_tip_and_checks_the_layout() {
         law.clone(),
     );
     let r = Robot::new(body(0.04), vec![a.unwrap()]).unwrap();
-    // `None` meant the tip
+    // `None` means the tip
     assert_eq!(r.actuators[0].s_end, 0.04);
     // a 20 mm offset in a 14 mm body
     let out = Actuator::new(Routing::straight(20e-3, 0.0).unwrap(), 0.0, 0.04, law);
@@ -98,6 +101,7 @@ fn pretension_sets_the_length_ratio() {
     // straight, unstretched reference path: ratio = 1 - stretch / span
     let stretch = tca.displacement(0.1, tca.material().t_ref()).unwrap();
     let want = 1.0 - stretch / 0.04;
+    // the same closed form in the core: rounding only
     assert!((r.actuators[0].length_ratio.unwrap() - want).abs() < 1e-12);
 }
 
@@ -118,6 +122,7 @@ fn fixtures_are_built_once_from_the_design() {
     let (whole, half) = (fig5_tca(4), fig5_half_tca(4));
     assert_eq!(half.coiled_length(), 0.5 * whole.coiled_length());
     assert_eq!(half.turns(), 0.5 * whole.turns());
+    // asin(L/l) of halved lengths: the same ratio to rounding
     assert!((half.alpha0() - whole.alpha0()).abs() < 1e-15);
     // the Table I finger hangs; the Fig. 6 square stands upright
     assert_eq!(table1_finger().body.gravity.as_slice(), HANGING);

@@ -39,8 +39,9 @@ fn inner_edge_radius(robot: &tcarod::rod::Robot, sol: &Solution) -> f64 {
     circle_radius(pt(0), pt(mid), pt(sol.s.len() - 1))
 }
 
-/// Fig. 6 with gravity: the inner-edge radii at 60 / 100 / 140 C (docs and the
-/// issue-13 notes: square 359.6 / 140.2 / 72.6 mm).
+/// Fig. 6 with gravity: the inner-edge radii at 60 / 100 / 140 C, as printed by
+/// `tcarod reproduce fig6` (docs/experiments.md; the README's quick start
+/// quotes the square's 140.2 mm at 100 C).
 #[test]
 fn fig6_radii_with_gravity() {
     let cases = [
@@ -69,7 +70,7 @@ fn fig6_radii_with_gravity() {
 /// Fig. 8: the 26 mm manipulator, upright, its tip held by a horizontal wire that
 /// is taut from 55 C (block point: the free tip at 55 C, normal -x). The force is
 /// 0 at 55 C and rises with temperature: 15.07 mN at 100 C and 34.25 mN at 140 C
-/// (docs and the issue-13 notes).
+/// (docs/table1.md, "Fig. 8 and Table I").
 #[test]
 fn fig8_blocked_force_rises_from_the_taut_temperature() {
     let robot = square_manipulator(0.026, true);

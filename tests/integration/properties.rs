@@ -8,11 +8,13 @@
 //!   about the axis rotates the shape; two equal TCAs opposite each other only
 //!   stretch the body;
 //! * sign: a heated extension TCA at +x pushes and bends the body toward -x;
-//! * every Fig. 6 temperature converges both cold and warm-started.
+//! * a passive TCA pressed into coil contact converges (smoothed onset).
 //!
 //! The random designs are drawn from a seeded [`SplitMix64`] (the same on every
 //! machine), as the Python hypothesis strategy of `tests/test_rod_properties.py`
-//! draws them; global equilibrium over random designs is `tests/designs.rs`.
+//! draws them; global equilibrium over random designs is
+//! `tests/integration/designs.rs`, the convergence of the Fig. 6 sweeps cold and
+//! warm `tests/integration/solver.rs`.
 //! Frame: base at the origin, reference tangent +z. SI units, temperatures in C.
 use crate::common;
 
@@ -208,14 +210,16 @@ fn anchor_inside_the_body_with_other_strings_keeps_equilibrium() {
             .collect();
         let sol = solve_default(&Robot::new(body, acts).unwrap(), &[0.03, 0.03]);
         // solver tolerance 1e-10 on K_nu^-1 r_F with margin 100: 100 x 1e-10 x EA
-        // (here 1.9e-8 N; the defect this guards against was ~6e-6 N)
+        // (here 1.9e-8 N; kink forces left out of the anchor loads would leave
+        // ~6e-6 N)
         let err = (sol.base_force - tip_force).amax();
         assert!(err <= 100.0 * 1e-10 * ea, "{name}: {err}");
     }
 }
 
-/// Coil contact is C1-smoothed over 0.1 um (`TcaAt::tension`), so Newton converges
-/// through contact onset when a passive TCA is pressed.
+/// Coil contact is C1-smoothed over 0.1 um (`TcaAt::tension`; docs/choices.md,
+/// "Coil contact inside a body"), so Newton converges through contact onset when
+/// a passive TCA is pressed.
 #[test]
 fn tca_pressed_into_coil_contact_converges() {
     for tip_force_y in [0.5e-3, 2.86e-3] {
@@ -269,6 +273,7 @@ fn reference_temperature_keeps_reference_shape() {
         assert_eq!(inputs, vec![25.0; d.specs.len()]);
         let sol = solve_default(&robot, &inputs);
         // The reference guess is the exact solution: zero residual, no Newton step.
+        // The tolerances below are rounding of the reference configuration.
         assert_eq!(sol.iterations, 0, "case {case}");
         for (k, (w, nu)) in sol.omega.iter().zip(&sol.nu).enumerate() {
             assert!(
@@ -321,6 +326,8 @@ fn mirrored_layout_mirrors_shape() {
                 "case {case}"
             );
         }
+        // tensions: the same solve tolerance, relative to the tension (with an
+        // absolute floor for a tension near zero)
         for (ta, tb) in a.tensions.iter().zip(&b.tensions) {
             assert!((ta - tb).abs() <= 1e-12 + 1e-7 * ta.abs(), "case {case}");
         }
@@ -389,6 +396,8 @@ fn rotated_layout_rotates_shape() {
         for (pa, pb) in a.positions.iter().zip(&b.positions) {
             assert!((pb - rot * pa).amax() <= 1e-9, "case {case}");
         }
+        // rotation entries (order 1): the solve tolerance in curvature (~1e-10 / L)
+        // integrated over L, with margin
         let want = rot * a.tip_rotation() * rot.transpose();
         assert!((b.tip_rotation() - want).amax() <= 1e-7, "case {case}");
     }
@@ -435,6 +444,7 @@ fn opposite_equal_tcas_only_stretch() {
             assert!(w.x.abs() <= 1e-7 && w.y.abs() <= 1e-7, "case {case}: {w}");
             assert!(p.x.abs() <= 1e-10 && p.y.abs() <= 1e-10, "case {case}: {p}");
         }
+        // equal by symmetry, to the solve tolerance relative to the tension
         let (t0, t1) = (sol.tensions[0], sol.tensions[1]);
         assert!((t0 - t1).abs() <= 1e-15 + 1e-8 * t1.abs(), "case {case}");
         if temperature > 26.0 {
@@ -461,7 +471,7 @@ fn heated_extension_tcas_of_fig6_bend_toward_minus_x() {
                 "a heated extension TCA pushes"
             );
             assert!(sol.elongations.iter().all(|&e| e > 0.0), "and lengthens");
-            // planar: the TCAs are symmetric about y = 0
+            // planar: the TCAs are symmetric about y = 0 (y is rounding only)
             assert!(sol.tip_position().y.abs() < 1e-12);
         }
     }

@@ -1,4 +1,7 @@
-//! Analytic and physical checks of the rod model and the shooting solver.
+//! Analytic and physical checks of the rod model (paper Section III) and the
+//! shooting solver on the core's fixtures: arcs under a tip moment and a
+//! straight tendon, the quaternion's orthogonality, the sign of a heated
+//! extension TCA, the reference configuration, the base wrench.
 use std::sync::Arc;
 
 use nalgebra::Vector3;
@@ -28,6 +31,7 @@ fn pure_tip_moment_gives_circular_arc() {
         "{}",
         sol.tip_position() - want
     );
+    // curvature along the body to the solver tolerance (1e-10 / L = 2.5e-9 1/m)
     for w in &sol.omega {
         assert!((w.y - k).abs() < 1e-8);
     }
@@ -52,6 +56,8 @@ fn straight_tendon_gives_arc_less_axial_shortening() {
     let vz = 1.0 - tau / ea;
     let l = 0.04;
     let want = Vector3::new(vz * (1.0 - (k * l).cos()) / k, 0.0, vz * (k * l).sin() / k);
+    // exact arc under this model (Rucker & Webster 2011): RK4 and the solver
+    // tolerance leave ~1e-12 m
     assert!(
         (sol.tip_position() - want).norm() < 1e-11,
         "{:?} vs {:?}",
@@ -98,6 +104,7 @@ fn reference_temperature_is_the_reference_configuration() {
     for robot in [fig6_square(false), fig6_circle(false)] {
         let ref_in = robot.reference_inputs();
         let sol = solve(&robot, &ref_in, &SolveOptions::default(), None).unwrap();
+        // the reference guess is the exact solution: rounding only
         for (w, s) in sol.omega.iter().zip(&sol.s) {
             assert!((w - robot.body.omega_star).norm() < 1e-12, "at s = {s}");
         }
@@ -114,6 +121,8 @@ fn base_wrench_balances_external_loads() {
     let sol = solve(&robot, &[120.0, 90.0], &SolveOptions::default(), None).unwrap();
     let fe = robot.body.distributed_load();
     let want_f = robot.body.tip_force + fe * robot.body.length;
+    // the solver's tip-force tolerance (1e-10 EI/L^2, 2e-12 N here) and
+    // rounding: 1e-11 N
     assert!(
         (sol.base_force - want_f).norm() < 1e-12 * 10.0,
         "{} vs {}",

@@ -2,7 +2,7 @@
 //! manipulator, upright: the forward scheme (the paper's) agrees with central
 //! differences, heating moves the tip toward -x, and C is a symmetric compliance
 //! with a positive diagonal. Brute force (differences of full solves) and the
-//! exact tangents are checked in tests/inverse.rs.
+//! exact tangents are checked in tests/integration/inverse.rs.
 use tcarod::experiments::square_manipulator;
 use tcarod::inverse::{sensitivities, Groups, Scheme};
 use tcarod::shooting::{solve, Loads, SolveOptions};

@@ -1,6 +1,9 @@
-//! The Newton solver's contract: few iterations on the issue-10 tendon
-//! cases, convergence to the rounding floor, continuation with its path,
-//! cancellation, honest work counts.
+//! The shooting solver's contract (paper eqs 34-36; docs/choices.md, "The
+//! solver"): few iterations on the tendon benchmarks of `tcarod::experiments`
+//! (the soft tendon rod, the steel tendon robot), convergence to the rounding
+//! floor, continuation with its path, cancellation and budgets, complete work
+//! counts, the coarse-grid pre-solve, and the seeded benchmark designs that
+//! exercise kinks of the force laws.
 use crate::common;
 
 use common::solve_default;
@@ -35,7 +38,9 @@ fn soft_tendon_bends_to_its_angle_in_a_few_iterations() {
             (angle - Vector3::new(0.0, th, 0.0)).norm() < 1e-8,
             "{deg} deg: {angle:?}"
         );
-        // was 8-183 iterations and 33-711 IVPs before the exact Jacobian
+        // the exact Jacobian (`Shot::jacobian`, a tangent IVP) makes Newton
+        // quadratic from the straight guess: a few iterations, about two IVPs
+        // each
         assert!(s.iterations <= 3, "{deg} deg: {} iterations", s.iterations);
         assert!(
             s.evaluations <= 2 * s.iterations + 2,
@@ -64,6 +69,7 @@ fn steel_tendon_converges_to_the_rounding_floor() {
         s.floor
     );
     // the same solution as at the default tolerance, to far below a micrometre
+    // (1e-9 m: both meet the floor or 1e-10 in strain on a 0.5 m rod)
     let d = solve(
         &robot,
         &STEEL_TENDON_TENSIONS,
@@ -106,9 +112,8 @@ fn steel_tendon_converges_to_the_rounding_floor() {
 fn continuation_records_its_path_and_counts_all_work() {
     let robot = fig6_square(true);
     // two iterations are too few from the cold guess at 140 C: the direct
-    // solve fails and continuation in inputs and loads takes over (three
-    // were, until the cold pre-solve's first coarse run stopped at 1e-7;
-    // at 150 C two are enough since it stops at 1e-5)
+    // solve fails and continuation in inputs and loads takes over (at 150 C
+    // two suffice: the cold pre-solve's first coarse run stops at 1e-5)
     let opts = SolveOptions {
         max_iter: 2,
         ..Default::default()
@@ -120,6 +125,7 @@ fn continuation_records_its_path_and_counts_all_work() {
     // the failed direct attempt's iterations and IVPs are counted too
     assert!(s.iterations > 2 && s.evaluations > s.iterations);
     let reference = solve(&robot, &[140.0, 140.0], &SolveOptions::default(), None).unwrap();
+    // the same root: both meet tol 1e-10 in strain, tips ~1e-12 m apart
     assert!((s.tip_position() - reference.tip_position()).norm() < 1e-9);
 }
 
@@ -217,12 +223,13 @@ fn a_budget_bounds_every_solve() {
     }
 }
 
-/// Designs #719 and #532 of the issue-10 benchmark start a cold solve with a
-/// linear tendon exactly at its onset of tension (zero tension), where the
-/// residual has a kink: with the one-sided derivative of the wrong side the
-/// Newton direction does not descend (the merit grew like t^2 from t = 0)
-/// and the solve failed, continuation included. The generalised derivative
-/// (taut side, then slack side after a failed line search) converges.
+/// Two seeded benchmark designs (`tcarod::problems::random_design`) start a
+/// cold solve with a linear tendon exactly at its onset of tension (zero
+/// tension), where the residual has a kink: with the one-sided derivative of
+/// the wrong side the Newton direction does not descend (the merit grows like
+/// t^2 from t = 0) and the solve fails, continuation included. The generalised
+/// derivative (taut side, then slack side after a failed line search)
+/// converges.
 #[test]
 fn a_linear_tendon_at_its_onset_of_tension_converges_cold() {
     use tcarod::problems::{equilibrium, random_design, DEFAULT_SEED};
@@ -239,11 +246,12 @@ fn a_linear_tendon_at_its_onset_of_tension_converges_cold() {
 }
 
 /// A warm start from a converged solution at the same inputs is that
-/// solution. #817 has a TCA pressed 0.49 um into coil contact; the warm guess
-/// re-derives each TCA's elongation from its tension through the law's
-/// inverse, whose contact branch was linear and missed the smoothed onset by
-/// half its width (0.05 um, a tension error of ~400 k_s x 0.05 um): the warm
-/// solve then failed outright (residual 8.4 after 112 iterations).
+/// solution. The seeded design drawn here has a TCA pressed 0.49 um into coil
+/// contact; the warm guess re-derives each TCA's elongation from its tension
+/// through the law's inverse, which must follow the C1-smoothed contact onset
+/// (`TcaAt::tension`, 0.1 um wide): a linear contact branch would miss it by
+/// half its width (0.05 um, a tension error of ~400 k_s x 0.05 um, with k_s
+/// the coil spring's stiffness) and the warm solve would fail outright.
 #[test]
 fn a_warm_start_from_a_solution_in_coil_contact_stays_there() {
     use tcarod::problems::{random_design, DEFAULT_SEED};
@@ -299,7 +307,7 @@ fn the_coarse_presolve_converges_on_the_full_grid_to_the_same_tips() {
             "case {k}: full-grid residual {r:e}"
         );
         assert!(a.residual <= o.tol.max(a.floor));
-        // issue 10: the paper fixtures' tips move < 1e-9 m (both meet tol
+        // the pre-solve moves the fixtures' tips by < 1e-9 m (both meet tol
         // 1e-10 in strain units: tips agree to ~1e-12 m)
         let d = (a.tip_position() - b.tip_position()).norm();
         assert!(d < 1e-9, "case {k}: tips {d:e} m apart");
@@ -326,11 +334,8 @@ fn a_cold_presolve_extrapolates_its_first_defect_in_place_of_a_full_grid_ivp() {
     // grids, two chord steps on the corrected coarse system, the second
     // not evaluated (the first contracted 1.4e-6 to 4.6e-10, which predicts
     // 1.5e-13 for the second against the coarse tolerance 1e-11), and the
-    // one full-grid IVP: 9 (10 with the second chord step evaluated; before
-    // that, 10 with a second full-grid IVP in place of the two grids and one
-    // coarse step); steel, 2 (its first step lands at 1.8e-7) + 2 + 1 + 1 =
-    // 6 (7 with the first round to 1e-7, stop 32). The paths are
-    // deterministic: no margin.
+    // one full-grid IVP: 9; steel, 2 (its first step lands at 1.8e-7) + 2 +
+    // 1 + 1 = 6. The paths are deterministic: no margin.
     let cases: [(&tcarod::rod::Robot, &[f64], usize); 2] = [
         (&sq, &[100.0, 100.0], 9),
         (&steel, &STEEL_TENDON_TENSIONS, 6),
@@ -455,11 +460,12 @@ fn a_warm_presolve_sweep_refreshes_its_stale_coarse_jacobian() {
             STEEL_TENDON_TENSIONS.iter().map(|t| t * f).collect()
         })
         .collect();
-    // most IVPs (coarse ones included) of a warm step: the neighbour's
-    // coarse Jacobian handed on from step to step went stale and its chord
-    // steps crept at 5-15x a step (max 22 IVPs a step on the Fig. 6 sweep,
-    // 20 on the steel one); refreshed when more than four chord steps are
-    // still needed, at most 14 and 11
+    // most IVPs (coarse ones included) of a warm step. The neighbour's
+    // coarse Jacobian, handed on from step to step, goes stale: without a
+    // refresh its chord steps creep at 5-15x a step (up to 22 IVPs a step on
+    // the Fig. 6 sweep, 20 on the steel one). Refreshed when more than four
+    // chord steps are still needed: at most 14 and 11 measured, bounds 16
+    // and 14 (the paths are deterministic; the bounds leave a little room)
     for (name, robot, rows, most) in [
         ("Fig. 6", &sq, &temps, 16),
         ("steel", &steel, &tensions, 14),
@@ -473,7 +479,8 @@ fn a_warm_presolve_sweep_refreshes_its_stale_coarse_jacobian() {
                 a.evaluations
             );
             // the full-grid residual meets tol (or the floor) either way:
-            // tips within 1e-9 m of the full-grid Newton's (issue 10)
+            // tips within 1e-9 m of the full-grid Newton's (both meet tol
+            // 1e-10 in strain units)
             let r = full_grid_residual(robot, a, opts.steps);
             assert!(r <= opts.tol.max(a.floor), "{name} step {k}: {r:e}");
             let d = (a.tip_position() - b.tip_position()).norm();

@@ -1,6 +1,7 @@
-//! Batch rows carry the stability verdict (issue 16): `solve_batch` with
-//! `stability` gives every converged row `stable` and `margin`, the same
-//! verdict as a single solve's; without it the rows say "not computed".
+//! Batch rows carry the stability verdict (docs/stability.md, "The stability
+//! of every solve"): `solve_batch` with `stability` gives every converged row
+//! `stable` and `margin`, the same verdict as a single solve's; without it the
+//! rows say "not computed".
 
 use nalgebra::Vector3;
 use tcarod::batch::{solve_batch, BatchOptions};
@@ -37,6 +38,7 @@ fn a_column_past_euler_reports_unstable_and_below_stable() {
     let out = solve_batch(&robot, &[], Some(&wrenches), &opts).unwrap();
     for (k, r) in ratios.iter().enumerate() {
         assert!(out.converged[k], "row {k}");
+        // on the axis to rounding: no lateral load breaks the symmetry
         let p = Vector3::from(out.tip_positions[k]);
         assert!(p.x.hypot(p.y) < 1e-9, "row {k}: straight");
         assert_eq!(
@@ -88,7 +90,8 @@ fn fig6_rows_are_stable_and_off_says_not_computed() {
         assert_eq!(on.evaluations[k], off.evaluations[k] + 1);
         assert_eq!(on.tip_positions[k], off.tip_positions[k]);
         // the same verdict as a cold single solve at these inputs: both
-        // converged to 1e-10, so the margins (order 1) agree to ~1e-8
+        // converged to 1e-10, so the margins (order 1) agree to ~1e-8; 1e-6
+        // relative bounds it
         let sol = solve(&robot, &inputs[2 * k..2 * k + 2], &opts, None).unwrap();
         let st = stability(&robot, &sol, &[]).unwrap();
         assert!((on.margin[k] - st.margin).abs() < 1e-6 * st.margin.abs().max(1.0));

@@ -1,6 +1,8 @@
-//! The stability policy of a solve (issue 16): `solve_checked` never hands
-//! back an unstable equilibrium without saying so, and `Continue` moves to a
-//! stable one at the same inputs.
+//! The stability policy of a solve (docs/stability.md, "The stability of
+//! every solve"): `solve_checked` never hands back an unstable equilibrium
+//! without saying so, the verdict costs at most one tangent IVP, and
+//! `Continue` moves to a stable one at the same inputs (the post-buckled
+//! elastica, checked against Euler's closed form with elliptic integrals).
 
 use nalgebra::Vector3;
 use tcarod::error::Error;
@@ -68,7 +70,8 @@ fn report_carries_the_verdict_at_one_tangent_ivp() {
         let st = c.stability.expect("Report always carries a verdict");
         assert_eq!(st.stable, stable, "ratio {ratio}: margin {}", st.margin);
         assert_eq!(st.stable, st.margin > 0.0);
-        // the same equilibrium (the cold solve of the perfect column is straight)
+        // the same equilibrium (the cold solve of the perfect column is
+        // straight: on the axis to rounding)
         assert_eq!(c.solution.unknowns, plain.unknowns);
         assert!(lateral(c.solution.tip_position()) < 1e-9);
         // cost: exactly one integration (a tangent IVP) more than the solve
@@ -159,10 +162,7 @@ fn report_assembles_the_off_solution_bit_for_bit_from_the_verdicts_integration()
 /// of Newton's last plain one), and the verdict is the one `stability`
 /// takes of the solution by its own integration, bit for bit (the same
 /// pass: the tensions and grid are the solution's). All eight runs of the
-/// four fixtures (seven before the cold pre-solve extrapolated its first
-/// defect: the cold soft tendon rod's first full-grid IVP converged, with
-/// no contraction rate to predict it from); on the code before this prediction each took
-/// one IVP more.
+/// four fixtures; without the prediction each would take one IVP more.
 #[test]
 fn report_takes_the_verdict_from_newtons_last_evaluation_where_convergence_is_predicted() {
     let opts = SolveOptions::default();
@@ -194,11 +194,12 @@ fn report_takes_the_verdict_from_newtons_last_evaluation_where_convergence_is_pr
     assert_eq!(hits, 8);
 }
 
-/// The accuracy control under a verdict: benchmark design #158 (a 25 mm
-/// body with a tight helix, equilibrium check at 2.5e-5 on 100 steps, see
-/// `tests/designs.rs`) is refined to a finer grid, and the solution handed
-/// back with the verdict is the one `Off` refines to, with the verdict of
-/// that refined solution (taken on its grid) for one tangent IVP more.
+/// The accuracy control under a verdict: the seeded benchmark design drawn
+/// here (a 25 mm body with a tight helix, equilibrium check at 2.5e-5 on 100
+/// steps, see `tests/integration/designs.rs`) is refined to a finer grid, and
+/// the solution handed back with the verdict is the one `Off` refines to, with
+/// the verdict of that refined solution (taken on its grid) for one tangent
+/// IVP more.
 #[test]
 fn report_with_equilibrium_tol_gives_the_verdict_of_the_refined_solution() {
     let d = random_design(DEFAULT_SEED, 158);
@@ -213,14 +214,14 @@ fn report_with_equilibrium_tol_gives_the_verdict_of_the_refined_solution() {
     let on = checked(Policy::Report);
     assert!(
         off.steps > o.steps,
-        "#158 needs refining: {} steps",
+        "the design needs a refined grid: {} steps",
         off.steps
     );
     assert!(equilibrium(&d.robot, &off).relative <= EQUILIBRIUM_TOL);
     assert_eq!(on.solution.steps, off.steps);
     assert_eq!(on.solution.unknowns, off.unknowns);
     assert_eq!(on.solution.iterations, off.iterations);
-    assert_same_profile(&on.solution, &off, "#158 refined");
+    assert_same_profile(&on.solution, &off, "refined grid");
     let st = on.stability.expect("Report carries a verdict");
     let again = stability(&d.robot, &off, &[]).unwrap();
     assert_eq!(st.s, again.s, "the verdict is taken on the refined grid");
@@ -278,6 +279,7 @@ fn continue_lands_on_the_post_buckled_elastica() {
         let st = c.stability.expect("verdict");
         assert!(st.stable, "ratio {ratio}: margin {}", st.margin);
         let cont = c.continued.expect("the straight column was unstable");
+        // it started from the straight column (on the axis to rounding)
         assert!(!cont.from_stability.stable && lateral(cont.from.tip_position()) < 1e-9);
         // the route is recorded (imperfection homotopy, or a perturbed Newton start)
         assert!(!cont.route.to_string().is_empty() && cont.candidates >= 1);

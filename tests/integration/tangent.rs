@@ -1,7 +1,9 @@
-//! The exact shooting Jacobian (tangent IVP) against central finite
-//! differences of the residual, on designs that exercise every path: TCA
-//! law (with coil contact), constant and linear tendons, helices, interior
-//! anchors (strain jumps), pre-curvature, gravity and tip loads.
+//! The exact shooting Jacobian (tangent IVP, `src/rod/tangent.rs`) against
+//! central finite differences of the residual (paper eqs 32-33, scaled as in
+//! docs/choices.md, "Shooting unknowns and residuals"), on designs that
+//! exercise every path: TCA law (with coil contact), constant and linear
+//! tendons, helices, interior anchors (strain jumps), pre-curvature, gravity
+//! and tip loads.
 use std::sync::Arc;
 
 use nalgebra::{DMatrix, Vector3};
@@ -107,8 +109,8 @@ fn check(name: &str, robot: &Robot, inputs: &[f64], x: &[f64], steps: usize) {
     let scale = fd.amax().max(1.0);
     let err = (&jac - &fd).amax() / scale;
     // central differences: truncation ~h^2 r''' and rounding ~eps |r| / h;
-    // with h = 1e-9 both are below ~1e-6 of the
-    // largest entry; an error in a tangent term is O(1) of its entries
+    // with h = 1e-9 both are below ~1e-6 of the largest entry; an error in a
+    // tangent term is O(1) of its entries
     assert!(err < 1e-5, "{name}: exact vs FD Jacobian, max error {err:e} of {scale:e}\nexact {jac:.4e}\nfd {fd:.4e}");
     println!("{name}: max |J - J_fd| / max|J| = {err:.2e}");
 }

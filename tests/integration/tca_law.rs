@@ -8,7 +8,8 @@
 //! 5e-16 m for these TCAs) and for temperatures to 1e-10 C; the law itself is
 //! evaluated with a handful of flops, so rounding adds a few ulp of the
 //! displacement. The inverses and the reference-temperature spring law are unit
-//! tests in src/tca.rs (and hypothesis properties at the Python API).
+//! tests in src/tca/tests.rs (and hypothesis properties at the Python API,
+//! tests/test_tca.py).
 use tcarod::experiments::fig5_tca;
 use tcarod::{Chirality, Material, Tca};
 
@@ -84,8 +85,9 @@ fn free_stroke_rises_monotonically_with_temperature() {
         .map(|k| ext.free_stroke(T_REF + 0.5 * k as f64).unwrap()) // every 0.5 C
         .collect();
     assert_eq!(stroke[0], 0.0); // no expansion at t_ref, so no stroke
-                                // strictly increasing above the onset (t_ref for a free TCA): the smallest step
-                                // is ~2.5e-5 m, ten orders above the 1e-15 m solve tolerance.
+
+    // strictly increasing above the onset (t_ref for a free TCA): the smallest
+    // step is ~2.5e-5 m, ten orders above the 1e-15 m solve tolerance.
     assert!(stroke.windows(2).all(|w| w[1] > w[0]));
     assert!(stroke[270] > 0.01); // centimetres at 160 C, as the paper's TCAs
 }
@@ -128,8 +130,9 @@ fn blocked_force_pushes_and_is_the_force_at_zero_displacement() {
         let fb = ext.blocked_force(temperature).unwrap();
         assert!(fb < 0.0); // heated extension TCA pushes on whatever blocks it
         assert_eq!(fb, ext.force(0.0, temperature).unwrap()); // same definition
-                                                              // It is the onset load: slightly more compression keeps the coils closed,
-                                                              // slightly less opens them (1e-9 relative >> the 1e-16 rounding of F).
+
+        // It is the onset load: slightly more compression keeps the coils closed,
+        // slightly less opens them (1e-9 relative >> the 1e-16 rounding of F).
         assert_eq!(
             ext.displacement(fb * (1.0 + 1e-9), temperature).unwrap(),
             0.0
@@ -142,7 +145,8 @@ fn blocked_force_pushes_and_is_the_force_at_zero_displacement() {
             (onset - temperature).abs() <= 1e-7,
             "{onset} vs {temperature}"
         );
-        // The contraction TCA pulls instead.
+        // The contraction TCA pulls instead, with the same magnitude (the
+        // untwisting term's sign reversed: rounding only).
         let fc = con.blocked_force(temperature).unwrap();
         assert!((fc + fb).abs() <= 1e-12 * fb.abs());
     }
@@ -154,7 +158,8 @@ fn blocked_force_pushes_and_is_the_force_at_zero_displacement() {
 fn material_preset_reproduces_documented_values() {
     let m = Material::silver_coated_nylon();
     assert_eq!((m.t_ref(), m.t_min(), m.t_max()), (25.0, 25.0, 160.0));
-    // NOTES.md 5: E_T(25 C) = 1.198e9 Pa, G_T(25 C) = 2.218e8 Pa, slope -1.3e6 Pa/C
+    // docs/choices.md, "Material (silver-coated nylon 6,6)": E_T(25 C) = 1.198e9 Pa,
+    // G_T(25 C) = 2.218e8 Pa, slope -1.3e6 Pa/C (Sun & Zhao's T-RO 2022 code)
     // (the preset's own numbers: rounding only, 1e-12 relative)
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
     assert!(close(m.youngs_modulus(25.0).unwrap(), 1.198e9));
