@@ -255,7 +255,7 @@ INTRO = """\
 | the rod-model table, call overhead, batch throughput and peak memory, NumPy ratio | `tcarod bench` (`--json` for a document) |
 | criterion benches: TCA law, rod rows, batches and sweeps, grasp, stability verdict | `cargo bench --bench tca` (`rod`, `grasp`, `stability`); one row: `cargo bench --bench rod -- rod/ivp` |
 | the solver's target cases from Python, interleaved, thread CPU | `python benches/solve_speed.py --json` |
-| 1,000 seeded random designs solved cold (IVPs, IVP-equivalents, equilibrium) | `cargo bench --bench designs` (`TCAROD_DESIGNS`, `TCAROD_LIST=1`, `TCAROD_TIPS=1`, `TCAROD_REPEAT`: see its module doc) |
+| 1,000 seeded random designs solved cold and swept warm (IVPs, IVP-equivalents, equilibrium), against the committed baseline | `cargo bench --bench designs` (`TCAROD_SEED=tuning\|held-out`, `TCAROD_FAMILY=stress`, `TCAROD_DESIGNS`, `TCAROD_SWEEP=0`, `TCAROD_REPEAT`: see its module doc and [below](#held-out-solver-benchmark)) |
 | stability verdicts over the designs, cold against warm | `cargo bench --bench stability_designs` |
 | the tangent pass: hand-linearised lanes against the dual-number reference | `cargo bench --bench tangent` (`TCAROD_ROUNDS`, `TCAROD_REF=0`) |
 | solver counts and times of single cases | `cargo run --release --example solver_counts -- --compare`, `cargo run --release --example warm_counts -- --time` |
@@ -268,6 +268,34 @@ Criterion writes its estimates to `target/criterion/<group>/<bench>/new/estimate
 (nanoseconds); the benches that are not criterion's print a table and, where
 noted, one `JSON ` line. On a shared machine quote the load (`uptime`) with
 any number, and compare rows within one run.
+
+### Held-out solver benchmark
+
+`cargo bench --bench designs` solves each design cold, then sweeps it warm
+from its reference inputs (TCAs at the reference temperature, tendons at zero
+tension or pull) to its inputs in `TCAROD_SWEEP_STEPS` (default 10) equal
+steps (`TCAROD_SWEEP=0`: cold only). The seeds have fixed roles:
+
+* `TCAROD_SEED=tuning` (`problems::TUNING_SEED`, the set the tests use) is
+  the only set a solver may be tuned on;
+* `TCAROD_SEED=held-out` (the two `problems::HELD_OUT_SEEDS`) is for
+  reporting only: no test and no tuning uses it, and a solver change is
+  judged there after it is made;
+* `TCAROD_FAMILY=stress` (`problems::STRESS_SEED`, 300 designs) draws heavy
+  soft bodies, weight ratio `psi A g L^3 / (E I)` from 20 to 3,000, hanging,
+  upright or horizontal with a 1-5 degree tilt.
+
+Each set prints a table and one `JSON ` line (cold convergence over all
+designs, below self-weight buckling and without gravity; per orientation;
+sweeps converged and sweeps ending on another equilibrium, with both
+stability verdicts; IVP and IVP-equivalent quantiles of cold solves and warm
+steps) and is compared with `benches/designs_baseline.json`: `REGRESSION`
+where a convergence count drops or an IVP quantile rises (both exact: the
+solves are deterministic) or where IVP-equivalents rise by more than 10 %
+(median, p90) or 25 % (p99, max), margins wider than the run-to-run spread of
+thread-CPU ratios on a shared 2-core machine. `TCAROD_WRITE_BASELINE=1`
+replaces the baseline's entries for the run's family and seeds; baseline runs
+use `TCAROD_REPEAT=1` and quote `uptime`.
 """
 
 

@@ -20,6 +20,13 @@
 //! rejected and redrawn; about one upright design in ten is then past
 //! self-weight buckling (7.837).
 //!
+//! # Seeds and the stress family
+//! [`TUNING_SEED`] (the tests' set, the one a solver may be tuned on),
+//! [`HELD_OUT_SEEDS`] (for reporting only, never used by a test or while
+//! tuning) and [`STRESS_SEED`] name the sets; [`stress_design`] draws heavy
+//! soft bodies (weight ratio 20-3000) hanging, upright or horizontal. See
+//! [`held_out`].
+//!
 //! # Global equilibrium
 //! The robot (body plus actuators) is held by the base only. The base takes
 //! the body's cross-section wrench `n(0)`, `m(0)` and the pull `tau_i t_i(0)`
@@ -55,6 +62,12 @@ use crate::tca::{Chirality, Tca};
 /// Seed of the benchmark set (`benches/designs.rs`,
 /// `tests/integration/designs.rs`).
 pub const DEFAULT_SEED: u64 = 0x7ca5_0d10_2026_0010;
+
+pub mod held_out;
+pub use held_out::{
+    stress_design, stress_designs, weight_ratio, Orientation, HELD_OUT_SEEDS, STRESS_MODULUS,
+    STRESS_SEED, STRESS_WEIGHT_RATIO, TUNING_SEED,
+};
 
 /// Critical `psi A g L^3 / (E I)` of an upright clamped-free column buckling
 /// under its own weight (Greenhill: `(7.837 E I / (psi A g))^(1/3)`).
@@ -217,7 +230,7 @@ pub fn past_self_weight_buckling(body: &Body) -> bool {
 }
 
 /// `psi A |g| L^3 / (E I_min)` whatever the direction of gravity.
-fn weight_ratio(density: f64, section: &Section, length: f64, e: f64) -> f64 {
+fn weight_ratio_of(density: f64, section: &Section, length: f64, e: f64) -> f64 {
     let (a, ix, iy, _) = section.properties();
     density * a * GRAVITY * length.powi(3) / (e * ix.min(iy))
 }
@@ -243,12 +256,23 @@ pub fn random_designs(seed: u64, n: usize) -> Vec<Design> {
 /// that does not fit).
 fn try_design(rng: &mut SplitMix64, index: usize) -> Option<Design> {
     let (body, draw) = draw_body(rng)?;
+    with_actuators(rng, index, body, &draw)
+}
+
+/// The design `index` of a drawn body: 1-4 actuators drawn on it (one draw
+/// for every family of designs); `None` when an actuator does not fit.
+fn with_actuators(
+    rng: &mut SplitMix64,
+    index: usize,
+    body: Body,
+    draw: &BodyDraw,
+) -> Option<Design> {
     let n_act = 1 + rng.below(4);
     let mut actuators = Vec::with_capacity(n_act);
     let mut inputs = Vec::with_capacity(n_act);
     let mut kinds = Vec::with_capacity(n_act);
     for _ in 0..n_act {
-        let (act, input, kind) = draw_actuator(rng, &draw, n_act)?;
+        let (act, input, kind) = draw_actuator(rng, draw, n_act)?;
         actuators.push(act);
         inputs.push(input);
         kinds.push(kind);
@@ -291,7 +315,7 @@ fn draw_body(rng: &mut SplitMix64) -> Option<(Body, BodyDraw)> {
             height: width / aspect.sqrt(),
         }
     };
-    if weight_ratio(density, &section, length, e) > MAX_WEIGHT_RATIO {
+    if weight_ratio_of(density, &section, length, e) > MAX_WEIGHT_RATIO {
         return None;
     }
     let mut body = Body::new(length, section, e, poisson, density).ok()?;

@@ -1,6 +1,13 @@
 //! The designs benchmark's outcomes, statistics and report (table,
-//! listing, the `JSON ` line); `benches/designs.rs` solves and times.
+//! listing, the `JSON ` line, the comparison with the committed baseline);
+//! `benches/designs.rs` solves and times.
 use tcarod::problems::EQUILIBRIUM_TOL;
+
+pub(crate) mod baseline;
+pub(crate) mod json;
+mod sweeps;
+use json::Json;
+pub(crate) use sweeps::{End, Step, SweepOutcome};
 
 /// Quantile `q` of sorted data (nearest rank).
 pub(crate) fn quantile(sorted: &[f64], q: f64) -> f64 {
@@ -14,6 +21,55 @@ pub(crate) fn quantile(sorted: &[f64], q: f64) -> f64 {
 pub(crate) fn sorted(mut v: Vec<f64>) -> Vec<f64> {
     v.sort_by(|a, b| a.partial_cmp(b).unwrap());
     v
+}
+
+/// Median, p90, p99 and max of sorted data as a JSON object, each with
+/// `digits` decimals (`null` for no data).
+pub(crate) fn quantiles(v: &[f64], digits: usize) -> Json {
+    let q = |p: f64| Json::fixed(quantile(v, p), digits);
+    Json::obj([
+        ("median", q(0.5)),
+        ("p90", q(0.9)),
+        ("p99", q(0.99)),
+        ("max", q(1.0)),
+    ])
+}
+
+/// `median p90 p99 max` of sorted data for the table.
+pub(crate) fn quantile_text(v: &[f64], digits: usize) -> String {
+    format!(
+        "median {:.digits$} p90 {:.digits$} p99 {:.digits$} max {:.digits$}",
+        quantile(v, 0.5),
+        quantile(v, 0.9),
+        quantile(v, 0.99),
+        quantile(v, 1.0)
+    )
+}
+
+/// `k / n (p %)`.
+pub(crate) fn share(k: usize, n: usize) -> String {
+    format!("{k} / {n} ({:.1} %)", 100.0 * k as f64 / n.max(1) as f64)
+}
+
+/// A failure's reason with each number replaced by `x`, so that failures
+/// of one kind are counted together (the listing keeps each full reason).
+pub(crate) fn reason_kind(reason: &str) -> String {
+    let mut out = String::with_capacity(reason.len());
+    let mut chars = reason.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c.is_ascii_digit() {
+            while chars
+                .peek()
+                .is_some_and(|d| d.is_ascii_digit() || matches!(d, '.' | 'e' | '-'))
+            {
+                chars.next();
+            }
+            out.push('x');
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 /// A converged solve: IVPs (`Solution.evaluations`), iterations, equilibrium
@@ -31,6 +87,11 @@ pub(crate) struct Converged {
 pub(crate) struct Outcome {
     pub(crate) index: usize,
     pub(crate) past: bool,
+    /// Whether the design has gravity.
+    pub(crate) gravity: bool,
+    /// `hanging`, `upright`, `horizontal` (`problems::Orientation`) or
+    /// `none` (no gravity).
+    pub(crate) orientation: &'static str,
     pub(crate) cpu: f64,
     pub(crate) result: Result<Converged, String>,
     /// For converged designs above the equilibrium target: the cold solve
@@ -38,6 +99,26 @@ pub(crate) struct Outcome {
     /// check holds), its equilibrium error and its IVP-equivalents (`None`:
     /// below the target, or the controlled solve failed).
     pub(crate) fine: Option<(f64, f64)>,
+    /// The warm sweep from the reference inputs (`None`: sweeps off).
+    pub(crate) sweep: Option<SweepOutcome>,
+}
+
+/// What a run was: its family, seed and options, for the report's header
+/// and the baseline's match.
+pub(crate) struct Run<'a> {
+    pub(crate) family: &'a str,
+    pub(crate) seed: u64,
+    /// RK4 steps of the solves.
+    pub(crate) steps: usize,
+    pub(crate) equilibrium_tol: Option<f64>,
+    /// Steps of each sweep (`None`: sweeps off).
+    pub(crate) sweep_steps: Option<usize>,
+    pub(crate) repeat: usize,
+    /// Whether only some designs were solved (`TCAROD_ONLY`).
+    pub(crate) subset: bool,
+    pub(crate) clock: &'a str,
+    /// Wall time of the run \[s\].
+    pub(crate) wall: f64,
 }
 
 /// The benchmark's statistics over all outcomes.
@@ -46,6 +127,9 @@ pub(crate) struct Stats<'a> {
     pub(crate) via_cont: usize,
     pub(crate) not_past: usize,
     pub(crate) ok_not_past: usize,
+    /// Designs without gravity, and of them converged.
+    pub(crate) no_gravity: usize,
+    pub(crate) ok_no_gravity: usize,
     pub(crate) ivp: Vec<f64>,
     pub(crate) it: Vec<f64>,
     pub(crate) eq: Vec<f64>,
@@ -54,7 +138,7 @@ pub(crate) struct Stats<'a> {
     pub(crate) ive_not_past: Vec<f64>,
     pub(crate) cpu: Vec<f64>,
     pub(crate) cpu_ok: Vec<f64>,
-    /// (reason, count, of them past buckling)
+    /// (reason with its numbers as `x`, count, of them past buckling)
     pub(crate) fails: Vec<(String, usize, usize)>,
     pub(crate) eq_bad: usize,
 }
@@ -64,6 +148,11 @@ pub(crate) fn stats(out: &[Outcome]) -> Stats<'_> {
     let via_cont = ok.iter().filter(|c| c.continuation_steps > 0).count();
     let not_past = out.iter().filter(|o| !o.past).count();
     let ok_not_past = out.iter().filter(|o| !o.past && o.result.is_ok()).count();
+    let no_gravity = out.iter().filter(|o| !o.gravity).count();
+    let ok_no_gravity = out
+        .iter()
+        .filter(|o| !o.gravity && o.result.is_ok())
+        .count();
     let ivp = sorted(ok.iter().map(|r| r.ivps as f64).collect());
     let it = sorted(ok.iter().map(|r| r.iterations as f64).collect());
     let eq = sorted(ok.iter().map(|r| r.equilibrium).collect());
@@ -83,13 +172,13 @@ pub(crate) fn stats(out: &[Outcome]) -> Stats<'_> {
     );
     let mut fails: Vec<(String, usize, usize)> = Vec::new();
     for o in out {
-        if let Err(r) = &o.result {
-            match fails.iter_mut().find(|f| &f.0 == r) {
+        if let Err(r) = o.result.as_ref().map_err(|r| reason_kind(r)) {
+            match fails.iter_mut().find(|f| f.0 == r) {
                 Some(f) => {
                     f.1 += 1;
                     f.2 += usize::from(o.past);
                 }
-                None => fails.push((r.clone(), 1, usize::from(o.past))),
+                None => fails.push((r, 1, usize::from(o.past))),
             }
         }
     }
@@ -100,6 +189,8 @@ pub(crate) fn stats(out: &[Outcome]) -> Stats<'_> {
         via_cont,
         not_past,
         ok_not_past,
+        no_gravity,
+        ok_no_gravity,
         ivp,
         it,
         eq,
@@ -112,35 +203,38 @@ pub(crate) fn stats(out: &[Outcome]) -> Stats<'_> {
     }
 }
 
-pub(crate) fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f64) {
+/// Print the run's table, listing and `JSON ` line; the run's JSON object
+/// (the line's content) for the baseline.
+pub(crate) fn report(out: &[Outcome], run: &Run<'_>) -> Json {
     let st = stats(out);
+    let n = out.len();
     let (ok, ivp, it, eq, ive) = (&st.ok, &st.ivp, &st.it, &st.eq, &st.ive);
     let (cpu, cpu_ok, fails) = (&st.cpu, &st.cpu_ok, &st.fails);
-    let (not_past, ok_not_past, via_cont, eq_bad) =
-        (st.not_past, st.ok_not_past, st.via_cont, st.eq_bad);
-    println!("designs: {n} (seed {seed:#x}), {} past self-weight buckling; clock: {clock}; wall {wall:.1} s", n - not_past);
-    println!("converged cold: {} / {n} all, {ok_not_past} / {not_past} not past buckling; {via_cont} of them via continuation", ok.len());
+    let (not_past, eq_bad) = (st.not_past, st.eq_bad);
     println!(
-        "IVPs per converged solve: median {} p90 {} p99 {} max {}",
-        quantile(ivp, 0.5),
-        quantile(ivp, 0.9),
-        quantile(ivp, 0.99),
-        quantile(ivp, 1.0)
+        "designs: {n} ({} family, seed {:#x}), {} past self-weight buckling, {} without gravity; clock: {}; wall {:.1} s",
+        run.family,
+        run.seed,
+        n - not_past,
+        st.no_gravity,
+        run.clock,
+        run.wall
     );
     println!(
-        "IVP-equivalents (CPU of the solve / CPU of one plain IVP at its solution): median {:.1} p90 {:.1} p99 {:.1} max {:.1}",
-        quantile(ive, 0.5),
-        quantile(ive, 0.9),
-        quantile(ive, 0.99),
-        quantile(ive, 1.0)
+        "converged cold: {} all; {} not past buckling; {} without gravity; {} of them via continuation",
+        share(ok.len(), n),
+        share(st.ok_not_past, not_past),
+        share(st.ok_no_gravity, st.no_gravity),
+        st.via_cont
     );
-    let ivn = &st.ive_not_past;
+    println!("IVPs per converged solve: {}", quantile_text(ivp, 0));
     println!(
-        "  of designs not past buckling: median {:.1} p90 {:.1} p99 {:.1} max {:.1}",
-        quantile(ivn, 0.5),
-        quantile(ivn, 0.9),
-        quantile(ivn, 0.99),
-        quantile(ivn, 1.0)
+        "IVP-equivalents (CPU of the solve / CPU of one plain IVP at its solution): {}",
+        quantile_text(ive, 1)
+    );
+    println!(
+        "  of designs not past buckling: {}",
+        quantile_text(&st.ive_not_past, 1)
     );
     println!(
         "iterations: median {} p90 {} p99 {} max {}",
@@ -178,8 +272,12 @@ pub(crate) fn report(out: &[Outcome], n: usize, seed: u64, clock: &str, wall: f6
     for (r, k, p) in fails.iter() {
         println!("  failed: {k:4} ({p} past buckling)  {r}");
     }
+    let orientations = sweeps::orientations(out);
+    let sweep = run.sweep_steps.map(|k| sweeps::report(out, k));
     listing(out);
-    json(&st, out, n, seed);
+    let doc = json(&st, out, run, orientations, sweep.unwrap_or(Json::Null));
+    println!("JSON {doc}");
+    doc
 }
 
 /// Each failing design (index, past buckling, reason) and the 20 converged
@@ -219,67 +317,86 @@ pub(crate) fn listing(out: &[Outcome]) {
     }
 }
 
-/// `x` as a JSON number (`sci`: exponent form) with `digits` decimals, or
-/// `null` where it is undefined (a quantile of no values: NaN).
-pub(crate) fn jnum(x: f64, digits: usize, sci: bool) -> String {
-    match (x.is_finite(), sci) {
-        (false, _) => "null".to_string(),
-        (true, true) => format!("{x:.digits$e}"),
-        (true, false) => format!("{x:.digits$}"),
-    }
-}
-
-/// The one `JSON ` line (strict JSON: an empty quantile is `null`).
-pub(crate) fn json(st: &Stats<'_>, out: &[Outcome], n: usize, seed: u64) {
-    let (ivp, ive, it, eq) = (&st.ivp, &st.ive, &st.it, &st.eq);
-    let (not_past, ok_not_past, via_cont, eq_bad) =
-        (st.not_past, st.ok_not_past, st.via_cont, st.eq_bad);
+/// The run's JSON object (strict JSON: an empty quantile is `null`): the
+/// cold solves' statistics, per orientation, the sweeps'.
+fn json(st: &Stats<'_>, out: &[Outcome], run: &Run<'_>, orient: Json, sweep: Json) -> Json {
     let fine = sorted(out.iter().filter_map(|o| o.fine.map(|f| f.0)).collect());
     let fine_bad = fine.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
-    let fails_json: Vec<String> = st
+    let failures = st
         .fails
         .iter()
-        .map(|(r, k, p)| format!("{{\"reason\":{:?},\"count\":{k},\"past_buckling\":{p}}}", r))
+        .map(|(r, k, p)| {
+            Json::obj([
+                ("reason", Json::Str(r.clone())),
+                ("count", Json::count(*k)),
+                ("past_buckling", Json::count(*p)),
+            ])
+        })
         .collect();
-    let q = |v: &[f64], digits: usize, sci: bool| {
-        [0.5, 0.9, 0.99, 1.0].map(|p| jnum(quantile(v, p), digits, sci))
-    };
-    let ive_np = q(&st.ive_not_past, 2, false);
-    let (ivp, ive, it, cpu) = (
-        q(ivp, 0, false),
-        q(ive, 2, false),
-        q(it, 0, false),
-        q(&st.cpu, 6, true),
-    );
-    let (eq_max, fine_max) = (
-        jnum(quantile(eq, 1.0), 3, true),
-        jnum(quantile(&fine, 1.0), 3, true),
-    );
-    println!(
-        "JSON {{\"bench\":\"designs\",\"n\":{n},\"seed\":{seed},\"past_buckling\":{},\"converged\":{},\"converged_not_past\":{ok_not_past},\"not_past\":{not_past},\
-\"via_continuation\":{via_cont},\"ivp\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"ivp_equivalents\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"ivp_equivalents_not_past\":{{\"median\":{},\"p90\":{},\"p99\":{},\"max\":{}}},\"iterations\":{{\"median\":{},\"max\":{}}},\
-\"cpu_s\":{{\"median\":{},\"p99\":{},\"max\":{},\"total\":{:.3}}},\"equilibrium\":{{\"max\":{eq_max},\"above_tol\":{eq_bad},\"fine_resolved\":{},\"fine_above_tol\":{fine_bad},\"fine_max\":{fine_max}}},\"failures\":[{}]}}",
-        n - not_past,
-        st.ok.len(),
-        ivp[0],
-        ivp[1],
-        ivp[2],
-        ivp[3],
-        ive[0],
-        ive[1],
-        ive[2],
-        ive[3],
-        ive_np[0],
-        ive_np[1],
-        ive_np[2],
-        ive_np[3],
-        it[0],
-        it[3],
-        cpu[0],
-        cpu[2],
-        cpu[3],
-        st.cpu.iter().sum::<f64>(),
-        fine.len(),
-        fails_json.join(",")
-    );
+    let cpu = |q: f64| Json::sci(quantile(&st.cpu, q), 6);
+    let n = out.len();
+    Json::obj([
+        ("bench", Json::Str("designs".into())),
+        ("family", Json::Str(run.family.into())),
+        ("seed", Json::int(run.seed)),
+        ("n", Json::count(n)),
+        ("options", options(run)),
+        ("past_buckling", Json::count(n - st.not_past)),
+        ("converged", Json::count(st.ok.len())),
+        ("converged_not_past", Json::count(st.ok_not_past)),
+        ("not_past", Json::count(st.not_past)),
+        ("converged_no_gravity", Json::count(st.ok_no_gravity)),
+        ("no_gravity", Json::count(st.no_gravity)),
+        ("via_continuation", Json::count(st.via_cont)),
+        ("ivp", quantiles(&st.ivp, 0)),
+        ("ivp_equivalents", quantiles(&st.ive, 2)),
+        ("ivp_equivalents_not_past", quantiles(&st.ive_not_past, 2)),
+        (
+            "iterations",
+            Json::obj([
+                ("median", Json::fixed(quantile(&st.it, 0.5), 0)),
+                ("max", Json::fixed(quantile(&st.it, 1.0), 0)),
+            ]),
+        ),
+        (
+            "cpu_s",
+            Json::obj([
+                ("median", cpu(0.5)),
+                ("p99", cpu(0.99)),
+                ("max", cpu(1.0)),
+                ("total", Json::fixed(st.cpu.iter().sum::<f64>(), 3)),
+            ]),
+        ),
+        (
+            "equilibrium",
+            Json::obj([
+                ("max", Json::sci(quantile(&st.eq, 1.0), 3)),
+                ("above_tol", Json::count(st.eq_bad)),
+                ("fine_resolved", Json::count(fine.len())),
+                ("fine_above_tol", Json::count(fine_bad)),
+                ("fine_max", Json::sci(quantile(&fine, 1.0), 3)),
+            ]),
+        ),
+        ("failures", Json::Arr(failures)),
+        ("orientations", orient),
+        ("sweep", sweep),
+        ("wall_s", Json::fixed(run.wall, 1)),
+    ])
+}
+
+/// The options a baseline must share with a run to be compared with it.
+fn options(run: &Run<'_>) -> Json {
+    Json::obj([
+        ("steps", Json::count(run.steps)),
+        (
+            "equilibrium_tol",
+            run.equilibrium_tol.map_or(Json::Null, |t| Json::sci(t, 3)),
+        ),
+        (
+            "sweep_steps",
+            run.sweep_steps.map_or(Json::Null, Json::count),
+        ),
+        ("repeat", Json::count(run.repeat)),
+        ("subset", Json::Bool(run.subset)),
+    ])
 }
