@@ -8,8 +8,8 @@
 //! * [`TUNING_SEED`] (= [`DEFAULT_SEED`]): the set the tests use and the one
 //!   a solver may be tuned on (its failures and worst cases studied, its
 //!   thresholds chosen on it).
-//! * [`HELD_OUT_SEEDS`]: two sets for reporting only. No test and no tuning
-//!   session uses them; a solver change is judged on them after it is made,
+//! * [`HELD_OUT_SEEDS`]: two sets for reporting only. No test uses them and
+//!   no solver is tuned on them; a solver change is judged on them after it is made,
 //!   and a result that holds on the tuning seed but not here is over-fitted.
 //! * [`STRESS_SEED`]: the seed of [`stress_design`], the heavy-body family.
 //!
