@@ -483,6 +483,119 @@ fn finish<const N: usize>(
     }
 }
 
+/// The hook of [`IvpSpec::integrate_tangent_hooked`]: `(node index,
+/// tangent columns, matrix to write) -> whether to apply it`.
+pub(crate) type ColumnHook<'h> = dyn FnMut(usize, &[f64], &mut [f64]) -> bool + 'h;
+
+impl IvpSpec<'_> {
+    /// [`integrate_tangent`] with every node recorded ([`Record::Tangents`])
+    /// and `hook` called at every node, the tip included (before its
+    /// balance): `hook(idx, cols, m)` gets the node's index and its tangent
+    /// columns `cols` (`n_states x k`, by columns); if it returns true the
+    /// integration continues from the columns times `m` (`k x k`, by
+    /// columns, written by the hook), the tension and elongation tangents
+    /// transformed alike, and the node is recorded so. The variational
+    /// equations are linear, so every later tangent is the plain pass's
+    /// times the product of the matrices applied (to rounding); the real
+    /// part is the plain IVP's bit for bit. One pass of `k <= 16`
+    /// directions on the hand-linearised right-hand side; with more
+    /// directions (several passes, whose columns never meet) the plain
+    /// [`integrate_tangent`], the hook not called.
+    pub(crate) fn integrate_tangent_hooked(
+        &self,
+        v0: &Vector3<f64>,
+        u0: &Vector3<f64>,
+        seeds: &TangentSeeds,
+        hook: &mut ColumnHook<'_>,
+    ) -> Result<TangentIvp> {
+        let k = seeds.directions();
+        if k > MAX_PASS {
+            return integrate_tangent(self, v0, u0, seeds, Record::Tangents);
+        }
+        let na = self.robot.actuators.len();
+        if seeds.nu0.nrows() != 3
+            || seeds.omega0.nrows() != 3
+            || seeds.tensions.nrows() != na
+            || seeds.omega0.ncols() != k
+            || seeds.tensions.ncols() != k
+        {
+            return Err(Error::input(
+                "seeds",
+                format!("expected 3, 3 and {na} rows and equal column counts"),
+            ));
+        }
+        let n = self.robot.n_states();
+        let capacity = self.steps.max(1) + self.robot.breakpoints().len();
+        let mut nodes = TangentNodes::new(n, k, capacity);
+        let p = Pass {
+            spec: self,
+            v0,
+            u0,
+            seeds,
+            c0: 0,
+            w: k,
+        };
+        let mut out = match k {
+            0..=4 => dispatch_hooked::<4>(&p, &mut nodes, hook)?,
+            5..=8 => dispatch_hooked::<8>(&p, &mut nodes, hook)?,
+            9..=12 => dispatch_hooked::<12>(&p, &mut nodes, hook)?,
+            _ => dispatch_hooked::<MAX_PASS>(&p, &mut nodes, hook)?,
+        };
+        out.nodes = nodes;
+        Ok(out)
+    }
+}
+
+/// [`lanes_pass::pass_lanes_hooked`] compiled for the widest vector unit
+/// the CPU has, as [`dispatch`] (the same tangents bit for bit).
+fn dispatch_hooked<const N: usize>(
+    p: &Pass<'_, '_>,
+    nodes: &mut TangentNodes,
+    hook: &mut ColumnHook<'_>,
+) -> Result<TangentIvp> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        let fma = std::is_x86_feature_detected!("fma");
+        if fma && std::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU supports AVX-512F and FMA (checked just above).
+            return unsafe { hooked_avx512::<N>(p, nodes, hook) };
+        }
+        if fma && std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 and FMA (checked just above).
+            return unsafe { hooked_avx2::<N>(p, nodes, hook) };
+        }
+    }
+    lanes_pass::pass_lanes_hooked::<N>(p, nodes, hook)
+}
+
+/// [`lanes_pass::pass_lanes_hooked`] with AVX-512F and FMA enabled.
+///
+/// # Safety
+/// The CPU must support them.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,fma")]
+unsafe fn hooked_avx512<const N: usize>(
+    p: &Pass<'_, '_>,
+    nodes: &mut TangentNodes,
+    hook: &mut ColumnHook<'_>,
+) -> Result<TangentIvp> {
+    lanes_pass::pass_lanes_hooked::<N>(p, nodes, hook)
+}
+
+/// [`lanes_pass::pass_lanes_hooked`] with AVX2 and FMA enabled.
+///
+/// # Safety
+/// The CPU must support them.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn hooked_avx2<const N: usize>(
+    p: &Pass<'_, '_>,
+    nodes: &mut TangentNodes,
+    hook: &mut ColumnHook<'_>,
+) -> Result<TangentIvp> {
+    lanes_pass::pass_lanes_hooked::<N>(p, nodes, hook)
+}
+
 #[path = "tangent_lanes.rs"]
 mod lanes_pass;
 

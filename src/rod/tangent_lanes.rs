@@ -175,3 +175,141 @@ pub(super) fn pass_lanes<const N: usize>(
     to_duals(&y, &yl, &mut duals);
     close(p, &fz, &duals, &tau, &mut elongation, (record, nodes, idx))
 }
+
+/// Replace the `w` columns of lanes `l` (lane `c` is column `c`) by
+/// `l m`: column `c` becomes `sum_j l_j m[j + c w]` (`m` is `w x w`, by
+/// columns); the lanes from `w` on stay zero.
+#[inline(always)]
+fn mix_lanes<const N: usize>(l: &mut [f64; N], m: &[f64], w: usize) {
+    let old = *l;
+    for (c, x) in l.iter_mut().enumerate().take(w) {
+        let mc = &m[c * w..(c + 1) * w];
+        *x = old[..w].iter().zip(mc).map(|(a, b)| a * b).sum();
+    }
+}
+
+/// At node `idx`, the tangent columns (`n x w`, by columns) handed to
+/// `hook`; if it asks for it, every lane of the pass (state, tensions in
+/// both forms, elongations recorded so far) replaced by its columns times
+/// the hook's `w x w` matrix. The real parts are untouched.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn hook_node<const N: usize>(
+    hook: &mut ColumnHook<'_>,
+    idx: usize,
+    (yl, cols, m): (&mut [Lanes<N>], &mut [f64], &mut [f64]),
+    taul: &mut [Lanes<N>],
+    tau: &mut [Dual<N>],
+    elongation: &mut [Dual<N>],
+    w: usize,
+) {
+    let n = yl.len();
+    for (c, col) in cols.chunks_exact_mut(n).enumerate().take(w) {
+        for (x, l) in col.iter_mut().zip(yl.iter()) {
+            *x = l.0[c];
+        }
+    }
+    if !hook(idx, &cols[..n * w], &mut m[..w * w]) {
+        return;
+    }
+    for l in yl.iter_mut().chain(taul.iter_mut()) {
+        mix_lanes(&mut l.0, m, w);
+    }
+    for d in tau.iter_mut().chain(elongation.iter_mut()) {
+        mix_lanes(&mut d.eps, m, w);
+    }
+}
+
+/// [`pass_lanes`] over all directions of `p` (`p.c0 == 0`, `p.w <= N`),
+/// every node recorded, with `hook` called at every node (the tip too,
+/// before its balance) on the tangent columns there ([`hook_node`]): where it returns
+/// true, the pass continues from the columns times the matrix it wrote
+/// (see [`hook_node`]). The variational equations are linear in the lanes
+/// and the real part never reads them, so the tangents after a node are
+/// the plain pass's times the product of the matrices applied so far (to
+/// rounding), and the real part is the plain IVP's bit for bit. With a
+/// hook that never asks, the arithmetic is [`pass_lanes`]'s.
+#[inline(always)]
+pub(super) fn pass_lanes_hooked<const N: usize>(
+    p: &Pass<'_, '_>,
+    nodes: &mut TangentNodes,
+    hook: &mut ColumnHook<'_>,
+) -> Result<TangentIvp> {
+    let (spec, c0, w) = (p.spec, p.c0, p.w);
+    let robot = spec.robot;
+    let fz = RodRhs::new(robot, spec.tensions);
+    let na = robot.actuators.len();
+    let n = robot.n_states();
+    let len = robot.body.length;
+    let steps = spec.steps.max(1);
+    let (mut tau, mut duals) = seeded_start::<N>(p, n);
+    let mut taul: Vec<Lanes<N>> = tau.iter().map(Lanes::of).collect();
+    let mut y: Vec<f64> = duals.iter().map(|d| d.re).collect();
+    let mut yl: Vec<Lanes<N>> = duals.iter().map(Lanes::of).collect();
+    let mut st = LaneStages::<N>::new(n, na);
+    let mut cols = vec![0.0; n * w];
+    let mut m = vec![0.0; w * w];
+    let mut idx = 0;
+    let mut elongation = vec![Dual::<N>::cst(0.0); na];
+    // hand node `idx` at `s` to the hook, then record it
+    macro_rules! node {
+        ($s:expr) => {
+            hook_node(
+                hook,
+                idx,
+                (&mut yl, &mut cols, &mut m),
+                &mut taul,
+                &mut tau,
+                &mut elongation,
+                w,
+            );
+            nodes.record_lanes(idx, $s, (&y, &yl), c0, w);
+            idx += 1;
+        };
+    }
+    let bps = robot.breakpoints();
+    let tol = 1e-12 * len;
+    let mut active: Vec<usize> = Vec::with_capacity(na);
+    for win in bps.windows(2) {
+        let (a, b) = (win[0], win[1]);
+        if a > 0.0 {
+            to_duals(&y, &yl, &mut duals);
+            if anchored_at(robot, a, tol, |i| elongation[i] = duals[BASE_STATES + i]) {
+                fz.anchor_tangent(a, &mut duals, &tau)?;
+                for (j, d) in duals.iter().enumerate() {
+                    (y[j], yl[j]) = (d.re, Lanes::of(d));
+                }
+            }
+        }
+        node!(a);
+        spanning(robot, a, b, tol, &mut active);
+        st.clear_rates(n);
+        let m_steps = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
+        let h = (b - a) / m_steps as f64;
+        for kk in 0..m_steps {
+            let s = a + kk as f64 * h;
+            st.step(&fz, s, h, (&mut y, &mut yl), &taul, &active)?;
+            if kk + 1 < m_steps {
+                node!(s + h);
+            }
+        }
+    }
+    hook_node(
+        hook,
+        idx,
+        (&mut yl, &mut cols, &mut m),
+        &mut taul,
+        &mut tau,
+        &mut elongation,
+        w,
+    );
+    to_duals(&y, &yl, &mut duals);
+    close(
+        p,
+        &fz,
+        &duals,
+        &tau,
+        &mut elongation,
+        (Record::Tangents, nodes, idx),
+    )
+}

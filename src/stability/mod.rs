@@ -103,6 +103,16 @@
 //! no integration beyond the solve's own (a tangent IVP in place of the
 //! last plain one).
 //!
+//! # Growth
+//!
+//! Under large tension the tangent columns grow apart exponentially and all
+//! turn toward the dominant direction, so `H(s)` from one plain integration
+//! becomes numerically singular. The verdict reads only their span, so the
+//! pass re-orthonormalises them where their spread passes
+//! [`GROWTH_BOUND`] (a stabilised march, Ascher, Mattheij & Russell, ch. 4;
+//! the module `march`), within the same single integration: the check is a
+//! `k x k` Gram matrix per node.
+//!
 //! # Policy
 //!
 //! [`solve_checked`] wraps the forward solve with a [`Policy`]: report the
@@ -116,12 +126,14 @@ use crate::rod::{FlatNodes, IvpResult, Robot};
 use crate::shooting::{Loads, Solution};
 
 mod landing;
+mod march;
 mod policy;
 mod tangents;
 mod verdict;
 
 pub use landing::land;
 pub use landing::{Landing, Route};
+pub use march::GROWTH_BOUND;
 pub use policy::{solve_checked, sweep_checked, unstable_error, Checked, Continued, Policy};
 
 /// Margins above `-NEUTRAL` count as stable: a symmetry leaves a neutral
@@ -254,8 +266,30 @@ pub fn stability_at(
     blocked: &[Vector3<f64>],
 ) -> Result<Stability> {
     let full = check(robot, eq, blocked)?;
-    let (t, _, _, _) = tangents::exact_tangents(robot, eq, full, false)?;
+    let (t, _, _, _) = tangents::exact_tangents(robot, eq, full, false, GROWTH_BOUND)?;
     Ok(verdict::verdict(t, robot.body.length, blocked, full, 1))
+}
+
+/// [`stability`] with the tangent columns re-orthonormalised where their
+/// spread passes `bound` instead of [`GROWTH_BOUND`] (`f64::INFINITY`: the
+/// plain fundamental matrix; `1.0`: at every node), and the number of
+/// re-orthonormalisations done; for tests and comparisons.
+#[doc(hidden)]
+pub fn stability_with_bound(
+    robot: &Robot,
+    sol: &Solution,
+    blocked: &[Vector3<f64>],
+    bound: f64,
+) -> Result<(Stability, usize)> {
+    let eq = Equilibrium::from(sol);
+    let full = check(robot, &eq, blocked)?;
+    let (pass, _) = tangents::integrate_pass(robot, &eq, full, None, bound)?;
+    let count = pass.reorthonormalised;
+    let t = tangents::tangents_of(robot, &pass);
+    Ok((
+        verdict::verdict(t, robot.body.length, blocked, full, 1),
+        count,
+    ))
 }
 
 /// [`stability_at`] of a free tip, with the IVP of the verdict's tangent
@@ -266,7 +300,7 @@ pub(crate) fn stability_profiled(
     eq: &Equilibrium<'_>,
 ) -> Result<(Stability, (IvpResult, FlatNodes), Vec<f64>)> {
     let full = check(robot, eq, &[])?;
-    let (t, ivp, tau, nodes) = tangents::exact_tangents(robot, eq, full, true)?;
+    let (t, ivp, tau, nodes) = tangents::exact_tangents(robot, eq, full, true, GROWTH_BOUND)?;
     Ok((
         verdict::verdict(t, robot.body.length, &[], full, 1),
         (ivp, nodes.unwrap_or_default()),
@@ -303,7 +337,7 @@ pub(crate) fn verdict_pass(
     tau: &[f64],
 ) -> Result<(VerdictPass, IvpResult)> {
     let full = check_equilibrium(robot, eq, &[])?;
-    let (pass, ivp) = tangents::integrate_pass(robot, eq, full, Some(tau))?;
+    let (pass, ivp) = tangents::integrate_pass(robot, eq, full, Some(tau), GROWTH_BOUND)?;
     Ok((VerdictPass { pass, full }, ivp))
 }
 

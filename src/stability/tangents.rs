@@ -4,12 +4,10 @@
 
 use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3, Vector6};
 
+use super::march::March;
 use super::Equilibrium;
 use crate::error::Result;
-use crate::rod::{
-    integrate_tangent, rot, FlatNodes, IvpResult, Record, Robot, RodState, TangentNodes,
-    TangentSeeds,
-};
+use crate::rod::{rot, FlatNodes, IvpResult, Robot, RodState, TangentNodes, TangentSeeds};
 use crate::shooting::{base_strains, residual_scales, Loads, Shot, Solution};
 
 /// Tangents of one equilibrium: at every node the frozen-tension columns
@@ -17,6 +15,13 @@ use crate::shooting::{base_strains, residual_scales, Loads, Shot, Solution};
 /// actuator directions were integrated, and the actuator consistency rows
 /// `E = d (delta_i(L) - delta_i)/L / d z` (`na x nz`; `na x 0` if not).
 /// The node matrices are [`Cols6`] (flat, on the stack, by columns).
+///
+/// The columns are those of the stabilised march ([`super::march`]): the
+/// true tangents times an invertible factor, the same at every column of a
+/// node; `ldet` holds `ln |det|` of the true columns' factor over the
+/// carried ones at each node (zero where the march left them alone), and
+/// `e` is the consistency `E'` of the carried columns. `carried` is false
+/// when no column was ever re-orthonormalised (the plain tangents).
 pub(super) struct Tangents {
     pub s: Vec<f64>,
     pub y: Vec<Cols6>,
@@ -24,6 +29,8 @@ pub(super) struct Tangents {
     pub y_tip: DMatrix<f64>,
     pub h_tip: DMatrix<f64>,
     pub e: DMatrix<f64>,
+    pub ldet: Vec<f64>,
+    pub carried: bool,
 }
 
 /// A 6 x 6 matrix by columns: `m[j]` is column `j` (the tangent along
@@ -247,7 +254,8 @@ fn seeds(
 
 /// One recorded tangent IVP at an equilibrium, before its nodes are turned
 /// into [`Tangents`] ([`tangents_of`]): the recorded nodes, the tip
-/// elongation tangents, the tensions \[N\] and `d tau_i / d z_j`.
+/// elongation tangents, the tensions \[N\] and `d tau_i / d z_j`, as
+/// carried by the stabilised march ([`super::march`]).
 pub(crate) struct Pass {
     nodes: TangentNodes,
     elongation: DMatrix<f64>,
@@ -255,31 +263,55 @@ pub(crate) struct Pass {
     dtau: DMatrix<f64>,
     /// Whether the `N` actuator directions were integrated.
     actuators: bool,
+    /// `ln |det|` of the true columns' factor over the carried ones, per node.
+    ldet: Vec<f64>,
+    /// The actuator part `P dz'` of the carried columns (`N x nz`; `[0 I]`
+    /// for the plain ones).
+    pdz: DMatrix<f64>,
+    /// Re-orthonormalisations done.
+    pub(super) reorthonormalised: usize,
 }
 
 /// The tangent IVP of the verdict along the six base strains and, if
 /// `actuators`, the `N` actuator elongation guesses too, every node
 /// recorded (states and tangents; the IVP's nodes are the states,
 /// [`Pass::ivp_nodes`]); with the IVP itself (no node list).
-/// `tau`: the tensions, if known (else from the force laws).
+/// `tau`: the tensions, if known (else from the force laws). The columns
+/// are re-orthonormalised where their spread passes `bound`
+/// ([`super::march::GROWTH_BOUND`]; infinite: the plain pass).
 pub(super) fn integrate_pass(
     robot: &Robot,
     eq: &Equilibrium<'_>,
     actuators: bool,
     tau: Option<&[f64]>,
+    bound: f64,
 ) -> Result<(Pass, IvpResult)> {
     let na = robot.actuators.len();
     let nz = if actuators { 6 + na } else { 6 };
     let (seeds, tau, dtau) = seeds(robot, eq, nz, tau)?;
     let spec = eq.loads.ivp(robot, &tau, eq.steps);
-    let (v0, u0) = base_strains(eq.unknowns, robot.body.length);
-    let tan = integrate_tangent(&spec, &v0, &u0, &seeds, Record::Tangents)?;
+    let len = robot.body.length;
+    let (v0, u0) = base_strains(eq.unknowns, len);
+    let mut march = March::new(bound, robot.n_states(), nz, len, actuators);
+    let tan =
+        spec.integrate_tangent_hooked(&v0, &u0, &seeds, &mut |i, c, m| march.at_node(i, c, m))?;
+    let nodes = tan.nodes.len();
+    // (more directions than one pass holds: the hook was never called)
+    march.ldet.resize(nodes, 0.0);
+    let pdz = if actuators {
+        DMatrix::from_column_slice(march.na, nz, &march.pdz)
+    } else {
+        DMatrix::zeros(na, 0)
+    };
     let pass = Pass {
         nodes: tan.nodes,
         elongation: tan.elongation,
         tau,
         dtau,
         actuators,
+        ldet: march.ldet,
+        pdz,
+        reorthonormalised: march.count,
     };
     Ok((pass, tan.ivp))
 }
@@ -306,7 +338,16 @@ pub(super) fn tangents_of(robot: &Robot, pass: &Pass) -> Tangents {
         ms,
         len,
     };
-    let (tau, dtau) = (&pass.tau, &pass.dtau);
+    // the carried columns' tension tangents: d tau_i / d delta_i times
+    // their actuator part (P dz = [0 I], dtau itself, for the plain ones)
+    let carried_dtau;
+    let dtau = if pass.reorthonormalised > 0 && pass.actuators {
+        carried_dtau = DMatrix::from_fn(na, nz, |i, j| pass.dtau[(i, 6 + i)] * pass.pdz[(i, j)]);
+        &carried_dtau
+    } else {
+        &pass.dtau
+    };
+    let tau = &pass.tau;
     let k = pass.nodes.len();
     let mut out = Tangents {
         s: Vec::with_capacity(k),
@@ -315,6 +356,8 @@ pub(super) fn tangents_of(robot: &Robot, pass: &Pass) -> Tangents {
         y_tip: DMatrix::zeros(6, nz),
         h_tip: DMatrix::zeros(6, nz),
         e: DMatrix::zeros(na, if pass.actuators { nz } else { 0 }),
+        ldet: pass.ldet.clone(),
+        carried: pass.reorthonormalised > 0,
     };
     let mut strings = Vec::with_capacity(na);
     let ns = robot.n_states();
@@ -347,9 +390,9 @@ pub(super) fn tangents_of(robot: &Robot, pass: &Pass) -> Tangents {
     if pass.actuators {
         for i in 0..na {
             for j in 0..nz {
-                out.e[(i, j)] = pass.elongation[(i, j)] / len;
+                // E' = d delta'(L) / L - P dz' (P dz = [0 I] when plain)
+                out.e[(i, j)] = pass.elongation[(i, j)] / len - pass.pdz[(i, j)];
             }
-            out.e[(i, 6 + i)] -= 1.0;
         }
     }
     out
@@ -363,8 +406,9 @@ pub(super) fn exact_tangents(
     eq: &Equilibrium<'_>,
     actuators: bool,
     profile: bool,
+    bound: f64,
 ) -> Result<(Tangents, IvpResult, Vec<f64>, Option<FlatNodes>)> {
-    let (pass, ivp) = integrate_pass(robot, eq, actuators, None)?;
+    let (pass, ivp) = integrate_pass(robot, eq, actuators, None, bound)?;
     let nodes = profile.then(|| pass.ivp_nodes());
     Ok((tangents_of(robot, &pass), ivp, pass.tau, nodes))
 }
@@ -472,6 +516,8 @@ pub(super) fn fd_tangents(robot: &Robot, sol: &Solution) -> Result<Tangents> {
     let m6 =
         |m: &DMatrix<f64>| -> Cols6 { std::array::from_fn(|j| std::array::from_fn(|i| m[(i, j)])) };
     Ok(Tangents {
+        ldet: vec![0.0; sol.s.len()],
+        carried: false,
         s: sol.s.clone(),
         y: y.iter().map(m6).collect(),
         h: h.iter().map(m6).collect(),

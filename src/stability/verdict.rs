@@ -123,11 +123,16 @@ fn scan(t: &Tangents, dirichlet: bool) -> Scan {
     let mut hdet_sign = 0.0;
     for (k, &sk) in t.s.iter().enumerate() {
         let y = &t.y[k];
-        // det(Y(s) Y(0)^-1) = det Y(s) / det Y(0)
-        out.determinant.push(if det0 != 0.0 {
+        // det(Y(s) Y(0)^-1) = det Y(s) / det Y(0); the true Y is the
+        // carried one times a factor of determinant exp(ldet) > 0
+        let ld = t.ldet[k];
+        out.determinant.push(if det0 == 0.0 {
+            f64::NAN
+        } else if ld == 0.0 {
             det6(*y) / det0
         } else {
-            f64::NAN
+            let d = det6(*y);
+            d.signum() * (d.abs().ln() + ld - det0.abs().ln()).exp() * det0.signum()
         });
         if k == 0 || sk <= 0.0 {
             out.min_stiffness.push(f64::INFINITY);
@@ -222,9 +227,13 @@ pub(super) fn verdict(
 fn full_tip(t: &Tangents, blocked: &[Vector3<f64>]) -> Option<(f64, [f64; 6])> {
     let nz = t.y_tip.ncols();
     let na = nz - 6;
-    // basis of the consistent z: d delta = -E_d^-1 E_x dx
+    // basis of the consistent z: d delta = -E_d^-1 E_x dx; of the carried
+    // columns' coefficients c (E' c = 0, see `super::march`) once the
+    // columns were re-orthonormalised
     let z = if na == 0 {
         DMatrix::identity(6, 6)
+    } else if t.carried {
+        null_basis(&t.e)?
     } else {
         let ex = t.e.columns(0, 6).into_owned();
         let edi = t.e.columns(6, na).into_owned().try_inverse()?;
@@ -289,4 +298,62 @@ fn complement(vs: &[DVector<f64>]) -> DMatrix<f64> {
         }
     }
     DMatrix::from_columns(&out)
+}
+
+/// Orthonormal basis (columns) of the null space of the `na x nz` matrix
+/// `e` (`na < nz`), or `None` if `e` has not full row rank: its rows
+/// orthonormalised, then completed by the unit vectors (each orthogonalised
+/// twice against the basis so far, the best-kept first).
+fn null_basis(e: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+    let (na, nz) = e.shape();
+    let scale = e.norm();
+    if !(scale > 0.0 && scale.is_finite()) {
+        return None;
+    }
+    let project = |v: &mut DVector<f64>, basis: &[DVector<f64>]| {
+        for _ in 0..2 {
+            for b in basis {
+                let d = b.dot(v);
+                *v -= b * d;
+            }
+        }
+    };
+    let mut rows: Vec<DVector<f64>> = Vec::with_capacity(nz);
+    for i in 0..na {
+        let mut v = e.row(i).transpose();
+        let n0 = v.norm();
+        project(&mut v, &rows);
+        let n = v.norm();
+        // a row (numerically) in the span of the others: E' is rank deficient
+        if !(n > 1e-12 * n0.max(1e-300) && n > 1e-14 * scale) {
+            return None;
+        }
+        rows.push(v / n);
+    }
+    // the unit vectors, those with the largest component off the row
+    // space first
+    let mut order: Vec<(usize, f64)> = (0..nz)
+        .map(|i| {
+            let mut v = DVector::zeros(nz);
+            v[i] = 1.0;
+            project(&mut v, &rows);
+            (i, v.norm())
+        })
+        .collect();
+    order.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let mut out: Vec<DVector<f64>> = Vec::with_capacity(nz - na);
+    for (i, _) in order {
+        if out.len() == nz - na {
+            break;
+        }
+        let mut v = DVector::zeros(nz);
+        v[i] = 1.0;
+        project(&mut v, &rows);
+        project(&mut v, &out);
+        let n = v.norm();
+        if n > 1e-8 {
+            out.push(v / n);
+        }
+    }
+    (out.len() == nz - na).then(|| DMatrix::from_columns(&out))
 }

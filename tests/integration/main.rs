@@ -25,6 +25,7 @@ mod sensitivities;
 mod solver;
 mod stability;
 mod stability_batch;
+mod stability_growth;
 mod stability_policy;
 mod tangent;
 mod tca_law;
