@@ -220,6 +220,10 @@ INTRO = """\
 * **The fixture.** Unless a row says otherwise: the paper's Fig. 6 square
   manipulator (40 mm, two U-shaped TCA legs, upright under gravity), both
   TCAs at 100 C, 100 RK4 steps, default tolerances, one core.
+* **The build.** The Python rows time the installed `tcarod`: install it
+  with the release profile of the wheel (`pip install .` or `pip install -e
+  .`), not with `make install`, whose `fast` profile (no LTO) serves the
+  tests. The cargo benches build with the `bench` profile (the release one).
 * **Rust-timed medians.** `tcarod bench` times each row of its table inside
   the Rust core (`_core.bench_time`): a warm-up, then repeated runs of
   enough inner iterations to last `--min-time`, and the median over
