@@ -139,10 +139,10 @@ pub fn integrate_tangent(
             w,
         };
         let part = match w {
-            0..=4 => dispatch::<4>(&p, record, &mut nodes)?,
-            5..=8 => dispatch::<8>(&p, record, &mut nodes)?,
-            9..=12 => dispatch::<12>(&p, record, &mut nodes)?,
-            _ => dispatch::<MAX_PASS>(&p, record, &mut nodes)?,
+            0..=4 => dispatch::<4>(&p, record, &mut nodes, None)?,
+            5..=8 => dispatch::<8>(&p, record, &mut nodes, None)?,
+            9..=12 => dispatch::<12>(&p, record, &mut nodes, None)?,
+            _ => dispatch::<MAX_PASS>(&p, record, &mut nodes, None)?,
         };
         out = Some(match out {
             None => part,
@@ -190,20 +190,21 @@ fn dispatch<const N: usize>(
     p: &Pass<'_, '_>,
     record: Record,
     nodes: &mut TangentNodes,
+    hook: Option<&mut ColumnHook<'_>>,
 ) -> Result<TangentIvp> {
     #[cfg(target_arch = "x86_64")]
     {
         let fma = std::is_x86_feature_detected!("fma");
         if fma && std::is_x86_feature_detected!("avx512f") {
             // SAFETY: the CPU supports AVX-512F and FMA (checked just above).
-            return unsafe { pass_avx512::<N>(p, record, nodes) };
+            return unsafe { pass_avx512::<N>(p, record, nodes, hook) };
         }
         if fma && std::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2 and FMA (checked just above).
-            return unsafe { pass_avx2::<N>(p, record, nodes) };
+            return unsafe { pass_avx2::<N>(p, record, nodes, hook) };
         }
     }
-    pass::<N>(p, record, nodes)
+    pass::<N>(p, record, nodes, hook)
 }
 
 /// [`pass`] compiled with a target feature enabled.
@@ -219,8 +220,9 @@ macro_rules! pass_with {
             p: &Pass<'_, '_>,
             record: Record,
             nodes: &mut TangentNodes,
+            hook: Option<&mut ColumnHook<'_>>,
         ) -> Result<TangentIvp> {
-            pass::<N>(p, record, nodes)
+            pass::<N>(p, record, nodes, hook)
         }
     };
 }
@@ -329,17 +331,19 @@ fn tip_balance<const N: usize>(
 /// One pass of [`integrate_tangent`] over directions `c0 .. c0 + w` (`w <= N`),
 /// recording into `nodes` as asked: on the hand-linearised right-hand side
 /// ([`lanes_pass::pass_lanes`]), or the reference in dual arithmetic
-/// throughout ([`with_dual_rhs`]).
+/// throughout ([`with_dual_rhs`]). A `hook` ([`IvpSpec::integrate_tangent_hooked`])
+/// runs on the hand-linearised side only.
 #[inline(always)]
 fn pass<const N: usize>(
     p: &Pass<'_, '_>,
     record: Record,
     nodes: &mut TangentNodes,
+    hook: Option<&mut ColumnHook<'_>>,
 ) -> Result<TangentIvp> {
-    if DUAL_RHS.with(Cell::get) {
+    if hook.is_none() && DUAL_RHS.with(Cell::get) {
         pass_dual::<N>(p, record, nodes)
     } else {
-        lanes_pass::pass_lanes::<N>(p, record, nodes)
+        lanes_pass::pass_lanes::<N>(p, record, nodes, hook)
     }
 }
 
@@ -535,65 +539,16 @@ impl IvpSpec<'_> {
             c0: 0,
             w: k,
         };
+        let (rec, hook) = (Record::Tangents, Some(hook));
         let mut out = match k {
-            0..=4 => dispatch_hooked::<4>(&p, &mut nodes, hook)?,
-            5..=8 => dispatch_hooked::<8>(&p, &mut nodes, hook)?,
-            9..=12 => dispatch_hooked::<12>(&p, &mut nodes, hook)?,
-            _ => dispatch_hooked::<MAX_PASS>(&p, &mut nodes, hook)?,
+            0..=4 => dispatch::<4>(&p, rec, &mut nodes, hook)?,
+            5..=8 => dispatch::<8>(&p, rec, &mut nodes, hook)?,
+            9..=12 => dispatch::<12>(&p, rec, &mut nodes, hook)?,
+            _ => dispatch::<MAX_PASS>(&p, rec, &mut nodes, hook)?,
         };
         out.nodes = nodes;
         Ok(out)
     }
-}
-
-/// [`lanes_pass::pass_lanes_hooked`] compiled for the widest vector unit
-/// the CPU has, as [`dispatch`] (the same tangents bit for bit).
-fn dispatch_hooked<const N: usize>(
-    p: &Pass<'_, '_>,
-    nodes: &mut TangentNodes,
-    hook: &mut ColumnHook<'_>,
-) -> Result<TangentIvp> {
-    #[cfg(target_arch = "x86_64")]
-    {
-        let fma = std::is_x86_feature_detected!("fma");
-        if fma && std::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU supports AVX-512F and FMA (checked just above).
-            return unsafe { hooked_avx512::<N>(p, nodes, hook) };
-        }
-        if fma && std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2 and FMA (checked just above).
-            return unsafe { hooked_avx2::<N>(p, nodes, hook) };
-        }
-    }
-    lanes_pass::pass_lanes_hooked::<N>(p, nodes, hook)
-}
-
-/// [`lanes_pass::pass_lanes_hooked`] with AVX-512F and FMA enabled.
-///
-/// # Safety
-/// The CPU must support them.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,fma")]
-unsafe fn hooked_avx512<const N: usize>(
-    p: &Pass<'_, '_>,
-    nodes: &mut TangentNodes,
-    hook: &mut ColumnHook<'_>,
-) -> Result<TangentIvp> {
-    lanes_pass::pass_lanes_hooked::<N>(p, nodes, hook)
-}
-
-/// [`lanes_pass::pass_lanes_hooked`] with AVX2 and FMA enabled.
-///
-/// # Safety
-/// The CPU must support them.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn hooked_avx2<const N: usize>(
-    p: &Pass<'_, '_>,
-    nodes: &mut TangentNodes,
-    hook: &mut ColumnHook<'_>,
-) -> Result<TangentIvp> {
-    lanes_pass::pass_lanes_hooked::<N>(p, nodes, hook)
 }
 
 #[path = "tangent_lanes.rs"]

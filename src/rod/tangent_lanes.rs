@@ -115,11 +115,21 @@ fn to_duals<const N: usize>(y: &[f64], yl: &[Lanes<N>], out: &mut [Dual<N>]) {
 
 /// [`super::pass`] on the hand-linearised right-hand side
 /// ([`RodRhs::deriv_lanes`]).
+///
+/// With a `hook` every node is recorded and handed to it first, the tip
+/// included (before its balance); where the hook returns true, the pass
+/// continues from the columns times the matrix it wrote (see
+/// [`hook_node`]). The variational equations are linear in the lanes and
+/// the real part never reads them, so the tangents after a node are the
+/// plain pass's times the product of the matrices applied so far (to
+/// rounding), and the real part is the plain IVP's bit for bit. With a hook
+/// that never asks, or none, the arithmetic is the plain pass's.
 #[inline(always)]
 pub(super) fn pass_lanes<const N: usize>(
     p: &Pass<'_, '_>,
     record: Record,
     nodes: &mut TangentNodes,
+    mut hook: Option<&mut ColumnHook<'_>>,
 ) -> Result<TangentIvp> {
     let (spec, c0, w) = (p.spec, p.c0, p.w);
     let robot = spec.robot;
@@ -128,17 +138,36 @@ pub(super) fn pass_lanes<const N: usize>(
     let n = robot.n_states();
     let len = robot.body.length;
     let steps = spec.steps.max(1);
-    let (tau, mut duals) = seeded_start::<N>(p, n);
-    let taul: Vec<Lanes<N>> = tau.iter().map(Lanes::of).collect();
+    let (mut tau, mut duals) = seeded_start::<N>(p, n);
+    let mut taul: Vec<Lanes<N>> = tau.iter().map(Lanes::of).collect();
     let mut y: Vec<f64> = duals.iter().map(|d| d.re).collect();
     let mut yl: Vec<Lanes<N>> = duals.iter().map(Lanes::of).collect();
     let mut st = LaneStages::<N>::new(n, na);
+    let record = if hook.is_some() {
+        Record::Tangents
+    } else {
+        record
+    };
     let rec = record != Record::Tip;
+    // the hook's scratch: the node's columns and the matrix it writes
+    let hooked = if hook.is_some() { w } else { 0 };
+    let (mut cols, mut m) = (vec![0.0; n * hooked], vec![0.0; hooked * hooked]);
+    let mut elongation = vec![Dual::<N>::cst(0.0); na];
     let mut idx = 0;
+    // hand node `idx` to the hook, if any
+    macro_rules! hook {
+        () => {
+            if let Some(h) = hook.as_deref_mut() {
+                let at = (&mut yl[..], &mut cols[..], &mut m[..]);
+                hook_node(h, idx, at, &mut taul, &mut tau, &mut elongation, w);
+            }
+        };
+    }
     // record node `idx` at `s` if asked
     macro_rules! node {
         ($s:expr) => {
             if rec {
+                hook!();
                 nodes.record_lanes(idx, $s, (&y, &yl), c0, w);
                 idx += 1;
             }
@@ -146,7 +175,6 @@ pub(super) fn pass_lanes<const N: usize>(
     }
     let bps = robot.breakpoints();
     let tol = 1e-12 * len;
-    let mut elongation = vec![Dual::<N>::cst(0.0); na];
     let mut active: Vec<usize> = Vec::with_capacity(na);
     for win in bps.windows(2) {
         let (a, b) = (win[0], win[1]);
@@ -172,6 +200,7 @@ pub(super) fn pass_lanes<const N: usize>(
             }
         }
     }
+    hook!();
     to_duals(&y, &yl, &mut duals);
     close(p, &fz, &duals, &tau, &mut elongation, (record, nodes, idx))
 }
@@ -218,98 +247,4 @@ fn hook_node<const N: usize>(
     for d in tau.iter_mut().chain(elongation.iter_mut()) {
         mix_lanes(&mut d.eps, m, w);
     }
-}
-
-/// [`pass_lanes`] over all directions of `p` (`p.c0 == 0`, `p.w <= N`),
-/// every node recorded, with `hook` called at every node (the tip too,
-/// before its balance) on the tangent columns there ([`hook_node`]): where it returns
-/// true, the pass continues from the columns times the matrix it wrote
-/// (see [`hook_node`]). The variational equations are linear in the lanes
-/// and the real part never reads them, so the tangents after a node are
-/// the plain pass's times the product of the matrices applied so far (to
-/// rounding), and the real part is the plain IVP's bit for bit. With a
-/// hook that never asks, the arithmetic is [`pass_lanes`]'s.
-#[inline(always)]
-pub(super) fn pass_lanes_hooked<const N: usize>(
-    p: &Pass<'_, '_>,
-    nodes: &mut TangentNodes,
-    hook: &mut ColumnHook<'_>,
-) -> Result<TangentIvp> {
-    let (spec, c0, w) = (p.spec, p.c0, p.w);
-    let robot = spec.robot;
-    let fz = RodRhs::new(robot, spec.tensions);
-    let na = robot.actuators.len();
-    let n = robot.n_states();
-    let len = robot.body.length;
-    let steps = spec.steps.max(1);
-    let (mut tau, mut duals) = seeded_start::<N>(p, n);
-    let mut taul: Vec<Lanes<N>> = tau.iter().map(Lanes::of).collect();
-    let mut y: Vec<f64> = duals.iter().map(|d| d.re).collect();
-    let mut yl: Vec<Lanes<N>> = duals.iter().map(Lanes::of).collect();
-    let mut st = LaneStages::<N>::new(n, na);
-    let mut cols = vec![0.0; n * w];
-    let mut m = vec![0.0; w * w];
-    let mut idx = 0;
-    let mut elongation = vec![Dual::<N>::cst(0.0); na];
-    // hand node `idx` at `s` to the hook, then record it
-    macro_rules! node {
-        ($s:expr) => {
-            hook_node(
-                hook,
-                idx,
-                (&mut yl, &mut cols, &mut m),
-                &mut taul,
-                &mut tau,
-                &mut elongation,
-                w,
-            );
-            nodes.record_lanes(idx, $s, (&y, &yl), c0, w);
-            idx += 1;
-        };
-    }
-    let bps = robot.breakpoints();
-    let tol = 1e-12 * len;
-    let mut active: Vec<usize> = Vec::with_capacity(na);
-    for win in bps.windows(2) {
-        let (a, b) = (win[0], win[1]);
-        if a > 0.0 {
-            to_duals(&y, &yl, &mut duals);
-            if anchored_at(robot, a, tol, |i| elongation[i] = duals[BASE_STATES + i]) {
-                fz.anchor_tangent(a, &mut duals, &tau)?;
-                for (j, d) in duals.iter().enumerate() {
-                    (y[j], yl[j]) = (d.re, Lanes::of(d));
-                }
-            }
-        }
-        node!(a);
-        spanning(robot, a, b, tol, &mut active);
-        st.clear_rates(n);
-        let m_steps = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
-        let h = (b - a) / m_steps as f64;
-        for kk in 0..m_steps {
-            let s = a + kk as f64 * h;
-            st.step(&fz, s, h, (&mut y, &mut yl), &taul, &active)?;
-            if kk + 1 < m_steps {
-                node!(s + h);
-            }
-        }
-    }
-    hook_node(
-        hook,
-        idx,
-        (&mut yl, &mut cols, &mut m),
-        &mut taul,
-        &mut tau,
-        &mut elongation,
-        w,
-    );
-    to_duals(&y, &yl, &mut duals);
-    close(
-        p,
-        &fz,
-        &duals,
-        &tau,
-        &mut elongation,
-        (Record::Tangents, nodes, idx),
-    )
 }
