@@ -297,6 +297,20 @@ struct BodyDraw {
     half_min: f64,
 }
 
+/// A circle of diameter `width` or, as often, a rectangle of the same
+/// geometric-mean side with aspect ratio 0.5-2 (log-uniform).
+fn draw_section(rng: &mut SplitMix64, width: f64) -> Section {
+    if rng.chance(0.5) {
+        Section::Circle { diameter: width }
+    } else {
+        let aspect = rng.log_range(0.5, 2.0);
+        Section::Rectangle {
+            width: width * aspect.sqrt(),
+            height: width / aspect.sqrt(),
+        }
+    }
+}
+
 /// The body of one attempt (sizes, material, gravity, tip loads); `None`
 /// when rejected as too floppy.
 fn draw_body(rng: &mut SplitMix64) -> Option<(Body, BodyDraw)> {
@@ -306,15 +320,7 @@ fn draw_body(rng: &mut SplitMix64) -> Option<(Body, BodyDraw)> {
     let density = rng.range(950.0, 1250.0);
     // slenderness L / (characteristic width) in [3, 40]
     let width = (length / rng.log_range(3.0, 40.0)).clamp(2e-3, 60e-3);
-    let section = if rng.chance(0.5) {
-        Section::Circle { diameter: width }
-    } else {
-        let aspect = rng.log_range(0.5, 2.0);
-        Section::Rectangle {
-            width: width * aspect.sqrt(),
-            height: width / aspect.sqrt(),
-        }
-    };
+    let section = draw_section(rng, width);
     if weight_ratio_of(density, &section, length, e) > MAX_WEIGHT_RATIO {
         return None;
     }

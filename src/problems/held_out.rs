@@ -45,12 +45,12 @@
 
 use nalgebra::Vector3;
 
+use super::{
+    draw_section, weight_ratio_of as ratio_of, with_actuators, BodyDraw, Design, SplitMix64,
+    DEFAULT_SEED, GRAVITY,
+};
 #[cfg(doc)]
 use super::{random_design, MAX_WEIGHT_RATIO, SELF_WEIGHT_BUCKLING};
-use super::{
-    weight_ratio_of as ratio_of, with_actuators, BodyDraw, Design, SplitMix64, DEFAULT_SEED,
-    GRAVITY,
-};
 use crate::rod::{Body, Section};
 
 /// The seed a solver may be tuned on and the tests use ([`DEFAULT_SEED`]).
@@ -181,15 +181,7 @@ fn try_stress(rng: &mut SplitMix64, index: usize, w: f64, gravity: Vector3<f64>)
     let poisson = rng.range(0.45, 0.5);
     let density = rng.range(950.0, 1250.0);
     let width = (length / rng.log_range(10.0, 100.0)).clamp(2e-3, 50e-3);
-    let section = if rng.chance(0.5) {
-        Section::Circle { diameter: width }
-    } else {
-        let aspect = rng.log_range(0.5, 2.0);
-        Section::Rectangle {
-            width: width * aspect.sqrt(),
-            height: width / aspect.sqrt(),
-        }
-    };
+    let section = draw_section(rng, width);
     // the ratio at E = 1 Pa over w: the modulus that gives ratio w
     let e = ratio_of(density, &section, length, 1.0) / w;
     if !(STRESS_MODULUS.0..=STRESS_MODULUS.1).contains(&e) {

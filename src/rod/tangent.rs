@@ -106,19 +106,7 @@ pub fn integrate_tangent(
     record: impl Into<Record>,
 ) -> Result<TangentIvp> {
     let record = record.into();
-    let k = seeds.directions();
-    let na = spec.robot.actuators.len();
-    if seeds.nu0.nrows() != 3
-        || seeds.omega0.nrows() != 3
-        || seeds.tensions.nrows() != na
-        || seeds.omega0.ncols() != k
-        || seeds.tensions.ncols() != k
-    {
-        return Err(Error::input(
-            "seeds",
-            format!("expected 3, 3 and {na} rows and equal column counts"),
-        ));
-    }
+    let k = checked_directions(seeds, spec.robot.actuators.len())?;
     let n = spec.robot.n_states();
     let capacity = if record == Record::Tip {
         0
@@ -177,6 +165,24 @@ struct Pass<'s, 'a> {
     seeds: &'s TangentSeeds,
     c0: usize,
     w: usize,
+}
+
+/// The number of directions of `seeds`, checked against their shapes (three
+/// rows each for the base strains, one per actuator for the tensions).
+fn checked_directions(seeds: &TangentSeeds, na: usize) -> Result<usize> {
+    let k = seeds.directions();
+    if seeds.nu0.nrows() != 3
+        || seeds.omega0.nrows() != 3
+        || seeds.tensions.nrows() != na
+        || seeds.omega0.ncols() != k
+        || seeds.tensions.ncols() != k
+    {
+        return Err(Error::input(
+            "seeds",
+            format!("expected 3, 3 and {na} rows and equal column counts"),
+        ));
+    }
+    Ok(k)
 }
 
 /// [`pass`] compiled for the widest vector unit the CPU has: the
@@ -512,21 +518,9 @@ impl IvpSpec<'_> {
         seeds: &TangentSeeds,
         hook: &mut ColumnHook<'_>,
     ) -> Result<TangentIvp> {
-        let k = seeds.directions();
+        let k = checked_directions(seeds, self.robot.actuators.len())?;
         if k > MAX_PASS {
             return integrate_tangent(self, v0, u0, seeds, Record::Tangents);
-        }
-        let na = self.robot.actuators.len();
-        if seeds.nu0.nrows() != 3
-            || seeds.omega0.nrows() != 3
-            || seeds.tensions.nrows() != na
-            || seeds.omega0.ncols() != k
-            || seeds.tensions.ncols() != k
-        {
-            return Err(Error::input(
-                "seeds",
-                format!("expected 3, 3 and {na} rows and equal column counts"),
-            ));
         }
         let n = self.robot.n_states();
         let capacity = self.steps.max(1) + self.robot.breakpoints().len();
