@@ -1,9 +1,18 @@
-//! The solver's design benchmark: the seeded designs of `tcarod::problems`,
+//! The solvers' design benchmark: the seeded designs of `tcarod::problems`,
 //! each solved cold and by a warm sweep (`cargo bench --bench designs`),
-//! reported per family and seed and compared with the committed baseline
-//! `benches/designs_baseline.json`.
+//! reported per solver, family and seed and compared with the committed
+//! baseline `benches/designs_baseline.json`.
 //!
 //! # What is run
+//! `TCAROD_SOLVER` picks the solver: `shooting` (the default,
+//! `tcarod::shooting::solve`: single shooting, its accuracy control
+//! included) or `multiple` (`tcarod::solve::forward::solve` under
+//! `Loads::of(robot)`: multiple shooting). Every solve below, cold or warm,
+//! is the chosen solver's; a warm solve is passed the previous solution as
+//! `warm`. `multiple` does not read `SolveOptions::equilibrium_tol`, so with
+//! it `TCAROD_EQUILIBRIUM_TOL` is refused and no design is re-solved under
+//! accuracy control.
+//!
 //! `TCAROD_FAMILY` picks the family: `random` (the default,
 //! `problems::random_design`) or `stress` (`problems::stress_design`, heavy
 //! bodies hanging, upright or horizontal). `TCAROD_SEED` is a seed or a
@@ -16,8 +25,9 @@
 //!
 //! Each design is solved once from the reference (straight) guess with the
 //! default `SolveOptions` (100 RK4 steps, tol 1e-10, max_iter 50 per Newton
-//! run), the solver's own fallback (homotopy continuation) included; the
-//! count of converged solves that needed it is printed. Then, unless
+//! run), the solver's own fallback (continuation) included; the count of
+//! converged solves that record a continuation path
+//! (`Solution.continuation_steps`) is printed. Then, unless
 //! `TCAROD_SWEEP=0`, a warm sweep: a cold solve at the reference inputs
 //! (`Robot::reference_inputs`: the material's reference temperature for a
 //! TCA, zero tension or pull for a tendon) and `TCAROD_SWEEP_STEPS` (default
@@ -29,9 +39,13 @@
 //! (`tcarod::stability::stability`, one tangent IVP each).
 //!
 //! # What is measured
-//! IVPs are `Solution.evaluations` (a tangent IVP, which carries the
-//! Jacobian, counts as one); IVP-equivalents are a solve's CPU time over the
-//! CPU time of one plain IVP of the same design at its solution (mean of 5),
+//! IVPs are `Solution.evaluations`, each solver's own count: `shooting`
+//! counts every IVP (plain or tangent, which carries the Jacobian, on any
+//! grid) as one, `multiple` counts a tangent IVP of k directions as
+//! 1 + k/8 (rounded up), so IVP counts compare runs of one solver only.
+//! IVP-equivalents, the measure that compares the solvers, are a solve's
+//! CPU time over the CPU time of one plain IVP of the same design at its
+//! solution (a single-shooting IVP on the same grid, mean of 5),
 //! the median of `TCAROD_REPEAT` (default 3) such pairs, solve then IVPs,
 //! interleaved (on a shared machine a single pair can swing by 30 %); each
 //! warm step is timed the same way, warm from the same previous solution.
@@ -40,16 +54,19 @@
 //! Per seed: a table (converged cold among all designs, those not past
 //! self-weight buckling and those without gravity; per orientation of
 //! gravity; the sweeps; quantiles of IVPs and IVP-equivalents of the cold
-//! solves and of the warm steps) and one `JSON ` line with all of it.
+//! solves and of the warm steps) and one `JSON ` line with all of it, its
+//! `solver` naming the solver.
 //!
 //! # Baseline
-//! Each seed's report is compared with its entry in
+//! Each seed's report is compared with its entry of the same solver, family
+//! and seed (an entry without `solver` is the `shooting` solver's) in
 //! `benches/designs_baseline.json` (or `TCAROD_BASELINE`): `REGRESSION`
 //! lines where a convergence count drops or a work quantile rises (IVP
 //! counts exactly, IVP-equivalents by more than 10 % at the median and p90,
 //! 25 % at p99 and max; see `designs_report/baseline.rs`).
 //! `TCAROD_WRITE_BASELINE=1` writes the run's reports into that file,
-//! replacing the entries of the same family and seed.
+//! replacing the entries of the same solver, family and seed (every other
+//! entry keeps its line).
 //!
 //! # Diagnostics
 //! `TCAROD_VERBOSE=1` lists each failure, each equilibrium residual above
@@ -58,11 +75,12 @@
 //! baseline), `TCAROD_STEPS` sets the RK4 steps, `TCAROD_TIPS=1` prints
 //! every converged design's tip position, `TCAROD_LIST=1` lists every
 //! converged design (index, IVP-equivalents, IVPs, iterations, homotopy
-//! steps, `past` if past buckling). `TCAROD_EQUILIBRIUM_TOL=1e-8` solves
-//! every design with that `SolveOptions::equilibrium_tol` (the grid refined
-//! until the global equilibrium check holds: the accuracy target), so that
-//! the statistics are those of the controlled solve (IVP-equivalents stay in
-//! units of one plain IVP on the `TCAROD_STEPS` grid).
+//! steps, `past` if past buckling). `TCAROD_EQUILIBRIUM_TOL=1e-8`
+//! (`shooting` only) solves every design with that
+//! `SolveOptions::equilibrium_tol` (the grid refined until the global
+//! equilibrium check holds: the accuracy target), so that the statistics are
+//! those of the controlled solve (IVP-equivalents stay in units of one plain
+//! IVP on the `TCAROD_STEPS` grid).
 use std::str::FromStr;
 use std::time::Instant;
 
@@ -70,7 +88,8 @@ use tcarod::problems::{
     equilibrium, random_design, stress_design, Design, Orientation, EQUILIBRIUM_TOL,
     HELD_OUT_SEEDS, STRESS_SEED, TUNING_SEED,
 };
-use tcarod::shooting::{solve, Loads, Shot, Solution, SolveOptions};
+use tcarod::rod::Robot;
+use tcarod::shooting::{Loads, Shot, Solution, SolveOptions};
 use tcarod::stability::stability;
 use tcarod::Error;
 
@@ -80,7 +99,8 @@ use clock::thread_cpu;
 #[path = "designs_report/mod.rs"]
 mod designs_report;
 use designs_report::{
-    baseline, quantile, report, sorted, Converged, End, Outcome, Run, Step, SweepOutcome,
+    baseline, quantile, report, sorted, Converged, End, Outcome, Run, SolverInfo, Step,
+    SweepOutcome,
 };
 
 /// Largest tip distance (over the body length; rotation matrices in the
@@ -97,6 +117,51 @@ fn reason(e: &Error) -> String {
             reason.split(':').next().unwrap_or(reason)
         ),
         other => format!("{other}"),
+    }
+}
+
+/// The solver a run uses (`TCAROD_SOLVER`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Solver {
+    /// `tcarod::shooting::solve`.
+    Shooting,
+    /// `tcarod::solve::forward::solve` under `Loads::of(robot)`.
+    Multiple,
+}
+
+impl Solver {
+    fn info(self) -> SolverInfo<'static> {
+        match self {
+            Solver::Shooting => SolverInfo {
+                name: "shooting",
+                function: "tcarod::shooting::solve",
+                ivp_count: "every IVP, plain or tangent, counts 1",
+                accuracy_control: true,
+            },
+            Solver::Multiple => SolverInfo {
+                name: "multiple",
+                function: "tcarod::solve::forward::solve",
+                ivp_count: "a tangent IVP of k directions counts 1 + ceil(k/8)",
+                accuracy_control: false,
+            },
+        }
+    }
+
+    /// Solve `robot` at `inputs` (warm from `warm`, or cold).
+    fn solve(
+        self,
+        robot: &Robot,
+        inputs: &[f64],
+        opts: &SolveOptions,
+        warm: Option<&Solution>,
+    ) -> tcarod::Result<Solution> {
+        match self {
+            Solver::Shooting => tcarod::shooting::solve(robot, inputs, opts, warm),
+            Solver::Multiple => {
+                let loads = Loads::of(robot);
+                tcarod::solve::forward::solve(robot, inputs, &loads, opts, warm)
+            }
+        }
     }
 }
 
@@ -124,6 +189,7 @@ impl Family {
 
 /// The run's settings, from the environment (see the module docs).
 struct Config {
+    solver: Solver,
     family: Family,
     seeds: Vec<u64>,
     n: usize,
@@ -146,6 +212,11 @@ fn flag(name: &str) -> bool {
 
 impl Config {
     fn from_env() -> Config {
+        let solver = match std::env::var("TCAROD_SOLVER").as_deref() {
+            Err(_) | Ok("shooting") => Solver::Shooting,
+            Ok("multiple") => Solver::Multiple,
+            Ok(other) => panic!("TCAROD_SOLVER={other}: expected shooting or multiple"),
+        };
         let family = match std::env::var("TCAROD_FAMILY").as_deref() {
             Err(_) | Ok("random") => Family::Random,
             Ok("stress") => Family::Stress,
@@ -162,7 +233,13 @@ impl Config {
             opts.steps = steps;
         }
         opts.equilibrium_tol = env("TCAROD_EQUILIBRIUM_TOL");
+        assert!(
+            opts.equilibrium_tol.is_none() || solver.info().accuracy_control,
+            "TCAROD_EQUILIBRIUM_TOL: the {} solver does not read equilibrium_tol",
+            solver.info().name
+        );
         Config {
+            solver,
             family,
             seeds,
             n: env("TCAROD_DESIGNS").unwrap_or(default_n),
@@ -214,6 +291,7 @@ fn main() {
             .map(|&i| run_design(&cfg.family.design(seed, i), &cfg, &now))
             .collect();
         let run = Run {
+            solver: cfg.solver.info(),
             family: cfg.family.name(),
             seed,
             steps: cfg.opts.steps,
@@ -239,15 +317,9 @@ fn main() {
 
 /// Design `d` solved cold, then swept (unless sweeps are off).
 fn run_design(d: &Design, cfg: &Config, now: &dyn Fn() -> f64) -> Outcome {
-    let (mut outcome, cold) = solve_one(
-        d,
-        &cfg.opts,
-        (cfg.verbose, cfg.only.is_some()),
-        cfg.repeat,
-        now,
-    );
+    let (mut outcome, cold) = solve_one(d, cfg, now);
     outcome.sweep = cfg.sweep_steps.map(|k| {
-        let s = sweep(d, &cfg.opts, k, cfg.repeat, cold.as_ref(), now);
+        let s = sweep(d, cfg, k, cold.as_ref(), now);
         if cfg.verbose {
             if let Some(e) = &s.end {
                 eprintln!("END #{} distance {:.2e}", d.index, e.distance);
@@ -258,21 +330,17 @@ fn run_design(d: &Design, cfg: &Config, now: &dyn Fn() -> f64) -> Outcome {
     outcome
 }
 
-/// Solve design `d` cold, time it (`repeat` times), check its equilibrium
-/// (and, above the target, solve it again with the grid refined until the
-/// check holds); `verbose`, `diagnose` print more. The outcome (no sweep
-/// yet) and the solution.
-fn solve_one(
-    d: &Design,
-    opts: &SolveOptions,
-    (verbose, diagnose): (bool, bool),
-    repeat: usize,
-    now: &dyn Fn() -> f64,
-) -> (Outcome, Option<Solution>) {
+/// Solve design `d` cold with the run's solver, time it (`cfg.repeat`
+/// times), check its equilibrium (and, above the target, with a solver that
+/// has accuracy control, solve it again with the grid refined until the
+/// check holds); `TCAROD_VERBOSE` and `TCAROD_ONLY` print more. The outcome
+/// (no sweep yet) and the solution.
+fn solve_one(d: &Design, cfg: &Config, now: &dyn Fn() -> f64) -> (Outcome, Option<Solution>) {
     let i = d.index;
-    let opts = *opts;
+    let (verbose, diagnose) = (cfg.verbose, cfg.only.is_some());
+    let opts = cfg.opts;
     let t0 = now();
-    let r = solve(&d.robot, &d.inputs, &opts, None);
+    let r = cfg.solver.solve(&d.robot, &d.inputs, &opts, None);
     let cpu = now() - t0;
     let result = match r {
         Ok(sol) => {
@@ -288,9 +356,9 @@ fn solve_one(
                 );
             }
             let ivp = plain_ivp_cpu(d, &d.inputs, &opts, &sol.unknowns, now);
-            let ive = ivp_equivalents(d, (&d.inputs, None), &opts, (cpu, ivp), repeat, &sol, now);
-            let fine = (eq.relative > EQUILIBRIUM_TOL)
-                .then(|| controlled(d, &opts, now))
+            let ive = ivp_equivalents(d, (&d.inputs, None), cfg, (cpu, ivp), &sol, now);
+            let fine = (eq.relative > EQUILIBRIUM_TOL && cfg.solver.info().accuracy_control)
+                .then(|| controlled(d, cfg, now))
                 .flatten()
                 .map(|(e, cpu)| (e, cpu / ivp));
             let c = Converged {
@@ -355,40 +423,40 @@ fn plain_ivp_cpu(
     (now() - t1) / 5.0
 }
 
-/// The median over `repeat` (solve CPU / plain IVP CPU) pairs of the solve
-/// of `d` at `inputs` (warm from `warm`, or cold), the first `(cpu, ivp)`
-/// already measured; each further pair times the same (deterministic) solve
-/// again, then the IVP at its solution `sol`.
+/// The median over `cfg.repeat` (solve CPU / plain IVP CPU) pairs of the
+/// solve of `d` at `inputs` (warm from `warm`, or cold), the first
+/// `(cpu, ivp)` already measured; each further pair times the same
+/// (deterministic) solve again, then the IVP at its solution `sol`.
 fn ivp_equivalents(
     d: &Design,
     (inputs, warm): (&[f64], Option<&Solution>),
-    opts: &SolveOptions,
+    cfg: &Config,
     (cpu, ivp): (f64, f64),
-    repeat: usize,
     sol: &Solution,
     now: &dyn Fn() -> f64,
 ) -> f64 {
+    let opts = &cfg.opts;
     let mut ratios = vec![cpu / ivp];
-    for _ in 1..repeat {
+    for _ in 1..cfg.repeat {
         let t0 = now();
-        let _ = std::hint::black_box(solve(&d.robot, inputs, opts, warm));
+        let _ = std::hint::black_box(cfg.solver.solve(&d.robot, inputs, opts, warm));
         let cpu = now() - t0;
         ratios.push(cpu / plain_ivp_cpu(d, inputs, opts, &sol.unknowns, now));
     }
     quantile(&sorted(ratios), 0.5)
 }
 
-/// The warm sweep of design `d` in `k` steps (see the module docs), each
-/// step timed `repeat` times; its end compared with the cold solution
-/// `cold` if there is one.
+/// The warm sweep of design `d` in `k` steps with the run's solver (see
+/// the module docs), each step timed `cfg.repeat` times; its end compared
+/// with the cold solution `cold` if there is one.
 fn sweep(
     d: &Design,
-    opts: &SolveOptions,
+    cfg: &Config,
     k: usize,
-    repeat: usize,
     cold: Option<&Solution>,
     now: &dyn Fn() -> f64,
 ) -> SweepOutcome {
+    let opts = &cfg.opts;
     let reference = d.robot.reference_inputs();
     let mut out = SweepOutcome {
         steps: Vec::with_capacity(k),
@@ -396,7 +464,7 @@ fn sweep(
         failed: None,
         end: None,
     };
-    let mut prev = match solve(&d.robot, &reference, opts, None) {
+    let mut prev = match cfg.solver.solve(&d.robot, &reference, opts, None) {
         Ok(s) => s,
         Err(e) => {
             out.failed = Some((0, reason(&e)));
@@ -417,7 +485,7 @@ fn sweep(
                 .collect()
         };
         let t0 = now();
-        let r = solve(&d.robot, &inputs, opts, Some(&prev));
+        let r = cfg.solver.solve(&d.robot, &inputs, opts, Some(&prev));
         let cpu = now() - t0;
         let sol = match r {
             Ok(sol) => sol,
@@ -428,7 +496,7 @@ fn sweep(
         };
         let ivp = plain_ivp_cpu(d, &inputs, opts, &sol.unknowns, now);
         let warm = (inputs.as_slice(), Some(&prev));
-        let ive = ivp_equivalents(d, warm, opts, (cpu, ivp), repeat, &sol, now);
+        let ive = ivp_equivalents(d, warm, cfg, (cpu, ivp), &sol, now);
         out.steps.push(Step {
             ivps: sol.evaluations,
             ivp_equivalents: ive,
@@ -456,21 +524,22 @@ fn compare_ends(d: &Design, cold: &Solution, end: &Solution) -> End {
 
 /// With `TCAROD_TIPS=1`, print design `i`'s tip position \[m\] (to compare
 /// two builds' solutions design by design).
-fn print_tip(i: usize, sol: &tcarod::shooting::Solution) {
+fn print_tip(i: usize, sol: &Solution) {
     if std::env::var("TCAROD_TIPS").is_ok_and(|v| v == "1") {
         let p = sol.tip_position();
         eprintln!("TIP #{i} {:.15e} {:.15e} {:.15e}", p.x, p.y, p.z);
     }
 }
 
-/// Design `d` solved cold with `equilibrium_tol` = the target: its
-/// equilibrium error and CPU time \[s\] (`None` if the solve failed).
-fn controlled(d: &Design, opts: &SolveOptions, now: &dyn Fn() -> f64) -> Option<(f64, f64)> {
+/// Design `d` solved cold by the run's solver with `equilibrium_tol` = the
+/// target: its equilibrium error and CPU time \[s\] (`None` if the solve
+/// failed).
+fn controlled(d: &Design, cfg: &Config, now: &dyn Fn() -> f64) -> Option<(f64, f64)> {
     let fo = SolveOptions {
         equilibrium_tol: Some(EQUILIBRIUM_TOL),
-        ..*opts
+        ..cfg.opts
     };
     let t0 = now();
-    let s = solve(&d.robot, &d.inputs, &fo, None).ok()?;
+    let s = cfg.solver.solve(&d.robot, &d.inputs, &fo, None).ok()?;
     Some((equilibrium(&d.robot, &s).relative, now() - t0))
 }

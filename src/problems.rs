@@ -64,6 +64,8 @@ use crate::tca::{Chirality, Tca};
 pub const DEFAULT_SEED: u64 = 0x7ca5_0d10_2026_0010;
 
 pub mod held_out;
+pub mod nonlinear;
+pub mod paths;
 pub use held_out::{
     stress_design, stress_designs, weight_ratio, Orientation, HELD_OUT_SEEDS, STRESS_MODULUS,
     STRESS_SEED, STRESS_WEIGHT_RATIO, TUNING_SEED,

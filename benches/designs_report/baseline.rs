@@ -1,19 +1,24 @@
 //! The committed baseline of the designs benchmark
-//! (`benches/designs_baseline.json`: one report per family and seed, the
-//! `JSON ` lines' objects) and a run's comparison with it.
+//! (`benches/designs_baseline.json`: one report per solver, family and
+//! seed, the `JSON ` lines' objects; an entry without `solver` is the
+//! `shooting` solver's) and a run's comparison with it.
 //!
-//! A run is compared with the baseline's entry of the same family and seed
-//! when both solved the same number of designs with the same grid,
+//! The file is an object of `about` (what it is) and `runs` (the entries,
+//! one a line). Writing it replaces the entries of the run's solver, family
+//! and seeds and keeps every other entry's line as it stands.
+//!
+//! A run is compared with the baseline's entry of the same solver, family
+//! and seed when both solved the same number of designs with the same grid,
 //! accuracy control and (for the sweeps' keys) sweep steps. Each rule below
 //! prints a `REGRESSION` line when the run is worse and an `IMPROVED` line
 //! when it is better:
 //!
 //! * convergence counts (cold, not past buckling, without gravity, sweeps):
 //!   any drop; the solves are deterministic, so counts are exact;
-//! * IVP quantiles (cold solves, warm steps): any rise; IVP counts are
-//!   deterministic too (on one build and machine). A solver that converges
-//!   on more designs may raise them by taking on harder designs: read them
-//!   with the counts;
+//! * IVP quantiles (cold solves, warm steps; each solver's own count): any
+//!   rise; IVP counts are deterministic too (on one build and machine). A
+//!   solver that converges on more designs may raise them by taking on
+//!   harder designs: read them with the counts;
 //! * IVP-equivalent quantiles (CPU time): a rise above [`MEDIAN_MARGIN`]
 //!   (median, p90) or [`TAIL_MARGIN`] (p99, max), since times on a shared
 //!   machine swing by tens of percent.
@@ -23,7 +28,25 @@
 
 use std::path::PathBuf;
 
-use super::json::Json;
+use serde::Deserialize;
+
+use super::json::{at, num, text, Json};
+
+/// The solver of an entry without `solver`.
+const DEFAULT_SOLVER: &str = "shooting";
+
+/// What the file says it is (its `about`).
+const ABOUT: &str = "The designs benchmark's committed report (benches/designs.rs): one entry per \
+                     solver, family and seed, the content of its JSON line (an entry without \
+                     solver is the shooting solver's). Each run is compared with its entry; \
+                     TCAROD_WRITE_BASELINE=1 replaces the entries of the run's solver, family \
+                     and seeds.";
+
+/// The baseline file.
+#[derive(Deserialize)]
+struct File {
+    runs: Vec<Json>,
+}
 
 /// Tolerated relative rise of the IVP-equivalents' median and p90.
 pub(crate) const MEDIAN_MARGIN: f64 = 0.10;
@@ -92,12 +115,8 @@ pub(crate) fn load(path: &PathBuf) -> Vec<Json> {
     let Ok(text) = std::fs::read_to_string(path) else {
         return Vec::new();
     };
-    match Json::parse(&text) {
-        Ok(Json::Obj(pairs)) => match pairs.into_iter().find(|(k, _)| k == "runs") {
-            Some((_, Json::Arr(runs))) => runs,
-            _ => Vec::new(),
-        },
-        Ok(_) => Vec::new(),
+    match serde_json::from_str::<File>(&text) {
+        Ok(file) => file.runs,
         Err(e) => {
             println!("BASELINE {}: unreadable ({e})", path.display());
             Vec::new()
@@ -105,25 +124,33 @@ pub(crate) fn load(path: &PathBuf) -> Vec<Json> {
     }
 }
 
-/// Whether two runs are of the same family and seed.
+/// The solver of a run or entry.
+fn solver(run: &Json) -> &str {
+    text(run, "solver").unwrap_or(DEFAULT_SOLVER)
+}
+
+/// Whether two runs are of the same solver, family and seed.
 fn same_set(a: &Json, b: &Json) -> bool {
-    a.str("family") == b.str("family") && a.get("seed") == b.get("seed")
+    solver(a) == solver(b)
+        && text(a, "family") == text(b, "family")
+        && a.get("seed") == b.get("seed")
 }
 
 /// Compare `run` with its entry in `baseline`, printing one line per rule
 /// broken or bettered and a summary; the number of regressions.
 pub(crate) fn compare(run: &Json, baseline: &[Json]) -> usize {
     let label = format!(
-        "{} seed {:#x}",
-        run.str("family").unwrap_or("?"),
+        "{} {} seed {:#x}",
+        solver(run),
+        text(run, "family").unwrap_or("?"),
         seed_of(run)
     );
     let Some(base) = baseline.iter().find(|b| same_set(b, run)) else {
         println!("BASELINE {label}: no entry to compare with");
         return 0;
     };
-    let differs = |key: &str| run.get(key) != base.get(key);
-    if run.get("options.subset") == Some(&Json::Bool(true)) {
+    let differs = |key: &str| at(run, key) != at(base, key);
+    if at(run, "options.subset") == Some(&Json::Bool(true)) {
         println!("BASELINE {label}: a subset of the designs (TCAROD_ONLY), not compared");
         return 0;
     }
@@ -131,7 +158,7 @@ pub(crate) fn compare(run: &Json, baseline: &[Json]) -> usize {
     let mismatch: Vec<String> = ["n", "options.steps", "options.equilibrium_tol"]
         .into_iter()
         .filter(|k| differs(k))
-        .map(|k| format!("{k} {} (baseline {})", show(run.get(k)), show(base.get(k))))
+        .map(|k| format!("{k} {} (baseline {})", show(at(run, k)), show(at(base, k))))
         .collect();
     if !mismatch.is_empty() {
         println!("BASELINE {label}: not comparable: {}", mismatch.join(", "));
@@ -143,7 +170,7 @@ pub(crate) fn compare(run: &Json, baseline: &[Json]) -> usize {
     } else {
         rules.extend(SWEEP);
         let key = "sweep.other_equilibrium";
-        if let (Some(a), Some(b)) = (base.num(key), run.num(key)) {
+        if let (Some(a), Some(b)) = (num(base, key), num(run, key)) {
             if a != b {
                 println!("NOTE {label}: {key} {a} -> {b}");
             }
@@ -151,7 +178,7 @@ pub(crate) fn compare(run: &Json, baseline: &[Json]) -> usize {
     }
     let (mut worse, mut better) = (0, 0);
     for (key, rule) in rules {
-        let (Some(a), Some(b)) = (base.num(key), run.num(key)) else {
+        let (Some(a), Some(b)) = (num(base, key), num(run, key)) else {
             continue;
         };
         match verdict(rule, a, b) {
@@ -185,33 +212,28 @@ fn verdict(rule: Rule, a: f64, b: f64) -> Option<(bool, String)> {
     }
 }
 
-/// The run's seed (exact: read from its text).
+/// The run's seed.
 fn seed_of(run: &Json) -> u64 {
-    match run.get("seed") {
-        Some(Json::Num(t)) => t.parse().unwrap_or(0),
-        _ => 0,
-    }
+    run.get("seed").and_then(Json::as_u64).unwrap_or(0)
 }
 
 /// Write `runs` into the baseline at `path`: each replaces the entry of its
-/// family and seed, the other entries are kept.
+/// solver, family and seed, the other entries are kept with their lines.
 pub(crate) fn write(path: &PathBuf, runs: &[Json]) -> std::io::Result<()> {
-    let mut all = load(path);
+    let old = std::fs::read_to_string(path).unwrap_or_default();
+    let mut all = lines(&old, load(path));
     for run in runs {
-        match all.iter_mut().find(|b| same_set(b, run)) {
-            Some(b) => *b = run.clone(),
-            None => all.push(run.clone()),
+        let line = run.to_string();
+        match all.iter_mut().find(|(b, _)| same_set(b, run)) {
+            Some(b) => *b = (run.clone(), line),
+            None => all.push((run.clone(), line)),
         }
     }
-    let about =
-        "The designs benchmark's committed report (benches/designs.rs): one entry per family and \
-                 seed, the content of its JSON line. Each run is compared with its entry; \
-                 TCAROD_WRITE_BASELINE=1 replaces the entries of the run's family and seeds.";
-    let lines: Vec<String> = all.iter().map(|r| r.to_string()).collect();
+    let entries: Vec<&str> = all.iter().map(|(_, line)| line.as_str()).collect();
     let text = format!(
         "{{\"about\":{},\n\"runs\":[\n{}\n]}}\n",
-        Json::Str(about.into()),
-        lines.join(",\n")
+        Json::from(ABOUT),
+        entries.join(",\n")
     );
     std::fs::write(path, text)?;
     println!(
@@ -220,4 +242,21 @@ pub(crate) fn write(path: &PathBuf, runs: &[Json]) -> std::io::Result<()> {
         all.len()
     );
     Ok(())
+}
+
+/// The entries `runs` of the baseline file `text`, each with its line: the
+/// file's line of the entry where one holds exactly that entry, else the
+/// entry written anew.
+fn lines(text: &str, runs: Vec<Json>) -> Vec<(Json, String)> {
+    let mut lines = text.lines().map(|l| l.trim().trim_end_matches(','));
+    runs.into_iter()
+        .map(|run| {
+            let kept = lines
+                .by_ref()
+                .find(|l| serde_json::from_str::<Json>(l).is_ok_and(|v| v == run))
+                .map(str::to_string);
+            let line = kept.unwrap_or_else(|| run.to_string());
+            (run, line)
+        })
+        .collect()
 }

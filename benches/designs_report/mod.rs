@@ -6,7 +6,7 @@ use tcarod::problems::EQUILIBRIUM_TOL;
 pub(crate) mod baseline;
 pub(crate) mod json;
 mod sweeps;
-use json::Json;
+use json::{count, fixed, json, sci, Json};
 pub(crate) use sweeps::{End, Step, SweepOutcome};
 
 /// Quantile `q` of sorted data (nearest rank).
@@ -26,13 +26,8 @@ pub(crate) fn sorted(mut v: Vec<f64>) -> Vec<f64> {
 /// Median, p90, p99 and max of sorted data as a JSON object, each with
 /// `digits` decimals (`null` for no data).
 pub(crate) fn quantiles(v: &[f64], digits: usize) -> Json {
-    let q = |p: f64| Json::fixed(quantile(v, p), digits);
-    Json::obj([
-        ("median", q(0.5)),
-        ("p90", q(0.9)),
-        ("p99", q(0.99)),
-        ("max", q(1.0)),
-    ])
+    let q = |p: f64| fixed(quantile(v, p), digits);
+    json!({"median": q(0.5), "p90": q(0.9), "p99": q(0.99), "max": q(1.0)})
 }
 
 /// `median p90 p99 max` of sorted data for the table.
@@ -72,9 +67,9 @@ pub(crate) fn reason_kind(reason: &str) -> String {
     out
 }
 
-/// A converged solve: IVPs (`Solution.evaluations`), iterations, equilibrium
-/// residual, IVP-equivalents (CPU time / CPU time of one plain IVP at the
-/// solution), whether continuation was needed.
+/// A converged solve: IVPs (`Solution.evaluations`, the solver's own
+/// count), iterations, equilibrium residual, IVP-equivalents (CPU time / CPU
+/// time of one plain IVP at the solution), whether continuation was needed.
 pub(crate) struct Converged {
     pub(crate) ivps: usize,
     pub(crate) iterations: usize,
@@ -97,15 +92,29 @@ pub(crate) struct Outcome {
     /// For converged designs above the equilibrium target: the cold solve
     /// again with `equilibrium_tol` = the target (the grid refined until the
     /// check holds), its equilibrium error and its IVP-equivalents (`None`:
-    /// below the target, or the controlled solve failed).
+    /// below the target, a solver without accuracy control, or the
+    /// controlled solve failed).
     pub(crate) fine: Option<(f64, f64)>,
     /// The warm sweep from the reference inputs (`None`: sweeps off).
     pub(crate) sweep: Option<SweepOutcome>,
 }
 
-/// What a run was: its family, seed and options, for the report's header
-/// and the baseline's match.
+/// The solver a run uses (`TCAROD_SOLVER`), for the report.
+pub(crate) struct SolverInfo<'a> {
+    /// `shooting` or `multiple`.
+    pub(crate) name: &'a str,
+    /// The function it calls.
+    pub(crate) function: &'a str,
+    /// How its `Solution.evaluations` counts IVPs.
+    pub(crate) ivp_count: &'a str,
+    /// Whether it reads `SolveOptions::equilibrium_tol` (accuracy control).
+    pub(crate) accuracy_control: bool,
+}
+
+/// What a run was: its solver, family, seed and options, for the report's
+/// header and the baseline's match.
 pub(crate) struct Run<'a> {
+    pub(crate) solver: SolverInfo<'a>,
     pub(crate) family: &'a str,
     pub(crate) seed: u64,
     /// RK4 steps of the solves.
@@ -212,9 +221,11 @@ pub(crate) fn report(out: &[Outcome], run: &Run<'_>) -> Json {
     let (cpu, cpu_ok, fails) = (&st.cpu, &st.cpu_ok, &st.fails);
     let (not_past, eq_bad) = (st.not_past, st.eq_bad);
     println!(
-        "designs: {n} ({} family, seed {:#x}), {} past self-weight buckling, {} without gravity; clock: {}; wall {:.1} s",
+        "designs: {n} ({} family, seed {:#x}); solver: {} ({}); {} past self-weight buckling, {} without gravity; clock: {}; wall {:.1} s",
         run.family,
         run.seed,
+        run.solver.name,
+        run.solver.function,
         n - not_past,
         st.no_gravity,
         run.clock,
@@ -227,9 +238,16 @@ pub(crate) fn report(out: &[Outcome], run: &Run<'_>) -> Json {
         share(st.ok_no_gravity, st.no_gravity),
         st.via_cont
     );
-    println!("IVPs per converged solve: {}", quantile_text(ivp, 0));
     println!(
-        "IVP-equivalents (CPU of the solve / CPU of one plain IVP at its solution): {}",
+        "IVPs: the {} solver's own count (Solution.evaluations: {}), not comparable between solvers",
+        run.solver.name, run.solver.ivp_count
+    );
+    println!(
+        "IVPs per converged solve (own count): {}",
+        quantile_text(ivp, 0)
+    );
+    println!(
+        "IVP-equivalents (CPU of the solve / CPU of one plain IVP at its solution; comparable between solvers): {}",
         quantile_text(ive, 1)
     );
     println!(
@@ -262,13 +280,20 @@ pub(crate) fn report(out: &[Outcome], run: &Run<'_>) -> Json {
     let fine = sorted(out.iter().filter_map(|o| o.fine.map(|f| f.0)).collect());
     let fine_bad = fine.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
     let fine_ive = sorted(out.iter().filter_map(|o| o.fine.map(|f| f.1)).collect());
-    println!(
-        "  of the {eq_bad} above: re-solved cold with equilibrium_tol {EQUILIBRIUM_TOL:.0e}: {} converged (max {:.1e}), {fine_bad} still above; IVP-equivalents median {:.1} max {:.1}",
-        fine.len(),
-        quantile(&fine, 1.0),
-        quantile(&fine_ive, 0.5),
-        quantile(&fine_ive, 1.0)
-    );
+    if run.solver.accuracy_control {
+        println!(
+            "  of the {eq_bad} above: re-solved cold with equilibrium_tol {EQUILIBRIUM_TOL:.0e}: {} converged (max {:.1e}), {fine_bad} still above; IVP-equivalents median {:.1} max {:.1}",
+            fine.len(),
+            quantile(&fine, 1.0),
+            quantile(&fine_ive, 0.5),
+            quantile(&fine_ive, 1.0)
+        );
+    } else {
+        println!(
+            "  of the {eq_bad} above: not re-solved (the {} solver does not read equilibrium_tol)",
+            run.solver.name
+        );
+    }
     for (r, k, p) in fails.iter() {
         println!("  failed: {k:4} ({p} past buckling)  {r}");
     }
@@ -307,7 +332,7 @@ pub(crate) fn listing(out: &[Outcome]) {
     }
     worst.sort_by(|a, b| b.1.ivp_equivalents.total_cmp(&a.1.ivp_equivalents));
     println!(
-        "  worst 20 by IVP-equivalents: #index ive ivps iterations homotopy-steps [past buckling]"
+        "  worst 20 by IVP-equivalents: #index ive ivps(own count) iterations homotopy-steps [past buckling]"
     );
     for (i, c, past) in worst.iter().take(20) {
         println!(
@@ -318,85 +343,74 @@ pub(crate) fn listing(out: &[Outcome]) {
 }
 
 /// The run's JSON object (strict JSON: an empty quantile is `null`): the
-/// cold solves' statistics, per orientation, the sweeps'.
+/// cold solves' statistics, per orientation, the sweeps'. The controlled
+/// re-solves' keys (`equilibrium.fine_*`) are `null` for a solver without
+/// accuracy control.
 fn json(st: &Stats<'_>, out: &[Outcome], run: &Run<'_>, orient: Json, sweep: Json) -> Json {
     let fine = sorted(out.iter().filter_map(|o| o.fine.map(|f| f.0)).collect());
     let fine_bad = fine.iter().filter(|&&x| x > EQUILIBRIUM_TOL).count();
-    let failures = st
+    let controlled = |v: Json| {
+        if run.solver.accuracy_control {
+            v
+        } else {
+            Json::Null
+        }
+    };
+    let failures: Vec<Json> = st
         .fails
         .iter()
-        .map(|(r, k, p)| {
-            Json::obj([
-                ("reason", Json::Str(r.clone())),
-                ("count", Json::count(*k)),
-                ("past_buckling", Json::count(*p)),
-            ])
-        })
+        .map(|(r, k, p)| json!({"reason": r, "count": k, "past_buckling": p}))
         .collect();
-    let cpu = |q: f64| Json::sci(quantile(&st.cpu, q), 6);
+    let cpu = |q: f64| sci(quantile(&st.cpu, q), 6);
     let n = out.len();
-    Json::obj([
-        ("bench", Json::Str("designs".into())),
-        ("family", Json::Str(run.family.into())),
-        ("seed", Json::int(run.seed)),
-        ("n", Json::count(n)),
-        ("options", options(run)),
-        ("past_buckling", Json::count(n - st.not_past)),
-        ("converged", Json::count(st.ok.len())),
-        ("converged_not_past", Json::count(st.ok_not_past)),
-        ("not_past", Json::count(st.not_past)),
-        ("converged_no_gravity", Json::count(st.ok_no_gravity)),
-        ("no_gravity", Json::count(st.no_gravity)),
-        ("via_continuation", Json::count(st.via_cont)),
-        ("ivp", quantiles(&st.ivp, 0)),
-        ("ivp_equivalents", quantiles(&st.ive, 2)),
-        ("ivp_equivalents_not_past", quantiles(&st.ive_not_past, 2)),
-        (
-            "iterations",
-            Json::obj([
-                ("median", Json::fixed(quantile(&st.it, 0.5), 0)),
-                ("max", Json::fixed(quantile(&st.it, 1.0), 0)),
-            ]),
-        ),
-        (
-            "cpu_s",
-            Json::obj([
-                ("median", cpu(0.5)),
-                ("p99", cpu(0.99)),
-                ("max", cpu(1.0)),
-                ("total", Json::fixed(st.cpu.iter().sum::<f64>(), 3)),
-            ]),
-        ),
-        (
-            "equilibrium",
-            Json::obj([
-                ("max", Json::sci(quantile(&st.eq, 1.0), 3)),
-                ("above_tol", Json::count(st.eq_bad)),
-                ("fine_resolved", Json::count(fine.len())),
-                ("fine_above_tol", Json::count(fine_bad)),
-                ("fine_max", Json::sci(quantile(&fine, 1.0), 3)),
-            ]),
-        ),
-        ("failures", Json::Arr(failures)),
-        ("orientations", orient),
-        ("sweep", sweep),
-        ("wall_s", Json::fixed(run.wall, 1)),
-    ])
+    json!({
+        "bench": "designs",
+        "solver": run.solver.name,
+        "family": run.family,
+        "seed": run.seed,
+        "n": n,
+        "options": options(run),
+        "past_buckling": n - st.not_past,
+        "converged": st.ok.len(),
+        "converged_not_past": st.ok_not_past,
+        "not_past": st.not_past,
+        "converged_no_gravity": st.ok_no_gravity,
+        "no_gravity": st.no_gravity,
+        "via_continuation": st.via_cont,
+        "ivp": quantiles(&st.ivp, 0),
+        "ivp_equivalents": quantiles(&st.ive, 2),
+        "ivp_equivalents_not_past": quantiles(&st.ive_not_past, 2),
+        "iterations": {
+            "median": fixed(quantile(&st.it, 0.5), 0),
+            "max": fixed(quantile(&st.it, 1.0), 0),
+        },
+        "cpu_s": {
+            "median": cpu(0.5),
+            "p99": cpu(0.99),
+            "max": cpu(1.0),
+            "total": fixed(st.cpu.iter().sum::<f64>(), 3),
+        },
+        "equilibrium": {
+            "max": sci(quantile(&st.eq, 1.0), 3),
+            "above_tol": st.eq_bad,
+            "fine_resolved": controlled(count(fine.len())),
+            "fine_above_tol": controlled(count(fine_bad)),
+            "fine_max": controlled(sci(quantile(&fine, 1.0), 3)),
+        },
+        "failures": failures,
+        "orientations": orient,
+        "sweep": sweep,
+        "wall_s": fixed(run.wall, 1),
+    })
 }
 
 /// The options a baseline must share with a run to be compared with it.
 fn options(run: &Run<'_>) -> Json {
-    Json::obj([
-        ("steps", Json::count(run.steps)),
-        (
-            "equilibrium_tol",
-            run.equilibrium_tol.map_or(Json::Null, |t| Json::sci(t, 3)),
-        ),
-        (
-            "sweep_steps",
-            run.sweep_steps.map_or(Json::Null, Json::count),
-        ),
-        ("repeat", Json::count(run.repeat)),
-        ("subset", Json::Bool(run.subset)),
-    ])
+    json!({
+        "steps": run.steps,
+        "equilibrium_tol": run.equilibrium_tol.map_or(Json::Null, |t| sci(t, 3)),
+        "sweep_steps": run.sweep_steps,
+        "repeat": run.repeat,
+        "subset": run.subset,
+    })
 }

@@ -1,11 +1,14 @@
 //! The warm sweeps' outcomes and statistics, and the counts per orientation
 //! of gravity, for the designs benchmark's report.
-use super::json::Json;
+use serde::Serialize;
+
+use super::json::{json, Json};
 use super::{quantile_text, quantiles, share, sorted, Outcome};
 
 /// One converged warm step of a sweep.
 pub(crate) struct Step {
-    /// IVPs of the step's solve (`Solution.evaluations`).
+    /// IVPs of the step's solve (`Solution.evaluations`, the solver's own
+    /// count).
     pub(crate) ivps: usize,
     /// The step's CPU time over one plain IVP's at its solution.
     pub(crate) ivp_equivalents: f64,
@@ -39,7 +42,7 @@ pub(crate) struct SweepOutcome {
 /// Per orientation of gravity (`none`: no gravity): designs, converged cold,
 /// sweeps converged; printed and as JSON.
 pub(crate) fn orientations(out: &[Outcome]) -> Json {
-    let mut pairs = Vec::new();
+    let mut pairs = serde_json::Map::new();
     for name in ["hanging", "upright", "horizontal", "none"] {
         let of: Vec<&Outcome> = out.iter().filter(|o| o.orientation == name).collect();
         if of.is_empty() {
@@ -58,16 +61,12 @@ pub(crate) fn orientations(out: &[Outcome]) -> Json {
                 String::new()
             }
         );
-        pairs.push((
+        pairs.insert(
             name.to_string(),
-            Json::obj([
-                ("n", Json::count(of.len())),
-                ("converged", Json::count(ok)),
-                ("sweeps_converged", Json::count(swept)),
-            ]),
-        ));
+            json!({"n": of.len(), "converged": ok, "sweeps_converged": swept}),
+        );
     }
-    Json::Obj(pairs)
+    Json::Object(pairs)
 }
 
 fn sweep_converged(o: &Outcome) -> bool {
@@ -115,31 +114,34 @@ pub(crate) fn report(out: &[Outcome], k: usize) -> Json {
         ends.len(),
         apart.len()
     );
-    println!("  IVPs per warm step: {}", quantile_text(&step_ivp, 0));
+    println!(
+        "  IVPs per warm step (own count): {}",
+        quantile_text(&step_ivp, 0)
+    );
     println!(
         "  IVP-equivalents per warm step: {}",
         quantile_text(&step_ive, 1)
     );
     println!(
-        "  IVPs per converged sweep (start included): {}",
+        "  IVPs per converged sweep (own count, start included): {}",
         quantile_text(&total, 0)
     );
     list(&sw, k);
-    Json::obj([
-        ("steps", Json::count(k)),
-        ("n", Json::count(n)),
-        ("converged", Json::count(converged)),
-        ("start_failed", Json::count(start_failed)),
-        ("step_failed", Json::count(n - converged - start_failed)),
-        ("converged_where_cold_failed", Json::count(rescued)),
-        ("compared", Json::count(ends.len())),
-        ("other_equilibrium", Json::count(apart.len())),
-        ("other_far", Json::count(far)),
-        ("other_verdicts", verdicts.json()),
-        ("step_ivp", quantiles(&step_ivp, 0)),
-        ("step_ivp_equivalents", quantiles(&step_ive, 2)),
-        ("ivp_total", quantiles(&total, 0)),
-    ])
+    json!({
+        "steps": k,
+        "n": n,
+        "converged": converged,
+        "start_failed": start_failed,
+        "step_failed": n - converged - start_failed,
+        "converged_where_cold_failed": rescued,
+        "compared": ends.len(),
+        "other_equilibrium": apart.len(),
+        "other_far": far,
+        "other_verdicts": verdicts,
+        "step_ivp": quantiles(&step_ivp, 0),
+        "step_ivp_equivalents": quantiles(&step_ive, 2),
+        "ivp_total": quantiles(&total, 0),
+    })
 }
 
 /// Each failed sweep (the step and why) and each sweep ending on another
@@ -167,32 +169,15 @@ fn list(sw: &[(&Outcome, &SweepOutcome)], k: usize) {
     }
 }
 
-/// Stability verdicts of the pairs of ends on different equilibria.
-#[derive(Default)]
+/// Stability verdicts of the pairs of ends on different equilibria (as
+/// JSON: an object of the counts, in this order).
+#[derive(Default, Serialize)]
 struct Verdicts {
     cold_stable_sweep_unstable: usize,
     cold_unstable_sweep_stable: usize,
     both_stable: usize,
     both_unstable: usize,
     no_verdict: usize,
-}
-
-impl Verdicts {
-    fn json(&self) -> Json {
-        Json::obj([
-            (
-                "cold_stable_sweep_unstable",
-                Json::count(self.cold_stable_sweep_unstable),
-            ),
-            (
-                "cold_unstable_sweep_stable",
-                Json::count(self.cold_unstable_sweep_stable),
-            ),
-            ("both_stable", Json::count(self.both_stable)),
-            ("both_unstable", Json::count(self.both_unstable)),
-            ("no_verdict", Json::count(self.no_verdict)),
-        ])
-    }
 }
 
 impl std::fmt::Display for Verdicts {

@@ -3,6 +3,7 @@
 
 use nalgebra::{Quaternion, Vector3};
 
+use super::grid::{Interval, Stretch};
 use super::ode::{all_finite, RodRhs};
 use super::{rot, FlatNodes, Robot, RodState, BASE_STATES};
 use crate::error::{Error, Result};
@@ -190,7 +191,7 @@ pub fn integrate(
     record: bool,
 ) -> Result<IvpResult> {
     if !record {
-        return dispatch(spec, v0, u0, None);
+        return dispatch(spec, Start::Base(v0, u0), None);
     }
     let (mut ivp, nodes) = integrate_flat(spec, v0, u0)?;
     ivp.nodes = nodes.to_states();
@@ -205,26 +206,99 @@ pub(crate) fn integrate_flat(
     u0: &Vector3<f64>,
 ) -> Result<(IvpResult, FlatNodes)> {
     let mut nodes = FlatNodes::default();
-    let ivp = dispatch(spec, v0, u0, Some(&mut nodes))?;
+    let ivp = dispatch(spec, Start::Base(v0, u0), Some(&mut nodes))?;
     Ok((ivp, nodes))
+}
+
+/// Where an IVP starts: at the base from its initial strains, over the
+/// whole grid, or at the first node of a [`Stretch`] from a whole state.
+#[derive(Clone, Copy)]
+pub(crate) enum Start<'y> {
+    /// The base at the origin with the identity rotation, `nu(0)`, `omega(0)`.
+    Base(&'y Vector3<f64>, &'y Vector3<f64>),
+    /// The state `y0` (`n_states` values) at the stretch's first node.
+    Node(Stretch, &'y [f64]),
+}
+
+impl Start<'_> {
+    /// The stretch integrated (from the base: the whole grid).
+    #[inline(always)]
+    pub(crate) fn stretch(&self) -> Stretch {
+        match self {
+            Start::Base(..) => Stretch {
+                first: 0,
+                last: usize::MAX,
+            },
+            Start::Node(st, _) => *st,
+        }
+    }
+    /// Write the start state into `y` (`n_states` values).
+    #[inline(always)]
+    pub(crate) fn write(&self, y: &mut [f64]) {
+        match self {
+            Start::Base(v0, u0) => {
+                y.fill(0.0);
+                y[3] = 1.0;
+                y[7..10].copy_from_slice(v0.as_slice());
+                y[10..13].copy_from_slice(u0.as_slice());
+            }
+            Start::Node(_, y0) => y.copy_from_slice(y0),
+        }
+    }
+}
+
+impl IvpSpec<'_> {
+    /// The IVP over `stretch` of its grid ([`crate::rod::Grid::new`] of this robot and
+    /// step count) from the state `y0` at its first node, before that
+    /// node's anchor loads (`n_states` values: `p`, unit `q`, `nu`,
+    /// `omega`, `delta`): the state at its last node (`tip`; before the
+    /// anchor loads there), the elongations \[m\] of the actuators whose
+    /// distal anchor the stretch leaves or closes at the tip (the others
+    /// zero) and, if the stretch ends at the tip, the tip balance (32)-(33)
+    /// (else zero). The arithmetic is the whole IVP's on those steps, so
+    /// stretches chained end to start give its states bit for bit.
+    pub fn integrate_stretch(&self, stretch: Stretch, y0: &[f64]) -> Result<IvpResult> {
+        if y0.len() != self.robot.n_states() || stretch.first > stretch.last {
+            return Err(Error::input(
+                "stretch",
+                format!(
+                    "a state of {} values and first <= last node",
+                    self.robot.n_states()
+                ),
+            ));
+        }
+        dispatch(self, Start::Node(stretch, y0), None)
+    }
+
+    /// [`IvpSpec::integrate_stretch`] with its nodes appended to `nodes`:
+    /// the states at its first node (after that node's anchor loads, as
+    /// [`integrate`] records them) and at every later node but its last,
+    /// which the next stretch records; at the tip, the tip too.
+    pub(crate) fn integrate_stretch_recorded(
+        &self,
+        stretch: Stretch,
+        y0: &[f64],
+        nodes: &mut FlatNodes,
+    ) -> Result<IvpResult> {
+        dispatch(self, Start::Node(stretch, y0), Some(nodes))
+    }
 }
 
 /// The compiled copy of [`integrate_plain`] for this CPU.
 #[inline(always)]
 fn dispatch(
     spec: &IvpSpec<'_>,
-    v0: &Vector3<f64>,
-    u0: &Vector3<f64>,
+    start: Start<'_>,
     record: Option<&mut FlatNodes>,
 ) -> Result<IvpResult> {
     #[cfg(target_arch = "x86_64")]
     {
         if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
             // SAFETY: the CPU supports AVX2 and FMA (checked just above).
-            return unsafe { integrate_avx2(spec, v0, u0, record) };
+            return unsafe { integrate_avx2(spec, start, record) };
         }
     }
-    integrate_plain(spec, v0, u0, record)
+    integrate_plain(spec, start, record)
 }
 
 /// [`integrate_plain`] with AVX2 and FMA enabled.
@@ -235,20 +309,18 @@ fn dispatch(
 #[target_feature(enable = "avx2,fma")]
 unsafe fn integrate_avx2(
     spec: &IvpSpec<'_>,
-    v0: &Vector3<f64>,
-    u0: &Vector3<f64>,
+    start: Start<'_>,
     record: Option<&mut FlatNodes>,
 ) -> Result<IvpResult> {
-    integrate_plain(spec, v0, u0, record)
+    integrate_plain(spec, start, record)
 }
 
-/// The body of [`integrate`], inlined into each compiled copy; the nodes
-/// into `record` if given.
+/// The body of [`integrate`] and [`IvpSpec::integrate_stretch`], inlined
+/// into each compiled copy; the nodes into `record` if given.
 #[inline(always)]
 fn integrate_plain(
     spec: &IvpSpec<'_>,
-    v0: &Vector3<f64>,
-    u0: &Vector3<f64>,
+    start: Start<'_>,
     mut record: Option<&mut FlatNodes>,
 ) -> Result<IvpResult> {
     let robot = spec.robot;
@@ -269,23 +341,28 @@ fn integrate_plain(
         &mut heap
     };
     let (y, ks) = all.split_at_mut(n);
-    y[3] = 1.0;
-    y[7..10].copy_from_slice(v0.as_slice());
-    y[10..13].copy_from_slice(u0.as_slice());
+    start.write(y);
     let bps = robot.breakpoints();
     let tol = 1e-12 * len;
     if let Some(rec) = record.as_mut() {
         rec.reserve(n, steps + bps.len());
     }
+    let stretch = start.stretch();
     let mut elongation = vec![0.0; na];
     let mut active: Vec<usize> = Vec::with_capacity(na);
+    let mut first_node = 0;
     for w in bps.windows(2) {
         let (a, b) = (w[0], w[1]);
-        if a > 0.0 {
+        let iv = Interval::new(a, b, len, steps, &mut first_node);
+        let range = stretch.steps_in(&iv);
+        if range.is_empty() {
+            continue;
+        }
+        if stretch.jumps_at_start(&iv) {
             anchors_at(robot, &fz, a, y, &mut elongation, tol)?;
         }
         if let Some(rec) = record.as_mut() {
-            rec.push(a, y);
+            rec.push(a + range.start as f64 * iv.h(), y);
         }
         spanning(robot, a, b, tol, &mut active);
         // the stages' rates of the actuators not spanning [a, b] are zero
@@ -293,19 +370,24 @@ fn integrate_plain(
         for k in ks.chunks_exact_mut(n) {
             k[BASE_STATES..].fill(0.0);
         }
-        let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
-        let h = (b - a) / m as f64;
+        let h = iv.h();
         let hs = [h, 0.5 * h, h / 6.0];
-        for k in 0..m {
+        for k in range {
             let s = a + k as f64 * h;
             rk4_step(&fz, s, hs, &active, y, ks)?;
-            if let Some(rec) = record.as_mut().filter(|_| k + 1 < m) {
+            let inner = k + 1 < iv.m && iv.first_node + k + 1 < stretch.last;
+            if let Some(rec) = record.as_mut().filter(|_| inner) {
                 rec.push(s + h, y);
             }
         }
     }
-    let (rf, rm) = tip_balance(spec, &fz, y, &mut elongation, tol);
-    if let Some(rec) = record.as_mut() {
+    let at_tip = stretch.last >= first_node;
+    let (rf, rm) = if at_tip {
+        tip_balance(spec, &fz, y, &mut elongation, tol)
+    } else {
+        (Vector3::zeros(), Vector3::zeros())
+    };
+    if let Some(rec) = record.as_mut().filter(|_| at_tip) {
         rec.push(len, y);
     }
     Ok(IvpResult {

@@ -26,6 +26,7 @@ mod anchors;
 mod body;
 pub mod dual;
 mod eq25;
+mod grid;
 mod ivp;
 mod lanes;
 mod ode;
@@ -37,6 +38,7 @@ mod tangent_nodes;
 
 pub use actuator::{Actuator, ConstantTension, ForceLaw, LinearTendon, Routing, TcaLaw};
 pub use body::{Body, Shear, DEFAULT_POISSON};
+pub use grid::{Grid, Interval, Stretch};
 pub(crate) use ivp::integrate_flat;
 pub use ivp::{integrate, IvpResult, IvpSpec};
 pub use robot::{Robot, BASE_STATES};

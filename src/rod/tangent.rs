@@ -23,7 +23,8 @@ use std::cell::Cell;
 use nalgebra::{DMatrix, Vector3};
 
 use super::dual::{c_cross, cross_c, dot, rot_t, rt_mul, Dual, Real, V3};
-use super::ivp::{anchored_at, spanning};
+use super::grid::{Interval, Stretch};
+use super::ivp::{anchored_at, spanning, Start};
 use super::ode::RodRhs;
 pub use super::tangent_nodes::{TangentNode, TangentNodes, TangentSeeds};
 use super::{IvpResult, IvpSpec, RodState, BASE_STATES};
@@ -105,7 +106,46 @@ pub fn integrate_tangent(
     seeds: &TangentSeeds,
     record: impl Into<Record>,
 ) -> Result<TangentIvp> {
-    let record = record.into();
+    passes(spec, Start::Base(v0, u0), seeds, record.into())
+}
+
+impl IvpSpec<'_> {
+    /// [`integrate_tangent`] over `stretch` of the grid from the state
+    /// `y0` at its first node, as [`IvpSpec::integrate_stretch`]: the
+    /// tangents along `seeds`, whose `state0` (`n_states x k`) seeds the
+    /// whole start state (`nu0` and `omega0` unused). The tip tangent is
+    /// that of the state at the stretch's last node; the tip balance's
+    /// tangents are zero unless the stretch ends at the tip. `record`:
+    /// nodes from the stretch's first interval start (for whole IVPs).
+    pub fn integrate_stretch_tangent(
+        &self,
+        stretch: Stretch,
+        y0: &[f64],
+        seeds: &TangentSeeds,
+    ) -> Result<TangentIvp> {
+        let n = self.robot.n_states();
+        let k = seeds.directions();
+        match &seeds.state0 {
+            Some(m) if m.nrows() == n && m.ncols() == k && y0.len() == n => {}
+            _ => {
+                return Err(Error::input(
+                    "seeds",
+                    format!("a start state of {n} values and state0 seeds of {n} rows"),
+                ))
+            }
+        }
+        passes(self, Start::Node(stretch, y0), seeds, Record::Tip)
+    }
+}
+
+/// The tangent passes of [`integrate_tangent`] from `start`, at most
+/// [`MAX_PASS`] directions each, their columns joined.
+fn passes(
+    spec: &IvpSpec<'_>,
+    start: Start<'_>,
+    seeds: &TangentSeeds,
+    record: Record,
+) -> Result<TangentIvp> {
     let k = checked_directions(seeds, spec.robot.actuators.len())?;
     let n = spec.robot.n_states();
     let capacity = if record == Record::Tip {
@@ -120,8 +160,7 @@ pub fn integrate_tangent(
         let w = (k - c0).min(MAX_PASS);
         let p = Pass {
             spec,
-            v0,
-            u0,
+            start,
             seeds,
             c0,
             w,
@@ -160,8 +199,7 @@ pub fn integrate_tangent(
 /// The arguments of one pass: directions `c0 .. c0 + w` of `seeds`.
 struct Pass<'s, 'a> {
     spec: &'s IvpSpec<'a>,
-    v0: &'s Vector3<f64>,
-    u0: &'s Vector3<f64>,
+    start: Start<'s>,
     seeds: &'s TangentSeeds,
     c0: usize,
     w: usize,
@@ -385,24 +423,40 @@ fn pass_dual<const N: usize>(
     let tol = 1e-12 * len;
     let mut elongation = vec![zero; na];
     let mut active: Vec<usize> = Vec::with_capacity(na);
+    let stretch = p.start.stretch();
+    let mut first_node = 0;
     for win in bps.windows(2) {
         let (a, b) = (win[0], win[1]);
-        if a > 0.0 && anchored_at(robot, a, tol, |i| elongation[i] = y[BASE_STATES + i]) {
+        let iv = Interval::new(a, b, len, steps, &mut first_node);
+        let range = stretch.steps_in(&iv);
+        if range.is_empty() {
+            continue;
+        }
+        if stretch.jumps_at_start(&iv)
+            && anchored_at(robot, a, tol, |i| elongation[i] = y[BASE_STATES + i])
+        {
             fz.anchor_tangent(a, &mut y, &tau)?;
         }
         node!(a);
         spanning(robot, a, b, tol, &mut active);
-        let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
-        let h = (b - a) / m as f64;
-        for kk in 0..m {
+        let h = iv.h();
+        for kk in range {
             let s = a + kk as f64 * h;
             st.step(&fz, s, h, &mut y, &tau, &active)?;
-            if kk + 1 < m {
+            if kk + 1 < iv.m {
                 node!(s + h);
             }
         }
     }
-    close(p, &fz, &y, &tau, &mut elongation, (record, nodes, idx))
+    let at_tip = stretch.last >= first_node;
+    close(
+        p,
+        &fz,
+        &y,
+        &tau,
+        &mut elongation,
+        (record, nodes, idx, at_tip),
+    )
 }
 
 /// The end of a pass at the tip state `y`: the tip balance, the check that
@@ -415,11 +469,16 @@ fn close<const N: usize>(
     y: &[Dual<N>],
     tau: &[Dual<N>],
     elongation: &mut [Dual<N>],
-    (record, nodes, idx): (Record, &mut TangentNodes, usize),
+    (record, nodes, idx, at_tip): (Record, &mut TangentNodes, usize, bool),
 ) -> Result<TangentIvp> {
     let len = p.spec.robot.body.length;
     let tol = 1e-12 * len;
-    let (rf, rmm) = tip_balance(p.spec, fz, y, tau, elongation, tol);
+    let (rf, rmm) = if at_tip {
+        tip_balance(p.spec, fz, y, tau, elongation, tol)
+    } else {
+        let zero = [Dual::<N>::cst(0.0); 3];
+        (zero, zero)
+    };
     // the stages check only the real parts: the derivatives once, here
     let all_finite = |v: &[Dual<N>]| v.iter().all(|d| d.eps.iter().all(|e| e.is_finite()));
     if !(all_finite(y) && all_finite(elongation) && all_finite(&rf) && all_finite(&rmm)) {
@@ -428,7 +487,7 @@ fn close<const N: usize>(
             reason: "non-finite tangent".into(),
         });
     }
-    if record != Record::Tip {
+    if record != Record::Tip && at_tip {
         nodes.record(idx, len, y, p.c0, p.w);
     }
     let ivp_nodes = if record == Record::All && p.c0 == 0 {
@@ -443,8 +502,9 @@ fn close<const N: usize>(
 }
 
 /// The dual tensions and initial state of a pass: directions `c0 .. c0 + w`
-/// of the seeds on the tensions and on `nu(0)`, `omega(0)`; the base at the
-/// origin with the identity rotation.
+/// of the seeds on the tensions and on `nu(0)`, `omega(0)` (the base at the
+/// origin with the identity rotation), or on the whole start state of a
+/// stretch.
 fn seeded_start<const N: usize>(p: &Pass<'_, '_>, n: usize) -> (Vec<Dual<N>>, Vec<Dual<N>>) {
     let (seeds, c0, w) = (p.seeds, p.c0, p.w);
     let seed = |m: &DMatrix<f64>, row: usize| -> [f64; N] {
@@ -454,11 +514,21 @@ fn seeded_start<const N: usize>(p: &Pass<'_, '_>, n: usize) -> (Vec<Dual<N>>, Ve
     let tau = (0..na)
         .map(|i| Dual::new(p.spec.tensions[i], seed(&seeds.tensions, i)))
         .collect();
-    let mut y = vec![Dual::<N>::cst(0.0); n];
-    y[3] = Dual::cst(1.0);
-    for k in 0..3 {
-        y[7 + k] = Dual::new(p.v0[k], seed(&seeds.nu0, k));
-        y[10 + k] = Dual::new(p.u0[k], seed(&seeds.omega0, k));
+    let mut re = vec![0.0; n];
+    p.start.write(&mut re);
+    let mut y: Vec<Dual<N>> = re.iter().map(|&v| Dual::cst(v)).collect();
+    match (p.start, &seeds.state0) {
+        (Start::Node(..), Some(m)) => {
+            for (j, yj) in y.iter_mut().enumerate() {
+                *yj = Dual::new(re[j], seed(m, j));
+            }
+        }
+        _ => {
+            for k in 0..3 {
+                y[7 + k] = Dual::new(re[7 + k], seed(&seeds.nu0, k));
+                y[10 + k] = Dual::new(re[10 + k], seed(&seeds.omega0, k));
+            }
+        }
     }
     (tau, y)
 }
@@ -527,8 +597,7 @@ impl IvpSpec<'_> {
         let mut nodes = TangentNodes::new(n, k, capacity);
         let p = Pass {
             spec: self,
-            v0,
-            u0,
+            start: Start::Base(v0, u0),
             seeds,
             c0: 0,
             w: k,

@@ -176,9 +176,16 @@ pub(super) fn pass_lanes<const N: usize>(
     let bps = robot.breakpoints();
     let tol = 1e-12 * len;
     let mut active: Vec<usize> = Vec::with_capacity(na);
+    let stretch = p.start.stretch();
+    let mut first_node = 0;
     for win in bps.windows(2) {
         let (a, b) = (win[0], win[1]);
-        if a > 0.0 {
+        let iv = Interval::new(a, b, len, steps, &mut first_node);
+        let range = stretch.steps_in(&iv);
+        if range.is_empty() {
+            continue;
+        }
+        if stretch.jumps_at_start(&iv) {
             to_duals(&y, &yl, &mut duals);
             if anchored_at(robot, a, tol, |i| elongation[i] = duals[BASE_STATES + i]) {
                 fz.anchor_tangent(a, &mut duals, &tau)?;
@@ -190,19 +197,20 @@ pub(super) fn pass_lanes<const N: usize>(
         node!(a);
         spanning(robot, a, b, tol, &mut active);
         st.clear_rates(n);
-        let m = (((b - a) / len) * steps as f64).round().max(1.0) as usize;
-        let h = (b - a) / m as f64;
-        for kk in 0..m {
+        let h = iv.h();
+        for kk in range {
             let s = a + kk as f64 * h;
             st.step(&fz, s, h, (&mut y, &mut yl), &taul, &active)?;
-            if kk + 1 < m {
+            if kk + 1 < iv.m {
                 node!(s + h);
             }
         }
     }
+    let at_tip = stretch.last >= first_node;
     hook!();
     to_duals(&y, &yl, &mut duals);
-    close(p, &fz, &duals, &tau, &mut elongation, (record, nodes, idx))
+    let at = (record, nodes, idx, at_tip);
+    close(p, &fz, &duals, &tau, &mut elongation, at)
 }
 
 /// Replace the `w` columns of lanes `l` (lane `c` is column `c`) by

@@ -18,6 +18,10 @@ pub struct TangentSeeds {
     pub omega0: DMatrix<f64>,
     /// `d tau` \[N\], `n_actuators x k`.
     pub tensions: DMatrix<f64>,
+    /// `d y(s_first)`, `n_states x k`: the whole start state of a stretch
+    /// ([`crate::rod::IvpSpec::integrate_stretch_tangent`]); `None` from the
+    /// base.
+    pub state0: Option<DMatrix<f64>>,
 }
 
 impl TangentSeeds {
@@ -27,6 +31,7 @@ impl TangentSeeds {
             nu0: DMatrix::zeros(3, k),
             omega0: DMatrix::zeros(3, k),
             tensions: DMatrix::zeros(na, k),
+            state0: None,
         }
     }
     /// Number of directions.

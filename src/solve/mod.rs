@@ -2,6 +2,8 @@
 //! problem that uses it ([`shooting`]), homotopy continuation
 //! ([`continuation`]) and cooperative cancellation ([`cancel`]).
 
+pub mod abd;
+pub mod arclength;
 pub mod cancel;
 pub mod coarse_path;
 pub mod continuation;
@@ -9,15 +11,20 @@ mod corrector;
 pub mod equilibrium;
 pub mod fn_system;
 mod fold;
+pub mod forward;
 pub mod guess;
+pub mod homotopy;
 mod hop_finish;
 pub mod limit;
+pub mod ms;
 pub mod newton;
+pub mod nleq;
 pub mod options;
 pub mod predict;
 pub mod predict_warm;
 pub mod presolve;
 pub mod residual;
+pub mod segments;
 pub mod shooting;
 pub mod solution;
 pub mod system;

@@ -1,0 +1,277 @@
+//! The forward problem along a path of inputs and loads, for the
+//! continuation ([`super::arclength`]): `G(x, lambda)` is the
+//! multiple-shooting residual ([`super::ms`]) of the robot at the inputs
+//! `a + lambda (b - a)` under the loads `L_a + lambda (L_b - L_a)` (the
+//! distributed loads, gravity included, and the tip loads). From the
+//! reference configuration (reference inputs, no load: the unloaded body
+//! at rest, an exact solution) to the requested inputs and loads this is
+//! the homotopy of a cold solve; from a neighbouring solution's inputs
+//! and loads, a warm solve's.
+
+use nalgebra::{DMatrix, Quaternion, Vector3};
+
+use super::abd::{Shape, Staircase};
+use super::arclength::ParametrisedSystem;
+use super::ms::MultipleShooting;
+use super::residual::Loads;
+use crate::error::Result;
+use crate::rod::Robot;
+
+/// Inputs and loads at one end of a path.
+#[derive(Debug, Clone)]
+pub struct Endpoint {
+    /// Actuator inputs.
+    pub inputs: Vec<f64>,
+    /// Tip loads.
+    pub loads: Loads,
+    /// Distributed force \[N/m\] (world frame, gravity's `psi A g` included).
+    pub distributed_force: Vector3<f64>,
+    /// Distributed moment \[N m/m\].
+    pub distributed_moment: Vector3<f64>,
+}
+
+impl Endpoint {
+    /// The robot's own loads at `inputs`.
+    pub fn loaded(robot: &Robot, inputs: &[f64], loads: Loads) -> Self {
+        Endpoint {
+            inputs: inputs.to_vec(),
+            loads,
+            distributed_force: robot.body.distributed_load(),
+            distributed_moment: robot.body.distributed_moment,
+        }
+    }
+    /// The reference inputs and no load.
+    pub fn unloaded(robot: &Robot) -> Self {
+        Endpoint {
+            inputs: robot.reference_inputs(),
+            loads: Loads {
+                tip_force: Vector3::zeros(),
+                tip_moment: Vector3::zeros(),
+            },
+            distributed_force: Vector3::zeros(),
+            distributed_moment: Vector3::zeros(),
+        }
+    }
+}
+
+/// `G(x, lambda)` along the straight path between two [`Endpoint`]s.
+pub struct LoadPath<'a> {
+    robot: &'a Robot,
+    from: Endpoint,
+    to: Endpoint,
+    steps: usize,
+    starts: Vec<usize>,
+    charts: Vec<Quaternion<f64>>,
+    /// The robot at the `lambda` of the last evaluation.
+    at: Robot,
+    lu: Option<Staircase>,
+    /// `G_lambda`, `A^-1 G_lambda` and the border row of the last linearisation.
+    g_lambda: Vec<f64>,
+    a_inv_g: Vec<f64>,
+    row: (Vec<f64>, f64),
+    singular: bool,
+    work: f64,
+}
+
+impl<'a> LoadPath<'a> {
+    /// The path of `robot` from `from` to `to` on `steps` RK4 steps, with
+    /// the segments starting at `starts` and rotation charts `charts` (as
+    /// [`MultipleShooting::new`]).
+    pub fn new(
+        robot: &'a Robot,
+        (from, to): (Endpoint, Endpoint),
+        steps: usize,
+        starts: Vec<usize>,
+        charts: Vec<Quaternion<f64>>,
+    ) -> Self {
+        LoadPath {
+            robot,
+            from,
+            to,
+            steps,
+            starts,
+            charts,
+            at: robot.clone(),
+            lu: None,
+            g_lambda: Vec::new(),
+            a_inv_g: Vec::new(),
+            row: (Vec::new(), 0.0),
+            singular: false,
+            work: 0.0,
+        }
+    }
+
+    /// The inputs and tip loads at `lambda`; the robot's distributed loads
+    /// set to theirs.
+    fn set(&mut self, lambda: f64) -> (Vec<f64>, Loads) {
+        let (a, b) = (&self.from, &self.to);
+        let mix = |p: f64, q: f64| p + lambda * (q - p);
+        let mix3 = |p: &Vector3<f64>, q: &Vector3<f64>| p + (q - p) * lambda;
+        let body = &mut self.at.body;
+        // the distributed force is carried whole by `distributed_force`
+        body.gravity = Vector3::zeros();
+        body.distributed_force = mix3(&a.distributed_force, &b.distributed_force);
+        body.distributed_moment = mix3(&a.distributed_moment, &b.distributed_moment);
+        // a corrector may look past an end of the path, where an input can
+        // leave its law's range: the inputs are held at the range's edge
+        let inputs =
+            (a.inputs.iter().zip(&b.inputs).zip(&self.robot.actuators)).map(|((&p, &q), act)| {
+                let (lo, hi) = act.law.input_bounds();
+                mix(p, q).clamp(lo, hi)
+            });
+        let loads = Loads {
+            tip_force: mix3(&a.loads.tip_force, &b.loads.tip_force),
+            tip_moment: mix3(&a.loads.tip_moment, &b.loads.tip_moment),
+        };
+        (inputs.collect(), loads)
+    }
+
+    /// `G(x, lambda)` into `f`, and with `jacobian` the Jacobian blocks.
+    fn eval(&mut self, x: &[f64], lambda: f64, f: &mut [f64], jacobian: bool) -> Result<Blocks> {
+        let (inputs, loads) = self.set(lambda);
+        let charts = self.charts.clone();
+        let mut ms =
+            MultipleShooting::new(&self.at, &inputs, loads, self.steps, &self.starts, charts)?;
+        let out = if jacobian {
+            ms.linearise(x, f)?;
+            Some((
+                ms.rows(),
+                ms.cols(),
+                std::mem::take(&mut ms.d),
+                std::mem::take(&mut ms.e),
+            ))
+        } else {
+            ms.residual(x, f)?;
+            None
+        };
+        self.work += ms.work;
+        Ok(out)
+    }
+
+    /// Solve `A dx = b` in place with the last factorisation.
+    fn solve_a(&self, b: &mut [f64]) -> Result<()> {
+        match &self.lu {
+            Some(lu) => lu.solve(b),
+            None => Ok(()),
+        }
+    }
+
+    /// One block elimination of the bordered system `[[A, g], [r^T,
+    /// r_l]] (dx, dl) = (b, c)` (Govaerts, *Numerical Methods for
+    /// Bifurcations of Dynamical Equilibria*, SIAM 2000, sec. 3.3).
+    fn eliminate(&self, b: &[f64], c: f64, dx: &mut [f64]) -> Result<f64> {
+        dx.copy_from_slice(b);
+        self.solve_a(dx)?;
+        let (r, rl) = (&self.row.0, self.row.1);
+        let dot = |u: &[f64]| u.iter().zip(r).map(|(p, q)| p * q).sum::<f64>();
+        let dl = (c - dot(dx)) / (rl - dot(&self.a_inv_g));
+        for (d, v) in dx.iter_mut().zip(&self.a_inv_g) {
+            *d -= dl * v;
+        }
+        Ok(dl)
+    }
+}
+
+/// The Jacobian blocks of one evaluation: row and column sizes, `D_k`, `E_k`.
+type Blocks = Option<(Vec<usize>, Vec<usize>, Vec<DMatrix<f64>>, Vec<DMatrix<f64>>)>;
+
+impl ParametrisedSystem for LoadPath<'_> {
+    fn dim(&self) -> usize {
+        let na = self.robot.actuators.len();
+        6 + na + (self.starts.len() - 1) * (12 + 2 * na)
+    }
+    fn residual(&mut self, x: &[f64], lambda: f64, f: &mut [f64]) -> Result<()> {
+        super::cancel::check()?;
+        self.eval(x, lambda, f, false).map(|_| ())
+    }
+    /// The Jacobian `A = G_x` factorised as a staircase; `G_lambda` by a
+    /// forward difference of step `sqrt(eps)` (error `~sqrt(eps)` relative,
+    /// which leaves the corrector's convergence quadratic to that level;
+    /// one residual more per linearisation).
+    fn linearise_bordered(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        row: (&[f64], f64),
+        f: &mut [f64],
+    ) -> Result<()> {
+        super::cancel::check()?;
+        let (rows, cols, d, e) = self.eval(x, lambda, f, true)?.expect("blocks");
+        // (toward the inside of the path [0, 1], where the inputs are valid)
+        let h = f64::EPSILON.sqrt() * if lambda > 0.5 { -1.0 } else { 1.0 };
+        let mut fh = vec![0.0; f.len()];
+        self.eval(x, lambda + h, &mut fh, false)?;
+        self.g_lambda = fh.iter().zip(f.iter()).map(|(a, b)| (a - b) / h).collect();
+        let lu = match self.lu.take() {
+            Some(lu) if lu.shape().rows == rows && lu.shape().cols == cols => lu,
+            _ => Staircase::new(Shape { rows, cols })?,
+        };
+        let mut lu = lu;
+        for (k, dk) in d.iter().enumerate() {
+            lu.d_mut(k).copy_from(dk);
+        }
+        for (k, ek) in e.iter().enumerate() {
+            lu.e_mut(k).copy_from(ek);
+        }
+        self.singular = lu.factorise().is_err();
+        self.lu = Some(lu);
+        self.row = (row.0.to_vec(), row.1);
+        self.a_inv_g = self.g_lambda.clone();
+        if !self.singular {
+            let mut v = std::mem::take(&mut self.a_inv_g);
+            self.solve_a(&mut v)?;
+            self.a_inv_g = v;
+        }
+        Ok(())
+    }
+    /// Block elimination and one step of iterative refinement on the whole
+    /// bordered system, stable also where `A` is nearly singular (a fold;
+    /// Govaerts & Pryce, "Block elimination with one refinement solves
+    /// bordered linear systems accurately", BIT 30, 1990).
+    fn solve_bordered(
+        &mut self,
+        b: &[f64],
+        b_last: f64,
+        dx: &mut [f64],
+        dlambda: &mut f64,
+    ) -> Result<bool> {
+        if self.singular {
+            return Ok(false);
+        }
+        let dl = self.eliminate(b, b_last, dx)?;
+        // the residual of the bordered system at (dx, dl)
+        let n = dx.len();
+        let mut ax = vec![0.0; n];
+        if let Some(lu) = &self.lu {
+            lu.mul(dx, &mut ax)?;
+        }
+        let rb: Vec<f64> = (0..n)
+            .map(|i| b[i] - ax[i] - self.g_lambda[i] * dl)
+            .collect();
+        let rdot: f64 = dx.iter().zip(&self.row.0).map(|(p, q)| p * q).sum();
+        let rc = b_last - rdot - self.row.1 * dl;
+        let mut cx = vec![0.0; n];
+        let cl = self.eliminate(&rb, rc, &mut cx)?;
+        for (d, c) in dx.iter_mut().zip(&cx) {
+            *d += c;
+        }
+        *dlambda = dl + cl;
+        Ok(dx.iter().all(|v| v.is_finite()) && dlambda.is_finite())
+    }
+    fn work(&self) -> f64 {
+        self.work
+    }
+}
+
+/// `robot` with no load: the path's start for a cold solve, whose
+/// reference configuration (the reference strains, zero tensions at the
+/// reference inputs) is its exact solution.
+pub fn unloaded(robot: &Robot) -> Robot {
+    let mut r = robot.clone();
+    r.body.gravity = Vector3::zeros();
+    r.body.distributed_force = Vector3::zeros();
+    r.body.distributed_moment = Vector3::zeros();
+    r.body.tip_force = Vector3::zeros();
+    r.body.tip_moment = Vector3::zeros();
+    r
+}

@@ -1,0 +1,739 @@
+//! The forward problem (paper Section III, eqs 22-33) as a multiple-shooting
+//! system: the unknowns are the rod's state at the start of each segment of
+//! the grid, the residual the continuity defects between segments and the
+//! conditions at the tip (Ascher, Mattheij & Russell, *Numerical Solution
+//! of Boundary Value Problems for ODEs*, SIAM 1995, sec. 4.3).
+//!
+//! # Unknowns (scaled to be dimensionless and of order one)
+//! * block 0, the base: `nu(0)`, `L omega(0)`, `d / L` (`d_i` the guessed
+//!   elongation of actuator `i`, which sets its tension `tau_i(d_i)` by its
+//!   force law);
+//! * block `k >= 1`, the state at the first node of segment `k`: `p / L`,
+//!   `theta` (the rotation `q = q_ref exp(theta / 2)` from a reference
+//!   quaternion fixed for the solve), `nu`, `L omega`, `delta / L` (the
+//!   strings' elongations so far), and again `d / L`: the actuator
+//!   elongations are carried as constant states (`d' = 0`) so that every
+//!   equation couples one block with the next only (AMR sec. 1.4).
+//!
+//! # Residual
+//! * block `k` below the last: the end state of segment `k` minus the start
+//!   of segment `k + 1` in the same scaling (the rotation as `2 vec(q_b^-1
+//!   q_a)`, which is `theta` to first order), `d_k - d_(k+1)`, and
+//!   `(delta_i(s_end,i) - d_i) / L` for the actuators whose distal anchor
+//!   the segment leaves;
+//! * the last block: the tip balance (32)-(33) as strain errors (`r_F L^2 /
+//!   EI`, `r_M L / EI`, as single shooting) and the elongation rows of the
+//!   actuators anchored in the last segment or at the tip.
+//!
+//! With one segment this is single shooting exactly. The Jacobian blocks
+//! come from the exact tangents of the discrete RK4 map
+//! ([`crate::rod::IvpSpec::integrate_stretch_tangent`]); positions and the
+//! strings' elongations enter nothing but themselves, so their columns are
+//! identities set here, not integrated.
+
+use nalgebra::{DMatrix, Quaternion, Vector3};
+
+use super::residual::{residual_scales, Loads};
+use crate::error::{Error, Result};
+use crate::rod::{Grid, IvpSpec, Robot, Stretch, TangentSeeds, BASE_STATES};
+
+/// Scaled state values per interior block: `p, theta, nu, omega` and the
+/// `delta` and `d` of each actuator.
+fn interior_len(na: usize) -> usize {
+    12 + 2 * na
+}
+
+/// The multiple-shooting system of one forward problem.
+pub struct MultipleShooting<'a> {
+    robot: &'a Robot,
+    inputs: &'a [f64],
+    loads: Loads,
+    steps: usize,
+    /// First node of each segment (node 0 first), then the tip node.
+    bounds: Vec<usize>,
+    /// Reference rotation of each block's `theta` (block 0's unused).
+    charts: Vec<Quaternion<f64>>,
+    /// For each actuator, the segment that records its elongation.
+    ends_in: Vec<usize>,
+    /// `D_k` and `E_k` of the last linearisation.
+    pub(crate) d: Vec<DMatrix<f64>>,
+    pub(crate) e: Vec<DMatrix<f64>>,
+    /// IVPs spent (a tangent IVP of `k` directions counts `1 + k / 8`).
+    pub work: f64,
+}
+
+/// The state of one block in IVP units, with the tensions it implies.
+struct BlockState {
+    y: Vec<f64>,
+    tau: Vec<f64>,
+    /// `d tau_i / d (d_i / L)` \[N\].
+    slope: Vec<f64>,
+}
+
+impl<'a> MultipleShooting<'a> {
+    /// The system of `robot` at `inputs` under `loads` on `steps` RK4 steps,
+    /// with segments starting at the grid nodes `starts` (node 0 first,
+    /// increasing, below the tip) and rotation charts `charts` (one per
+    /// segment; the first unused).
+    pub fn new(
+        robot: &'a Robot,
+        inputs: &'a [f64],
+        loads: Loads,
+        steps: usize,
+        starts: &[usize],
+        charts: Vec<Quaternion<f64>>,
+    ) -> Result<Self> {
+        let grid = Grid::new(robot, steps);
+        let tip = grid.tip();
+        let ok = starts.first() == Some(&0)
+            && starts.windows(2).all(|w| w[0] < w[1])
+            && starts.last().is_some_and(|&s| s < tip)
+            && charts.len() == starts.len();
+        if !ok {
+            return Err(Error::input(
+                "segments",
+                format!("increasing start nodes from 0 below the tip node {tip}, one chart each"),
+            ));
+        }
+        let mut bounds = starts.to_vec();
+        bounds.push(tip);
+        let ends_in = robot
+            .actuators
+            .iter()
+            .map(|a| {
+                let node = end_node(&grid, a.s_end.min(robot.body.length));
+                // a segment records at the nodes it leaves, the last one at the tip too
+                (0..starts.len())
+                    .find(|&k| node >= bounds[k] && (node < bounds[k + 1] || k + 1 == starts.len()))
+                    .unwrap_or(starts.len() - 1)
+            })
+            .collect();
+        Ok(MultipleShooting {
+            robot,
+            inputs,
+            loads,
+            steps,
+            bounds,
+            charts,
+            ends_in,
+            d: Vec::new(),
+            e: Vec::new(),
+            work: 0.0,
+        })
+    }
+
+    /// The system with segments at `starts` and the unknowns of the single
+    /// shooting unknowns `base` (`nu(0)`, `L omega(0)`, `d / L`), each
+    /// segment started where the previous one ends: the charts are those
+    /// rotations, so every `theta` is zero and every continuity defect too.
+    pub fn chained(
+        robot: &'a Robot,
+        inputs: &'a [f64],
+        loads: Loads,
+        steps: usize,
+        starts: &[usize],
+        base: &[f64],
+    ) -> Result<(Self, Vec<f64>)> {
+        let charts = vec![Quaternion::identity(); starts.len()];
+        let mut ms = MultipleShooting::new(robot, inputs, loads, steps, starts, charts)?;
+        let (na, len) = (ms.na(), robot.body.length);
+        let mut x = vec![0.0; ms.dim()];
+        x[..6 + na].copy_from_slice(&base[..6 + na]);
+        let st = ms.block_state(&x, 0)?;
+        let (mut y, tau) = (st.y, st.tau);
+        for k in 1..ms.segments() {
+            let spec = ms.spec(&tau);
+            let end = spec.integrate_stretch(ms.stretch(k - 1), &y)?.tip;
+            y = crate::rod::FlatNodes::from_states(&[(0.0, end.clone())]).y;
+            ms.charts[k] = end.q;
+            let o = ms.offset(k);
+            for j in 0..3 {
+                x[o + j] = end.p[j] / len;
+                x[o + 6 + j] = end.v[j];
+                x[o + 9 + j] = end.u[j] * len;
+            }
+            for i in 0..na {
+                x[o + 12 + i] = end.delta[i] / len;
+                x[o + 12 + na + i] = base[6 + i];
+            }
+        }
+        Ok((ms, x))
+    }
+
+    /// The robot.
+    pub fn robot(&self) -> &'a Robot {
+        self.robot
+    }
+    /// The rotation charts of the blocks.
+    pub fn charts(&self) -> &[Quaternion<f64>] {
+        &self.charts
+    }
+    /// The actuator inputs.
+    pub fn inputs(&self) -> &'a [f64] {
+        self.inputs
+    }
+    /// The tip loads.
+    pub fn loads(&self) -> Loads {
+        self.loads
+    }
+    /// RK4 steps over the body.
+    pub fn steps(&self) -> usize {
+        self.steps
+    }
+    /// The segment that records actuator `i`'s elongation.
+    pub fn records(&self, i: usize) -> usize {
+        self.ends_in[i]
+    }
+    /// This system with no work counted.
+    pub fn clone_unworked(&self) -> Self {
+        MultipleShooting {
+            robot: self.robot,
+            inputs: self.inputs,
+            loads: self.loads,
+            steps: self.steps,
+            bounds: self.bounds.clone(),
+            charts: self.charts.clone(),
+            ends_in: self.ends_in.clone(),
+            d: Vec::new(),
+            e: Vec::new(),
+            work: 0.0,
+        }
+    }
+    /// The IVP state of block `k` and its tensions \[N\].
+    pub fn block(&self, x: &[f64], k: usize) -> Result<(Vec<f64>, Vec<f64>)> {
+        let st = self.block_state(x, k)?;
+        Ok((st.y, st.tau))
+    }
+    /// The rows of a residual `f` that single shooting has: the tip
+    /// balance, then each actuator's elongation row in actuator order.
+    pub fn tip_rows(&self, f: &[f64]) -> Vec<f64> {
+        let rows = self.rows();
+        let m = self.segments();
+        let na = self.na();
+        let last: usize = rows[..m - 1].iter().sum();
+        let mut out = f[last..last + 6].to_vec();
+        let mut elong = vec![0.0; na];
+        let mut row = 0;
+        for (k, &r) in rows.iter().enumerate() {
+            let own = if k + 1 == m { 6 } else { interior_len(na) };
+            let ends = (0..na).filter(|&i| self.ends_in[i] == k);
+            for (at, i) in (row + own..).zip(ends) {
+                elong[i] = f[at];
+            }
+            row += r;
+        }
+        out.extend(elong);
+        out
+    }
+
+    /// Number of segments.
+    pub fn segments(&self) -> usize {
+        self.bounds.len() - 1
+    }
+
+    fn na(&self) -> usize {
+        self.robot.actuators.len()
+    }
+
+    /// Column sizes of the blocks.
+    pub fn cols(&self) -> Vec<usize> {
+        let na = self.na();
+        (0..self.segments())
+            .map(|k| if k == 0 { 6 + na } else { interior_len(na) })
+            .collect()
+    }
+
+    /// Row sizes of the blocks.
+    pub fn rows(&self) -> Vec<usize> {
+        let (na, m) = (self.na(), self.segments());
+        (0..m)
+            .map(|k| {
+                let own = self.ends_in.iter().filter(|&&s| s == k).count();
+                own + if k + 1 == m { 6 } else { interior_len(na) }
+            })
+            .collect()
+    }
+
+    /// Offset of block `k` in the unknowns.
+    fn offset(&self, k: usize) -> usize {
+        self.cols()[..k].iter().sum()
+    }
+
+    /// Number of unknowns.
+    pub fn dim(&self) -> usize {
+        self.cols().iter().sum()
+    }
+
+    /// The IVP states of all blocks from the unknowns `x`.
+    fn block_states(&self, x: &[f64]) -> Result<Vec<BlockState>> {
+        (0..self.segments())
+            .map(|k| self.block_state(x, k))
+            .collect()
+    }
+
+    /// The IVP state of block `k` from the unknowns `x`, and its tensions.
+    fn block_state(&self, x: &[f64], k: usize) -> Result<BlockState> {
+        let (na, len) = (self.na(), self.robot.body.length);
+        let o = self.offset(k);
+        let mut y = vec![0.0; BASE_STATES + na];
+        let dscaled: &[f64];
+        if k == 0 {
+            y[3] = 1.0;
+            y[7..10].copy_from_slice(&x[o..o + 3]);
+            for j in 0..3 {
+                y[10 + j] = x[o + 3 + j] / len;
+            }
+            dscaled = &x[o + 6..o + 6 + na];
+        } else {
+            let b = &x[o..o + interior_len(na)];
+            for j in 0..3 {
+                y[j] = b[j] * len;
+                y[7 + j] = b[6 + j];
+                y[10 + j] = b[9 + j] / len;
+            }
+            let q = self.charts[k] * exp_half(&Vector3::new(b[3], b[4], b[5]));
+            y[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k]);
+            for i in 0..na {
+                y[BASE_STATES + i] = b[12 + i] * len;
+            }
+            dscaled = &b[12 + na..12 + 2 * na];
+        }
+        let mut tau = Vec::with_capacity(na);
+        let mut slope = Vec::with_capacity(na);
+        for (i, a) in self.robot.actuators.iter().enumerate() {
+            let (t, dt, _) = a
+                .law
+                .tension_derivatives(dscaled[i] * len, self.inputs[i])
+                .map_err(|e| outside_law(e, i))?;
+            tau.push(t);
+            slope.push(dt * len);
+        }
+        Ok(BlockState { y, tau, slope })
+    }
+
+    fn spec<'s>(&'s self, tau: &'s [f64]) -> IvpSpec<'s> {
+        self.loads.ivp(self.robot, tau, self.steps)
+    }
+
+    /// The stretch of the grid that segment `k` integrates.
+    pub fn stretch(&self, k: usize) -> Stretch {
+        Stretch {
+            first: self.bounds[k],
+            last: self.bounds[k + 1],
+        }
+    }
+
+    /// The residual at `x` into `f`.
+    pub fn residual(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
+        let m = self.segments();
+        let mut row = 0;
+        let states = self.block_states(x)?;
+        for (k, cur) in states.iter().enumerate() {
+            let spec = self.spec(&cur.tau);
+            let ivp = spec.integrate_stretch(self.stretch(k), &cur.y)?;
+            let dk = self.d_of(x, k);
+            if k + 1 < m {
+                let dn = self.d_of(x, k + 1);
+                let next = &states[k + 1].y;
+                row += self.continuity(&ivp.tip, next, k + 1, (&dk, &dn), &mut f[row..]);
+            } else {
+                let (fs, ms) = residual_scales(self.robot);
+                for j in 0..3 {
+                    f[row + j] = ivp.tip_force_residual[j] * fs;
+                    f[row + 3 + j] = ivp.tip_moment_residual[j] * ms;
+                }
+                row += 6;
+            }
+            for i in (0..self.na()).filter(|&i| self.ends_in[i] == k) {
+                f[row] = ivp.elongation[i] / self.robot.body.length - dk[i];
+                row += 1;
+            }
+        }
+        self.work += 1.0;
+        Ok(())
+    }
+
+    /// Block `k`'s `d / L`.
+    fn d_of(&self, x: &[f64], k: usize) -> Vec<f64> {
+        let (na, o) = (self.na(), self.offset(k));
+        let at = if k == 0 { o + 6 } else { o + 12 + na };
+        x[at..at + na].to_vec()
+    }
+
+    /// The continuity rows between the end state `end` of a segment (an
+    /// IVP state) and the start `start` of block `b`, into `f`; returns
+    /// the number of rows.
+    fn continuity(
+        &self,
+        end: &crate::rod::RodState,
+        start: &[f64],
+        b: usize,
+        (d_end, d_start): (&[f64], &[f64]),
+        f: &mut [f64],
+    ) -> usize {
+        let (na, len) = (self.na(), self.robot.body.length);
+        let qb = Quaternion::new(start[3], start[4], start[5], start[6]);
+        let rot = rotation_defect(&qb, &end.q);
+        for j in 0..3 {
+            f[j] = (end.p[j] - start[j]) / len;
+            f[3 + j] = rot[j];
+            f[6 + j] = end.v[j] - start[7 + j];
+            f[9 + j] = (end.u[j] - start[10 + j]) * len;
+        }
+        for i in 0..na {
+            f[12 + i] = (end.delta[i] - start[BASE_STATES + i]) / len;
+            f[12 + na + i] = d_end[i] - d_start[i];
+        }
+        let _ = b;
+        interior_len(na)
+    }
+
+    /// The residual at `x` into `f` and the Jacobian blocks `D_k`, `E_k`
+    /// (exact: tangents of the discrete map), kept for
+    /// [`MultipleShooting::dense_jacobian`] and the staircase solve.
+    pub fn linearise(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
+        let (m, na, len) = (self.segments(), self.na(), self.robot.body.length);
+        let (rows, cols) = (self.rows(), self.cols());
+        self.d = (0..m).map(|k| DMatrix::zeros(rows[k], cols[k])).collect();
+        self.e = (0..m.saturating_sub(1))
+            .map(|k| DMatrix::zeros(rows[k], cols[k + 1]))
+            .collect();
+        let mut row = 0;
+        let states = self.block_states(x)?;
+        for (k, cur) in states.iter().enumerate() {
+            let (dirs, seeds) = self.seeds(x, k, cur);
+            let spec = self.spec(&cur.tau);
+            let tan = spec.integrate_stretch_tangent(self.stretch(k), &cur.y, &seeds)?;
+            self.work += 1.0 + dirs as f64 / 8.0;
+            let dk = self.d_of(x, k);
+            let dcol = if k == 0 { 6 } else { 12 + na };
+            let col_of = |c: usize| direction_column(k, na, c);
+            let mut own = if k + 1 < m {
+                let dn = self.d_of(x, k + 1);
+                let next = &states[k + 1].y;
+                let n = self.continuity(&tan.ivp.tip, next, k + 1, (&dk, &dn), &mut f[row..]);
+                self.continuity_blocks(k, &tan, next, x);
+                n
+            } else {
+                let (fs, ms) = residual_scales(self.robot);
+                for j in 0..3 {
+                    f[row + j] = tan.ivp.tip_force_residual[j] * fs;
+                    f[row + 3 + j] = tan.ivp.tip_moment_residual[j] * ms;
+                    for c in 0..dirs {
+                        self.d[k][(j, col_of(c))] = tan.tip_force_residual[(j, c)] * fs;
+                        self.d[k][(3 + j, col_of(c))] = tan.tip_moment_residual[(j, c)] * ms;
+                    }
+                }
+                6
+            };
+            for i in (0..na).filter(|&i| self.ends_in[i] == k) {
+                f[row + own] = tan.ivp.elongation[i] / len - dk[i];
+                for c in 0..dirs {
+                    self.d[k][(own, col_of(c))] = tan.elongation[(i, c)] / len;
+                }
+                if k > 0 {
+                    self.d[k][(own, 12 + i)] += 1.0;
+                }
+                self.d[k][(own, dcol + i)] -= 1.0;
+                own += 1;
+            }
+            row += own;
+        }
+        Ok(())
+    }
+
+    /// The seed directions of segment `k`'s tangent IVP from its block
+    /// state `st`: block 0's `nu`, `L omega` and `d / L`; an interior
+    /// block's `theta`, `nu`, `L omega` and `d / L` (its `p` and `delta`
+    /// enter nothing but themselves). Returns their number and the seeds.
+    fn seeds(&self, x: &[f64], k: usize, st: &BlockState) -> (usize, TangentSeeds) {
+        let (na, len) = (self.na(), self.robot.body.length);
+        let n = BASE_STATES + na;
+        let (lead, strains_at) = if k == 0 { (0, 0) } else { (3, 3) };
+        let dirs = lead + 6 + na;
+        let mut seeds = TangentSeeds::zeros(na, dirs);
+        let mut s0 = DMatrix::zeros(n, dirs);
+        if k > 0 {
+            let o = self.offset(k);
+            let theta = Vector3::new(x[o + 3], x[o + 4], x[o + 5]);
+            for (j, dq) in dexp_half(&theta).iter().enumerate() {
+                let dq = self.charts[k] * dq;
+                for (r, v) in [dq.w, dq.i, dq.j, dq.k].into_iter().enumerate() {
+                    s0[(3 + r, j)] = v;
+                }
+            }
+        }
+        for j in 0..3 {
+            s0[(7 + j, strains_at + j)] = 1.0;
+            s0[(10 + j, strains_at + 3 + j)] = 1.0 / len;
+        }
+        for i in 0..na {
+            seeds.tensions[(i, lead + 6 + i)] = st.slope[i];
+        }
+        seeds.state0 = Some(s0);
+        (dirs, seeds)
+    }
+
+    /// `D_k` and `E_k` of the continuity rows of segment `k` from its
+    /// tangent IVP `tan` (directions as [`MultipleShooting::seeds`]) and
+    /// the next block's state `start`.
+    fn continuity_blocks(
+        &mut self,
+        k: usize,
+        tan: &crate::rod::TangentIvp,
+        start: &[f64],
+        x: &[f64],
+    ) {
+        let (na, len) = (self.na(), self.robot.body.length);
+        let end = &tan.ivp.tip;
+        let qb = Quaternion::new(start[3], start[4], start[5], start[6]);
+        let e = qb.conjugate() * end.q;
+        let sgn = if e.w < 0.0 { -2.0 } else { 2.0 };
+        let dcol = if k == 0 { 6 } else { 12 + na };
+        let d = &mut self.d[k];
+        for c in 0..tan.tip.ncols() {
+            let col = direction_column(k, na, c);
+            let t = tan.tip.column(c);
+            let dq = qb.conjugate() * Quaternion::new(t[3], t[4], t[5], t[6]);
+            for j in 0..3 {
+                d[(j, col)] = t[j] / len;
+                d[(3 + j, col)] = sgn * [dq.i, dq.j, dq.k][j];
+                d[(6 + j, col)] = t[7 + j];
+                d[(9 + j, col)] = t[10 + j] * len;
+            }
+            for i in 0..na {
+                d[(12 + i, col)] = t[BASE_STATES + i] / len;
+            }
+        }
+        if k > 0 {
+            for j in 0..3 {
+                d[(j, j)] += 1.0;
+            }
+            for i in 0..na {
+                d[(12 + i, 12 + i)] += 1.0;
+            }
+        }
+        for i in 0..na {
+            d[(12 + na + i, dcol + i)] = 1.0;
+        }
+        // the next block: minus its state, and the defect's rotation term
+        let o = self.offset(k + 1);
+        let eb = &mut self.e[k];
+        let theta = Vector3::new(x[o + 3], x[o + 4], x[o + 5]);
+        for (j, dexp) in dexp_half(&theta).iter().enumerate() {
+            let dqb = self.charts[k + 1] * dexp;
+            let de = dqb.conjugate() * end.q;
+            for (r, v) in [de.i, de.j, de.k].into_iter().enumerate() {
+                eb[(3 + r, 3 + j)] = sgn * v;
+            }
+        }
+        for j in 0..3 {
+            eb[(j, j)] = -1.0;
+            eb[(6 + j, 6 + j)] = -1.0;
+            eb[(9 + j, 9 + j)] = -1.0;
+        }
+        for i in 0..2 * na {
+            eb[(12 + i, 12 + i)] = -1.0;
+        }
+    }
+
+    /// The Jacobian assembled dense (for checks and small systems).
+    pub fn dense_jacobian(&self) -> DMatrix<f64> {
+        let (rows, cols) = (self.rows(), self.cols());
+        let n = self.dim();
+        let mut j = DMatrix::zeros(n, n);
+        let (mut r0, mut c0) = (0, 0);
+        for k in 0..self.segments() {
+            j.view_mut((r0, c0), (rows[k], cols[k]))
+                .copy_from(&self.d[k]);
+            if k + 1 < self.segments() {
+                j.view_mut((r0, c0 + cols[k]), (rows[k], cols[k + 1]))
+                    .copy_from(&self.e[k]);
+            }
+            r0 += rows[k];
+            c0 += cols[k];
+        }
+        j
+    }
+}
+
+#[cfg(test)]
+#[path = "ms_tests.rs"]
+mod tests;
+
+/// An actuator elongation outside its force law's domain (a TCA stretched
+/// past its straight-fibre limit) at a trial point of the iteration: the
+/// residual cannot be evaluated there, as where an IVP cannot be
+/// integrated ([`Error::Integration`]), and the solver shortens its step.
+/// The inputs were checked before the solve, so only the elongation can
+/// be out of range.
+fn outside_law(e: Error, i: usize) -> Error {
+    match e {
+        Error::InvalidParameter {
+            name,
+            value,
+            allowed,
+        } => Error::Integration {
+            s: 0.0,
+            reason: format!("actuator {i}: {name} = {value:.6e} outside {allowed}"),
+        },
+        e => e,
+    }
+}
+
+/// The column in block `k` of the tangent direction `c` of its segment
+/// (see [`MultipleShooting::seeds`]).
+fn direction_column(k: usize, na: usize, c: usize) -> usize {
+    match k {
+        0 => c,
+        _ if c < 9 => 3 + c,
+        _ => 12 + na + (c - 9),
+    }
+}
+
+/// The node at arc length `s` \[m\] of `grid` (a breakpoint).
+fn end_node(grid: &Grid, s: f64) -> usize {
+    let tol = 1e-12 * grid.intervals.last().map_or(1.0, |iv| iv.b);
+    grid.intervals
+        .iter()
+        .find(|iv| (iv.b - s).abs() <= tol)
+        .map_or(0, |iv| iv.first_node + iv.m)
+}
+
+/// `exp(theta / 2)`, the unit quaternion of the rotation vector `theta`.
+pub(crate) fn exp_half(theta: &Vector3<f64>) -> Quaternion<f64> {
+    let t = theta.norm();
+    let (c, sinc) = if t < 1e-4 {
+        // cos and sin(t/2)/t to their t^4 terms: exact in f64 below 1e-4
+        (1.0 - t * t / 8.0, 0.5 - t * t / 48.0)
+    } else {
+        ((0.5 * t).cos(), (0.5 * t).sin() / t)
+    };
+    Quaternion::new(c, sinc * theta[0], sinc * theta[1], sinc * theta[2])
+}
+
+/// The derivatives of [`exp_half`] along the three components of `theta`.
+fn dexp_half(theta: &Vector3<f64>) -> [Quaternion<f64>; 3] {
+    let t = theta.norm();
+    // exp_half = (cos(t/2), f theta), f = sin(t/2) / t: d cos = -f theta / 2,
+    // d(f theta) = f I + theta (g theta)^T with g = (cos(t/2) / 2 - f) / t^2
+    let (c, f, g) = if t < 1e-4 {
+        (
+            1.0 - t * t / 8.0,
+            0.5 - t * t / 48.0,
+            -1.0 / 24.0 + t * t / 960.0,
+        )
+    } else {
+        let (c, f) = ((0.5 * t).cos(), (0.5 * t).sin() / t);
+        (c, f, (0.5 * c - f) / (t * t))
+    };
+    let _ = c;
+    std::array::from_fn(|j| {
+        let v = theta * (g * theta[j]) + Vector3::ith(j, f);
+        Quaternion::new(-0.5 * f * theta[j], v[0], v[1], v[2])
+    })
+}
+
+/// The rotation from `qb` to `qa` as `2 vec(qb^-1 qa)` (its rotation vector
+/// to first order), on the hemisphere `w >= 0` of `qb^-1 qa`.
+pub(crate) fn rotation_defect(qb: &Quaternion<f64>, qa: &Quaternion<f64>) -> Vector3<f64> {
+    let e = qb.conjugate() * qa;
+    let s = if e.w < 0.0 { -2.0 } else { 2.0 };
+    Vector3::new(e.i, e.j, e.k) * s
+}
+
+/// The rounding floor of the residual's max-norm: `4 eps` times the largest
+/// term of any row, each continuity row's at most the scaled state's size
+/// grown by [`super::segments::GROWTH_BOUND`] across its segment, the tip
+/// rows' the largest term of the balance (32)-(33) as single shooting's
+/// (`K (strain - strain*)`, the tip loads and the tensions, scaled).
+impl MultipleShooting<'_> {
+    fn rounding_floor(&self, x: &[f64]) -> f64 {
+        let robot = self.robot;
+        let (kse, kbt) = robot.body.stiffness();
+        let (fs, ms) = residual_scales(robot);
+        let len = robot.body.length;
+        let xmax = x.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+        let last = self.offset(self.segments() - 1);
+        let (v, u) = if self.segments() == 1 {
+            (&x[0..3], &x[3..6])
+        } else {
+            (&x[last + 6..last + 9], &x[last + 9..last + 12])
+        };
+        let vmax = v.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        let umax = u.iter().fold(0.0f64, |m, a| m.max(a.abs())) / len;
+        let dl = self.d_of(x, self.segments() - 1);
+        let tau: f64 = (self.robot.actuators.iter().zip(dl.iter()).zip(self.inputs))
+            .map(|((a, d), &q)| a.law.tension(d * len, q).map_or(0.0, f64::abs))
+            .sum();
+        let f = fs * (kse.max() * vmax + self.loads.tip_force.amax() + tau);
+        let m = ms * (kbt.max() * umax * len + self.loads.tip_moment.amax() + tau * len);
+        let grown = if self.segments() > 1 {
+            super::segments::GROWTH_BOUND * xmax
+        } else {
+            0.0
+        };
+        4.0 * f64::EPSILON * f.max(m).max(grown)
+    }
+}
+
+/// [`MultipleShooting`] with its Jacobian factorised as a staircase
+/// ([`super::abd`]), the system the damped Newton method solves.
+pub struct ShootingSystem<'a> {
+    /// The residual and its Jacobian blocks.
+    pub ms: MultipleShooting<'a>,
+    lu: super::abd::Staircase,
+    singular: bool,
+}
+
+impl<'a> ShootingSystem<'a> {
+    /// The system of `ms`.
+    pub fn new(ms: MultipleShooting<'a>) -> Result<Self> {
+        let shape = super::abd::Shape {
+            rows: ms.rows(),
+            cols: ms.cols(),
+        };
+        Ok(ShootingSystem {
+            lu: super::abd::Staircase::new(shape)?,
+            ms,
+            singular: false,
+        })
+    }
+}
+
+impl super::nleq::NonlinearSystem for ShootingSystem<'_> {
+    fn dim(&self) -> usize {
+        self.ms.dim()
+    }
+    fn residual(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
+        super::cancel::check()?;
+        self.ms.residual(x, f)
+    }
+    fn linearise(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
+        super::cancel::check()?;
+        self.ms.linearise(x, f)?;
+        let m = self.ms.segments();
+        for k in 0..m {
+            self.lu.d_mut(k).copy_from(&self.ms.d[k]);
+            if k + 1 < m {
+                self.lu.e_mut(k).copy_from(&self.ms.e[k]);
+            }
+        }
+        self.singular = self.lu.factorise().is_err();
+        Ok(())
+    }
+    fn solve(&mut self, b: &[f64], dx: &mut [f64]) -> Result<bool> {
+        if self.singular {
+            return Ok(false);
+        }
+        dx.copy_from_slice(b);
+        self.lu.solve(dx)?;
+        Ok(dx.iter().all(|v| v.is_finite()))
+    }
+    fn floor(&self, x: &[f64], _f: &[f64]) -> f64 {
+        self.ms.rounding_floor(x)
+    }
+    fn work(&self) -> f64 {
+        self.ms.work
+    }
+}
