@@ -1,7 +1,16 @@
-//! The forward solve by multiple shooting: segments placed before the
-//! solve ([`super::segments`]), a first guess, the damped Newton method
-//! ([`super::nleq`]) on the multiple-shooting system ([`super::ms`]), and
-//! the solution assembled segment by segment.
+//! The forward solve by multiple shooting (`docs/solver.md`): segments
+//! placed before the solve ([`super::segments`]); the damped Newton method
+//! ([`super::nleq`]) on the multiple-shooting system ([`super::ms`]) from a
+//! first guess; where Newton needs damping below the continuation
+//! corrector's limit ([`super::arclength::CORRECTOR_LAMBDA_MIN`]: the
+//! direct solve is the continuation's first step, the whole path at once),
+//! pseudo-arclength continuation in the inputs and loads
+//! ([`super::homotopy`]) from the unloaded body at rest, or from a warm
+//! start's inputs and loads; the solution assembled segment by segment. A
+//! cold solve runs first on a coarse grid ([`COARSENING`]), whose solution
+//! and Jacobian start Newton on the requested grid.
+
+use std::time::Instant;
 
 use nalgebra::{Quaternion, UnitQuaternion};
 
@@ -76,9 +85,10 @@ fn from_nodes<'a>(
     Ok((ms, x))
 }
 
-/// The straight reference configuration sampled at every grid node, as a
-/// solution's nodes (for [`from_nodes`]): `p = s e_z`, identity rotations,
-/// the reference strains, no elongation.
+/// The straight reference configuration sampled at every grid node, in
+/// the form of a solution (for [`from_nodes`], which reads its nodes only):
+/// `p = s nu*_z e_z`, identity rotations, the reference strains, no
+/// elongation.
 fn reference_nodes(robot: &Robot, steps: usize, base: &[f64]) -> Result<Solution> {
     let grid = crate::rod::Grid::new(robot, steps);
     let body = &robot.body;
@@ -168,6 +178,25 @@ pub(crate) fn assemble(
     ))
 }
 
+/// Share of the RK4 steps of the grid that a cold solve's first guess is
+/// solved on ([`SolveOptions::presolve`]): the coarse grid's IVPs cost a
+/// tenth of the fine grid's, its solution differs from the fine one by
+/// RK4's error on ten times the step (`~1e4` times the fine grid's), and
+/// its Jacobian serves as the fine grid's chord Jacobian, whose steps then
+/// contract by about that relative difference each.
+pub const COARSENING: usize = 10;
+
+/// The unknowns of a converged solve with their system.
+struct Solved<'a> {
+    sys: ShootingSystem<'a>,
+    x: Vec<f64>,
+    iterations: usize,
+    residual: f64,
+    /// The continuation parameter at each accepted point of the path
+    /// taken (empty without continuation).
+    path: Vec<f64>,
+}
+
 /// Solve the forward problem of `robot` at `inputs` under `loads` by
 /// multiple shooting (see the module docs).
 pub fn solve(
@@ -177,13 +206,197 @@ pub fn solve(
     opts: &SolveOptions,
     warm: Option<&Solution>,
 ) -> Result<Solution> {
+    let starts = segment_starts(robot, loads, opts.steps);
+    let deadline = opts.time_limit.map(|t| Instant::now() + t);
+    let mut spent = 0.0;
+    let coarse = match warm {
+        None if opts.presolve => coarse_grid(robot, loads, opts.steps, &starts),
+        _ => None,
+    };
+    if let Some((csteps, cstarts)) = coarse {
+        match presolved(robot, inputs, loads, opts, csteps, (&starts, &cstarts)) {
+            Ok(done) => return finish(done),
+            Err((e, _)) if !continues(&e) => return Err(e),
+            Err((_, work)) => spent = work,
+        }
+    }
+    let rest = remaining(opts, deadline, spent)?;
+    let mut done = solve_on(robot, inputs, loads, &rest, &starts, warm)?;
+    done.sys.ms.work += spent;
+    finish(done)
+}
+
+/// `opts` with what is left of its budget after `spent` IVPs and of its
+/// time until `deadline`; a budget error if nothing is left.
+fn remaining(opts: &SolveOptions, deadline: Option<Instant>, spent: f64) -> Result<SolveOptions> {
+    let now = Instant::now();
+    let left = opts.max_evaluations.saturating_sub(spent.ceil() as usize);
+    if left == 0 || deadline.is_some_and(|d| now >= d) {
+        return Err(crate::error::Error::NotConverged {
+            solver: "forward shooting",
+            iterations: 0,
+            evaluations: spent.ceil() as usize,
+            residual: f64::INFINITY,
+            stop: crate::error::StopReason::Budget,
+            reason: "the budget was spent on the coarse grid".into(),
+        });
+    }
+    Ok(SolveOptions {
+        max_evaluations: left,
+        time_limit: deadline.map(|d| d.saturating_duration_since(now)),
+        ..*opts
+    })
+}
+
+/// The solution of a converged solve.
+fn finish(done: Solved<'_>) -> Result<Solution> {
+    let work = done.sys.ms.work.ceil() as usize;
+    let mut sol = assemble(&done.sys.ms, &done.x, (done.iterations, work))?;
+    sol.residual = done.residual;
+    sol.continuation_steps = done.path;
+    Ok(sol)
+}
+
+/// The cold solve from the solution on the coarse grid ([`COARSENING`]):
+/// the same segments (at the coarse nodes nearest the fine ones), its
+/// unknowns as the first guess and its last Jacobian as the first
+/// factorisation on the fine grid. On failure, the error and the work
+/// spent (in IVPs of the fine grid).
+fn presolved<'a>(
+    robot: &'a Robot,
+    inputs: &'a [f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    csteps: usize,
+    (starts, cstarts): (&[usize], &[usize]),
+) -> std::result::Result<Solved<'a>, (crate::error::Error, f64)> {
+    let started = Instant::now();
+    // a coarse IVP costs `scale` of a fine one: the budget and the work
+    // reported are in fine IVPs
+    let scale = csteps as f64 / opts.steps as f64;
+    let coarse = SolveOptions {
+        steps: csteps,
+        max_evaluations: (opts.max_evaluations as f64 / scale) as usize,
+        ..*opts
+    };
+    let c = solve_on(robot, inputs, loads, &coarse, cstarts, None);
+    let c = c.map_err(|e| match e {
+        crate::error::Error::NotConverged {
+            solver,
+            iterations,
+            evaluations,
+            residual,
+            stop,
+            reason,
+        } => {
+            let work = evaluations as f64 * scale;
+            let e = crate::error::Error::NotConverged {
+                solver,
+                iterations,
+                evaluations: work.ceil() as usize,
+                residual,
+                stop,
+                reason,
+            };
+            (e, work)
+        }
+        e => (e, 0.0),
+    })?;
+    let spent = c.sys.ms.work * scale;
+    let charts = c.sys.ms.charts().to_vec();
+    let ms = MultipleShooting::new(robot, inputs, *loads, opts.steps, starts, charts)
+        .map_err(|e| (e, spent))?;
+    let mut sys = ShootingSystem::with_factorisation(ms, c.sys);
+    sys.ms.work = spent;
+    let mut f0 = vec![0.0; c.x.len()];
+    let rest = remaining(opts, opts.time_limit.map(|t| started + t), spent);
+    let nopts = NleqOptions {
+        lambda_min: super::arclength::CORRECTOR_LAMBDA_MIN,
+        ..newton_options(&rest.map_err(|e| (e, spent))?)
+    };
+    let factorised = sys.is_factorised();
+    let out = match factorised {
+        true => nleq::NonlinearSystem::residual(&mut sys, &c.x, &mut f0).and_then(|_| {
+            nleq::Nleq::default().solve_linearised(&mut sys, &c.x, &f0, &nopts, "forward shooting")
+        }),
+        false => nleq::solve(&mut sys, &c.x, &nopts, "forward shooting"),
+    };
+    match out {
+        Ok(out) => Ok(Solved {
+            iterations: c.iterations + out.iterations,
+            x: out.x,
+            residual: out.residual,
+            sys,
+            path: c.path,
+        }),
+        Err(e) => Err((e, sys.ms.work)),
+    }
+}
+
+/// The segments' first nodes on the coarse grid of the presolve: the
+/// nodes nearest `starts` on the grid of `steps`; `None` where the coarse
+/// grid cannot carry them (two segments on one node, or one at an anchor).
+fn coarse_grid(
+    robot: &Robot,
+    loads: &Loads,
+    steps: usize,
+    starts: &[usize],
+) -> Option<(usize, Vec<usize>)> {
+    // at most one bending length `1 / lambda` per step, where RK4's local
+    // error `(h lambda)^5 / 120` stays below 1 %: a coarser grid's solution
+    // is no guess for the fine grid's (and past `h lambda = 2.79` RK4
+    // amplifies the decaying modes)
+    let len = robot.body.length;
+    let resolved = (len * super::segments::largest_rate(robot, loads)).ceil() as usize;
+    let coarse = (steps / COARSENING).max(resolved);
+    if 2 * coarse > steps {
+        return None;
+    }
+    let (fine, rough) = (
+        crate::rod::Grid::new(robot, steps),
+        crate::rod::Grid::new(robot, coarse),
+    );
+    let cstarts: Vec<usize> = starts
+        .iter()
+        .map(|&k| nearest_node(&rough, fine.s(k)))
+        .collect();
+    let usable = coarse >= 2
+        && cstarts.windows(2).all(|w| w[0] < w[1])
+        && cstarts
+            .iter()
+            .skip(1)
+            .all(|&k| k < rough.tip() && !rough.is_breakpoint(k));
+    usable.then_some((coarse, cstarts))
+}
+
+/// The node of `grid` nearest the arc length `s` \[m\].
+fn nearest_node(grid: &crate::rod::Grid, s: f64) -> usize {
+    let mut best = 0;
+    for k in 0..=grid.tip() {
+        if (grid.s(k) - s).abs() < (grid.s(best) - s).abs() {
+            best = k;
+        }
+    }
+    best
+}
+
+/// The solve on the grid of `opts.steps` with segments at `starts`:
+/// damped Newton from the first guess; where it fails, continuation.
+fn solve_on<'a>(
+    robot: &'a Robot,
+    inputs: &'a [f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    starts: &[usize],
+    warm: Option<&Solution>,
+) -> Result<Solved<'a>> {
+    let started = Instant::now();
     let nopts = newton_options(opts);
     let mut base = super::guess::initial_guess(robot, inputs, warm);
     if warm.is_none() {
         super::guess::linear_guess(robot, inputs, loads, &mut base);
     }
-    let starts = segment_starts(robot, loads, opts.steps);
-    let (ms, x0) = first_guess(robot, inputs, *loads, opts.steps, (&starts, &base), warm)?;
+    let (ms, x0) = first_guess(robot, inputs, *loads, opts.steps, (starts, &base), warm)?;
     let mut sys = ShootingSystem::new(ms)?;
     // the direct solve is the continuation's first step, the whole path at
     // once: it hands over as a corrector does, when it needs damping below
@@ -192,24 +405,32 @@ pub fn solve(
         lambda_min: super::arclength::CORRECTOR_LAMBDA_MIN,
         ..nopts.clone()
     };
-    let direct = nleq::solve(&mut sys, &x0, &dopts, "forward shooting");
-    let (x, iterations, residual) = match direct {
-        Ok(out) => (out.x, out.iterations, out.residual),
-        Err(e) if !continues(&e) => return Err(e),
+    match nleq::solve(&mut sys, &x0, &dopts, "forward shooting") {
+        Ok(out) => Ok(Solved {
+            sys,
+            x: out.x,
+            iterations: out.iterations,
+            residual: out.residual,
+            path: Vec::new(),
+        }),
+        Err(e) if !continues(&e) => Err(e),
         Err(_) => {
             let spent = sys.ms.work;
-            let (x, charts, path) = continued(robot, inputs, loads, opts, warm, spent)?;
-            let mut ms = MultipleShooting::new(robot, inputs, *loads, opts.steps, &starts, charts)?;
-            ms.work = spent + path.work;
-            let mut sol = assemble(&ms, &x, (path.steps, ms.work.ceil() as usize))?;
-            sol.residual = path.residual;
-            return Ok(sol);
+            let deadline = opts.time_limit.map(|t| started + t);
+            let rest = remaining(opts, deadline, spent)?;
+            let (x, charts, path) = continued(robot, inputs, loads, &rest, starts, warm)?;
+            let ms = MultipleShooting::new(robot, inputs, *loads, opts.steps, starts, charts)?;
+            let mut sys = ShootingSystem::new(ms)?;
+            sys.ms.work = spent + path.work;
+            Ok(Solved {
+                sys,
+                x,
+                iterations: path.steps,
+                residual: path.residual,
+                path: path.points[1..].iter().map(|p| p.lambda).collect(),
+            })
         }
-    };
-    let work = sys.ms.work.ceil() as usize;
-    let mut sol = assemble(&sys.ms, &x, (iterations, work))?;
-    sol.residual = residual;
-    Ok(sol)
+    }
 }
 
 /// Whether a failed Newton solve hands over to continuation (not for
@@ -232,23 +453,22 @@ fn continues(e: &crate::error::Error) -> bool {
 /// from the unloaded body at rest (cold) or from `warm`'s inputs and loads;
 /// its unknowns (on the segments of [`segment_starts`]), their rotation
 /// charts and the path.
-pub fn continued(
+fn continued(
     robot: &Robot,
     inputs: &[f64],
     loads: &Loads,
     opts: &SolveOptions,
+    starts: &[usize],
     warm: Option<&Solution>,
-    spent: f64,
 ) -> Result<(Vec<f64>, Vec<Quaternion<f64>>, super::arclength::Path)> {
     use super::arclength::{follow, ArclengthOptions};
     use super::homotopy::{unloaded, Endpoint, LoadPath};
     let to = Endpoint::loaded(robot, inputs, *loads);
-    // the target's segments: the path's loads are largest there
-    let starts = segment_starts(robot, loads, opts.steps);
+    // (the target's segments: the path's loads are largest there)
     let (ms, x0, from) = match warm {
         Some(w) => {
             let from = Endpoint::loaded(robot, &w.inputs, w.loads);
-            let base = (&starts[..], &w.unknowns[..]);
+            let base = (starts, &w.unknowns[..]);
             let (ms, x0) = first_guess(robot, &w.inputs, w.loads, opts.steps, base, Some(w))?;
             (ms.charts().to_vec(), x0, from)
         }
@@ -258,30 +478,18 @@ pub fn continued(
             let base = super::guess::initial_guess(robot, &reference, None);
             let none = Loads::of(&free);
             let (ms, x0) =
-                MultipleShooting::chained(&free, &reference, none, opts.steps, &starts, &base)?;
+                MultipleShooting::chained(&free, &reference, none, opts.steps, starts, &base)?;
             (ms.charts().to_vec(), x0, Endpoint::unloaded(robot))
         }
     };
-    let mut path = LoadPath::new(robot, (from, to), opts.steps, starts, ms.clone());
+    let mut path = LoadPath::new(robot, (from, to), opts.steps, starts.to_vec(), ms.clone());
     let aopts = ArclengthOptions {
         tol: opts.tol,
-        max_work: (opts.max_evaluations as f64 - spent).max(1.0),
+        max_work: opts.max_evaluations as f64,
         deadline: opts.time_limit.map(|t| std::time::Instant::now() + t),
         ..Default::default()
     };
-    let out = follow(&mut path, &x0, 0.0, 1.0, &aopts, false)?;
+    let out = follow(&mut path, &x0, 0.0, 1.0, &aopts, true)?;
     let end = out.points.last().expect("a path ends at a point");
     Ok((end.x.clone(), ms, out))
-}
-
-#[doc(hidden)]
-pub fn first_guess_pub<'a>(
-    robot: &'a Robot,
-    inputs: &'a [f64],
-    loads: Loads,
-    steps: usize,
-    base: &[f64],
-) -> Result<(MultipleShooting<'a>, Vec<f64>)> {
-    let starts = segment_starts(robot, &loads, steps);
-    first_guess(robot, inputs, loads, steps, (&starts, base), None)
 }

@@ -185,9 +185,10 @@ impl ParametrisedSystem for LoadPath<'_> {
         self.eval(x, lambda, f, false).map(|_| ())
     }
     /// The Jacobian `A = G_x` factorised as a staircase; `G_lambda` by a
-    /// forward difference of step `sqrt(eps)` (error `~sqrt(eps)` relative,
-    /// which leaves the corrector's convergence quadratic to that level;
-    /// one residual more per linearisation).
+    /// one-sided difference of step `sqrt(eps)` toward the inside of the
+    /// path (error `~sqrt(eps)` relative, which leaves the corrector's
+    /// convergence quadratic to that level; one residual more per
+    /// linearisation).
     fn linearise_bordered(
         &mut self,
         x: &[f64],
@@ -197,7 +198,6 @@ impl ParametrisedSystem for LoadPath<'_> {
     ) -> Result<()> {
         super::cancel::check()?;
         let (rows, cols, d, e) = self.eval(x, lambda, f, true)?.expect("blocks");
-        // (toward the inside of the path [0, 1], where the inputs are valid)
         let h = f64::EPSILON.sqrt() * if lambda > 0.5 { -1.0 } else { 1.0 };
         let mut fh = vec![0.0; f.len()];
         self.eval(x, lambda + h, &mut fh, false)?;

@@ -58,7 +58,8 @@ pub struct MultipleShooting<'a> {
     /// `D_k` and `E_k` of the last linearisation.
     pub(crate) d: Vec<DMatrix<f64>>,
     pub(crate) e: Vec<DMatrix<f64>>,
-    /// IVPs spent (a tangent IVP of `k` directions counts `1 + k / 8`).
+    /// IVPs spent over the whole grid (a tangent IVP of `k` directions counts
+    /// `1 + k / 8`).
     pub work: f64,
 }
 
@@ -226,6 +227,11 @@ impl<'a> MultipleShooting<'a> {
         out
     }
 
+    /// The tip node.
+    fn tip(&self) -> usize {
+        *self.bounds.last().expect("a system has a tip")
+    }
+
     /// Number of segments.
     pub fn segments(&self) -> usize {
         self.bounds.len() - 1
@@ -335,7 +341,7 @@ impl<'a> MultipleShooting<'a> {
             if k + 1 < m {
                 let dn = self.d_of(x, k + 1);
                 let next = &states[k + 1].y;
-                row += self.continuity(&ivp.tip, next, k + 1, (&dk, &dn), &mut f[row..]);
+                row += self.continuity(&ivp.tip, next, (&dk, &dn), &mut f[row..]);
             } else {
                 let (fs, ms) = residual_scales(self.robot);
                 for j in 0..3 {
@@ -360,14 +366,13 @@ impl<'a> MultipleShooting<'a> {
         x[at..at + na].to_vec()
     }
 
-    /// The continuity rows between the end state `end` of a segment (an
-    /// IVP state) and the start `start` of block `b`, into `f`; returns
-    /// the number of rows.
+    /// The continuity rows between the end state `end` of a segment and the
+    /// next block's start state `start` (an IVP state), with their `d / L`,
+    /// into `f`; returns the number of rows.
     fn continuity(
         &self,
         end: &crate::rod::RodState,
         start: &[f64],
-        b: usize,
         (d_end, d_start): (&[f64], &[f64]),
         f: &mut [f64],
     ) -> usize {
@@ -384,7 +389,6 @@ impl<'a> MultipleShooting<'a> {
             f[12 + i] = (end.delta[i] - start[BASE_STATES + i]) / len;
             f[12 + na + i] = d_end[i] - d_start[i];
         }
-        let _ = b;
         interior_len(na)
     }
 
@@ -404,14 +408,16 @@ impl<'a> MultipleShooting<'a> {
             let (dirs, seeds) = self.seeds(x, k, cur);
             let spec = self.spec(&cur.tau);
             let tan = spec.integrate_stretch_tangent(self.stretch(k), &cur.y, &seeds)?;
-            self.work += 1.0 + dirs as f64 / 8.0;
+            // (a segment's share of one tangent IVP over the whole grid)
+            let share = (self.bounds[k + 1] - self.bounds[k]) as f64 / self.tip() as f64;
+            self.work += share * (1.0 + dirs as f64 / 8.0);
             let dk = self.d_of(x, k);
             let dcol = if k == 0 { 6 } else { 12 + na };
             let col_of = |c: usize| direction_column(k, na, c);
             let mut own = if k + 1 < m {
                 let dn = self.d_of(x, k + 1);
                 let next = &states[k + 1].y;
-                let n = self.continuity(&tan.ivp.tip, next, k + 1, (&dk, &dn), &mut f[row..]);
+                let n = self.continuity(&tan.ivp.tip, next, (&dk, &dn), &mut f[row..]);
                 self.continuity_blocks(k, &tan, next, x);
                 n
             } else {
@@ -642,12 +648,13 @@ pub(crate) fn rotation_defect(qb: &Quaternion<f64>, qa: &Quaternion<f64>) -> Vec
     Vector3::new(e.i, e.j, e.k) * s
 }
 
-/// The rounding floor of the residual's max-norm: `4 eps` times the largest
-/// term of any row, each continuity row's at most the scaled state's size
-/// grown by [`super::segments::GROWTH_BOUND`] across its segment, the tip
-/// rows' the largest term of the balance (32)-(33) as single shooting's
-/// (`K (strain - strain*)`, the tip loads and the tensions, scaled).
 impl MultipleShooting<'_> {
+    /// The rounding floor of the residual's max-norm: `4 eps` times the
+    /// largest term of any row, each continuity row's at most the scaled
+    /// state's size grown by [`super::segments::GROWTH_BOUND`] across its
+    /// segment, the tip rows' the largest term of the balance (32)-(33) as
+    /// single shooting's (`K (strain - strain*)`, the tip loads and the
+    /// tensions, scaled).
     fn rounding_floor(&self, x: &[f64]) -> f64 {
         let robot = self.robot;
         let (kse, kbt) = robot.body.stiffness();
@@ -698,6 +705,22 @@ impl<'a> ShootingSystem<'a> {
             ms,
             singular: false,
         })
+    }
+
+    /// Whether a Jacobian is factorised (a first linearisation was made).
+    pub fn is_factorised(&self) -> bool {
+        self.lu.is_factorised()
+    }
+
+    /// The system of `ms` with the factorised Jacobian of `other`, a
+    /// system of the same shape (the same problem on another grid), as its
+    /// first factorisation: a chord Jacobian for Newton's first steps.
+    pub fn with_factorisation(ms: MultipleShooting<'a>, other: ShootingSystem<'_>) -> Self {
+        ShootingSystem {
+            ms,
+            lu: other.lu,
+            singular: other.singular,
+        }
     }
 }
 

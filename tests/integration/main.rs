@@ -17,6 +17,7 @@ mod inverse;
 mod kink_correctors;
 mod long_paths;
 mod model_rules;
+mod multiple_shooting;
 mod paper;
 mod perf;
 mod properties;

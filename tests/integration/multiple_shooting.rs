@@ -1,0 +1,178 @@
+//! The multiple-shooting forward solve (`tcarod::solve::forward`) against
+//! the single-shooting solver and over seeded families of designs: the
+//! same equilibria where both converge, every design below self-weight
+//! buckling solved cold and along a warm sweep, heavy bodies that single
+//! shooting's growth defeats.
+
+use tcarod::experiments::{fig6_square, steel_tendon_robot, STEEL_TENDON_TENSIONS};
+use tcarod::problems::{
+    equilibrium, random_design, stress_design, Orientation, STRESS_SEED, TUNING_SEED,
+};
+use tcarod::shooting::{solve, Loads, Solution, SolveOptions};
+use tcarod::solve::forward;
+
+fn ms(
+    robot: &tcarod::rod::Robot,
+    inputs: &[f64],
+    warm: Option<&Solution>,
+) -> tcarod::Result<Solution> {
+    forward::solve(
+        robot,
+        inputs,
+        &Loads::of(robot),
+        &SolveOptions::default(),
+        warm,
+    )
+}
+
+/// The paper's Fig. 6 robot at several temperatures and the steel tendon
+/// robot: the tips of the two solvers agree within 1e-9 m, the bound the
+/// fixtures are held to (both solve the same discrete equations to `tol =
+/// 1e-10`, a strain error of that size moving a 40 mm tip by ~1e-12 m;
+/// the steel robot's rounding floor, ~1e-9 in the scaled residual, moves
+/// its 0.5 m tip by ~1e-11 m).
+#[test]
+fn agrees_with_single_shooting_on_the_papers_fixtures() {
+    let opts = SolveOptions::default();
+    let fig6 = fig6_square(true);
+    for q in [[25.0, 25.0], [60.0, 25.0], [100.0, 100.0], [160.0, 40.0]] {
+        let a = solve(&fig6, &q, &opts, None).unwrap();
+        let b = ms(&fig6, &q, None).unwrap();
+        let d = (a.tip_position() - b.tip_position()).norm();
+        assert!(d < 1e-9, "Fig. 6 at {q:?}: tips {d:.2e} m apart");
+        assert!(b.residual <= opts.tol);
+    }
+    let steel = steel_tendon_robot();
+    let a = solve(&steel, &STEEL_TENDON_TENSIONS, &opts, None).unwrap();
+    let b = ms(&steel, &STEEL_TENDON_TENSIONS, None).unwrap();
+    let d = (a.tip_position() - b.tip_position()).norm();
+    assert!(d < 1e-9, "steel tendon robot: tips {d:.2e} m apart");
+}
+
+/// The first 100 designs of the tuning seed: every one below self-weight
+/// buckling converges cold; where single shooting converges too, the two
+/// solutions are the same equilibrium (tips within 1e-9 of the length) in
+/// all but the designs with several equilibria, each of which is then a
+/// solution of its own: its global equilibrium check (base wrench against
+/// the loads) holds as well as single shooting's does on the same grid
+/// (within 10 times, or 1e-8 relative).
+#[test]
+fn solves_every_tuning_design_below_buckling_cold() {
+    let opts = SolveOptions::default();
+    let (mut same, mut other) = (0, 0);
+    for i in 0..100 {
+        let d = random_design(TUNING_SEED, i);
+        let b = ms(&d.robot, &d.inputs, None);
+        if d.past_buckling() {
+            continue;
+        }
+        let b = b.unwrap_or_else(|e| panic!("design {i} ({}): {e}", d.summary()));
+        assert!(
+            b.residual <= opts.tol,
+            "design {i}: residual {:.1e}",
+            b.residual
+        );
+        let Ok(a) = solve(&d.robot, &d.inputs, &opts, None) else {
+            continue;
+        };
+        let len = d.robot.body.length;
+        if (a.tip_position() - b.tip_position()).norm() <= 1e-9 * len {
+            same += 1;
+        } else {
+            other += 1;
+            let (ea, eb) = (equilibrium(&d.robot, &a), equilibrium(&d.robot, &b));
+            assert!(
+                eb.relative <= (10.0 * ea.relative).max(1e-8),
+                "design {i}: equilibrium {:.1e} against {:.1e}",
+                eb.relative,
+                ea.relative
+            );
+        }
+    }
+    // several equilibria are the exception among designs below buckling
+    assert!(
+        other * 20 <= same,
+        "{same} the same, {other} other equilibria"
+    );
+}
+
+/// Warm sweeps in five equal steps from the reference inputs to the
+/// design's, each solve warm from the last, for 40 tuning designs below
+/// buckling: every step converges.
+#[test]
+fn warm_sweeps_converge_at_every_step() {
+    for i in 0..40 {
+        let d = random_design(TUNING_SEED, i);
+        if d.past_buckling() {
+            continue;
+        }
+        let reference = d.robot.reference_inputs();
+        let mut last: Option<Solution> = None;
+        for k in 0..=5 {
+            let t = k as f64 / 5.0;
+            let q: Vec<f64> = (reference.iter().zip(&d.inputs))
+                .map(|(a, b)| a + t * (b - a))
+                .collect();
+            let sol = ms(&d.robot, &q, last.as_ref())
+                .unwrap_or_else(|e| panic!("design {i} step {k}: {e}"));
+            assert!(sol.residual <= 1e-10);
+            last = Some(sol);
+        }
+    }
+}
+
+/// Heavy soft bodies (weight ratio `q L^3 / EI` 20-3000) hanging or held
+/// horizontally, where the tangent of single shooting grows past `1 /
+/// eps`: the first 40 of the stress family converge cold, and each
+/// solution satisfies the global equilibrium to the accuracy of its grid
+/// (1e-2 relative on 100 RK4 steps for these bodies, whose bending length
+/// is a few steps).
+#[test]
+fn solves_heavy_hanging_and_horizontal_bodies() {
+    let mut solved = 0;
+    for i in 0..40 {
+        let d = stress_design(STRESS_SEED, i);
+        if Orientation::of(&d.robot.body) == Some(Orientation::Upright) {
+            continue;
+        }
+        let sol = ms(&d.robot, &d.inputs, None)
+            .unwrap_or_else(|e| panic!("stress design {i} ({}): {e}", d.summary()));
+        let eq = equilibrium(&d.robot, &sol);
+        assert!(
+            eq.relative < 1e-2,
+            "stress design {i}: equilibrium {:.1e}",
+            eq.relative
+        );
+        solved += 1;
+    }
+    assert!(solved >= 20, "{solved}");
+}
+
+/// A budget of IVPs bounds the solve: a heavy design that needs
+/// continuation stops with a budget error (the best residual and the work
+/// spent in it) instead of running on, and a non-finite input is refused.
+#[test]
+fn budgets_bound_the_solve() {
+    let d = (0..30)
+        .map(|i| stress_design(STRESS_SEED, i))
+        .find(|d| Orientation::of(&d.robot.body) == Some(Orientation::Hanging))
+        .unwrap();
+    let opts = SolveOptions {
+        max_evaluations: 5,
+        ..Default::default()
+    };
+    match forward::solve(&d.robot, &d.inputs, &Loads::of(&d.robot), &opts, None) {
+        Err(tcarod::Error::NotConverged {
+            stop,
+            evaluations,
+            residual,
+            ..
+        }) => {
+            assert_eq!(stop, tcarod::error::StopReason::Budget);
+            // one evaluation past the budget at most (a linearisation in flight)
+            assert!(evaluations <= 5 + 4, "{evaluations}");
+            assert!(!residual.is_nan());
+        }
+        other => panic!("expected a budget error, got {other:?}"),
+    }
+}
