@@ -127,7 +127,7 @@ fn reference_nodes(robot: &Robot, steps: usize, base: &[f64]) -> Result<Solution
 }
 
 /// The Newton options of a forward solve.
-pub fn newton_options(opts: &SolveOptions) -> NleqOptions {
+pub(crate) fn newton_options(opts: &SolveOptions) -> NleqOptions {
     NleqOptions {
         tol: opts.tol,
         max_iterations: opts.max_iter,
@@ -195,6 +195,8 @@ struct Solved<'a> {
     /// The continuation parameter at each accepted point of the path
     /// taken (empty without continuation).
     path: Vec<f64>,
+    /// Whether Newton stopped at the rounding floor above `tol`.
+    at_floor: bool,
 }
 
 /// Solve the forward problem of `robot` at `inputs` under `loads` by
@@ -206,6 +208,8 @@ pub fn solve(
     opts: &SolveOptions,
     warm: Option<&Solution>,
 ) -> Result<Solution> {
+    super::shooting::validate(robot, inputs, loads, opts, warm)?;
+    super::cancel::check()?;
     let starts = segment_starts(robot, loads, opts.steps);
     let deadline = opts.time_limit.map(|t| Instant::now() + t);
     let mut spent = 0.0;
@@ -254,6 +258,10 @@ fn finish(done: Solved<'_>) -> Result<Solution> {
     let mut sol = assemble(&done.sys.ms, &done.x, (done.iterations, work))?;
     sol.residual = done.residual;
     sol.continuation_steps = done.path;
+    sol.floor = nleq::NonlinearSystem::floor(&done.sys, &done.x, &[]);
+    if done.at_floor {
+        sol.status = super::newton::Status::ConvergedAtFloor;
+    }
     Ok(sol)
 }
 
@@ -326,6 +334,7 @@ fn presolved<'a>(
             iterations: c.iterations + out.iterations,
             x: out.x,
             residual: out.residual,
+            at_floor: out.status == nleq::Status::ConvergedAtFloor,
             sys,
             path: c.path,
         }),
@@ -412,6 +421,7 @@ fn solve_on<'a>(
             iterations: out.iterations,
             residual: out.residual,
             path: Vec::new(),
+            at_floor: out.status == nleq::Status::ConvergedAtFloor,
         }),
         Err(e) if !continues(&e) => Err(e),
         Err(_) => {
@@ -428,6 +438,7 @@ fn solve_on<'a>(
                 iterations: path.steps,
                 residual: path.residual,
                 path: path.points[1..].iter().map(|p| p.lambda).collect(),
+                at_floor: path.residual > opts.tol,
             })
         }
     }

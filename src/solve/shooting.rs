@@ -204,7 +204,7 @@ pub(crate) fn solve_direct(
 
 /// The checks of a solve request: robot, inputs, options, a warm start's
 /// size and finite tip loads.
-fn validate(
+pub(crate) fn validate(
     robot: &Robot,
     inputs: &[f64],
     loads: &Loads,

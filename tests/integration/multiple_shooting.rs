@@ -47,6 +47,10 @@ fn agrees_with_single_shooting_on_the_papers_fixtures() {
     let b = ms(&steel, &STEEL_TENDON_TENSIONS, None).unwrap();
     let d = (a.tip_position() - b.tip_position()).norm();
     assert!(d < 1e-9, "steel tendon robot: tips {d:.2e} m apart");
+    // the steel rod's residual floor (`EA L^2 / EI` large) is reported, and
+    // the residual is within the tolerance or that floor
+    assert!(b.floor > 0.0 && b.floor < 1e-6, "floor {:.1e}", b.floor);
+    assert!(b.residual <= opts.tol.max(b.floor), "{:.1e}", b.residual);
 }
 
 /// The first 100 designs of the tuning seed: every one below self-weight
@@ -175,4 +179,11 @@ fn budgets_bound_the_solve() {
         }
         other => panic!("expected a budget error, got {other:?}"),
     }
+    // bad input is refused before any work, naming the argument
+    let fig6 = fig6_square(true);
+    let bad = forward::solve(&fig6, &[f64::NAN, 25.0], &Loads::of(&fig6), &opts, None);
+    assert!(
+        matches!(&bad, Err(tcarod::Error::InvalidParameter { name, .. }) if name.contains("temperature")),
+        "{bad:?}"
+    );
 }
