@@ -242,7 +242,7 @@ fn remaining(opts: &SolveOptions, deadline: Option<Instant>, spent: f64) -> Resu
             evaluations: spent.ceil() as usize,
             residual: f64::INFINITY,
             stop: crate::error::StopReason::Budget,
-            reason: "the budget was spent on the coarse grid".into(),
+            reason: "the IVP budget or the time limit was spent by the solve's first stage".into(),
         });
     }
     Ok(SolveOptions {
