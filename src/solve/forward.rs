@@ -12,7 +12,7 @@
 
 use std::time::Instant;
 
-use nalgebra::{Quaternion, UnitQuaternion};
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use super::ms::{MultipleShooting, ShootingSystem};
 use super::nleq::{self, NleqOptions};
@@ -21,13 +21,16 @@ use super::residual::Loads;
 use super::segments::segment_starts;
 use super::solution::{assemble_flat, Solution};
 use crate::error::Result;
-use crate::rod::{FlatNodes, Robot, BASE_STATES};
+use crate::rod::{FlatNodes, Grid, Robot, RodState};
 
 /// A first guess of the multiple-shooting unknowns: the base unknowns
 /// `base` (as single shooting's) integrated segment by segment where that
-/// integration succeeds; a segment it cannot reach starts from the
-/// straight reference configuration at its node. With `warm`, the states
-/// of a neighbouring solution at the segments' nodes.
+/// integration succeeds; else each segment starts from the straight
+/// reference configuration at its node (`p = s nu*_z e_z`, the identity
+/// rotation, the reference strains, no elongation). With `warm`, the
+/// states of a neighbouring solution at the segments' nodes (its recorded
+/// node `k` is grid node `k`; segments never start at an anchor, where a
+/// recorded state is after its loads).
 pub(crate) fn first_guess<'a>(
     robot: &'a Robot,
     inputs: &'a [f64],
@@ -36,94 +39,52 @@ pub(crate) fn first_guess<'a>(
     (starts, base): (&[usize], &[f64]),
     warm: Option<&Solution>,
 ) -> Result<(MultipleShooting<'a>, Vec<f64>)> {
+    let na = robot.actuators.len();
     if let Some(w) = warm.filter(|w| w.steps == steps && w.s.len() > *starts.last().unwrap()) {
-        return from_nodes(robot, inputs, loads, steps, starts, base, w);
+        let state = |k: usize| RodState {
+            p: w.positions[k],
+            q: *UnitQuaternion::from_matrix(&w.rotations[k]).quaternion(),
+            v: w.nu[k],
+            u: w.omega[k],
+            delta: w.elongation_profile.row(k).iter().copied().collect(),
+        };
+        return with_blocks(robot, inputs, loads, steps, (starts, base), state);
     }
     match MultipleShooting::chained(robot, inputs, loads, steps, starts, base) {
         Ok(out) => Ok(out),
         Err(_) => {
-            let straight = reference_nodes(robot, steps, base)?;
-            from_nodes(robot, inputs, loads, steps, starts, base, &straight)
+            let (body, grid) = (&robot.body, Grid::new(robot, steps));
+            let state = |k: usize| RodState {
+                p: Vector3::z() * (grid.s(k) * body.nu_star[2]),
+                q: Quaternion::identity(),
+                v: body.nu_star,
+                u: body.omega_star,
+                delta: vec![0.0; na],
+            };
+            with_blocks(robot, inputs, loads, steps, (starts, base), state)
         }
     }
 }
 
-/// The unknowns whose blocks are the states of `sol` at the segments'
-/// first nodes (a solution's recorded node `k` is grid node `k`; segments
-/// never start at an anchor, where a recorded state is after its loads),
-/// with the base block `base`.
-fn from_nodes<'a>(
+/// The unknowns with the base block `base` and each later block at the
+/// rod state `state(node)` of its segment's first node.
+fn with_blocks<'a>(
     robot: &'a Robot,
     inputs: &'a [f64],
     loads: Loads,
     steps: usize,
-    starts: &[usize],
-    base: &[f64],
-    sol: &Solution,
+    (starts, base): (&[usize], &[f64]),
+    state: impl Fn(usize) -> RodState,
 ) -> Result<(MultipleShooting<'a>, Vec<f64>)> {
-    let charts: Vec<Quaternion<f64>> = starts
-        .iter()
-        .map(|&k| *UnitQuaternion::from_matrix(&sol.rotations[k]).quaternion())
-        .collect();
-    let ms = MultipleShooting::new(robot, inputs, loads, steps, starts, charts)?;
-    let (na, len) = (robot.actuators.len(), robot.body.length);
+    let na = robot.actuators.len();
+    let charts = vec![Quaternion::identity(); starts.len()];
+    let mut ms = MultipleShooting::new(robot, inputs, loads, steps, starts, charts)?;
     let mut x = vec![0.0; ms.dim()];
     x[..6 + na].copy_from_slice(&base[..6 + na]);
-    let mut o = 6 + na;
-    for &k in &starts[1..] {
-        for j in 0..3 {
-            x[o + j] = sol.positions[k][j] / len;
-            x[o + 6 + j] = sol.nu[k][j];
-            x[o + 9 + j] = sol.omega[k][j] * len;
-        }
-        for i in 0..na {
-            x[o + 12 + i] = sol.elongation_profile[(k, i)] / len;
-            x[o + 12 + na + i] = base[6 + i];
-        }
-        o += 12 + 2 * na;
+    for (k, &node) in starts.iter().enumerate().skip(1) {
+        ms.set_block(&mut x, k, &state(node), &base[6..6 + na]);
     }
     Ok((ms, x))
-}
-
-/// The straight reference configuration sampled at every grid node, in
-/// the form of a solution (for [`from_nodes`], which reads its nodes only):
-/// `p = s nu*_z e_z`, identity rotations, the reference strains, no
-/// elongation.
-fn reference_nodes(robot: &Robot, steps: usize, base: &[f64]) -> Result<Solution> {
-    let grid = crate::rod::Grid::new(robot, steps);
-    let body = &robot.body;
-    let na = robot.actuators.len();
-    let mut nodes = FlatNodes::default();
-    let mut y = vec![0.0; BASE_STATES + na];
-    y[3] = 1.0;
-    y[7..10].copy_from_slice(body.nu_star.as_slice());
-    y[10..13].copy_from_slice(body.omega_star.as_slice());
-    for k in 0..=grid.tip() {
-        let s = grid.s(k);
-        y[2] = s * body.nu_star[2];
-        nodes.push(s, &y);
-    }
-    nodes.n = y.len();
-    let ivp = crate::rod::IvpResult {
-        tip: crate::rod::RodState::from_slice(&y),
-        elongation: vec![0.0; na],
-        tip_force_residual: Default::default(),
-        tip_moment_residual: Default::default(),
-        nodes: Vec::new(),
-    };
-    let loads = Loads::of(robot);
-    let tau = vec![0.0; na];
-    let r = vec![0.0; 6 + na];
-    let counts = (steps, 0, 0);
-    let inputs = vec![0.0; na];
-    Ok(assemble_flat(
-        robot,
-        (&inputs, &loads, base),
-        counts,
-        r,
-        (ivp, nodes),
-        tau,
-    ))
 }
 
 /// The Newton options of a forward solve.
@@ -163,10 +124,9 @@ pub(crate) fn assemble(
     }
     let mut ivp = last.expect("at least one segment");
     ivp.elongation = elongation;
-    let mut f = vec![0.0; ms.dim()];
-    let mut probe = ms.clone_unworked();
-    probe.residual(x, &mut f)?;
-    let r = ms.tip_rows(&f);
+    let len = robot.body.length;
+    let delta: Vec<f64> = x[6..6 + na].iter().map(|d| d * len).collect();
+    let r = super::residual::scaled_residual(robot, &ivp, &delta);
     let base = &x[..6 + na];
     Ok(assemble_flat(
         robot,
@@ -447,17 +407,7 @@ fn solve_on<'a>(
 /// Whether a failed Newton solve hands over to continuation (not for
 /// invalid input, an interrupt, or a spent budget).
 fn continues(e: &crate::error::Error) -> bool {
-    use crate::error::{Error, StopReason};
-    !matches!(
-        e,
-        Error::InvalidParameter { .. }
-            | Error::InvalidInput { .. }
-            | Error::Interrupted
-            | Error::NotConverged {
-                stop: StopReason::Budget,
-                ..
-            }
-    )
+    !(super::shooting::is_input_error(e) || super::shooting::is_budget_error(e))
 }
 
 /// The solution at `inputs` under `loads` by pseudo-arclength continuation

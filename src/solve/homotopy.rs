@@ -8,9 +8,9 @@
 //! the homotopy of a cold solve; from a neighbouring solution's inputs
 //! and loads, a warm solve's.
 
-use nalgebra::{DMatrix, Quaternion, Vector3};
+use nalgebra::{Quaternion, Vector3};
 
-use super::abd::{Shape, Staircase};
+use super::abd::Staircase;
 use super::arclength::ParametrisedSystem;
 use super::ms::MultipleShooting;
 use super::residual::Loads;
@@ -126,26 +126,25 @@ impl<'a> LoadPath<'a> {
         (inputs.collect(), loads)
     }
 
-    /// `G(x, lambda)` into `f`, and with `jacobian` the Jacobian blocks.
-    fn eval(&mut self, x: &[f64], lambda: f64, f: &mut [f64], jacobian: bool) -> Result<Blocks> {
+    /// `G(x, lambda)` into `f`, and with `jacobian` the Jacobian `G_x`
+    /// factorised into `self.lu` (`self.singular` says if it is singular).
+    fn eval(&mut self, x: &[f64], lambda: f64, f: &mut [f64], jacobian: bool) -> Result<()> {
         let (inputs, loads) = self.set(lambda);
         let charts = self.charts.clone();
         let mut ms =
             MultipleShooting::new(&self.at, &inputs, loads, self.steps, &self.starts, charts)?;
-        let out = if jacobian {
+        if jacobian {
             ms.linearise(x, f)?;
-            Some((
-                ms.rows(),
-                ms.cols(),
-                std::mem::take(&mut ms.d),
-                std::mem::take(&mut ms.e),
-            ))
+            let lu = match self.lu.take() {
+                Some(lu) if lu.shape().rows == ms.rows() && lu.shape().cols == ms.cols() => lu,
+                _ => ms.staircase()?,
+            };
+            self.singular = ms.factorise(self.lu.insert(lu));
         } else {
             ms.residual(x, f)?;
-            None
-        };
+        }
         self.work += ms.work;
-        Ok(out)
+        Ok(())
     }
 
     /// Solve `A dx = b` in place with the last factorisation.
@@ -172,17 +171,13 @@ impl<'a> LoadPath<'a> {
     }
 }
 
-/// The Jacobian blocks of one evaluation: row and column sizes, `D_k`, `E_k`.
-type Blocks = Option<(Vec<usize>, Vec<usize>, Vec<DMatrix<f64>>, Vec<DMatrix<f64>>)>;
-
 impl ParametrisedSystem for LoadPath<'_> {
     fn dim(&self) -> usize {
-        let na = self.robot.actuators.len();
-        6 + na + (self.starts.len() - 1) * (12 + 2 * na)
+        super::ms::unknowns(self.robot.actuators.len(), self.starts.len())
     }
     fn residual(&mut self, x: &[f64], lambda: f64, f: &mut [f64]) -> Result<()> {
         super::cancel::check()?;
-        self.eval(x, lambda, f, false).map(|_| ())
+        self.eval(x, lambda, f, false)
     }
     /// The Jacobian `A = G_x` factorised as a staircase; `G_lambda` by a
     /// one-sided difference of step `sqrt(eps)` toward the inside of the
@@ -197,24 +192,11 @@ impl ParametrisedSystem for LoadPath<'_> {
         f: &mut [f64],
     ) -> Result<()> {
         super::cancel::check()?;
-        let (rows, cols, d, e) = self.eval(x, lambda, f, true)?.expect("blocks");
+        self.eval(x, lambda, f, true)?;
         let h = f64::EPSILON.sqrt() * if lambda > 0.5 { -1.0 } else { 1.0 };
         let mut fh = vec![0.0; f.len()];
         self.eval(x, lambda + h, &mut fh, false)?;
         self.g_lambda = fh.iter().zip(f.iter()).map(|(a, b)| (a - b) / h).collect();
-        let lu = match self.lu.take() {
-            Some(lu) if lu.shape().rows == rows && lu.shape().cols == cols => lu,
-            _ => Staircase::new(Shape { rows, cols })?,
-        };
-        let mut lu = lu;
-        for (k, dk) in d.iter().enumerate() {
-            lu.d_mut(k).copy_from(dk);
-        }
-        for (k, ek) in e.iter().enumerate() {
-            lu.e_mut(k).copy_from(ek);
-        }
-        self.singular = lu.factorise().is_err();
-        self.lu = Some(lu);
         self.row = (row.0.to_vec(), row.1);
         self.a_inv_g = self.g_lambda.clone();
         if !self.singular {

@@ -35,12 +35,20 @@ use nalgebra::{DMatrix, Quaternion, Vector3};
 
 use super::residual::{residual_scales, Loads};
 use crate::error::{Error, Result};
-use crate::rod::{Grid, IvpSpec, Robot, Stretch, TangentSeeds, BASE_STATES};
+use crate::rod::{Grid, IvpResult, IvpSpec, Robot, Stretch, TangentSeeds, BASE_STATES};
 
 /// Scaled state values per interior block: `p, theta, nu, omega` and the
 /// `delta` and `d` of each actuator.
 fn interior_len(na: usize) -> usize {
     12 + 2 * na
+}
+
+/// Number of unknowns in the first `blocks` blocks, with `na` actuators.
+pub(crate) fn unknowns(na: usize, blocks: usize) -> usize {
+    match blocks {
+        0 => 0,
+        _ => 6 + na + (blocks - 1) * interior_len(na),
+    }
 }
 
 /// The multiple-shooting system of one forward problem.
@@ -137,7 +145,7 @@ impl<'a> MultipleShooting<'a> {
     ) -> Result<(Self, Vec<f64>)> {
         let charts = vec![Quaternion::identity(); starts.len()];
         let mut ms = MultipleShooting::new(robot, inputs, loads, steps, starts, charts)?;
-        let (na, len) = (ms.na(), robot.body.length);
+        let na = ms.na();
         let mut x = vec![0.0; ms.dim()];
         x[..6 + na].copy_from_slice(&base[..6 + na]);
         let st = ms.block_state(&x, 0)?;
@@ -146,19 +154,33 @@ impl<'a> MultipleShooting<'a> {
             let spec = ms.spec(&tau);
             let end = spec.integrate_stretch(ms.stretch(k - 1), &y)?.tip;
             y = crate::rod::FlatNodes::from_states(&[(0.0, end.clone())]).y;
-            ms.charts[k] = end.q;
-            let o = ms.offset(k);
-            for j in 0..3 {
-                x[o + j] = end.p[j] / len;
-                x[o + 6 + j] = end.v[j];
-                x[o + 9 + j] = end.u[j] * len;
-            }
-            for i in 0..na {
-                x[o + 12 + i] = end.delta[i] / len;
-                x[o + 12 + na + i] = base[6 + i];
-            }
+            ms.set_block(&mut x, k, &end, &base[6..6 + na]);
         }
         Ok((ms, x))
+    }
+
+    /// Block `k >= 1` of the unknowns `x` at the rod state `state`, with
+    /// the actuator elongations `d_scaled` (`d / L`): its chart becomes the
+    /// state's rotation, so its `theta` is zero.
+    pub(crate) fn set_block(
+        &mut self,
+        x: &mut [f64],
+        k: usize,
+        state: &crate::rod::RodState,
+        d_scaled: &[f64],
+    ) {
+        let (na, len, o) = (self.na(), self.robot.body.length, self.offset(k));
+        self.charts[k] = state.q;
+        for j in 0..3 {
+            x[o + j] = state.p[j] / len;
+            x[o + 3 + j] = 0.0;
+            x[o + 6 + j] = state.v[j];
+            x[o + 9 + j] = state.u[j] * len;
+        }
+        for i in 0..na {
+            x[o + 12 + i] = state.delta[i] / len;
+            x[o + 12 + na + i] = d_scaled[i];
+        }
     }
 
     /// The robot.
@@ -185,46 +207,10 @@ impl<'a> MultipleShooting<'a> {
     pub fn records(&self, i: usize) -> usize {
         self.ends_in[i]
     }
-    /// This system with no work counted.
-    pub fn clone_unworked(&self) -> Self {
-        MultipleShooting {
-            robot: self.robot,
-            inputs: self.inputs,
-            loads: self.loads,
-            steps: self.steps,
-            bounds: self.bounds.clone(),
-            charts: self.charts.clone(),
-            ends_in: self.ends_in.clone(),
-            d: Vec::new(),
-            e: Vec::new(),
-            work: 0.0,
-        }
-    }
     /// The IVP state of block `k` and its tensions \[N\].
     pub fn block(&self, x: &[f64], k: usize) -> Result<(Vec<f64>, Vec<f64>)> {
         let st = self.block_state(x, k)?;
         Ok((st.y, st.tau))
-    }
-    /// The rows of a residual `f` that single shooting has: the tip
-    /// balance, then each actuator's elongation row in actuator order.
-    pub fn tip_rows(&self, f: &[f64]) -> Vec<f64> {
-        let rows = self.rows();
-        let m = self.segments();
-        let na = self.na();
-        let last: usize = rows[..m - 1].iter().sum();
-        let mut out = f[last..last + 6].to_vec();
-        let mut elong = vec![0.0; na];
-        let mut row = 0;
-        for (k, &r) in rows.iter().enumerate() {
-            let own = if k + 1 == m { 6 } else { interior_len(na) };
-            let ends = (0..na).filter(|&i| self.ends_in[i] == k);
-            for (at, i) in (row + own..).zip(ends) {
-                elong[i] = f[at];
-            }
-            row += r;
-        }
-        out.extend(elong);
-        out
     }
 
     /// The tip node.
@@ -260,14 +246,15 @@ impl<'a> MultipleShooting<'a> {
             .collect()
     }
 
-    /// Offset of block `k` in the unknowns.
+    /// Offset of block `k` in the unknowns (block 0 has `6 + na`, every
+    /// later one [`interior_len`]).
     fn offset(&self, k: usize) -> usize {
-        self.cols()[..k].iter().sum()
+        unknowns(self.na(), k)
     }
 
     /// Number of unknowns.
     pub fn dim(&self) -> usize {
-        self.cols().iter().sum()
+        self.offset(self.segments())
     }
 
     /// The IVP states of all blocks from the unknowns `x`.
@@ -331,39 +318,54 @@ impl<'a> MultipleShooting<'a> {
 
     /// The residual at `x` into `f`.
     pub fn residual(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
-        let m = self.segments();
         let mut row = 0;
         let states = self.block_states(x)?;
         for (k, cur) in states.iter().enumerate() {
             let spec = self.spec(&cur.tau);
             let ivp = spec.integrate_stretch(self.stretch(k), &cur.y)?;
-            let dk = self.d_of(x, k);
-            if k + 1 < m {
-                let dn = self.d_of(x, k + 1);
-                let next = &states[k + 1].y;
-                row += self.continuity(&ivp.tip, next, (&dk, &dn), &mut f[row..]);
-            } else {
-                let (fs, ms) = residual_scales(self.robot);
-                for j in 0..3 {
-                    f[row + j] = ivp.tip_force_residual[j] * fs;
-                    f[row + 3 + j] = ivp.tip_moment_residual[j] * ms;
-                }
-                row += 6;
-            }
-            for i in (0..self.na()).filter(|&i| self.ends_in[i] == k) {
-                f[row] = ivp.elongation[i] / self.robot.body.length - dk[i];
-                row += 1;
-            }
+            let next = states.get(k + 1).map(|s| &s.y[..]);
+            row += self.segment_rows(x, k, &ivp, next, &mut f[row..]);
         }
         self.work += 1.0;
         Ok(())
     }
 
+    /// The rows of segment `k`, whose IVP ended in `ivp`, into `f`: the
+    /// continuity rows with the next block (its IVP state `next`), or the
+    /// tip balance for the last segment, then the elongation rows of the
+    /// actuators the segment records. Returns their number.
+    fn segment_rows(
+        &self,
+        x: &[f64],
+        k: usize,
+        ivp: &IvpResult,
+        next: Option<&[f64]>,
+        f: &mut [f64],
+    ) -> usize {
+        let dk = self.d_of(x, k);
+        let mut row = match next {
+            Some(y) => self.continuity(&ivp.tip, y, (dk, self.d_of(x, k + 1)), f),
+            None => {
+                let (fs, ms) = residual_scales(self.robot);
+                for j in 0..3 {
+                    f[j] = ivp.tip_force_residual[j] * fs;
+                    f[3 + j] = ivp.tip_moment_residual[j] * ms;
+                }
+                6
+            }
+        };
+        for i in (0..self.na()).filter(|&i| self.ends_in[i] == k) {
+            f[row] = ivp.elongation[i] / self.robot.body.length - dk[i];
+            row += 1;
+        }
+        row
+    }
+
     /// Block `k`'s `d / L`.
-    fn d_of(&self, x: &[f64], k: usize) -> Vec<f64> {
+    fn d_of<'x>(&self, x: &'x [f64], k: usize) -> &'x [f64] {
         let (na, o) = (self.na(), self.offset(k));
         let at = if k == 0 { o + 6 } else { o + 12 + na };
-        x[at..at + na].to_vec()
+        &x[at..at + na]
     }
 
     /// The continuity rows between the end state `end` of a segment and the
@@ -411,29 +413,27 @@ impl<'a> MultipleShooting<'a> {
             // (a segment's share of one tangent IVP over the whole grid)
             let share = (self.bounds[k + 1] - self.bounds[k]) as f64 / self.tip() as f64;
             self.work += share * (1.0 + dirs as f64 / 8.0);
-            let dk = self.d_of(x, k);
+            let next = states.get(k + 1).map(|s| &s.y[..]);
+            row += self.segment_rows(x, k, &tan.ivp, next, &mut f[row..]);
             let dcol = if k == 0 { 6 } else { 12 + na };
             let col_of = |c: usize| direction_column(k, na, c);
-            let mut own = if k + 1 < m {
-                let dn = self.d_of(x, k + 1);
-                let next = &states[k + 1].y;
-                let n = self.continuity(&tan.ivp.tip, next, (&dk, &dn), &mut f[row..]);
-                self.continuity_blocks(k, &tan, next, x);
-                n
-            } else {
-                let (fs, ms) = residual_scales(self.robot);
-                for j in 0..3 {
-                    f[row + j] = tan.ivp.tip_force_residual[j] * fs;
-                    f[row + 3 + j] = tan.ivp.tip_moment_residual[j] * ms;
-                    for c in 0..dirs {
-                        self.d[k][(j, col_of(c))] = tan.tip_force_residual[(j, c)] * fs;
-                        self.d[k][(3 + j, col_of(c))] = tan.tip_moment_residual[(j, c)] * ms;
-                    }
+            let mut own = match next {
+                Some(y) => {
+                    self.continuity_blocks(k, &tan, y, x);
+                    interior_len(na)
                 }
-                6
+                None => {
+                    let (fs, ms) = residual_scales(self.robot);
+                    for j in 0..3 {
+                        for c in 0..dirs {
+                            self.d[k][(j, col_of(c))] = tan.tip_force_residual[(j, c)] * fs;
+                            self.d[k][(3 + j, col_of(c))] = tan.tip_moment_residual[(j, c)] * ms;
+                        }
+                    }
+                    6
+                }
             };
             for i in (0..na).filter(|&i| self.ends_in[i] == k) {
-                f[row + own] = tan.ivp.elongation[i] / len - dk[i];
                 for c in 0..dirs {
                     self.d[k][(own, col_of(c))] = tan.elongation[(i, c)] / len;
                 }
@@ -443,7 +443,6 @@ impl<'a> MultipleShooting<'a> {
                 self.d[k][(own, dcol + i)] -= 1.0;
                 own += 1;
             }
-            row += own;
         }
         Ok(())
     }
@@ -541,6 +540,27 @@ impl<'a> MultipleShooting<'a> {
         for i in 0..2 * na {
             eb[(12 + i, 12 + i)] = -1.0;
         }
+    }
+
+    /// A staircase of this system's shape, for [`MultipleShooting::factorise`].
+    pub(crate) fn staircase(&self) -> Result<super::abd::Staircase> {
+        let shape = super::abd::Shape {
+            rows: self.rows(),
+            cols: self.cols(),
+        };
+        super::abd::Staircase::new(shape)
+    }
+
+    /// The Jacobian blocks of the last linearisation factorised in `lu` (of
+    /// this system's shape); whether it was found singular.
+    pub(crate) fn factorise(&self, lu: &mut super::abd::Staircase) -> bool {
+        for (k, dk) in self.d.iter().enumerate() {
+            lu.d_mut(k).copy_from(dk);
+        }
+        for (k, ek) in self.e.iter().enumerate() {
+            lu.e_mut(k).copy_from(ek);
+        }
+        lu.factorise().is_err()
     }
 
     /// The Jacobian assembled dense (for checks and small systems).
@@ -696,12 +716,8 @@ pub struct ShootingSystem<'a> {
 impl<'a> ShootingSystem<'a> {
     /// The system of `ms`.
     pub fn new(ms: MultipleShooting<'a>) -> Result<Self> {
-        let shape = super::abd::Shape {
-            rows: ms.rows(),
-            cols: ms.cols(),
-        };
         Ok(ShootingSystem {
-            lu: super::abd::Staircase::new(shape)?,
+            lu: ms.staircase()?,
             ms,
             singular: false,
         })
@@ -735,14 +751,7 @@ impl super::nleq::NonlinearSystem for ShootingSystem<'_> {
     fn linearise(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
         super::cancel::check()?;
         self.ms.linearise(x, f)?;
-        let m = self.ms.segments();
-        for k in 0..m {
-            self.lu.d_mut(k).copy_from(&self.ms.d[k]);
-            if k + 1 < m {
-                self.lu.e_mut(k).copy_from(&self.ms.e[k]);
-            }
-        }
-        self.singular = self.lu.factorise().is_err();
+        self.singular = self.ms.factorise(&mut self.lu);
         Ok(())
     }
     fn solve(&mut self, b: &[f64], dx: &mut [f64]) -> Result<bool> {

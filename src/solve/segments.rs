@@ -32,28 +32,29 @@ use crate::rod::{Grid, Robot};
 /// rounding of each segment stays at `eps G ~ 2e-14`.
 pub const GROWTH_BOUND: f64 = 100.0;
 
-/// The largest `lambda = sqrt(T / EI)` \[1/m\] along the body, with `T` the
-/// a priori bound on the axial tension (see the module docs): the fastest
-/// growth or decay rate of the bending tangents. `|F_tip + q (L - s)|` is
-/// convex in `s`, so its largest value is at the base or the tip.
-pub fn largest_rate(robot: &Robot, loads: &Loads) -> f64 {
+/// `lambda(s) = sqrt(T(s) / EI)` \[1/m\] with `T(s)` the a priori bound on
+/// the axial tension at `s` (see the module docs).
+fn rate(robot: &Robot, loads: &Loads) -> impl Fn(f64) -> f64 {
     let body = &robot.body;
     let (_, ix, iy, _) = body.section.properties();
     let ei = body.youngs_modulus * ix.min(iy);
-    let (q, f) = (body.distributed_load(), loads.tip_force);
-    let t = (f + q * body.length).norm().max(f.norm());
-    (t / ei).sqrt()
+    let (len, q, f) = (body.length, body.distributed_load(), loads.tip_force);
+    move |s: f64| ((f + q * (len - s)).norm() / ei).sqrt()
+}
+
+/// The largest `lambda` \[1/m\] along the body: the fastest growth or decay
+/// rate of the bending tangents. `|F_tip + q (L - s)|` is convex in `s`,
+/// so its largest value is at the base or the tip.
+pub fn largest_rate(robot: &Robot, loads: &Loads) -> f64 {
+    let lambda = rate(robot, loads);
+    lambda(0.0).max(lambda(robot.body.length))
 }
 
 /// The first node of each segment of `robot` under `loads` on `steps` RK4
 /// steps (node 0 first; see the module docs).
 pub fn segment_starts(robot: &Robot, loads: &Loads, steps: usize) -> Vec<usize> {
     let grid = Grid::new(robot, steps);
-    let body = &robot.body;
-    let (_, ix, iy, _) = body.section.properties();
-    let ei = body.youngs_modulus * ix.min(iy);
-    let (len, q, f) = (body.length, body.distributed_load(), loads.tip_force);
-    let lambda = |s: f64| ((f + q * (len - s)).norm() / ei).sqrt();
+    let lambda = rate(robot, loads);
     let limit = GROWTH_BOUND.ln();
     let mut starts = vec![0];
     let mut exponent = 0.0;
