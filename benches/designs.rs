@@ -9,9 +9,7 @@
 //! included) or `multiple` (`tcarod::solve::forward::solve` under
 //! `Loads::of(robot)`: multiple shooting). Every solve below, cold or warm,
 //! is the chosen solver's; a warm solve is passed the previous solution as
-//! `warm`. `multiple` does not read `SolveOptions::equilibrium_tol`, so with
-//! it `TCAROD_EQUILIBRIUM_TOL` is refused and no design is re-solved under
-//! accuracy control.
+//! `warm`. Both read `SolveOptions::equilibrium_tol` (accuracy control).
 //!
 //! `TCAROD_FAMILY` picks the family: `random` (the default,
 //! `problems::random_design`) or `stress` (`problems::stress_design`, heavy
@@ -142,7 +140,7 @@ impl Solver {
                 name: "multiple",
                 function: "tcarod::solve::forward::solve",
                 ivp_count: "a tangent IVP of k directions counts 1 + ceil(k/8)",
-                accuracy_control: false,
+                accuracy_control: true,
             },
         }
     }

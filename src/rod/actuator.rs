@@ -178,6 +178,13 @@ pub trait ForceLaw: Send + Sync + Debug {
             / (2.0 * h);
         Ok((f, de, self.input_slope(elongation, input)?))
     }
+    /// Tension \[N\] and its derivative with respect to the elongation
+    /// \[N/m\]: the first two of [`ForceLaw::tension_derivatives`], for
+    /// callers that hold the input fixed.
+    fn tension_and_slope(&self, elongation: f64, input: f64) -> Result<(f64, f64)> {
+        let (f, de, _) = self.tension_derivatives(elongation, input)?;
+        Ok((f, de))
+    }
     /// `d tension / d input` by central differences within the input bounds
     /// (step `eps^(1/3) max(1, |input|)`, one-sided at a bound).
     fn input_slope(&self, elongation: f64, input: f64) -> Result<f64> {
@@ -258,6 +265,10 @@ impl ForceLaw for TcaLaw {
             at.tension_slope(elongation)?,
             at.tension_temperature_slope(elongation)?,
         ))
+    }
+    fn tension_and_slope(&self, elongation: f64, input: f64) -> Result<(f64, f64)> {
+        let at = self.0.at(input)?;
+        Ok((at.tension(elongation)?, at.tension_slope(elongation)?))
     }
     /// Exact: [`crate::tca::TcaAt::tension_temperature_slope`].
     fn input_slope(&self, elongation: f64, input: f64) -> Result<f64> {

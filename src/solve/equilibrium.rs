@@ -143,12 +143,26 @@ const REFINEMENTS: usize = 3;
 /// `evaluations` count every solve, and its `continuation_steps` are the
 /// first solve's path (unless a re-solve needed one of its own).
 /// [`Error::NotConverged`] if the tolerance is not met after three
-/// refinements or within [`MAX_STEPS`].
+/// refinements or within [`MAX_STEPS`]. Re-solves by single shooting
+/// ([`solve_loaded`]); [`refine_with`] takes the solver.
 pub fn refine_to_equilibrium(
     robot: &Robot,
     inputs: &[f64],
     opts: &SolveOptions,
+    sol: Solution,
+) -> Result<Solution> {
+    let resolve =
+        |o: &SolveOptions, w: &Solution| solve_loaded(robot, inputs, &w.loads, o, Some(w));
+    refine_with(robot, opts, sol, resolve)
+}
+
+/// [`refine_to_equilibrium`] with the solver `resolve(opts, warm)`, which
+/// solves the same problem again on `opts.steps`, warm from `warm`.
+pub fn refine_with(
+    robot: &Robot,
+    opts: &SolveOptions,
     mut sol: Solution,
+    resolve: impl Fn(&SolveOptions, &Solution) -> Result<Solution>,
 ) -> Result<Solution> {
     let Some(target) = opts.equilibrium_tol else {
         return Ok(sol);
@@ -175,7 +189,7 @@ pub fn refine_to_equilibrium(
         o.steps *= factor;
         o.max_evaluations = opts.max_evaluations.saturating_sub(evaluations).max(1);
         cancel::check()?;
-        let next = solve_loaded(robot, inputs, &sol.loads, &o, Some(&sol))?;
+        let next = resolve(&o, &sol)?;
         (iterations, evaluations) = (iterations + next.iterations, evaluations + next.evaluations);
         sol = next;
         err = equilibrium(robot, &sol).relative;

@@ -1,14 +1,14 @@
 //! The forward solve by multiple shooting (`docs/solver.md`): segments
 //! placed before the solve ([`super::segments`]); the damped Newton method
 //! ([`super::nleq`]) on the multiple-shooting system ([`super::ms`]) from a
-//! first guess; where Newton needs damping below the continuation
-//! corrector's limit ([`super::arclength::CORRECTOR_LAMBDA_MIN`]: the
-//! direct solve is the continuation's first step, the whole path at once),
-//! pseudo-arclength continuation in the inputs and loads
+//! first guess (the actuators' unknowns their law coordinates,
+//! [`super::law_coordinate`]); where Newton fails (its damping factor below
+//! [`super::nleq::DEFAULT_LAMBDA_MIN`], or no convergence within its
+//! iterations), pseudo-arclength continuation in the inputs and loads
 //! ([`super::homotopy`]) from the unloaded body at rest, or from a warm
 //! start's inputs and loads; the solution assembled segment by segment. A
-//! cold solve runs first on a coarse grid ([`COARSENING`]), whose solution
-//! and Jacobian start Newton on the requested grid.
+//! solve, cold or warm, runs first on a coarse grid ([`COARSENING`]), whose
+//! solution and Jacobian start Newton on the requested grid.
 
 use std::time::Instant;
 
@@ -28,9 +28,10 @@ use crate::rod::{FlatNodes, Grid, Robot, RodState};
 /// integration succeeds; else each segment starts from the straight
 /// reference configuration at its node (`p = s nu*_z e_z`, the identity
 /// rotation, the reference strains, no elongation). With `warm`, the
-/// states of a neighbouring solution at the segments' nodes (its recorded
-/// node `k` is grid node `k`; segments never start at an anchor, where a
-/// recorded state is after its loads).
+/// states of a neighbouring solution at the segments' nodes: on its own
+/// grid, the recorded node nearest in arc length that is not an anchor (a
+/// recorded state there is after the anchor's loads; segments never start
+/// at one).
 pub(crate) fn first_guess<'a>(
     robot: &'a Robot,
     inputs: &'a [f64],
@@ -40,13 +41,21 @@ pub(crate) fn first_guess<'a>(
     warm: Option<&Solution>,
 ) -> Result<(MultipleShooting<'a>, Vec<f64>)> {
     let na = robot.actuators.len();
-    if let Some(w) = warm.filter(|w| w.steps == steps && w.s.len() > *starts.last().unwrap()) {
-        let state = |k: usize| RodState {
-            p: w.positions[k],
-            q: *UnitQuaternion::from_matrix(&w.rotations[k]).quaternion(),
-            v: w.nu[k],
-            u: w.omega[k],
-            delta: w.elongation_profile.row(k).iter().copied().collect(),
+    if let Some(w) = warm {
+        let (grid, own) = (Grid::new(robot, steps), Grid::new(robot, w.steps));
+        let nearest = |s: f64| {
+            let inner = (1..own.tip()).filter(|&j| !own.is_breakpoint(j));
+            inner.min_by(|&a, &b| (own.s(a) - s).abs().total_cmp(&(own.s(b) - s).abs()))
+        };
+        let state = |k: usize| {
+            let j = nearest(grid.s(k)).unwrap_or(0);
+            RodState {
+                p: w.positions[j],
+                q: *UnitQuaternion::from_matrix(&w.rotations[j]).quaternion(),
+                v: w.nu[j],
+                u: w.omega[j],
+                delta: w.elongation_profile.row(j).iter().copied().collect(),
+            }
         };
         return with_blocks(robot, inputs, loads, steps, (starts, base), state);
     }
@@ -76,13 +85,12 @@ fn with_blocks<'a>(
     (starts, base): (&[usize], &[f64]),
     state: impl Fn(usize) -> RodState,
 ) -> Result<(MultipleShooting<'a>, Vec<f64>)> {
-    let na = robot.actuators.len();
     let charts = vec![Quaternion::identity(); starts.len()];
     let mut ms = MultipleShooting::new(robot, inputs, loads, steps, starts, charts)?;
     let mut x = vec![0.0; ms.dim()];
-    x[..6 + na].copy_from_slice(&base[..6 + na]);
+    let sigma = ms.set_base(&mut x, base)?;
     for (k, &node) in starts.iter().enumerate().skip(1) {
-        ms.set_block(&mut x, k, &state(node), &base[6..6 + na]);
+        ms.set_block(&mut x, k, &state(node), &sigma);
     }
     Ok((ms, x))
 }
@@ -125,12 +133,12 @@ pub(crate) fn assemble(
     let mut ivp = last.expect("at least one segment");
     ivp.elongation = elongation;
     let len = robot.body.length;
-    let delta: Vec<f64> = x[6..6 + na].iter().map(|d| d * len).collect();
+    let base = ms.base(x)?;
+    let delta: Vec<f64> = base[6..].iter().map(|d| d * len).collect();
     let r = super::residual::scaled_residual(robot, &ivp, &delta);
-    let base = &x[..6 + na];
     Ok(assemble_flat(
         robot,
-        (ms.inputs(), &ms.loads(), base),
+        (ms.inputs(), &ms.loads(), &base),
         (ms.steps(), iterations, evaluations),
         r,
         (ivp, nodes),
@@ -138,7 +146,7 @@ pub(crate) fn assemble(
     ))
 }
 
-/// Share of the RK4 steps of the grid that a cold solve's first guess is
+/// Share of the RK4 steps of the grid that a solve's first guess is
 /// solved on ([`SolveOptions::presolve`]): the coarse grid's IVPs cost a
 /// tenth of the fine grid's, its solution differs from the fine one by
 /// RK4's error on ten times the step (`~1e4` times the fine grid's), and
@@ -160,7 +168,9 @@ struct Solved<'a> {
 }
 
 /// Solve the forward problem of `robot` at `inputs` under `loads` by
-/// multiple shooting (see the module docs).
+/// multiple shooting (see the module docs); with `opts.equilibrium_tol`,
+/// on grids refined until the global equilibrium holds to it
+/// ([`super::equilibrium::refine_with`]).
 pub fn solve(
     robot: &Robot,
     inputs: &[f64],
@@ -169,16 +179,37 @@ pub fn solve(
     warm: Option<&Solution>,
 ) -> Result<Solution> {
     super::shooting::validate(robot, inputs, loads, opts, warm)?;
+    let sol = solve_on_grid(robot, inputs, loads, opts, warm)?;
+    let resolve = |o: &SolveOptions, w: &Solution| solve_on_grid(robot, inputs, loads, o, Some(w));
+    super::equilibrium::refine_with(robot, opts, sol, resolve)
+}
+
+/// [`solve`] on the grid of `opts.steps`.
+fn solve_on_grid(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+) -> Result<Solution> {
     super::cancel::check()?;
     let starts = segment_starts(robot, loads, opts.steps);
     let deadline = opts.time_limit.map(|t| Instant::now() + t);
     let mut spent = 0.0;
-    let coarse = match warm {
-        None if opts.presolve => coarse_grid(robot, loads, opts.steps, &starts),
-        _ => None,
+    let coarse = match opts.presolve {
+        true => coarse_grid(robot, loads, opts.steps, &starts),
+        false => None,
     };
     if let Some((csteps, cstarts)) = coarse {
-        match presolved(robot, inputs, loads, opts, csteps, (&starts, &cstarts)) {
+        match presolved(
+            robot,
+            inputs,
+            loads,
+            opts,
+            csteps,
+            (&starts, &cstarts),
+            warm,
+        ) {
             Ok(done) => return finish(done),
             Err((e, _)) if !continues(&e) => return Err(e),
             Err((_, work)) => spent = work,
@@ -225,10 +256,10 @@ fn finish(done: Solved<'_>) -> Result<Solution> {
     Ok(sol)
 }
 
-/// The cold solve from the solution on the coarse grid ([`COARSENING`]):
-/// the same segments (at the coarse nodes nearest the fine ones), its
-/// unknowns as the first guess and its last Jacobian as the first
-/// factorisation on the fine grid. On failure, the error and the work
+/// The solve from the solution on the coarse grid ([`COARSENING`]), cold
+/// or warm from `warm`: the same segments (at the coarse nodes nearest the
+/// fine ones), its unknowns as the first guess and its last Jacobian as the
+/// first factorisation on the fine grid. On failure, the error and the work
 /// spent (in IVPs of the fine grid).
 fn presolved<'a>(
     robot: &'a Robot,
@@ -237,6 +268,7 @@ fn presolved<'a>(
     opts: &SolveOptions,
     csteps: usize,
     (starts, cstarts): (&[usize], &[usize]),
+    warm: Option<&Solution>,
 ) -> std::result::Result<Solved<'a>, (crate::error::Error, f64)> {
     let started = Instant::now();
     // a coarse IVP costs `scale` of a fine one: the budget and the work
@@ -247,7 +279,7 @@ fn presolved<'a>(
         max_evaluations: (opts.max_evaluations as f64 / scale) as usize,
         ..*opts
     };
-    let c = solve_on(robot, inputs, loads, &coarse, cstarts, None);
+    let c = solve_on(robot, inputs, loads, &coarse, cstarts, warm);
     let c = c.map_err(|e| match e {
         crate::error::Error::NotConverged {
             solver,
@@ -367,14 +399,7 @@ fn solve_on<'a>(
     }
     let (ms, x0) = first_guess(robot, inputs, *loads, opts.steps, (starts, &base), warm)?;
     let mut sys = ShootingSystem::new(ms)?;
-    // the direct solve is the continuation's first step, the whole path at
-    // once: it hands over as a corrector does, when it needs damping below
-    // the corrector's limit
-    let dopts = NleqOptions {
-        lambda_min: super::arclength::CORRECTOR_LAMBDA_MIN,
-        ..nopts.clone()
-    };
-    match nleq::solve(&mut sys, &x0, &dopts, "forward shooting") {
+    match nleq::solve(&mut sys, &x0, &nopts, "forward shooting") {
         Ok(out) => Ok(Solved {
             sys,
             x: out.x,

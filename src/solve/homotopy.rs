@@ -71,6 +71,9 @@ pub struct LoadPath<'a> {
     row: (Vec<f64>, f64),
     singular: bool,
     work: f64,
+    /// Where the next evaluation's law coordinates start their inversion
+    /// ([`MultipleShooting::hints`]): the last evaluation's elongations.
+    hints: Vec<f64>,
 }
 
 impl<'a> LoadPath<'a> {
@@ -98,6 +101,7 @@ impl<'a> LoadPath<'a> {
             row: (Vec::new(), 0.0),
             singular: false,
             work: 0.0,
+            hints: Vec::new(),
         }
     }
 
@@ -133,18 +137,21 @@ impl<'a> LoadPath<'a> {
         let charts = self.charts.clone();
         let mut ms =
             MultipleShooting::new(&self.at, &inputs, loads, self.steps, &self.starts, charts)?;
-        if jacobian {
-            ms.linearise(x, f)?;
-            let lu = match self.lu.take() {
-                Some(lu) if lu.shape().rows == ms.rows() && lu.shape().cols == ms.cols() => lu,
-                _ => ms.staircase()?,
-            };
-            self.singular = ms.factorise(self.lu.insert(lu));
-        } else {
-            ms.residual(x, f)?;
-        }
+        ms.set_hints(&self.hints);
+        let out = match jacobian {
+            true => ms.linearise(x, f).and_then(|_| {
+                let lu = match self.lu.take() {
+                    Some(lu) if lu.shape().rows == ms.rows() && lu.shape().cols == ms.cols() => lu,
+                    _ => ms.staircase()?,
+                };
+                self.singular = ms.factorise(self.lu.insert(lu));
+                Ok(())
+            }),
+            false => ms.residual(x, f),
+        };
+        self.hints = ms.hints();
         self.work += ms.work;
-        Ok(())
+        out
     }
 
     /// Solve `A dx = b` in place with the last factorisation.

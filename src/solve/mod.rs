@@ -15,6 +15,7 @@ pub mod forward;
 pub mod guess;
 pub mod homotopy;
 mod hop_finish;
+pub mod law_coordinate;
 pub mod limit;
 pub mod ms;
 pub mod newton;

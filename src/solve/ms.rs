@@ -5,20 +5,20 @@
 //! of Boundary Value Problems for ODEs*, SIAM 1995, sec. 4.3).
 //!
 //! # Unknowns (scaled to be dimensionless and of order one)
-//! * block 0, the base: `nu(0)`, `L omega(0)`, `d / L` (`d_i` the guessed
-//!   elongation of actuator `i`, which sets its tension `tau_i(d_i)` by its
-//!   force law);
+//! * block 0, the base: `nu(0)`, `L omega(0)`, `sigma` (`sigma_i` the law
+//!   coordinate of actuator `i`, [`super::law_coordinate`], which sets its
+//!   elongation `d_i` and its tension `tau_i(d_i)`);
 //! * block `k >= 1`, the state at the first node of segment `k`: `p / L`,
 //!   `theta` (the rotation `q = q_ref exp(theta / 2)` from a reference
 //!   quaternion fixed for the solve), `nu`, `L omega`, `delta / L` (the
-//!   strings' elongations so far), and again `d / L`: the actuator
-//!   elongations are carried as constant states (`d' = 0`) so that every
-//!   equation couples one block with the next only (AMR sec. 1.4).
+//!   strings' elongations so far), and again `sigma`: the actuators' law
+//!   coordinates are carried as constant states (`sigma' = 0`) so that
+//!   every equation couples one block with the next only (AMR sec. 1.4).
 //!
 //! # Residual
 //! * block `k` below the last: the end state of segment `k` minus the start
 //!   of segment `k + 1` in the same scaling (the rotation as `2 vec(q_b^-1
-//!   q_a)`, which is `theta` to first order), `d_k - d_(k+1)`, and
+//!   q_a)`, which is `theta` to first order), `sigma_k - sigma_(k+1)`, and
 //!   `(delta_i(s_end,i) - d_i) / L` for the actuators whose distal anchor
 //!   the segment leaves;
 //! * the last block: the tip balance (32)-(33) as strain errors (`r_F L^2 /
@@ -33,12 +33,13 @@
 
 use nalgebra::{DMatrix, Quaternion, Vector3};
 
+use super::law_coordinate::LawCoordinate;
 use super::residual::{residual_scales, Loads};
 use crate::error::{Error, Result};
 use crate::rod::{Grid, IvpResult, IvpSpec, Robot, Stretch, TangentSeeds, BASE_STATES};
 
 /// Scaled state values per interior block: `p, theta, nu, omega` and the
-/// `delta` and `d` of each actuator.
+/// `delta` and `sigma` of each actuator.
 fn interior_len(na: usize) -> usize {
     12 + 2 * na
 }
@@ -63,6 +64,11 @@ pub struct MultipleShooting<'a> {
     charts: Vec<Quaternion<f64>>,
     /// For each actuator, the segment that records its elongation.
     ends_in: Vec<usize>,
+    /// The actuators' law coordinates at their inputs.
+    laws: Vec<LawCoordinate<'a>>,
+    /// The last elongation \[m\] of each block's actuators, where the next
+    /// inversion of the law coordinate starts ([`LawCoordinate::point`]).
+    hints: Vec<std::cell::Cell<f64>>,
     /// `D_k` and `E_k` of the last linearisation.
     pub(crate) d: Vec<DMatrix<f64>>,
     pub(crate) e: Vec<DMatrix<f64>>,
@@ -71,12 +77,16 @@ pub struct MultipleShooting<'a> {
     pub work: f64,
 }
 
-/// The state of one block in IVP units, with the tensions it implies.
+/// The state of one block in IVP units, with the elongations and tensions
+/// its law coordinates imply.
 struct BlockState {
     y: Vec<f64>,
     tau: Vec<f64>,
-    /// `d tau_i / d (d_i / L)` \[N\].
+    /// `d tau_i / d sigma_i` \[N\].
     slope: Vec<f64>,
+    /// `d_i / L` and `d (d_i / L) / d sigma_i`.
+    d: Vec<f64>,
+    dd: Vec<f64>,
 }
 
 impl<'a> MultipleShooting<'a> {
@@ -117,7 +127,11 @@ impl<'a> MultipleShooting<'a> {
                     .unwrap_or(starts.len() - 1)
             })
             .collect();
+        let laws = (robot.actuators.iter().zip(inputs))
+            .map(|(a, &input)| LawCoordinate::of_actuator(robot, a, input))
+            .collect::<Result<_>>()?;
         Ok(MultipleShooting {
+            laws,
             robot,
             inputs,
             loads,
@@ -125,6 +139,7 @@ impl<'a> MultipleShooting<'a> {
             bounds,
             charts,
             ends_in,
+            hints: vec![std::cell::Cell::new(0.0); starts.len() * robot.actuators.len()],
             d: Vec::new(),
             e: Vec::new(),
             work: 0.0,
@@ -135,6 +150,7 @@ impl<'a> MultipleShooting<'a> {
     /// shooting unknowns `base` (`nu(0)`, `L omega(0)`, `d / L`), each
     /// segment started where the previous one ends: the charts are those
     /// rotations, so every `theta` is zero and every continuity defect too.
+    /// An error where an elongation lies outside its force law.
     pub fn chained(
         robot: &'a Robot,
         inputs: &'a [f64],
@@ -145,29 +161,61 @@ impl<'a> MultipleShooting<'a> {
     ) -> Result<(Self, Vec<f64>)> {
         let charts = vec![Quaternion::identity(); starts.len()];
         let mut ms = MultipleShooting::new(robot, inputs, loads, steps, starts, charts)?;
-        let na = ms.na();
         let mut x = vec![0.0; ms.dim()];
-        x[..6 + na].copy_from_slice(&base[..6 + na]);
+        let sigma = ms.set_base(&mut x, base)?;
         let st = ms.block_state(&x, 0)?;
         let (mut y, tau) = (st.y, st.tau);
         for k in 1..ms.segments() {
             let spec = ms.spec(&tau);
             let end = spec.integrate_stretch(ms.stretch(k - 1), &y)?.tip;
             y = crate::rod::FlatNodes::from_states(&[(0.0, end.clone())]).y;
-            ms.set_block(&mut x, k, &end, &base[6..6 + na]);
+            ms.set_block(&mut x, k, &end, &sigma);
         }
         Ok((ms, x))
     }
 
+    /// Block 0 of the unknowns `x` at the single-shooting unknowns `base`
+    /// (`nu(0)`, `L omega(0)`, `d / L`); returns its law coordinates. An
+    /// error where an elongation lies outside its force law.
+    pub(crate) fn set_base(&self, x: &mut [f64], base: &[f64]) -> Result<Vec<f64>> {
+        let (na, len) = (self.na(), self.robot.body.length);
+        x[..6].copy_from_slice(&base[..6]);
+        for (i, law) in self.laws.iter().enumerate() {
+            x[6 + i] = law.of(base[6 + i] * len).map_err(|e| outside_law(e, i))?;
+        }
+        Ok(x[6..6 + na].to_vec())
+    }
+
+    /// The elongations \[m\] where the next inversions of the law
+    /// coordinates start, per block and actuator.
+    pub(crate) fn hints(&self) -> Vec<f64> {
+        self.hints.iter().map(|h| h.get()).collect()
+    }
+
+    /// Start the next inversions of the law coordinates at `hints` (as
+    /// [`MultipleShooting::hints`] of a system of the same shape).
+    pub(crate) fn set_hints(&mut self, hints: &[f64]) {
+        for (h, &v) in self.hints.iter().zip(hints) {
+            h.set(v);
+        }
+    }
+
+    /// The single-shooting unknowns (`nu(0)`, `L omega(0)`, `d / L`) of
+    /// block 0 of `x`.
+    pub fn base(&self, x: &[f64]) -> Result<Vec<f64>> {
+        let st = self.block_state(x, 0)?;
+        Ok(x[..6].iter().chain(&st.d).copied().collect())
+    }
+
     /// Block `k >= 1` of the unknowns `x` at the rod state `state`, with
-    /// the actuator elongations `d_scaled` (`d / L`): its chart becomes the
+    /// the actuators' law coordinates `sigma`: its chart becomes the
     /// state's rotation, so its `theta` is zero.
     pub(crate) fn set_block(
         &mut self,
         x: &mut [f64],
         k: usize,
         state: &crate::rod::RodState,
-        d_scaled: &[f64],
+        sigma: &[f64],
     ) {
         let (na, len, o) = (self.na(), self.robot.body.length, self.offset(k));
         self.charts[k] = state.q;
@@ -179,7 +227,7 @@ impl<'a> MultipleShooting<'a> {
         }
         for i in 0..na {
             x[o + 12 + i] = state.delta[i] / len;
-            x[o + 12 + na + i] = d_scaled[i];
+            x[o + 12 + na + i] = sigma[i];
         }
     }
 
@@ -269,14 +317,14 @@ impl<'a> MultipleShooting<'a> {
         let (na, len) = (self.na(), self.robot.body.length);
         let o = self.offset(k);
         let mut y = vec![0.0; BASE_STATES + na];
-        let dscaled: &[f64];
+        let sigma: &[f64];
         if k == 0 {
             y[3] = 1.0;
             y[7..10].copy_from_slice(&x[o..o + 3]);
             for j in 0..3 {
                 y[10 + j] = x[o + 3 + j] / len;
             }
-            dscaled = &x[o + 6..o + 6 + na];
+            sigma = &x[o + 6..o + 6 + na];
         } else {
             let b = &x[o..o + interior_len(na)];
             for j in 0..3 {
@@ -289,19 +337,27 @@ impl<'a> MultipleShooting<'a> {
             for i in 0..na {
                 y[BASE_STATES + i] = b[12 + i] * len;
             }
-            dscaled = &b[12 + na..12 + 2 * na];
+            sigma = &b[12 + na..12 + 2 * na];
         }
-        let mut tau = Vec::with_capacity(na);
-        let mut slope = Vec::with_capacity(na);
-        for (i, a) in self.robot.actuators.iter().enumerate() {
-            let (t, dt, _) = a
-                .law
-                .tension_derivatives(dscaled[i] * len, self.inputs[i])
+        let mut st = BlockState {
+            y,
+            tau: Vec::with_capacity(na),
+            slope: Vec::with_capacity(na),
+            d: Vec::with_capacity(na),
+            dd: Vec::with_capacity(na),
+        };
+        for (i, law) in self.laws.iter().enumerate() {
+            let hint = &self.hints[k * na + i];
+            let p = law
+                .point(sigma[i], hint.get())
                 .map_err(|e| outside_law(e, i))?;
-            tau.push(t);
-            slope.push(dt * len);
+            hint.set(p.d);
+            st.tau.push(p.tau);
+            st.slope.push(p.dtau);
+            st.d.push(p.d / len);
+            st.dd.push(p.dd / len);
         }
-        Ok(BlockState { y, tau, slope })
+        Ok(st)
     }
 
     fn spec<'s>(&'s self, tau: &'s [f64]) -> IvpSpec<'s> {
@@ -324,27 +380,28 @@ impl<'a> MultipleShooting<'a> {
             let spec = self.spec(&cur.tau);
             let ivp = spec.integrate_stretch(self.stretch(k), &cur.y)?;
             let next = states.get(k + 1).map(|s| &s.y[..]);
-            row += self.segment_rows(x, k, &ivp, next, &mut f[row..]);
+            row += self.segment_rows(x, (k, cur), &ivp, next, &mut f[row..]);
         }
         self.work += 1.0;
         Ok(())
     }
 
-    /// The rows of segment `k`, whose IVP ended in `ivp`, into `f`: the
-    /// continuity rows with the next block (its IVP state `next`), or the
-    /// tip balance for the last segment, then the elongation rows of the
-    /// actuators the segment records. Returns their number.
+    /// The rows of segment `k` (block state `cur`), whose IVP ended in
+    /// `ivp`, into `f`: the continuity rows with the next block (its IVP
+    /// state `next`), or the tip balance for the last segment, then the
+    /// elongation rows of the actuators the segment records. Returns their
+    /// number.
     fn segment_rows(
         &self,
         x: &[f64],
-        k: usize,
+        (k, cur): (usize, &BlockState),
         ivp: &IvpResult,
         next: Option<&[f64]>,
         f: &mut [f64],
     ) -> usize {
-        let dk = self.d_of(x, k);
+        let sigma = (self.sigma_of(x, k), self.sigma_of(x, k + 1));
         let mut row = match next {
-            Some(y) => self.continuity(&ivp.tip, y, (dk, self.d_of(x, k + 1)), f),
+            Some(y) => self.continuity(&ivp.tip, y, sigma, f),
             None => {
                 let (fs, ms) = residual_scales(self.robot);
                 for j in 0..3 {
@@ -355,22 +412,22 @@ impl<'a> MultipleShooting<'a> {
             }
         };
         for i in (0..self.na()).filter(|&i| self.ends_in[i] == k) {
-            f[row] = ivp.elongation[i] / self.robot.body.length - dk[i];
+            f[row] = ivp.elongation[i] / self.robot.body.length - cur.d[i];
             row += 1;
         }
         row
     }
 
-    /// Block `k`'s `d / L`.
-    fn d_of<'x>(&self, x: &'x [f64], k: usize) -> &'x [f64] {
+    /// Block `k`'s law coordinates `sigma` (empty past the last block).
+    fn sigma_of<'x>(&self, x: &'x [f64], k: usize) -> &'x [f64] {
         let (na, o) = (self.na(), self.offset(k));
         let at = if k == 0 { o + 6 } else { o + 12 + na };
-        &x[at..at + na]
+        x.get(at..at + na).unwrap_or(&[])
     }
 
     /// The continuity rows between the end state `end` of a segment and the
-    /// next block's start state `start` (an IVP state), with their `d / L`,
-    /// into `f`; returns the number of rows.
+    /// next block's start state `start` (an IVP state), with their law
+    /// coordinates, into `f`; returns the number of rows.
     fn continuity(
         &self,
         end: &crate::rod::RodState,
@@ -414,7 +471,7 @@ impl<'a> MultipleShooting<'a> {
             let share = (self.bounds[k + 1] - self.bounds[k]) as f64 / self.tip() as f64;
             self.work += share * (1.0 + dirs as f64 / 8.0);
             let next = states.get(k + 1).map(|s| &s.y[..]);
-            row += self.segment_rows(x, k, &tan.ivp, next, &mut f[row..]);
+            row += self.segment_rows(x, (k, cur), &tan.ivp, next, &mut f[row..]);
             let dcol = if k == 0 { 6 } else { 12 + na };
             let col_of = |c: usize| direction_column(k, na, c);
             let mut own = match next {
@@ -440,7 +497,7 @@ impl<'a> MultipleShooting<'a> {
                 if k > 0 {
                     self.d[k][(own, 12 + i)] += 1.0;
                 }
-                self.d[k][(own, dcol + i)] -= 1.0;
+                self.d[k][(own, dcol + i)] -= cur.dd[i];
                 own += 1;
             }
         }
@@ -448,8 +505,8 @@ impl<'a> MultipleShooting<'a> {
     }
 
     /// The seed directions of segment `k`'s tangent IVP from its block
-    /// state `st`: block 0's `nu`, `L omega` and `d / L`; an interior
-    /// block's `theta`, `nu`, `L omega` and `d / L` (its `p` and `delta`
+    /// state `st`: block 0's `nu`, `L omega` and `sigma`; an interior
+    /// block's `theta`, `nu`, `L omega` and `sigma` (its `p` and `delta`
     /// enter nothing but themselves). Returns their number and the seeds.
     fn seeds(&self, x: &[f64], k: usize, st: &BlockState) -> (usize, TangentSeeds) {
         let (na, len) = (self.na(), self.robot.body.length);
@@ -689,10 +746,9 @@ impl MultipleShooting<'_> {
         };
         let vmax = v.iter().fold(0.0f64, |m, a| m.max(a.abs()));
         let umax = u.iter().fold(0.0f64, |m, a| m.max(a.abs())) / len;
-        let dl = self.d_of(x, self.segments() - 1);
-        let tau: f64 = (self.robot.actuators.iter().zip(dl.iter()).zip(self.inputs))
-            .map(|((a, d), &q)| a.law.tension(d * len, q).map_or(0.0, f64::abs))
-            .sum();
+        let tau: f64 = self
+            .block_state(x, self.segments() - 1)
+            .map_or(0.0, |st| st.tau.iter().map(|t| t.abs()).sum());
         let f = fs * (kse.max() * vmax + self.loads.tip_force.amax() + tau);
         let m = ms * (kbt.max() * umax * len + self.loads.tip_moment.amax() + tau * len);
         let grown = if self.segments() > 1 {

@@ -34,7 +34,10 @@ pub struct SolveOptions {
     /// along warm sweeps of Fig. 6 and the steel robot 40-60 % a step) but
     /// integrates more, cheap, coarse IVPs, each counted in
     /// `Solution.evaluations`; the solution meets `tol` on the full grid
-    /// either way.
+    /// either way. The multiple-shooting solve
+    /// ([`crate::solve::forward::solve`]) solves on that grid first, cold
+    /// or warm, and starts Newton on the full grid from its solution and
+    /// Jacobian.
     pub presolve: bool,
     /// Accuracy control (opt-in; `None`, the default: the grid is `steps`):
     /// the largest relative error of the global equilibrium check

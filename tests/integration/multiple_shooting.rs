@@ -187,3 +187,45 @@ fn budgets_bound_the_solve() {
         "{bad:?}"
     );
 }
+
+/// Accuracy control: with `equilibrium_tol`, the solve refines its grid
+/// until the global equilibrium (base wrench against the loads, an
+/// independent check of the discrete solution) holds to the tolerance. On
+/// heavy hanging and horizontal bodies, whose 100-step equilibrium error is
+/// 1e-5 to 1e-2, a tolerance of 1e-6 needs a finer grid, which the
+/// solution reports; its tip agrees with a plain solve on that grid.
+#[test]
+fn refines_the_grid_to_an_equilibrium_tolerance() {
+    let target = 1e-6;
+    let mut refined = 0;
+    for i in 0..12 {
+        let d = stress_design(STRESS_SEED, i);
+        if Orientation::of(&d.robot.body) == Some(Orientation::Upright) {
+            continue;
+        }
+        let loads = Loads::of(&d.robot);
+        let opts = SolveOptions {
+            equilibrium_tol: Some(target),
+            ..Default::default()
+        };
+        let sol = forward::solve(&d.robot, &d.inputs, &loads, &opts, None)
+            .unwrap_or_else(|e| panic!("stress design {i} ({}): {e}", d.summary()));
+        let eq = equilibrium(&d.robot, &sol).relative;
+        assert!(eq <= target, "stress design {i}: equilibrium {eq:.1e}");
+        if sol.steps > SolveOptions::default().steps {
+            refined += 1;
+            let plain = SolveOptions {
+                steps: sol.steps,
+                ..Default::default()
+            };
+            let again = forward::solve(&d.robot, &d.inputs, &loads, &plain, None).unwrap();
+            // both solve the same discrete equations to tol = 1e-10
+            let dist = (again.tip_position() - sol.tip_position()).norm();
+            assert!(
+                dist <= 1e-8 * d.robot.body.length,
+                "design {i}: {dist:.1e} m"
+            );
+        }
+    }
+    assert!(refined >= 3, "{refined} designs needed a finer grid");
+}
