@@ -131,7 +131,10 @@ impl Routing {
 ///
 /// The rod model (eqs 22-33) never looks inside: any law that returns a
 /// tension works, which is the paper's point that the equations hold for any
-/// string-like actuator.
+/// string-like actuator. The tension must not decrease as the elongation
+/// grows (a string pulls harder the more it is stretched): the
+/// multiple-shooting solver's actuator unknown, a coordinate along the
+/// law's curve, relies on it ([`crate::solve::law_coordinate`]).
 pub trait ForceLaw: Send + Sync + Debug {
     /// Tension \[N\] (positive pulls the anchors together) at total elongation
     /// `elongation` \[m\] (current length minus reference length) and input
