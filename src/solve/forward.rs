@@ -41,8 +41,12 @@ pub(crate) fn first_guess<'a>(
     warm: Option<&Solution>,
 ) -> Result<(MultipleShooting<'a>, Vec<f64>)> {
     let na = robot.actuators.len();
-    if let Some(w) = warm {
-        let (grid, own) = (Grid::new(robot, steps), Grid::new(robot, w.steps));
+    // (a solution of another robot, whose nodes are not this robot's grid
+    // at its steps, gives no states)
+    let own_grid =
+        |w: &Solution| Some(Grid::new(robot, w.steps)).filter(|g| g.tip() + 1 == w.s.len());
+    if let Some((w, own)) = warm.and_then(|w| own_grid(w).map(|g| (w, g))) {
+        let grid = Grid::new(robot, steps);
         let nearest = |s: f64| {
             let inner = (1..own.tip()).filter(|&j| !own.is_breakpoint(j));
             inner.min_by(|&a, &b| (own.s(a) - s).abs().total_cmp(&(own.s(b) - s).abs()))
