@@ -180,10 +180,7 @@ impl Design {
             .zip(&self.kinds)
             .zip(&self.inputs)
             .map(|((a, k), x)| {
-                let route = match a.routing {
-                    Routing::Straight { .. } => "straight",
-                    Routing::Helix { .. } => "helix",
-                };
+                let route = a.routing.kind();
                 format!(
                     "{k:?} {route} [{:.0},{:.0}] mm @ {x:.4e}",
                     a.s_start * 1e3,
@@ -394,10 +391,7 @@ fn draw_actuator(
         _ => 0.05 * half_min,
     };
     let routing = draw_routing(rng, &section, half_min, own, span);
-    let offset = match routing {
-        Routing::Straight { x, y } => x.hypot(y),
-        Routing::Helix { radius, .. } => radius,
-    };
+    let offset = routing.distance();
     // tendon curvature: a tip rotation theta over the span, capped so that
     // the body's surface strain kappa * (half width) stays <= 0.3, and the
     // tension E I kappa / r capped at 0.2 E A / (actuators): the body

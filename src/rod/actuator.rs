@@ -72,6 +72,15 @@ impl Routing {
         }
     }
 
+    /// Distance \[m\] of the routing from the centre line (constant along
+    /// either kind).
+    pub fn distance(&self) -> f64 {
+        match *self {
+            Routing::Straight { x, y } => x.hypot(y),
+            Routing::Helix { radius, .. } => radius,
+        }
+    }
+
     /// The constructor's arguments by name, in order (SI units).
     pub fn parameters(&self) -> Vec<(&'static str, f64)> {
         match *self {

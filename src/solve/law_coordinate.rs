@@ -29,7 +29,7 @@
 //! uniquely.
 
 use crate::error::Result;
-use crate::rod::{Actuator, ForceLaw, Robot, Routing};
+use crate::rod::{Actuator, ForceLaw, Robot};
 
 /// An actuator at law coordinate `sigma`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -61,14 +61,11 @@ impl<'a> LawCoordinate<'a> {
     /// module docs).
     pub(crate) fn of_actuator(robot: &Robot, a: &'a Actuator, input: f64) -> Result<Self> {
         let body = &robot.body;
-        let (area, ix, iy, _) = body.section.properties();
-        let r = match a.routing {
-            Routing::Straight { x, y } => x.hypot(y),
-            Routing::Helix { radius, .. } => radius,
-        };
+        let (k_nu, k_omega) = body.stiffness();
+        let (ea, ei) = (k_nu[(2, 2)], k_omega[(0, 0)].min(k_omega[(1, 1)]));
+        let r = a.routing.distance();
         let span = a.s_end.min(body.length) - a.s_start;
-        let e = body.youngs_modulus;
-        let c = span * (1.0 / (e * area) + r * r / (e * ix.min(iy)));
+        let c = span * (1.0 / ea + r * r / ei);
         Self::new(a.law.as_ref(), input, body.length, c)
     }
 
