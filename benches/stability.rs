@@ -7,7 +7,10 @@
 //! First an interleaved run (each round times every contender once, by
 //! thread CPU time; medians over the rounds) prints the cost target's
 //! ratio `(report - off) / tangent IVP` (set `TCAROD_ROUNDS`, default 300)
-//! and the same as one `JSON ` line; then criterion (wall clock).
+//! and the same as one `JSON ` line; then the work of `stability="continue"`
+//! on an upright round column past its self-weight buckling load (IVPs and
+//! thread CPU in plain IVPs, against the budget of 10 IVPs per unit of the
+//! load factor); then criterion (wall clock).
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -170,5 +173,61 @@ fn verdict(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, verdict);
+/// `Policy::Continue` on the upright round silicone column (L 100 mm,
+/// d 12 mm, E 70 kPa, 1,070 kg/m^3) at 1.1, 2, 3.7 and 5 times its
+/// self-weight buckling load (Greenhill, `rho A g L^3 / EI = 7.837`), cold:
+/// the work counted (IVP-equivalents) and the thread CPU of the whole solve
+/// in plain IVPs of the same column (medians of 21 runs).
+fn greenhill_continue() {
+    use nalgebra::Vector3;
+    use tcarod::rod::{Body, Section};
+    let opts = SolveOptions::default();
+    let mut rows = vec![];
+    for factor in [1.1, 2.0, 3.7, 5.0] {
+        let mut b = Body::new(0.1, Section::Circle { diameter: 12e-3 }, 70e3, 0.5, 1070.0)
+            .expect("a valid body");
+        let (a, ..) = b.section.properties();
+        let g = factor * 7.837 * b.bending_stiffness() / (b.density * a * b.length.powi(3));
+        b.gravity = Vector3::new(0.0, 0.0, -g);
+        let robot = Robot::new(b, vec![]).expect("a valid robot");
+        let loads = Loads::of(&robot);
+        let run = || solve_checked(&robot, &[], &loads, &opts, None, Policy::Continue);
+        let c = run().expect("the column lands on a stable shape");
+        let x = c.solution.unknowns.clone();
+        let cs: Vec<Contender<'_>> = vec![
+            ("continue", Box::new(|| drop(black_box(run())))),
+            (
+                "plain_ivp",
+                Box::new(|| {
+                    let shot = Shot::new(&robot, &[], &loads, opts.steps);
+                    black_box(shot.residual(&x, false).unwrap());
+                }),
+            ),
+        ];
+        let Some(m) = interleaved(&cs, 21) else {
+            return;
+        };
+        let (work, cpu) = (c.solution.evaluations, m[0] / m[1]);
+        println!(
+            "continue at {factor} x Greenhill: {work} IVPs counted, thread CPU {cpu:.1} plain IVPs \
+             (budget {:.0}), stable {}",
+            10.0 * factor,
+            c.stability.is_some_and(|s| s.stable)
+        );
+        rows.push(format!(
+            "{{\"factor\":{factor},\"ivps\":{work},\"cpu_ivps\":{cpu:.2}}}"
+        ));
+    }
+    println!(
+        "JSON {{\"bench\":\"greenhill_continue\",\"rows\":[{}]}}",
+        rows.join(",")
+    );
+}
+
+fn all(c: &mut Criterion) {
+    verdict(c);
+    greenhill_continue();
+}
+
+criterion_group!(benches, all);
 criterion_main!(benches);

@@ -217,9 +217,9 @@ impl Design {
 /// land on any of them); a hanging body (`g_z > 0`) is in tension and has
 /// ratio 0.
 pub fn column_ratio(body: &Body) -> f64 {
-    let (a, ix, iy, _) = body.section.properties();
+    let (a, ..) = body.section.properties();
     let g_axial = (-body.gravity.z).max(0.0);
-    body.density * a * g_axial * body.length.powi(3) / (body.youngs_modulus * ix.min(iy))
+    body.density * a * g_axial * body.length.powi(3) / body.bending_stiffness()
 }
 
 /// Whether the body, upright, is past self-weight buckling:

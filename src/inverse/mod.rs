@@ -170,7 +170,6 @@ pub(crate) fn pose_delta(
 /// Characteristic force \[N\] and moment \[N m\] of a body: `E I / L^2`, `E I / L`.
 pub fn load_scales(robot: &Robot) -> (f64, f64) {
     let b = &robot.body;
-    let (_, ix, iy, _) = b.section.properties();
-    let ei = b.youngs_modulus * ix.min(iy);
+    let ei = b.bending_stiffness();
     (ei / (b.length * b.length), ei / b.length)
 }

@@ -126,9 +126,8 @@ impl Orientation {
 /// `psi A |g| L^3 / (E I_min)` of `body`, whatever the direction of its
 /// gravity (the stress family's weight ratio).
 pub fn weight_ratio(body: &Body) -> f64 {
-    let (a, ix, iy, _) = body.section.properties();
-    body.density * a * body.gravity.norm() * body.length.powi(3)
-        / (body.youngs_modulus * ix.min(iy))
+    let (a, ..) = body.section.properties();
+    body.density * a * body.gravity.norm() * body.length.powi(3) / body.bending_stiffness()
 }
 
 /// Design `index` of the stress family `seed`: see the module docs.

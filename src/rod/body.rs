@@ -216,6 +216,13 @@ impl Body {
         )
     }
 
+    /// The smaller bending stiffness `E min(I_x, I_y)` \[N m^2\]: the scale
+    /// of the bending moments, and the one buckling reads.
+    pub fn bending_stiffness(&self) -> f64 {
+        let (_, ix, iy, _) = self.section.properties();
+        self.youngs_modulus * ix.min(iy)
+    }
+
     /// Total distributed force in the world frame [N/m]: `psi A g + f`.
     pub fn distributed_load(&self) -> Vector3<f64> {
         let (a, ..) = self.section.properties();

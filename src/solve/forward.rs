@@ -483,3 +483,67 @@ fn continued(
     let end = out.points.last().expect("a path ends at a point");
     Ok((end.x.clone(), ms, out))
 }
+
+/// The equilibrium of `robot` at `inputs` under `loads` that a loading
+/// history with an imperfection ends on: pseudo-arclength continuation
+/// ([`super::homotopy`]) from the unloaded body at rest to the loads with
+/// the tip wrench `imperfection` added, then from there to the loads
+/// alone. The imperfection selects one branch of a bifurcation on the way
+/// (a column loaded past its buckling load bends toward it instead of
+/// staying on the straight, unstable, branch; Thompson & Hunt, *A General
+/// Theory of Elastic Stability*, Wiley 1973, ch. 3) and the second path
+/// follows that branch as the imperfection is taken away. Both paths run
+/// on the coarse grid of the presolve where there is one, and Newton
+/// finishes on the requested grid from there. The solution's
+/// `evaluations` count all of it.
+pub fn solve_imperfect(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    imperfection: &Loads,
+    opts: &SolveOptions,
+) -> Result<Solution> {
+    super::shooting::validate(robot, inputs, loads, opts, None)?;
+    let starts = segment_starts(robot, loads, opts.steps);
+    let (steps, starts) =
+        coarse_grid(robot, loads, opts.steps, &starts).unwrap_or((opts.steps, starts));
+    // a coarse IVP costs `scale` of a fine one: the budget is in fine IVPs
+    let scale = steps as f64 / opts.steps as f64;
+    let mut o = SolveOptions {
+        steps,
+        max_evaluations: (opts.max_evaluations as f64 / scale) as usize,
+        ..*opts
+    };
+    let deadline = opts.time_limit.map(|t| Instant::now() + t);
+    let mut imperfect = *loads;
+    imperfect.tip_force += imperfection.tip_force;
+    imperfect.tip_moment += imperfection.tip_moment;
+    let mut work = 0.0;
+    let mut end = None;
+    for (at, from) in [(imperfect, None), (*loads, Some(()))] {
+        let warm = from.and(end.as_ref());
+        let (x, charts, path) = continued(robot, inputs, &at, &o, &starts, warm)?;
+        work += path.work;
+        let ms = MultipleShooting::new(robot, inputs, at, steps, &starts, charts)?;
+        let mut sys = ShootingSystem::new(ms)?;
+        sys.ms.work = work;
+        end = Some(finish(Solved {
+            sys,
+            x,
+            iterations: path.steps,
+            residual: path.residual,
+            path: Vec::new(),
+            at_floor: path.residual > opts.tol,
+        })?);
+        o = remaining(&o, deadline, work)?;
+    }
+    let coarse = end.expect("two paths were followed");
+    if steps == opts.steps {
+        return Ok(coarse);
+    }
+    let spent = work * scale;
+    let rest = remaining(opts, deadline, spent)?;
+    let mut sol = solve(robot, inputs, loads, &rest, Some(&coarse))?;
+    sol.evaluations += spent.ceil() as usize;
+    Ok(sol)
+}

@@ -443,8 +443,7 @@ pub fn tension_slope(
 /// axially stiff bodies.)
 pub fn residual_scales(robot: &Robot) -> (f64, f64) {
     let b = &robot.body;
-    let (_, ix, iy, _) = b.section.properties();
-    let ei = b.youngs_modulus * ix.min(iy);
+    let ei = b.bending_stiffness();
     (b.length * b.length / ei, b.length / ei)
 }
 

@@ -36,8 +36,7 @@ pub const GROWTH_BOUND: f64 = 100.0;
 /// the axial tension at `s` (see the module docs).
 fn rate(robot: &Robot, loads: &Loads) -> impl Fn(f64) -> f64 {
     let body = &robot.body;
-    let (_, ix, iy, _) = body.section.properties();
-    let ei = body.youngs_modulus * ix.min(iy);
+    let ei = body.bending_stiffness();
     let (len, q, f) = (body.length, body.distributed_load(), loads.tip_force);
     move |s: f64| ((f + q * (len - s)).norm() / ei).sqrt()
 }

@@ -15,12 +15,10 @@ use crate::shooting::{
 /// How a stable equilibrium was reached from another one.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Route {
-    /// Imperfection homotopy: a tip wrench `eps (EI/L^2, EI/L) sign mode`
-    /// along the softest mode of the start, removed in warm-started steps.
-    Imperfection {
-        /// `+1` or `-1`: which way along the mode.
-        sign: f64,
-    },
+    /// Loading from rest with an imperfection, a tip wrench along the
+    /// softest mode of the start, then taking the imperfection away, both by
+    /// continuation.
+    Imperfection,
     /// Newton from the cold (reference) guess.
     Cold,
     /// Newton from the start itself.
@@ -38,10 +36,9 @@ pub enum Route {
 impl fmt::Display for Route {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Route::Imperfection { sign } => write!(
+            Route::Imperfection => write!(
                 f,
-                "imperfection homotopy along the softest mode ({}), tip wrench removed in 7 steps",
-                if *sign > 0.0 { "+" } else { "-" }
+                "loading from rest with a tip wrench along the softest mode, then removing it"
             ),
             Route::Cold => write!(f, "Newton from the reference configuration"),
             Route::Start => write!(f, "Newton from the start"),
@@ -70,10 +67,10 @@ pub struct Landing {
 }
 
 /// A stable equilibrium of `robot` at `inputs` under `loads` near `before`
-/// (an equilibrium at these or at nearby parameters): by imperfection
-/// homotopy (a tip wrench `eps (EI/L^2, EI/L) mode` along the softest mode
-/// of the equilibrium continued from `before` (or `mode` if given), either
-/// sign, `eps` from 0.5 down to 0 in seven warm-started solves), and, if
+/// (an equilibrium at these or at nearby parameters): by loading from rest
+/// with an imperfection, the tip wrench `(EI/L^2, EI/L) mode` along the
+/// softest mode of the equilibrium continued from `before` (or `mode` if
+/// given), then taking it away ([`imperfection`]), and, if
 /// `exhaustive` or that found nothing stable, by Newton from the cold guess,
 /// from `before`, and from `before` with its scaled base curvature
 /// `L omega(0)` pushed by +-0.03, 0.1, 0.3, 1 and 3 about each bending axis
@@ -113,10 +110,10 @@ pub fn land(
             }),
     };
     if let Some(mode) = mode {
-        for sign in [1.0, -1.0] {
-            if let Some(s) = imperfection(robot, inputs, loads, before, &mode, sign, opts) {
-                consider(&mut found, s, Route::Imperfection { sign }, &mut evals);
-            }
+        match imperfection(robot, inputs, loads, &mode, opts) {
+            Ok(s) => consider(&mut found, s, Route::Imperfection, &mut evals),
+            Err(e) if crate::solve::shooting::is_input_error(&e) => return Err(e),
+            Err(_) => {}
         }
     }
     if exhaustive || found.is_empty() {
@@ -148,52 +145,31 @@ pub fn land(
             evaluations: evals,
         })
         .ok_or_else(|| Error::NoSolution {
-            reason: "no stable equilibrium found near the given one (imperfection homotopy \
-                     along its softest mode and perturbed Newton starts)"
+            reason: "no stable equilibrium found near the given one (loading with an \
+                     imperfection along its softest mode, and perturbed Newton starts)"
                 .into(),
         })
 }
 
-/// Imperfection homotopy: a tip wrench `eps (EI/L^2, EI/L) sign mode` large
-/// enough that the near-unstable equilibria do not exist, removed again in
-/// warm-started steps; the last solve is at the unperturbed loads.
+/// The equilibrium that loading from rest with an imperfection, the tip
+/// wrench `(EI/L^2, EI/L) mode` along the softest mode of the unstable
+/// equilibrium (the body's own force and moment units), ends on once the
+/// imperfection is taken away again
+/// ([`crate::solve::forward::solve_imperfect`]).
 fn imperfection(
     robot: &Robot,
     inputs: &[f64],
     loads: &Loads,
-    before: &Solution,
     mode: &[f64; 6],
-    sign: f64,
     opts: &SolveOptions,
-) -> Option<Solution> {
+) -> Result<Solution> {
     let len = robot.body.length;
-    let (_, ix, iy, _) = robot.body.section.properties();
-    let ei = robot.body.youngs_modulus * ix.min(iy);
-    let mut w: Option<Solution> = Some(before.clone());
-    let mut evals = 0;
-    for (k, eps) in [0.5, 0.25, 0.1, 0.04, 0.015, 0.005, 0.0]
-        .into_iter()
-        .enumerate()
-    {
-        let mut l = *loads;
-        l.tip_force += Vector3::new(mode[0], mode[1], mode[2]) * (sign * eps * ei / (len * len));
-        l.tip_moment += Vector3::new(mode[3], mode[4], mode[5]) * (sign * eps * ei / len);
-        let s = match solve_loaded(robot, inputs, &l, opts, w.as_ref()) {
-            Ok(s) => s,
-            // the perturbed robot from its reference configuration (the
-            // solver's load continuation from there follows the branch the
-            // imperfection selects) when the start is too far from it
-            Err(_) if k == 0 => solve_loaded(robot, inputs, &l, opts, None).ok()?,
-            Err(_) => return None,
-        };
-        evals += s.evaluations;
-        w = Some(s);
-    }
-    // the path's work, not only the last solve's
-    w.map(|mut s| {
-        s.evaluations = evals;
-        s
-    })
+    let ei = robot.body.bending_stiffness();
+    let wrench = Loads {
+        tip_force: Vector3::new(mode[0], mode[1], mode[2]) * (ei / (len * len)),
+        tip_moment: Vector3::new(mode[3], mode[4], mode[5]) * (ei / len),
+    };
+    crate::solve::forward::solve_imperfect(robot, inputs, loads, &wrench, opts)
 }
 
 /// Newton starts: the cold guess, `before`, and `before` with its base

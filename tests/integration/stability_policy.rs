@@ -281,7 +281,7 @@ fn continue_lands_on_the_post_buckled_elastica() {
         let cont = c.continued.expect("the straight column was unstable");
         // it started from the straight column (on the axis to rounding)
         assert!(!cont.from_stability.stable && lateral(cont.from.tip_position()) < 1e-9);
-        // the route is recorded (imperfection homotopy, or a perturbed Newton start)
+        // the route is recorded (loading with an imperfection, or a perturbed Newton start)
         assert!(!cont.route.to_string().is_empty() && cont.candidates >= 1);
         assert!(cont.evaluations > 0 && c.solution.evaluations > cont.evaluations);
         // the same problem: inputs and loads unchanged, an equilibrium to tol
@@ -296,4 +296,67 @@ fn continue_lands_on_the_post_buckled_elastica() {
         // 1e-3 L: shear and extension of an L/r = 100 column (~2e-4) and RK4
         assert!((d - e).abs() < 1e-3, "ratio {ratio}: {d} vs elastica {e}");
     }
+}
+
+/// An upright round silicone column (L 100 mm, d 12 mm, E 70 kPa, density
+/// 1,070 kg/m^3) under `factor` times its self-weight buckling load
+/// (Greenhill: rho A g L^3 / EI = 7.837).
+fn greenhill_column(factor: f64) -> Robot {
+    let mut b = Body::new(0.1, Section::Circle { diameter: 12e-3 }, 70e3, 0.5, 1070.0).unwrap();
+    let (a, ..) = b.section.properties();
+    let g = factor * 7.837 * b.bending_stiffness() / (b.density * a * b.length.powi(3));
+    b.gravity = Vector3::new(0.0, 0.0, -g);
+    Robot::new(b, vec![]).unwrap()
+}
+
+#[test]
+fn continue_bends_an_overloaded_round_column_over() {
+    let opts = SolveOptions::default();
+    let mut heights = vec![];
+    for factor in [1.1, 2.0, 3.7, 5.0] {
+        let r = greenhill_column(factor);
+        let loads = Loads::of(&r);
+        let c = solve_checked(&r, &[], &loads, &opts, None, Policy::Continue).unwrap();
+        let st = c.stability.expect("verdict");
+        // the bent column's turn about the vertical is a neutral mode: its
+        // margin is zero up to rounding, which the verdict counts as stable
+        assert!(st.stable, "{factor} x Greenhill: margin {}", st.margin);
+        let cont = c.continued.expect("the straight column is unstable");
+        assert!(!cont.from_stability.stable && lateral(cont.from.tip_position()) < 1e-9);
+        assert!(c.solution.residual <= opts.tol && c.solution.loads == loads);
+        let tip = c.solution.tip_position();
+        // bent over: the tip a good fraction of the length off the axis
+        assert!(lateral(tip) > 0.3 * r.body.length, "{factor}: tip {tip:?}");
+        // a planar shape, in the vertical plane through the tip (the loads
+        // have no moment about the vertical to turn it out of that plane)
+        let n = Vector3::new(-tip.y, tip.x, 0.0) / lateral(tip);
+        let off = c
+            .solution
+            .positions
+            .iter()
+            .map(|p| p.dot(&n).abs())
+            .fold(0.0, f64::max);
+        assert!(off < 1e-9 * r.body.length, "{factor}: {off} m out of plane");
+        // the base wrench balances the weight up to RK4's error: at most
+        // 1e-5 of the load scale on 100 steps, falling as h^4 (16-fold on
+        // twice the steps; 10-fold asked)
+        let eq = equilibrium(&r, &c.solution).relative;
+        let fine = SolveOptions { steps: 200, ..opts };
+        let c2 = solve_checked(&r, &[], &loads, &fine, None, Policy::Continue).unwrap();
+        let eq2 = equilibrium(&r, &c2.solution).relative;
+        assert!(
+            eq < 1e-5 && eq2 < 0.1 * eq,
+            "{factor}: global equilibrium {eq}, {eq2}"
+        );
+        println!(
+            "{factor} x Greenhill: tip ({:.4}, {:.4}) m off the axis / height, {} IVPs ({})",
+            lateral(tip),
+            tip.z,
+            c.solution.evaluations,
+            cont.route
+        );
+        heights.push(tip.z);
+    }
+    // a heavier column droops further: its tip is lower
+    assert!(heights.windows(2).all(|w| w[1] < w[0]), "{heights:?}");
 }

@@ -38,8 +38,8 @@ pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// margin, the route taken and the work.
 #[pyclass(name = "Continuation", module = "tcarod._core", frozen)]
 pub struct Continuation {
-    /// The route, in words (imperfection homotopy along the softest mode,
-    /// or a perturbed Newton start).
+    /// The route, in words (loading from rest with an imperfection along
+    /// the softest mode, or a perturbed Newton start).
     #[pyo3(get)]
     route: String,
     /// The unstable equilibrium found first.
