@@ -360,3 +360,49 @@ fn continue_bends_an_overloaded_round_column_over() {
     // a heavier column droops further: its tip is lower
     assert!(heights.windows(2).all(|w| w[1] < w[0]), "{heights:?}");
 }
+
+/// Upright columns drawn from a seed (length 50-300 mm, modulus 10 kPa-1 MPa,
+/// round or rectangular with aspect 0.5-1, 5-20 mm) at 1.05 to 6 times
+/// their self-weight buckling load: `stability="continue"` lands every one
+/// on a stable shape off the axis.
+#[test]
+fn continue_lands_every_overloaded_column_of_a_family() {
+    use tcarod::problems::nonlinear::splitmix64;
+    let mut state = 0x51ab_1e00_c011_u64;
+    let mut u = || {
+        state = splitmix64(state);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for i in 0..40 {
+        let len = 0.05 + 0.25 * u();
+        let modulus = 10f64.powf(4.0 + 2.0 * u());
+        let d = 0.005 + 0.015 * u();
+        let section = match u() < 0.5 {
+            true => Section::Circle { diameter: d },
+            false => Section::Rectangle {
+                width: d,
+                height: d * (0.5 + 0.5 * u()),
+            },
+        };
+        let factor = 1.05 + 4.95 * u();
+        let mut b = Body::new(len, section, modulus, 0.5, 1070.0).unwrap();
+        let (a, ..) = b.section.properties();
+        let g = factor * 7.837 * b.bending_stiffness() / (b.density * a * len.powi(3));
+        b.gravity = Vector3::new(0.0, 0.0, -g);
+        let r = Robot::new(b, vec![]).unwrap();
+        let loads = Loads::of(&r);
+        let opts = SolveOptions::default();
+        let c = solve_checked(&r, &[], &loads, &opts, None, Policy::Continue)
+            .unwrap_or_else(|e| panic!("column {i} ({factor:.2} x Greenhill): {e}"));
+        assert!(c.stability.is_some_and(|s| s.stable), "column {i}");
+        assert!(
+            c.continued.is_some() && c.solution.residual <= opts.tol,
+            "column {i}"
+        );
+        let tip = c.solution.tip_position();
+        assert!(
+            lateral(tip) > 0.1 * len,
+            "column {i} ({factor:.2} x): tip {tip:?}"
+        );
+    }
+}
