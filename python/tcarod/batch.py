@@ -218,13 +218,11 @@ def solve_batch(
     not offered for batches: filter on ``stable``, or re-solve the unstable
     rows with ``Robot.solve(..., stability="continue")``.
 
-    ``shapes``: ``True`` keeps the centre line of every row
-    (``BatchResult.arc_length`` ``(nodes,)`` [m], ``positions`` ``(n, nodes,
-    3)`` [m], NaN where a solve did not converge), rebuilt from each
-    converged row by one more IVP (counted in ``evaluations``). It costs
-    ``24 * nodes`` bytes per row (``steps + 1`` nodes: 2.4 kB at the default
-    100 steps), so a sweep of millions of rows should keep tips only
-    (``False``, the default) or stream with :func:`iter_batches`.
+    ``shapes=True`` keeps every row's centre line (``BatchResult.arc_length``
+    ``(nodes,)`` [m], ``positions`` ``(n, nodes, 3)`` [m], NaN where a solve
+    did not converge), rebuilt by one more IVP per converged row (counted in
+    ``evaluations``), at ``24 * nodes`` bytes per row (2.4 kB at 100 steps):
+    sweeps of millions of rows keep tips only (the default) or stream.
 
     Invalid inputs raise ``ValueError`` naming the row; a solve that does not
     converge gives NaN pose and ``converged = False``.

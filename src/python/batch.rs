@@ -27,8 +27,11 @@ type BatchArrays<'py> = (
     Bound<'py, PyArray1<bool>>,
     Option<Bound<'py, PyArray1<bool>>>,
     Option<Bound<'py, PyArray1<f64>>>,
-    Option<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray3<f64>>)>,
+    Option<ShapeArrays<'py>>,
 );
+
+/// Arc length `(nodes,)` [m] and positions `(n, nodes, 3)` [m] of a batch's shapes.
+type ShapeArrays<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray3<f64>>);
 
 /// The `stability` argument of `solve_batch`: a verdict per row or none.
 fn batch_stability(policy: &str) -> PyResult<bool> {
@@ -144,10 +147,7 @@ fn solve_batch<'py>(
 /// Arc length `(nodes,)` [m] and positions `(n, nodes, 3)` [m] of the rows'
 /// shapes, NaN for a row without one. Every shape of one robot and `steps`
 /// lies on the same nodes; no converged row gives zero nodes.
-fn shape_arrays<'py>(
-    py: Python<'py>,
-    shapes: &[Vec<[f64; 4]>],
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray3<f64>>)> {
+fn shape_arrays<'py>(py: Python<'py>, shapes: &[Vec<[f64; 4]>]) -> PyResult<ShapeArrays<'py>> {
     let first = shapes.iter().find(|s| !s.is_empty());
     let nodes = first.map_or(0, Vec::len);
     let s: Vec<f64> = first.map_or_else(Vec::new, |f| f.iter().map(|p| p[0]).collect());
