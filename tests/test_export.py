@@ -72,7 +72,7 @@ def test_to_dict_is_the_json_document_and_solution_json() -> None:
 
 
 def test_every_key_is_documented_with_its_shape_or_unit() -> None:
-    documented = set(re.findall(r"^    ``(\w+)`` {2,}", results.solution_dict.__doc__ or "", re.M))
+    documented = set(re.findall(r"^``(\w+)`` {2,}", results.__doc__ or "", re.M))
     assert set(SOL.to_dict()) == documented
 
 

@@ -10,6 +10,51 @@ The methods ``Solution.to_dict``, ``to_json``, ``to_csv`` and ``to_vtk`` call
 the functions here (:mod:`tcarod._hooks` registers them with the bindings
 when tcarod is imported); :func:`write_shape` picks the format from the
 file's suffix.
+
+The document
+------------
+
+:func:`solution_dict` (``Solution.to_dict()``, ``to_json()``) holds:
+
+Arrays become nested lists of floats; ``n`` is the number of nodes,
+``k`` the number of actuators. World frame unless noted.
+
+========================  ===========  ==========================================
+key                       shape        meaning [unit]
+========================  ===========  ==========================================
+``format``                            ``"tcarod.solution/1"``
+``tcarod_version``                    version that solved it
+``nodes``                             ``n``
+``arc_length_m``          (n,)         arc length of each node [m]
+``positions_m``           (n, 3)       centre-line positions [m]
+``rotations``             (n, 3, 3)    body-to-world rotation matrices [-]
+                                       (column 3: the tangent ``d3``)
+``nu``                    (n, 3)       linear strain, body frame [-]
+``omega_per_m``           (n, 3)       angular strain, body frame [1/m]
+``internal_force_n``      (n, 3)       internal force [N]
+``internal_moment_nm``    (n, 3)       internal moment [N m]
+``tip_position_m``        (3,)         tip position [m]
+``tip_rotation``          (3, 3)       tip rotation [-]
+``base_force_n``          (3,)         force transmitted to the base [N]
+``base_moment_nm``        (3,)         moment about the origin at the base [N m]
+``inputs``                (k,)         each actuator's input, in ``input_units``
+``input_names``           (k,)         ``"temperature"`` (TCA), ``"tension"`` ...
+``input_units``           (k,)         ``"C"`` (TCA), ``"N"``, ``"m"``
+``tensions_n``            (k,)         actuator tensions [N] (< 0: pushes)
+``elongations_m``         (k,)         actuator total elongations [m]
+``elongation_profile_m``  (n, k)       elongation up to each node [m]
+``actuator_paths_m``      k x (m, 3)   path of each actuator over its span [m]
+``stable``                             verdict (bool) or ``None``
+``stability_margin``                   margin [-], > 0 iff stable, or ``None``
+``iterations``                         Newton iterations
+``evaluations``                        IVPs integrated
+``residual``                           final dimensionless residual [-]
+``floor``                              rounding floor of the residual [-]
+``steps``                              RK4 steps over the body
+``status``                             0 converged, 1 converged at the floor
+``message``                            the solve's outcome in words
+``continuation_steps``    (j,)         homotopy parameters taken [-]
+========================  ===========  ==========================================
 """
 
 from __future__ import annotations
@@ -24,6 +69,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from .._core import __version__
 from .._optional import require
 
 __all__ = [
@@ -45,12 +91,6 @@ SOLUTION_FORMAT = "tcarod.solution/1"
 SHAPE_SUFFIXES = (".json", ".csv", ".vtu", ".vtk")
 
 _INPUT_NAME = re.compile(r"^(?P<name>.*?)\s*\[(?P<unit>[^\]]*)\]$")
-
-
-def _version() -> str:
-    from .. import __version__
-
-    return __version__
 
 
 def _floats(a: Any) -> Any:
@@ -84,45 +124,8 @@ def _input_units(robot: Any) -> tuple[list[str], list[str]]:
 def solution_dict(solution: Any, *, stability: bool | None = None) -> dict[str, Any]:
     """Everything a forward solution holds, as a JSON-ready dict.
 
-    Arrays become nested lists of floats; ``n`` is the number of nodes,
-    ``k`` the number of actuators. World frame unless noted.
-
-    ========================  ===========  ==========================================
-    key                       shape        meaning [unit]
-    ========================  ===========  ==========================================
-    ``format``                            ``"tcarod.solution/1"``
-    ``tcarod_version``                    version that solved it
-    ``nodes``                             ``n``
-    ``arc_length_m``          (n,)         arc length of each node [m]
-    ``positions_m``           (n, 3)       centre-line positions [m]
-    ``rotations``             (n, 3, 3)    body-to-world rotation matrices [-]
-                                           (column 3: the tangent ``d3``)
-    ``nu``                    (n, 3)       linear strain, body frame [-]
-    ``omega_per_m``           (n, 3)       angular strain, body frame [1/m]
-    ``internal_force_n``      (n, 3)       internal force [N]
-    ``internal_moment_nm``    (n, 3)       internal moment [N m]
-    ``tip_position_m``        (3,)         tip position [m]
-    ``tip_rotation``          (3, 3)       tip rotation [-]
-    ``base_force_n``          (3,)         force transmitted to the base [N]
-    ``base_moment_nm``        (3,)         moment about the origin at the base [N m]
-    ``inputs``                (k,)         each actuator's input, in ``input_units``
-    ``input_names``           (k,)         ``"temperature"`` (TCA), ``"tension"`` ...
-    ``input_units``           (k,)         ``"C"`` (TCA), ``"N"``, ``"m"``
-    ``tensions_n``            (k,)         actuator tensions [N] (< 0: pushes)
-    ``elongations_m``         (k,)         actuator total elongations [m]
-    ``elongation_profile_m``  (n, k)       elongation up to each node [m]
-    ``actuator_paths_m``      k x (m, 3)   path of each actuator over its span [m]
-    ``stable``                             verdict (bool) or ``None``
-    ``stability_margin``                   margin [-], > 0 iff stable, or ``None``
-    ``iterations``                         Newton iterations
-    ``evaluations``                        IVPs integrated
-    ``residual``                           final dimensionless residual [-]
-    ``floor``                              rounding floor of the residual [-]
-    ``steps``                              RK4 steps over the body
-    ``status``                             0 converged, 1 converged at the floor
-    ``message``                            the solve's outcome in words
-    ``continuation_steps``    (j,)         homotopy parameters taken [-]
-    ========================  ===========  ==========================================
+    The keys, with their shapes and units, are listed in the module's
+    documentation (:mod:`tcarod.io.results`, "The document").
 
     Parameters
     ----------
@@ -159,7 +162,7 @@ def solution_dict(solution: Any, *, stability: bool | None = None) -> dict[str, 
     names, units = _input_units(solution.robot)
     return {
         "format": SOLUTION_FORMAT,
-        "tcarod_version": _version(),
+        "tcarod_version": __version__,
         "nodes": len(solution.s),
         "arc_length_m": _floats(solution.s),
         "positions_m": _floats(solution.positions),
