@@ -14,7 +14,7 @@ use nalgebra::Vector3;
 use crate::error::{Error, Result};
 use crate::limits::{MAX_BATCH_ROWS, MAX_CHUNK, MAX_THREADS};
 use crate::rod::Robot;
-use crate::shooting::{solve_tip, Loads, SolveOptions, TipSolution};
+use crate::shooting::{assemble, solve_tip, Loads, SolveOptions, TipSolution};
 use crate::solve::cancel;
 use crate::stability::{stability_at, Equilibrium, Stability};
 
@@ -71,6 +71,10 @@ pub struct BatchOutput {
     /// [`crate::stability::Stability::margin`]); NaN where there is no
     /// verdict: the solve or the verdict failed, or `stability` was off.
     pub margin: Vec<f64>,
+    /// Shape of each row, filled by [`solve_batch_shapes`] only (empty
+    /// otherwise): arc length \[m\] and world position \[m\] of every node,
+    /// `[s, x, y, z]`; empty for a row that did not converge.
+    pub shapes: Vec<Vec<[f64; 4]>>,
 }
 
 impl BatchOutput {
@@ -87,6 +91,7 @@ impl BatchOutput {
             converged: filled(n, false)?,
             stable: filled(n, false)?,
             margin: filled(n, f64::NAN)?,
+            shapes: Vec::new(),
         })
     }
 }
@@ -114,6 +119,8 @@ struct ChunkOut<'a> {
     ok: &'a mut [bool],
     stable: &'a mut [bool],
     margin: &'a mut [f64],
+    /// Each row's shape (empty slice: shapes not kept).
+    shapes: &'a mut [Vec<[f64; 4]>],
 }
 
 impl<'a> ChunkOut<'a> {
@@ -127,6 +134,7 @@ impl<'a> ChunkOut<'a> {
             ok: &mut out.converged,
             stable: &mut out.stable,
             margin: &mut out.margin,
+            shapes: &mut out.shapes,
         }
     }
 
@@ -145,6 +153,7 @@ impl<'a> ChunkOut<'a> {
         let (ok, ok2) = self.ok.split_at_mut(k);
         let (stable, stable2) = self.stable.split_at_mut(k);
         let (margin, margin2) = self.margin.split_at_mut(k);
+        let (shapes, shapes2) = self.shapes.split_at_mut(k.min(self.shapes.len()));
         (
             ChunkOut {
                 pos,
@@ -155,6 +164,7 @@ impl<'a> ChunkOut<'a> {
                 ok,
                 stable,
                 margin,
+                shapes,
             },
             ChunkOut {
                 pos: pos2,
@@ -165,6 +175,7 @@ impl<'a> ChunkOut<'a> {
                 ok: ok2,
                 stable: stable2,
                 margin: margin2,
+                shapes: shapes2,
             },
         )
     }
@@ -250,11 +261,39 @@ pub fn solve_batch(
     wrenches: Option<&[f64]>,
     opts: &BatchOptions,
 ) -> Result<BatchOutput> {
+    run_batch(robot, inputs, wrenches, opts, false)
+}
+
+/// [`solve_batch`] keeping the shape of every converged row
+/// ([`BatchOutput::shapes`]: arc length and centre-line position of each
+/// node), rebuilt from its converged unknowns by one more IVP per row
+/// (counted in [`BatchOutput::evaluations`]). Memory grows with rows times
+/// nodes (32 bytes per node), so a sweep of millions of rows should keep
+/// tips only.
+pub fn solve_batch_shapes(
+    robot: &Robot,
+    inputs: &[f64],
+    wrenches: Option<&[f64]>,
+    opts: &BatchOptions,
+) -> Result<BatchOutput> {
+    run_batch(robot, inputs, wrenches, opts, true)
+}
+
+fn run_batch(
+    robot: &Robot,
+    inputs: &[f64],
+    wrenches: Option<&[f64]>,
+    opts: &BatchOptions,
+    shapes: bool,
+) -> Result<BatchOutput> {
     robot.validate()?;
     opts.validate()?;
     let na = robot.actuators.len();
     let n = batch_rows(robot, inputs, wrenches)?;
     let mut out = BatchOutput::with_len(n, na)?;
+    if shapes {
+        out.shapes = std::iter::repeat_with(Vec::new).take(n).collect();
+    }
     let items = chunk_items(&mut out, opts.chunk_size, na);
     let stop = AtomicBool::new(false);
     let next = AtomicUsize::new(0);
@@ -272,7 +311,7 @@ pub fn solve_batch(
             .take()
             .expect("each chunk once");
         let first = c * opts.chunk_size;
-        if solve_chunk(robot, inputs, wrenches, opts, first, chunk).is_err() {
+        if solve_chunk(robot, inputs, wrenches, opts, first, chunk, shapes).is_err() {
             stop.store(true, Ordering::Relaxed);
         }
     };
@@ -395,6 +434,7 @@ fn solve_chunk(
     opts: &BatchOptions,
     first: usize,
     mut out: ChunkOut<'_>,
+    shapes: bool,
 ) -> Result<()> {
     let na = robot.actuators.len();
     let base = Loads::of(robot);
@@ -429,6 +469,20 @@ fn solve_chunk(
                     None
                 };
                 out.set(j, &s, verdict.as_ref());
+                if shapes {
+                    // a shape that cannot be rebuilt leaves the row without one
+                    if let Ok(full) =
+                        assemble(robot, q, &loads, &s.unknowns, opts.solve.steps, 0, 0)
+                    {
+                        out.shapes[j] = full
+                            .s
+                            .iter()
+                            .zip(&full.positions)
+                            .map(|(s, p)| [*s, p.x, p.y, p.z])
+                            .collect();
+                    }
+                    out.evals[j] += 1;
+                }
                 warm = Some(s);
             }
             Err(Error::Interrupted) => return Err(Error::Interrupted),

@@ -200,3 +200,92 @@ def test_batch_repr_and_notebook_view_summarise_without_arrays() -> None:
     assert f"{lo[0]:.4g}.." in text  # the tip range [mm] is the converged rows' min..max
     page = res._repr_html_()
     assert page.startswith("<div><b>tcarod BatchResult</b>") and "<td>converged</td><td>400/400</td>" in page
+
+
+# ---------------------------------------------------------------- shapes=True and plot_tips
+
+SQUARE = fig6_square_robot()
+SWEEP = np.column_stack([np.linspace(25.0, 90.0, 7), np.full(7, 25.0)])
+
+
+def test_shapes_keep_every_rows_centre_line() -> None:
+    res = solve_batch(SQUARE, SWEEP, shapes=True, threads=1)
+    tips = solve_batch(SQUARE, SWEEP, threads=1)
+    assert res.success and res.positions is not None and res.arc_length is not None
+    one = SQUARE.solve(SWEEP[3].tolist())
+    assert np.array_equal(res.arc_length, one.s)
+    assert res.positions.shape == (len(SWEEP), len(one.s), 3)
+    # the shape is rebuilt from the row's own converged unknowns: its last node is the tip
+    assert np.array_equal(res.positions[:, -1], res.tip_positions)
+    # a cold Robot.solve converges to the same equilibrium within its tol (1e-10,
+    # dimensionless): the centre lines agree to far below a micrometre
+    assert np.abs(res.positions[3] - one.positions).max() < 1e-9
+    # the same solves, plus exactly one IVP per converged row
+    assert np.array_equal(res.tip_positions, tips.tip_positions)
+    assert np.array_equal(res.evaluations, tips.evaluations + 1)
+    assert tips.positions is None and tips.arc_length is None
+    assert "nodes per row" in repr(res)
+
+
+def test_shapes_stream_and_pickle_the_same() -> None:
+    import pickle
+
+    whole = solve_batch(SQUARE, SWEEP, shapes=True, chunk_size=2, threads=1)
+    parts = list(iter_batches(SQUARE, SWEEP, shapes=True, chunk_size=2, block_chunks=1, threads=1))
+    assert len(parts) == 4
+    assert BatchResult.concatenate(parts) == whole
+    assert pickle.loads(pickle.dumps(whole)) == whole
+
+
+def test_concatenate_pads_a_block_without_converged_rows() -> None:
+    ok = solve_batch(SQUARE, SWEEP[:2], shapes=True)
+    assert ok.arc_length is not None and ok.positions is not None
+    nan = np.full((1, 3), np.nan)
+    failed = BatchResult(
+        nan,
+        np.full((1, 3, 3), np.nan),
+        np.zeros(1, np.int64),
+        np.zeros(1, np.int64),
+        np.zeros(1, bool),
+        arc_length=np.empty(0),
+        positions=np.empty((1, 0, 3)),
+    )
+    both = BatchResult.concatenate([ok, failed])
+    assert both.positions is not None and both.positions.shape == (3, len(ok.arc_length), 3)
+    assert np.isnan(both.positions[2]).all() and np.array_equal(both.positions[:2], ok.positions)
+    assert BatchResult.concatenate([ok, solve_batch(SQUARE, SWEEP[:1])]).positions is None
+
+
+def test_shapes_must_be_a_bool() -> None:
+    with pytest.raises(TypeError, match="shapes"):
+        solve_batch(SQUARE, SWEEP, shapes="yes")
+
+
+def test_plot_tips_draws_the_trajectory_shapes_and_unstable_rows() -> None:
+    pytest.importorskip("matplotlib", reason="matplotlib (the `plot` extra) is not installed")
+    res = solve_batch(SQUARE, SWEEP, shapes=True)
+    fig = res.plot_tips(shapes=3)
+    ax = fig.axes[0]
+    gids = [line.get_gid() for line in ax.lines]
+    assert "tips" in gids and sum(str(g).startswith("shape-") for g in gids) == 3
+    (tips,) = [line for line in ax.lines if line.get_gid() == "tips"]
+    x, y, z = tips.get_data_3d()
+    assert np.allclose(np.column_stack([x, y, z]), res.tip_positions * 1e3)  # [mm]; float scaling only
+    assert ax.get_xlabel() == "x [mm]"
+    assert "unstable" not in [c.get_gid() for c in ax.collections]  # every row of this sweep is stable
+    stable = np.ones(len(res), bool)
+    stable[2] = False
+    marked = BatchResult(**{**res.__dict__, "stable": stable})
+    assert "unstable" in [c.get_gid() for c in marked.plot_tips().axes[0].collections]
+
+
+def test_plot_tips_refuses_bad_arguments() -> None:
+    pytest.importorskip("matplotlib", reason="matplotlib (the `plot` extra) is not installed")
+    res = solve_batch(SQUARE, SWEEP[:2])
+    with pytest.raises(ValueError, match="shapes"):
+        res.plot_tips(shapes=-1)
+    with pytest.raises(TypeError, match="shapes"):
+        res.plot_tips(shapes=2.5)
+    nothing = BatchResult(**{**res.__dict__, "converged": np.zeros(2, bool)})
+    with pytest.raises(ValueError, match="no row converged"):
+        nothing.plot_tips()

@@ -195,3 +195,111 @@ def test_closed_pipe_ends_quietly(tmp_path: Path) -> None:
     proc.stderr.close()
     assert proc.wait(timeout=120) == 1
     assert "BrokenPipeError" not in err and "Traceback" not in err
+
+
+# ---------------------------------------------------------------- tcarod solve: shapes and stability
+
+FIG6 = TWO[0]
+
+
+def _tall_finger(tmp_path: Path) -> Path:
+    """The Fig. 6 square stretched to 90 mm at 25 C: Newton finds it upright,
+    an unstable equilibrium (past its self-weight buckling length)."""
+    text = Path(FIG6).read_text(encoding="utf-8")
+    text = text.replace("length_m = 0.040\n", "length_m = 0.090\n")
+    text = text.replace("coiled_length_m = 0.040", "coiled_length_m = 0.090")
+    text = text.replace("temperatures_c = [100.0, 100.0]", "temperatures_c = [25.0, 25.0]")
+    path = tmp_path / "tallfinger.toml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_solve_json_is_solution_to_dict(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from tcarod.io.design import load_design
+
+    assert cli.main(["solve", FIG6, "-T", "60", "25", "--out", str(tmp_path), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    want = load_design(FIG6).solve([60.0, 25.0]).to_dict()
+    assert {k: doc[k] for k in want} == want  # the same solve, bit for bit
+    assert doc["stable"] is True and doc["stability_margin"] > 0
+    assert doc["stability_policy"] == "report" and doc["continued_route"] is None
+    assert doc["temperature_c"] == [60.0, 25.0] and doc["output_paths"] == []
+
+
+def test_solve_writes_every_output_format(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    pytest.importorskip("meshio", reason="meshio (the `export` extra) is not installed")
+    outs = [str(tmp_path / "shape" / f"finger.{s}") for s in ("json", "csv", "vtu", "vtk")]
+    args = ["solve", FIG6, "--out", str(tmp_path), "--json"]
+    for o in outs:
+        args += ["--output", o]
+    assert cli.main(args) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["output_paths"] == outs
+    saved = json.loads(Path(outs[0]).read_text(encoding="utf-8"))
+    assert saved == {k: doc[k] for k in saved}  # the file is to_dict(); the CLI adds its own keys
+    assert len(Path(outs[1]).read_text(encoding="utf-8").splitlines()) == doc["nodes"] + 1
+    assert Path(outs[2]).read_bytes().startswith(b"<?xml")
+    assert Path(outs[3]).read_bytes().startswith(b"# vtk DataFile")
+
+
+def test_several_designs_need_a_design_placeholder_in_output(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert cli.main(["solve", *TWO, "--out", str(tmp_path), "--output", str(tmp_path / "a.csv")]) == 2
+    assert "{design}" in capsys.readouterr().err
+    pattern = str(tmp_path / "{design}.csv")
+    assert cli.main(["solve", *TWO, "--out", str(tmp_path), "--output", pattern]) == 0
+    assert (tmp_path / "fig6_square.csv").is_file() and (tmp_path / "fig1b_three_tca.csv").is_file()
+
+
+def test_unknown_output_suffix_exits_2(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert cli.main(["solve", FIG6, "--out", str(tmp_path), "--output", str(tmp_path / "a.txt")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and ".csv" in err and not (tmp_path / "fig6_square.png").exists()
+
+
+def test_unstable_design_warns_in_cli_words_and_exits_0(tmp_path: Path) -> None:
+    proc = run("solve", str(_tall_finger(tmp_path)), "--json", "--out", str(tmp_path), cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)
+    assert doc["stable"] is False and doc["stability_margin"] < 0
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("tcarod: warning: ")
+    assert "--stability continue" in lines[0] and "stability=" not in lines[0]
+    assert ".py" not in proc.stderr  # no source file or line of the package
+
+
+def test_require_on_an_unstable_design_exits_3(tmp_path: Path) -> None:
+    proc = run("solve", str(_tall_finger(tmp_path)), "--json", "--stability", "require", cwd=tmp_path)
+    assert proc.returncode == cli.EXIT_UNSTABLE == 3
+    assert proc.stdout == ""
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("tcarod: error: ") and "unstable" in lines[0]
+    assert "--stability continue" in lines[0] and "Traceback" not in proc.stderr
+    assert not (tmp_path / "tcarod-output" / "tallfinger.png").exists()
+
+
+def test_continue_moves_an_unstable_design_to_a_stable_shape(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    design = str(_tall_finger(tmp_path))
+    assert cli.main(["solve", design, "--stability", "continue", "--out", str(tmp_path), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["stable"] is True and doc["stability_margin"] > 0
+    assert doc["stability_policy"] == "continue" and doc["continued_route"]
+    # the upright tip stands at 90 mm; the stable shape has bent over, far from it
+    assert doc["tip_position_m"][2] < 0.08
+
+
+def test_stability_off_gives_no_verdict(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert cli.main(["solve", FIG6, "--stability", "off", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "not computed (--stability off)" in out
+    assert cli.main(["solve", FIG6, "--stability", "off", "--out", str(tmp_path), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["stable"] is None and doc["stability_margin"] is None
+
+
+def test_bad_stability_choice_exits_2(tmp_path: Path) -> None:
+    proc = run("solve", FIG6, "--stability", "maybe", cwd=tmp_path)
+    assert proc.returncode == 2 and "--stability" in proc.stderr and proc.stdout == ""

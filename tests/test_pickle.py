@@ -229,3 +229,53 @@ def test_batch_result_pickles_with_nan_rows() -> None:
     r = BatchResult(nan, np.full((1, 3, 3), math.nan), np.zeros(1, np.int64), np.zeros(1, np.int64), np.zeros(1, bool))
     assert pickle.loads(pickle.dumps(r)) == r
     assert not r.success and r.status.tolist() == [1]
+
+
+# ---------------------------------------------------------------- the stability verdict travels
+
+
+def _tall_finger() -> Robot:
+    """The Fig. 6 square stretched to 90 mm: at 25 C Newton finds it upright, an
+    unstable equilibrium (it stands past its self-weight buckling length)."""
+    from tcarod.io.design import loads_design
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "examples" / "designs" / "fig6_square.toml").read_text()
+    text = text.replace("length_m = 0.040\n", "length_m = 0.090\n").replace(
+        "coiled_length_m = 0.040", "coiled_length_m = 0.090"
+    )
+    robot: Robot = loads_design(text).robot
+    return robot
+
+
+@pytest.mark.parametrize("stable", [True, False], ids=["stable", "unstable"])
+def test_an_unpickled_solution_keeps_its_verdict(stable: bool) -> None:
+    import warnings
+
+    import tcarod
+
+    robot = SQUARE if stable else _tall_finger()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", tcarod.UnstableEquilibriumWarning)  # the unstable case is the point
+        sol = robot.solve([25.0, 25.0])
+    assert sol._verdict == (stable, sol.stability_margin)
+    back = pickle.loads(pickle.dumps(sol))
+    # `_verdict` never computes: a verdict here came through the pickle
+    assert back._verdict == sol._verdict
+    assert f"stable={stable}" in repr(back) and repr(back) == repr(sol)
+    assert back == sol and copy.deepcopy(sol)._verdict == sol._verdict
+
+
+def test_an_unpickled_solution_without_a_verdict_computes_it_on_demand() -> None:
+    sol = SQUARE.solve([60.0, 25.0], stability="off")
+    back = pickle.loads(pickle.dumps(sol))
+    assert back._verdict is None and "stable=" not in repr(back)
+    assert back.stable is True and "stable=True" in repr(back)
+
+
+def test_a_forged_verdict_margin_is_refused() -> None:
+    sol = SQUARE.solve([60.0, 25.0])
+    restore, (state, stable, margin) = sol.__reduce__()
+    assert restore is _core._restore_solution_verdict and stable is True
+    with pytest.raises(ValueError, match="margin"):
+        restore(state, True, math.nan)

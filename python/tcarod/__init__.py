@@ -35,6 +35,7 @@ from .inverse import (
     tip_position,
 )
 from . import _display  # noqa: F401  registers notebook display formatters inside IPython
+from . import _hooks  # noqa: F401  registers Solution.to_dict/to_json/to_csv/to_vtk and BatchResult.plot_tips
 
 __all__ = [
     "ConvergenceError",

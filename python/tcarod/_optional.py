@@ -3,7 +3,9 @@
 The core install needs NumPy only. Plots need the ``plot`` extra (matplotlib),
 fits and the brute-force baseline need ``fit`` (scipy), progress bars need
 ``progress`` (tqdm), cluster batches need ``dask``, table export needs
-``pandas``, design files need ``io`` (tomli-w; tomli before Python 3.11).
+``pandas``, design files need ``io`` (tomli-w; tomli before Python 3.11),
+VTK shape files need ``export`` (meshio), interactive figures need
+``interactive`` (plotly).
 Every optional import goes through :func:`require`.
 """
 
@@ -22,6 +24,8 @@ EXTRAS: dict[str, str] = {
     "pandas": "pandas",
     "tomli": "io",
     "tomli_w": "io",
+    "meshio": "export",
+    "plotly": "interactive",
 }
 
 

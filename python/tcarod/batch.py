@@ -23,13 +23,14 @@ Example::
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from typing import Any, Callable, Iterable, Iterator, Literal, Union
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _core
+from ._batch_result import BatchResult
 from ._optional import require
 from .tca import _as_float_array
 
@@ -47,178 +48,6 @@ RobotLike = Union[Robot, Callable[[], Robot]]
 DEFAULT_CHUNK_SIZE = 256
 # what a batch does with the stability verdict (see solve_batch)
 BatchStability = Literal["report", "off"]
-
-
-@dataclass(frozen=True, eq=False)
-class BatchResult:
-    """Stacked results of ``n`` forward solves (row ``k`` for input row ``k``).
-
-    Naming follows the per-solve results in the plural: ``tip_positions``
-    ``(n, 3)`` [m] (``Solution.tip_position`` per solve) and ``tip_rotations``
-    ``(n, 3, 3)`` (body to world), world frame, NaN where a solve did not
-    converge; ``iterations`` and ``evaluations`` (IVPs) ``(n,)`` (of a row
-    that did not converge: the work it spent);
-    ``converged`` ``(n,)``; ``inputs`` ``(n, n_actuators)`` (temperature [C]
-    for TCAs) and ``wrenches`` ``(n, 6)`` (tip force [N], moment [N m]) or
-    ``None``: what was solved. ``tensions`` ``(n, n_actuators)`` [N]:
-    actuator tensions of each converged solve (``Solution.tensions``; negative:
-    the actuator pushes), NaN where a solve did not converge; ``None`` only
-    for results built by hand without them.
-
-    ``stable`` ``(n,)`` and ``margin`` ``(n,)`` [-]: each row's stability
-    verdict (``Solution.stable`` / ``Solution.stability.margin``: the smallest
-    eigenvalue of the dimensionless tip stiffness, > 0 iff stable; ``stable``
-    False and ``margin`` NaN where there is none: the solve or the verdict
-    failed); both ``None`` when the batch ran with ``stability="off"``.
-
-    SciPy-style summary: ``success`` (every row converged), ``status`` per row
-    (0 converged, 1 not), ``message``, ``nit`` / ``nfev`` per row (aliases of
-    ``iterations`` / ``evaluations``). ``to_pandas()`` gives one row per solve
-    (needs the ``pandas`` extra). ``==`` compares every array exactly (NaN
-    equal to NaN); results pickle, so they come back from process pools.
-    """
-
-    tip_positions: FloatArray
-    tip_rotations: FloatArray
-    iterations: IntArray
-    evaluations: IntArray
-    converged: BoolArray
-    inputs: FloatArray | None = None
-    wrenches: FloatArray | None = None
-    tensions: FloatArray | None = None
-    stable: BoolArray | None = None
-    margin: FloatArray | None = None
-
-    def __len__(self) -> int:
-        return int(self.tip_positions.shape[0])
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, BatchResult):
-            return NotImplemented
-        for f in fields(self):
-            a, b = getattr(self, f.name), getattr(other, f.name)
-            if (a is None) != (b is None):
-                return False
-            if a is not None and not np.array_equal(a, b, equal_nan=a.dtype.kind == "f"):
-                return False
-        return True
-
-    __hash__ = None  # type: ignore[assignment]  # mutable arrays inside
-
-    def _summary(self) -> list[tuple[str, str]]:
-        """``(name, value)`` pairs of the repr and the notebook table: counts
-        and ranges, never whole arrays (a batch may hold millions of rows)."""
-        n = len(self)
-        ok = int(np.count_nonzero(self.converged))
-        out = [("rows", str(n)), ("converged", f"{ok}/{n}")]
-        if self.inputs is not None:
-            out.append(("actuators", str(self.inputs.shape[1])))
-        if n:
-            out.append(("iterations", f"median {np.median(self.iterations):g}, max {int(self.iterations.max())}"))
-            out.append(("IVPs", f"median {np.median(self.evaluations):g}, max {int(self.evaluations.max())}"))
-        if ok:
-            tips = self.tip_positions[self.converged] * 1e3
-            lo, hi = tips.min(axis=0), tips.max(axis=0)
-            out.append(("tip range [mm]", ", ".join(f"{a:.4g}..{b:.4g}" for a, b in zip(lo, hi))))
-        if self.stable is not None:
-            out.append(("stable", f"{int(np.count_nonzero(self.stable))}/{n}"))
-        return out
-
-    def __repr__(self) -> str:
-        """A one-line summary (counts and ranges; the arrays are the fields)."""
-        body = "; ".join(f"{k} {v}" if k != "rows" else f"{v} rows" for k, v in self._summary())
-        return f"<BatchResult: {body}>"
-
-    def _repr_html_(self) -> str:
-        """The notebook view: the summary as a table."""
-        import html
-
-        rows = "".join(f"<tr><td>{html.escape(k)}</td><td>{html.escape(v)}</td></tr>" for k, v in self._summary())
-        return f"<div><b>tcarod BatchResult</b><table>{rows}</table></div>"
-
-    @property
-    def success(self) -> bool:
-        """``True`` if every row converged."""
-        return bool(np.all(self.converged))
-
-    @property
-    def status(self) -> IntArray:
-        """Per row: 0 converged, 1 not converged (NaN pose), shape ``(n,)``."""
-        return np.where(self.converged, 0, 1).astype(np.int64)
-
-    @property
-    def message(self) -> str:
-        """Summary in words."""
-        failed = int(np.count_nonzero(~self.converged))
-        if failed == 0:
-            return f"all {len(self)} solves converged"
-        first = int(np.flatnonzero(~self.converged)[0])
-        return f"{failed} of {len(self)} solves did not converge (first: row {first}); their poses are NaN"
-
-    @property
-    def nit(self) -> IntArray:
-        """Newton iterations per row (alias of ``iterations``)."""
-        return self.iterations
-
-    @property
-    def nfev(self) -> IntArray:
-        """IVPs integrated per row (alias of ``evaluations``)."""
-        return self.evaluations
-
-    def to_pandas(self) -> Any:
-        """One row per solve: ``input_<i>`` (one per actuator), ``force_x``
-        ... ``moment_z`` if wrenches were given, ``tip_x_m``, ``tip_y_m``,
-        ``tip_z_m``, ``tension_<i>_n`` [N] (one per actuator), ``converged``, ``status``,
-        ``nit``, ``nfev``, and ``stable``, ``margin`` with a verdict. Needs pandas (``pip install 'tcarod[pandas]'``)."""
-        pd: Any = require("pandas")
-        cols: dict[str, Any] = {}
-        if self.inputs is not None:
-            for i in range(self.inputs.shape[1]):
-                cols[f"input_{i}"] = self.inputs[:, i]
-        if self.wrenches is not None:
-            for i, name in enumerate(
-                ("force_x_n", "force_y_n", "force_z_n", "moment_x_nm", "moment_y_nm", "moment_z_nm")
-            ):
-                cols[name] = self.wrenches[:, i]
-        for i, axis in enumerate("xyz"):
-            cols[f"tip_{axis}_m"] = self.tip_positions[:, i]
-        if self.tensions is not None:
-            for i in range(self.tensions.shape[1]):
-                cols[f"tension_{i}_n"] = self.tensions[:, i]
-        cols["converged"] = self.converged
-        cols["status"] = self.status
-        cols["nit"] = self.iterations
-        cols["nfev"] = self.evaluations
-        if self.stable is not None and self.margin is not None:
-            cols["stable"] = self.stable
-            cols["margin"] = self.margin
-        return pd.DataFrame(cols)
-
-    @staticmethod
-    def concatenate(parts: Iterable[BatchResult]) -> BatchResult:
-        """Stack results of consecutive blocks of rows."""
-        ps = list(parts)
-        if not ps:
-            return BatchResult(
-                np.empty((0, 3)), np.empty((0, 3, 3)), np.empty(0, np.int64), np.empty(0, np.int64), np.empty(0, bool)
-            )
-
-        def cat(name: str) -> Any:
-            xs = [getattr(p, name) for p in ps]
-            return None if any(x is None for x in xs) else np.concatenate(xs)
-
-        return BatchResult(
-            np.concatenate([p.tip_positions for p in ps]),
-            np.concatenate([p.tip_rotations for p in ps]),
-            np.concatenate([p.iterations for p in ps]),
-            np.concatenate([p.evaluations for p in ps]),
-            np.concatenate([p.converged for p in ps]),
-            inputs=cat("inputs"),
-            wrenches=cat("wrenches"),
-            tensions=cat("tensions"),
-            stable=cat("stable"),
-            margin=cat("margin"),
-        )
 
 
 def _robot(robot: RobotLike) -> Robot:
@@ -244,12 +73,13 @@ class _Settings:
     max_iter: int
     chunk_size: int
     stability: BatchStability
+    shapes: bool = False
 
 
 def _solve_block(
     robot: RobotLike, inputs: FloatArray, wrenches: FloatArray | None, cfg: _Settings, threads: int
 ) -> BatchResult:
-    pos, rot, tens, it, ev, ok, stable, margin = _core.solve_batch(
+    pos, rot, tens, it, ev, ok, stable, margin, shape = _core.solve_batch(
         _robot(robot),
         inputs,
         wrenches,
@@ -259,9 +89,22 @@ def _solve_block(
         chunk_size=cfg.chunk_size,
         threads=threads,
         stability=cfg.stability,
+        shapes=cfg.shapes,
     )
+    arc_length, positions = (None, None) if shape is None else shape
     return BatchResult(
-        pos, rot, it, ev, ok, inputs=inputs, wrenches=wrenches, tensions=tens, stable=stable, margin=margin
+        pos,
+        rot,
+        it,
+        ev,
+        ok,
+        inputs=inputs,
+        wrenches=wrenches,
+        tensions=tens,
+        stable=stable,
+        margin=margin,
+        arc_length=arc_length,
+        positions=positions,
     )
 
 
@@ -282,6 +125,7 @@ def iter_batches(
     threads: int = 0,
     progress: bool = False,
     stability: BatchStability = "report",
+    shapes: bool = False,
 ) -> Iterator[BatchResult]:
     """Yield the results of consecutive blocks of rows, ``block_chunks``
     chunks per block (default: 4 per thread), holding only one block at a
@@ -290,7 +134,7 @@ def iter_batches(
     fly); then each yielded block corresponds to one given array.
     ``progress=True`` shows a tqdm bar (rows). The other arguments as for
     :func:`solve_batch`."""
-    cfg = _Settings(steps, tol, max_iter, chunk_size, stability)
+    cfg = _Settings(steps, tol, max_iter, chunk_size, stability, _shapes_flag(shapes))
     nthreads = threads if threads > 0 else _core.default_threads()
     block = chunk_size * (block_chunks if block_chunks is not None else 4 * nthreads)
     if isinstance(inputs, np.ndarray) or (
@@ -351,6 +195,7 @@ def solve_batch(
     progress: bool = False,
     client: Any = None,
     stability: BatchStability = "report",
+    shapes: bool = False,
 ) -> BatchResult:
     """Solve every row of ``inputs`` (``(n, n_actuators)``; temperatures [C]
     for TCAs) with optional tip ``wrenches`` (``(n, 6)``: force [N], moment
@@ -373,10 +218,27 @@ def solve_batch(
     not offered for batches: filter on ``stable``, or re-solve the unstable
     rows with ``Robot.solve(..., stability="continue")``.
 
+    ``shapes=True`` keeps every row's centre line (``BatchResult.arc_length``
+    ``(nodes,)`` [m], ``positions`` ``(n, nodes, 3)`` [m], NaN where a solve
+    did not converge), rebuilt by one more IVP per converged row (counted in
+    ``evaluations``), at ``24 * nodes`` bytes per row (2.4 kB at 100 steps):
+    sweeps of millions of rows keep tips only (the default) or stream.
+
     Invalid inputs raise ``ValueError`` naming the row; a solve that does not
     converge gives NaN pose and ``converged = False``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tcarod.batch import fig6_square_robot, solve_batch
+    >>> temps = np.linspace(25.0, 60.0, 5)
+    >>> res = solve_batch(fig6_square_robot(), np.column_stack([temps, 25.0 + 0 * temps]), shapes=True)
+    >>> res.positions.shape == (5, len(res.arc_length), 3)
+    True
+    >>> bool(np.array_equal(res.positions[:, -1], res.tip_positions))
+    True
     """
-    cfg = _Settings(steps, tol, max_iter, chunk_size, stability)
+    cfg = _Settings(steps, tol, max_iter, chunk_size, stability, _shapes_flag(shapes))
     if client is not None:
         return _solve_dask(robot, inputs, wrenches, client, cfg, progress)
     r = _robot(robot)
@@ -396,8 +258,15 @@ def solve_batch(
         threads=threads,
         progress=True,
         stability=stability,
+        shapes=shapes,
     )
     return BatchResult.concatenate(parts)
+
+
+def _shapes_flag(shapes: Any) -> bool:
+    if not isinstance(shapes, (bool, np.bool_)):
+        raise TypeError(f"shapes must be True or False, not {type(shapes).__name__}")
+    return bool(shapes)
 
 
 def _dask_task(robot: RobotLike, inputs: FloatArray, wrenches: FloatArray | None, cfg: _Settings) -> BatchResult:

@@ -7,7 +7,9 @@ use pyo3::prelude::*;
 
 use super::rod::{solve_options, PyRobot};
 use super::{count_or, Real};
-use crate::batch::{solve_batch as core_solve_batch, thread_count, BatchOptions};
+use crate::batch::{
+    solve_batch as core_solve_batch, solve_batch_shapes, thread_count, BatchOptions,
+};
 use crate::error::Error;
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -25,7 +27,11 @@ type BatchArrays<'py> = (
     Bound<'py, PyArray1<bool>>,
     Option<Bound<'py, PyArray1<bool>>>,
     Option<Bound<'py, PyArray1<f64>>>,
+    Option<ShapeArrays<'py>>,
 );
+
+/// Arc length `(nodes,)` [m] and positions `(n, nodes, 3)` [m] of a batch's shapes.
+type ShapeArrays<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray3<f64>>);
 
 /// The `stability` argument of `solve_batch`: a verdict per row or none.
 fn batch_stability(policy: &str) -> PyResult<bool> {
@@ -53,10 +59,13 @@ fn batch_stability(policy: &str) -> PyResult<bool> {
 /// `converged = False`. `stability="report"` gives each converged row its
 /// stability verdict (`stable`, and `margin` [-], > 0 iff stable; NaN margin
 /// where there is none), one tangent integration per row; `"off"` skips it
-/// and returns `None` for both.
+/// and returns `None` for both. `shapes=True` appends `(arc_length (nodes,)
+/// [m], positions (n, nodes, 3) [m])`, the centre line of every row (NaN
+/// where a row did not converge), rebuilt by one more IVP per converged row;
+/// else `None`.
 #[pyfunction]
-#[pyo3(signature = (robot, inputs, wrenches=None, *, steps=None, tol=Real(1e-10), max_iter=None, chunk_size=None, threads=None, warm=true, stability="report"),
-    text_signature = "(robot, inputs, wrenches=None, *, steps=100, tol=1e-10, max_iter=50, chunk_size=256, threads=0, warm=True, stability='report')")]
+#[pyo3(signature = (robot, inputs, wrenches=None, *, steps=None, tol=Real(1e-10), max_iter=None, chunk_size=None, threads=None, warm=true, stability="report", shapes=false),
+    text_signature = "(robot, inputs, wrenches=None, *, steps=100, tol=1e-10, max_iter=50, chunk_size=256, threads=0, warm=True, stability='report', shapes=False)")]
 #[allow(clippy::too_many_arguments)]
 fn solve_batch<'py>(
     py: Python<'py>,
@@ -70,6 +79,7 @@ fn solve_batch<'py>(
     threads: Option<Bound<'py, PyAny>>,
     warm: bool,
     stability: &str,
+    shapes: bool,
 ) -> PyResult<BatchArrays<'py>> {
     use crate::limits::{MAX_CHUNK, MAX_THREADS};
     let solve = solve_options(steps.as_ref(), tol, max_iter.as_ref())?;
@@ -109,8 +119,18 @@ fn solve_batch<'py>(
         warm,
         stability: with_verdict,
     };
-    let out =
-        super::errors::detach_interruptible(py, || core_solve_batch(&r, &q, w.as_deref(), &opts))?;
+    let out = super::errors::detach_interruptible(py, || {
+        if shapes {
+            solve_batch_shapes(&r, &q, w.as_deref(), &opts)
+        } else {
+            core_solve_batch(&r, &q, w.as_deref(), &opts)
+        }
+    })?;
+    let shape_arrays = if shapes {
+        Some(shape_arrays(py, &out.shapes)?)
+    } else {
+        None
+    };
     let pos =
         PyArray1::from_iter(py, out.tip_positions.iter().flatten().copied()).reshape([n, 3])?;
     let rot =
@@ -121,7 +141,28 @@ fn solve_batch<'py>(
     let ok = PyArray1::from_iter(py, out.converged.iter().copied());
     let stable = with_verdict.then(|| PyArray1::from_slice(py, &out.stable));
     let margin = with_verdict.then(|| PyArray1::from_slice(py, &out.margin));
-    Ok((pos, rot, tens, it, ev, ok, stable, margin))
+    Ok((pos, rot, tens, it, ev, ok, stable, margin, shape_arrays))
+}
+
+/// Arc length `(nodes,)` [m] and positions `(n, nodes, 3)` [m] of the rows'
+/// shapes, NaN for a row without one. Every shape of one robot and `steps`
+/// lies on the same nodes; no converged row gives zero nodes.
+fn shape_arrays<'py>(py: Python<'py>, shapes: &[Vec<[f64; 4]>]) -> PyResult<ShapeArrays<'py>> {
+    let first = shapes.iter().find(|s| !s.is_empty());
+    let nodes = first.map_or(0, Vec::len);
+    let s: Vec<f64> = first.map_or_else(Vec::new, |f| f.iter().map(|p| p[0]).collect());
+    let mut flat = Vec::with_capacity(shapes.len() * nodes * 3);
+    for row in shapes {
+        if row.is_empty() {
+            flat.extend(std::iter::repeat(f64::NAN).take(nodes * 3));
+        } else if row.len() != nodes || row.iter().zip(&s).any(|(p, s)| p[0] != *s) {
+            return Err(Error::input("shapes", "rows on different nodes").into());
+        } else {
+            flat.extend(row.iter().flat_map(|p| [p[1], p[2], p[3]]));
+        }
+    }
+    let pos = PyArray1::from_vec(py, flat).reshape([shapes.len(), nodes, 3])?;
+    Ok((PyArray1::from_vec(py, s), pos))
 }
 
 /// Worker threads `solve_batch` uses for `threads=0` (the available cores).

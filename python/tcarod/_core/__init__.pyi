@@ -25,6 +25,8 @@ from ._rod import _experiment_robot as _experiment_robot
 from ._solution import Solution as Solution
 from ._solution import _register_plotter as _register_plotter
 from ._solution import _restore_solution as _restore_solution
+from ._solution import _register_exporter as _register_exporter
+from ._solution import _restore_solution_verdict as _restore_solution_verdict
 from ._inverse import InverseResult as InverseResult
 from ._inverse import BlockedResult as BlockedResult
 from ._inverse import sensitivities as sensitivities

@@ -22,6 +22,7 @@ def solve_batch(
     threads: int = 0,
     warm: bool = True,
     stability: Literal["report", "off"] = "report",
+    shapes: bool = False,
 ) -> tuple[
     _FloatArray,
     _FloatArray,
@@ -31,13 +32,17 @@ def solve_batch(
     npt.NDArray[np.bool_],
     npt.NDArray[np.bool_] | None,
     _FloatArray | None,
+    tuple[_FloatArray, _FloatArray] | None,
 ]:
     """Solve every row of ``inputs`` ``(n, n_actuators)`` in parallel; returns
     ``(tip_positions (n, 3) [m], tip_rotations (n, 3, 3), tensions (n, n_actuators) [N],
     iterations, evaluations, converged, stable, margin)``. ``stability="report"``
     gives each converged row its verdict: ``stable`` ``(n,)`` and ``margin``
     ``(n,)`` [-] (> 0 iff stable; NaN where there is none), one tangent
-    integration per row; ``"off"`` skips it and returns ``None`` for both."""
+    integration per row; ``"off"`` skips it and returns ``None`` for both.
+    ``shapes=True`` appends ``(arc_length (nodes,) [m], positions (n, nodes, 3)
+    [m])`` (NaN rows where a solve did not converge; one more IVP per
+    converged row), else ``None``."""
 
 def default_threads() -> int:
     """Worker threads ``solve_batch`` uses for ``threads=0``."""

@@ -1,6 +1,8 @@
 """Solutions of ``tcarod._core`` (src/python/rod/solution.rs)."""
 
+import os
 from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import Any, final
 
 from matplotlib.figure import Figure
@@ -84,6 +86,24 @@ class Solution:
     @property
     def unknowns(self) -> _FloatArray:
         """Scaled shooting unknowns ``[nu(0), L omega(0), delta_i / L]``."""
+    def to_dict(self, *, stability: bool | None = None) -> dict[str, Any]:
+        """The shape and everything solved as a JSON-ready dict, every key
+        naming its unit; see ``tcarod.io.results.solution_dict``. ``stability``:
+        ``None`` includes the verdict if known, ``True`` computes it if
+        needed, ``False`` leaves it out."""
+    def to_json(
+        self, path: str | os.PathLike[str] | None = None, *, stability: bool | None = None, indent: int | None = 2
+    ) -> str:
+        """``to_dict()`` as JSON text, also written to ``path`` if given."""
+    def to_csv(self, path: str | os.PathLike[str] | None = None) -> str:
+        """One row per node, columns named with units, as CSV text; also
+        written to ``path`` if given; see ``tcarod.io.results.solution_csv``."""
+    def to_vtk(self, path: str | os.PathLike[str]) -> Path:
+        """The centre line as a VTK polyline (``.vtu`` / ``.vtk``) for ParaView,
+        with meshio (the ``export`` extra); see ``tcarod.io.results.write_vtk``."""
+    @property
+    def _verdict(self) -> tuple[bool, float] | None:
+        """The stability verdict ``(stable, margin)`` if known (never computed here)."""
     def plot(self, **kwargs: Any) -> Figure:
         """3-D plot of the shape with the actuators; see ``tcarod.plotting.plot_solution``."""
     @property
@@ -123,6 +143,12 @@ class Solution:
 
 def _register_plotter(plotter: Callable[..., Any]) -> None:
     """Register the function ``Solution.plot`` calls (the package does it at import)."""
+
+def _register_exporter(exporter: Callable[..., Any]) -> None:
+    """Register the function the export methods call (the package does it at import)."""
+
+def _restore_solution_verdict(state: tuple[Any, ...], stable: bool, margin: float) -> Solution:
+    """Unpickle a ``Solution`` with its stability verdict."""
 
 def _restore_solution(
     robot: Robot,

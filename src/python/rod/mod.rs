@@ -31,12 +31,14 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The forward solution, its unpickling and the plot hook (the `_solution`
+/// The forward solution, its unpickling and the plot and export hooks (the `_solution`
 /// part of the module).
 pub(crate) fn register_solution(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySolution>()?;
     m.add_function(wrap_pyfunction!(restore::restore_solution, m)?)?;
     m.add_function(wrap_pyfunction!(solution::register_plotter, m)?)?;
+    m.add_function(wrap_pyfunction!(solution::register_exporter, m)?)?;
+    m.add_function(wrap_pyfunction!(solution::restore_solution_verdict, m)?)?;
     Ok(())
 }
 

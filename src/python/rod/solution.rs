@@ -292,6 +292,61 @@ impl PySolution {
     fn unknowns<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.inner.unknowns)
     }
+    /// The shape and everything solved as a dict of plain Python numbers and
+    /// lists (JSON-ready), every key naming its unit; see
+    /// `tcarod.io.results.solution_dict` (the package registers it at import).
+    /// `stability`: `None` (default) includes the verdict if it is already
+    /// known, `True` computes it if needed (one tangent IVP), `False` leaves
+    /// it out (`null`).
+    #[pyo3(signature = (*, stability=None))]
+    fn to_dict<'py>(
+        slf: &Bound<'py, Self>,
+        stability: Option<bool>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let kw = PyDict::new(slf.py());
+        kw.set_item("stability", stability)?;
+        export(slf, "to_dict", PyTuple::empty(slf.py()), &kw)
+    }
+    /// `to_dict()` as JSON text (NaN never occurs), also written to `path`
+    /// (UTF-8) if given; see `tcarod.io.results.solution_dict`.
+    #[pyo3(signature = (path=None, *, stability=None, indent=Some(2)),
+        text_signature = "(self, path=None, *, stability=None, indent=2)")]
+    fn to_json<'py>(
+        slf: &Bound<'py, Self>,
+        path: Option<Bound<'py, PyAny>>,
+        stability: Option<bool>,
+        indent: Option<i64>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let kw = PyDict::new(py);
+        kw.set_item("stability", stability)?;
+        kw.set_item("indent", indent)?;
+        export(slf, "to_json", PyTuple::new(py, [path])?, &kw)
+    }
+    /// One row per node (arc length, position, rotation, strains, internal
+    /// wrench, actuator elongations), columns named with their units, as CSV
+    /// text, also written to `path` if given; see `tcarod.io.results.solution_csv`.
+    #[pyo3(signature = (path=None))]
+    fn to_csv<'py>(
+        slf: &Bound<'py, Self>,
+        path: Option<Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        export(slf, "to_csv", PyTuple::new(py, [path])?, &PyDict::new(py))
+    }
+    /// The centre line as a VTK polyline with the node data (`.vtu` or
+    /// `.vtk`, for ParaView), written with meshio (the `export` extra);
+    /// returns the path. See `tcarod.io.results.write_vtk`.
+    fn to_vtk<'py>(slf: &Bound<'py, Self>, path: Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        export(slf, "to_vtk", PyTuple::new(py, [path])?, &PyDict::new(py))
+    }
+    /// The stability verdict `(stable, margin)` if it is already known, else
+    /// None (never computes it).
+    #[getter]
+    fn _verdict(&self) -> Option<(bool, f64)> {
+        self.verdict.get().copied()
+    }
     /// 3-D plot of the shape with the actuators (see `tcarod.plotting.plot_solution`;
     /// the package registers that function at import, the bindings import nothing).
     #[pyo3(signature = (**kwargs))]
@@ -354,7 +409,8 @@ impl PySolution {
     }
     /// Pickle support: the robot and the converged shooting unknowns; the
     /// profile is rebuilt by one IVP from them (bit-identical: the IVP is
-    /// deterministic), the Newton Jacobian kept for warm starts.
+    /// deterministic), the Newton Jacobian kept for warm starts, and the
+    /// stability verdict kept if it was computed.
     fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py, Bound<'py, PyTuple>> {
         let s = &self.inner;
         let jac = s
@@ -378,7 +434,15 @@ impl PySolution {
                 .collect::<Vec<_>>(),
         )
             .into_pyobject(py)?;
-        reduce_with(py, "_restore_solution", args)
+        match self.verdict.get() {
+            None => reduce_with(py, "_restore_solution", args),
+            // the verdict travels with the state: no tangent IVP after unpickling
+            Some((stable, margin)) => reduce_with(
+                py,
+                "_restore_solution_verdict",
+                (args, *stable, *margin).into_pyobject(py)?,
+            ),
+        }
     }
 }
 
@@ -432,4 +496,66 @@ pub(crate) fn register_plotter(py: Python<'_>, plotter: Bound<'_, PyAny>) -> PyR
     }
     let _ = PLOTTER.set(py, plotter.unbind());
     Ok(())
+}
+
+/// The Python function behind `Solution.to_dict`, `to_json`, `to_csv` and
+/// `to_vtk`, registered by the package at import (`tcarod.io.results`), for
+/// the reason given at [`PLOTTER`]. It is called as
+/// `exporter(name, solution, *args, **kwargs)`.
+static EXPORTER: pyo3::sync::PyOnceLock<Py<PyAny>> = pyo3::sync::PyOnceLock::new();
+
+/// Register the function the export methods call (not public API; the first
+/// registration wins).
+#[pyfunction]
+#[pyo3(name = "_register_exporter")]
+pub(crate) fn register_exporter(py: Python<'_>, exporter: Bound<'_, PyAny>) -> PyResult<()> {
+    if !exporter.is_callable() {
+        return Err(pyo3::exceptions::PyTypeError::new_err(
+            "exporter must be callable",
+        ));
+    }
+    let _ = EXPORTER.set(py, exporter.unbind());
+    Ok(())
+}
+
+/// `exporter(name, slf, *args, **kwargs)`.
+fn export<'py>(
+    slf: &Bound<'py, PySolution>,
+    name: &str,
+    args: Bound<'py, PyTuple>,
+    kwargs: &Bound<'py, PyDict>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let py = slf.py();
+    let exporter = EXPORTER.get(py).ok_or_else(|| {
+        pyo3::exceptions::PyRuntimeError::new_err(
+            "no exporter registered: import tcarod (the package), not tcarod._core alone",
+        )
+    })?;
+    let mut all: Vec<Bound<'py, PyAny>> =
+        vec![name.into_pyobject(py)?.into_any(), slf.clone().into_any()];
+    all.extend(args.iter());
+    exporter.bind(py).call(PyTuple::new(py, all)?, Some(kwargs))
+}
+
+/// Unpickle a `Solution` whose stability verdict was computed: the solution
+/// from `state` (the arguments of `_restore_solution`) with the verdict
+/// `(stable, margin)` cached (not public API).
+#[pyfunction]
+#[pyo3(name = "_restore_solution_verdict")]
+pub(crate) fn restore_solution_verdict<'py>(
+    py: Python<'py>,
+    state: Bound<'py, PyTuple>,
+    stable: bool,
+    margin: f64,
+) -> PyResult<Bound<'py, PySolution>> {
+    if !margin.is_finite() {
+        return Err(Error::input("margin", "the stability margin [-] must be finite").into());
+    }
+    let sol = py
+        .import("tcarod._core")?
+        .getattr("_restore_solution")?
+        .call1(state)?
+        .cast_into::<PySolution>()?;
+    let _ = sol.get().verdict.set((stable, margin));
+    Ok(sol)
 }
