@@ -99,7 +99,9 @@ def test_from_material_builds_the_preset_body() -> None:
 
 def test_from_material_accepts_trade_names_and_an_identified_modulus() -> None:
     a = Body.from_material("Dragon Skin 10", 0.05, SECTION)
-    assert a == Body.from_material("dragon_skin_10", 0.05, SECTION) == Body.from_material("dragon-skin-10", 0.05, SECTION)
+    assert (
+        a == Body.from_material("dragon_skin_10", 0.05, SECTION) == Body.from_material("dragon-skin-10", 0.05, SECTION)
+    )
     identified = Body.from_material("ecoflex-00-30", 0.06, SECTION, youngs_modulus=70e3)
     assert identified.youngs_modulus == 70e3 and identified.density == 1070.0
     g = Body.from_material("ecoflex-00-30", 0.06, SECTION, shear_modulus=20e3)

@@ -174,4 +174,3 @@ def body_material(name: str) -> BodyMaterial:
     if key not in catalogue:
         raise ValueError(f"invalid name: {name!r} is not a catalogued body material; known: {', '.join(catalogue)}")
     return catalogue[key]
-

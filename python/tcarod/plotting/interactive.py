@@ -13,6 +13,7 @@ from typing import Any
 
 from .._optional import MissingDependencyError
 from ..rod import Solution
+from ._shapes import input_title, shape_lines
 
 __all__ = ["plot_solution_plotly"]
 
@@ -52,8 +53,6 @@ def plot_solution_plotly(solution: Solution, *, rings: int = 5, title: str | Non
     ImportError
         If plotly is not installed (the message names ``tcarod[interactive]``).
     """
-    from .solution import input_title, shape_lines
-
     go = _graph_objects()
     fig = go.Figure()
     for gid, label, p in shape_lines(solution, rings):

@@ -1,10 +1,20 @@
 """The shape of a forward solution: centre line, body outline, actuators, in
-3-D or as a 2-D side view (``Solution.plot()`` calls :func:`plot_solution`)."""
+3-D or as a 2-D side view (``Solution.plot()`` calls :func:`plot_solution`).
+
+Figures: with ``ax=None`` a new figure is made by ``matplotlib.pyplot`` when
+pyplot is imported (so ``fig.show()`` and ``plt.show()`` work in a script),
+otherwise on the Agg canvas (headless, and in Jupyter's inline backend, where
+the returned figure is displayed once); see :mod:`tcarod.plotting`.
+
+Overlays: drawing again on the same ``ax`` keeps what is there, grows the
+limits to hold every shape (equal aspect), lists each legend label once
+("centre line", "body outline", each actuator), keeps an existing title
+unless ``title`` is given, and sets the 3-D camera only on the first shape or
+when ``camera`` is given.
+"""
 
 from __future__ import annotations
 
-import math
-import re
 from typing import TYPE_CHECKING, Any, Literal, Union, overload
 
 import numpy as np
@@ -12,13 +22,14 @@ import numpy.typing as npt
 from matplotlib.figure import Figure
 
 from .. import _validate as V
-from ..rod import Section, Solution
+from ..rod import Solution
 from ._figure import new_figure
+from ._shapes import input_title, shape_lines
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-__all__ = ["plot_solution", "input_title"]
+__all__ = ["plot_solution"]
 
 FloatArray = npt.NDArray[np.float64]
 View = Union[Literal["3d", "xz", "yz", "interactive"], tuple[float, float]]
@@ -29,67 +40,6 @@ _MM = 1e3
 #: Side views: view name -> (horizontal, vertical) world axis index.
 _SIDE_AXES = {"xz": (0, 2), "yz": (1, 2)}
 _AXIS_NAMES = "xyz"
-_UNIT = re.compile(r"^(?P<name>.*?)\s*\[(?P<unit>[^\]]*)\]\s*$")
-
-
-def _outline_angles(section: Section) -> list[float]:
-    """Body-frame angles [rad] of the edge lines drawn along the body: the four
-    corners of a rectangle, eight directions otherwise."""
-    if section.kind == "rectangle":
-        area, ix, iy, _ = section.properties
-        half_w, half_h = 0.5 * math.sqrt(12.0 * iy / area), 0.5 * math.sqrt(12.0 * ix / area)
-        c = math.atan2(half_h, half_w)
-        return [c, math.pi - c, math.pi + c, 2.0 * math.pi - c]
-    return [k * math.pi / 4.0 for k in range(8)]
-
-
-def _edge_point(section: Section, theta: float) -> FloatArray:
-    """Body-frame point [m] of the section's edge in direction ``theta`` [rad]."""
-    r = section.edge_distance(theta)
-    return np.array([r * math.cos(theta), r * math.sin(theta), 0.0])
-
-
-def _ring_nodes(solution: Solution, rings: int) -> list[int]:
-    """Indices of ``rings`` evenly spaced nodes, base and tip included (none if ``rings`` is 0)."""
-    if rings == 0:
-        return []
-    n = len(solution.s)
-    return sorted({round(j) for j in np.linspace(0, n - 1, max(2, rings))})
-
-
-def shape_lines(solution: Solution, rings: int) -> list[tuple[str, str | None, FloatArray]]:
-    """Every line of the shape [mm], world frame: ``(gid, legend label or None,
-    points (n, 3))`` for the centre line, the body outline (edge lines along
-    the body and ``rings`` cross-section rings) and each actuator path; the
-    actuators' labels carry their tension [mN]."""
-    pos, rot = solution.positions, solution.rotations
-    section = solution.robot.body.section
-    lines: list[tuple[str, str | None, FloatArray]] = [("centre-line", "centre line", pos * _MM)]
-    for k, theta in enumerate(_outline_angles(section)):
-        pts = (pos + rot @ _edge_point(section, theta)) * _MM
-        lines.append((f"outline-{k}", "body outline" if k == 0 else None, pts))
-    ring_local = np.array([_edge_point(section, float(t)) for t in np.linspace(0.0, 2.0 * math.pi, 73)])
-    for k, i in enumerate(_ring_nodes(solution, rings)):
-        lines.append((f"ring-{k}", None, (pos[i] + ring_local @ rot[i].T) * _MM))
-    for k, (path, tension) in enumerate(zip(solution.actuator_paths, solution.tensions)):
-        lines.append((f"actuator-{k}", f"actuator {k}: {tension * 1e3:.1f} mN", path * _MM))
-    return lines
-
-
-def input_title(solution: Solution) -> str:
-    """The inputs of ``solution`` with their units, e.g. ``"inputs: 120 °C, 25 °C"``
-    (``"no actuators"`` for a robot without actuators)."""
-    parts = []
-    for actuator, x in zip(solution.robot.actuators, solution.inputs):
-        match = _UNIT.match(actuator.input_name)
-        unit = match.group("unit") if match else ""
-        if unit == "C":
-            parts.append(f"{x:g} °C")
-        elif unit == "m":  # a pulled length: millimetres read better
-            parts.append(f"{x * _MM:g} mm")
-        else:
-            parts.append(f"{x:g} {unit}".rstrip())
-    return "inputs: " + ", ".join(parts) if parts else "no actuators"
 
 
 def _style(gid: str) -> dict[str, Any]:
@@ -160,7 +110,8 @@ def _view_and_camera(
             raise ValueError("give the 3-D camera [deg] once: view=(elevation, azimuth) or camera=(...), not both")
         if len(view) != 2:
             raise ValueError(f"invalid view = {view!r}: a camera is (elevation, azimuth) [deg]")
-        view, camera = "3d", (view[0], view[1])
+        pair: tuple[Any, Any] = (view[0], view[1])  # checked as reals [deg] below
+        view, camera = "3d", pair
     if not isinstance(view, str):
         raise TypeError(f"view must be a str or an (elevation, azimuth) tuple [deg], not {type(view).__name__}")
     if view not in ("3d", "xz", "yz", "interactive"):
@@ -177,6 +128,26 @@ def _view_and_camera(
             V.real("camera[1] (azimuth) [deg]", camera[1], unit="deg"),
         )
     return view, camera
+
+
+def _draw(ax: Any, lines: list[tuple[str, str | None, FloatArray]], view: str, camera: Any, first: bool) -> None:
+    """Draw ``lines`` [mm] on ``ax``: in 3-D (equal cube, the camera set on the
+    first shape or when given) or projected on the side view ``view``."""
+    if view == "3d":
+        for gid, label, p in lines:
+            ax.plot(p[:, 0], p[:, 1], p[:, 2], label=label, gid=gid, **_style(gid))
+        _equal_cube(ax, [p for _, _, p in lines])
+        if first or camera is not None:
+            elev, azim = camera if camera is not None else DEFAULT_CAMERA
+            ax.view_init(elev=elev, azim=azim)
+        return
+    h, v = _SIDE_AXES[view]
+    for gid, label, p in lines:
+        ax.plot(p[:, h], p[:, v], label=label, gid=gid, **_style(gid))
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(f"{_AXIS_NAMES[h]} [mm]")
+    ax.set_ylabel(f"{_AXIS_NAMES[v]} [mm]")
+    ax.grid(True, linewidth=0.3)
 
 
 @overload
@@ -213,43 +184,33 @@ def plot_solution(
 ) -> Any:
     """Plot the shape of a forward solution with its actuators (axes in mm).
 
-    Draws the centre line (dashed), the body's outline -- edge lines along
-    the body and ``rings`` cross-section rings, from
-    :meth:`Section.edge_distance` and the solution's rotations -- and each
-    actuator path (``solution.actuator_paths``) in its own colour. The legend
-    gives each actuator's tension in mN (negative: the actuator pushes); the
-    title gives the inputs with their units (``"inputs: 120 °C, 25 °C"``).
-    ``Solution.plot(**kwargs)`` is ``plot_solution(solution, **kwargs)``.
+    Draws the centre line (dashed), the body's outline (edge lines and
+    ``rings`` cross-section rings) and each actuator path in its own colour;
+    the legend gives each actuator's tension in mN (negative: it pushes), the
+    title the inputs with their units (``"inputs: 120 °C, 25 °C"``).
+    ``Solution.plot(**kwargs)`` is ``plot_solution(solution, **kwargs)``;
+    figures and overlays: the module docstring.
 
     Parameters
     ----------
     solution : Solution
         A forward solution (``Robot.solve``).
     ax : matplotlib.axes.Axes, optional
-        Axes to draw into: 3-D (``projection="3d"``) for ``view="3d"``, 2-D
-        for a side view. By default a new figure is made: by
-        ``matplotlib.pyplot`` when pyplot is imported (so ``fig.show()`` and
-        ``plt.show()`` work in a script), otherwise a figure on the Agg
-        canvas (headless, and in Jupyter's inline backend where the returned
-        figure is displayed once).
+        Axes to draw into (3-D for ``view="3d"``, 2-D for a side view).
     view : {"3d", "xz", "yz", "interactive"} or (float, float)
-        ``"3d"``: a 3-D view with equal aspect in x, y, z. ``"xz"`` / ``"yz"``:
-        the side view seen along world -y / +x, the world axis ``x`` or ``y``
-        horizontal and ``z`` (the reference tangent) vertical, equal aspect.
-        ``"interactive"``: an interactive 3-D plotly figure for notebooks
-        (the same as ``backend="plotly"``). An ``(elevation, azimuth)`` pair
-        [deg] is the 3-D view from that camera.
+        ``"3d"``: 3-D, equal aspect. ``"xz"`` / ``"yz"``: side view along
+        world -y / +x, ``z`` (the reference tangent) up, equal aspect.
+        ``"interactive"``: a plotly 3-D figure (as ``backend="plotly"``).
+        An ``(elevation, azimuth)`` pair [deg]: the 3-D view from there.
     rings : int
-        Number of cross-section rings drawn (0 to 1000; base and tip
-        included when at least 2).
+        Cross-section rings drawn (0 to 1000; base and tip included).
     camera : (float, float), optional
-        ``(elevation, azimuth)`` [deg] of the 3-D view; default (15, -60)
-        on a new axes, unchanged on an existing one.
+        ``(elevation, azimuth)`` [deg] of the 3-D view (default (15, -60)).
     title : str, optional
         Title; default the inputs with their units.
     backend : {"matplotlib", "plotly"}
-        ``"plotly"`` returns a ``plotly.graph_objects.Figure`` (3-D,
-        interactive; needs the ``interactive`` extra, plotly).
+        ``"plotly"``: an interactive ``plotly.graph_objects.Figure`` (3-D;
+        the ``interactive`` extra).
 
     Returns
     -------
@@ -259,28 +220,17 @@ def plot_solution(
     Raises
     ------
     TypeError
-        If ``solution`` is not a :class:`tcarod.Solution`, ``ax`` is not an
-        axes of the view's kind, or an argument has the wrong type.
+        A wrong type, or ``ax`` not an axes of the view's kind.
     ValueError
-        If ``view``, ``backend``, ``rings`` or ``camera`` is out of range.
+        ``view``, ``backend``, ``rings`` or ``camera`` out of range.
     ImportError
-        If plotly is needed and not installed (naming ``tcarod[interactive]``).
-
-    Notes
-    -----
-    Overlays: calling it again with the same ``ax`` adds the shape and keeps
-    what is there: the limits grow to hold every shape (equal aspect), the
-    legend lists each label once ("centre line", "body outline" and each
-    actuator), an existing title is kept unless ``title`` is given, and the
-    3-D camera is set only on the first call or when ``camera`` is given.
+        plotly needed and not installed (naming ``tcarod[interactive]``).
 
     Examples
     --------
     >>> from tcarod.paper.fig6 import FIG6
-    >>> from tcarod.plotting import plot_solution
     >>> sol = FIG6.manipulators[1].robot().solve([100.0, 100.0])
-    >>> fig = plot_solution(sol, view="xz")
-    >>> ax = fig.axes[0]
+    >>> ax = plot_solution(sol, view="xz").axes[0]
     >>> ax.get_xlabel(), ax.get_ylabel(), ax.get_title()
     ('x [mm]', 'z [mm]', 'inputs: 100 °C, 100 °C')
     """
@@ -295,28 +245,10 @@ def plot_solution(
         from .interactive import plot_solution_plotly
 
         return plot_solution_plotly(solution, rings=rings, title=title)
-    three_d = view_name == "3d"
-    ax_, figure, first = _axes(ax, three_d)
+    ax_, figure, first = _axes(ax, view_name == "3d")
     had_title = bool(ax_.get_title())
-    lines = shape_lines(solution, rings)
-    if three_d:
-        for gid, label, p in lines:
-            ax_.plot(p[:, 0], p[:, 1], p[:, 2], label=label, gid=gid, **_style(gid))
-        _equal_cube(ax_, [p for _, _, p in lines])
-        if first or cam is not None:
-            elev, azim = cam if cam is not None else DEFAULT_CAMERA
-            ax_.view_init(elev=elev, azim=azim)
-    else:
-        h, v = _SIDE_AXES[view_name]
-        for gid, label, p in lines:
-            ax_.plot(p[:, h], p[:, v], label=label, gid=gid, **_style(gid))
-        ax_.set_aspect("equal", adjustable="datalim")
-        ax_.set_xlabel(f"{_AXIS_NAMES[h]} [mm]")
-        ax_.set_ylabel(f"{_AXIS_NAMES[v]} [mm]")
-        ax_.grid(True, linewidth=0.3)
-    if title is not None:
-        ax_.set_title(title, fontsize="small")
-    elif not had_title:
-        ax_.set_title(input_title(solution), fontsize="small")
+    _draw(ax_, shape_lines(solution, rings), view_name, cam, first)
+    if title is not None or not had_title:  # an overlay keeps the first shape's title
+        ax_.set_title(input_title(solution) if title is None else title, fontsize="small")
     _unique_legend(ax_)
     return figure

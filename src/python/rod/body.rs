@@ -368,7 +368,8 @@ const BODY_MATERIALS: &[BodyMaterial] = &[
         label: "Ecoflex 00-10",
         modulus: Modulus::Published {
             pa: ECOFLEX10.1,
-            basis: "small-strain Young's modulus of the EcoFlex 10 bodies of Pawlowski et al. 2019 \
+            basis:
+                "small-strain Young's modulus of the EcoFlex 10 bodies of Pawlowski et al. 2019 \
                     (Section V), the value of the paper's fixtures; the neo-Hookean estimate \
                     through the bulletin's 100 % modulus (8 psi) is 94.6 kPa",
         },
@@ -454,11 +455,17 @@ const BODY_MATERIALS: &[BodyMaterial] = &[
 /// The catalogued material `name` (case, spaces and underscores ignored).
 fn body_material(name: &str) -> Result<&'static BodyMaterial, Error> {
     let key = name.trim().to_lowercase().replace([' ', '_'], "-");
-    BODY_MATERIALS.iter().find(|m| m.name == key).ok_or_else(|| {
-        let known: Vec<&str> = BODY_MATERIALS.iter().map(|m| m.name).collect();
-        Error::input(
-            "name",
-            format!("{name:?} is not a catalogued body material; known: {}", known.join(", ")),
-        )
-    })
+    BODY_MATERIALS
+        .iter()
+        .find(|m| m.name == key)
+        .ok_or_else(|| {
+            let known: Vec<&str> = BODY_MATERIALS.iter().map(|m| m.name).collect();
+            Error::input(
+                "name",
+                format!(
+                    "{name:?} is not a catalogued body material; known: {}",
+                    known.join(", ")
+                ),
+            )
+        })
 }
