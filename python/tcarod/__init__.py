@@ -23,6 +23,7 @@ from ._core import (
 from . import rod
 from .rod import *  # noqa: F403  the rod API (Robot, Body, ...): the names of rod.__all__
 from .tca import Material, Tca
+from .materials import BodyMaterial, body_material, body_materials
 from .batch import BatchResult, solve_batch
 from .models.grasp import grasp_temperature
 from .inverse import (
@@ -44,6 +45,9 @@ __all__ = [
     "UnstableEquilibriumWarning",
     "Material",
     "Tca",
+    "BodyMaterial",
+    "body_material",
+    "body_materials",
     "__version__",
     "BatchResult",
     "BlockedResult",

@@ -3,10 +3,12 @@
 When tcarod is imported inside IPython (Jupyter), :func:`register` adds
 display formatters, from Python, for
 
-* matplotlib ``Figure`` objects (every tcarod plot returns one, drawn by the
-  Agg canvas): ``image/png``, so ``sol.plot()`` or ``plot_workspace(ws)`` as
-  the last line of a cell shows the picture without ``%matplotlib inline``
-  (a ``%matplotlib`` magic, if used, installs its own formatter and wins);
+* matplotlib ``Figure`` objects (every tcarod plot returns one; in the
+  inline backend, or without pyplot, a figure on the Agg canvas that
+  nothing else displays): ``image/png``, so ``sol.plot()`` or
+  ``plot_workspace(ws)`` as the last line of a cell shows the picture once,
+  without ``%matplotlib inline`` (a ``%matplotlib`` magic, if used, installs
+  its own formatter and wins);
 * :class:`tcarod.Solution`: ``image/png`` (its 3-D plot) and ``text/html``
   (tip pose, inputs, tensions, iterations);
 * :class:`tcarod.Robot`: ``text/html`` (body and actuators);
@@ -41,8 +43,11 @@ def figure_png(fig: Any) -> bytes | None:
 
 
 def _plot_solution(sol: Any, **kwargs: Any) -> Any:
-    """``Solution.plot``: the bindings call this (registered below) so that they
-    never import Python modules themselves; matplotlib is imported on first use."""
+    """``Solution.plot(**kwargs)``: :func:`tcarod.plotting.plot_solution` with the
+    same keywords (``view="3d" | "xz" | "yz" | "interactive"``, ``ax``,
+    ``rings``, ``camera``, ``title``, ``backend``). The bindings call this
+    (registered below) so that they never import Python modules themselves;
+    matplotlib is imported on first use."""
     from .plotting import plot_solution
 
     return plot_solution(sol, **kwargs)
@@ -52,15 +57,19 @@ _core._register_plotter(_plot_solution)
 
 
 def _solution_png(sol: Any) -> bytes | None:
-    from .plotting import plot_solution
+    """The 3-D plot of a solution as PNG bytes, drawn outside pyplot (a preview, never a window)."""
+    from .plotting import detached, plot_solution
 
-    return figure_png(plot_solution(sol))
+    with detached():
+        return figure_png(plot_solution(sol))
 
 
 def _workspace_png(ws: Any) -> bytes | None:
-    from .plotting import plot_workspace
+    """The scatter plot of a workspace as PNG bytes, drawn outside pyplot."""
+    from .plotting import detached, plot_workspace
 
-    return figure_png(plot_workspace(ws))
+    with detached():
+        return figure_png(plot_workspace(ws))
 
 
 def _row(cells: list[str], tag: str = "td") -> str:

@@ -100,6 +100,23 @@ class Body:
     def __getnewargs_ex__(self) -> tuple[tuple[Any, ...], dict[str, Any]]: ...
     def __eq__(self, value: object, /) -> bool: ...
     def __hash__(self) -> int: ...
+    @staticmethod
+    def from_material(name: str, length: float, section: Section, **kwargs: Any) -> Body:
+        """A body of the catalogued silicone ``name`` (a ``name`` of
+        :meth:`Body.materials`, e.g. ``"ecoflex-00-30"``; case, spaces and
+        underscores ignored), ``length`` [m], ``section``: the preset gives
+        ``youngs_modulus`` [Pa], ``poisson`` [-] and ``density`` [kg/m^3];
+        ``kwargs`` are the constructor's other keywords and may replace a
+        preset value (e.g. ``youngs_modulus=`` a modulus identified on your
+        own samples, which should replace the nominal one). Raises
+        ``ValueError`` for an unknown ``name``, listing the known ones. See
+        :mod:`tcarod.materials` for the values and their sources."""
+    @staticmethod
+    def materials() -> list[dict[str, Any]]:
+        """The catalogue of :meth:`from_material`, one dict per material:
+        ``name``, ``label``, ``youngs_modulus`` [Pa], ``modulus_basis``,
+        ``modulus_100`` [Pa] or ``None``, ``shore_hardness``, ``poisson`` [-],
+        ``density`` [kg/m^3], ``sources``."""
     @property
     def shear_coefficient(self) -> float:
         """Shear coefficient [-] (Timoshenko)."""

@@ -1,31 +1,117 @@
-"""What every plot shares: a new Agg ``Figure`` and PNG output.
+"""What every plot shares: a new ``Figure`` and PNG output.
 
-Figures are built with matplotlib's object-oriented API (``Figure`` rendered by
-the Agg canvas), never through ``pyplot``: nothing here needs a display or
-changes the user's global matplotlib backend.
+Where a figure lives:
+
+* **pyplot in use** (``matplotlib.pyplot`` imported, as in a script that
+  calls ``plt.show()``): the figure is made by ``pyplot.figure`` so that
+  pyplot manages it: ``fig.show()`` and ``plt.show()`` open it with the
+  current backend (under the non-interactive Agg backend of a headless run,
+  ``fig.show()`` only warns, as for any pyplot figure), and it stays open
+  until ``plt.close(fig)``.
+* **otherwise**, and in Jupyter's inline backend: a plain ``Figure`` on an Agg
+  canvas. Nothing needs a display or changes the global backend; in a
+  notebook the figure returned by the last line of a cell is shown once, by
+  the display formatter (a pyplot figure would be shown a second time when
+  the cell ends).
+
+Figures drawn only to be written to a file (``Result.plot(path)``,
+``tcarod reproduce``, animation frames, notebook previews) are never left
+open in pyplot: :func:`save_png` closes a pyplot figure after writing it
+unless told otherwise, and :func:`detached` makes figures outside pyplot.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
+import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-__all__ = ["new_figure", "save_png"]
+__all__ = ["detached", "is_pyplot_figure", "new_figure", "save_png", "uses_pyplot"]
+
+_DETACHED = [0]  # depth of active ``detached()`` blocks
+
+
+@contextlib.contextmanager
+def detached() -> Iterator[None]:
+    """Inside this block :func:`new_figure` makes figures outside pyplot
+    (Agg canvas), whatever the backend: for figures drawn only to be saved."""
+    _DETACHED[0] += 1
+    try:
+        yield
+    finally:
+        _DETACHED[0] -= 1
+
+
+def uses_pyplot() -> bool:
+    """Whether :func:`new_figure` makes pyplot figures now: ``matplotlib.pyplot``
+    is imported, its backend is not Jupyter's inline backend, and no
+    :func:`detached` block is active."""
+    if _DETACHED[0] or "matplotlib.pyplot" not in sys.modules:
+        return False
+    import matplotlib
+
+    return "inline" not in str(matplotlib.get_backend()).lower()
+
+
+def is_pyplot_figure(fig: Figure) -> bool:
+    """Whether pyplot manages ``fig`` (it has a figure manager, so ``fig.show()`` works)."""
+    return getattr(fig.canvas, "manager", None) is not None
 
 
 def new_figure(width_in: float, height_in: float) -> Figure:
-    """A constrained-layout ``Figure`` of ``width_in`` x ``height_in`` inches on an Agg canvas."""
+    """A constrained-layout ``Figure`` of ``width_in`` x ``height_in`` inches:
+    made by ``pyplot.figure`` when pyplot is in use (:func:`uses_pyplot`),
+    otherwise on an Agg canvas (see the module docstring).
+
+    Parameters
+    ----------
+    width_in, height_in : float
+        Size [in].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    if uses_pyplot():
+        import matplotlib.pyplot as plt
+
+        return plt.figure(figsize=(width_in, height_in), layout="constrained")
     fig = Figure(figsize=(width_in, height_in), layout="constrained")
     FigureCanvasAgg(fig)
     return fig
 
 
-def save_png(fig: Figure, path: str | os.PathLike[str], dpi: int = 150) -> Path:
-    """Save ``fig`` as a PNG at ``path`` (parent directories created); return the path."""
+def save_png(fig: Figure, path: str | os.PathLike[str], dpi: int = 150, *, keep_open: bool = False) -> Path:
+    """Save ``fig`` as a PNG at ``path`` (parent directories created).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure to write.
+    path : str or os.PathLike
+        Output file.
+    dpi : int
+        Resolution [dots per inch].
+    keep_open : bool
+        Keep a pyplot figure open after writing it; by default it is closed
+        (``plt.close(fig)``), since tcarod's writers discard their figures.
+        A figure outside pyplot is never affected.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     out = Path(path)
     out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, format="png", dpi=dpi)
+    if not keep_open and is_pyplot_figure(fig) and "matplotlib.pyplot" in sys.modules:
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)
     return out

@@ -15,7 +15,7 @@ from .. import _validate as V
 from ..models.thermal import ThermalModel, VoltageProfile
 from ..models.trajectory import ShapeTrajectory
 from ..models.workspace import Workspace
-from ._figure import new_figure, save_png
+from ._figure import detached, new_figure, save_png
 from .solution import plot_solution
 
 __all__ = ["plot_shape_trajectory", "plot_step_response", "plot_workspace", "save_trajectory_frames"]
@@ -24,7 +24,8 @@ __all__ = ["plot_shape_trajectory", "plot_step_response", "plot_workspace", "sav
 def plot_workspace(ws: Workspace, colour_by: str = "bending") -> Figure:
     """3-D scatter of the reachable tip positions [mm], coloured by the
     bending angle [deg] (``colour_by="bending"``) or by the hottest input [C]
-    (``"max_temperature"``). Returns a matplotlib ``Figure`` (Agg, no display)."""
+    (``"max_temperature"``). Returns a matplotlib ``Figure`` (a pyplot figure
+    when pyplot is in use, see :mod:`tcarod.plotting`)."""
     V.instance("ws", ws, Workspace, "a Workspace")
     if not isinstance(colour_by, str):
         raise TypeError(f"colour_by must be a str, not {type(colour_by).__name__}")
@@ -110,7 +111,8 @@ def save_trajectory_frames(traj: ShapeTrajectory, directory: str | os.PathLike[s
     paths = []
     for k in range(0, len(traj.solutions), every):
         temps = ", ".join(f"{t:.0f}" for t in traj.temperatures_c[k])
-        fig = plot_solution(traj.solutions[k], title=f"t = {traj.time_s[k]:.1f} s, T = [{temps}] °C")
+        with detached():  # written to a file, never shown: outside pyplot
+            fig = plot_solution(traj.solutions[k], title=f"t = {traj.time_s[k]:.1f} s, T = [{temps}] °C")
         ax: Any = fig.axes[0]
         ax.set_xlim(centre[0] - half, centre[0] + half)
         ax.set_ylim(centre[1] - half, centre[1] + half)

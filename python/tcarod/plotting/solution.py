@@ -1,78 +1,54 @@
-"""The 3-D shape of a forward solution: centre line, body outline, actuators
-(``Solution.plot()`` calls :func:`plot_solution`)."""
+"""The shape of a forward solution: centre line, body outline, actuators, in
+3-D or as a 2-D side view (``Solution.plot()`` calls :func:`plot_solution`).
+
+Figures: with ``ax=None`` a new figure is made by ``matplotlib.pyplot`` when
+pyplot is imported (so ``fig.show()`` and ``plt.show()`` work in a script),
+otherwise on the Agg canvas (headless, and in Jupyter's inline backend, where
+the returned figure is displayed once); see :mod:`tcarod.plotting`.
+
+Overlays: drawing again on the same ``ax`` keeps what is there, grows the
+limits to hold every shape (equal aspect), lists each legend label once
+("centre line", "body outline", each actuator), keeps an existing title
+unless ``title`` is given, and sets the 3-D camera only on the first shape or
+when ``camera`` is given.
+"""
 
 from __future__ import annotations
 
-import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal, Union, overload
 
 import numpy as np
 import numpy.typing as npt
 from matplotlib.figure import Figure
 
 from .. import _validate as V
-from ..rod import Section, Solution
+from ..rod import Solution
 from ._figure import new_figure
+from ._shapes import input_title, shape_lines
 
 if TYPE_CHECKING:
-    from mpl_toolkits.mplot3d.axes3d import Axes3D  # type: ignore[import-untyped]  # untyped: Any
+    from matplotlib.axes import Axes
 
 __all__ = ["plot_solution"]
 
 FloatArray = npt.NDArray[np.float64]
+View = Union[Literal["3d", "xz", "yz", "interactive"], tuple[float, float]]
 
-_DEFAULT_VIEW = (15.0, -60.0)
+#: Default camera of the 3-D view: (elevation, azimuth) [deg].
+DEFAULT_CAMERA: tuple[float, float] = (15.0, -60.0)
 _MM = 1e3
+#: Side views: view name -> (horizontal, vertical) world axis index.
+_SIDE_AXES = {"xz": (0, 2), "yz": (1, 2)}
+_AXIS_NAMES = "xyz"
 
 
-def _outline_angles(section: Section) -> list[float]:
-    """Body-frame angles [rad] of the edge lines drawn along the body: the four
-    corners of a rectangle, eight directions otherwise."""
-    if section.kind == "rectangle":
-        area, ix, iy, _ = section.properties
-        half_w, half_h = 0.5 * math.sqrt(12.0 * iy / area), 0.5 * math.sqrt(12.0 * ix / area)
-        c = math.atan2(half_h, half_w)
-        return [c, math.pi - c, math.pi + c, 2.0 * math.pi - c]
-    return [k * math.pi / 4.0 for k in range(8)]
-
-
-def _edge_point(section: Section, theta: float) -> FloatArray:
-    """Body-frame point [m] of the section's edge in direction ``theta`` [rad]."""
-    r = section.edge_distance(theta)
-    return np.array([r * math.cos(theta), r * math.sin(theta), 0.0])
-
-
-def _draw_body(ax: Any, solution: Solution, rings: int) -> list[FloatArray]:
-    """Centre line, edge lines and ``rings`` cross-section rings [mm]; returns the drawn points."""
-    pos, rot = solution.positions, solution.rotations
-    section = solution.robot.body.section
-    ax.plot(
-        pos[:, 0] * _MM, pos[:, 1] * _MM, pos[:, 2] * _MM, "k--", linewidth=1.0, label="centre line", gid="centre-line"
-    )
-    points = [pos * _MM]
-    for k, theta in enumerate(_outline_angles(section)):
-        pts = (pos + rot @ _edge_point(section, theta)) * _MM
-        points.append(pts)
-        label = "body outline" if k == 0 else None
-        ax.plot(pts[:, 0], pts[:, 1], pts[:, 2], color="0.55", linewidth=0.8, label=label, gid=f"outline-{k}")
-    # cross-section rings at evenly spaced nodes (base and tip included)
-    ring_local = np.array([_edge_point(section, float(t)) for t in np.linspace(0.0, 2.0 * math.pi, 73)])
-    n = len(solution.s)
-    for k, i in enumerate(sorted({round(j) for j in np.linspace(0, n - 1, max(2, rings))})):
-        ring = (pos[i] + ring_local @ rot[i].T) * _MM
-        ax.plot(ring[:, 0], ring[:, 1], ring[:, 2], color="0.55", linewidth=0.8, gid=f"ring-{k}")
-    return points
-
-
-def _draw_actuators(ax: Any, solution: Solution) -> list[FloatArray]:
-    """Each actuator path [mm] in its own colour, labelled with its tension [mN]."""
-    points = []
-    for k, (path, tension) in enumerate(zip(solution.actuator_paths, solution.tensions)):
-        p = path * _MM
-        points.append(p)
-        label = f"actuator {k}: {tension * 1e3:.1f} mN"
-        ax.plot(p[:, 0], p[:, 1], p[:, 2], color=f"C{k % 10}", linewidth=2.0, label=label, gid=f"actuator-{k}")
-    return points
+def _style(gid: str) -> dict[str, Any]:
+    """Line style of a shape line by its gid."""
+    if gid == "centre-line":
+        return {"color": "black", "linestyle": "--", "linewidth": 1.0}
+    if gid.startswith("actuator-"):
+        return {"color": f"C{int(gid.split('-')[1]) % 10}", "linewidth": 2.0}
+    return {"color": "0.55", "linewidth": 0.8}
 
 
 def _equal_cube(ax: Any, points: list[FloatArray]) -> None:
@@ -102,61 +78,177 @@ def _unique_legend(ax: Any) -> None:
     ax.legend(list(unique.values()), list(unique.keys()), fontsize="x-small", loc="upper left")
 
 
-def _axes(ax: Axes3D | None) -> tuple[Any, Figure, bool]:
-    """The 3-D axes to draw into (a new Agg figure if ``ax`` is None), its
-    figure, and whether this is the first shape drawn on it."""
+def _axes(ax: Axes | None, three_d: bool) -> tuple[Any, Figure, bool]:
+    """The axes to draw into (a new figure if ``ax`` is None), its figure, and
+    whether this is the first shape drawn on it."""
     if ax is None:
-        fig = new_figure(5.0, 5.0)
-        return fig.add_subplot(projection="3d"), fig, True
-    if not hasattr(ax, "set_zlim"):
-        raise TypeError(f"ax must be a 3-D matplotlib axes (projection='3d'), not {type(ax).__name__}")
+        fig = new_figure(5.0, 5.0) if three_d else new_figure(4.5, 5.0)
+        new_ax = fig.add_subplot(projection="3d") if three_d else fig.add_subplot()
+        return new_ax, fig, True
+    is_3d = hasattr(ax, "set_zlim")
+    if three_d and not is_3d:
+        raise TypeError(f"ax must be a 3-D matplotlib axes (projection='3d') for view='3d', not {type(ax).__name__}")
+    if not three_d and (is_3d or not hasattr(ax, "set_aspect")):
+        raise TypeError(f"ax must be a 2-D matplotlib axes for a side view, not {type(ax).__name__}")
     figure = ax.get_figure()
     if not isinstance(figure, Figure):
         raise ValueError("ax: must belong to a matplotlib Figure")
-    return ax, figure, getattr(ax, "_tcarod_bounds", None) is None
+    first = not any(line.get_gid() == "centre-line" for line in ax.get_lines())
+    return ax, figure, first
 
 
+def _view_and_camera(
+    view: object, camera: tuple[float, float] | None, backend: str
+) -> tuple[str, tuple[float, float] | None]:
+    """The checked view name (``"3d"``, ``"xz"``, ``"yz"`` or ``"interactive"``) and camera [deg]."""
+    if not isinstance(backend, str):
+        raise TypeError(f"backend must be a str, not {type(backend).__name__}")
+    if backend not in ("matplotlib", "plotly"):
+        raise ValueError(f"invalid backend = {backend!r}: use 'matplotlib' or 'plotly'")
+    if isinstance(view, tuple):  # (elevation, azimuth) [deg]: the 3-D view from that camera
+        if camera is not None:
+            raise ValueError("give the 3-D camera [deg] once: view=(elevation, azimuth) or camera=(...), not both")
+        if len(view) != 2:
+            raise ValueError(f"invalid view = {view!r}: a camera is (elevation, azimuth) [deg]")
+        pair: tuple[Any, Any] = (view[0], view[1])  # checked as reals [deg] below
+        view, camera = "3d", pair
+    if not isinstance(view, str):
+        raise TypeError(f"view must be a str or an (elevation, azimuth) tuple [deg], not {type(view).__name__}")
+    if view not in ("3d", "xz", "yz", "interactive"):
+        raise ValueError(f"invalid view = {view!r}: use '3d', 'xz', 'yz' or 'interactive'")
+    if backend == "plotly":
+        if view not in ("3d", "interactive"):
+            raise ValueError(f"invalid view = {view!r} with backend='plotly': the interactive view is 3-D")
+        view = "interactive"
+    if camera is not None:
+        if view in _SIDE_AXES:
+            raise ValueError(f"camera: only for the 3-D view, not view = {view!r}")
+        camera = (
+            V.real("camera[0] (elevation) [deg]", camera[0], unit="deg"),
+            V.real("camera[1] (azimuth) [deg]", camera[1], unit="deg"),
+        )
+    return view, camera
+
+
+def _draw(ax: Any, lines: list[tuple[str, str | None, FloatArray]], view: str, camera: Any, first: bool) -> None:
+    """Draw ``lines`` [mm] on ``ax``: in 3-D (equal cube, the camera set on the
+    first shape or when given) or projected on the side view ``view``."""
+    if view == "3d":
+        for gid, label, p in lines:
+            ax.plot(p[:, 0], p[:, 1], p[:, 2], label=label, gid=gid, **_style(gid))
+        _equal_cube(ax, [p for _, _, p in lines])
+        if first or camera is not None:
+            elev, azim = camera if camera is not None else DEFAULT_CAMERA
+            ax.view_init(elev=elev, azim=azim)
+        return
+    h, v = _SIDE_AXES[view]
+    for gid, label, p in lines:
+        ax.plot(p[:, h], p[:, v], label=label, gid=gid, **_style(gid))
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(f"{_AXIS_NAMES[h]} [mm]")
+    ax.set_ylabel(f"{_AXIS_NAMES[v]} [mm]")
+    ax.grid(True, linewidth=0.3)
+
+
+@overload
 def plot_solution(
     solution: Solution,
-    ax: Axes3D | None = None,
+    ax: Axes | None = None,
     *,
+    view: Literal["3d", "xz", "yz"] | tuple[float, float] = "3d",
     rings: int = 5,
-    view: tuple[float, float] = _DEFAULT_VIEW,
+    camera: tuple[float, float] | None = None,
     title: str | None = None,
-) -> Figure:
-    """3-D plot of a forward solution (axes in mm): the centre line (dashed),
-    the body's outline -- edge lines along the body and ``rings`` cross-section
-    rings, from :meth:`Section.edge_distance` and the solution's rotations --
-    and each actuator path (``solution.actuator_paths``) in its own colour,
-    labelled with its tension [N]. Equal aspect in x, y, z.
+    backend: Literal["matplotlib"] = "matplotlib",
+) -> Figure: ...
+@overload
+def plot_solution(
+    solution: Solution,
+    ax: None = None,
+    *,
+    view: View = "3d",
+    rings: int = 5,
+    camera: tuple[float, float] | None = None,
+    title: str | None = None,
+    backend: str = "matplotlib",
+) -> Any: ...
+def plot_solution(
+    solution: Solution,
+    ax: Axes | None = None,
+    *,
+    view: View = "3d",
+    rings: int = 5,
+    camera: tuple[float, float] | None = None,
+    title: str | None = None,
+    backend: str = "matplotlib",
+) -> Any:
+    """Plot the shape of a forward solution with its actuators (axes in mm).
 
-    ``ax``: an existing 3-D axes (``projection="3d"``) to draw into; by
-    default a new Agg ``Figure`` is made. ``view`` is ``(elevation, azimuth)``
-    [deg]. Returns the ``Figure`` (``ax.figure`` if ``ax`` was given).
+    Draws the centre line (dashed), the body's outline (edge lines and
+    ``rings`` cross-section rings) and each actuator path in its own colour;
+    the legend gives each actuator's tension in mN (negative: it pushes), the
+    title the inputs with their units (``"inputs: 120 °C, 25 °C"``).
+    ``Solution.plot(**kwargs)`` is ``plot_solution(solution, **kwargs)``;
+    figures and overlays: the module docstring.
 
-    Overlays: calling it again with the same ``ax`` adds the shape and keeps
-    what is there: the limits grow to hold every shape drawn by this function
-    on that axes (a cube, equal aspect), the legend lists each label once
-    ("centre line", "body outline" and each actuator), an existing title is
-    kept unless ``title`` is given, and the view is set only on the first call
-    (or when ``view`` is given explicitly).
+    Parameters
+    ----------
+    solution : Solution
+        A forward solution (``Robot.solve``).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into (3-D for ``view="3d"``, 2-D for a side view).
+    view : {"3d", "xz", "yz", "interactive"} or (float, float)
+        ``"3d"``: 3-D, equal aspect. ``"xz"`` / ``"yz"``: side view along
+        world -y / +x, ``z`` (the reference tangent) up, equal aspect.
+        ``"interactive"``: a plotly 3-D figure (as ``backend="plotly"``).
+        An ``(elevation, azimuth)`` pair [deg]: the 3-D view from there.
+    rings : int
+        Cross-section rings drawn (0 to 1000; base and tip included).
+    camera : (float, float), optional
+        ``(elevation, azimuth)`` [deg] of the 3-D view (default (15, -60)).
+    title : str, optional
+        Title; default the inputs with their units.
+    backend : {"matplotlib", "plotly"}
+        ``"plotly"``: an interactive ``plotly.graph_objects.Figure`` (3-D;
+        the ``interactive`` extra).
+
+    Returns
+    -------
+    matplotlib.figure.Figure or plotly.graph_objects.Figure
+        The figure drawn into (``ax``'s figure if ``ax`` was given).
+
+    Raises
+    ------
+    TypeError
+        A wrong type, or ``ax`` not an axes of the view's kind.
+    ValueError
+        ``view``, ``backend``, ``rings`` or ``camera`` out of range.
+    ImportError
+        plotly needed and not installed (naming ``tcarod[interactive]``).
+
+    Examples
+    --------
+    >>> from tcarod.paper.fig6 import FIG6
+    >>> sol = FIG6.manipulators[1].robot().solve([100.0, 100.0])
+    >>> ax = plot_solution(sol, view="xz").axes[0]
+    >>> ax.get_xlabel(), ax.get_ylabel(), ax.get_title()
+    ('x [mm]', 'z [mm]', 'inputs: 100 °C, 100 °C')
     """
     V.instance("solution", solution, Solution, "a tcarod.Solution")
     rings = V.integer("rings", rings, 0, 1000)
     if title is not None and not isinstance(title, str):
         raise TypeError(f"title must be a str, not {type(title).__name__}")
-    view_given = view is not _DEFAULT_VIEW
-    view = (V.real("view[0] (elevation)", view[0], unit="deg"), V.real("view[1] (azimuth)", view[1], unit="deg"))
-    ax, figure, first = _axes(ax)
-    had_title = bool(ax.get_title())
-    _equal_cube(ax, _draw_body(ax, solution, rings) + _draw_actuators(ax, solution))
-    if first or view_given:
-        ax.view_init(elev=view[0], azim=view[1])
-    names = [a.input_name for a in solution.robot.actuators]
-    inputs = ", ".join(f"{name} {x:g}" for name, x in zip(names, solution.inputs))
-    if title is not None:
-        ax.set_title(title, fontsize="small")
-    elif not had_title:
-        ax.set_title(inputs or "no actuators", fontsize="small")
-    _unique_legend(ax)
+    view_name, cam = _view_and_camera(view, camera, backend)
+    if view_name == "interactive":
+        if ax is not None:
+            raise TypeError("ax: the interactive (plotly) view makes its own figure; pass ax=None")
+        from .interactive import plot_solution_plotly
+
+        return plot_solution_plotly(solution, rings=rings, title=title)
+    ax_, figure, first = _axes(ax, view_name == "3d")
+    had_title = bool(ax_.get_title())
+    _draw(ax_, shape_lines(solution, rings), view_name, cam, first)
+    if title is not None or not had_title:  # an overlay keeps the first shape's title
+        ax_.set_title(input_title(solution) if title is None else title, fontsize="small")
+    _unique_legend(ax_)
     return figure

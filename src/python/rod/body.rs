@@ -3,10 +3,11 @@
 use nalgebra::Vector3;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 
 use super::section::{section_repr, PySection};
 use crate::error::Error;
+use crate::experiments::ECOFLEX10;
 use crate::python::to_py::{hash_by_text, keyword_args, mat3, vec3, vec3_getters, NewArgs};
 use crate::python::{pf, pv, vec3_arg, Real};
 use crate::rod::{Body, Shear};
@@ -101,6 +102,79 @@ impl PyBody {
         let obj = cls.call((), Some(&kw))?;
         let b = obj.cast::<PyBody>()?;
         Ok(b.get().clone())
+    }
+
+    /// A body of a catalogued silicone: `Body.from_material(name, length,
+    /// section, **kwargs)`.
+    ///
+    /// `name` is one of `Body.materials()` (`"ecoflex-00-10"`,
+    /// `"ecoflex-00-30"`, `"ecoflex-00-50"`, `"dragon-skin-10"`,
+    /// `"dragon-skin-20"`, `"dragon-skin-30"`, `"sylgard-184"`; case, spaces
+    /// and underscores are ignored); `length` [m]; `section` a `Section`.
+    /// The preset gives `youngs_modulus` [Pa], `poisson` [-] and `density`
+    /// [kg/m^3]; `kwargs` are the constructor's other keywords (`gravity`,
+    /// `omega_star`, ...) and may replace a preset value, e.g.
+    /// `youngs_modulus=` a modulus identified on the user's own samples.
+    ///
+    /// The values are nominal: silicone moduli vary with mixing, degassing,
+    /// cure temperature and age by tens of percent, so a modulus identified
+    /// from a test of the user's own material should replace the preset's.
+    /// Each entry of `Body.materials()` names its sources. Raises
+    /// `ValueError` for an unknown `name` (listing the known ones).
+    #[staticmethod]
+    #[pyo3(signature = (name, length, section, **kwargs))]
+    fn from_material(
+        py: Python<'_>,
+        name: &str,
+        length: Real,
+        section: PySection,
+        kwargs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let m = body_material(name)?;
+        let kw = PyDict::new(py);
+        kw.set_item("length", length.0)?;
+        kw.set_item("section", section)?;
+        kw.set_item("youngs_modulus", m.youngs_modulus())?;
+        kw.set_item("poisson", m.poisson)?;
+        kw.set_item("density", m.density)?;
+        if let Some(extra) = kwargs {
+            for (k, v) in extra.iter() {
+                let key: String = k.extract()?;
+                if key == "shear_modulus" {
+                    kw.del_item("poisson")?;
+                }
+                kw.set_item(key, v)?;
+            }
+        }
+        let obj = py.get_type::<PyBody>().call((), Some(&kw))?;
+        let b = obj.cast::<PyBody>()?;
+        Ok(b.get().clone())
+    }
+
+    /// The catalogued silicones of `Body.from_material`, one dict per
+    /// material in catalogue order: `name`, `label`, `youngs_modulus` [Pa]
+    /// (small-strain Young's modulus used by the model), `modulus_basis`
+    /// (which modulus and how it was obtained), `modulus_100` [Pa] (the
+    /// manufacturer's stress at 100 % elongation, `None` if not published),
+    /// `shore_hardness`, `poisson` [-], `density` [kg/m^3], `sources`
+    /// (the publications and technical bulletins the values come from).
+    #[staticmethod]
+    fn materials(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
+        let out = PyList::empty(py);
+        for m in BODY_MATERIALS {
+            let d = PyDict::new(py);
+            d.set_item("name", m.name)?;
+            d.set_item("label", m.label)?;
+            d.set_item("youngs_modulus", m.youngs_modulus())?;
+            d.set_item("modulus_basis", m.modulus.basis())?;
+            d.set_item("modulus_100", m.modulus_100())?;
+            d.set_item("shore_hardness", m.shore_hardness)?;
+            d.set_item("poisson", m.poisson)?;
+            d.set_item("density", m.density)?;
+            d.set_item("sources", m.sources)?;
+            out.append(d)?;
+        }
+        Ok(out)
     }
 
     /// Constructor keywords of this body (for `replace` and serialisation).
@@ -222,4 +296,176 @@ pub(crate) fn body_repr(b: &Body) -> String {
         }
     }
     out + ")"
+}
+
+/// One pascal per psi (the technical bulletins give moduli in psi).
+const PA_PER_PSI: f64 = 6_894.757_293_168;
+
+/// How a catalogued silicone's small-strain Young's modulus is obtained.
+#[derive(Clone, Copy)]
+enum Modulus {
+    /// From the manufacturer's stress at 100 % elongation `sigma_100` [psi]
+    /// by an incompressible neo-Hookean solid: nominal uniaxial stress
+    /// `P = mu (lambda - 1/lambda^2)`, `E = 3 mu`, so at `lambda = 2`
+    /// `E = 3 sigma_100 / 1.75 = (12/7) sigma_100`.
+    NeoHookeanFrom100 { psi: f64 },
+    /// A small-strain modulus [Pa] measured in a published characterisation.
+    Published { pa: f64, basis: &'static str },
+}
+
+impl Modulus {
+    fn youngs_modulus(self) -> f64 {
+        match self {
+            Modulus::NeoHookeanFrom100 { psi } => 12.0 / 7.0 * psi * PA_PER_PSI,
+            Modulus::Published { pa, .. } => pa,
+        }
+    }
+    fn basis(self) -> &'static str {
+        match self {
+            Modulus::NeoHookeanFrom100 { .. } => {
+                "small-strain (initial) Young's modulus of an incompressible neo-Hookean solid \
+                 through the technical bulletin's 100 % modulus: E = (12/7) x 100 % modulus"
+            }
+            Modulus::Published { basis, .. } => basis,
+        }
+    }
+}
+
+/// A catalogued silicone for soft bodies (`Body.from_material`).
+struct BodyMaterial {
+    name: &'static str,
+    label: &'static str,
+    modulus: Modulus,
+    /// The technical bulletin's stress at 100 % elongation [psi], if published.
+    modulus_100_psi: Option<f64>,
+    shore_hardness: &'static str,
+    poisson: f64,
+    /// Density [kg/m^3]: the manufacturer's specific gravity x 1000.
+    density: f64,
+    sources: &'static str,
+}
+
+impl BodyMaterial {
+    fn youngs_modulus(&self) -> f64 {
+        self.modulus.youngs_modulus()
+    }
+    fn modulus_100(&self) -> Option<f64> {
+        self.modulus_100_psi.map(|p| p * PA_PER_PSI)
+    }
+}
+
+const ECOFLEX_BULLETIN: &str = "Smooth-On, Ecoflex Series technical bulletin \
+    (specific gravity, Shore hardness, 100 % modulus)";
+const DRAGON_SKIN_BULLETIN: &str = "Smooth-On, Dragon Skin Series technical bulletin \
+    (specific gravity, Shore hardness, 100 % modulus)";
+
+/// The catalogue of `Body.from_material`, defined once. Poisson ratio 0.5:
+/// cured silicone rubbers are nearly incompressible (bulk modulus about
+/// 10^3 times the shear modulus).
+const BODY_MATERIALS: &[BodyMaterial] = &[
+    BodyMaterial {
+        name: "ecoflex-00-10",
+        label: "Ecoflex 00-10",
+        modulus: Modulus::Published {
+            pa: ECOFLEX10.1,
+            basis:
+                "small-strain Young's modulus of the EcoFlex 10 bodies of Pawlowski et al. 2019 \
+                    (Section V), the value of the paper's fixtures; the neo-Hookean estimate \
+                    through the bulletin's 100 % modulus (8 psi) is 94.6 kPa",
+        },
+        modulus_100_psi: Some(8.0),
+        shore_hardness: "00-10",
+        poisson: 0.5,
+        density: ECOFLEX10.0,
+        sources: "Pawlowski, Sun, Xu, Liu, Zhao, \"Modeling of Soft Robots Actuated by \
+                  Twisted-and-Coiled Actuators\", IEEE/ASME Trans. Mechatronics 24(1), 2019, \
+                  Section V (modulus, density 1040 kg/m^3); Smooth-On, Ecoflex Series \
+                  technical bulletin (specific gravity 1.04, Shore 00-10, 100 % modulus 8 psi)",
+    },
+    BodyMaterial {
+        name: "ecoflex-00-30",
+        label: "Ecoflex 00-30",
+        modulus: Modulus::NeoHookeanFrom100 { psi: 10.0 },
+        modulus_100_psi: Some(10.0),
+        shore_hardness: "00-30",
+        poisson: 0.5,
+        density: 1070.0,
+        sources: ECOFLEX_BULLETIN,
+    },
+    BodyMaterial {
+        name: "ecoflex-00-50",
+        label: "Ecoflex 00-50",
+        modulus: Modulus::NeoHookeanFrom100 { psi: 12.0 },
+        modulus_100_psi: Some(12.0),
+        shore_hardness: "00-50",
+        poisson: 0.5,
+        density: 1070.0,
+        sources: ECOFLEX_BULLETIN,
+    },
+    BodyMaterial {
+        name: "dragon-skin-10",
+        label: "Dragon Skin 10",
+        modulus: Modulus::NeoHookeanFrom100 { psi: 22.0 },
+        modulus_100_psi: Some(22.0),
+        shore_hardness: "10A",
+        poisson: 0.5,
+        density: 1070.0,
+        sources: DRAGON_SKIN_BULLETIN,
+    },
+    BodyMaterial {
+        name: "dragon-skin-20",
+        label: "Dragon Skin 20",
+        modulus: Modulus::NeoHookeanFrom100 { psi: 49.0 },
+        modulus_100_psi: Some(49.0),
+        shore_hardness: "20A",
+        poisson: 0.5,
+        density: 1080.0,
+        sources: DRAGON_SKIN_BULLETIN,
+    },
+    BodyMaterial {
+        name: "dragon-skin-30",
+        label: "Dragon Skin 30",
+        modulus: Modulus::NeoHookeanFrom100 { psi: 86.0 },
+        modulus_100_psi: Some(86.0),
+        shore_hardness: "30A",
+        poisson: 0.5,
+        density: 1080.0,
+        sources: DRAGON_SKIN_BULLETIN,
+    },
+    BodyMaterial {
+        name: "sylgard-184",
+        label: "Sylgard 184 (10:1)",
+        modulus: Modulus::Published {
+            pa: 1.32e6,
+            basis: "small-strain tensile Young's modulus of Sylgard 184 mixed 10:1 and cured at \
+                    room temperature (Johnston et al. 2014: 1.32 MPa; curing hotter stiffens it, \
+                    up to 2.97 MPa when cured at 200 C)",
+        },
+        modulus_100_psi: None,
+        shore_hardness: "43A",
+        poisson: 0.5,
+        density: 1030.0,
+        sources: "Johnston, McCluskey, Tan, Tracey, \"Mechanical characterization of bulk \
+                  Sylgard 184 for microfluidics and microengineering\", J. Micromech. Microeng. \
+                  24, 035017, 2014 (modulus); Dow, SYLGARD 184 Silicone Elastomer technical \
+                  data sheet (specific gravity 1.03, Shore A 43)",
+    },
+];
+
+/// The catalogued material `name` (case, spaces and underscores ignored).
+fn body_material(name: &str) -> Result<&'static BodyMaterial, Error> {
+    let key = name.trim().to_lowercase().replace([' ', '_'], "-");
+    BODY_MATERIALS
+        .iter()
+        .find(|m| m.name == key)
+        .ok_or_else(|| {
+            let known: Vec<&str> = BODY_MATERIALS.iter().map(|m| m.name).collect();
+            Error::input(
+                "name",
+                format!(
+                    "{name:?} is not a catalogued body material; known: {}",
+                    known.join(", ")
+                ),
+            )
+        })
 }
