@@ -54,11 +54,7 @@ pub fn largest_rate(robot: &Robot, loads: &Loads) -> f64 {
 pub fn segment_starts(robot: &Robot, loads: &Loads, steps: usize) -> Vec<usize> {
     let grid = Grid::new(robot, steps);
     let lambda = rate(robot, loads);
-    let limit = std::env::var("DBG_G")
-        .ok()
-        .and_then(|v| v.parse::<f64>().ok())
-        .unwrap_or(GROWTH_BOUND)
-        .ln();
+    let limit = GROWTH_BOUND.ln();
     let mut starts = vec![0];
     let mut exponent = 0.0;
     let tip = grid.tip();

@@ -105,7 +105,9 @@ class Solution:
     def _verdict(self) -> tuple[bool, float] | None:
         """The stability verdict ``(stable, margin)`` if known (never computed here)."""
     def plot(self, **kwargs: Any) -> Figure:
-        """3-D plot of the shape with the actuators; see ``tcarod.plotting.plot_solution``."""
+        """Plot of the shape with the actuators: 3-D (default) or a side view
+        (``view="xz"`` / ``"yz"``); see ``tcarod.plotting.plot_solution``, which
+        also gives a plotly figure with ``view="interactive"``."""
     @property
     def success(self) -> bool:
         """Always ``True`` (a failed solve raises ``ConvergenceError``)."""
