@@ -70,7 +70,8 @@ pub struct Landing {
 /// (an equilibrium at these or at nearby parameters): by loading from rest
 /// with an imperfection, the tip wrench `(EI/L^2, EI/L) mode` along the
 /// softest mode of the equilibrium continued from `before` (or `mode` if
-/// given), then taking it away ([`imperfection`]), and, if
+/// given), then taking it away
+/// ([`crate::solve::forward::solve_imperfect`]), and, if
 /// `exhaustive` or that found nothing stable, by Newton from the cold guess,
 /// from `before`, and from `before` with its scaled base curvature
 /// `L omega(0)` pushed by +-0.03, 0.1, 0.3, 1 and 3 about each bending axis
