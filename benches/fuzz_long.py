@@ -4,7 +4,8 @@
 
 Draws calls from the hypothesis strategies of ``tests/fuzz/strategies.py``
 (the same ones as the quick profile ``tests/test_fuzz.py``), a fixed share
-per entry point, and runs each in
+per entry point, after the quick profile's ``REGRESSIONS`` (calls that once
+broke the contract), and runs each in
 a pool of long-lived worker subprocesses (``tests/fuzz/harness.py``), each
 call under a time limit: a worker that exceeds it (a hang) or dies (a crash)
 is killed and replaced, and the call is recorded as such. Prints a summary
@@ -38,6 +39,7 @@ from hypothesis import HealthCheck, Phase, given, seed, settings  # noqa: E402
 
 from fuzz.harness import ALLOWED, receive, send  # noqa: E402
 from fuzz.strategies import ENTRIES, Call  # noqa: E402
+from test_fuzz import REGRESSIONS  # noqa: E402
 
 CHUNK = 5000  # calls per hypothesis run (bounds the engine's memory)
 START_TIMEOUT_S = 300.0  # worker start-up: imports and fixtures, on a busy machine
@@ -157,6 +159,9 @@ def run(calls: int, timeout: float, seed_value: int, workers: int) -> tuple[Pool
     t0 = time.perf_counter()
     round_no = 0
     try:
+        # the calls that once broke the contract, before the random draws
+        for call, _ in REGRESSIONS.values():
+            pool.submit(call)
         while any(left.values()):
             per_round = max(1, CHUNK // len(ENTRIES))
             for k, entry in enumerate(sorted(left)):

@@ -19,6 +19,7 @@ Contract (tcarod.tca module docstring):
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from typing import Any, Callable
 
@@ -330,3 +331,219 @@ def test_an_offset_outside_the_section_points_to_spacer_disks() -> None:
     with pytest.raises(ValueError, match=r"actuators\[0\]\.routing.*spacer_disks=True"):
         tcarod.Robot(body, [tendon])
     assert tcarod.Robot(body, [tendon], spacer_disks=True).solve([15.0]).success
+
+
+# ------------------------------------------- hostile lengths, ranges, units
+
+
+class _LyingSequence:
+    """Claims 2**62 items and yields a number at every index: NumPy and
+    ``list()`` allocate by the claim before reading it."""
+
+    def __len__(self) -> int:
+        return 2**62
+
+    def __getitem__(self, i: int) -> float:
+        return 1.0
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda x: TCA.force(x, 60.0),
+        lambda x: TCA.displacement(0.1, x),
+        lambda x: TCA.temperature(x, 0.01),
+        lambda x: TCA.onset_temperature(x),
+        lambda x: TCA.free_stroke(x),
+        lambda x: TCA.blocked_force(x),
+        lambda x: TCA.force([x], 60.0),
+    ],
+    ids=["force", "displacement", "temperature", "onset_temperature", "free_stroke", "blocked_force", "nested"],
+)
+def test_a_sequence_claiming_a_huge_length_is_a_value_error(call: Callable[[object], object]) -> None:
+    with pytest.raises(ValueError, match=r"at most 10000000 allowed|more values than memory holds"):
+        call(_LyingSequence())
+
+
+def _fig6() -> Any:
+    from tcarod.batch import fig6_square_robot
+
+    return fig6_square_robot(False)
+
+
+def test_blocked_temperatures_refuse_a_sequence_claiming_a_huge_length() -> None:
+    robot = _fig6()
+    with pytest.raises(ValueError, match="point"):
+        tcarod.blocked_temperature(robot, _LyingSequence(), [-1.0, 0.0, 0.0], 0.01)
+    with pytest.raises(ValueError, match="normal"):
+        tcarod.blocked_temperature_direct(robot, [0.0, 0.0, 0.04], _LyingSequence(), 0.01)
+
+
+@pytest.mark.parametrize(
+    ("name", "bad", "unit"),
+    [
+        ("fibre_length_m", 1e-300, "m"),
+        ("fibre_length_m", 1e3, "m"),
+        ("thread_radius_m", 1.7e308, "m"),
+        ("thread_radius_m", 1e-9, "m"),
+        ("density_kg_per_m3", 1e300, "kg/m^3"),
+        ("specific_heat_j_per_kgk", 1e-300, "J/(kg K)"),
+        ("heat_transfer_w_per_m2k", 1e200, "W/(m^2 K)"),
+        ("resistance", 1e-300, "ohm"),
+        ("resistance", 1e300, "ohm"),
+    ],
+)
+def test_thermal_model_coefficients_outside_their_physical_range(name: str, bad: float, unit: str) -> None:
+    from tcarod.models.thermal import RANGES, ThermalModel
+
+    kwargs: dict[str, Any] = {"fibre_length_m": 0.3, "threads": 3, "resistance": 60.0, name: bad}
+    lo, hi, _ = RANGES[name]
+    expected = re.escape(f"invalid {name} = {bad:g} [{unit}]: allowed in [{lo:g}, {hi:g}] (a physical range")
+    with pytest.raises(ValueError, match=expected):
+        ThermalModel(**kwargs)
+
+
+def test_thermal_model_tiny_callable_resistance_gives_value_errors_not_zero_division() -> None:
+    from tcarod.models.thermal import ThermalModel, VoltageProfile
+
+    model = ThermalModel(0.3, 3, lambda t, e: 1e-300)
+    with pytest.raises(ValueError, match="t_max"):
+        model.steady_temperature(3.0)
+    # the transient stays finite and says it left the material's range
+    out = model.transient(VoltageProfile.step(3.0), [0.0, 1.0])
+    assert np.all(np.isfinite(out.temperature_c))
+    assert out.exceeds_t_max_at_s == 1.0
+
+
+def test_thermal_transient_of_a_million_samples_is_vectorised_and_finite() -> None:
+    import time
+
+    from tcarod.models.thermal import MAX_TRANSIENT_SAMPLES, ThermalModel, VoltageProfile
+
+    model = ThermalModel(0.3, 3, 60.0)
+    times = np.linspace(0.0, 30.0, MAX_TRANSIENT_SAMPLES)
+    t0 = time.perf_counter()
+    out = model.transient(VoltageProfile((0.0, 10.0), (1.0, 0.5)), times)
+    assert time.perf_counter() - t0 < 8.0  # about 0.1 s; far below the fuzz time limit even on a loaded machine
+    assert out.temperature_c.shape == times.shape
+    assert np.all(np.isfinite(out.temperature_c)) and np.all(np.isfinite(out.power_w))
+    # the same samples one by one (the exact exponential), at a few points
+    few = model.transient(VoltageProfile((0.0, 10.0), (1.0, 0.5)), times[::250_000])
+    np.testing.assert_allclose(out.temperature_c[::250_000], few.temperature_c, rtol=1e-12)
+    np.testing.assert_allclose(out.voltage_v[[0, -1]], [1.0, 0.5])
+    with pytest.raises(
+        ValueError, match=rf"times_s: {MAX_TRANSIENT_SAMPLES + 1} values, at most {MAX_TRANSIENT_SAMPLES}"
+    ):
+        model.transient(VoltageProfile.step(1.0), np.linspace(0.0, 30.0, MAX_TRANSIENT_SAMPLES + 1))
+
+
+def test_thermal_transient_rk4_steps_are_capped() -> None:
+    from tcarod.models.thermal import MAX_TRANSIENT_RK4_STEPS, LinearResistance, ThermalModel, VoltageProfile
+
+    model = ThermalModel(0.3, 3, LinearResistance(60.0, 0.002))
+    with pytest.raises(ValueError, match=rf"times_s / max_step_s: .* allowed at most {MAX_TRANSIENT_RK4_STEPS}"):
+        model.transient(VoltageProfile.step(1.0), np.linspace(0.0, 30.0, 2 * MAX_TRANSIENT_RK4_STEPS))
+
+
+def test_iter_batches_reads_numpy_integer_arguments_as_integers() -> None:
+    from tcarod.batch import iter_batches
+
+    robot = _fig6()
+    rows = np.full((3, 2), 30.0)
+    blocks = list(iter_batches(robot, rows, threads=np.uint8(5), chunk_size=np.uint8(2), block_chunks=np.int64(1)))
+    assert [len(b) for b in blocks] == [2, 1]
+    assert all(bool(np.all(b.converged)) for b in blocks)
+    with pytest.raises(ValueError, match=r"invalid threads = -1: allowed an integer in 0\.\.1024"):
+        list(iter_batches(robot, rows, threads=np.int64(-1)))
+    with pytest.raises(ValueError, match="invalid chunk_size = 0"):
+        list(iter_batches(robot, rows, chunk_size=0))
+    with pytest.raises(TypeError, match="threads must be an integer"):
+        list(iter_batches(robot, rows, threads=2.0))
+
+
+@pytest.mark.parametrize(
+    ("rotation", "what"),
+    [
+        (-np.eye(3), "determinant"),
+        (np.diag([1.0, 1.0, -1.0]), "determinant"),
+        (2.0 * np.eye(3), "orthogonal"),
+        (np.full((3, 3), np.nan), "finite"),
+    ],
+    ids=["minus-identity", "reflection", "scaled", "nan"],
+)
+def test_tip_position_refuses_an_improper_target_rotation(rotation: Any, what: str) -> None:
+    robot = _fig6()
+    with pytest.raises(ValueError, match=rf"invalid target_rotation.*{what}"):
+        tcarod.tip_position(robot, [0.0, 0.0, 0.04], target_rotation=rotation)
+
+
+def test_blocked_temperature_direct_without_actuators_says_so() -> None:
+    bare = tcarod.Robot(_fig6().body, [])
+    for guess in (None, 60.0):
+        with pytest.raises(ValueError, match="no actuator to heat"):
+            tcarod.blocked_temperature_direct(bare, [0.0, 0.0, 0.04], [-1.0, 0.0, 0.0], 0.01, guess)
+
+
+@pytest.mark.parametrize(
+    ("normal", "match"),
+    [([2**1100, 0, 0], "normal"), ([0.0, 0.0, 0.0], "non-zero"), ([math.nan, 0.0, 0.0], "normal")],
+)
+def test_grasp_refuses_a_bad_normal(normal: list[float], match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        tcarod.grasp_temperature(1e-3, normal=normal)
+
+
+def test_a_huge_but_finite_block_normal_is_the_unit_normal() -> None:
+    robot = _fig6()
+    tip = [float(x) for x in robot.solve([25.0, 25.0]).tip_position]
+    unit = tcarod.blocked_force(robot, tip, [-1.0, 0.0, 0.0], [40.0, 40.0])
+    huge = tcarod.blocked_force(robot, tip, [-1e300, 0.0, 0.0], [40.0, 40.0])
+    assert huge.force == pytest.approx(unit.force, rel=1e-12)
+
+
+@pytest.mark.parametrize("modulus", [70.0, 2e12])
+def test_a_youngs_modulus_outside_1kpa_to_1tpa_warns(modulus: float) -> None:
+    with pytest.warns(tcarod.UnitsWarning, match=rf"youngs_modulus = {modulus:.0f} Pa is outside 1 kPa\.\.1 TPa"):
+        tcarod.Body(0.04, tcarod.Section.rectangle(0.01, 0.01), modulus)
+
+
+def test_a_silicone_modulus_does_not_warn() -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        tcarod.Body(0.04, tcarod.Section.rectangle(0.01, 0.01), 5e4)
+
+
+def test_kelvin_looking_temperatures_warn() -> None:
+    from tcarod.models.thermal import ThermalModel
+
+    with pytest.warns(tcarod.UnitsWarning, match="temperature = 330 C.*did you give Kelvin"):
+        with pytest.raises(ValueError, match="temperature"):
+            TCA.free_stroke(330.0)
+    with pytest.warns(tcarod.UnitsWarning, match="ambient_c = 298.15 C.*Kelvin"):
+        ThermalModel(0.3, 3, 60.0, ambient_c=298.15, t_max_c=433.15)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        TCA.free_stroke([25.0, 160.0])
+
+
+def test_design_values_that_look_like_another_unit_warn() -> None:
+    from pathlib import Path
+
+    from tcarod.io.design import DesignError, loads_design
+
+    text = (Path(__file__).resolve().parents[1] / "examples" / "designs" / "fig6_square.toml").read_text(
+        encoding="utf-8"
+    )
+    assert "length_m = 0.040" in text
+    with pytest.warns(tcarod.UnitsWarning) as record:
+        loads_design(text.replace("length_m = 0.040", "length_m = 40", 1))
+    messages = [str(w.message) for w in record]
+    assert any(re.search(r":8: body\.length_m = 40: keys ending in _m are in metres", m) for m in messages), messages
+    hot = text.replace("temperatures_c = [100.0, 100.0]", "temperatures_c = [300.0, 300.0]")
+    assert hot != text
+    with pytest.warns(tcarod.UnitsWarning, match="temperatures_c = 300.*did you give Kelvin"):
+        with pytest.raises(DesignError, match="temperatures_c"):
+            loads_design(hot)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        loads_design(text)

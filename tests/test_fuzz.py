@@ -14,11 +14,14 @@ subprocess) is ``benches/fuzz_long.py``.
 from __future__ import annotations
 
 import os
+from typing import Any
 
+import numpy as np
 import pytest
 from hypothesis import HealthCheck, Phase, example, given, settings
 
 from fuzz.harness import ALLOWED, classify
+from fuzz.primitives import Fix
 from fuzz.strategies import ENTRIES, Call
 
 #: In-process time limit per call [s]: far above any valid call here (the
@@ -32,6 +35,86 @@ BUDGET = {name: max(3, min(100, int(150 / cost))) for name, (_, cost) in ENTRIES
 #: xfail fails every time whatever the random draws; a fix shows up as XPASS
 #: and the entry must go). ``TCAROD_FUZZ_NO_XFAIL=1`` runs them as plain tests.
 KNOWN: dict[str, tuple[str, Call]] = {}  # none known
+
+
+class LyingLen:
+    """Claims 2**62 items and yields a number at every index: ``list()`` and
+    NumPy allocate by the claim before reading (a ``MemoryError`` bait)."""
+
+    def __len__(self) -> int:
+        return 2**62
+
+    def __getitem__(self, i: int) -> float:
+        return 1.0
+
+    def __repr__(self) -> str:
+        return "LyingLen()"
+
+
+def _robot_without_actuators() -> Any:
+    import tcarod
+    from tcarod.batch import fig6_square_robot
+
+    return tcarod.Robot(fig6_square_robot(False).body, [])
+
+
+#: Calls that once broke the contract, each with the outcome it must have
+#: now; run here and first in the long profile (``benches/fuzz_long.py``).
+REGRESSIONS: dict[str, tuple[Call, str]] = {
+    **{
+        f"{entry}-lying-len": (Call(entry, (Fix("TCA"), LyingLen(), *rest)), "ValueError")
+        for entry, rest in [
+            ("Tca.force", (60.0,)),
+            ("Tca.displacement", (60.0,)),
+            ("Tca.temperature", (0.01,)),
+            ("Tca.onset_temperature", ()),
+            ("Tca.free_stroke", ()),
+            ("Tca.blocked_force", ()),
+        ]
+    },
+    "Tca.force-nested-lying-len": (Call("Tca.force", (Fix("TCA"), [LyingLen()], 60.0)), "ValueError"),
+    "blocked_temperature-lying-len": (
+        Call("blocked_temperature", (Fix("RNG"), LyingLen(), [-1.0, 0.0, 0.0], 0.01)),
+        "ValueError",
+    ),
+    "blocked_temperature_direct-lying-len": (
+        Call("blocked_temperature_direct", (Fix("RNG"), Fix("TIP"), LyingLen(), 0.01)),
+        "ValueError",
+    ),
+    "ThermalModel-huge-thread-radius": (
+        Call("ThermalModel", (0.3, 3, 60.0), {"thread_radius_m": 1.7e308}),
+        "ValueError",
+    ),
+    "ThermalModel-tiny-length-and-resistance": (Call("ThermalModel", (1e-300, 1, 1e-300)), "ValueError"),
+    "tip_position-reflection": (
+        Call("tip_position", (Fix("RNG"), Fix("TIP")), {"target_rotation": -np.eye(3)}),
+        "ValueError",
+    ),
+    "blocked_temperature_direct-no-actuator": (
+        Call("blocked_temperature_direct", (_robot_without_actuators(), [0.0, 0.0, 0.04], [-1.0, 0.0, 0.0], 0.01)),
+        "ValueError",
+    ),
+    "grasp_temperature-huge-int-normal": (
+        Call("grasp_temperature", (1e-3,), {"normal": [2**1100, 0, 0]}),
+        "ValueError",
+    ),
+    "ThermalModel.transient-1e6-samples": (
+        Call("ThermalModel.transient", (Fix("MODEL"), Fix("PROFILE"), np.linspace(0.0, 30.0, 1_000_000))),
+        "ok",
+    ),
+    "ThermalModel.transient-1e6-samples-rk4": (
+        Call("ThermalModel.transient", (Fix("MODEL_T"), Fix("PROFILE"), np.linspace(0.0, 30.0, 1_000_000))),
+        "ValueError",
+    ),
+}
+
+
+@pytest.mark.parametrize("name", sorted(REGRESSIONS))
+def test_fuzz_regression_keeps_the_contract(name: str) -> None:
+    call, expected = REGRESSIONS[name]
+    outcome, detail = classify(call, timeout=TIME_LIMIT_S)
+    assert outcome in ALLOWED, f"contract violation {outcome}: {call!r} -> {detail}"
+    assert outcome == expected, f"{call!r} -> {outcome} ({detail}), expected {expected}"
 
 
 def _param(name: str) -> object:

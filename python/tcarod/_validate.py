@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import numbers
 import operator
+import warnings
 from typing import Any, Final
 
 import numpy as np
@@ -27,6 +28,11 @@ MAX_OUTPUT_POINTS: Final[int] = 1_000_000
 MAX_RK4_STEPS: Final[int] = 10_000_000
 MAX_GRID_POINTS: Final[int] = 100_000
 MAX_PROFILE_KNOTS: Final[int] = 100_000
+#: Most items read from a sequence that is not a list, tuple or array (its
+#: ``__len__`` is only a claim, and NumPy allocates by it).
+MAX_SEQUENCE_ITEMS: Final[int] = 10_000_000
+#: Temperatures [C] above this look like Kelvin (a ``UnitsWarning``, not an error).
+KELVIN_LOOKING_C: Final[float] = 273.0
 
 
 def _any(value: object) -> Any:
@@ -46,11 +52,13 @@ def real(
     lo_open: bool = False,
     hi_open: bool = False,
     unit: str = "",
+    reason: str = "",
 ) -> float:
     """``value`` as a finite float in ``[lo, hi]`` (open ends if asked).
 
     ``TypeError`` if it is not a real number (bool counts as a number, as in
-    Python); ``ValueError`` naming ``name`` if not finite or out of range.
+    Python); ``ValueError`` naming ``name`` if not finite or out of range:
+    ``invalid NAME = VALUE [UNIT]: allowed RANGE (reason)``.
     """
     value = _any(value)
     if isinstance(value, (str, bytes, bytearray, complex, np.complexfloating)) or value is None:
@@ -69,12 +77,15 @@ def real(
         x = math.inf if _any(value) > 0 else -math.inf
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be a real number{_u(unit)}, not {_type_name(value)}") from exc
+    why = f" ({reason})" if reason else ""
     if not math.isfinite(x):
-        raise ValueError(f"invalid {name} = {x}{_u(unit)}: need a finite number{_range(lo, hi, lo_open, hi_open)}")
+        raise ValueError(
+            f"invalid {name} = {x}{_u(unit)}: allowed a finite number{_range(lo, hi, lo_open, hi_open)}{why}"
+        )
     bad_lo = lo is not None and (x <= lo if lo_open else x < lo)
     bad_hi = hi is not None and (x >= hi if hi_open else x > hi)
     if bad_lo or bad_hi:
-        raise ValueError(f"invalid {name} = {x:g}{_u(unit)}: need{_range(lo, hi, lo_open, hi_open)}")
+        raise ValueError(f"invalid {name} = {x:g}{_u(unit)}: allowed{_range(lo, hi, lo_open, hi_open)}{why}")
     return x
 
 
@@ -95,7 +106,7 @@ def integer(name: str, value: object, lo: int, hi: int) -> int:
         raise TypeError(f"{name} must be an integer, not {_type_name(value)}") from None
     if not lo <= n <= hi:
         shown = str(n) if abs(n) < 10**30 else f"{'-' if n < 0 else ''}an integer of {len(str(abs(n)))} digits"
-        raise ValueError(f"invalid {name} = {shown}: need an integer in {lo}..{hi}")
+        raise ValueError(f"invalid {name} = {shown}: allowed an integer in {lo}..{hi}")
     return n
 
 
@@ -159,6 +170,38 @@ def instance(name: str, value: object, cls: type | tuple[type, ...], what: str) 
     if not isinstance(value, cls):
         raise TypeError(f"{name} must be {what}, not {_type_name(value)}")
     return value
+
+
+def claimed_len(name: str, value: Any, max_len: int = MAX_SEQUENCE_ITEMS) -> None:
+    """Refuse a sequence other than a list, tuple or array whose ``len()``
+    claims more than ``max_len`` items (``ValueError``), before NumPy or
+    ``list()`` allocates by that claim."""
+    if not isinstance(value, (list, tuple, np.ndarray)):
+        _check_len(name, value, max_len)
+
+
+def warn_units(message: str, stacklevel: int = 3) -> None:
+    """Warn with ``tcarod.UnitsWarning``: a valid value that looks like the wrong unit."""
+    from ._core import UnitsWarning
+
+    warnings.warn(message, UnitsWarning, stacklevel=stacklevel)
+
+
+def warn_if_kelvin(name: str, values: Any, stacklevel: int = 4) -> None:
+    """``UnitsWarning`` if a temperature [C] in ``values`` exceeds
+    :data:`KELVIN_LOOKING_C` (NaN and non-numbers are left to the checks)."""
+    try:
+        arr = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError, OverflowError, MemoryError):
+        return
+    with np.errstate(invalid="ignore"):
+        hot = arr[np.isfinite(arr) & (arr > KELVIN_LOOKING_C)]
+    if hot.size:
+        warn_units(
+            f"{name} = {float(hot.flat[0]):g} C: temperatures are in degrees Celsius; "
+            f"did you give Kelvin? (25 C is 298.15 K)",
+            stacklevel,
+        )
 
 
 def _check_len(name: str, value: Any, max_len: int) -> None:

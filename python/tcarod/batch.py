@@ -30,6 +30,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _core
+from . import _validate as V
 from ._batch_result import BatchResult
 from ._optional import require
 from .tca import _as_float_array
@@ -46,6 +47,12 @@ Robot = Any
 RobotLike = Union[Robot, Callable[[], Robot]]
 
 DEFAULT_CHUNK_SIZE = 256
+#: Ranges of the integer arguments of a batch: ``chunk_size`` in
+#: ``1..MAX_CHUNK_SIZE``, ``threads`` in ``0..MAX_THREADS`` (as the core checks
+#: them), ``block_chunks`` (chunks per streamed block) in ``1..MAX_BLOCK_CHUNKS``.
+MAX_CHUNK_SIZE = 10_000_000
+MAX_THREADS = 1024
+MAX_BLOCK_CHUNKS = 1_000_000
 # what a batch does with the stability verdict (see solve_batch)
 BatchStability = Literal["report", "off"]
 
@@ -133,7 +140,16 @@ def iter_batches(
     ``(m, n_actuators)`` arrays (e.g. a generator making a huge sweep on the
     fly); then each yielded block corresponds to one given array.
     ``progress=True`` shows a tqdm bar (rows). The other arguments as for
-    :func:`solve_batch`."""
+    :func:`solve_batch`. Integer arguments accept any integer type (NumPy's
+    included): ``TypeError`` for non-integers, ``ValueError`` naming the
+    argument and its range outside ``chunk_size`` 1..10,000,000, ``threads``
+    0..1024, ``block_chunks`` 1..1,000,000."""
+    # integer-like arguments (NumPy integers included) become Python ints before
+    # any arithmetic, so a uint8 cannot wrap or overflow in the block size
+    chunk_size = V.integer("chunk_size", chunk_size, 1, MAX_CHUNK_SIZE)
+    threads = V.integer("threads", threads, 0, MAX_THREADS)
+    if block_chunks is not None:
+        block_chunks = V.integer("block_chunks", block_chunks, 1, MAX_BLOCK_CHUNKS)
     cfg = _Settings(steps, tol, max_iter, chunk_size, stability, _shapes_flag(shapes))
     nthreads = threads if threads > 0 else _core.default_threads()
     block = chunk_size * (block_chunks if block_chunks is not None else 4 * nthreads)

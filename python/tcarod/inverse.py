@@ -166,10 +166,12 @@ def blocked_temperature_direct(
     with the exact Jacobian of the augmented system).
 
     ``guess``: starting temperature [C] (default: the midpoint of the first
-    actuator's input range). Newton from a poor guess may fail with
+    actuator's input range). A robot without actuators raises ``ValueError``. Newton from a poor guess may fail with
     :class:`tcarod.ConvergenceError`; the incremental method is the robust one.
     """
     V.instance("robot", robot, Robot, "a tcarod.Robot")
+    if not robot.actuators:
+        raise ValueError("invalid robot: it has no actuator to heat (the temperature is the unknown solved for)")
     if guess is None:
         lo, hi = robot.actuators[0].input_bounds
         guess = 0.5 * (lo + hi)

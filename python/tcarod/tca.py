@@ -8,7 +8,8 @@ non-positive sizes, ``L >= l/2``, temperatures outside the material's range,
 loads that straighten the fibre, shapes that do not broadcast); its message
 names the argument and its unit. ``TypeError`` for arguments that are not real
 numbers or arrays of them (``str``, ``None``, ``complex``), as with any Python
-function taking a float. No function returns NaN.
+function taking a float. No function returns NaN. A temperature above 273 C
+(one that looks like Kelvin) warns with ``tcarod.UnitsWarning``.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _core
+from . import _validate as V
 
 ArrayLike = Union[float, "npt.ArrayLike"]
 FloatArray = npt.NDArray[np.float64]
@@ -52,12 +54,20 @@ def _as_float_array(name: str, value: ArrayLike) -> FloatArray:
 
     Raises ``TypeError`` if ``value`` is not a real number or an array of real
     numbers (str, None, complex, ...) and ``ValueError`` if it is a ragged
-    sequence. Values themselves (NaN, inf, ranges) are checked by the core.
+    sequence or claims more items than memory holds (a sequence that is not
+    a list, tuple or array is read up to ``MAX_SEQUENCE_ITEMS`` items).
+    Values themselves (NaN, inf, ranges) are checked by the core.
     """
+    # NumPy allocates by a sequence's __len__ before reading it: refuse a claim
+    # beyond the cap here, and one nested inside a list (the allocation fails
+    # at once) as a ValueError below
+    V.claimed_len(name, value)
     try:
         arr = np.asarray(value)
     except ValueError as exc:  # ragged nested sequences
         raise ValueError(f"{name} must be a rectangular array of numbers: {exc}") from None
+    except MemoryError:
+        raise ValueError(f"invalid {name}: more values than memory holds (a length it claims)") from None
     if arr.dtype.kind in _REAL_KINDS:
         return arr.astype(np.float64)
     if arr.dtype.kind == "O":  # Python ints beyond int64, or mixed objects
@@ -136,6 +146,7 @@ class Tca(_core.Tca):
     def displacement(self, force: ArrayLike, temperature: ArrayLike) -> float | FloatArray:
         """Elongation [m] under axial ``force`` [N] (tension > 0) at ``temperature`` [C]."""
         f, t, shape, scalar = _broadcast(force, temperature, ("force", "temperature"))
+        V.warn_if_kelvin("temperature", t)
         return _unwrap(self._displacement_flat(f, t), shape, scalar)
 
     @overload
@@ -145,6 +156,7 @@ class Tca(_core.Tca):
     def force(self, displacement: ArrayLike, temperature: ArrayLike) -> float | FloatArray:
         """Axial force [N] (tension > 0) holding the TCA at ``displacement`` [m] (>= 0) at ``temperature`` [C]."""
         d, t, shape, scalar = _broadcast(displacement, temperature, ("displacement", "temperature"))
+        V.warn_if_kelvin("temperature", t)
         return _unwrap(self._force_flat(d, t), shape, scalar)
 
     @overload
@@ -178,6 +190,7 @@ class Tca(_core.Tca):
     def free_stroke(self, temperature: ArrayLike) -> float | FloatArray:
         """Unloaded elongation [m] at ``temperature`` [C] (the core's ``Tca::free_stroke``)."""
         t, shape, scalar = _flat(temperature, "temperature")
+        V.warn_if_kelvin("temperature", t)
         return _unwrap(self._free_stroke_flat(t), shape, scalar)
 
     @overload
@@ -191,4 +204,5 @@ class Tca(_core.Tca):
         for a heated contraction TCA (the core's ``Tca::blocked_force``).
         """
         t, shape, scalar = _flat(temperature, "temperature")
+        V.warn_if_kelvin("temperature", t)
         return _unwrap(self._blocked_force_flat(t), shape, scalar)

@@ -43,6 +43,16 @@ fn vec3(name: &str, a: &Bound<'_, PyAny>) -> PyResult<Vector3<f64>> {
     Ok(Vector3::from(vec3_arg(name, Some(a), [0.0; 3])?))
 }
 
+/// A required direction argument: a [`vec3`] scaled by its largest
+/// component's magnitude, so that its norm neither overflows (components
+/// near 1e308) nor underflows (subnormal components) where the core
+/// normalises it. Zero stays zero and is refused by the core.
+fn direction(name: &str, a: &Bound<'_, PyAny>) -> PyResult<Vector3<f64>> {
+    let v = vec3(name, a)?;
+    let m = v.amax();
+    Ok(if m > 0.0 { v / m } else { v })
+}
+
 fn wrap(robot: &Bound<'_, PyRobot>, s: crate::shooting::Solution) -> PySolution {
     PySolution::new(s, robot.clone().unbind())
 }
@@ -92,7 +102,13 @@ fn sensitivities<'py>(
     Ok((dmat(py, &s.jacobian), dmat(py, &s.compliance)))
 }
 
-/// A 3x3 rotation matrix from Python (rows of 3 reals).
+/// How far from orthogonal (`|R^T R - I|`, Frobenius norm) and from
+/// determinant +1 a target rotation may be: rounding of a typed-in or
+/// single-precision matrix passes, a reflection or a scaled matrix does not.
+const ROTATION_TOLERANCE: f64 = 1e-6;
+
+/// A 3x3 proper rotation matrix from Python (rows of 3 finite reals,
+/// orthogonal and of determinant +1 within [`ROTATION_TOLERANCE`]).
 fn rotation_arg(obj: &Bound<'_, PyAny>) -> PyResult<Matrix3<f64>> {
     let rows = obj.try_iter().map_err(|_| {
         pyo3::exceptions::PyTypeError::new_err("target_rotation: expected a 3x3 matrix")
@@ -112,10 +128,27 @@ fn rotation_arg(obj: &Bound<'_, PyAny>) -> PyResult<Matrix3<f64>> {
         .into());
     }
     let mm = Matrix3::from_fn(|i, j| m[i][j]);
-    if !mm.iter().all(|x| x.is_finite())
-        || (mm.transpose() * mm - Matrix3::identity()).norm() > 1e-6
-    {
-        return Err(Error::input("target_rotation", "must be a 3x3 rotation matrix").into());
+    for (k, x) in mm.iter().enumerate() {
+        crate::error::finite(&format!("target_rotation[{}][{}]", k % 3, k / 3), *x)?;
+    }
+    let off = (mm.transpose() * mm - Matrix3::identity()).norm();
+    if off > ROTATION_TOLERANCE {
+        return Err(Error::param(
+            "target_rotation (|R^T R - I|, Frobenius norm)",
+            off,
+            format!("<= {ROTATION_TOLERANCE:e} (an orthogonal matrix)"),
+        )
+        .into());
+    }
+    // an orthogonal matrix with determinant -1 is a reflection: no pose of the tip
+    let det = mm.determinant();
+    if (det - 1.0).abs() > ROTATION_TOLERANCE {
+        return Err(Error::param(
+            "target_rotation (determinant)",
+            det,
+            format!("1 +- {ROTATION_TOLERANCE:e} (a proper rotation, not a reflection)"),
+        )
+        .into());
     }
     Ok(mm)
 }
@@ -127,8 +160,10 @@ fn rotation_arg(obj: &Bound<'_, PyAny>) -> PyResult<Matrix3<f64>> {
 /// `dz = (J^T J + damping^2 I)^-1 J^T dx` with variables frozen at a bound
 /// they would cross, a backtracking line search on the tip error, one BVP
 /// solve per trial. `start`: initial variables (default: the reference
-/// inputs, ambient temperature). With `target_rotation` (a 3x3 rotation
-/// matrix) the orientation is matched too, angles weighted by
+/// inputs, ambient temperature). With `target_rotation` (a 3x3 proper
+/// rotation matrix: orthogonal and of determinant +1 within 1e-6; anything
+/// else, a reflection included, is a `ValueError` naming it) the
+/// orientation is matched too, angles weighted by
 /// `orientation_weight` [m/rad]. `tol` [m]; `max_iter` iterations (1 to
 /// 100,000); `damping` [m per unit variable]; `steps` RK4 steps per forward
 /// solve (1 to 100,000); target coordinates within 1000 body lengths.
@@ -251,7 +286,7 @@ impl BlockedArgs {
         tol: Real,
     ) -> PyResult<(Self, Block)> {
         let a = Self::read_options(robot, optional, tol)?;
-        let block = Block::new(vec3("point [m]", point)?, vec3("normal", normal)?)?;
+        let block = Block::new(vec3("point [m]", point)?, direction("normal", normal)?)?;
         Ok((a, block))
     }
 }
@@ -402,7 +437,7 @@ fn grasp_temperature(
     let a = BlockedArgs::read_options(robot.get(), [groups, steps, max_iter], tol)?;
     let na = a.robot.actuators.len();
     let spec = inverse::Grasp {
-        normal: vec3("normal", &normal)?,
+        normal: direction("normal", &normal)?,
         mass: mass.0,
         mu: mu.0,
         fingers: super::args::count("fingers", &fingers, 1, super::MAX_SEQUENCE)?,

@@ -11,6 +11,7 @@ import math
 import sys
 from typing import Any, Sequence
 
+from .. import _validate as V
 from .._optional import require
 
 __all__ = ["MAX_ACTUATORS", "MAX_DESIGN_CHARS", "MAX_NESTING", "DesignError"]
@@ -21,6 +22,8 @@ MAX_DESIGN_CHARS = 1_000_000
 MAX_NESTING = 16
 #: Most actuators in one design.
 MAX_ACTUATORS = 1000
+#: A length key (``..._m``) above this many metres looks like millimetres (a ``UnitsWarning``).
+MILLIMETRE_LOOKING_M = 10.0
 
 
 class DesignError(ValueError):
@@ -226,7 +229,18 @@ class _Reader:
             raise self.error((*path, key), f"must be finite, got {_short(v)}")
         if positive and x <= 0.0:
             raise self.error((*path, key), f"must be > 0, got {v!r}")
+        if key.endswith("_m") and not key.endswith("_per_m") and abs(x) > MILLIMETRE_LOOKING_M:
+            self.warn_units(
+                (*path, key),
+                f"= {x:g}: keys ending in _m are in metres (SI); did you give millimetres? (40 mm is 0.040)",
+            )
         return x
+
+    def warn_units(self, path: tuple[str, ...], message: str) -> None:
+        """``tcarod.UnitsWarning`` naming the file, the line and the dotted key."""
+        line = self.line_of(path)
+        where = f"{self.source}:{line}" if line is not None else self.source
+        V.warn_units(f"{where}: {_dotted(path)} {message}", stacklevel=4)
 
     def vector(self, d: dict[str, Any], key: str, path: tuple[str, ...]) -> list[float] | None:
         if key not in d:

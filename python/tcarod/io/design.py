@@ -39,7 +39,10 @@ Format (SI units; every key says its unit; optional keys in brackets)::
     tendon = { kind = "tension" }       # or { kind = "linear", stiffness_n_per_m = ... }
                                         #   (input: length pulled in at the base [m])
 
-Unknown keys are errors (a typo must not be silently ignored).
+Unknown keys are errors (a typo must not be silently ignored). Values that
+are valid but look like another unit warn with ``tcarod.UnitsWarning``,
+naming file, line and key: a key ending in ``_m`` above 10 (metres, not
+millimetres), a ``temperatures_c`` entry above 273 (Celsius, not Kelvin).
 
 Limits (``DesignError`` beyond, naming file and line): at most
 :data:`MAX_DESIGN_CHARS` characters, brackets/braces nested at most
@@ -153,6 +156,12 @@ def loads_design(text: str, source: str = "<string>") -> Design:
         if len(v) != len(acts):
             raise r.error(("temperatures_c",), f"expected {len(acts)} values (one per actuator), got {len(v)}")
         temps = [_float(x) for x in v]
+        hot = [x for x in temps if math.isfinite(x) and x > V.KELVIN_LOOKING_C]
+        if hot:
+            r.warn_units(
+                ("temperatures_c",),
+                f"= {hot[0]:g}: temperatures are in degrees Celsius; did you give Kelvin? (25 C is 298.15 K)",
+            )
         for i, (a, x) in enumerate(zip(acts, temps)):
             lo, hi = a.input_bounds
             if not (lo <= x <= hi):

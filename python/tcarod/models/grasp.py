@@ -112,6 +112,17 @@ def _positive(name: str, value: float) -> float:
     return V.real(name, value, lo=0.0, lo_open=True)
 
 
+def _unit_normal(normal: Sequence[float]) -> list[float]:
+    """``normal`` as a unit vector: finite and non-zero (``ValueError``;
+    Python ints beyond the double range are inf, refused, never
+    ``OverflowError``), normalised without overflow for large components."""
+    nrm = V.vector("normal", normal, 3)
+    n = math.hypot(*nrm)
+    if n == 0.0:
+        raise ValueError("invalid normal = [0, 0, 0]: allowed a non-zero direction (the tip presses along it)")
+    return [x / n for x in nrm]
+
+
 def grasp(
     mass_kg: float,
     finger: Robot | None = None,
@@ -162,7 +173,7 @@ def grasp(
         if not (math.isfinite(tc) and lo <= tc <= hi):
             raise ValueError(f"invalid contact_temperature_c = {contact_temperature_c!r}: must be in [{lo}, {hi}] C")
         contact = [tc] * len(robot.actuators)
-    nrm = [float(x) for x in normal]
+    nrm = _unit_normal(normal)
     # eq (44) and the blocked solve live in the core (inverse::Grasp)
     res, point = _core.grasp_temperature(
         robot,
@@ -178,7 +189,6 @@ def grasp(
         steps=steps,
         tol=tol,
     )
-    n = math.sqrt(sum(x * x for x in nrm))
     return Grasp(
         mass_kg=m,
         mu=mu_,
@@ -187,7 +197,7 @@ def grasp(
         force_per_finger_n=res.force,
         temperature_c=float(res.variables[0]),
         block_point_m=(point[0], point[1], point[2]),
-        normal=(nrm[0] / n, nrm[1] / n, nrm[2] / n),
+        normal=(nrm[0], nrm[1], nrm[2]),
         method=method,
         blocked=res,
     )

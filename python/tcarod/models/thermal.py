@@ -71,6 +71,28 @@ HEAT_TRANSFER_W_PER_M2K: Final[float] = 23.0
 #: Radius [m] of the paper's 0.2 mm silver-coated nylon thread.
 THREAD_RADIUS_M: Final[float] = 0.1e-3
 
+#: Physical ranges of the model's coefficients, ``(lo, hi, unit)``: every
+#: value inside keeps the lumped parameters and the results finite numbers
+#: (``ValueError`` outside, naming the argument, its unit and the range).
+RANGES: Final[dict[str, tuple[float, float, str]]] = {
+    "fibre_length_m": (1e-4, 100.0, "m"),
+    "thread_radius_m": (1e-6, 1e-2, "m"),
+    "density_kg_per_m3": (1.0, 1e5, "kg/m^3"),
+    "specific_heat_j_per_kgk": (1.0, 1e5, "J/(kg K)"),
+    "heat_transfer_w_per_m2k": (1e-3, 1e5, "W/(m^2 K)"),
+    "resistance": (1e-6, 1e9, "ohm"),
+}
+#: Most output times of :meth:`ThermalModel.transient` (``ValueError`` beyond).
+MAX_TRANSIENT_SAMPLES: Final[int] = 1_000_000
+#: Most RK4 steps of :meth:`ThermalModel.transient` with a resistance that
+#: depends on temperature or strain (about 4 s of Python per 100,000 steps).
+MAX_TRANSIENT_RK4_STEPS: Final[int] = 100_000
+
+
+def _in_range(name: str, value: object) -> float:
+    lo, hi, unit = RANGES[name]
+    return V.real(name, value, lo=lo, hi=hi, unit=unit, reason="a physical range: the results stay finite")
+
 
 @dataclass(frozen=True)
 class LinearResistance:
@@ -166,6 +188,11 @@ class ThermalModel:
     ``fibre_length_m``: twisted-fibre length ``l`` [m] (``Tca.fibre_length``);
     ``threads``: number of threads twisted together; ``resistance``: [ohm],
     required (see the module docstring). Temperatures in C, times in s.
+
+    Coefficients and a constant ``resistance`` within :data:`RANGES`, ``threads``
+    1..10,000, ``ambient_c`` -273.15..1e6 C (``ValueError`` outside, naming the
+    argument, its unit and the range); an ``ambient_c`` above 273 C warns
+    with ``tcarod.UnitsWarning`` (Kelvin given as Celsius?).
     """
 
     fibre_length_m: float
@@ -187,10 +214,11 @@ class ThermalModel:
             "specific_heat_j_per_kgk",
             "heat_transfer_w_per_m2k",
         ):
-            object.__setattr__(self, name, V.positive(name, getattr(self, name)))
+            object.__setattr__(self, name, _in_range(name, getattr(self, name)))
         object.__setattr__(self, "threads", V.integer("threads", self.threads, 1, 10_000))
-        amb = V.real("ambient_c", self.ambient_c, lo=-273.15, unit="C")
-        tmax = V.real("t_max_c", self.t_max_c, lo=amb, lo_open=True, unit="C")
+        amb = V.real("ambient_c", self.ambient_c, lo=-273.15, hi=1e6, unit="C")
+        tmax = V.real("t_max_c", self.t_max_c, lo=amb, lo_open=True, hi=1e6, unit="C")
+        V.warn_if_kelvin("ambient_c", amb, stacklevel=5)
         object.__setattr__(self, "ambient_c", amb)
         object.__setattr__(self, "t_max_c", tmax)
         # derived quantities must be usable numbers (tiny or huge coefficients underflow/overflow)
@@ -210,7 +238,7 @@ class ThermalModel:
         if isinstance(r, bool):
             raise TypeError("resistance must be a number [ohm], a LinearResistance or a callable, not bool")
         if isinstance(r, (numbers.Real, np.number)):
-            const = V.positive("resistance", r, "ohm")
+            const = _in_range("resistance", r)
             fn: Callable[[float, float], float] = lambda t, e: const  # noqa: E731
         elif callable(r):
             fn = r
@@ -294,10 +322,10 @@ class ThermalModel:
         ha = self.conductance_w_per_k
 
         def g(t: float) -> float:
-            return t - self.ambient_c - v * v / (self.resistance_ohm(t, strain) * ha)
+            return t - self.ambient_c - v * v / self.resistance_ohm(t, strain) / ha
 
         if self.constant_resistance:
-            t = self.ambient_c + v * v / (self.resistance_ohm(self.ambient_c, strain) * ha)
+            t = self.ambient_c + v * v / self.resistance_ohm(self.ambient_c, strain) / ha
         else:
             # bracket on [T_amb, t_max]: g(T_amb) <= 0; if g(t_max) < 0 the root lies above t_max
             lo, hi = self.ambient_c, self.t_max_c
@@ -346,11 +374,14 @@ class ThermalModel:
         constant resistance; otherwise RK4 with steps of at most ``max_step_s``
         (default ``tau / 200``), restarted at every voltage switch.
 
-        Bounded work: at most ``MAX_OUTPUT_POINTS`` output times and
-        ``MAX_RK4_STEPS`` RK4 steps (``ValueError`` beyond, naming the
-        limit); ``initial_c`` within [-273.15, 1e6] C."""
+        Bounded work: at most ``MAX_TRANSIENT_SAMPLES`` (1,000,000) output
+        times, evaluated vectorised with a constant resistance (about 0.1 s
+        per million); with a resistance that depends on temperature or strain,
+        at most ``MAX_TRANSIENT_RK4_STEPS`` (100,000) RK4 steps, every output
+        time taking at least one (``ValueError`` beyond either, naming the
+        argument and the bound); ``initial_c`` within [-273.15, 1e6] C."""
         V.instance("profile", profile, VoltageProfile, "a VoltageProfile")
-        t_out = V.real_array("times_s", times_s, ndim=1, unit="s")
+        t_out = V.real_array("times_s", times_s, ndim=1, max_size=MAX_TRANSIENT_SAMPLES, unit="s")
         if t_out.size == 0 or np.any(np.diff(t_out) < 0.0) or t_out[0] < profile.times_s[0]:
             raise ValueError(
                 "times_s [s] must be a non-empty increasing sequence starting at or after the profile's start"
@@ -360,56 +391,109 @@ class ThermalModel:
         strain = V.real("strain", strain)
         if max_step_s is not None:
             max_step_s = V.positive("max_step_s", max_step_s, "s")
-        tau = self.time_constant_s
         # span of the integration: ranges beyond the double's resolution are refused, not looped over
         if not math.isfinite(float(t_out[-1]) - t0):
             raise ValueError("times_s [s]: the span from the profile's start overflows")
         # integration knots: voltage switches, plus the output times
         switches = [s for s in profile.times_s if t0 < s < t_out[-1]]
-        out = np.empty_like(t_out)
+        # the profile's voltage at every output time (piecewise constant, the last one holds on)
+        volts = np.asarray(profile.voltages_v)[np.maximum(np.searchsorted(profile.times_s, t_out, "right") - 1, 0)]
         if self.constant_resistance:
             method = "analytic (exponential)"
-            r = self.resistance_ohm(self.ambient_c, strain)
-            ha = self.conductance_w_per_k
-            knots = [t0, *switches]
-            temps = [temp0]
-            for a, b in zip(knots[:-1], knots[1:]):
-                v = profile(a)
-                tss = self.ambient_c + v * v / (r * ha)
-                temps.append(tss + (temps[-1] - tss) * math.exp(-(b - a) / tau))
-            for i, t in enumerate(t_out):
-                k = int(np.searchsorted(np.asarray(knots), t, side="right")) - 1
-                a = knots[k]
-                v = profile(a)
-                tss = self.ambient_c + v * v / (r * ha)
-                out[i] = tss + (temps[k] - tss) * math.exp(-(t - a) / tau)
+            out, power = self._exponential(profile, t_out, switches, temp0, strain, volts)
         else:
             method = "numeric (RK4)"
-            h_max = tau / 200.0 if max_step_s is None else float(max_step_s)
-            events = sorted({t0, *switches, *map(float, t_out)})
-            # counted in floating point: (b - a) / h_max may overflow to inf
-            total = sum(max(1.0, (b - a) / h_max) for a, b in zip(events[:-1], events[1:]))
-            if not total <= V.MAX_RK4_STEPS:
-                raise ValueError(
-                    f"times_s / max_step_s: {total:.3g} RK4 steps needed, at most {V.MAX_RK4_STEPS} allowed "
-                    "(shorten the time span or raise max_step_s)"
-                )
-            state = temp0
-            values = {t0: temp0}
-            for a, b in zip(events[:-1], events[1:]):
-                v = profile(a)  # constant on [a, b): switches are knots
-                n = max(1, math.ceil((b - a) / h_max))
-                dt = (b - a) / n
-                for _ in range(n):
-                    k1 = self.rate_c_per_s(v, state, strain)
-                    k2 = self.rate_c_per_s(v, state + 0.5 * dt * k1, strain)
-                    k3 = self.rate_c_per_s(v, state + 0.5 * dt * k2, strain)
-                    k4 = self.rate_c_per_s(v, state + dt * k3, strain)
-                    state += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
-                values[b] = state
-            out = np.array([values[float(t)] for t in t_out])
+            out, power = self._rk4(profile, t_out, switches, temp0, strain, volts, max_step_s)
         if not np.all(np.isfinite(out)):
             raise ValueError("the temperature overflows: voltages_v or initial_c far outside any physical range")
-        volts = np.array([profile(float(t)) for t in t_out])
-        power = np.array([self.power_w(v, float(tc), strain) for v, tc in zip(volts, out)])
+        if not np.all(np.isfinite(power)):
+            raise ValueError("the Joule power V^2/R overflows: voltages_v far outside any physical range")
         return TemperatureTrajectory(t_out, out, volts, power, self.t_max_c, method)
+
+    def _exponential(
+        self,
+        profile: VoltageProfile,
+        t_out: FloatArray,
+        switches: list[float],
+        temp0: float,
+        strain: float,
+        volts: FloatArray,
+    ) -> tuple[FloatArray, FloatArray]:
+        """Temperature [C] and power [W] at ``t_out`` with a constant
+        resistance: exact exponentials between switches, vectorised over the samples."""
+        t0 = float(profile.times_s[0])
+        knot_times = np.asarray(profile.times_s)
+        knot_volts = np.asarray(profile.voltages_v)
+        tau = self.time_constant_s
+        r = self.resistance_ohm(self.ambient_c, strain)
+        ha = self.conductance_w_per_k
+        knots = np.asarray([t0, *switches])
+        with np.errstate(all="ignore"):  # overflow gives inf / NaN, refused below
+            v_knot = knot_volts[np.maximum(np.searchsorted(knot_times, knots, side="right") - 1, 0)]
+            tss = self.ambient_c + v_knot * v_knot / r / ha  # steady state of each interval [C]
+            temps = np.empty_like(knots)  # temperature at each knot [C]
+            temps[0] = temp0
+            for j in range(1, knots.size):
+                temps[j] = tss[j - 1] + (temps[j - 1] - tss[j - 1]) * math.exp(-(knots[j] - knots[j - 1]) / tau)
+            k = np.searchsorted(knots, t_out, side="right") - 1
+            out = tss[k] + (temps[k] - tss[k]) * np.exp(-(t_out - knots[k]) / tau)
+            power = volts * volts / r
+        return out, power
+
+    def _rk4(
+        self,
+        profile: VoltageProfile,
+        t_out: FloatArray,
+        switches: list[float],
+        temp0: float,
+        strain: float,
+        volts: FloatArray,
+        max_step_s: float | None,
+    ) -> tuple[FloatArray, FloatArray]:
+        """Temperature [C] and power [W] at ``t_out`` by fixed-step RK4,
+        restarted at every voltage switch and output time; at most
+        ``MAX_TRANSIENT_RK4_STEPS`` steps (``ValueError`` beyond)."""
+        t0 = float(profile.times_s[0])
+        tau = self.time_constant_s
+        h_max = tau / 200.0 if max_step_s is None else float(max_step_s)
+        events = np.unique(np.concatenate([[t0], switches, t_out]))
+        # counted in floating point: (b - a) / h_max may overflow to inf
+        with np.errstate(over="ignore"):
+            total = float(np.sum(np.maximum(1.0, np.diff(events) / h_max)))
+        if not total <= MAX_TRANSIENT_RK4_STEPS:
+            raise ValueError(
+                f"invalid times_s / max_step_s: {total:.3g} RK4 steps needed, allowed at most "
+                f"{MAX_TRANSIENT_RK4_STEPS} (fewer output times, a shorter span or a larger max_step_s)"
+            )
+        amb, ha, hc, r_of = self.ambient_c, self.conductance_w_per_k, self.heat_capacity_j_per_k, self._r
+
+        def rate(v2: float, temp: float) -> float:
+            # dT/dt [C/s] as rate_c_per_s, without re-reading its arguments on every
+            # stage; a resistance that is not a finite float > 0 goes through the
+            # checked path, whose ValueError names it
+            r = r_of(temp, strain)
+            if type(r) is not float or not 0.0 < r < math.inf:
+                r = self.resistance_ohm(temp, strain)
+            return (v2 / r - ha * (temp - amb)) / hc
+
+        state = temp0
+        values = {t0: temp0}
+        for a, b in zip(events[:-1].tolist(), events[1:].tolist()):
+            v = profile(a)  # constant on [a, b): switches are knots
+            v2 = v * v
+            n = max(1, math.ceil((b - a) / h_max))
+            dt = (b - a) / n
+            for _ in range(n):
+                k1 = rate(v2, state)
+                k2 = rate(v2, state + 0.5 * dt * k1)
+                k3 = rate(v2, state + 0.5 * dt * k2)
+                k4 = rate(v2, state + dt * k3)
+                state += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+                if not math.isfinite(state):
+                    raise ValueError(
+                        "the temperature overflows: voltages_v or initial_c far outside any physical range"
+                    )
+            values[b] = state
+        out = np.array([values[float(t)] for t in t_out])
+        power = np.array([self.power_w(v, float(tc), strain) for v, tc in zip(volts, out)])
+        return out, power

@@ -12,6 +12,25 @@ use crate::python::to_py::{hash_by_text, keyword_args, mat3, vec3, vec3_getters,
 use crate::python::{pf, pv, vec3_arg, Real};
 use crate::rod::{Body, Shear};
 
+/// Young's moduli \[Pa\] outside this range look like another unit (a
+/// silicone's 50 kPa typed as `50`, i.e. in kPa; a value in MPa or GPa):
+/// valid numbers, so a warning rather than an error.
+const PLAUSIBLE_MODULUS_PA: (f64, f64) = (1e3, 1e12);
+
+/// A warning text if `youngs_modulus` \[Pa\] lies outside
+/// [`PLAUSIBLE_MODULUS_PA`]: a body that soft or that stiff is rarely meant,
+/// and a modulus in kPa otherwise shows up far from its cause, as a solve
+/// that does not converge.
+fn modulus_warning(youngs_modulus: f64) -> Option<String> {
+    let (lo, hi) = PLAUSIBLE_MODULUS_PA;
+    (youngs_modulus < lo || youngs_modulus > hi).then(|| {
+        format!(
+            "Body: youngs_modulus = {youngs_modulus} Pa is outside 1 kPa..1 TPa: moduli are in pascals (SI); \
+             did you give kPa or MPa? (50 kPa is youngs_modulus=5e4)"
+        )
+    })
+}
+
 /// The soft body (Cosserat rod): geometry, material, reference strains, loads.
 ///
 /// `Body(length, section, youngs_modulus, *, poisson=None, shear_modulus=None,
@@ -30,7 +49,8 @@ use crate::rod::{Body, Shear};
 ///   sequences (default zero).
 ///
 /// SI units: a body whose length or section looks like millimetres (length
-/// > 10 m, section size > 1 m) warns with `tcarod.UnitsWarning`. Value object:
+/// > 10 m, section size > 1 m) or whose `youngs_modulus` lies outside
+/// 1 kPa..1 TPa warns with `tcarod.UnitsWarning`. Value object:
 /// immutable, `==`, hashable, picklable; `repr` is a constructor call.
 #[pyclass(name = "Body", module = "tcarod._core", frozen, eq, hash)]
 #[derive(Clone, PartialEq)]
@@ -80,6 +100,9 @@ impl PyBody {
         b.tip_moment = v("tip_moment", &tip_moment, [0.0; 3])?;
         b.validate()?;
         if let Some(msg) = b.units_warning() {
+            crate::python::warn_units(py, msg)?;
+        }
+        if let Some(msg) = modulus_warning(b.youngs_modulus) {
             crate::python::warn_units(py, msg)?;
         }
         Ok(PyBody { inner: b })
