@@ -131,8 +131,7 @@ fn rejected_step_factor(r0: f64) -> f64 {
 /// designs with [`INTERMEDIATE_TOL`] `1e-4` (direct run's window 3):
 /// window 2 max 723 IVP-equivalents, 3 max 988 (with `MIN_STEP` `1e-6`),
 /// off (tol `1e-8`, direct run's window off) 1,966, each with the same 999
-/// converged. (At stop 21, windows of 4 and 8 lost #126, with tol `1e-8`
-/// and no stall window in the direct run.)
+/// converged; windows of 4 and 8 lose a design.
 pub const HOMOTOPY_STALL_WINDOW: usize = 2;
 
 /// The robot, inputs and loads at homotopy parameter `lam` in `[0, 1]`:

@@ -33,7 +33,8 @@ pub struct Equilibrium {
     pub solution_mismatch: f64,
 }
 
-/// Relative tolerance of the issue-10 target.
+/// Relative tolerance of the global equilibrium check that the benchmark
+/// (`benches/designs.rs`) reports against.
 pub const EQUILIBRIUM_TOL: f64 = 1e-8;
 
 /// Global equilibrium of a converged solution `sol` of `robot` (see the

@@ -148,16 +148,16 @@ pub(super) fn regrid(
 /// `v` the Jacobian's right singular vector of its smallest singular value
 /// (scaled unknowns), each `t` with both signs (the vector's sign is
 /// arbitrary), first with the sign along the path's last move ([`ahead`]).
-/// Traced on benchmark design #25 (stop 31, full grid, fold
-/// at `lambda = 0.55312`): from `d lambda = 1e-3`, `|t| = 0.2` reaches the
+/// On a benchmark design past buckling (full grid, fold at
+/// `lambda = 0.55312`): from `d lambda = 1e-3`, `|t| = 0.2` reaches the
 /// other branch (0.89 from the fold's point); from `1e-2`, `|t| = 0.4`.
 /// On the coarse grid (where the snap runs now, see [`on_full_grid`])
 /// the first step reaches it too.
 const SNAP_STEPS: [(f64, f64); 4] = [(1e-3, 0.2), (1e-3, -0.2), (1e-2, 0.4), (1e-2, -0.4)];
 
-/// The first step of the path from the snap's point, `1/64` (on #25 a
-/// cold path's first step, 0.25, and the snap from `d lambda = 1e-2`
-/// first took 462 IVPs, against 357).
+/// The first step of the path from the snap's point, `1/64`: a cold
+/// path's first step, 0.25, leaves the new branch's neighbourhood before
+/// the step control has measured its curvature.
 const SNAP_PATH_STEP: f64 = 1.0 / 64.0;
 
 /// A corrector's point this far (`max |dx|`, scaled unknowns) from the

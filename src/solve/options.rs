@@ -51,9 +51,9 @@ pub struct SolveOptions {
     pub equilibrium_tol: Option<f64>,
 }
 
-/// Default IVP budget of one solve ([`SolveOptions::max_evaluations`]): 40
-/// times the most a converging design of the issue-10 benchmark used
-/// (5,252 IVPs before this budget existed), so that it only stops runaway
+/// Default IVP budget of one solve ([`SolveOptions::max_evaluations`]):
+/// about 4 times the most a converging design of the 1,000-design benchmark
+/// (`benches/designs.rs`) uses (5,252 IVPs), so that it only stops runaway
 /// solves.
 pub const DEFAULT_MAX_EVALUATIONS: usize = 20_000;
 

@@ -9,15 +9,10 @@ use tcarod::problems::{random_design, DEFAULT_SEED};
 use tcarod::shooting::{solve, Shot, SolveOptions};
 
 /// Cold solves of the first 100 benchmark designs: 3,408 IVPs in all
-/// (coarse ones included), against 3,499 with the first round to 1e-7
-/// (both measured at stop 35, with homotopy retries backtracking once,
-/// `continuation::RETRY_MIN_STEP`, and no watchdog step in full-step
-/// runs, `newton::WATCHDOG_MIN_STEP`; at stop 34, before them, 3,452
-/// against 3,543; at stop 33, before the direct run's hand-over after a
-/// failed first coarse run, `shooting::handed_over`, 3,725 against
-/// 3,810); the bound lies between, so going back fails it. The same 100
-/// designs converge either way, each to tol (or its rounding floor) on
-/// the full grid.
+/// (coarse ones included), against 3,499 with the first defect-correction
+/// round converged to 1e-7 instead; the bound lies between, so the tighter
+/// first round fails it. The same 100 designs converge either way, each to
+/// tol (or its rounding floor) on the full grid.
 #[test]
 fn cold_designs_take_fewer_ivps_with_a_looser_first_round() {
     const MOST_IVPS: usize = 3_460;
@@ -38,7 +33,7 @@ fn cold_designs_take_fewer_ivps_with_a_looser_first_round() {
         // IVP repeats it bit for bit; the 1 % keeps the check off float equality)
         assert!(norm <= 1.01 * o.tol.max(s.floor), "#{i}: residual {norm:e}");
     }
-    // all 100 converge cold (stop 32: 999 of 1,000)
+    // all 100 converge cold
     assert_eq!(converged, 100);
     assert!(ivps <= MOST_IVPS, "{ivps} IVPs");
 }

@@ -13,11 +13,11 @@ use tcarod::shooting::{solve, SolveOptions};
 /// and a tip force).
 const DESIGN: usize = 414;
 
-/// IVP bound of [`DESIGN`]: 29 measured (stop 31, no continuation);
-/// main ae9fcd6 took 72 IVPs and 3 continuation steps (the semismooth
-/// step gave up where its taut model landed a tendon slack). The bound
-/// leaves room for another iteration sequence near the kinks and fails if
-/// the solve falls back to continuation's cost.
+/// IVP bound of [`DESIGN`]: the direct solve takes 29, with no
+/// continuation; a semismooth step that gives up where its taut model
+/// lands a tendon slack hands over to continuation, at 72 IVPs and 3
+/// steps. The bound leaves room for another iteration sequence near the
+/// kinks and fails if the solve falls back to continuation's cost.
 const MAX_IVPS: usize = 45;
 
 #[test]

@@ -25,7 +25,7 @@ fn tip_gap(a: &Solution, b: &Solution) -> f64 {
     (a.tip_position() - b.tip_position()).norm()
 }
 
-/// The two issue-10 warm cases: Fig. 6 square warm 5 C away, steel tendon
+/// The two warm cases of the benchmark: Fig. 6 square warm 5 C away, steel tendon
 /// robot warm after +1 % tension. (robot, old inputs, new inputs)
 fn cases() -> Vec<(Robot, Vec<f64>, Vec<f64>)> {
     let up: Vec<f64> = STEEL_TENDON_TENSIONS.iter().map(|t| t * 1.01).collect();
