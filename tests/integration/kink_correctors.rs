@@ -1,10 +1,9 @@
 //! A benchmark design whose direct run starts with three linear tendons at
 //! their onsets (a cold start, zero tension): the slack side's Jacobian
-//! (after a failed line search) gives a step that carries all three taut,
-//! and the taut model carries one of them back slack (traced, main
-//! ae9fcd6). The semismooth step re-solved with that tendon slack
-//! (`solve::residual::taut_step`, Katzenelson's iteration over the
-//! pieces) converges without continuation; main's gave up there.
+//! gives a step that carries all three taut, and the taut model carries one
+//! of them back slack. The semismooth step re-solved with that tendon slack
+//! (`solve::residual::taut_step`, Katzenelson's iteration over the pieces)
+//! converges without continuation.
 use tcarod::problems::{random_design, DEFAULT_SEED};
 use tcarod::shooting::{solve, SolveOptions};
 
@@ -12,13 +11,6 @@ use tcarod::shooting::{solve, SolveOptions};
 /// tendons, two of them helical, and a constant-tension tendon; gravity
 /// and a tip force).
 const DESIGN: usize = 414;
-
-/// IVP bound of [`DESIGN`]: the direct solve takes 29, with no
-/// continuation; a semismooth step that gives up where its taut model
-/// lands a tendon slack hands over to continuation, at 72 IVPs and 3
-/// steps. The bound leaves room for another iteration sequence near the
-/// kinks and fails if the solve falls back to continuation's cost.
-const MAX_IVPS: usize = 45;
 
 #[test]
 fn a_taut_model_landing_a_tendon_slack_converges_without_continuation() {
@@ -33,10 +25,5 @@ fn a_taut_model_landing_a_tendon_slack_converges_without_continuation() {
         "{}: {} continuation steps",
         d.summary(),
         sol.continuation_steps.len()
-    );
-    assert!(
-        sol.evaluations <= MAX_IVPS,
-        "#{DESIGN}: {} IVPs (bound {MAX_IVPS})",
-        sol.evaluations
     );
 }
