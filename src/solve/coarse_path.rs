@@ -121,22 +121,14 @@ pub const RESUME_MAX: f64 = 1.0;
 /// full grid once (to `lambda^2` at the checked point, the rule of
 /// [`WATCH_TOL`]), and is finished on the full grid by Newton from its
 /// root; a grid that fails its check hands over to the next, the last to
-/// the full grid's path. On the eight benchmark designs whose coarse check
-/// fails (measured at 19:35-19:52 UTC, load 4.1-7, IVP-equivalents
-/// median of 6 runs interleaved with main 2acabf7, and IVPs): `[4, 2]`
-/// #940 142 -> 92 (149 -> 126 IVPs), #112 149 -> 94 (139 -> 112), #560
-/// 126 -> 94 (145 -> 127), #107 112 -> 70 (140 -> 120), #861 94 -> 50 (111
-/// -> 104), #894 87 -> 67 (133 -> 126), #54 79 -> 68 (95 -> 102), #190
-/// 69 -> 66 (71 -> 84); every other design's path is unchanged. `[2]`
-/// alone: #940 99, #112 95, #560 101, #107 90 (119-125 IVPs); `[4]` alone
-/// fails its check on #940 and #112 (and then the full grid's path ran);
-/// `[3]` failed on #112. With the check's tolerance fixed at its first
-/// `lambda` (`lambda^2` there, not at the checked point) #861 and #54
-/// failed on steps/4 too: #861 62, #54 76. Physically: #112's tendon bending length is
-/// 2.3 mm, the coarse grid's step 7.3 mm, steps/4 2.9 mm (its check
-/// residual 0.12 at `lambda = 1/4`, 1.9 extrapolated to `lambda = 1`), steps/2
-/// 1.5 mm (passes). A finish by defect correction on the middle grid (as
-/// the pre-solve's on the coarse one) took 15-30 IVPs against 5-13.
+/// the full grid's path. Each middle grid must carry the body's shortest
+/// bending length: a tendon whose bending length `sqrt(EI / tau)` is
+/// 2.3 mm is not resolved by the coarse grid's 7.3 mm steps nor by a
+/// quarter's 2.9 mm (its check residual 0.12 at `lambda = 1/4`), and is by
+/// a half's 1.5 mm; RK4 is stable up to about 2.8 bending lengths per step.
+/// On the benchmark designs whose coarse check fails, a quarter and then a
+/// half of the steps cost less than either alone, and a finish by Newton
+/// less than one by defect correction on the middle grid.
 pub const MIDDLE_GRID_DIVISORS: [usize; 2] = [4, 2];
 
 /// Tolerance (scaled residual) of the coarse path's last corrector, at
