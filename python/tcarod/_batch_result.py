@@ -35,7 +35,7 @@ class BatchResult:
     for results built by hand without them.
 
     ``stable`` ``(n,)`` and ``margin`` ``(n,)`` [-]: each row's stability
-    verdict (``Solution.stable`` / ``Solution.stability.margin``: the smallest
+    verdict (``Solution.stable`` / ``Solution.stability_margin``: the smallest
     eigenvalue of the dimensionless tip stiffness, > 0 iff stable; ``stable``
     False and ``margin`` NaN where there is none: the solve or the verdict
     failed); both ``None`` when the batch ran with ``stability="off"``.

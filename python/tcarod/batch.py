@@ -220,8 +220,9 @@ def solve_batch(
     ``threads``: worker threads (0: all cores). ``progress``: tqdm bar.
     ``client``: a ``dask.distributed.Client``; the chunks are then spread over
     its workers (install the ``dask`` extra) with the same results as the
-    local path. ``robot`` may be a zero-argument callable returning the robot
-    (needed for process-based Dask workers, which must rebuild it).
+    local path. The robot pickles, so it is shipped to the workers as it is;
+    ``robot`` may also be a zero-argument callable returning the robot, which
+    each worker then calls to build its own.
 
     ``stability``: ``"report"`` (the default) gives every converged row its
     stability verdict (``stable``, ``margin``), as ``Robot.solve`` does, so a
@@ -314,8 +315,8 @@ def _solve_dask(
 def fig6_square_robot(gravity: bool = True) -> Robot:
     """The paper's Fig. 6 square manipulator (Section V-B) with the default
     turns reading, from the core's fixtures (``src/experiments.rs``), standing
-    upright (gravity ``-z``) if ``gravity``. A named module-level function, so
-    Dask and process pools can ship it as a robot factory."""
+    upright (gravity ``-z``) if ``gravity``. A module-level function, so it
+    can also serve as the robot factory of a batch."""
     return (
         _c.fixture_manipulator("fig6_square") if gravity else _c.fixture_manipulator("fig6_square", gravity=(0, 0, 0))
     )

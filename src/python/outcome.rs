@@ -5,7 +5,8 @@
 
 /// What a result class knows about how its solve ended.
 pub(crate) trait Outcome {
-    /// `0` success; other codes as listed in the class docstring.
+    /// `0` success; the other codes are the class's own (its `status`
+    /// docstring, given to [`scipy_fields`]).
     fn status_code(&self) -> i64;
     /// Why the solve stopped, in words.
     fn status_message(&self) -> String;
@@ -21,18 +22,19 @@ pub(crate) trait Outcome {
 }
 
 /// Adds the getters `success`, `status`, `message`, `nit` and `nfev` to a
-/// `#[pyclass]` that implements [`Outcome`].
+/// `#[pyclass]` that implements [`Outcome`]; `$codes` is the `status`
+/// getter's docstring, which lists the class's codes.
 macro_rules! scipy_fields {
-    ($ty:ty) => {
+    ($ty:ty, $codes:literal) => {
         #[pyo3::pymethods]
         impl $ty {
-            /// `True` if the solve succeeded (`status == 0` unless the class
-            /// docstring lists other success codes), SciPy naming.
+            /// `True` if the solve succeeded (see `status` for the success
+            /// codes), SciPy naming.
             #[getter]
             fn success(&self) -> bool {
                 $crate::python::outcome::Outcome::succeeded(self)
             }
-            /// `0` success; other codes as listed in the class docstring (SciPy naming).
+            #[doc = $codes]
             #[getter]
             fn status(&self) -> i64 {
                 $crate::python::outcome::Outcome::status_code(self)

@@ -88,7 +88,13 @@ impl Outcome for PyInverseResult {
     }
 }
 
-scipy_fields!(PyInverseResult);
+scipy_fields!(
+    PyInverseResult,
+    "Status code (SciPy naming): `0` target reached to `tol`; `1` target \
+     unreachable (the closest configuration found has variables at their \
+     bounds, `at_bound`); `2` iteration budget `max_iter` exhausted; `3` \
+     stalled (no descent, no variable at a bound)."
+);
 tip_of_solution!(PyInverseResult);
 
 impl PyInverseResult {
@@ -230,7 +236,11 @@ impl Outcome for PyBlockedResult {
     }
 }
 
-scipy_fields!(PyBlockedResult);
+scipy_fields!(
+    PyBlockedResult,
+    "Status code (SciPy naming): always `0` (converged); a solve that fails \
+     raises `ConvergenceError` instead."
+);
 tip_of_solution!(PyBlockedResult);
 
 #[pymethods]

@@ -269,20 +269,71 @@ class Robot:
         time_limit: float | None = None,
         equilibrium_tol: float | None = None,
     ) -> Solution:
-        """Forward kinetostatics for one input per actuator (temperature [C] for TCAs);
-        ``steps`` RK4 steps over the body; ``max_evaluations`` IVPs and
-        ``time_limit`` seconds bound the whole solve (continuation included).
-        ``stability``: ``"report"`` (the verdict comes with the solution, one
-        tangent IVP; an unstable one warns ``UnstableEquilibriumWarning``),
-        ``"require"`` (raise ``UnstableEquilibriumError``), ``"continue"`` (move
-        to a stable equilibrium at the same inputs; ``Solution.continued``) or
-        ``"off"`` (no verdict, hot loops); ``require_stable=True`` is
-        ``"require"``. ``equilibrium_tol`` (opt-in, 1e-12 to 1): refine the
-        RK4 grid until the global equilibrium check (base wrench against the
-        loads) holds to this relative error; ``Solution.steps`` is the grid
-        used. Raises ``ValueError`` on bad input and ``ConvergenceError`` if
-        Newton fails (``reason == "budget"`` when the budget ran out) or the
-        check cannot be met."""
+        """Solve the forward kinetostatics: the robot's shape at the given inputs.
+
+        Shooting on the Cosserat rod (the paper's eqs 22-33), with continuation.
+
+        Parameters
+        ----------
+        inputs : float or sequence of float
+            One input per actuator: temperature [C] for a TCA, tension [N] for a
+            tendon, pull [m] for a linear tendon.
+        steps : int, optional
+            RK4 steps over the body, 1 to 100,000 (default 100).
+        tol : float, optional
+            Newton tolerance on the dimensionless residual (default 1e-10).
+        max_iter : int, optional
+            Newton iterations, 1 to 100,000 (default 50).
+        warm_start : Solution, optional
+            A nearby solution of this robot, or of a robot with the same actuators
+            under other loads (load continuation).
+        stability : {"report", "require", "continue", "off"}, optional
+            ``"report"`` (default): the verdict comes with the solve (one tangent
+            IVP) in ``Solution.stable``; an unstable equilibrium also warns
+            ``UnstableEquilibriumWarning``. ``"require"``: raise
+            ``UnstableEquilibriumError`` (attributes ``margin`` [-] and
+            ``solution``). ``"continue"``: move from an unstable equilibrium to a
+            stable one at the same inputs; ``Solution.continued`` records how.
+            ``"off"``: no verdict (hot loops).
+        require_stable : bool, optional
+            ``True`` is ``stability="require"``.
+        max_evaluations : int, optional
+            IVP budget of the solve, continuation included, 1 to 1e8 (default
+            20,000).
+        time_limit : float, optional
+            Wall-time limit [s] (default none).
+        equilibrium_tol : float, optional
+            Opt-in accuracy control, 1e-12 to 1: the largest relative error of the
+            global equilibrium check (base wrench against the loads) the solution
+            may have; above it the solve is repeated on finer RK4 grids, and
+            ``Solution.steps`` reports the grid used.
+
+        Returns
+        -------
+        Solution
+            The shape (centre line, frames, strains, internal wrench), the
+            actuators' tensions and elongations, and the solver's counts.
+
+        Raises
+        ------
+        ValueError
+            An argument outside its range (named, with its unit).
+        TypeError
+            An argument of the wrong type.
+        ConvergenceError
+            Newton and continuation fail, the budget (``reason == "budget"``) or
+            the time limit runs out, or ``equilibrium_tol`` cannot be met.
+        UnstableEquilibriumError
+            With ``stability="require"``, an unstable equilibrium.
+
+        Examples
+        --------
+        >>> from tcarod.batch import fig6_square_robot
+        >>> robot = fig6_square_robot()      # the paper's Fig. 6 square, two TCA legs
+        >>> sol = robot.solve([100.0, 100.0])
+        >>> sol.stable, round(float(sol.tip_position[0]) * 1e3, 2)   # tip x [mm]
+        (True, -6.13)
+        """
     def sweep(
         self,
         inputs: Sequence[Sequence[float] | _FloatArray] | _FloatArray,

@@ -80,30 +80,70 @@ impl PyRobot {
         self.inner.reference_inputs()
     }
 
-    /// Solve the forward kinetostatics for one input per actuator
-    /// (temperature [C] for TCAs, tension [N] for tendons, pull [m] for linear
-    /// tendons). `steps`: RK4 steps over the body (1 to 100,000); `tol`:
-    /// Newton tolerance on the dimensionless residual; `max_iter`: Newton
-    /// iterations (1 to 100,000); `warm_start`: a nearby `Solution` of this
-    /// robot, or of a robot with the same actuators under other loads (load
-    /// continuation). `stability`: `"report"` (default: the
-    /// verdict is part of the solve, one tangent IVP, cached in
-    /// `Solution.stable`; an unstable equilibrium also emits
-    /// `UnstableEquilibriumWarning`), `"require"` (raise
-    /// `UnstableEquilibriumError`, attributes `margin` [-] and `solution`),
-    /// `"continue"` (move from an unstable equilibrium to a stable one at the
-    /// same inputs; `Solution.continued` records how) or `"off"` (no verdict:
-    /// hot loops). `require_stable=True` is `stability="require"`;
-    /// `max_evaluations`: IVP budget of the solve, continuation included (1 to
-    /// 1e8, default 20,000); `time_limit`: wall-time limit [s] (default none);
-    /// running out of either raises `ConvergenceError` with
-    /// `reason == "budget"`. `equilibrium_tol` (opt-in accuracy control, 1e-12
-    /// to 1): the largest relative error of the global equilibrium check
-    /// (base wrench against the loads) the solution may have; above it the
-    /// solve is repeated on finer RK4 grids until it holds, and
-    /// `Solution.steps` reports the grid used. Raises `ValueError` on bad
-    /// input, `TypeError` on wrong types and `ConvergenceError` if Newton
-    /// fails or the check cannot be met.
+    /// Solve the forward kinetostatics: the robot's shape at the given inputs.
+    ///
+    /// Shooting on the Cosserat rod (the paper's eqs 22-33), with continuation.
+    ///
+    /// Parameters
+    /// ----------
+    /// inputs : float or sequence of float
+    ///     One input per actuator: temperature [C] for a TCA, tension [N] for a
+    ///     tendon, pull [m] for a linear tendon.
+    /// steps : int, optional
+    ///     RK4 steps over the body, 1 to 100,000 (default 100).
+    /// tol : float, optional
+    ///     Newton tolerance on the dimensionless residual (default 1e-10).
+    /// max_iter : int, optional
+    ///     Newton iterations, 1 to 100,000 (default 50).
+    /// warm_start : Solution, optional
+    ///     A nearby solution of this robot, or of a robot with the same actuators
+    ///     under other loads (load continuation).
+    /// stability : {"report", "require", "continue", "off"}, optional
+    ///     ``"report"`` (default): the verdict comes with the solve (one tangent
+    ///     IVP) in ``Solution.stable``; an unstable equilibrium also warns
+    ///     ``UnstableEquilibriumWarning``. ``"require"``: raise
+    ///     ``UnstableEquilibriumError`` (attributes ``margin`` [-] and
+    ///     ``solution``). ``"continue"``: move from an unstable equilibrium to a
+    ///     stable one at the same inputs; ``Solution.continued`` records how.
+    ///     ``"off"``: no verdict (hot loops).
+    /// require_stable : bool, optional
+    ///     ``True`` is ``stability="require"``.
+    /// max_evaluations : int, optional
+    ///     IVP budget of the solve, continuation included, 1 to 1e8 (default
+    ///     20,000).
+    /// time_limit : float, optional
+    ///     Wall-time limit [s] (default none).
+    /// equilibrium_tol : float, optional
+    ///     Opt-in accuracy control, 1e-12 to 1: the largest relative error of the
+    ///     global equilibrium check (base wrench against the loads) the solution
+    ///     may have; above it the solve is repeated on finer RK4 grids, and
+    ///     ``Solution.steps`` reports the grid used.
+    ///
+    /// Returns
+    /// -------
+    /// Solution
+    ///     The shape (centre line, frames, strains, internal wrench), the
+    ///     actuators' tensions and elongations, and the solver's counts.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     An argument outside its range (named, with its unit).
+    /// TypeError
+    ///     An argument of the wrong type.
+    /// ConvergenceError
+    ///     Newton and continuation fail, the budget (``reason == "budget"``) or
+    ///     the time limit runs out, or ``equilibrium_tol`` cannot be met.
+    /// UnstableEquilibriumError
+    ///     With ``stability="require"``, an unstable equilibrium.
+    ///
+    /// Examples
+    /// --------
+    /// >>> from tcarod.batch import fig6_square_robot
+    /// >>> robot = fig6_square_robot()      # the paper's Fig. 6 square, two TCA legs
+    /// >>> sol = robot.solve([100.0, 100.0])
+    /// >>> sol.stable, round(float(sol.tip_position[0]) * 1e3, 2)   # tip x [mm]
+    /// (True, -6.13)
     #[pyo3(signature = (inputs, *, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None, stability="report", require_stable=false, max_evaluations=None, time_limit=None, equilibrium_tol=None),
         text_signature = "($self, inputs, *, steps=100, tol=1e-10, max_iter=50, warm_start=None, stability='report', require_stable=False, max_evaluations=20000, time_limit=None, equilibrium_tol=None)")]
     #[allow(clippy::too_many_arguments)]

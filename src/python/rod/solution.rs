@@ -147,7 +147,13 @@ impl Outcome for PySolution {
     }
 }
 
-scipy_fields!(PySolution);
+scipy_fields!(
+    PySolution,
+    "Status code (SciPy naming): `0` converged to `tol`; `1` `tol` lies below \
+     the estimated rounding floor and the residual reached the floor \
+     (`floor`). Both are successes, as in `scipy.optimize.least_squares`; a \
+     solve that fails raises `ConvergenceError` instead."
+);
 
 #[pymethods]
 impl PySolution {
