@@ -493,9 +493,9 @@ fn continued(
 /// staying on the straight, unstable, branch; Thompson & Hunt, *A General
 /// Theory of Elastic Stability*, Wiley 1973, ch. 3) and the second path
 /// follows that branch as the imperfection is taken away. Both paths run
-/// on the coarse grid of the presolve where there is one, and Newton
-/// finishes on the requested grid from there. The solution's
-/// `evaluations` count all of it.
+/// on the coarse grid of the presolve where there is one, and [`solve`]
+/// finishes on the requested grid from there (with its accuracy
+/// control). The solution's `evaluations` count all of it.
 pub fn solve_imperfect(
     robot: &Robot,
     inputs: &[f64],
@@ -538,9 +538,8 @@ pub fn solve_imperfect(
         o = remaining(&o, deadline, work)?;
     }
     let coarse = end.expect("two paths were followed");
-    if steps == opts.steps {
-        return Ok(coarse);
-    }
+    // (on the requested grid too: the path's end is then Newton's solution
+    // at once, and `equilibrium_tol` is honoured the same way)
     let spent = work * scale;
     let rest = remaining(opts, deadline, spent)?;
     let mut sol = solve(robot, inputs, loads, &rest, Some(&coarse))?;
