@@ -518,26 +518,26 @@ pub fn solve_imperfect(
     let mut imperfect = *loads;
     imperfect.tip_force += imperfection.tip_force;
     imperfect.tip_moment += imperfection.tip_moment;
-    let mut work = 0.0;
-    let mut end = None;
-    for (at, from) in [(imperfect, None), (*loads, Some(()))] {
-        let warm = from.and(end.as_ref());
-        let (x, charts, path) = continued(robot, inputs, &at, &o, &starts, warm)?;
-        work += path.work;
-        let ms = MultipleShooting::new(robot, inputs, at, steps, &starts, charts)?;
+    // one path to `at` (from rest, or from `from`'s loads): its end and work
+    let leg = |at: &Loads, o: &SolveOptions, from: Option<&Solution>| {
+        let (x, charts, path) = continued(robot, inputs, at, o, &starts, from)?;
+        let ms = MultipleShooting::new(robot, inputs, *at, steps, &starts, charts)?;
         let mut sys = ShootingSystem::new(ms)?;
-        sys.ms.work = work;
-        end = Some(finish(Solved {
+        sys.ms.work = path.work;
+        let end = finish(Solved {
             sys,
             x,
             iterations: path.steps,
             residual: path.residual,
             path: Vec::new(),
             at_floor: path.residual > opts.tol,
-        })?);
-        o = remaining(&o, deadline, work)?;
-    }
-    let coarse = end.expect("two paths were followed");
+        })?;
+        Ok::<_, crate::error::Error>((end, path.work))
+    };
+    let (loaded, w1) = leg(&imperfect, &o, None)?;
+    o = remaining(&o, deadline, w1)?;
+    let (coarse, w2) = leg(loads, &o, Some(&loaded))?;
+    let work = w1 + w2;
     // (on the requested grid too: the path's end is then Newton's solution
     // at once, and `equilibrium_tol` is honoured the same way)
     let spent = work * scale;
