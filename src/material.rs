@@ -45,6 +45,9 @@ impl Linear {
     }
 }
 
+/// 0 C in kelvin \[K\]: absolute zero is `-ZERO_CELSIUS_IN_KELVIN` C.
+pub const ZERO_CELSIUS_IN_KELVIN: f64 = 273.15;
+
 /// Coefficients of the fibre-diameter fit `d/d0 = a T^2 + b T + c` (T in C) of
 /// Sun & Zhao's `TCA_moduli_creeped.m` (the MATLAB code of their T-RO 2022
 /// paper; see the sources in `docs/choices.md`).
@@ -133,8 +136,12 @@ impl Material {
         finite("t_ref [C]", t_ref)?;
         finite("t_min [C]", t_min)?;
         finite("t_max [C]", t_max)?;
-        if t_min <= -273.15 {
-            return Err(Error::param("t_min [C]", t_min, "> -273.15 C"));
+        if t_min <= -ZERO_CELSIUS_IN_KELVIN {
+            return Err(Error::param(
+                "t_min [C]",
+                t_min,
+                "> -273.15 C (absolute zero)",
+            ));
         }
         if t_max <= t_min {
             return Err(Error::param(

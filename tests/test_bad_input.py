@@ -547,3 +547,15 @@ def test_design_values_that_look_like_another_unit_warn() -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         loads_design(text)
+
+
+def test_a_tca_temperature_in_kelvin_is_named_as_such() -> None:
+    from tcarod.batch import fig6_square_robot
+
+    robot = fig6_square_robot()
+    # 373.15 K is 100 C, inside the material's range once read as kelvin
+    with pytest.raises(ValueError, match=r"inputs\[0\].*373\.15.*Celsius: 373\.15 K is 100\.00 C"):
+        robot.solve([373.15, 373.15])
+    # beyond the range either way: the plain range
+    with pytest.raises(ValueError, match=r"allowed 25 <= input <= 160$"):
+        robot.solve([170.0, 25.0])

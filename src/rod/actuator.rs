@@ -261,8 +261,15 @@ impl ForceLaw for TcaLaw {
                 ),
             ));
         }
+        let celsius = input - crate::material::ZERO_CELSIUS_IN_KELVIN;
         if input.is_finite() && input <= hi {
             Ok(())
+        } else if (lo..=hi).contains(&celsius) {
+            // in the material's range once read as kelvin: say so
+            let allowed = format!(
+                "{lo} <= T <= {hi} C (temperatures are in Celsius: {input} K is {celsius:.2} C)"
+            );
+            Err(Error::param(self.input_name(), input, allowed))
         } else {
             Err(out_of_range(self.input_name(), input, (lo, hi)))
         }
