@@ -179,17 +179,14 @@ fn verdict(c: &mut Criterion) {
 /// the work counted (IVP-equivalents) and the thread CPU of the whole solve
 /// in plain IVPs of the same column (medians of 21 runs).
 fn greenhill_continue() {
-    use nalgebra::Vector3;
+    use tcarod::problems::overloaded_column;
     use tcarod::rod::{Body, Section};
     let opts = SolveOptions::default();
     let mut rows = vec![];
     for factor in [1.1, 2.0, 3.7, 5.0] {
-        let mut b = Body::new(0.1, Section::Circle { diameter: 12e-3 }, 70e3, 0.5, 1070.0)
+        let b = Body::new(0.1, Section::Circle { diameter: 12e-3 }, 70e3, 0.5, 1070.0)
             .expect("a valid body");
-        let (a, ..) = b.section.properties();
-        let g = factor * 7.837 * b.bending_stiffness() / (b.density * a * b.length.powi(3));
-        b.gravity = Vector3::new(0.0, 0.0, -g);
-        let robot = Robot::new(b, vec![]).expect("a valid robot");
+        let robot = overloaded_column(b, factor);
         let loads = Loads::of(&robot);
         let run = || solve_checked(&robot, &[], &loads, &opts, None, Policy::Continue);
         let c = run().expect("the column lands on a stable shape");

@@ -228,6 +228,18 @@ pub fn past_self_weight_buckling(body: &Body) -> bool {
     column_ratio(body) > SELF_WEIGHT_BUCKLING
 }
 
+/// An upright column of `body` (clamped at the base, free at the tip, no
+/// actuators) under `factor` times its self-weight buckling load: gravity
+/// along `-z` scaled so that [`column_ratio`] is `factor`
+/// [`SELF_WEIGHT_BUCKLING`]. `body.density` must be positive.
+pub fn overloaded_column(mut body: Body, factor: f64) -> Robot {
+    let (a, ..) = body.section.properties();
+    let g = factor * SELF_WEIGHT_BUCKLING * body.bending_stiffness()
+        / (body.density * a * body.length.powi(3));
+    body.gravity = Vector3::new(0.0, 0.0, -g);
+    Robot::new(body, vec![]).expect("a body without actuators is a valid robot")
+}
+
 /// `psi A |g| L^3 / (E I_min)` whatever the direction of gravity.
 fn weight_ratio_of(density: f64, section: &Section, length: f64, e: f64) -> f64 {
     let (a, ix, iy, _) = section.properties();

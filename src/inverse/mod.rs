@@ -169,7 +169,5 @@ pub(crate) fn pose_delta(
 
 /// Characteristic force \[N\] and moment \[N m\] of a body: `E I / L^2`, `E I / L`.
 pub fn load_scales(robot: &Robot) -> (f64, f64) {
-    let b = &robot.body;
-    let ei = b.bending_stiffness();
-    (ei / (b.length * b.length), ei / b.length)
+    robot.body.load_scales()
 }

@@ -223,6 +223,13 @@ impl Body {
         self.youngs_modulus * ix.min(iy)
     }
 
+    /// The body's characteristic force \[N\] and moment \[N m\],
+    /// `E I / L^2` and `E I / L` (with [`Body::bending_stiffness`]).
+    pub fn load_scales(&self) -> (f64, f64) {
+        let ei = self.bending_stiffness();
+        (ei / (self.length * self.length), ei / self.length)
+    }
+
     /// Total distributed force in the world frame [N/m]: `psi A g + f`.
     pub fn distributed_load(&self) -> Vector3<f64> {
         let (a, ..) = self.section.properties();

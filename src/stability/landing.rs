@@ -164,11 +164,10 @@ fn imperfection(
     mode: &[f64; 6],
     opts: &SolveOptions,
 ) -> Result<Solution> {
-    let len = robot.body.length;
-    let ei = robot.body.bending_stiffness();
+    let (force, moment) = robot.body.load_scales();
     let wrench = Loads {
-        tip_force: Vector3::new(mode[0], mode[1], mode[2]) * (ei / (len * len)),
-        tip_moment: Vector3::new(mode[3], mode[4], mode[5]) * (ei / len),
+        tip_force: Vector3::new(mode[0], mode[1], mode[2]) * force,
+        tip_moment: Vector3::new(mode[3], mode[4], mode[5]) * moment,
     };
     crate::solve::forward::solve_imperfect(robot, inputs, loads, &wrench, opts)
 }

@@ -10,7 +10,9 @@ use tcarod::experiments::{
     fig6_square, soft_tendon_robot, soft_tendon_tension, steel_tendon_robot, table1_finger,
     STEEL_TENDON_TENSIONS,
 };
-use tcarod::problems::{equilibrium, random_design, DEFAULT_SEED, EQUILIBRIUM_TOL};
+use tcarod::problems::{
+    equilibrium, overloaded_column, random_design, DEFAULT_SEED, EQUILIBRIUM_TOL,
+};
 use tcarod::rod::{Body, Robot, Section};
 use tcarod::shooting::{assemble, solve_loaded, Loads, Solution, SolveOptions};
 use tcarod::stability::{solve_checked, stability, Policy};
@@ -299,14 +301,10 @@ fn continue_lands_on_the_post_buckled_elastica() {
 }
 
 /// An upright round silicone column (L 100 mm, d 12 mm, E 70 kPa, density
-/// 1,070 kg/m^3) under `factor` times its self-weight buckling load
-/// (Greenhill: rho A g L^3 / EI = 7.837).
+/// 1,070 kg/m^3) under `factor` times its self-weight buckling load.
 fn greenhill_column(factor: f64) -> Robot {
-    let mut b = Body::new(0.1, Section::Circle { diameter: 12e-3 }, 70e3, 0.5, 1070.0).unwrap();
-    let (a, ..) = b.section.properties();
-    let g = factor * 7.837 * b.bending_stiffness() / (b.density * a * b.length.powi(3));
-    b.gravity = Vector3::new(0.0, 0.0, -g);
-    Robot::new(b, vec![]).unwrap()
+    let b = Body::new(0.1, Section::Circle { diameter: 12e-3 }, 70e3, 0.5, 1070.0).unwrap();
+    overloaded_column(b, factor)
 }
 
 #[test]
@@ -385,11 +383,8 @@ fn continue_lands_every_overloaded_column_of_a_family() {
             },
         };
         let factor = 1.05 + 4.95 * u();
-        let mut b = Body::new(len, section, modulus, 0.5, 1070.0).unwrap();
-        let (a, ..) = b.section.properties();
-        let g = factor * 7.837 * b.bending_stiffness() / (b.density * a * len.powi(3));
-        b.gravity = Vector3::new(0.0, 0.0, -g);
-        let r = Robot::new(b, vec![]).unwrap();
+        let b = Body::new(len, section, modulus, 0.5, 1070.0).unwrap();
+        let r = overloaded_column(b, factor);
         let loads = Loads::of(&r);
         let opts = SolveOptions::default();
         let c = solve_checked(&r, &[], &loads, &opts, None, Policy::Continue)
