@@ -458,6 +458,7 @@ fn solve_chunk(
             Ok(s) => {
                 let verdict = if opts.stability {
                     let eq = Equilibrium {
+                        along: None,
                         unknowns: &s.unknowns,
                         inputs: q,
                         loads,

@@ -564,20 +564,25 @@ fn finish<const N: usize>(
 }
 
 /// The hook of [`IvpSpec::integrate_tangent_hooked`]: `(node index,
-/// tangent columns, matrix to write) -> whether to apply it`.
-pub(crate) type ColumnHook<'h> = dyn FnMut(usize, &[f64], &mut [f64]) -> bool + 'h;
+/// state, tangent columns, matrix to write) -> whether to apply it`. The
+/// state (`n_states`) may be overwritten: the pass continues from it.
+pub(crate) type ColumnHook<'h> = dyn FnMut(usize, &mut [f64], &[f64], &mut [f64]) -> bool + 'h;
 
 impl IvpSpec<'_> {
     /// [`integrate_tangent`] with every node recorded ([`Record::Tangents`])
     /// and `hook` called at every node, the tip included (before its
-    /// balance): `hook(idx, cols, m)` gets the node's index and its tangent
-    /// columns `cols` (`n_states x k`, by columns); if it returns true the
-    /// integration continues from the columns times `m` (`k x k`, by
-    /// columns, written by the hook), the tension and elongation tangents
-    /// transformed alike, and the node is recorded so. The variational
-    /// equations are linear, so every later tangent is the plain pass's
-    /// times the product of the matrices applied (to rounding); the real
-    /// part is the plain IVP's bit for bit. One pass of `k <= 16`
+    /// balance): `hook(idx, y, cols, m)` gets the node's index, its state
+    /// `y` and its tangent columns `cols` (`n_states x k`, by columns); if
+    /// it returns true the integration continues from the columns times `m`
+    /// (`k x k`, by columns, written by the hook), the tension and
+    /// elongation tangents transformed alike, and the node is recorded so.
+    /// The variational equations are linear, so every later tangent is the
+    /// plain pass's times the product of the matrices applied (to
+    /// rounding). A hook that leaves `y` alone keeps the real part the plain
+    /// IVP's bit for bit; one that writes a given trajectory's state into
+    /// `y` at every node linearises the pass about that trajectory (each
+    /// step's tangent map is then taken at the trajectory's own state, as
+    /// multiple shooting takes each segment's). One pass of `k <= 16`
     /// directions on the hand-linearised right-hand side; with more
     /// directions (several passes, whose columns never meet) the plain
     /// [`integrate_tangent`], the hook not called.

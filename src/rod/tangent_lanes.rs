@@ -122,7 +122,8 @@ fn to_duals<const N: usize>(y: &[f64], yl: &[Lanes<N>], out: &mut [Dual<N>]) {
 /// [`hook_node`]). The variational equations are linear in the lanes and
 /// the real part never reads them, so the tangents after a node are the
 /// plain pass's times the product of the matrices applied so far (to
-/// rounding), and the real part is the plain IVP's bit for bit. With a hook
+/// rounding), and the real part is the plain IVP's bit for bit unless the
+/// hook writes the state (linearising about a given trajectory). With a hook
 /// that never asks, or none, the arithmetic is the plain pass's.
 #[inline(always)]
 pub(super) fn pass_lanes<const N: usize>(
@@ -158,7 +159,7 @@ pub(super) fn pass_lanes<const N: usize>(
     macro_rules! hook {
         () => {
             if let Some(h) = hook.as_deref_mut() {
-                let at = (&mut yl[..], &mut cols[..], &mut m[..]);
+                let at = (&mut y[..], &mut yl[..], &mut cols[..], &mut m[..]);
                 hook_node(h, idx, at, &mut taul, &mut tau, &mut elongation, w);
             }
         };
@@ -225,16 +226,17 @@ fn mix_lanes<const N: usize>(l: &mut [f64; N], m: &[f64], w: usize) {
     }
 }
 
-/// At node `idx`, the tangent columns (`n x w`, by columns) handed to
-/// `hook`; if it asks for it, every lane of the pass (state, tensions in
-/// both forms, elongations recorded so far) replaced by its columns times
-/// the hook's `w x w` matrix. The real parts are untouched.
+/// At node `idx`, the state `y` and the tangent columns (`n x w`, by
+/// columns) handed to `hook`; if it asks for it, every lane of the pass
+/// (state, tensions in both forms, elongations recorded so far) replaced by
+/// its columns times the hook's `w x w` matrix. The real parts other than
+/// the state are untouched; the state is what the hook leaves in `y`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn hook_node<const N: usize>(
     hook: &mut ColumnHook<'_>,
     idx: usize,
-    (yl, cols, m): (&mut [Lanes<N>], &mut [f64], &mut [f64]),
+    (y, yl, cols, m): (&mut [f64], &mut [Lanes<N>], &mut [f64], &mut [f64]),
     taul: &mut [Lanes<N>],
     tau: &mut [Dual<N>],
     elongation: &mut [Dual<N>],
@@ -246,7 +248,7 @@ fn hook_node<const N: usize>(
             *x = l.0[c];
         }
     }
-    if !hook(idx, &cols[..n * w], &mut m[..w * w]) {
+    if !hook(idx, y, &cols[..n * w], &mut m[..w * w]) {
         return;
     }
     for l in yl.iter_mut().chain(taul.iter_mut()) {

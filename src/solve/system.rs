@@ -224,6 +224,7 @@ impl<'a> Shooting<'a> {
         let delta: Vec<f64> = x[6..6 + na].iter().map(|d| d * len).collect();
         let tau = tensions(robot, self.shot.inputs, &delta)?;
         let eq = Equilibrium {
+            along: None,
             unknowns: x,
             inputs: self.shot.inputs,
             loads: *self.shot.loads,

@@ -113,6 +113,18 @@
 //! the module `march`), within the same single integration: the check is a
 //! `k x k` Gram matrix per node.
 //!
+//! The equilibrium itself can be as hard to reproduce from the base: a
+//! heavy body's IVP amplifies the rounding of its base unknowns past the
+//! solution's accuracy, which is why the solver shoots from several nodes
+//! (multiple shooting, [`crate::solve::forward`]). A verdict of a recorded
+//! [`Solution`] therefore restarts the pass's state at every node where it
+//! has left the solution's own (the hook of the tangent pass writes it), so
+//! each step's tangent map is taken at the equilibrium, as the solver's
+//! segments take theirs, while the tangent columns run on unbroken from the
+//! base. On a solution of one IVP the pass never leaves it and is that IVP
+//! bit for bit. (Above 16 directions, more than one pass of dual lanes, the
+//! pass is the plain IVP's.)
+//!
 //! # Policy
 //!
 //! [`solve_checked`] wraps the forward solve with a [`Policy`]: report the
@@ -173,10 +185,15 @@ pub struct Stability {
 }
 
 /// What a verdict needs of an equilibrium: its scaled shooting unknowns
-/// (`v(0)`, `u(0) L`, `delta_i / L`), inputs, loads and RK4 grid. A
-/// [`Solution`] gives one; so does a batch row's tip solution.
+/// (`v(0)`, `u(0) L`, `delta_i / L`), inputs, loads and RK4 grid, and, where
+/// its states are recorded, the recorded solution. A [`Solution`] gives one
+/// (with itself as `along`); so does a batch row's tip solution (without).
 #[derive(Debug, Clone, Copy)]
 pub struct Equilibrium<'a> {
+    /// The equilibrium's states at the grid nodes, if recorded: the verdict
+    /// linearises about them, node by node (see # Growth in the module
+    /// docs). `None`: about the IVP from the unknowns.
+    pub along: Option<&'a Solution>,
     /// Scaled shooting unknowns (`6 + N`).
     pub unknowns: &'a [f64],
     /// Actuator inputs (`N`; temperature \[C\] for a TCA).
@@ -190,6 +207,7 @@ pub struct Equilibrium<'a> {
 impl<'a> From<&'a Solution> for Equilibrium<'a> {
     fn from(sol: &'a Solution) -> Self {
         Equilibrium {
+            along: Some(sol),
             unknowns: &sol.unknowns,
             inputs: &sol.inputs,
             loads: sol.loads,

@@ -235,6 +235,7 @@ fn profiled(
         }
         _ => {
             let eq = Equilibrium {
+                along: None,
                 unknowns: &nr.x,
                 inputs,
                 loads: *loads,

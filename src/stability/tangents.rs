@@ -2,12 +2,12 @@
 //! `H = d (p/L, theta)(s)/d z`: exact from one recorded tangent IVP, or by
 //! forward differences of recorded IVPs (a cross-check).
 
-use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3, Vector6};
+use nalgebra::{DMatrix, Matrix3, Quaternion, UnitQuaternion, Vector3, Vector6};
 
 use super::march::March;
 use super::Equilibrium;
-use crate::error::Result;
-use crate::rod::{rot, FlatNodes, IvpResult, Robot, RodState, TangentNodes, TangentSeeds};
+use crate::error::{Error, Result};
+use crate::rod::{rot, FlatNodes, Grid, IvpResult, Robot, RodState, TangentNodes, TangentSeeds};
 use crate::shooting::{base_strains, residual_scales, Loads, Shot, Solution};
 
 /// Tangents of one equilibrium: at every node the frozen-tension columns
@@ -292,9 +292,18 @@ pub(super) fn integrate_pass(
     let spec = eq.loads.ivp(robot, &tau, eq.steps);
     let len = robot.body.length;
     let (v0, u0) = base_strains(eq.unknowns, len);
-    let mut march = March::new(bound, robot.n_states(), nz, len, actuators);
-    let tan =
-        spec.integrate_tangent_hooked(&v0, &u0, &seeds, &mut |i, c, m| march.at_node(i, c, m))?;
+    let n = robot.n_states();
+    let mut march = March::new(bound, n, nz, len, actuators);
+    let along = eq
+        .along
+        .map(|sol| recorded_states(robot, sol, eq.steps))
+        .transpose()?;
+    let tan = spec.integrate_tangent_hooked(&v0, &u0, &seeds, &mut |i, y, c, m| {
+        if let Some(r) = along.as_ref().and_then(|r| r.get(i * n..(i + 1) * n)) {
+            restart(y, r);
+        }
+        march.at_node(i, c, m)
+    })?;
     let nodes = tan.nodes.len();
     // (more directions than one pass holds: the hook was never called)
     march.ldet.resize(nodes, 0.0);
@@ -314,6 +323,47 @@ pub(super) fn integrate_pass(
         reorthonormalised: march.count,
     };
     Ok((pass, tan.ivp))
+}
+
+/// The states of the recorded solution `sol` at its nodes, flat
+/// (`n_states` per node, as the IVP's): position, the rotation's
+/// quaternion, strains and elongations. `steps` must be the solution's grid.
+fn recorded_states(robot: &Robot, sol: &Solution, steps: usize) -> Result<Vec<f64>> {
+    let nodes = Grid::new(robot, steps).tip() + 1;
+    if sol.steps != steps || sol.s.len() != nodes {
+        return Err(Error::input(
+            "solution",
+            format!("a solution on the grid of {steps} steps ({nodes} nodes)"),
+        ));
+    }
+    let n = robot.n_states();
+    let mut out = Vec::with_capacity(n * nodes);
+    for k in 0..nodes {
+        let q = UnitQuaternion::from_matrix(&sol.rotations[k]);
+        out.extend(sol.positions[k].iter());
+        out.extend([q.w, q.i, q.j, q.k]);
+        out.extend(sol.nu[k].iter().chain(sol.omega[k].iter()));
+        out.extend(sol.elongation_profile.row(k).iter());
+    }
+    Ok(out)
+}
+
+/// Continue the pass from the recorded state `r` instead of its own `y`;
+/// the quaternion's sign is `y`'s (`q` and `-q` are one rotation, and the
+/// tangent lanes are those of `y`'s sign). Where the pass is on the
+/// recorded state already (positions, strains and elongations equal, as
+/// on a solution of this very IVP) it goes on from its own: the recorded
+/// rotation is a matrix, and reading it back as a quaternion would cost a
+/// rounding error, so the verdict of such a solution stays its IVP's bit
+/// for bit.
+fn restart(y: &mut [f64], r: &[f64]) {
+    if (0..3).chain(7..y.len()).all(|j| y[j] == r[j]) {
+        return;
+    }
+    let dot: f64 = (3..7).map(|j| y[j] * r[j]).sum();
+    let sign = if dot < 0.0 { -1.0 } else { 1.0 };
+    y.copy_from_slice(r);
+    y[3..7].iter_mut().for_each(|x| *x *= sign);
 }
 
 impl Pass {

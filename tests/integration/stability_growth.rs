@@ -196,3 +196,64 @@ fn hanging_heavy_rod_with_tendon_springs() {
         assert!((a.margin - b.margin).abs() < 1e-9 * (1.0 + a.margin.abs()));
     }
 }
+
+/// The verdict of a recorded solution is taken along its own states
+/// (docs/stability.md, "Computation"): on a heavy body's multiple-shooting
+/// solution, whose base unknowns the IVP no longer carries to its tip to
+/// the solution's accuracy, it converges with the grid like the solution
+/// itself. Horizontal designs of the stress family (weight ratio 20-3,000):
+/// halving RK4's step moves their tips by less than 1e-5 L (O(h^4)), and
+/// the margin is a smooth function of the equilibrium, so the two grids'
+/// margins agree to 1e-3; a pass that left the equilibrium scatters by up
+/// to 0.1 between grids.
+#[test]
+fn verdict_of_a_multiple_shooting_solution_converges_with_the_grid() {
+    use tcarod::problems::held_out::{stress_design, STRESS_SEED};
+    use tcarod::solve::{forward, residual::Loads};
+    for i in (2..24).step_by(3) {
+        let d = stress_design(STRESS_SEED, i);
+        let loads = Loads::of(&d.robot);
+        let [coarse, fine] = [100, 200].map(|steps| {
+            let opts = SolveOptions {
+                steps,
+                ..Default::default()
+            };
+            let sol = forward::solve(&d.robot, &d.inputs, &loads, &opts, None)
+                .unwrap_or_else(|e| panic!("stress design {i}, {steps} steps: {e}"));
+            stability(&d.robot, &sol, &[]).unwrap()
+        });
+        assert_eq!(coarse.stable, fine.stable, "stress design {i}");
+        let tol = 1e-3 * fine.margin.abs().max(1.0);
+        assert!(
+            (coarse.margin - fine.margin).abs() < tol,
+            "stress design {i}: margin {} on 100 steps, {} on 200",
+            coarse.margin,
+            fine.margin
+        );
+    }
+}
+
+/// On a solution of one IVP the pass along the recorded states is that
+/// IVP: the verdict is the one from the unknowns, bit for bit.
+#[test]
+fn verdict_along_the_recorded_states_of_one_ivp_is_the_plain_one() {
+    use tcarod::stability::{stability_at, Equilibrium};
+    let finger = table1_finger();
+    let n = finger.actuators.len();
+    let cases = [
+        (fig6_square(true), vec![100.0; 2]),
+        (finger, vec![90.0; n]),
+        (steel_tendon_robot(), STEEL_TENDON_TENSIONS.to_vec()),
+    ];
+    for (robot, inputs) in cases {
+        let sol = solve(&robot, &inputs, &SolveOptions::default(), None).unwrap();
+        let along = stability(&robot, &sol, &[]).unwrap();
+        let eq = Equilibrium {
+            along: None,
+            ..Equilibrium::from(&sol)
+        };
+        let plain = stability_at(&robot, &eq, &[]).unwrap();
+        assert_eq!((along.stable, along.margin), (plain.stable, plain.margin));
+        assert_eq!(along.determinant, plain.determinant);
+    }
+}
