@@ -4,13 +4,13 @@
 //! From J. J. Moré, B. S. Garbow & K. E. Hillstrom, "Testing unconstrained
 //! optimization software", ACM TOMS 7 (1981) 17-41 (MGH, problem numbers
 //! below), written as square systems `F(x) = 0` (their `f_i`, not the sum of
-//! squares): [`Rosenbrock`] (#1), [`PowellBadlyScaled`] (#3),
-//! [`PowellSingular`] (#13, singular Jacobian at the root),
-//! [`BrownAlmostLinear`] (#27) and [`BroydenTridiagonal`] (#30). Besides: the
-//! finite-difference 1-D [`Bratu`] problem (a fold at `lambda_c = 3.5138`),
-//! a piecewise-smooth penalised [`Obstacle`] problem (a kink from a
-//! `max(0, .)` contact law; its Jacobian is the derivative of the active
-//! piece), and [`Noisy`], which adds deterministic rounding-like noise to a
+//! squares): [`Rosenbrock`] (problem 1), [`PowellBadlyScaled`] (problem
+//! 3), [`PowellSingular`] (problem 13, singular Jacobian at the root),
+//! [`BrownAlmostLinear`] (problem 27) and [`BroydenTridiagonal`] (problem
+//! 30). Besides: the finite-difference 1-D [`Bratu`] problem (a fold at
+//! `lambda_c = 3.5138`), a piecewise-smooth penalised [`Obstacle`] problem
+//! (a kink from a `max(0, .)` contact law; its Jacobian is the derivative
+//! of the active piece), and [`Noisy`], which adds deterministic rounding-like noise to a
 //! residual.
 //!
 //! Each problem implements [`TestProblem`]; [`Dense`] makes it a
@@ -127,7 +127,7 @@ impl<P: TestProblem> NonlinearSystem for Dense<P> {
     }
 }
 
-/// MGH #1, Rosenbrock's function as the system `10 (x2 - x1^2) = 0`,
+/// MGH problem 1, Rosenbrock's function as the system `10 (x2 - x1^2) = 0`,
 /// `1 - x1 = 0`; start `(-1.2, 1)`, root `(1, 1)`.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Rosenbrock;
@@ -159,7 +159,7 @@ impl TestProblem for Rosenbrock {
     }
 }
 
-/// MGH #3, Powell's badly scaled function: `1e4 x1 x2 - 1 = 0`,
+/// MGH problem 3, Powell's badly scaled function: `1e4 x1 x2 - 1 = 0`,
 /// `exp(-x1) + exp(-x2) - 1.0001 = 0`; start `(0, 1)`, root
 /// `(1.098159...e-5, 9.106146...)`: unknowns six orders apart.
 #[derive(Debug, Clone, Copy, Default)]
@@ -196,7 +196,7 @@ impl TestProblem for PowellBadlyScaled {
     }
 }
 
-/// MGH #13, Powell's singular function: `x1 + 10 x2`, `sqrt(5) (x3 - x4)`,
+/// MGH problem 13, Powell's singular function: `x1 + 10 x2`, `sqrt(5) (x3 - x4)`,
 /// `(x2 - 2 x3)^2`, `sqrt(10) (x1 - x4)^2`; start `(3, -1, 0, 1)`, root 0,
 /// where the Jacobian is singular (rank 2): Newton converges only linearly.
 #[derive(Debug, Clone, Copy, Default)]
@@ -244,7 +244,7 @@ impl TestProblem for PowellSingular {
     }
 }
 
-/// MGH #30, Broyden's tridiagonal function:
+/// MGH problem 30, Broyden's tridiagonal function:
 /// `(3 - 2 x_i) x_i - x_{i-1} - 2 x_{i+1} + 1 = 0` with `x_0 = x_{n+1} = 0`;
 /// start `x_i = -1`. The Jacobian `tridiag(-1, 3 - 4 x_i, -2)` is strictly
 /// diagonally dominant near the root (`x_i` in about `[-0.7, -0.4]`).
@@ -300,7 +300,7 @@ impl TestProblem for BroydenTridiagonal {
     }
 }
 
-/// MGH #27, Brown's almost-linear function: `x_i + sum_j x_j - (n + 1) = 0`
+/// MGH problem 27, Brown's almost-linear function: `x_i + sum_j x_j - (n + 1) = 0`
 /// for `i < n`, `prod_j x_j - 1 = 0`; start `x_i = 1/2`. Roots
 /// `(a, ..., a, a^(1-n))` with `n a^n - (n + 1) a^(n-1) + 1 = 0`, among them
 /// `a = 1`. From the standard start the Newton path runs into singular

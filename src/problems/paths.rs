@@ -266,7 +266,7 @@ impl Model for Bratu {
     }
 }
 
-/// Freudenstein and Roth's function (MGH #2):
+/// Freudenstein and Roth's function (MGH problem 2):
 /// `F = (-13 + x1 + ((5 - x2) x2 - 2) x2, -29 + x1 + ((x2 + 1) x2 - 14) x2)`,
 /// start `(0.5, -2)`, root `(5, 4)`; `|F|^2` has a local minimiser at
 /// `(11.41, -0.8968)` (value 48.98) that draws descent methods from the start.

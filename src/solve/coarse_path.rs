@@ -1,8 +1,8 @@
 //! A cold homotopy path on a coarse grid, finished on the full grid.
 //!
-//! A continuation's correctors integrate many IVPs (20-37 steps at 5-18
-//! IVPs a corrector on the worst benchmark designs), each on the full grid,
-//! although every point of the path but the last only starts the next
+//! A continuation's correctors integrate many IVPs (tens of steps at
+//! several IVPs a corrector on a strongly bent path), each on the full
+//! grid, although every point of the path but the last only starts the next
 //! step's predictor ([`super::continuation::INTERMEDIATE_TOL`]). So a cold
 //! continuation first runs its whole path on a grid of
 //! `steps / PATH_GRID_DIVISOR` RK4 steps, to [`PATH_END_TOL`] at
@@ -10,7 +10,8 @@
 //! with the direct run's coarse-to-full hand-over (`presolve::presolved_shooting`:
 //! defect correction on the same coarse grid, convergence decided by a
 //! full-grid IVP). Where the coarse root is outside the finish's reach
-//! (benchmark design #126: its full-grid residual there is ~1), Newton on
+//! (the coarse grid's RK4 error at `lambda = 1` leaves a full-grid
+//! residual of order one or more there, see [`WATCH_LAMBDA`]), Newton on
 //! an intermediate grid of `steps / HOP_GRID_DIVISOR` steps moves it first,
 //! and the finish from there takes its Jacobians on that grid
 //! (`solve::hop_finish`).
@@ -23,9 +24,12 @@
 //! [`RESUME_MAX`]): first on the middle grids of
 //! [`MIDDLE_GRID_DIVISORS`], each checked in the same way and finished on
 //! the full grid, and only if they fail on the full grid
-//! (`fold::on_full_grid`): benchmark designs #112, #940, #861, #894, #54 (coarse
-//! root 4.7-25 from the full grid's, or a coarse path creeping to its
-//! cap) 1,205 -> 570 IVPs together (627 on the full grid's path).
+//! (`fold::on_full_grid`). A coarse grid that does not
+//! resolve the body (its steps longer than a tendon's bending length, see
+//! [`MIDDLE_GRID_DIVISORS`]) ends in a root several units of residual from
+//! the full grid's, or makes its path creep to its cap; the check finds
+//! this at one full-grid IVP's cost instead of after the whole coarse path
+//! and a failed finish.
 //! If the coarse path stalls (its step quartered below the smallest: a
 //! fold of the path), one full-grid IVP at its point checks the grid; if
 //! the coarse grid resolves the point (to [`WATCH_TOL`]) the fold is the
@@ -34,20 +38,22 @@
 //! that fails, the solve's continuation has failed at once; else the
 //! point is corrected on the full grid and the path goes on there
 //! (`fold::on_full_grid`), and if it stalls there too, the continuation has
-//! failed. Either way without a full-grid path from `lambda = 0`, which
-//! meets the same fold (benchmark design #25, past buckling: the coarse
-//! path stalls at `lambda = 0.553`, the full grid's own path at 0.665;
-//! 506 -> 297 -> 282 IVPs; 295 with the semismooth onset step, which
-//! changes its direct run's and coarse path's iterates; the snap on the
-//! coarse grid, 16 -> 4 IVP times).
+//! failed. Either way without a full-grid path from `lambda = 0`: where
+//! the coarse grid resolves the point, the fold is the body's (a limit
+//! point of the loading, as past self-weight buckling), not the grid's,
+//! and a full-grid path from `lambda = 0` stalls near it too, after paying
+//! full-grid correctors the whole way there; where it does not, the
+//! corrected point already lies on the full grid's path. The snap runs on
+//! the coarse grid for the same reason as the path: its correctors only
+//! lead to a point that the full grid then corrects.
 //! If the coarse path reaches its IVP cap, or the finish does not
 //! converge, the caller runs the path on the full grid from `lambda = 0`
 //! (its work counted on top), so that no design converging on the full
 //! grid's path is lost.
 //!
-//! A coarse IVP is not a tenth of a full one (the anchors' load
-//! iterations cost the same on any grid): on design #267 a coarse path's
-//! 202 IVPs cost about 90 full-grid IVP times.
+//! A coarse IVP costs more than a tenth of a full one: the anchors' load
+//! iterations cost the same on any grid, so only the RK4 steps between
+//! them scale with the grid.
 
 use super::continuation::{follow, follow_from, start, PathEnd, Track, Watch, CORRECTOR_MIN_STEP};
 use super::fold::{on_full_grid, regrid};
@@ -62,41 +68,48 @@ use crate::rod::Robot;
 
 /// The coarse path's grid: `steps / PATH_GRID_DIVISOR` RK4 steps, the
 /// pre-solve's coarse grid (so the finish's first coarse run starts at a
-/// root). Measured on the seven worst benchmark designs (#25, #267, #499,
-/// #385, #153, #341, #126; IVP-equivalents, load 3-4): `10` 78-114 on
-/// the six that converge through continuation; `4` and `5` 111-153; `7`
-/// 92-139 (and #126's finish failed).
+/// root). A coarser grid makes every corrector cheaper but leaves a larger
+/// RK4 error at the coarse root for the finish to remove (RK4's error falls
+/// as `h^4`); a finer one costs more per corrector on a path whose length
+/// in `lambda` is the same. A tuning constant, chosen by experiment on the
+/// tuning seed ([`crate::problems::TUNING_SEED`]) of the design benchmark
+/// (`benches/designs.rs`).
 pub const PATH_GRID_DIVISOR: usize = 10;
 
 /// The intermediate grid (`steps / HOP_GRID_DIVISOR`) of a finish whose
-/// first attempt from the coarse root failed (see the module docs): on it
-/// #126 converges from the coarse root and the finish from there.
+/// first attempt from the coarse root failed (see the module docs): fine
+/// enough that its root lies within the full-grid finish's reach where the
+/// coarse root does not (RK4's error a `(10/4)^4 ~ 39`th of the coarse
+/// grid's), coarse enough that its Newton run costs a fraction of a
+/// full-grid one. A tuning constant, chosen by experiment on the tuning
+/// seed of the design benchmark (`benches/designs.rs`).
 pub const HOP_GRID_DIVISOR: usize = 4;
 
-/// Most IVPs of a coarse path (beyond, the full grid's path is run): the
-/// coarse paths of the seven worst benchmark designs took 181-248 IVPs to
-/// reach `lambda = 1`; #112, whose tendon's bending length (2.3 mm) the
-/// coarse grid's 7.3 mm steps do not resolve, crept to `lambda = 0.87` in
-/// 910 (a cap of 400: 515 IVPs in all, 311-403 IVP-equivalents).
+/// Most IVPs of a coarse path (beyond, the full grid's path is run). It
+/// bounds the work lost on a coarse grid that does not resolve the body: a
+/// tendon whose bending length is shorter than the coarse steps makes the
+/// path creep (short steps that converge, far from `lambda = 1`) rather
+/// than fail. The cap lies above the length of a coarse path that resolves
+/// its body and below the cost of a creeping one: a tuning constant, chosen
+/// by experiment on the tuning seed of the design benchmark
+/// (`benches/designs.rs`).
 pub const PATH_MAX_IVPS: usize = 300;
 
 /// The coarse path checks its grid once, at its first converged point at
 /// or past this `lambda`: one full-grid IVP there, whose `max |r|` (scaled)
-/// is the coarse grid's error at that point of the path. It grows along
-/// the path about as `lambda^2` (measured on #940, #861, #894: x 8-9 from
-/// `lambda` 0.22-0.25 to 0.73-0.84), and the finish reaches coarse roots
-/// up to a full-grid `max |r|` of about 1 (#126's failed from 1.9 at
-/// `lambda = 0.97`, before its hop). Measured at the coarse points of the
-/// 20 worst benchmark designs at `lambda` 0.19-0.31: the five whose
-/// finish failed (#940, #861, #894, #54) or whose path crept to its cap
-/// (#112) 0.36-7.3, #560 0.25-0.72, the other fourteen at most 0.009.
-/// At `1/8` the check is early (less coarse path lost) and well above the
-/// noise of the intermediate points (converged to
-/// [`super::continuation::INTERMEDIATE_TOL`], 1e-4). On the 1,000 designs
-/// (IVPs per solve): #112 414 -> 139, #940 220 -> 149, #861 199 -> 111,
-/// #894 209 -> 133, #54 163 -> 95, #560 147 -> 145, #107 136 -> 140,
-/// every other continuation +1 (the check's IVP); at `1/4` (tolerance
-/// 1/16): #112 154, #940 173, #560 154.
+/// is the coarse grid's error at that point of the path. That error grows
+/// along the path roughly as `lambda^2` (the loads, and with them the
+/// curvature the RK4 steps must follow, grow with `lambda`), and the
+/// finish reaches coarse roots up to a full-grid `max |r|` of about 1; a
+/// coarse grid that resolves the body shows an error below [`WATCH_TOL`]
+/// there, one that does not, an error well above it. An
+/// early check loses less of a coarse path that must be abandoned; at `1/8`
+/// its bound `1/64` still lies two orders above the noise of the
+/// intermediate points (converged to
+/// [`super::continuation::INTERMEDIATE_TOL`], 1e-4). Every continuation
+/// that passes the check pays its one IVP. A tuning constant, chosen by
+/// experiment on the tuning seed of the design benchmark
+/// (`benches/designs.rs`).
 pub const WATCH_LAMBDA: f64 = 0.125;
 
 /// Largest full-grid `max |r|` (scaled) at the check ([`WATCH_LAMBDA`])
@@ -107,12 +120,12 @@ pub const WATCH_TOL: f64 = WATCH_LAMBDA * WATCH_LAMBDA;
 
 /// Largest check residual from which a coarse path stopped by its check
 /// resumes on the full grid at the checked point (`fold::on_full_grid`); beyond, the
-/// full grid's path runs from `lambda = 0`. Within one unit a point is in
-/// a corrector's reach (measured: from 0.38 and 0.72 in 5 and 9 IVPs, #107
-/// and #560); from 7.3 it is not (#112: failed after 37 IVPs). Measured
-/// on the 1,000 designs with the check at `lambda = 1/4`: resuming every
-/// stopped path, #112 191 IVPs; resuming within 1, 154 (and #861 199 ->
-/// 113, against 144 with no resume).
+/// full grid's path runs from `lambda = 0`. Within about one unit of
+/// scaled residual a full-grid corrector converges from the coarse point in
+/// a few IVPs (the finish's reach, see [`WATCH_LAMBDA`]); from several
+/// units it fails after many, and the path from `lambda = 0` is cheaper. A
+/// tuning constant, chosen by experiment on the tuning seed of the design
+/// benchmark (`benches/designs.rs`).
 pub const RESUME_MAX: f64 = 1.0;
 
 /// The middle grids (`steps / d` RK4 steps, in turn) of a path whose coarse
@@ -124,11 +137,14 @@ pub const RESUME_MAX: f64 = 1.0;
 /// the full grid's path. Each middle grid must carry the body's shortest
 /// bending length: a tendon whose bending length `sqrt(EI / tau)` is
 /// 2.3 mm is not resolved by the coarse grid's 7.3 mm steps nor by a
-/// quarter's 2.9 mm (its check residual 0.12 at `lambda = 1/4`), and is by
-/// a half's 1.5 mm; RK4 is stable up to about 2.8 bending lengths per step.
-/// On the benchmark designs whose coarse check fails, a quarter and then a
-/// half of the steps cost less than either alone, and a finish by Newton
-/// less than one by defect correction on the middle grid.
+/// quarter's 2.9 mm (its check residual above `lambda^2`), and is by a
+/// half's 1.5 mm; RK4 is stable up to about 2.8 bending lengths per step.
+/// A quarter first, and a half only where the quarter fails its check,
+/// spends the finer grid only on the bodies that need it; a finish by
+/// Newton (the middle grid's root already near the full grid's) takes
+/// fewer IVPs than one by defect correction on the middle grid. The order
+/// of the grids is a tuning choice, made by experiment on the tuning seed
+/// of the design benchmark (`benches/designs.rs`).
 pub const MIDDLE_GRID_DIVISORS: [usize; 2] = [4, 2];
 
 /// Tolerance (scaled residual) of the coarse path's last corrector, at
@@ -285,8 +301,8 @@ enum Middle {
 /// `track`'s point (see [`MIDDLE_GRID_DIVISORS`]): on each middle grid in
 /// turn, from the last checked point if it is within a corrector's reach
 /// ([`RESUME_MAX`]), else from `lambda = 0`, until one passes its check and
-/// is finished on the full grid. If none is, what the coarse path did
-/// before: the full grid's path from the coarse point (`fold::on_full_grid`) or,
+/// is finished on the full grid. If none is, the coarse path's own
+/// fallback: the full grid's path from the coarse point (`fold::on_full_grid`) or,
 /// `None`, from `lambda = 0`.
 fn on_middle_grid(
     robot: &Robot,

@@ -15,7 +15,7 @@
 //! [`HOMOTOPY_STALL_WINDOW`] damped steps that do not halve the residual
 //! (then the step is quartered); a predictor whose residual exceeds
 //! [`PREDICTOR_REJECT`] is refused after its first IVP and the step
-//! shortened at once; see those constants for the measurements. The path (the `lambda` of
+//! shortened at once; see those constants for their reasons. The path (the `lambda` of
 //! each converged step) is recorded in `Solution::continuation_steps`.
 //! A cold path runs on a coarse grid first and is finished on the full
 //! grid ([`crate::solve::coarse_path`]); the full grid's path only if that
@@ -38,63 +38,56 @@ pub const EASY_ITERATIONS: usize = 4;
 /// Tolerance of the intermediate homotopy steps (scaled residual). A
 /// step's solution only starts the next step's predictor, which lands
 /// within the next corrector's reach as long as this error is small against
-/// the predictor's own (measured: 0.44 at `dl = 1/64` on benchmark design
-/// #126). On the 1,000 benchmark designs (with
-/// [`HOMOTOPY_STALL_WINDOW`], and, for the last three, the direct run's
-/// stall window; `MIN_STEP` `1e-6`): `1e-8` max 1,090 IVP-equivalents,
-/// `1e-4` 654, with the same 999 designs converged; `1e-3` lost 3 designs,
-/// `1e-6` lost 2.
+/// the predictor's own (the quadratic predictor's `O(dl^3)` error, of
+/// order 1e-2 to 1 at the steps a strongly bent path takes): a tighter
+/// tolerance spends corrector iterations whose gain the next predictor's
+/// error swamps. A looser one lets the points' errors into the predictor
+/// polynomial, whose extrapolation amplifies them (one step beyond three
+/// equally spaced points the Lagrange weights are `1, -3, 3`). A tuning
+/// constant, chosen by experiment on the tuning seed
+/// ([`crate::problems::TUNING_SEED`]) of the design benchmark
+/// (`benches/designs.rs`).
 pub const INTERMEDIATE_TOL: f64 = 1e-4;
 /// Points of the homotopy's predictor polynomial (the current converged
 /// point and up to this many minus one before it): 3, a quadratic. The
 /// paths of soft, heavily loaded bodies bend strongly in `lambda`, and
-/// single shooting reaches only a small neighbourhood of them (on
-/// benchmark design #126, exact undamped Newton diverges from an error of
-/// 0.03-0.09 in the base curvature `L omega`), so the predictor's order
-/// sets the step. Measured on #126 along its exact path (`examples/
-/// trace_homotopy.rs`), first residual of the corrector at `lambda` 0.5,
-/// steps 1/64 / 1/32 / 1/16: secant 0.37 / 1.2 (diverges) / 5.8
-/// (diverges), quadratic 9e-3 / 0.067 / 0.45 (all converge in 3-5 exact
-/// Newton steps); at 0.875: secant 0.67 / 2.2 / 8.5 (diverges), quadratic
-/// 5e-3 / 0.044 / 0.35. A tangent (Euler) predictor from the exact
-/// Jacobian was in between (0.19 / 0.71 / 2.9 at 0.5, diverging at 1/16)
-/// and costs an IVP more. On the 1,000 designs (IVPs per solve, p90 / p99
-/// / max; same 999 converged): secant 99 / 325 / 687, quadratic 97 / 301
-/// / 643 (#126: 687 to 356).
+/// single shooting reaches only a small neighbourhood of them (exact
+/// undamped Newton can diverge from an error of a few hundredths in the
+/// base curvature `L omega`), so the predictor's order sets the step: the
+/// secant's error is `O(dl^2)`, the quadratic's `O(dl^3)`, and at the same
+/// step the quadratic predictor lands within reach where the secant's
+/// Newton run diverges. A tangent (Euler) predictor, from the exact
+/// Jacobian, is also `O(dl^2)` and costs an IVP more. `examples/
+/// trace_homotopy.rs` follows a bent path accurately and compares the
+/// predictors from points on it (`docs/choices.md`, the quadratic
+/// predictor).
 pub const PREDICTOR_POINTS: usize = 3;
 /// Smallest line-search step of a homotopy corrector's first attempt at a
 /// step (see `step_options`): 0.6 allows the full step only (then the
 /// full-grid Jacobian, [`crate::solve::newton::System::refine`]). A
 /// predictor from which the full Newton step fails the Armijo test lies
-/// outside the corrector's reach, and backtracking from there cost 10-84
-/// IVPs per failed step (measured: #126, #273, #385 of the benchmark);
-/// the step is quartered at once. A retry after a failure backtracks
-/// further, to [`RETRY_MIN_STEP`]. Measured on the 1,000 designs with the quadratic predictor
-/// ([`PREDICTOR_POINTS`]), IVPs per solve p90 / p99 / max: full
-/// backtracking everywhere 97 / 301 / 643; 0.6 on every attempt 88 / 197
-/// / 474 but lost #153 (not past buckling) and #267, #381; 0.6 on first
-/// attempts, intermediate steps only, 89 / 227 / 535; and on the last
-/// step too (this) 90 / 212 / 485; each of the last two with the same
-/// 999 designs converged. 0.3 (one halving): 91 / 235 / 581.
+/// outside the corrector's reach, and backtracking from there costs an
+/// IVP per halving and ends, mostly, in a failed step all the same; so
+/// the step is quartered at once, and a shorter step's predictor is
+/// nearer. A retry after a failure backtracks further, to
+/// [`RETRY_MIN_STEP`]: a path with a kink (see there) needs a damped step
+/// across it, so the full step alone on retries too would lose such paths.
+/// A tuning constant, chosen by experiment on the tuning seed of the
+/// design benchmark (`benches/designs.rs`), with the quadratic predictor
+/// ([`PREDICTOR_POINTS`]).
 pub const CORRECTOR_MIN_STEP: f64 = 0.6;
 /// Smallest line-search step of a homotopy corrector's retry, after a
 /// failed attempt at a longer step (see `step_options`): 0.3 allows one
 /// halving. Where the path has a kink (a tendon going taut or slack, coils
-/// touching) a retry's full step may overshoot it. Backtracking further
-/// (it was, down to the solve's `min_step`, before the watchdog and the
-/// limited step of `newton_steps` handled kinks) now mostly creeps where
-/// no point is within reach: benchmark design #25 (past buckling, fold at
-/// `lambda = 0.5531` on the coarse grid) spent 69 of its coarse path's 167
-/// IVPs (20 IVP times) in three retries that failed after 20-25 IVPs
-/// each, accepting steps at `t` = 1/16 to 1/128. Measured on the 1,000
-/// benchmark designs (total IVPs; designs changed; each with the same 999
-/// converged and 166 via continuation, tips within 1.5e-14 m): the
-/// default `min_step` (1e-6) 32,415; `0.01` 32,370 (4); `0.06` 32,330
-/// (9); `0.24` 32,284 (14); `0.3` 32,219 (22: 21 down, #25 258 -> 226,
-/// and #740 116 -> 120); `0.6` (no backtracking, as a first attempt)
-/// 32,170 (27: 3 up, #342 and #560 by 8). IVP-equivalents of #25 (two runs
-/// of 9 repeats, interleaved): 80-87 -> 71 at `0.3` and at `0.6`; the
-/// other designs' maxima within the runs' noise.
+/// touching) a retry's full step may overshoot it, and one halving brings
+/// it back to the near side. Kinks are handled by the watchdog and the
+/// limited step of `newton_steps`, not by deep backtracking: backtracking
+/// further mostly creeps where no point is within reach (near a fold of
+/// the path a retry accepts steps at `t` = 1/16 to 1/128, each an IVP per
+/// halving, and fails after tens of IVPs). A tuning constant, chosen by
+/// experiment on the tuning seed of the design benchmark
+/// (`benches/designs.rs`); over the range of smaller values it moves no
+/// converged tip, only the work.
 pub const RETRY_MIN_STEP: f64 = 0.3;
 /// Smallest homotopy step.
 pub const MIN_STEP: f64 = 1e-4;
@@ -102,22 +95,23 @@ pub const MIN_STEP: f64 = 1e-4;
 /// from; a farther predictor is refused after its one IVP, and the step
 /// shortened by `rejected_step_factor` (once per point: the retry runs
 /// in full, since across a kink of the path no step is short enough).
-/// Measured on the 1,000 benchmark designs (2,377 corrector runs of the
-/// continuations, before this): from `r0 >= 10`, 223 of 226 runs failed,
-/// at 2,391 IVPs (10.7 a run), from `3 <= r0 < 10` 160 of 326 (2,048
-/// IVPs), from `r0 < 3` 104 of 1,825. IVPs per solve p99 / max, same 999
-/// designs converged (956 of 956 not past buckling): off 249 / 529,
-/// `30` 220 / 381 (this); `15`, `10` and `3` each lost a design (`3`: #153)
-/// (and more with a step grown from `r0`): #153 fails near `lambda = 0`
-/// from `r0` as small as `4e-4`, a kink of its path, and survives only on
-/// some step sequences.
+/// A corrector started ten or more units of scaled residual from the path
+/// almost never converges, and fails only after some ten IVPs; refusing
+/// the predictor at one IVP's cost saves them. The bound is loose on
+/// purpose: a path with a kink near `lambda = 0` can fail from predictor
+/// residuals far below one and pass only on some step sequences, and a tighter
+/// bound, by changing the sequence, can lose it. A tuning constant, chosen
+/// by experiment on the tuning seed of the design benchmark
+/// (`benches/designs.rs`).
 pub const PREDICTOR_REJECT: f64 = 30.0;
 
 /// The factor that shortens a step whose predictor residual `r0` exceeded
 /// [`PREDICTOR_REJECT`]: `r0^(-1/3)` (the quadratic predictor's error is
 /// `O(dl^3)`, so this aims at a predictor residual of order one), within
-/// `[1/16, 1/2]`. Measured (IVPs per solve p99 / max, same 999 converged):
-/// aiming at `0.3` 224 / 431, at `1` 220 / 381.
+/// `[1/16, 1/2]`. The aim (order one rather than smaller) is a tuning
+/// choice, made by experiment on the tuning seed of the design benchmark
+/// (`benches/designs.rs`): a predictor of order one is within the
+/// corrector's reach, and a shorter step costs path points.
 fn rejected_step_factor(r0: f64) -> f64 {
     r0.powf(-1.0 / 3.0).clamp(0.0625, 0.5)
 }
@@ -125,13 +119,12 @@ fn rejected_step_factor(r0: f64) -> f64 {
 /// [`crate::solve::newton::NewtonOptions::stall_window`]): a corrector
 /// whose damped steps creep (no halving of `max |f|` over 2 of them) is
 /// stopped, and the homotopy step quartered. Backtracking in a valley of
-/// the merit costs 10-20 IVPs an iteration (halvings down to
-/// `t = 1e-5`), and a creeping step ran to its iteration limit: on design
-/// #126, 3 failed steps cost 580 of its 1,807 IVPs. Measured on the 1,000
-/// designs with [`INTERMEDIATE_TOL`] `1e-4` (direct run's window 3):
-/// window 2 max 723 IVP-equivalents, 3 max 988 (with `MIN_STEP` `1e-6`),
-/// off (tol `1e-8`, direct run's window off) 1,966, each with the same 999
-/// converged; windows of 4 and 8 lose a design.
+/// the merit costs 10-20 IVPs an iteration (an IVP per halving, some 17
+/// halvings down to `t = 1e-5`), and a creeping corrector runs to its
+/// iteration limit at that price, while a quartered step's predictor is
+/// nearer the path. A tuning constant, chosen by experiment on the tuning
+/// seed of the design benchmark (`benches/designs.rs`), with
+/// [`INTERMEDIATE_TOL`].
 pub const HOMOTOPY_STALL_WINDOW: usize = 2;
 
 /// The robot, inputs and loads at homotopy parameter `lam` in `[0, 1]`:
@@ -227,7 +220,7 @@ fn budget_error(work: &Work, lam: f64, residual: f64) -> Error {
 
 /// Continuation to `inputs` under `loads` (see the module docs); adds its
 /// work to `work`. A cold one runs its path on the coarse grid first
-/// ([`coarse_path`]), and today's full-grid path only if that fails.
+/// ([`coarse_path`]), and the full-grid path only if that fails.
 pub(crate) fn continuation(
     robot: &Robot,
     inputs: &[f64],
@@ -361,17 +354,14 @@ pub(crate) fn follow_from(
 /// then not run again (the step is quartered as after its failure). Steps
 /// halve and double by powers of two, so a path quartering its way to a
 /// fold aims its retries at the same `lambda` from successive points, and
-/// past the fold each of them fails alike: benchmark design #25 (past
-/// buckling, fold at `lambda = 0.5531` on the coarse grid) ran its retry
-/// to 0.55469 from 0.54688 (24 IVPs) and again from 0.55273 (32), and to
-/// 0.55322 from 0.55273 and again from 0.55310 (25 each, the same
-/// predictor residual 0.00398 and best residual 0.00203). Skipping the
-/// repeats: #25 329 -> 272 IVPs, its tip bit for bit the same; #341
-/// 149 -> 153 (a stalled retry there was needed again); no other of the
-/// 1,000 designs changed. Skipping every step at or past the smallest
-/// `lambda` of a failed retry (not only the same one, and first attempts
-/// too) gave #25 253 but lost 12 designs (9 not past buckling): a retry
-/// failing at a kink of the path is passed later from a nearer point.
+/// past the fold each of them fails alike (the target lies beyond the
+/// fold, where the path has no point), at the cost of a full retry each
+/// (tens of IVPs). A retry is therefore run once per target; a path that
+/// could pass it from a nearer point quarters its way there instead.
+/// Skipping every step at or past the smallest `lambda` of a failed retry
+/// (not only the same target, and first attempts too) would lose paths
+/// with a kink: a retry failing at a kink of the path is passed later from
+/// a nearer point.
 /// The test is exact equality on purpose: a repeat is the same sum of
 /// the same dyadic steps, the same float (a step shortened by a refused
 /// predictor's factor rarely lands on one again, and then the retry runs).
@@ -384,9 +374,10 @@ fn retried_before(failed: &[f64], lt: f64) -> bool {
 /// last one to `tol` within `max_iter`. A Newton run from a first-order
 /// predictor that needs more than half the iteration limit is creeping
 /// (the path bends within the step); quartering the step is cheaper than
-/// finishing it. Measured on the 1,000 benchmark designs (IVPs per solve,
-/// same converged set): the full limit gave p99 1,434 and max 2,278, half
-/// of it p99 1,043 and max 1,744; 12 iterations lost #126 and #861.
+/// finishing it. Half (rather than a fixed small number) leaves room for
+/// correctors that converge slowly but surely on a strongly bent path; the
+/// fraction is a tuning choice, made by experiment on the tuning seed of
+/// the design benchmark (`benches/designs.rs`).
 /// The line search backtracks down to `least_step` (or the options'
 /// `min_step`, if larger): [`CORRECTOR_MIN_STEP`] on a step's first
 /// attempt, [`RETRY_MIN_STEP`] on a retry, `0` (in full) where a point is

@@ -7,18 +7,15 @@
 //! Its Jacobian policy is the direct run's ([`newton_from`]): the last
 //! converged point's Jacobian starts the corrector (chord steps), a chord
 //! step must halve `max |r|`, and one that reduces it less than four times
-//! gets a fresh Jacobian for the next step. Keeping the Jacobian longer
-//! does not pay (measured on the 1,000 benchmark designs, load 3.7-5,
-//! 14:36-14:40 UTC; the corrector handed its last Jacobian back, at no
-//! IVP, where the step to the point had reduced the smallest earlier
-//! residual by a factor `f`): tangent passes are 25 % of the correctors'
-//! IVPs on the eight worst designs, but a stale Jacobian on a bending path
-//! costs more failed and creeping steps. IVPs p99 / max (IVP-equivalents
-//! p99 / max, median of three interleaved runs): today's rule 228 / 506
-//! (111 / 376); `f = 0.1` 248 / 514 (113 / 451); `f = 0.25` 266 / 548
-//! (118 / 403; #385 274 to 548 IVPs); `f = 0.5` 269 / 680 and lost #153
-//! (not past buckling), and #25 (past buckling) converged on another
-//! branch (its tip 0.19 m away).
+//! gets a fresh Jacobian for the next step. Keeping a Jacobian longer
+//! (handing a corrector's last Jacobian on to the next point, at no IVP)
+//! does not pay, although tangents are a large share of the correctors'
+//! IVPs: along a bending path a stale Jacobian costs more failed and
+//! creeping steps than the tangents it saves, and on a body past buckling
+//! its steps can carry the corrector onto another equilibrium branch. The
+//! rule is a tuning choice, made by experiment on the tuning seed
+//! ([`crate::problems::TUNING_SEED`]) of the design benchmark
+//! (`benches/designs.rs`).
 
 use nalgebra::DMatrix;
 

@@ -32,18 +32,17 @@ use crate::rod::Robot;
 /// and if that fails `fold` is returned (the caller's last resort
 /// follows). Else the point is corrected on the full grid and the path
 /// goes on there; if it stalls too, its error is returned. `None` if the
-/// path stalled at `lambda = 0` or the correction failed. Measured on the
-/// 1,000 benchmark designs: only #25 (past buckling) stalls, at
-/// `lambda = 0.5531` after 135 coarse IVPs (167 before
-/// [`super::continuation::RETRY_MIN_STEP`]; both before the watchdog's
-/// `WATCHDOG_MIN_STEP`, `super::newton`), with a full-grid residual of
-/// 1.4e-4 there (1/100 of [`WATCH_TOL`]). Its last resort (295 IVPs in
-/// all) ended on the upright branch, unstable; the snap ends on a stable
-/// one; the full grid's path on from the fold stalled after 16 more IVPs,
-/// and from `lambda = 0` at 0.665. The snap on the full grid (from the
-/// point corrected there, 2 IVPs) took 12 full-grid IVPs (4 of them
-/// tangents), 16 IVP times of #25's 97-99; on the coarse grid 13 coarse
-/// IVPs, 4 IVP times, to the same equilibrium (tip within 1.3e-15 m).
+/// path stalled at `lambda = 0` or the correction failed.
+///
+/// Why the snap: at a fold of the body's own (a body past self-weight
+/// buckling, loaded up its upright branch) the full grid's path stalls at
+/// the same fold, and the last resort's damped direct run can converge on
+/// the branch through the fold, the upright one, unstable at
+/// `lambda = 1` (see [`snap`]). Why on the coarse grid: the fold's point,
+/// its null vector and the snap's correctors are resolved there (the
+/// residual check above), at a fraction of a full-grid IVP each, and the
+/// path from the snap's point is finished on the full grid, to the
+/// equilibrium a full-grid snap reaches.
 pub(super) fn on_full_grid(
     robot: &Robot,
     inputs: &[f64],
@@ -148,11 +147,15 @@ pub(super) fn regrid(
 /// `v` the Jacobian's right singular vector of its smallest singular value
 /// (scaled unknowns), each `t` with both signs (the vector's sign is
 /// arbitrary), first with the sign along the path's last move ([`ahead`]).
-/// On a benchmark design past buckling (full grid, fold at
-/// `lambda = 0.55312`): from `d lambda = 1e-3`, `|t| = 0.2` reaches the
-/// other branch (0.89 from the fold's point); from `1e-2`, `|t| = 0.4`.
-/// On the coarse grid (where the snap runs now, see [`on_full_grid`])
-/// the first step reaches it too.
+/// A small `d lambda` takes the corrector just past the fold, where the
+/// path's own branch has no point, and the move `t v` along the fold's
+/// null direction (the direction in which the equilibrium is lost) starts
+/// it toward the branch the body snaps to, which may lie at a distance of
+/// order one (scaled unknowns); the larger pair is a second try. The pairs
+/// are tuning constants, chosen by experiment on the bodies past
+/// self-weight buckling of the tuning seed
+/// ([`crate::problems::TUNING_SEED`]) of the design benchmark
+/// (`benches/designs.rs`).
 const SNAP_STEPS: [(f64, f64); 4] = [(1e-3, 0.2), (1e-3, -0.2), (1e-2, 0.4), (1e-2, -0.4)];
 
 /// The first step of the path from the snap's point, `1/64`: a cold
@@ -173,10 +176,10 @@ const SNAP_MIN_JUMP: f64 = 0.05;
 /// new track (no earlier points, the path so far kept); `None` if no
 /// corrector there converged (or no Jacobian is known). A past-buckling
 /// body's branch through the fold is the upright one, unstable at
-/// `lambda = 1`: on benchmark design #25 the last resort's damped direct
-/// run converged there (stability margin -3.25, a conjugate point at
-/// 0.078 m), while the branch past the snap is stable at `lambda = 1`
-/// (margin +0.62).
+/// `lambda = 1` (a conjugate point along the body, see
+/// [`crate::stability`]), and a damped direct run from the straight guess
+/// can converge there; the branch past the snap is the one the loaded
+/// body reaches as it buckles.
 fn snap(
     robot: &Robot,
     inputs: &[f64],
@@ -233,10 +236,9 @@ fn snap(
 /// The sign (`1` or `-1`) of the null vector `v` ([`SNAP_STEPS`]) along the
 /// path's last move (`track`'s point minus the one before it; `1` if there
 /// is none): a body loaded past a fold snaps on in the direction it was
-/// moving. On benchmark design #25 the corrector from `-0.2 v` (that
-/// sign) reaches the branch past the fold in 12 IVPs (full grid; 13 on
-/// the coarse grid); the one from `+0.2 v`, tried first before, failed
-/// after 28 (357 -> 329 IVPs).
+/// moving. A corrector started against that motion heads back toward the
+/// path's own branch, which has no point past the fold, and fails only
+/// after many IVPs; so it is tried second.
 fn ahead<'a>(track: &Track, v: impl Iterator<Item = &'a f64>) -> f64 {
     let Some((_, p)) = track.prev.last() else {
         return 1.0;

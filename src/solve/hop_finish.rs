@@ -8,19 +8,19 @@
 //! within RK4's coarse-grid error of the exact one. A finish hops to the
 //! intermediate grid exactly where that coarse grid does not resolve the
 //! design at `lambda = 1` (its root's full-grid residual is out of the
-//! finish's reach), so there the coarse Jacobians are the wrong ones:
-//! traced on benchmark design #126 (the only design that hops; 262 IVPs),
-//! the coarse path ends at 191 IVPs, the finish from the coarse root fails
-//! after 19, the hop converges on `steps / 4` in 15, and the pre-solved
-//! finish from the hop's root took 37 IVPs (7 iterations of defect
-//! correction and a full-grid Newton fallback, on coarse Jacobians). This
-//! finish starts from the hop's root with the hop's own Jacobian and takes
-//! fresh ones on the hop's grid (until a failed line search, which moves
-//! them to the full grid as `Shooting::refine` does): 9 IVPs (8
-//! iterations, chord steps), #126 262 -> 234 IVPs, tip within 1e-12 m.
-//! (Richardson extrapolation of the coarse and hop roots, `x_h + (x_h -
-//! x_c) / ((25/10)^4 - 1)`, as the start: 262 -> 258 with the pre-solved
-//! finish, and no change with this one.)
+//! finish's reach), so there the coarse Jacobians are the wrong ones: the
+//! pre-solved finish (`presolve::presolved_shooting`: defect correction
+//! with coarse Jacobians, then a full-grid Newton fallback) from the hop's
+//! root takes several times the IVPs of this finish, which
+//! starts from the hop's root with the hop's own Jacobian and takes fresh
+//! ones on the hop's grid (until a failed line search, which moves them to
+//! the full grid as `Shooting::refine` does): the hop grid's RK4 error is
+//! a `(10/4)^4 ~ 39`th of the coarse grid's, so its Jacobian is near
+//! enough the full grid's for chord steps to converge, at a fraction of a
+//! full-grid tangent's cost. Richardson extrapolation of the coarse and
+//! hop roots, `x_h + (x_h - x_c) / ((10/4)^4 - 1)`, as the start does not
+//! shorten this finish: the hop's root is already within its chord steps'
+//! reach.
 
 use nalgebra::DMatrix;
 

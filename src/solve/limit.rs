@@ -81,8 +81,8 @@ pub(crate) fn limited_step(
 /// `x` and, along the step, changes the tension by less than half of the
 /// linear model's `k dd`, so the model step would not even halve that
 /// actuator's tension error (a chord iteration with the stiff slope
-/// creeps: measured on design #783, a tendon at its onset stepped into
-/// slack, each line search accepted `t ~ 1e-4`). Each such law is
+/// creeps: a tendon at its onset stepping into slack makes each line
+/// search accept only `t ~ 1e-4`). Each such law is
 /// linearised on the landing piece instead, `tau ~ tau(d + dd) + k1 (d' -
 /// d - dd)` (`k1` the law's slope at `d + dd`), as a piecewise-linear
 /// solver does when a step crosses into another region (Katzenelson,

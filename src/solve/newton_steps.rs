@@ -199,8 +199,7 @@ impl<S: System> Run<'_, S> {
     /// as usual). Where a force law's slope jumps between `x` and `x1` (a
     /// tendon going taut or slack, TCA coils touching), the Jacobian at `x`
     /// misjudges the step, and backtracking creeps along the kink with steps
-    /// of `1e-6` of the Newton step (measured on design #21 of the
-    /// benchmark: 50 iterations, each accepted at `t = 4e-6`); the
+    /// of about `1e-6` of the Newton step, for tens of iterations; the
     /// Jacobian at `x1` has the slope of the side the root lies on.
     /// Off after a failed attempt for [`WATCHDOG_COOLDOWN`] iterations, on
     /// non-square systems, for the last iteration, and in a run that takes
@@ -255,8 +254,9 @@ impl<S: System> Run<'_, S> {
 /// on from step to step, contracted 5-6x a step, 12 chord steps a run.)
 /// Judged from the first step on, although its contraction is also the
 /// warm start's nonlinearity (steel +1 %: 39x, then 250x; the refresh
-/// costs that solve one IVP more): judged from the second, Fig. 6 warm
-/// sweeps took up to 17 iterations a step (tests/test_fig6.py bounds 12).
+/// costs that solve one IVP more): judged from the second, a Fig. 6 warm
+/// sweep's chord runs go on beyond the 12 iterations a step that
+/// `tests/test_fig6.py` allows.
 pub const CHORD_STEPS_LEFT: f64 = 4.0;
 
 /// Margin of a chord step taken without evaluating its residual: the
@@ -266,11 +266,11 @@ pub const CHORD_STEPS_LEFT: f64 = 4.0;
 /// nears the root), and is taken unevaluated when that is at most this
 /// times the tolerance (or floor). Its residual is then not known: the
 /// caller's next evaluation decides (the pre-solve's full-grid IVP, which
-/// decides convergence in any case). Measured on a cold Fig. 6 solve's
-/// second round: `max |f|` 1.4e-6, then 4.6e-10 against a coarse
-/// tolerance of 1e-11, so the second step is predicted at 1.5e-13 (its
-/// evaluation, dropped now, gave a point bit for bit the same and a
-/// residual under 1e-11).
+/// decides convergence in any case). E.g. a cold Fig. 6 solve's second
+/// pre-solve round: `max |f|` 1.4e-6, then 4.6e-10 against a coarse
+/// tolerance of 1e-11, so the second step is predicted at 1.5e-13 (an
+/// evaluation there gives a point bit for bit the same and a residual
+/// under 1e-11).
 const UNEVALUATED_MARGIN: f64 = 0.1;
 
 /// Chord steps from `x0` with the kept Jacobian `jac` (the coarse

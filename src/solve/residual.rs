@@ -37,17 +37,17 @@ pub(crate) struct SlackTangent {
 /// `6 + i` becomes `g k L - e_(6+i)` (`g = dr / d tau_i`, from the
 /// Jacobian's tangent, [`SlackTangent`]) and the residual moves by `g k
 /// (d - d0)`. The slack Jacobian predicts no tension, so its step
-/// overshoots into a tension that throws the body far off (measured on
-/// benchmark designs #153 and #341: a tendon at its onset flipped
-/// between slack and taut, each line search accepting `t ~ 4e-3`).
+/// overshoots into a tension that throws the body far off (a tendon at its
+/// onset then flips between slack and taut from one iteration to the next,
+/// each line search accepting only a tiny step).
 /// `slack`: the Jacobian's slack actuators (at `x`), `len` the body
 /// length \[m\]. Taken only where the recomputed step also lands taut for
 /// each actuator taken taut; one that it lands slack is taken slack again
 /// and the step re-solved (the pieces chosen as a piecewise-linear solver
-/// does, Katzenelson 1965: measured on benchmark design #267, two tendons
-/// slack at a corrector's Jacobian, its step carrying both taut; the
-/// taut model carried one back slack, so no semismooth step was taken and
-/// the corrector failed); `None` where no actuator is left taut.
+/// does, Katzenelson, Bell Syst. Tech. J. 44, 1965: with two tendons slack
+/// at the Jacobian and the step carrying both taut, the taut model can
+/// carry one back slack, and taking that one slack again keeps the
+/// semismooth step for the other); `None` where no actuator is left taut.
 pub(crate) fn taut_step(
     len: f64,
     slack: &[SlackTangent],
@@ -402,8 +402,8 @@ pub const ONSET_BAND: f64 = 1e-12;
 /// zero (`slack == true`). A cold guess sits exactly at the onset of a
 /// linear tendon (zero tension), where rounding of `pull + elongation`
 /// decides the side; there the merit has no descent along one of the two
-/// Newton directions (measured on designs #532 and #719 of the benchmark:
-/// the merit grows like `t^2` from `t = 0`), so a failed line search is
+/// Newton directions (along it the merit grows like `t^2` from `t = 0`:
+/// no first-order decrease), so a failed line search is
 /// retried with the other side ([`crate::solve::system::Shooting`]'s `refine`).
 pub fn tension_slope(
     law: &dyn crate::rod::ForceLaw,

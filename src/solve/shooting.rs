@@ -242,20 +242,19 @@ pub(crate) fn validate(
 
 /// Smallest line-search step of a cold solve's direct Newton run (the
 /// options' `min_step` if larger): a direct run that backtracks further
-/// hands over to continuation at once (which is then the cheaper way;
-/// the stop-24 note measured 56-142 IVPs in direct runs that failed after
-/// backtracking down to `t = 1e-6`). Should the continuation fail too,
-/// the direct run is repeated with the options' own `min_step` (this
-/// saves benchmark design #25, past self-weight buckling, which converges
-/// directly only with heavy damping). Measured on the 1,000 benchmark
-/// designs (`benches/designs.rs`, IVPs per cold solve p90 / p99 / max,
-/// all with 999 converged, 956 of 956 not past buckling): `1e-6` (off)
-/// 115 / 219 / 380; `0.1` 85 / 196 / 315 (this); `0.05` 91 / 192 / 318
-/// (measured before the repeat, with #25 lost);
-/// `0.2` 79 / 192 / 312 and `0.3` 79 / 186 / 291, but these move the
-/// tips of designs past buckling (#830 by 58 mm; with `0.3` #552 and
-/// #282 too) onto another equilibrium branch, while `0.1` moves no tip
-/// by more than 2.6e-13 m.
+/// hands over to continuation at once, which is then the cheaper way: a
+/// run that needs deeper damping is far from its root, and backtracking
+/// down to `t = 1e-6` costs an IVP per halving, tens of IVPs in a run
+/// that mostly fails all the same. Should the continuation fail too, the
+/// direct run is repeated with the options' own `min_step`: a body past
+/// self-weight buckling, whose homotopy path can meet a fold, may converge
+/// directly only with heavy damping. A larger bound saves more work but
+/// lets the direct run's long steps carry a body past buckling onto
+/// another equilibrium branch than the damped run's; at `0.1` the
+/// converged tips are those of full backtracking, to rounding. A tuning
+/// constant, chosen by experiment on the tuning seed
+/// ([`crate::problems::TUNING_SEED`]) of the design benchmark
+/// (`benches/designs.rs`).
 pub const DIRECT_MIN_STEP: f64 = 0.1;
 
 /// Largest scaled `max |r|` at which a cold solve's direct Newton run takes
@@ -264,15 +263,14 @@ pub const DIRECT_MIN_STEP: f64 = 0.1;
 /// root hands over to continuation instead. Far from a root a failed line
 /// search is the residual's nonlinearity, not the coarse Jacobian's error
 /// (~1e-4 relative), and the full grid's tangents (several IVP times each)
-/// do not cure it: benchmark design #560's direct run took 9 of them while
-/// `max |r|` wandered between 2.5 and 15, 22 full-grid IVPs, then failed.
-/// Measured on the 1,000 benchmark designs (`benches/designs.rs`, total
-/// IVPs, solves via continuation; every run 999 converged, 956 of 956 not
-/// past buckling, no tip moved by more than 2.1e-13 m): off 36,041, 159;
-/// `0` (never) 35,887, 183 (#469 97 -> 193); `1` 35,781, 167; `3` 35,719,
-/// 165; `5` (this) 35,657, 160 (#560 127 -> 100, #159 100 -> 86, #499
-/// 249 -> 235, #888 45 -> 126 the only one worse by more than 0); `10`
-/// 35,914, 159.
+/// do not cure it: a run whose `max |r|` wanders between a few units and
+/// tens takes one full-grid tangent after another and fails all the same.
+/// Near a root the coarse Jacobian's error can be what fails the line
+/// search, and there the full grid's tangent spares the solve a
+/// continuation (never refining sends such runs to continuation). The
+/// bound moves which way a solve converges, not where (the converged tips
+/// agree to rounding). A tuning constant, chosen by experiment on the
+/// tuning seed of the design benchmark (`benches/designs.rs`).
 pub const DIRECT_REFINE_WITHIN: f64 = 5.0;
 
 /// The error with which a cold direct run ends when its first coarse
@@ -281,23 +279,18 @@ pub const DIRECT_REFINE_WITHIN: f64 = 5.0;
 /// to continuation without full-grid Newton from the guess. Where the
 /// coarse grid resolves the design, that Newton run retraces the coarse
 /// iterates and fails alike, with each of its Jacobians (coarse, full,
-/// slack side). Measured on the 1,000 benchmark designs
-/// (`benches/designs.rs`): of the 167 direct runs whose first coarse run
-/// failed its line search or stalled, 159 failed on the full grid too,
-/// after 15 IVPs (median), a quarter to a half of the worst designs'
-/// solve time (#319 53 %, #267 36 %, #25 25 %); the other 8 (#46, #52,
-/// #57, #122, #158, #199, #446, #448) converge through continuation to
-/// the same equilibrium (tips within 8.7e-13 m), at up to 46
-/// IVP-equivalents (#158, was 25). The one direct run whose first coarse
-/// run failed in an IVP (#112: anchor loads unconverged on 7.3 mm steps,
-/// its tendon's bending length 2.3 mm) failed on the full grid too, after
-/// 13 IVPs (112 -> 99). Total IVPs 34,579 -> 32,415; IVP-equivalents
-/// (2 runs each, interleaved) p90 38.2-39.1 -> 24.4-25.7, p99 64.7-68.2
-/// -> 49.6-51.3, max 111-128 -> 97-99 (#25, past buckling). Handing over
-/// only from a coarse best `max |r|` of at least 0.1, 0.3 or 1, or only
+/// slack side), a large share of a hard solve's work. The
+/// few runs that would converge on the full grid converge through
+/// continuation instead, to the same equilibrium (tips agreeing to
+/// rounding), at a moderate extra cost. A coarse run that failed in an IVP
+/// (anchor loads unconverged on coarse steps longer than a tendon's
+/// bending length) is handed over alike, since the full grid's Newton run
+/// from the same guess meets the same strongly bent body. Finer rules
+/// (handing over only from a coarse best `max |r|` above a bound, or only
 /// where the full grid's residual at the guess is within 10 % of the
-/// coarse one (an IVP more), kept more of the retracing runs (p90
-/// 28.1-30.7).
+/// coarse one, for an IVP more) keep more of the retracing runs; the plain
+/// rule is a tuning choice, made by experiment on the tuning seed of the
+/// design benchmark (`benches/designs.rs`).
 pub(crate) fn handed_over(e: Error, work: &mut Work) -> Error {
     match e {
         Error::NotConverged {
@@ -462,12 +455,14 @@ fn tip_solution(
 }
 
 /// Solve along a sequence of input vectors, each warm-started from the
-/// previous solution (continuation helper for temperature or load sweeps).
+/// previous solution (natural-parameter continuation for temperature or
+/// load sweeps).
 ///
 /// Each row hands its Jacobian on to the next, as a batch row does, so its
 /// chord steps refresh the Jacobian sooner than a single warm solve's
-/// ([`ChordPolicy::BATCH`]; Fig. 6 every 1 C: 7.82 -> 5.64 IVPs a row,
-/// `warm_counts --batch`). The solutions are those of [`solve`] to `tol`.
+/// ([`ChordPolicy::BATCH`]): along a sweep the next row is near, so a
+/// fresh Jacobian serves it too (`examples/warm_counts.rs`, `--batch`,
+/// counts the IVPs a row). The solutions are those of [`solve`] to `tol`.
 pub fn sweep(robot: &Robot, inputs: &[Vec<f64>], opts: &SolveOptions) -> Result<Vec<Solution>> {
     let loads = Loads::of(robot);
     let mut out: Vec<Solution> = Vec::with_capacity(inputs.len());

@@ -284,8 +284,8 @@ impl System for Shooting<'_> {
             // the coarse grid does not resolve the design (RK4 is unstable
             // where a step exceeds ~2.8 of the shortest length of the rod's
             // ODE, e.g. the bending length `sqrt(EI / tau)` of a soft body
-            // pulled by a strong tendon; measured on benchmark design #112:
-            // 2.3 mm against a 7.3 mm coarse step, the tangent IVP overflows):
+            // pulled by a strong tendon: at a 2.3 mm bending length and a
+            // 7.3 mm coarse step the tangent IVP overflows):
             // the full grid's exact Jacobian from now on
             Err(Error::Integration { .. }) if self.jacobian_steps.take().is_some() => {
                 self.evaluations += 1;
@@ -319,10 +319,10 @@ impl System for Shooting<'_> {
     /// [`crate::solve::residual::tension_slope`]). The onset is that of
     /// the Jacobian at `x`, if one of the last two was taken there, else
     /// of the last one: a watchdog's Jacobian at its trial point must not
-    /// hide the current point's onset (measured: design #411 of the
-    /// benchmark, whose cold guess has a tendon at its onset, failed its
-    /// coarse run on the taut side and converged on the full grid only
-    /// after two more failed line searches, on the slack side).
+    /// hide the current point's onset (a cold guess with a tendon exactly
+    /// at its onset would otherwise keep the taut side's derivative, on
+    /// which the line search fails, and reach the slack side's only after
+    /// more failed line searches).
     fn refine(&mut self, x: &[f64]) -> bool {
         if self.jacobian_steps.is_some() && self.best_norm <= self.refine_within {
             self.jacobian_steps = None;
@@ -428,13 +428,16 @@ impl Work {
 }
 
 /// Stall window of a forward solve's direct Newton run (see
-/// [`NewtonOptions::stall_window`]; 0: off): 3, by measurement on the 1,000
-/// benchmark designs with the continuation's cheap correctors
-/// ([`crate::solve::continuation::HOMOTOPY_STALL_WINDOW`]): window 3 max
-/// 654 IVP-equivalents (171 solves via continuation), 4 max 737, 6 max 841,
-/// off 1,090 (99 via continuation; design #714 crept 50 iterations at
-/// `t = 8e-6`, 951 IVPs), each with the same 999 converged (homotopy
-/// `MIN_STEP` `1e-6` in these runs; at `1e-4` window 3 gave max 723).
+/// [`NewtonOptions::stall_window`]; 0: off): 3. A direct run whose damped
+/// steps creep (no halving of `max |f|` over 3 of them) hands over to
+/// continuation, whose correctors are cheap
+/// ([`crate::solve::continuation::HOMOTOPY_STALL_WINDOW`]); without a
+/// window a creeping run can take tens of iterations at `t ~ 1e-5`, each
+/// an IVP per halving of its line search. A longer window sends fewer
+/// solves to continuation but lets more runs creep. A tuning constant,
+/// chosen by experiment on the tuning seed
+/// ([`crate::problems::TUNING_SEED`]) of the design benchmark
+/// (`benches/designs.rs`), with the homotopy's window.
 pub const STALL_WINDOW: usize = 3;
 
 /// Newton shooting from `x0`; returns the Newton result and the IVP at its

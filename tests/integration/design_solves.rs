@@ -1,5 +1,6 @@
 //! A small seeded subset of the benchmark (`benches/designs.rs` runs the
-//! 1,000) and single benchmark designs, each of which exercises one
+//! 1,000) and single designs of the tuning seed's random family
+//! (`random_design(DEFAULT_SEED, i)`), each of which exercises one
 //! mechanism of the solver: they converge cold, balance their loads and,
 //! past buckling, end on the stable shape. The work each takes is the
 //! benchmark report's (`benches/designs.rs`, with its regression flags).
@@ -22,7 +23,7 @@ const KNOWN_COLD_FAILURES: usize = 0;
 const COIL_CONTACT_DESIGNS: [usize; 4] = [443, 714, 792, 932];
 
 /// Designs whose coarse-grid Newton Jacobian (a tenth of the steps) cannot
-/// be integrated: #112 (a 326 kPa, 2.6 x 5.1 mm, 73 mm body whose helical
+/// be integrated: design 112 (a 326 kPa, 2.6 x 5.1 mm, 73 mm body whose helical
 /// tendon pulls 0.44 N) has a bending length `sqrt(EI / tau)` of 2.3 mm,
 /// and RK4 on the coarse grid's 7.3 mm steps (stable up to ~2.8 lengths)
 /// overflows; a failed coarse tangent IVP switches to the full grid's
@@ -30,7 +31,7 @@ const COIL_CONTACT_DESIGNS: [usize; 4] = [443, 714, 792, 932];
 const COARSE_GRID_DESIGNS: [usize; 1] = [112];
 
 /// Designs on which a Newton step carries a law onto a softer piece than
-/// the one the Jacobian linearised: #783 (a 20 mm, 144 kPa rod with two
+/// the one the Jacobian linearised: design 783 (a 20 mm, 144 kPa rod with two
 /// linear tendons and a TCA), where a tendon at its onset of tension steps
 /// into slack; the step is relinearised on the landing piece
 /// (`solve::limit::piece_step`).
@@ -42,7 +43,7 @@ const SOFTER_PIECE_DESIGNS: [usize; 1] = [783];
 /// residual (`shooting::STALL_WINDOW`) and continuation solves them.
 const VALLEY_DESIGNS: [usize; 2] = [714, 257];
 
-/// Design #126 (an 84 mm, 16.6 kPa rod, column ratio 4.7, two TCAs and two
+/// Design 126 (an 84 mm, 16.6 kPa rod, column ratio 4.7, two TCAs and two
 /// tendons, gravity and a tip force) converges only through continuation,
 /// whose steps creep: a homotopy step's corrector stops after 2 creeping
 /// damped steps and converges to 1e-4
@@ -78,7 +79,8 @@ fn converges_cold(i: usize) {
     // and the converged shape balances the loads (to 1e-8, or RK4's
     // truncation error as in `seeded_subset_converges_and_balances`: below
     // 1e-6, or dropping by more than 50 on 4x the steps, where h^4
-    // predicts 256; #112, sharply bent by its tendon: 5.3e-6 at 100 steps)
+    // predicts 256; design 112, sharply bent by its tendon: 5.3e-6 at 100
+    // steps)
     let eq = equilibrium(&d.robot, &sol).relative;
     if eq >= 1e-6 {
         let fine = SolveOptions {
@@ -152,9 +154,8 @@ fn seeded_subset_converges_and_balances() {
                     // RK4 does not conserve the force balance n(L) - n(0) =
                     // -int f ds exactly: its truncation error, O(h^4), reaches
                     // 1e-7..3e-5 relative at 100 steps on sharply bent or
-                    // helical designs (measured on designs #17, #46, #52,
-                    // #59, #63, #92, #112, #158: a factor 200-300 per 4x
-                    // steps, all below 1e-10 at 1,600 steps). That is the
+                    // helical designs, falling by a factor 200-300 per 4x
+                    // steps (h^4: 256), below 1e-10 at 1,600 steps. That is the
                     // discretisation, not the solver or the check. Such a
                     // design must balance to 1e-8 on 4x the steps, or its
                     // residual must drop there by > 50 (h^4 predicts 256),
@@ -191,7 +192,8 @@ fn seeded_subset_converges_and_balances() {
 
 /// Designs whose coarse homotopy path (`solve::coarse_path`, on a tenth of
 /// the grid) does not resolve them: its root at `lambda = 1` is 4.7-25
-/// (scaled residual) from the full grid's, or it creeps to its cap (#112).
+/// (scaled residual) from the full grid's, or it creeps to its cap (design
+/// 112).
 /// The path checks its grid at `lambda = 1/8` with one full-grid IVP and
 /// goes on on a grid of a quarter, then half of the steps, each checked
 /// likewise (`solve::coarse_path::MIDDLE_GRID_DIVISORS`).

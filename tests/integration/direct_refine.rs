@@ -16,7 +16,8 @@ use tcarod::shooting::{solve, SolveOptions};
 const TIP_TOL_M: f64 = 1e-9;
 
 /// Designs whose direct run stays far from a root (`max |r|` 2.5-84 over
-/// its iterations) and their recorded tips \[m\]: #560, #159.
+/// its iterations), of the tuning seed's random family, and their
+/// recorded tips \[m\].
 const CASES: [(usize, [f64; 3]); 2] = [
     (
         560,
@@ -68,7 +69,7 @@ fn check(i: usize, tip: [f64; 3], via_continuation: bool) {
     }
 }
 
-/// Benchmark design #319 (not past buckling): its direct run's first
+/// Design 319 of the tuning seed's random family (not past buckling): its direct run's first
 /// coarse Newton run, from the cold guess, stalls (`max |r|` 3.8 after
 /// three damped steps), and the coarse grid resolves the design there
 /// (full-grid residual at the guess within 1.1 % of the coarse one), so the
@@ -88,7 +89,7 @@ fn a_failed_cold_coarse_run_hands_over_to_continuation() {
     check(i, tip, true);
 }
 
-/// Benchmark design #411: its cold guess has a tendon exactly at its onset
+/// Design 411 of the tuning seed's random family: its cold guess has a tendon exactly at its onset
 /// of tension. The taut side's Newton step fails its line search; the
 /// onset is that of the current point's Jacobian, so the coarse run tries
 /// the slack side's derivative, which converges: no continuation path.

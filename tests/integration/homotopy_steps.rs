@@ -4,7 +4,7 @@
 use tcarod::problems::{random_design, DEFAULT_SEED};
 use tcarod::shooting::{solve, SolveOptions};
 
-/// Benchmark design #153 (a 19.3 mm, 120 kPa rod, a helical linear tendon
+/// Design 153 of the tuning seed's random family (a 19.3 mm, 120 kPa rod, a helical linear tendon
 /// and a TCA, gravity; not past self-weight buckling). Its homotopy path
 /// has a kink near `lambda = 0.01` (the tendon's onset of tension), where
 /// correctors fail from predictor residuals as small as `4e-3`. The direct

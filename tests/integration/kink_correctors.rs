@@ -7,7 +7,7 @@
 use tcarod::problems::{random_design, DEFAULT_SEED};
 use tcarod::shooting::{solve, SolveOptions};
 
-/// Benchmark design #414 (a 17.6 mm, 568 kPa rectangular rod, three linear
+/// Design 414 of the tuning seed's random family (a 17.6 mm, 568 kPa rectangular rod, three linear
 /// tendons, two of them helical, and a constant-tension tendon; gravity
 /// and a tip force).
 const DESIGN: usize = 414;

@@ -5,7 +5,7 @@
 use tcarod::problems::{random_design, DEFAULT_SEED};
 use tcarod::shooting::{solve, SolveOptions};
 
-/// Benchmark design #126 (an 84.4 mm, 11.5 mm, 16.6 kPa rod, two TCAs,
+/// Design 126 of the tuning seed's random family (an 84.4 mm, 11.5 mm, 16.6 kPa rod, two TCAs,
 /// two constant-tension tendons, one helical; gravity and a tip force):
 /// the direct run fails, the coarse path reaches `lambda = 1` in 19
 /// steps, and the finish from its root fails (full-grid residual ~1.9

@@ -247,13 +247,13 @@ fn a_cold_batch_row_is_a_single_cold_solve() {
         stability: false,
         ..BatchOptions::default()
     };
-    // benchmark design #385 (its direct run is cut at
-    // `shooting::DIRECT_MIN_STEP` and continuation takes over: 274 IVPs with
-    // the coarse homotopy path, 300 without; a batch row with the options'
-    // damping took 411) and #25 (past buckling: the cut run and the
-    // continuation fail (the coarse path stalls at a fold, and the full grid
-    // from there), the run with full damping converges; 298 IVPs): the same
-    // path, so the same IVPs and tip
+    // designs 385 and 25 of the tuning seed's random family: 385's direct
+    // run is cut at `shooting::DIRECT_MIN_STEP` and continuation (the
+    // coarse homotopy path) takes over; 25 is past buckling, its cut run
+    // and its continuation fail (the coarse path stalls at a fold, and the
+    // full grid from there) and the repeat with the options' full damping
+    // converges. A cold batch row takes the single solve's route, so the
+    // same IVPs and tip
     for i in [385, 25] {
         let d = random_design(DEFAULT_SEED, i);
         let single = solve(&d.robot, &d.inputs, &SolveOptions::default(), None).unwrap();
