@@ -78,6 +78,8 @@ COVERED = [
     "tcarod._core:fixture_fig5_tca",
     "tcarod._core:fixture_fig5_half_tca",
     "tcarod._core:fixture_tendon_robot",
+    "tcarod._core:stability",
+    "tcarod._core:follow_branch",
 ]
 
 # The SciPy-style getters every result class shares, written once for all of

@@ -1,5 +1,5 @@
 """docs/first-finger.md runs as written: its ```python blocks are executed in
-order in one namespace (a reader's one session), interactive ones (``>>>``)
+order in one namespace (as a reader runs them), interactive ones (``>>>``)
 as doctests whose printed outputs are checked; its ```toml design file is
 written where the page says to save it, and its ```sh commands run through
 the ``tcarod`` command line. Everything runs in a scratch directory."""
@@ -48,7 +48,7 @@ def test_first_finger_page_runs(
         name = f"{PAGE}:block{i}"
         if lang == "python" and block.lstrip().startswith(">>>"):
             test = doctest.DocTestParser().get_doctest(block, namespace, name, PAGE, 0)
-            test.globs = namespace  # one session: names defined here serve the next blocks
+            test.globs = namespace  # names a block defines serve the next blocks
             result = runner.run(test, clear_globs=False)
             assert result.attempted > 0
             assert result.failed == 0, f"{name} failed (output above)"

@@ -63,8 +63,8 @@ class BatchResult:
     (4, True, (4, 3), (4, 2))
     >>> res.message
     'all 4 solves converged'
-    >>> res.inputs[-1].tolist()         # [C]
-    [100.0, 100.0]
+    >>> float(res.inputs[-1, 0])         # [C]
+    100.0
     """
 
     tip_positions: FloatArray

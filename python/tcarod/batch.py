@@ -174,8 +174,8 @@ def iter_batches(
     >>> from tcarod.batch import fig6_square_robot, iter_batches
     >>> temps = np.linspace(25.0, 60.0, 10)
     >>> rows = np.column_stack([temps, temps])
-    >>> [len(b) for b in iter_batches(fig6_square_robot(), rows, steps=20, chunk_size=4, block_chunks=1)]
-    [4, 4, 2]
+    >>> tuple(len(b) for b in iter_batches(fig6_square_robot(), rows, steps=20, chunk_size=4, block_chunks=1))
+    (4, 4, 2)
     """
     # integer-like arguments (NumPy integers included) become Python ints before
     # any arithmetic, so a uint8 cannot wrap or overflow in the block size

@@ -227,6 +227,14 @@ def stability(robot: Robot, solution: Solution, *, blocked: Sequence[Sequence[fl
     ------
     ValueError
         ``solution`` is not an equilibrium of ``robot``.
+
+    Examples
+    --------
+    >>> from tcarod import _core
+    >>> from tcarod.batch import fig6_square_robot
+    >>> robot = fig6_square_robot()
+    >>> _core.stability(robot, robot.solve([60.0, 25.0], steps=20, stability="off")).stable
+    True
     """
 
 def follow_branch(
@@ -291,4 +299,12 @@ def follow_branch(
     ------
     ValueError
         An argument outside its range (named, with its unit).
+
+    Examples
+    --------
+    >>> from tcarod import _core
+    >>> from tcarod.paper.buckling import column_robot
+    >>> branch = _core.follow_branch(column_robot(), parameter="gravity_scale", start=0.0, end=3.0, steps=20)
+    >>> round(float(branch.bifurcations[0]), 2)       # gravity scale [-] where the column buckles
+    1.54
     """

@@ -196,7 +196,7 @@ class CalibrationResult:
         Returns
         -------
         dict
-            ``{{name: {{"estimate", "standard_error", "ci_low", "ci_high"}}}}``, in
+            ``{name: {"estimate", "standard_error", "ci_low", "ci_high"}}``, in
             the parameter's unit.
         """
         return {
@@ -259,7 +259,7 @@ def calibrate(
     ...          "friction_mass_kg": 0.0, "friction_ratio": 0.0}
     >>> measured = half.predict(temps, base, truth)                                   # [m]
     >>> fit = calibrate(half, temps, measured, fit=("youngs_modulus_slope_pa_per_c", "expansion_scale"))
-    >>> round(fit.as_dict()["youngs_modulus_slope_pa_per_c"]["estimate"] / 1e6, 3)    # [MPa/C]
+    >>> round(float(fit.estimate[0]) / 1e6, 3)    # youngs_modulus_slope_pa_per_c [MPa/C]
     -1.56
     """
     optimize = require("scipy.optimize")  # optional dependency: only calibration needs it

@@ -52,8 +52,8 @@ def segment_bounds(segments: int | Sequence[float], s_start: float, s_end: float
     Examples
     --------
     >>> from tcarod.models.segmented import segment_bounds
-    >>> segment_bounds([0.25, 0.75], 0.0, 0.040)      # [m]
-    [(0.0, 0.01), (0.01, 0.04)]
+    >>> tuple(segment_bounds((0.25, 0.75), 0.0, 0.040))      # [m]
+    ((0.0, 0.01), (0.01, 0.04))
     """
     s_start = V.real("s_start", s_start, lo=0.0, unit="m")
     s_end = V.real("s_end", s_end, lo=s_start, lo_open=True, unit="m")

@@ -43,8 +43,9 @@ def steady_temperatures(models: Sequence[ThermalModel], voltages_v: Sequence[flo
     >>> from tcarod.models.thermal import ThermalModel
     >>> from tcarod.models.trajectory import steady_temperatures
     >>> heater = ThermalModel(fibre_length_m=0.155, threads=3, resistance=60.0)     # [m], [ohm]
-    >>> [round(t, 1) for t in steady_temperatures([heater, heater], [0.0, 1.0])]     # [C]
-    [25.0, 27.5]
+    >>> cold, warm = steady_temperatures((heater, heater), (0.0, 1.0))     # [C] at 0 V and 1 V
+    >>> round(cold, 1), round(warm, 1)
+    (25.0, 27.5)
     """
     models = _models(models)
     voltages_v = V.sequence("voltages_v", voltages_v, V.MAX_SEGMENTS)
@@ -87,8 +88,8 @@ def solve_with_voltages(
     >>> heater = ThermalModel(fibre_length_m=0.155, threads=3, resistance=60.0)     # [m], [ohm]
     >>> from tcarod.models.trajectory import solve_with_voltages
     >>> sol = solve_with_voltages(robot, [heater, heater], [5.0, 5.0], steps=20)
-    >>> [round(t, 1) for t in sol.inputs.tolist()]     # steady temperatures [C]
-    [87.0, 87.0]
+    >>> tuple(sol.inputs.round(1).tolist())     # steady temperatures [C]
+    (87.0, 87.0)
     """
     _robot(robot)
     models = _models(models)

@@ -101,8 +101,8 @@ def solve_rows(robot: Any, inputs: FloatArray, steps: int = 100) -> list[Any | N
     >>> from tcarod.batch import fig6_square_robot
     >>> from tcarod.models.workspace import solve_rows
     >>> sols = solve_rows(fig6_square_robot(), np.array([[25.0, 25.0], [100.0, 100.0]]), steps=20)
-    >>> [round(float(s.tip_position[0]) * 1e3, 1) for s in sols]      # tip x [mm]
-    [-0.9, -6.1]
+    >>> tuple(round(float(s.tip_position[0]) * 1e3, 1) for s in sols)      # tip x [mm]
+    (-0.9, -6.1)
     """
     _check_robot(robot)
     steps = V.integer("steps", steps, 1, 100_000)

@@ -371,6 +371,14 @@ fn wrap(
 /// ------
 /// ValueError
 ///     An argument outside its range (named, with its unit).
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> from tcarod.paper.buckling import column_robot
+/// >>> branch = _core.follow_branch(column_robot(), parameter="gravity_scale", start=0.0, end=3.0, steps=20)
+/// >>> round(float(branch.bifurcations[0]), 2)       # gravity scale [-] where the column buckles
+/// 1.54
 #[pyfunction]
 #[pyo3(signature = (robot, *, parameter, start, end, actuators=None, inputs=None, step=Real(0.02), max_step=Real(0.1), max_points=None, stable_only=false, warm_start=None, steps=None, tol=Real(1e-10), max_iter=None),
     text_signature = "(robot, *, parameter, start, end, actuators=None, inputs=None, step=0.02, max_step=0.1, max_points=500, stable_only=False, warm_start=None, steps=100, tol=1e-10, max_iter=50)")]

@@ -279,6 +279,14 @@ pub(crate) fn finite_margin(mut s: Stability) -> Stability {
 /// ------
 /// ValueError
 ///     ``solution`` is not an equilibrium of ``robot``.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> from tcarod.batch import fig6_square_robot
+/// >>> robot = fig6_square_robot()
+/// >>> _core.stability(robot, robot.solve([60.0, 25.0], steps=20, stability="off")).stable
+/// True
 #[pyfunction]
 #[pyo3(signature = (robot, solution, *, blocked=None), text_signature = "(robot, solution, *, blocked=None)")]
 fn stability(
