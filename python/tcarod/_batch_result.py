@@ -20,37 +20,51 @@ BoolArray = npt.NDArray[np.bool_]
 
 @dataclass(frozen=True, eq=False)
 class BatchResult:
-    """Stacked results of ``n`` forward solves (row ``k`` for input row ``k``).
+    """Stacked results of ``n`` forward solves, row ``k`` for input row ``k``.
 
-    Naming follows the per-solve results in the plural: ``tip_positions``
-    ``(n, 3)`` [m] (``Solution.tip_position`` per solve) and ``tip_rotations``
-    ``(n, 3, 3)`` (body to world), world frame, NaN where a solve did not
-    converge; ``iterations`` and ``evaluations`` (IVPs) ``(n,)`` (of a row
-    that did not converge: the work it spent);
-    ``converged`` ``(n,)``; ``inputs`` ``(n, n_actuators)`` (temperature [C]
-    for TCAs) and ``wrenches`` ``(n, 6)`` (tip force [N], moment [N m]) or
-    ``None``: what was solved. ``tensions`` ``(n, n_actuators)`` [N]:
-    actuator tensions of each converged solve (``Solution.tensions``; negative:
-    the actuator pushes), NaN where a solve did not converge; ``None`` only
-    for results built by hand without them.
+    Made by :func:`tcarod.batch.solve_batch`. The names are the per-solve
+    results' in the plural. ``==`` compares every array exactly (NaN equal to
+    NaN); results pickle, so they come back from process pools. A result
+    prints as a one-line summary.
 
-    ``stable`` ``(n,)`` and ``margin`` ``(n,)`` [-]: each row's stability
-    verdict (``Solution.stable`` / ``Solution.stability_margin``: the smallest
-    eigenvalue of the dimensionless tip stiffness, > 0 iff stable; ``stable``
-    False and ``margin`` NaN where there is none: the solve or the verdict
-    failed); both ``None`` when the batch ran with ``stability="off"``.
+    Attributes
+    ----------
+    tip_positions : numpy.ndarray
+        ``(n, 3)`` [m], world frame (``Solution.tip_position`` per solve); NaN
+        where a solve did not converge.
+    tip_rotations : numpy.ndarray
+        ``(n, 3, 3)`` [-], body to world; NaN where a solve did not converge.
+    iterations, evaluations : numpy.ndarray
+        ``(n,)`` Newton iterations and IVPs of each row (of a row that did not
+        converge: the work it spent).
+    converged : numpy.ndarray
+        ``(n,)`` bool.
+    inputs : numpy.ndarray or None
+        ``(n, n_actuators)``: what was solved (temperature [C] for TCAs).
+    wrenches : numpy.ndarray or None
+        ``(n, 6)``: tip force [N] and moment [N m], if given.
+    tensions : numpy.ndarray or None
+        ``(n, n_actuators)`` [N] (negative: the actuator pushes); NaN where a
+        solve did not converge.
+    stable, margin : numpy.ndarray or None
+        ``(n,)`` stability verdict and margin [-] (> 0 if and only if stable;
+        ``stable`` False and ``margin`` NaN where there is none); ``None``
+        with ``stability="off"``.
+    arc_length, positions : numpy.ndarray or None
+        ``(nodes,)`` [m] and ``(n, nodes, 3)`` [m]: every row's centre line
+        with ``shapes=True``, else ``None``.
 
-    ``arc_length`` ``(nodes,)`` [m] and ``positions`` ``(n, nodes, 3)`` [m]:
-    the centre line of every row (``Solution.s`` / ``Solution.positions``
-    per solve; NaN where a solve did not converge) when the batch ran with
-    ``shapes=True``, else ``None``. ``plot_tips()`` draws the tip trajectory
-    (needs the ``plot`` extra).
-
-    SciPy-style summary: ``success`` (every row converged), ``status`` per row
-    (0 converged, 1 not), ``message``, ``nit`` / ``nfev`` per row (aliases of
-    ``iterations`` / ``evaluations``). ``to_pandas()`` gives one row per solve
-    (needs the ``pandas`` extra). ``==`` compares every array exactly (NaN
-    equal to NaN); results pickle, so they come back from process pools.
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot, solve_batch
+    >>> temps = np.linspace(25.0, 100.0, 4)
+    >>> res = solve_batch(fig6_square_robot(), np.column_stack([temps, temps]), steps=20)
+    >>> len(res), res.success, res.tip_positions.shape, res.tensions.shape
+    (4, True, (4, 3), (4, 2))
+    >>> res.message
+    'all 4 solves converged'
+    >>> float(res.inputs[-1, 0])         # [C]
+    100.0
     """
 
     tip_positions: FloatArray
@@ -117,17 +131,35 @@ class BatchResult:
 
     @property
     def success(self) -> bool:
-        """``True`` if every row converged."""
+        """Whether every row converged (SciPy naming).
+
+        Returns
+        -------
+        bool
+            ``True`` if every row converged.
+        """
         return bool(np.all(self.converged))
 
     @property
     def status(self) -> IntArray:
-        """Per row: 0 converged, 1 not converged (NaN pose), shape ``(n,)``."""
+        """Status code of each row (SciPy naming).
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n,)`` int: 0 converged, 1 not converged (NaN pose).
+        """
         return np.where(self.converged, 0, 1).astype(np.int64)
 
     @property
     def message(self) -> str:
-        """Summary in words."""
+        """Summary of the batch in words.
+
+        Returns
+        -------
+        str
+            How many rows converged, and the first that did not.
+        """
         failed = int(np.count_nonzero(~self.converged))
         if failed == 0:
             return f"all {len(self)} solves converged"
@@ -136,24 +168,38 @@ class BatchResult:
 
     @property
     def nit(self) -> IntArray:
-        """Newton iterations per row (alias of ``iterations``)."""
+        """Newton iterations per row (alias of ``iterations``).
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n,)`` int [-].
+        """
         return self.iterations
 
     @property
     def nfev(self) -> IntArray:
-        """IVPs integrated per row (alias of ``evaluations``)."""
+        """IVPs integrated per row (alias of ``evaluations``).
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n,)`` int [-].
+        """
         return self.evaluations
 
     def plot_tips(self, **kwargs: Any) -> Any:
-        """The tip trajectory of the batch in 3-D [mm], rows in order, the
-        stable rows apart from the unstable ones when there is a verdict, and
-        the shapes of a few rows when the batch kept them (``shapes=True``).
+        """Plot the tip trajectory of the batch in 3-D [mm].
+
+        Rows in order, the stable rows apart from the unstable ones when there is
+        a verdict, and the shapes of a few rows when the batch kept them
+        (``shapes=True``).
 
         Parameters
         ----------
         **kwargs
-            Passed to :func:`tcarod.plotting.batch.plot_tips` (``shapes``:
-            how many shapes to draw; ``title``).
+            Passed to :func:`tcarod.plotting.batch.plot_tips` (``shapes``: how
+            many shapes to draw; ``title``).
 
         Returns
         -------
@@ -162,20 +208,47 @@ class BatchResult:
 
         Raises
         ------
-        tcarod.MissingDependencyError
-            (an ``ImportError``) if matplotlib is missing: ``pip install 'tcarod[plot]'``.
+        ImportError
+            matplotlib is missing (``pip install 'tcarod[plot]'``).
         ValueError
-            If no row converged (no tip to draw).
+            No row converged (no tip to draw).
+
+        Examples
+        --------
+        >>> from tcarod.batch import fig6_square_robot, solve_batch
+        >>> temps = np.linspace(25.0, 100.0, 4)
+        >>> fig = solve_batch(fig6_square_robot(), np.column_stack([temps, temps]), steps=20).plot_tips()
+        >>> fig.savefig("tips.png")
         """
         if _TIP_PLOTTER is None:
             raise RuntimeError("no tip plotter registered: import tcarod (the package), not tcarod.batch alone")
         return _TIP_PLOTTER(self, **kwargs)
 
     def to_pandas(self) -> Any:
-        """One row per solve: ``input_<i>`` (one per actuator), ``force_x``
-        ... ``moment_z`` if wrenches were given, ``tip_x_m``, ``tip_y_m``,
-        ``tip_z_m``, ``tension_<i>_n`` [N] (one per actuator), ``converged``, ``status``,
-        ``nit``, ``nfev``, and ``stable``, ``margin`` with a verdict. Needs pandas (``pip install 'tcarod[pandas]'``)."""
+        """One row per solve as a pandas DataFrame (the ``pandas`` extra).
+
+        Returns
+        -------
+        pandas.DataFrame
+            Columns ``input_<i>`` (one per actuator; temperature [C] for a TCA),
+            ``force_x_n`` ... ``moment_z_nm`` if wrenches were given, ``tip_x_m``,
+            ``tip_y_m``, ``tip_z_m`` [m], ``tension_<i>_n`` [N], ``converged``,
+            ``status``, ``nit``, ``nfev``, and ``stable``, ``margin`` [-] with a
+            verdict.
+
+        Raises
+        ------
+        ImportError
+            pandas is missing (``pip install 'tcarod[pandas]'``).
+
+        Examples
+        --------
+        >>> from tcarod.batch import fig6_square_robot, solve_batch
+        >>> temps = np.linspace(25.0, 100.0, 4)
+        >>> df = solve_batch(fig6_square_robot(), np.column_stack([temps, temps]), steps=20).to_pandas()
+        >>> list(df.columns[:5]), len(df)
+        (['input_0', 'input_1', 'tip_x_m', 'tip_y_m', 'tip_z_m'], 4)
+        """
         pd: Any = require("pandas")
         cols: dict[str, Any] = {}
         if self.inputs is not None:
@@ -202,7 +275,32 @@ class BatchResult:
 
     @staticmethod
     def concatenate(parts: Iterable[BatchResult]) -> BatchResult:
-        """Stack results of consecutive blocks of rows."""
+        """Stack the results of consecutive blocks of rows.
+
+        Parameters
+        ----------
+        parts : iterable of BatchResult
+            The blocks, in row order (e.g. from :func:`tcarod.batch.iter_batches`).
+
+        Returns
+        -------
+        BatchResult
+            One result with every row; an optional array is kept only if every
+            block has it.
+
+        Raises
+        ------
+        ValueError
+            Blocks that kept shapes on different nodes.
+
+        Examples
+        --------
+        >>> from tcarod.batch import BatchResult, fig6_square_robot, iter_batches
+        >>> rows = np.full((6, 2), 50.0)        # [C]
+        >>> whole = BatchResult.concatenate(iter_batches(fig6_square_robot(), rows, steps=20, chunk_size=2, block_chunks=1))
+        >>> len(whole), whole.success
+        (6, True)
+        """
         ps = list(parts)
         if not ps:
             return BatchResult(

@@ -134,16 +134,49 @@ def iter_batches(
     stability: BatchStability = "report",
     shapes: bool = False,
 ) -> Iterator[BatchResult]:
-    """Yield the results of consecutive blocks of rows, ``block_chunks``
-    chunks per block (default: 4 per thread), holding only one block at a
-    time. ``inputs`` (and ``wrenches``) may be arrays, or iterables of
-    ``(m, n_actuators)`` arrays (e.g. a generator making a huge sweep on the
-    fly); then each yielded block corresponds to one given array.
-    ``progress=True`` shows a tqdm bar (rows). The other arguments as for
-    :func:`solve_batch`. Integer arguments accept any integer type (NumPy's
-    included): ``TypeError`` for non-integers, ``ValueError`` naming the
-    argument and its range outside ``chunk_size`` 1..10,000,000, ``threads``
-    0..1024, ``block_chunks`` 1..1,000,000."""
+    """Solve a batch block by block, holding only one block at a time.
+
+    Streams: a 1,000,000-row sweep runs in flat memory. The arguments not
+    listed are those of :func:`solve_batch`.
+
+    Parameters
+    ----------
+    robot : Robot or callable
+        The robot, or a zero-argument callable returning it.
+    inputs : array_like or iterable of array_like
+        ``(n, n_actuators)`` inputs (temperatures [C] for TCAs), or an
+        iterable of ``(m, n_actuators)`` arrays (e.g. a generator making a
+        huge sweep on the fly); then each yielded block is one given array.
+    wrenches : array_like or iterable of array_like, optional
+        ``(n, 6)`` tip force [N] and moment [N m] per row, world frame.
+    steps, tol, max_iter, chunk_size, threads, stability, shapes : optional
+        As for :func:`solve_batch`.
+    block_chunks : int, optional
+        Chunks per block, 1 to 1,000,000 (default: 4 per thread).
+    progress : bool, optional
+        Show a tqdm bar counting rows (the ``progress`` extra).
+
+    Yields
+    ------
+    BatchResult
+        The results of one block of rows, in order.
+
+    Raises
+    ------
+    TypeError
+        A non-integer integer argument (NumPy integers are accepted).
+    ValueError
+        ``chunk_size`` outside 1..10,000,000, ``threads`` outside 0..1024,
+        ``block_chunks`` outside 1..1,000,000, or a bad row (named).
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot, iter_batches
+    >>> temps = np.linspace(25.0, 60.0, 10)
+    >>> rows = np.column_stack([temps, temps])
+    >>> tuple(len(b) for b in iter_batches(fig6_square_robot(), rows, steps=20, chunk_size=4, block_chunks=1))
+    (4, 4, 2)
+    """
     # integer-like arguments (NumPy integers included) become Python ints before
     # any arithmetic, so a uint8 cannot wrap or overflow in the block size
     chunk_size = V.integer("chunk_size", chunk_size, 1, MAX_CHUNK_SIZE)
@@ -153,6 +186,14 @@ def iter_batches(
     cfg = _Settings(steps, tol, max_iter, chunk_size, stability, _shapes_flag(shapes))
     nthreads = threads if threads > 0 else _core.default_threads()
     block = chunk_size * (block_chunks if block_chunks is not None else 4 * nthreads)
+    yield from _stream(robot, inputs, wrenches, block, cfg, threads, progress)
+
+
+def _stream(
+    robot: RobotLike, inputs: Any, wrenches: Any, block: int, cfg: _Settings, threads: int, progress: bool
+) -> Iterator[BatchResult]:
+    """The blocks of :func:`iter_batches`: ``block`` rows of an array at a time,
+    or one given array at a time, each solved as it is reached."""
     if isinstance(inputs, np.ndarray) or (
         isinstance(inputs, (list, tuple)) and inputs and not hasattr(inputs[0], "shape")
     ):
@@ -213,49 +254,75 @@ def solve_batch(
     stability: BatchStability = "report",
     shapes: bool = False,
 ) -> BatchResult:
-    """Solve every row of ``inputs`` (``(n, n_actuators)``; temperatures [C]
-    for TCAs) with optional tip ``wrenches`` (``(n, 6)``: force [N], moment
-    [N m], world frame) and return the stacked results.
+    """Solve the forward kinetostatics for every row of ``inputs``.
 
-    ``threads``: worker threads (0: all cores). ``progress``: tqdm bar.
-    ``client``: a ``dask.distributed.Client``; the chunks are then spread over
-    its workers (install the ``dask`` extra) with the same results as the
-    local path. The robot pickles, so it is shipped to the workers as it is;
-    ``robot`` may also be a zero-argument callable returning the robot, which
-    each worker then calls to build its own.
+    In the Rust core, with the GIL released, on all cores. Rows are cut into
+    chunks of ``chunk_size``, each solved in order with warm starts; the
+    results depend on ``chunk_size`` only, not on the threads or Dask workers.
 
-    ``stability``: ``"report"`` (the default) gives every converged row its
-    stability verdict (``stable``, ``margin``), as ``Robot.solve`` does, so a
-    batch never hands back an unstable equilibrium without saying so: a
-    sweep through buckling is exactly where the warm-started chain may
-    follow a shape the robot cannot hold. It costs one tangent integration
-    per row, about as much as a warm solve (a sweep takes about twice as
-    long); ``"off"`` skips it (``stable`` and ``margin`` are then ``None``)
-    for hot loops that do not use it. ``"require"`` and ``"continue"`` are
-    not offered for batches: filter on ``stable``, or re-solve the unstable
-    rows with ``Robot.solve(..., stability="continue")``.
+    Parameters
+    ----------
+    robot : Robot or callable
+        The robot, or a zero-argument callable returning it (each Dask worker
+        then builds its own; the robot itself pickles too).
+    inputs : array_like
+        ``(n, n_actuators)``: one row of inputs per solve (temperature [C] for
+        a TCA, tension [N] for a tendon, pull [m] for a linear tendon).
+    wrenches : array_like, optional
+        ``(n, 6)``: tip force [N] and moment [N m] per row, world frame.
+    steps, tol, max_iter : optional
+        RK4 steps (1 to 100,000; default 100), Newton tolerance on the
+        dimensionless residual (1e-10) and iterations per row (1 to 100,000;
+        50), as for ``Robot.solve``.
+    chunk_size, threads : int, optional
+        Rows per warm-started chunk, 1 to 10,000,000 (default 256); worker
+        threads, 0 (default: all cores) to 1024.
+    progress : bool, optional
+        Show a tqdm bar (the ``progress`` extra).
+    client : dask.distributed.Client, optional
+        Spread the chunks over its workers (the ``dask`` extra).
+    stability : {"report", "off"}, optional
+        ``"report"`` (default): each converged row gets its verdict
+        (``stable``, ``margin`` [-]) for one tangent integration, so a sweep
+        through buckling never hands back an unstable shape unsaid; re-solve
+        such rows with ``Robot.solve(..., stability="continue")``. ``"off"``:
+        none (``stable`` and ``margin`` are ``None``).
+    shapes : bool, optional
+        Keep every row's centre line (``arc_length`` [m], ``positions``
+        ``(n, nodes, 3)`` [m]; 2.4 kB per row at 100 steps).
 
-    ``shapes=True`` keeps every row's centre line (``BatchResult.arc_length``
-    ``(nodes,)`` [m], ``positions`` ``(n, nodes, 3)`` [m], NaN where a solve
-    did not converge), rebuilt by one more IVP per converged row (counted in
-    ``evaluations``), at ``24 * nodes`` bytes per row (2.4 kB at 100 steps):
-    sweeps of millions of rows keep tips only (the default) or stream.
+    Returns
+    -------
+    BatchResult
+        One row per input row; a row that did not converge has a NaN pose and
+        ``converged = False``.
 
-    Invalid inputs raise ``ValueError`` naming the row; a solve that does not
-    converge gives NaN pose and ``converged = False``.
+    Raises
+    ------
+    ValueError
+        An argument outside its range, or an invalid row (named).
+    TypeError
+        An argument of the wrong type.
 
     Examples
     --------
-    >>> import numpy as np
     >>> from tcarod.batch import fig6_square_robot, solve_batch
     >>> temps = np.linspace(25.0, 60.0, 5)
     >>> res = solve_batch(fig6_square_robot(), np.column_stack([temps, 25.0 + 0 * temps]), shapes=True)
     >>> res.positions.shape == (5, len(res.arc_length), 3)
     True
-    >>> bool(np.array_equal(res.positions[:, -1], res.tip_positions))
-    True
+    >>> bool(np.array_equal(res.positions[:, -1], res.tip_positions)), bool(res.stable.all())
+    (True, True)
     """
     cfg = _Settings(steps, tol, max_iter, chunk_size, stability, _shapes_flag(shapes))
+    return _solve_all(robot, inputs, wrenches, cfg, threads, progress, client)
+
+
+def _solve_all(
+    robot: RobotLike, inputs: Any, wrenches: Any, cfg: _Settings, threads: int, progress: bool, client: Any
+) -> BatchResult:
+    """:func:`solve_batch` once its settings are gathered: on Dask, in one
+    block, or block by block behind a progress bar."""
     if client is not None:
         return _solve_dask(robot, inputs, wrenches, client, cfg, progress)
     r = _robot(robot)
@@ -268,14 +335,14 @@ def solve_batch(
         r,
         q,
         wrenches,
-        steps=steps,
-        tol=tol,
-        max_iter=max_iter,
-        chunk_size=chunk_size,
+        steps=cfg.steps,
+        tol=cfg.tol,
+        max_iter=cfg.max_iter,
+        chunk_size=cfg.chunk_size,
         threads=threads,
         progress=True,
-        stability=stability,
-        shapes=shapes,
+        stability=cfg.stability,
+        shapes=cfg.shapes,
     )
     return BatchResult.concatenate(parts)
 
@@ -313,10 +380,30 @@ def _solve_dask(
 
 
 def fig6_square_robot(gravity: bool = True) -> Robot:
-    """The paper's Fig. 6 square manipulator (Section V-B) with the default
-    turns reading, from the core's fixtures (``src/experiments.rs``), standing
-    upright (gravity ``-z``) if ``gravity``. A module-level function, so it
-    can also serve as the robot factory of a batch."""
+    """The paper's Fig. 6 square manipulator (Section V-B), 40 mm long.
+
+    From the core's fixtures (``src/experiments.rs``), with the default turns
+    reading. A module-level function, so it can also serve as the robot
+    factory of a batch.
+
+    Parameters
+    ----------
+    gravity : bool, optional
+        Standing upright under gravity ``-z`` (default), or weightless.
+
+    Returns
+    -------
+    Robot
+        The EcoFlex 10 body (10 mm square, 40 mm) with its U-shaped TCA's two
+        legs 3 mm off the neutral layer.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> robot = fig6_square_robot()
+    >>> robot.body.length, len(robot.actuators), robot.body.gravity.tolist()     # [m], [m/s^2]
+    (0.04, 2, [0.0, 0.0, -9.81])
+    """
     return (
         _c.fixture_manipulator("fig6_square") if gravity else _c.fixture_manipulator("fig6_square", gravity=(0, 0, 0))
     )

@@ -58,7 +58,9 @@ __all__ = ["BodyMaterial", "body_material", "body_materials"]
 
 @dataclass(frozen=True)
 class BodyMaterial:
-    """One catalogued silicone (a row of the core's catalogue). SI units.
+    """One catalogued silicone: nominal properties with their sources, SI units.
+
+    A row of the core's catalogue (``tcarod.Body.materials()``).
 
     Attributes
     ----------
@@ -81,6 +83,13 @@ class BodyMaterial:
         Density [kg/m^3] (specific gravity x 1000).
     sources : str
         The publications and technical bulletins the values come from.
+
+    Examples
+    --------
+    >>> from tcarod import body_material
+    >>> m = body_material("Dragon Skin 10")
+    >>> m.label, m.shore_hardness, round(m.youngs_modulus_pa / 1e3)   # [kPa]
+    ('Dragon Skin 10', '10A', 260)
     """
 
     name: str
@@ -94,7 +103,9 @@ class BodyMaterial:
     sources: str
 
     def body(self, length_m: float, section: Section, **kwargs: Any) -> Body:
-        """A :class:`tcarod.Body` of this material; see :meth:`tcarod.Body.from_material`.
+        """A :class:`tcarod.Body` of this material.
+
+        See :meth:`tcarod.Body.from_material`.
 
         Parameters
         ----------
@@ -109,6 +120,15 @@ class BodyMaterial:
         Returns
         -------
         Body
+            The body, with this material's modulus [Pa], Poisson ratio [-]
+            and density [kg/m^3] unless replaced.
+
+        Examples
+        --------
+        >>> from tcarod import Section, body_material
+        >>> body = body_material("ecoflex-00-30").body(0.060, Section.circle(0.012), youngs_modulus=70e3)
+        >>> body.youngs_modulus, body.density        # [Pa], [kg/m^3]
+        (70000.0, 1070.0)
         """
         return Body.from_material(self.name, length_m, section, **kwargs)
 
@@ -128,7 +148,7 @@ def _record(row: dict[str, Any]) -> BodyMaterial:
 
 
 def body_materials() -> dict[str, BodyMaterial]:
-    """The catalogued silicones by name, in catalogue order (softest Ecoflex first).
+    """The catalogued silicones by name, softest Ecoflex first.
 
     Returns
     -------
@@ -159,6 +179,8 @@ def body_material(name: str) -> BodyMaterial:
     Returns
     -------
     BodyMaterial
+        Its nominal modulus [Pa], Poisson ratio [-], density [kg/m^3] and
+        sources.
 
     Raises
     ------
@@ -166,6 +188,12 @@ def body_material(name: str) -> BodyMaterial:
         If ``name`` is not a str.
     ValueError
         If ``name`` is not catalogued (the message lists the known names).
+
+    Examples
+    --------
+    >>> from tcarod import body_material
+    >>> body_material("ecoflex_00_10").youngs_modulus_pa     # [Pa], the paper's EcoFlex 10
+    37800.0
     """
     if not isinstance(name, str):
         raise TypeError(f"name must be a str, not {type(name).__name__}")

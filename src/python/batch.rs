@@ -46,23 +46,58 @@ fn batch_stability(policy: &str) -> PyResult<bool> {
     }
 }
 
-/// Solve the forward problem for every row of `inputs` (shape
-/// `(n, n_actuators)`, C for TCAs; at most 10,000,000 rows per call) and
-/// optional tip `wrenches` (shape `(n, 6)`: force [N] and moment [N m], world
-/// frame), with the GIL released, on `threads` threads (0: all cores; at most
-/// 1024). Rows are cut into chunks of `chunk_size` (1 to 10,000,000), each
-/// solved in order with warm starts. `steps` (1 to 100,000), `tol`,
-/// `max_iter` (1 to 100,000) as for `Robot.solve`. Returns `(tip_positions
-/// (n, 3) [m], tip_rotations (n, 3, 3), tensions (n, n_actuators) [N],
-/// iterations (n,), evaluations (n,), converged (n,), stable (n,), margin
-/// (n,))`; a row that does not converge has NaN pose and tensions and
-/// `converged = False`. `stability="report"` gives each converged row its
-/// stability verdict (`stable`, and `margin` [-], > 0 iff stable; NaN margin
-/// where there is none), one tangent integration per row; `"off"` skips it
-/// and returns `None` for both. `shapes=True` appends `(arc_length (nodes,)
-/// [m], positions (n, nodes, 3) [m])`, the centre line of every row (NaN
-/// where a row did not converge), rebuilt by one more IVP per converged row;
-/// else `None`.
+/// Solve the forward problem for every row of ``inputs``, in the core.
+///
+/// The binding behind ``tcarod.batch.solve_batch`` (which returns a
+/// ``BatchResult``); the GIL is released. Rows are cut into chunks of
+/// ``chunk_size``, each solved in order with warm starts.
+///
+/// Parameters
+/// ----------
+/// robot : Robot
+///     The robot.
+/// inputs : numpy.ndarray
+///     Shape ``(n, n_actuators)``: temperatures [C] for TCAs; at most
+///     10,000,000 rows per call.
+/// wrenches : numpy.ndarray, optional
+///     Shape ``(n, 6)``: tip force [N] and moment [N m], world frame.
+/// steps, tol, max_iter : optional
+///     As for ``Robot.solve`` (``steps`` and ``max_iter`` 1 to 100,000).
+/// chunk_size : int, optional
+///     Rows per warm-started chunk, 1 to 10,000,000 (default 256).
+/// threads : int, optional
+///     Worker threads, 0 (default: all cores) to 1024.
+/// warm : bool, optional
+///     Warm-start each row from the previous row of its chunk (default).
+/// stability : {"report", "off"}, optional
+///     ``"report"``: one tangent integration per converged row for its
+///     verdict; ``"off"``: none.
+/// shapes : bool, optional
+///     Also return every row's centre line (one more IVP per converged row).
+///
+/// Returns
+/// -------
+/// tuple
+///     ``(tip_positions (n, 3) [m], tip_rotations (n, 3, 3) [-], tensions
+///     (n, n_actuators) [N], iterations (n,), evaluations (n,), converged
+///     (n,), stable (n,), margin (n,) [-], shapes)``: NaN pose and tensions
+///     and ``converged = False`` where a row does not converge; ``stable``
+///     and ``margin`` ``None`` with ``stability="off"`` (NaN margin where
+///     there is no verdict); ``shapes`` is ``(arc_length (nodes,) [m],
+///     positions (n, nodes, 3) [m])`` with ``shapes=True``, else ``None``.
+///
+/// Raises
+/// ------
+/// ValueError
+///     An argument outside its range, or a row of ``inputs`` (named).
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> from tcarod.batch import fig6_square_robot
+/// >>> out = _core.solve_batch(fig6_square_robot(), np.array([[25.0, 25.0], [60.0, 60.0]]), steps=20)
+/// >>> out[0].shape, out[5].tolist()           # tip positions (n, 3) [m], converged
+/// ((2, 3), [True, True])
 #[pyfunction]
 #[pyo3(signature = (robot, inputs, wrenches=None, *, steps=None, tol=Real(1e-10), max_iter=None, chunk_size=None, threads=None, warm=true, stability="report", shapes=false),
     text_signature = "(robot, inputs, wrenches=None, *, steps=100, tol=1e-10, max_iter=50, chunk_size=256, threads=0, warm=True, stability='report', shapes=False)")]
@@ -165,7 +200,18 @@ fn shape_arrays<'py>(py: Python<'py>, shapes: &[Vec<[f64; 4]>]) -> PyResult<Shap
     Ok((PyArray1::from_vec(py, s), pos))
 }
 
-/// Worker threads `solve_batch` uses for `threads=0` (the available cores).
+/// Worker threads ``solve_batch`` uses for ``threads=0``.
+///
+/// Returns
+/// -------
+/// int
+///     The available cores [-].
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> _core.default_threads() >= 1
+/// True
 #[pyfunction]
 fn default_threads() -> usize {
     thread_count(0)

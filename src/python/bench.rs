@@ -22,7 +22,19 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// Rows of the performance table: `(name, description, target [s])`.
+/// Rows of the performance table.
+///
+/// Returns
+/// -------
+/// list of tuple
+///     ``(name, description, target [s])`` per row.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> name, description, target = _core.bench_rows()[0]
+/// >>> isinstance(name, str) and target > 0      # [s]
+/// True
 #[pyfunction]
 fn bench_rows() -> Vec<(&'static str, &'static str, f64)> {
     rows::ROWS
@@ -31,9 +43,35 @@ fn bench_rows() -> Vec<(&'static str, &'static str, f64)> {
         .collect()
 }
 
-/// Time row `name` in Rust: `repeats` runs, each a loop of at least
-/// `min_time` [s]; returns seconds per operation of each run. The GIL is
-/// released while timing.
+/// Time one row of the performance table in Rust.
+///
+/// The GIL is released while timing.
+///
+/// Parameters
+/// ----------
+/// name : str
+///     A row of ``bench_rows()``.
+/// repeats : int, optional
+///     Runs, 1 to 1000 (default 7).
+/// min_time : float, optional
+///     Shortest loop of each run [s], 0 to 60 (default 0.05).
+///
+/// Returns
+/// -------
+/// list of float
+///     Seconds per operation of each run [s].
+///
+/// Raises
+/// ------
+/// ValueError
+///     An unknown ``name`` or an argument out of range.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> times = _core.bench_time("ivp", repeats=2, min_time=0.0)     # [s] per IVP
+/// >>> len(times), all(t > 0 for t in times)
+/// (2, True)
 #[pyfunction]
 #[pyo3(signature = (name, repeats=None, min_time=Real(0.05)), text_signature = "(name, repeats=7, min_time=0.05)")]
 fn bench_time(

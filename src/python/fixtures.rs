@@ -51,15 +51,26 @@ pub(crate) fn py_robot(robot: Robot) -> PyRobot {
     }
 }
 
-/// The paper's constants by name, SI units (temperatures in C):
-/// `ecoflex10_density` [kg/m^3], `ecoflex10_youngs_modulus` [Pa],
-/// `ecoflex10_poisson` [-], `gravity` [m/s^2], `tca_offset` [m],
-/// `u_leg_half_spacing` [m], `square_side` [m], `circle_diameter` [m],
-/// `circle_precurvature_radius` [m], `manipulator_turns` [-],
-/// `turns_anchor_length` [m], `manipulator_coil_diameter` [m],
-/// `manipulator_pitch_deg` [deg], `fig6_length`, `fig8_length`,
-/// `table1_length` [m], `table1_mu` [-], `table1_fingers` [-],
-/// `table1_contact_temperature` [C].
+/// The paper's constants by name, SI units (temperatures in C).
+///
+/// Returns
+/// -------
+/// dict
+///     ``ecoflex10_density`` [kg/m^3], ``ecoflex10_youngs_modulus`` [Pa],
+///     ``ecoflex10_poisson`` [-], ``gravity`` [m/s^2], ``tca_offset`` [m],
+///     ``u_leg_half_spacing`` [m], ``square_side`` [m], ``circle_diameter``
+///     [m], ``circle_precurvature_radius`` [m], ``manipulator_turns`` [-],
+///     ``turns_anchor_length`` [m], ``manipulator_coil_diameter`` [m],
+///     ``manipulator_pitch_deg`` [deg], ``fig6_length``, ``fig8_length``,
+///     ``table1_length`` [m], ``table1_mu`` [-], ``table1_fingers`` [-],
+///     ``table1_contact_temperature`` [C], and the benchmarks' values.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> c = _core.fixture_constants()
+/// >>> c["ecoflex10_youngs_modulus"], c["tca_offset"]      # [Pa], [m]
+/// (37800.0, 0.003)
 #[pyfunction]
 fn fixture_constants(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let (psi, e, nu) = ex::ECOFLEX10;
@@ -113,13 +124,45 @@ fn parse_turns_reading(name: &str) -> Result<TurnsReading> {
     }
 }
 
-/// The paper's manipulator design `name` (`"square"`: the square manipulator
-/// of `length` [m], default 40 mm; `"fig6_circle"`; `"fig6_square"`;
-/// `"fig8"`; `"table1_finger"`), with any of its parameters replaced:
-/// `gravity` [m/s^2] (body-aligned frame, length 3; default upright, the
-/// finger hanging), `material` (`Material`), `youngs_modulus` [Pa] of the
-/// body, `tca_offset` [m], `coil_diameter` [m], `turns_reading`
-/// (`"per_tca"`, `"per_leg"`, `"per_length"`).
+/// One of the paper's manipulator designs, with any parameter replaced.
+///
+/// Parameters
+/// ----------
+/// name : {"square", "fig6_square", "fig6_circle", "fig8", "table1_finger"}
+///     The design: the Fig. 6 square and circle manipulators, the Fig. 8
+///     blocked-force manipulator, the Table I gripper finger.
+/// length : float, optional
+///     Body length [m] (default the design's; ``"square"``: 40 mm).
+/// gravity : sequence of 3 float, optional
+///     Gravity [m/s^2] in the body-aligned world frame (default: upright,
+///     the finger hanging).
+/// material : Material, optional
+///     TCA fibre material (default: the documented default material).
+/// youngs_modulus : float, optional
+///     Body Young's modulus [Pa].
+/// tca_offset : float, optional
+///     TCA distance from the neutral axis [m].
+/// coil_diameter : float, optional
+///     TCA coil diameter [m].
+/// turns_reading : {"per_tca", "per_leg", "per_length"}, optional
+///     How the paper's 76.4 turns are read (default ``"per_tca"``).
+///
+/// Returns
+/// -------
+/// Robot
+///     The design.
+///
+/// Raises
+/// ------
+/// ValueError
+///     An unknown ``name`` or ``turns_reading``, or a value out of range.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> robot = _core.fixture_manipulator("fig6_square")
+/// >>> robot.body.length, len(robot.actuators)     # [m], the U-shaped TCA's two legs
+/// (0.04, 2)
 #[pyfunction]
 #[pyo3(signature = (name, *, length=None, gravity=None, material=None, youngs_modulus=None, tca_offset=None,
     coil_diameter=None, turns_reading="per_tca"),
@@ -172,8 +215,32 @@ fn fixture_manipulator(
     Ok(py_robot(m.build()?))
 }
 
-/// Turns [-] of one leg of coiled length `length` [m] of a manipulator TCA
-/// with `legs` legs (1 straight, 2 U-shaped) under `reading`.
+/// Turns of one leg of a manipulator TCA [-].
+///
+/// Parameters
+/// ----------
+/// length : float
+///     Coiled length of the leg [m].
+/// legs : int
+///     Legs of the TCA (1 straight, 2 U-shaped).
+/// reading : {"per_tca", "per_leg", "per_length"}, optional
+///     How the paper's 76.4 turns are read (default ``"per_tca"``).
+///
+/// Returns
+/// -------
+/// float
+///     Turns of the leg [-].
+///
+/// Raises
+/// ------
+/// ValueError
+///     A non-positive ``length``, ``legs`` < 1 or an unknown ``reading``.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> _core.fixture_leg_turns(0.040, 2), _core.fixture_leg_turns(0.060, 1, "per_length")
+/// (38.2, 114.6...)
 #[pyfunction]
 #[pyo3(signature = (length, legs, reading="per_tca"))]
 fn fixture_leg_turns(length: Real, legs: Bound<'_, PyAny>, reading: &str) -> PyResult<f64> {
@@ -182,7 +249,28 @@ fn fixture_leg_turns(length: Real, legs: Bound<'_, PyAny>, reading: &str) -> PyR
     Ok(parse_turns_reading(reading)?.leg_turns(length, legs))
 }
 
-/// The whole Fig. 5 TCA of `threads` (3 or 4) threads.
+/// The whole Fig. 5 TCA of ``threads`` threads.
+///
+/// Parameters
+/// ----------
+/// threads : {3, 4}
+///     Threads of the TCA.
+///
+/// Returns
+/// -------
+/// Tca
+///     The TCA.
+///
+/// Raises
+/// ------
+/// ValueError
+///     ``threads`` other than 3 or 4.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> _core.fixture_fig5_tca(3).chirality
+/// 'extension'
 #[pyfunction]
 fn fixture_fig5_tca(threads: Bound<'_, PyAny>) -> PyResult<PyTca> {
     let threads = fig5_threads(&threads)?;
@@ -191,8 +279,32 @@ fn fixture_fig5_tca(threads: Bound<'_, PyAny>) -> PyResult<PyTca> {
     })
 }
 
-/// One folded half of the Fig. 5 TCA of `threads` (3 or 4) threads:
-/// `Tca.segment(0.5)` of the whole (the displacement is one half's elongation).
+/// One folded half of the Fig. 5 TCA of ``threads`` threads.
+///
+/// ``Tca.segment(0.5)`` of the whole: the displacement measured is one
+/// half's elongation.
+///
+/// Parameters
+/// ----------
+/// threads : {3, 4}
+///     Threads of the TCA.
+///
+/// Returns
+/// -------
+/// Tca
+///     The half TCA.
+///
+/// Raises
+/// ------
+/// ValueError
+///     ``threads`` other than 3 or 4.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> half, whole = _core.fixture_fig5_half_tca(4), _core.fixture_fig5_tca(4)
+/// >>> round(half.coiled_length / whole.coiled_length, 6)
+/// 0.5
 #[pyfunction]
 fn fixture_fig5_half_tca(threads: Bound<'_, PyAny>) -> PyResult<PyTca> {
     let threads = fig5_threads(&threads)?;
@@ -206,11 +318,32 @@ fn fig5_threads(obj: &Bound<'_, PyAny>) -> PyResult<u32> {
     Ok(count("threads", obj, 3, 4)? as u32)
 }
 
-/// The tendon robots of the speed benchmarks (not from the paper):
-/// `"steel"` (L 0.5 m, radius 1 mm, E 200 GPa, G 80 GPa, 8000 kg/m^3,
-/// gravity along `+x`, four tendons at 15.06 mm on spacer disks; benchmark
-/// tensions `fixture_constants()["steel_tendon_tensions"]` [N]) or
-/// `"soft"` (0.2 m, 10 mm, 1 MPa, one tendon at 4 mm).
+/// A tendon robot of the speed benchmarks (not from the paper).
+///
+/// Parameters
+/// ----------
+/// name : {"steel", "soft"}
+///     ``"steel"``: L 0.5 m, radius 1 mm, E 200 GPa, G 80 GPa, 8000 kg/m^3,
+///     gravity along ``+x``, four tendons at 15.06 mm on spacer disks
+///     (benchmark tensions ``fixture_constants()["steel_tendon_tensions"]``
+///     [N]); ``"soft"``: 0.2 m, 10 mm, 1 MPa, one tendon at 4 mm.
+///
+/// Returns
+/// -------
+/// Robot
+///     The robot.
+///
+/// Raises
+/// ------
+/// ValueError
+///     An unknown ``name``.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> robot = _core.fixture_tendon_robot("soft")
+/// >>> robot.body.length, len(robot.actuators)     # [m]
+/// (0.2, 1)
 #[pyfunction]
 fn fixture_tendon_robot(name: &str) -> PyResult<PyRobot> {
     let robot = match name {

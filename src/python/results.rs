@@ -19,44 +19,91 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// Result of a tip-position inverse (SciPy `OptimizeResult` naming).
+/// Result of a tip-position inverse (SciPy ``OptimizeResult`` naming).
 ///
-/// * `success` / `reached`: the tip is within `tol` [m] of the target;
-/// * `status`: 0 reached; 1 unreachable: no descent left and a variable rests
-///   on its bound (the closest configuration within the temperature range);
-///   2 out of budget: `max_iter` iterations without reaching (call again with
-///   `start=result.variables` or a larger `max_iter`); 3 stalled: no descent
-///   and no variable on a bound (a local minimum of the tip error, or `tol`
-///   below the forward solver's accuracy);
-/// * `message`: the same in words; `nit`: iterations (Jacobian evaluations);
-///   `nfev`: IVPs integrated;
-/// * `variables` (temperatures [C] per group), `error` [m] (plus weighted angle
-///   if an orientation was asked), `at_bound`, `solution` (the final forward
-///   `Solution`), `tip_position` [m].
+/// Returned by ``tcarod.tip_position``. ``success`` / ``reached``: the tip
+/// is within ``tol`` [m] of the target. ``status``: 0 reached; 1
+/// unreachable (no descent left and a variable rests on its bound: the
+/// closest configuration within the temperature range); 2 out of budget
+/// (``max_iter`` used up: call again with ``start=result.variables``); 3
+/// stalled (no descent and no variable on a bound). ``message`` says the
+/// same in words; ``nit`` iterations, ``nfev`` IVPs. ``variables``
+/// (temperature [C] per group), ``error`` [m], ``at_bound``, ``solution``
+/// (the final forward ``Solution``) and ``tip_position`` [m].
+///
+/// Examples
+/// --------
+/// >>> from tcarod.batch import fig6_square_robot
+/// >>> robot = fig6_square_robot()
+/// >>> target = robot.solve([80.0, 80.0], steps=20).tip_position     # [m]
+/// >>> res = tcarod.tip_position(robot, target, groups=[0, 0], steps=20)
+/// >>> res.success, round(res.variables[0], 3)                       # [C]
+/// (True, 80.0)
 #[pyclass(name = "InverseResult", module = "tcarod._core", frozen, eq)]
 pub struct PyInverseResult {
-    /// The forward `Solution` at `variables` (the closest one found if not reached).
+    /// The forward solution at ``variables``.
+    ///
+    /// Returns
+    /// -------
+    /// Solution
+    ///     The closest one found if the target was not reached.
     #[pyo3(get)]
     pub(crate) solution: Py<PySolution>,
-    /// Final actuation variables (temperature [C] per group for TCAs).
+    /// Final actuation variables.
+    ///
+    /// Returns
+    /// -------
+    /// list of float
+    ///     Temperature [C] per group for TCAs.
     #[pyo3(get)]
     pub(crate) variables: Vec<f64>,
-    /// Remaining tip error [m] (plus weighted angle if orientation was asked).
+    /// Remaining tip error [m].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     Distance to the target [m] (plus the weighted angle if an orientation
+    ///     was asked).
     #[pyo3(get)]
     pub(crate) error: f64,
-    /// Iterations (Jacobian evaluations) used (`nit`).
+    /// Iterations (Jacobian evaluations) used (``nit``).
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     Iterations [-].
     #[pyo3(get)]
     pub(crate) iterations: usize,
-    /// Whether the target was reached to `tol`.
+    /// Whether the target was reached to ``tol``.
+    ///
+    /// Returns
+    /// -------
+    /// bool
+    ///     Same as ``success``.
     #[pyo3(get)]
     pub(crate) reached: bool,
-    /// Whether each variable rests on a bound of its range at the end (`list[bool]`).
+    /// Whether each variable rests on a bound of its range at the end.
+    ///
+    /// Returns
+    /// -------
+    /// list of bool
+    ///     One per variable.
     #[pyo3(get)]
     pub(crate) at_bound: Vec<bool>,
-    /// IVPs integrated in total (`nfev`).
+    /// IVPs integrated in total (``nfev``).
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     IVPs [-].
     #[pyo3(get)]
     pub(crate) evaluations: usize,
-    /// The iteration budget the solve had (`max_iter` argument).
+    /// The iteration budget the solve had.
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     The ``max_iter`` argument [-].
     #[pyo3(get)]
     pub(crate) max_iter: usize,
 }
@@ -90,7 +137,11 @@ impl Outcome for PyInverseResult {
 
 scipy_fields!(
     PyInverseResult,
-    "Status code (SciPy naming): `0` target reached to `tol`; `1` target \
+    "Status code of the inverse (SciPy naming).\n\n\
+     Returns\n\
+     -------\n\
+     int\n    \
+     `0` target reached to `tol`; `1` target \
      unreachable (the closest configuration found has variables at their \
      bounds, `at_bound`); `2` iteration budget `max_iter` exhausted; `3` \
      stalled (no descent, no variable at a bound)."
@@ -193,27 +244,64 @@ fn restore_inverse_result(
     }
 }
 
-/// A blocked-tip solution (SciPy naming): contact `force` [N] (the tip
-/// presses along the plane's normal), actuation `variables` (temperature [C]
-/// per group), the forward `solution` with the contact force as tip load,
-/// `tip_position` [m]. `success` is always `True` and `status` 0 (a failed
-/// solve raises `ConvergenceError`); `nit` Newton iterations or eq-43
-/// increments, `nfev` IVPs integrated.
+/// A blocked-tip solution (SciPy naming).
+///
+/// Returned by ``tcarod.blocked_force`` and ``tcarod.blocked_temperature``:
+/// the contact ``force`` [N] the tip presses with along the plane's normal,
+/// the actuation ``variables`` (temperature [C] per group), the forward
+/// ``solution`` with the contact force as tip load, ``tip_position`` [m].
+/// ``success`` is always ``True`` and ``status`` 0 (a failed solve raises
+/// ``ConvergenceError``); ``nit`` Newton iterations or eq-43 increments,
+/// ``nfev`` IVPs integrated.
+///
+/// Examples
+/// --------
+/// >>> from tcarod.batch import fig6_square_robot
+/// >>> robot = fig6_square_robot()
+/// >>> tip = robot.solve([25.0, 25.0], steps=20).tip_position       # blocked where it rests [m]
+/// >>> res = tcarod.blocked_force(robot, tip, [-1.0, 0.0, 0.0], [60.0], groups=[0, 0], steps=20)
+/// >>> res.success, res.force > 0                                    # it presses toward -x [N]
+/// (True, True)
 #[pyclass(name = "BlockedResult", module = "tcarod._core", frozen, eq)]
 pub struct PyBlockedResult {
-    /// The forward `Solution` with the contact force applied at the tip.
+    /// The forward solution with the contact force applied at the tip.
+    ///
+    /// Returns
+    /// -------
+    /// Solution
+    ///     Carries the stability verdict with the tip held.
     #[pyo3(get)]
     pub(crate) solution: Py<PySolution>,
     /// Contact force [N] the tip presses with along the plane's normal.
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     Force [N].
     #[pyo3(get)]
     pub(crate) force: f64,
-    /// Actuation variables (temperature [C] per group for TCAs).
+    /// Actuation variables.
+    ///
+    /// Returns
+    /// -------
+    /// list of float
+    ///     Temperature [C] per group for TCAs.
     #[pyo3(get)]
     pub(crate) variables: Vec<f64>,
-    /// Iterations (Newton iterations or eq-43 increments; `nit`).
+    /// Newton iterations or eq-43 increments (``nit``).
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     Iterations [-].
     #[pyo3(get)]
     pub(crate) iterations: usize,
-    /// IVPs integrated in total (`nfev`).
+    /// IVPs integrated in total (``nfev``).
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     IVPs [-].
     #[pyo3(get)]
     pub(crate) evaluations: usize,
 }
@@ -238,8 +326,12 @@ impl Outcome for PyBlockedResult {
 
 scipy_fields!(
     PyBlockedResult,
-    "Status code (SciPy naming): always `0` (converged); a solve that fails \
-     raises `ConvergenceError` instead."
+    "Status code of the blocked solve (SciPy naming).\n\n\
+     Returns\n\
+     -------\n\
+     int\n    \
+     Always `0` (converged); a solve that fails raises \
+     `ConvergenceError` instead."
 );
 tip_of_solution!(PyBlockedResult);
 

@@ -16,7 +16,7 @@ _Vec3 = Sequence[float] | _FloatArray
 _Policy = Literal["report", "require", "continue", "off"]
 
 class ConvergenceError(RuntimeError):
-    """A solve stopped without meeting its tolerance."""
+    """A solve stopped without meeting its tolerance. Attributes: `residual` (best residual norm reached, dimensionless), `iterations`, `evaluations` (IVPs integrated, failed attempts included) and `reason` (why it stopped)."""
 
     #: Best residual norm reached (dimensionless unless the solver says otherwise).
     residual: float
@@ -30,8 +30,7 @@ class ConvergenceError(RuntimeError):
     reason: str
 
 class UnstableEquilibriumError(RuntimeError):
-    """``Robot.solve(..., stability="require")`` (or ``require_stable=True``)
-    converged to an unstable equilibrium."""
+    """`Robot.solve(..., require_stable=True)` converged to an unstable equilibrium. Attributes: `margin` (its stability margin [-], < 0) and `solution` (the unstable `Solution`)."""
 
     #: Stability margin of the equilibrium found [-] (< 0).
     margin: float
@@ -39,4 +38,4 @@ class UnstableEquilibriumError(RuntimeError):
     solution: Solution
 
 class UnitsWarning(UserWarning):
-    """Sizes that are valid SI numbers but look like millimetres."""
+    """Sizes that are valid SI numbers but look like millimetres (a body longer than 10 m, a section wider than 1 m, a TCA coil diameter above 0.1 m)."""

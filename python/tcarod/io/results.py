@@ -196,14 +196,59 @@ def solution_dict(solution: Any, *, stability: bool | None = None) -> dict[str, 
 
 
 def solution_json(solution: Any) -> dict[str, Any]:
-    """The same document as :func:`solution_dict` (``Solution.to_dict()``),
-    kept under the name earlier releases used."""
+    """The document of :func:`solution_dict` (``Solution.to_dict()``), by its older name.
+
+    Parameters
+    ----------
+    solution : Solution
+        A forward solution.
+
+    Returns
+    -------
+    dict
+        The same document as :func:`solution_dict`.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.io.results import solution_dict, solution_json
+    >>> sol = fig6_square_robot().solve([60.0, 25.0], steps=20)
+    >>> solution_json(sol) == solution_dict(sol)
+    True
+    """
     return solution_dict(solution)
 
 
 def dumps_json(doc: dict[str, Any], indent: int | None = 2) -> str:
-    """``doc`` as JSON text (``indent`` spaces, ``None``: one line); ``ValueError``
-    on NaN or infinity (invalid JSON: fail loudly)."""
+    """A JSON document as text, refusing NaN and infinity.
+
+    Parameters
+    ----------
+    doc : dict
+        A JSON-ready document (e.g. :func:`solution_dict`).
+    indent : int or None, optional
+        Spaces of indentation (default 2); ``None``: one line.
+
+    Returns
+    -------
+    str
+        The JSON text.
+
+    Raises
+    ------
+    ValueError
+        A NaN or infinite number (invalid JSON: fail loudly).
+
+    Examples
+    --------
+    >>> from tcarod.io.results import dumps_json
+    >>> dumps_json({"tip_position_m": [0.0, 0.0, 0.04]}, indent=None)
+    '{"tip_position_m": [0.0, 0.0, 0.04]}'
+    >>> dumps_json({"x": float("nan")})
+    Traceback (most recent call last):
+    ...
+    ValueError: Out of range float values are not JSON compliant...
+    """
     return json.dumps(doc, indent=indent, allow_nan=False)
 
 
@@ -313,8 +358,9 @@ _VTK_SUFFIXES = (".vtu", ".vtk")
 
 
 def write_vtk(solution: Any, path: Any) -> Path:
-    """Write the centre line as a VTK polyline (``.vtu``: XML, ``.vtk``:
-    legacy), for ParaView, with meshio.
+    """Write the centre line as a VTK polyline for ParaView, with meshio.
+
+    ``.vtu``: XML, ``.vtk``: legacy.
 
     Points: the nodes' positions [m]. Cells: one ``line`` per segment between
     consecutive nodes. Point data (one value per node): ``arc_length_m``;
@@ -349,12 +395,11 @@ def write_vtk(solution: Any, path: Any) -> Path:
 
     Examples
     --------
-    >>> import tempfile, pathlib
-    >>> import meshio  # doctest: +SKIP
+    >>> import meshio                           # the `export` extra
     >>> from tcarod.batch import fig6_square_robot
-    >>> sol = fig6_square_robot().solve([60.0, 25.0])
-    >>> out = sol.to_vtk(pathlib.Path(tempfile.mkdtemp()) / "finger.vtu")  # doctest: +SKIP
-    >>> meshio.read(out).points.shape == (len(sol.s), 3)  # doctest: +SKIP
+    >>> sol = fig6_square_robot().solve([60.0, 25.0], steps=20)
+    >>> out = sol.to_vtk("square.vtu")
+    >>> meshio.read(out).points.shape == (len(sol.s), 3)
     True
     """
     p = _path(path)

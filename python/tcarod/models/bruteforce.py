@@ -37,7 +37,18 @@ __all__ = ["BruteForceResult", "brute_force_blocked_temperature", "brute_force_t
 
 @dataclass(frozen=True, eq=False)
 class BruteForceResult:
-    """Outcome of a brute-force inverse."""
+    """Outcome of a brute-force inverse.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> robot = fig6_square_robot()
+    >>> from tcarod.models.bruteforce import brute_force_tip_position
+    >>> target = robot.solve([80.0, 80.0], steps=20).tip_position         # [m]
+    >>> res = brute_force_tip_position(robot, target, groups=[0, 0], steps=20)
+    >>> round(res.variables[0], 2), res.error_m < 1e-6, res.forward_solves > 10   # [C], [m]
+    (80.0, True, True)
+    """
 
     #: Actuation variables found (temperatures [C]), one per group.
     variables: tuple[float, ...]
@@ -94,10 +105,58 @@ def brute_force_blocked_temperature(
     xatol: float = 1e-6,
     steps: int = 100,
 ) -> BruteForceResult:
-    """Temperature [C] (one actuation variable) at which the tip, loaded with
-    ``-force * normal`` [N], lies on the plane through ``point`` [m] with unit
-    ``normal``: bounded Brent minimisation of the gap [m] over the
-    temperature range, to ``xatol`` [C]."""
+    """Temperature at which the loaded tip lies on a plane, by bounded Brent minimisation.
+
+    The tip, loaded with ``-force * normal`` [N], must lie on the plane
+    through ``point``: the gap [m] is minimised over the temperature range.
+    The baseline of :func:`tcarod.blocked_temperature`.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot.
+    point, normal : sequence of 3 float
+        A point of the plane [m] and its normal [-], along which the tip presses.
+    force : float
+        Contact force [N].
+    groups : sequence of int, optional
+        One actuation variable for all actuators (default all in one).
+    xatol, steps : optional
+        Temperature tolerance [C] (default 1e-6); RK4 steps per solve (100).
+
+    Returns
+    -------
+    BruteForceResult
+        The temperature [C], the remaining gap [m] and the work.
+
+    Raises
+    ------
+    ValueError
+        More than one actuation variable, or arguments out of range.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> robot = fig6_square_robot()
+    >>> from tcarod.models.bruteforce import brute_force_blocked_temperature
+    >>> tip = robot.solve([25.0, 25.0], steps=20).tip_position            # blocked where it rests [m]
+    >>> res = brute_force_blocked_temperature(robot, tip, [-1.0, 0.0, 0.0], 0.002, groups=[0, 0], steps=20)
+    >>> round(res.variables[0], 1)         # [C] to press with 2 mN
+    54.3
+    """
+    return _blocked_temperature(robot, point, normal, force, groups, xatol, steps)
+
+
+def _blocked_temperature(
+    robot: Robot,
+    point: Sequence[float],
+    normal: Sequence[float],
+    force: float,
+    groups: Sequence[int] | None,
+    xatol: float,
+    steps: int,
+) -> BruteForceResult:
+    """The body of :func:`brute_force_blocked_temperature`, its arguments as given."""
     minimize_scalar = require("scipy.optimize").minimize_scalar
 
     V.instance("robot", robot, Robot, "a tcarod.Robot")
@@ -146,15 +205,61 @@ def brute_force_tip_position(
     max_solves: int = 3000,
     steps: int = 100,
 ) -> BruteForceResult:
-    """Temperatures [C] minimising ``|p(L) - target|`` [m]: Nelder-Mead over
-    full forward solves, from ``start`` (default: the reference inputs) with
-    an initial simplex of edge ``simplex_size_c`` [C], to ``xatol`` [C] and
-    ``fatol`` [m].
+    """Temperatures that minimise the tip's distance to ``target``, by Nelder-Mead.
 
-    Bounds: the forward model is evaluated at the inputs clipped to their
-    range, plus a penalty of 1 mm per C outside it (scipy's bounded
-    Nelder-Mead clips the simplex itself, which collapses it on a bound and
-    stalls, e.g. when starting at ambient temperature)."""
+    Over full forward solves; the inputs are clipped to their range with a
+    penalty of 1 mm per C outside it (a clipped simplex collapses on a bound
+    and stalls). The baseline of :func:`tcarod.tip_position`.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot.
+    target : sequence of 3 float
+        Target tip position [m].
+    start, groups : sequence, optional
+        Initial variables [C] (default the reference inputs); the actuation
+        variable of each actuator (default one each).
+    xatol, fatol, simplex_size_c : float, optional
+        Tolerances on the temperatures [C] (1e-4) and the distance [m]
+        (1e-10); edge of the initial simplex [C] (10).
+    max_solves, steps : int, optional
+        Forward-solve budget (3000); RK4 steps per solve (100).
+
+    Returns
+    -------
+    BruteForceResult
+        The temperatures [C], the distance left [m] and the work.
+
+    Raises
+    ------
+    ValueError
+        Arguments out of range.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> robot = fig6_square_robot()
+    >>> from tcarod.models.bruteforce import brute_force_tip_position
+    >>> target = robot.solve([80.0, 80.0], steps=20).tip_position         # [m]
+    >>> round(brute_force_tip_position(robot, target, groups=[0, 0], steps=20).variables[0], 2)   # [C]
+    80.0
+    """
+    return _tip_position(robot, target, start, groups, xatol, fatol, simplex_size_c, max_solves, steps)
+
+
+def _tip_position(
+    robot: Robot,
+    target: Sequence[float],
+    start: Sequence[float] | None,
+    groups: Sequence[int] | None,
+    xatol: float,
+    fatol: float,
+    simplex_size_c: float,
+    max_solves: int,
+    steps: int,
+) -> BruteForceResult:
+    """The body of :func:`brute_force_tip_position`, its arguments as given."""
     minimize = require("scipy.optimize").minimize
 
     V.instance("robot", robot, Robot, "a tcarod.Robot")

@@ -63,9 +63,22 @@ PARAMETERS: Final[dict[str, float]] = {
 
 @dataclass(frozen=True)
 class TcaExperiment:
-    """What is known about an experiment: the TCA's geometry [m, turns], the
-    hanging mass [kg], the share of the weight one measured TCA carries
-    (0.5 for each half of the paper's folded TCA) and ``g`` [m/s^2]."""
+    """What is known about a TCA experiment under a dead weight.
+
+    The TCA's geometry [m, turns], the hanging mass [kg], the share of the
+    weight one measured TCA carries (0.5 for each half of the paper's folded
+    TCA) and ``g`` [m/s^2].
+
+    Examples
+    --------
+    >>> from tcarod.models.calibration import TcaExperiment
+    >>> half = TcaExperiment(0.2485, 0.055, 0.002, 150.0, 0.005, load_share=0.5)
+    >>> params = {"youngs_modulus_slope_pa_per_c": -1.3e6, "expansion_scale": 1.0,
+    ...           "friction_mass_kg": 0.0, "friction_ratio": 0.0}
+    >>> d = half.predict(np.array([25.0, 150.0]), tcarod.Material.silver_coated_nylon(), params)
+    >>> round(float(d[1] - d[0]) * 1e3, 2)          # displacement from 25 to 150 C [mm]
+    14.24
+    """
 
     fibre_length_m: float
     coiled_length_m: float
@@ -93,7 +106,22 @@ class TcaExperiment:
             raise ValueError(f"invalid chirality = {self.chirality!r}: need 'extension' or 'contraction'")
 
     def material(self, base: Material, youngs_modulus_slope_pa_per_c: float, expansion_scale: float) -> Material:
-        """``base`` with its modulus slope replaced and its expansion scaled."""
+        """``base`` with its modulus slope replaced and its expansion scaled.
+
+        Parameters
+        ----------
+        base : Material
+            The base material.
+        youngs_modulus_slope_pa_per_c : float
+            Slope of the fibre's Young's modulus [Pa/C].
+        expansion_scale : float
+            Factor on the radial expansion [-].
+
+        Returns
+        -------
+        Material
+            The modified material.
+        """
         e, _, g, _, rho, rho_slope = base.coefficients
         return Material(
             youngs_modulus=e,
@@ -108,7 +136,22 @@ class TcaExperiment:
         )
 
     def predict(self, temperatures_c: FloatArray, base: Material, params: dict[str, float]) -> FloatArray:
-        """Displacement [m] at ``temperatures_c`` [C] for parameter values ``params``."""
+        """Displacement at ``temperatures_c`` for parameter values ``params``.
+
+        Parameters
+        ----------
+        temperatures_c : numpy.ndarray
+            Temperatures [C].
+        base : Material
+            The base material.
+        params : dict of str to float
+            A value for every name of :data:`PARAMETERS`.
+
+        Returns
+        -------
+        numpy.ndarray
+            Displacement [m] at each temperature.
+        """
         mat = self.material(base, params["youngs_modulus_slope_pa_per_c"], params["expansion_scale"])
         tca = Tca(self.fibre_length_m, self.coiled_length_m, self.coil_diameter_m, self.turns, self.chirality, mat)  # type: ignore[arg-type]
         friction = params.get("friction_mass_kg", 0.0) + params.get("friction_ratio", 0.0) * self.mass_kg
@@ -118,8 +161,23 @@ class TcaExperiment:
 
 @dataclass(frozen=True, eq=False)
 class CalibrationResult:
-    """Fitted parameters with standard errors and 95 % confidence intervals
-    (same units as the parameter names)."""
+    """Fitted parameters with standard errors and confidence intervals.
+
+    In the units of the parameter names.
+
+    Examples
+    --------
+    >>> from tcarod.models.calibration import TcaExperiment, calibrate
+    >>> half = TcaExperiment(0.2485, 0.055, 0.002, 150.0, 0.005, load_share=0.5)   # [m], [m], [m], turns, [kg]
+    >>> base = tcarod.Material.silver_coated_nylon()
+    >>> temps = np.linspace(30.0, 150.0, 9)                                          # [C]
+    >>> truth = {"youngs_modulus_slope_pa_per_c": -1.56e6, "expansion_scale": 0.9,
+    ...          "friction_mass_kg": 0.0, "friction_ratio": 0.0}
+    >>> measured = half.predict(temps, base, truth)                                   # [m]
+    >>> fit = calibrate(half, temps, measured, fit=("youngs_modulus_slope_pa_per_c", "expansion_scale"))
+    >>> fit.names, round(float(fit.estimate[1]), 4), fit.success
+    (('youngs_modulus_slope_pa_per_c', 'expansion_scale'), 0.9, True)
+    """
 
     names: tuple[str, ...]
     estimate: FloatArray
@@ -133,7 +191,14 @@ class CalibrationResult:
     message: str
 
     def as_dict(self) -> dict[str, dict[str, float]]:
-        """``{name: {"estimate", "standard_error", "ci_low", "ci_high"}}``."""
+        """The estimates by name.
+
+        Returns
+        -------
+        dict
+            ``{name: {"estimate", "standard_error", "ci_low", "ci_high"}}``, in
+            the parameter's unit.
+        """
         return {
             n: {
                 "estimate": float(self.estimate[k]),
@@ -154,16 +219,48 @@ def calibrate(
     base: Material | None = None,
     confidence: float = 0.95,
 ) -> CalibrationResult:
-    """Fit ``fit`` (names from :data:`PARAMETERS`) to measured displacement [m]
-    against temperature [C]; parameters not fitted keep their ``initial``
-    value. Defaults: ``base`` material :meth:`Material.silver_coated_nylon`,
-    initial slope from it, expansion scale 1, no friction.
+    """Fit a TCA's uncertain parameters to measured displacement against temperature.
 
-    Several experiments (e.g. two loads) are fitted together by passing a
-    sequence of :class:`TcaExperiment` and one data array per experiment.
+    Needs scipy (the ``fit`` extra: ``pip install 'tcarod[fit]'``).
 
-    Needs scipy (the ``fit`` extra: ``pip install 'tcarod[fit]'``). Raises ``ValueError`` on unknown
-    names, mismatched data or fewer points than parameters + 1.
+    Parameters
+    ----------
+    experiment : TcaExperiment or sequence of TcaExperiment
+        What is known; several (e.g. two loads) are fitted together.
+    temperatures_c, displacements_m : array_like or sequence of array_like
+        Temperatures [C] and measured displacements [m], one array each per
+        experiment.
+    fit, initial : optional
+        Names from :data:`PARAMETERS` to fit (default all); starting and fixed
+        values (default: ``base``'s slope, expansion scale 1, no friction).
+    base, confidence : optional
+        Base material (default :meth:`Material.silver_coated_nylon`) and the
+        confidence level of the intervals, in (0, 1) (default 0.95).
+
+    Returns
+    -------
+    CalibrationResult
+        Estimates, standard errors, intervals and the residual std [m].
+
+    Raises
+    ------
+    ValueError
+        Unknown names, mismatched data or fewer points than parameters + 1.
+    ImportError
+        scipy is missing.
+
+    Examples
+    --------
+    >>> from tcarod.models.calibration import TcaExperiment, calibrate
+    >>> half = TcaExperiment(0.2485, 0.055, 0.002, 150.0, 0.005, load_share=0.5)   # [m], [m], [m], turns, [kg]
+    >>> base = tcarod.Material.silver_coated_nylon()
+    >>> temps = np.linspace(30.0, 150.0, 9)                                          # [C]
+    >>> truth = {"youngs_modulus_slope_pa_per_c": -1.56e6, "expansion_scale": 0.9,
+    ...          "friction_mass_kg": 0.0, "friction_ratio": 0.0}
+    >>> measured = half.predict(temps, base, truth)                                   # [m]
+    >>> fit = calibrate(half, temps, measured, fit=("youngs_modulus_slope_pa_per_c", "expansion_scale"))
+    >>> round(float(fit.estimate[0]) / 1e6, 3)    # youngs_modulus_slope_pa_per_c [MPa/C]
+    -1.56
     """
     optimize = require("scipy.optimize")  # optional dependency: only calibration needs it
     stats = require("scipy.stats")

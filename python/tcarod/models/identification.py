@@ -81,8 +81,24 @@ Target = Literal["paper_model", "experiment"]
 
 
 def cte_ratio(material: Material, temperature_c: float) -> float:
-    """``d'(T)/d(T)`` of ``material`` over the measured radial CTE of
-    oriented nylon 6,6 at ``temperature_c`` [C] [-] (like with like)."""
+    """Radial expansion rate ``d'(T)/d(T)`` of ``material`` over the measured CTE of oriented nylon 6,6 [-].
+
+    Parameters
+    ----------
+    material, temperature_c : Material, float
+        The fibre material and the temperature [C] (like with like).
+
+    Returns
+    -------
+    float
+        The ratio [-]; 1 matches the measurement.
+
+    Examples
+    --------
+    >>> from tcarod.models.identification import cte_ratio
+    >>> round(cte_ratio(tcarod.Material.silver_coated_nylon(), 100.0), 2)
+    2.33
+    """
     return material.instantaneous_expansion(temperature_c) / Material.measured_radial_cte(temperature_c)
 
 
@@ -91,12 +107,34 @@ def rho_scale_range(
     temperatures_c: Sequence[float] = CTE_CHECK_TEMPERATURES_C,
     factors: tuple[float, float] = CTE_FACTOR_RANGE,
 ) -> tuple[float, float]:
-    """Range of ``rho_scale`` [-] for which ``d'/d`` of ``material`` scaled by
-    it lies within ``factors`` times the measured CTE at every temperature.
+    """Range of ``rho_scale`` [-] that keeps the expansion within ``factors`` of the measured CTE.
 
-    With ``x = T - t_ref`` and ``rho(T) x = d/d0 - 1``, scaling by ``k`` gives
+    ``d'/d`` of ``material`` scaled by ``rho_scale`` must lie within
+    ``factors`` times the measured CTE at every temperature. With
+    ``x = T - t_ref`` and ``rho(T) x = d/d0 - 1``, scaling by ``k`` gives
     ``d'/d = k d1 / (1 + k e)`` (``d1 = rho_ref + 2 rho_slope x``,
-    ``e = rho(T) x``), increasing in ``k``; ``d'/d = c`` at ``k = c / (d1 - c e)``."""
+    ``e = rho(T) x``), increasing in ``k``; ``d'/d = c`` at
+    ``k = c / (d1 - c e)``.
+
+    Parameters
+    ----------
+    material : Material
+        The fibre material.
+    temperatures_c, factors : optional
+        Temperatures [C] of the check (default the grip range); the plausible
+        band around the measured CTE [-] (default 0.5 to 2).
+
+    Returns
+    -------
+    (float, float)
+        The lowest and highest plausible ``rho_scale`` [-].
+
+    Examples
+    --------
+    >>> from tcarod.models.identification import rho_scale_range
+    >>> [round(k, 3) for k in rho_scale_range(tcarod.Material.silver_coated_nylon())]
+    [0.254, 0.836]
+    """
     *_, r0, r1 = material.coefficients
     lo, hi = 0.0, math.inf
     for t in temperatures_c:
@@ -110,13 +148,37 @@ def rho_scale_range(
 
 
 def contact_range_c(target_c: Sequence[float]) -> tuple[float, float]:
-    """Plausible contact temperature [C]: ambient to the lowest target grip temperature."""
+    """Plausible contact temperature [C]: ambient to the lowest target grip temperature.
+
+    Parameters
+    ----------
+    target_c : sequence of float
+        Target grip temperatures [C].
+
+    Returns
+    -------
+    (float, float)
+        Ambient (25 C) and the lowest target [C].
+
+    Examples
+    --------
+    >>> from tcarod.models.identification import contact_range_c
+    >>> contact_range_c((95.0, 120.0, 135.0))          # [C]
+    (25.0, 95.0)
+    """
     return _AMBIENT_C, float(min(target_c))
 
 
 @dataclass(frozen=True)
 class Reading:
-    """How the paper's set-up is read: turns, ``rho(T)`` shape, free parameters."""
+    """How the paper's Table I set-up is read: turns, ``rho(T)`` shape, free parameters.
+
+    Examples
+    --------
+    >>> from tcarod.models.identification import Reading
+    >>> Reading("per_tca", "sun_zhao").free
+    ('contact_temperature_c', 'rho_scale')
+    """
 
     turns_reading: TurnsReading
     material: str
@@ -125,7 +187,12 @@ class Reading:
 
     @property
     def text(self) -> str:
-        """One line describing the reading."""
+        """One line describing the reading: turns, material and free parameters in words.
+
+        Returns
+        -------
+        str
+        """
         turns = {
             "per_tca": "76.4 turns per U-shaped TCA (38.2 per 20 mm leg)",
             "per_leg": "76.4 turns per leg",
@@ -139,7 +206,12 @@ class Reading:
         return f"{turns}; {rho}; free: {free}"
 
     def base_material(self) -> Material:
-        """The unscaled material preset."""
+        """The unscaled material preset (:func:`tcarod.models.manipulators.material_preset`).
+
+        Returns
+        -------
+        Material
+        """
         return material_preset(self.material)
 
 
@@ -160,9 +232,34 @@ def reading_grip_temperatures(
     rho_scale: float = 1.0,
     masses_kg: Sequence[float] = TABLE1_MASSES_KG,
 ) -> tuple[float, ...]:
-    """Grip temperatures [C] (eq 44, ``mu = 1.1``, two fingers) of the Table I
-    finger under ``reading`` with the given contact temperature [C] and
-    ``rho`` scale [-]. ``ValueError`` if a grip needs more than 160 C."""
+    """Grip temperatures of the Table I finger under a reading (eq 44, ``mu = 1.1``, two fingers).
+
+    Parameters
+    ----------
+    reading : Reading
+        Turns and material.
+    contact_temperature_c : float
+        Contact temperature [C].
+    rho_scale, masses_kg : optional
+        Factor on the material's radial expansion [-] (default 1); masses [kg]
+        (default Table I's).
+
+    Returns
+    -------
+    tuple of float
+        Grip temperature [C] per mass.
+
+    Raises
+    ------
+    ValueError
+        A grip that needs more than 160 C.
+
+    Examples
+    --------
+    >>> from tcarod.models.identification import Reading, reading_grip_temperatures
+    >>> [round(t, 1) for t in reading_grip_temperatures(Reading("per_tca", "sun_zhao"), 70.0)]   # [C]
+    [78.8, 86.8, 94.3]
+    """
     material = reading.base_material().with_expansion_scale(rho_scale)
     finger = table1_finger(material=material, turns_reading=reading.turns_reading)
     out = []
@@ -176,7 +273,14 @@ def reading_grip_temperatures(
 
 @dataclass(frozen=True)
 class FitParameter:
-    """A fitted value [its unit] with its plausible range and source."""
+    """A fitted value with its unit, plausible range and source.
+
+    Examples
+    --------
+    >>> from tcarod.models.identification import FitParameter
+    >>> FitParameter(102.4, (25.0, 93.7), "C", "contact precedes the lightest grip").plausible
+    False
+    """
 
     value: float
     plausible_range: tuple[float, float]
@@ -185,7 +289,12 @@ class FitParameter:
 
     @property
     def plausible(self) -> bool:
-        """``lo <= value <= hi`` of :attr:`plausible_range`."""
+        """Whether the value lies inside :attr:`plausible_range`: ``lo <= value <= hi``.
+
+        Returns
+        -------
+        bool
+        """
         return self.plausible_range[0] <= self.value <= self.plausible_range[1]
 
     def to_json(self) -> dict[str, Any]:
@@ -202,7 +311,14 @@ class FitParameter:
 
 @dataclass(frozen=True)
 class Identification:
-    """One identified reading: fitted parameters, residuals, leave-one-out errors."""
+    """One identified reading (by :func:`identify`): fitted parameters, residuals, leave-one-out errors.
+
+    Examples
+    --------
+    >>> from tcarod.models.identification import Identification
+    >>> [f for f in Identification.__dataclass_fields__][:4]
+    ['reading', 'fitted_to', 'parameters', 'target_c']
+    """
 
     reading: Reading
     fitted_to: Target
@@ -217,12 +333,22 @@ class Identification:
 
     @property
     def rms_c(self) -> float:
-        """Root-mean-square of ``fitted - target`` [C]."""
+        """Root-mean-square of ``fitted - target`` [C].
+
+        Returns
+        -------
+        float
+        """
         return float(np.sqrt(np.mean(np.square(np.subtract(self.fitted_c, self.target_c)))))
 
     @property
     def all_plausible(self) -> bool:
-        """Every fitted parameter inside its plausible range."""
+        """Whether every fitted parameter lies inside its plausible range.
+
+        Returns
+        -------
+        bool
+        """
         return all(p.plausible for p in self.parameters.values())
 
     def material(self) -> Material:
@@ -231,8 +357,14 @@ class Identification:
         return self.reading.base_material().with_expansion_scale(k)
 
     def to_json(self) -> dict[str, Any]:
-        """JSON-serialisable: reading, fitted_to, parameters, rms_c, leave_one_out_c, and the detail
-        (targets, fitted temperatures [C], CTE ratios, evaluations)."""
+        """JSON-serialisable identification.
+
+        Returns
+        -------
+        dict
+            Reading, fitted_to, parameters, rms_c, leave_one_out_c, and the
+            detail (targets, fitted temperatures [C], CTE ratios, evaluations).
+        """
         return {
             "reading": self.reading.text,
             "turns_reading": self.reading.turns_reading,
@@ -296,9 +428,38 @@ def identify(
     target_c: Sequence[float] | None = None,
     start: Sequence[float] = (65.0, 0.0),
 ) -> Identification:
-    """Fit the free parameters of ``reading`` to ``target_c`` (default: the
-    paper's predictions or the experiment, per ``fitted_to``), then leave
-    each mass out in turn. ``start``: ``(contact [C], log rho_scale)``."""
+    """Fit the free parameters of ``reading`` to grip temperatures, then leave each mass out.
+
+    Parameters
+    ----------
+    reading : Reading
+        Turns, material and free parameters.
+    fitted_to : {"paper_model", "experiment"}, optional
+        The target: the paper's predictions (default) or the measurement.
+    masses_kg, target_c : sequence of float, optional
+        Masses [kg] (default Table I's); target grip temperatures [C] (default
+        per ``fitted_to``).
+    start : (float, float), optional
+        ``(contact [C], log rho_scale)`` to start from.
+
+    Returns
+    -------
+    Identification
+        The fitted parameters with their plausibility, residuals [C] and
+        leave-one-out errors [C].
+
+    Raises
+    ------
+    ValueError
+        An unknown ``fitted_to`` or a target of the wrong length.
+
+    Examples
+    --------
+    >>> from tcarod.models.identification import Reading, identify
+    >>> fit = identify(Reading("per_tca", "sun_zhao", free=("contact_temperature_c",)))   # about 2 s
+    >>> round(fit.parameters["contact_temperature_c"].value, 1), fit.all_plausible      # [C]
+    (102.4, False)
+    """
     if fitted_to not in ("paper_model", "experiment"):
         raise ValueError(f"invalid fitted_to = {fitted_to!r}: choose 'paper_model' or 'experiment'")
     if target_c is None:

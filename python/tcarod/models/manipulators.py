@@ -103,7 +103,30 @@ MATERIAL_PRESETS: Final[dict[str, str]] = {
 
 
 def material_preset(name: str) -> Material:
-    """The material preset ``name`` (a key of :data:`MATERIAL_PRESETS`)."""
+    """The TCA fibre material preset ``name``.
+
+    Parameters
+    ----------
+    name : {"sun_zhao", "measured_cte"}
+        A key of :data:`MATERIAL_PRESETS`: the documented default (Sun & Zhao's
+        fibre-diameter fit) or the measured radial CTE of oriented nylon 6,6.
+
+    Returns
+    -------
+    Material
+        The material (moduli [Pa], expansion [1/C], temperature range [C]).
+
+    Raises
+    ------
+    ValueError
+        An unknown ``name``.
+
+    Examples
+    --------
+    >>> from tcarod.models.manipulators import material_preset
+    >>> material_preset("sun_zhao") == tcarod.Material.silver_coated_nylon()
+    True
+    """
     if name == "sun_zhao":
         return Material.silver_coated_nylon()
     if name == "measured_cte":
@@ -112,8 +135,37 @@ def material_preset(name: str) -> Material:
 
 
 def leg_turns(length_m: float, legs: int, reading: TurnsReading = DEFAULT_TURNS_READING) -> float:
-    """Turns [-] of one leg of coiled length ``length_m`` [m] of a manipulator
-    TCA with ``legs`` legs (1 straight, 2 U-shaped) under ``reading`` (the core's rule)."""
+    """Turns of one leg of a manipulator TCA [-].
+
+    The core's rule for reading the paper's 76.4 printed turns.
+
+    Parameters
+    ----------
+    length_m : float
+        Coiled length of the leg [m].
+    legs : int
+        Legs of the TCA: 1 straight, 2 U-shaped.
+    reading : {"per_tca", "per_leg", "per_length"}, optional
+        ``"per_tca"`` (default): 76.4 turns per fabricated TCA, shared by its
+        legs; ``"per_leg"``: 76.4 per leg; ``"per_length"``: the twist per
+        length of 76.4 turns over 40 mm.
+
+    Returns
+    -------
+    float
+        Turns of the leg [-].
+
+    Raises
+    ------
+    ValueError
+        A non-positive ``length_m``, ``legs`` < 1 or an unknown ``reading``.
+
+    Examples
+    --------
+    >>> from tcarod.models.manipulators import leg_turns
+    >>> leg_turns(0.040, 2), leg_turns(0.040, 2, "per_leg"), round(leg_turns(0.060, 1, "per_length"), 1)
+    (38.2, 76.4, 114.6)
+    """
     return float(_core.fixture_leg_turns(length_m, legs, reading))
 
 
@@ -124,11 +176,38 @@ def manipulator_tca(
     coil_diameter_m: float = TCA_COIL_DIAMETER_M,
     material: Material | None = None,
 ) -> Tca:
-    """The manipulators' extension TCA (or one leg of it) of coiled length
-    ``length_m`` [m]: ``alpha0 = 15 deg``, ``turns`` turns (default 76.4; see
-    :func:`leg_turns` for a U's legs), coil diameter ``coil_diameter_m`` [m],
-    fibre length ``l = L / sin(alpha0)`` (default material:
-    :meth:`Material.silver_coated_nylon`)."""
+    """The manipulators' extension TCA, or one leg of it (Section V-B).
+
+    Pitch angle ``alpha0 = 15 deg``, fibre length ``l = L / sin(alpha0)``.
+
+    Parameters
+    ----------
+    length_m : float
+        Coiled length ``L`` [m].
+    turns : float, optional
+        Turns [-] (default 76.4; see :func:`leg_turns` for a U's legs).
+    coil_diameter_m : float, optional
+        Coil diameter [m] (default 1.7 mm).
+    material : Material, optional
+        Fibre material (default :meth:`Material.silver_coated_nylon`).
+
+    Returns
+    -------
+    Tca
+        The TCA.
+
+    Raises
+    ------
+    ValueError
+        A geometry out of range (named, with its unit).
+
+    Examples
+    --------
+    >>> from tcarod.models.manipulators import manipulator_tca
+    >>> tca = manipulator_tca(0.040)
+    >>> round(tca.fibre_length * 1e3, 1), tca.turns, tca.chirality     # [mm], [-]
+    (154.5, 76.4, 'extension')
+    """
     return Tca.from_pitch_angle(length_m, TCA_PITCH_ANGLE_RAD, coil_diameter_m, turns, "extension", material)
 
 
@@ -142,16 +221,49 @@ def square_manipulator(
     coil_diameter_m: float = TCA_COIL_DIAMETER_M,
     turns_reading: TurnsReading = DEFAULT_TURNS_READING,
 ) -> Robot:
-    """A square EcoFlex body (10 mm side) of length ``length_m`` [m] with a
-    U-shaped TCA: two legs at body ``x = tca_offset_m`` [m],
-    ``y = +-2.5 mm``, anchored at base and tip (one temperature drives both:
-    use ``groups=[0, 0]`` in :mod:`tcarod.inverse`), each with
-    :func:`leg_turns` turns under ``turns_reading``.
+    """A square EcoFlex manipulator with a U-shaped TCA (the paper's Fig. 6 square).
 
-    ``gravity_m_per_s2``: gravity in the body-aligned frame (default
-    :data:`UPRIGHT`; :data:`HANGING` for a finger hanging down; ``None`` for
-    none). The other keywords replace one parameter for sensitivity studies.
-    Built by the core (``Manipulator::square`` in ``src/experiments.rs``).
+    A body of 10 mm side with the TCA's two legs at body ``x = tca_offset_m``,
+    ``y = +-2.5 mm``, anchored at base and tip, each with :func:`leg_turns`
+    turns. One temperature drives both legs: use ``groups=[0, 0]`` in the
+    inverse functions. Built by the core (``Manipulator::square`` in
+    ``src/experiments.rs``).
+
+    Parameters
+    ----------
+    length_m : float
+        Body length [m].
+    gravity_m_per_s2 : sequence of 3 float or None, optional
+        Gravity [m/s^2] in the body-aligned frame: :data:`UPRIGHT` (default),
+        :data:`HANGING` for a finger hanging down, ``None`` for none.
+    material : Material, optional
+        TCA fibre material.
+    body_youngs_modulus_pa : float, optional
+        Body Young's modulus [Pa] (default EcoFlex 10's 37.8 kPa).
+    tca_offset_m : float, optional
+        Leg offset from the neutral axis [m] (default 3 mm).
+    coil_diameter_m : float, optional
+        TCA coil diameter [m] (default 1.7 mm).
+    turns_reading : {"per_tca", "per_leg", "per_length"}, optional
+        How the paper's turns are read (default ``"per_tca"``).
+
+    Returns
+    -------
+    Robot
+        The manipulator.
+
+    Raises
+    ------
+    ValueError
+        A parameter out of range (named, with its unit).
+
+    Examples
+    --------
+    >>> from tcarod.models.manipulators import square_manipulator
+    >>> robot = square_manipulator(0.040)
+    >>> sol = robot.solve([100.0, 100.0])          # both legs at 100 C
+    >>> round(float(sol.tip_position[0]) * 1e3, 2)  # tip x [mm]: bent away from the TCA
+    -6.13
     """
     return _core.fixture_manipulator(
         "square",

@@ -28,10 +28,32 @@ __all__ = ["segment_bounds", "segmented_actuators"]
 def segment_bounds(segments: int | Sequence[float], s_start: float, s_end: float) -> list[tuple[float, float]]:
     """Consecutive ``(s_start, s_end)`` [m] of the segments over ``[s_start, s_end]``.
 
-    ``segments``: a number of equal segments, or the fractions of the span
-    (positive, summing to 1), proximal first; at most
-    ``tcarod._validate.MAX_SEGMENTS`` (1000) segments (``ValueError`` beyond).
-    Every segment must have a positive length in floating point.
+    Parameters
+    ----------
+    segments : int or sequence of float
+        A number of equal segments, or the fractions of the span (positive,
+        summing to 1), proximal first; at most 1000 segments.
+    s_start, s_end : float
+        The span along the body [m], ``0 <= s_start < s_end``.
+
+    Returns
+    -------
+    list of (float, float)
+        The segments' bounds [m], proximal first.
+
+    Raises
+    ------
+    TypeError
+        ``segments`` a float or bool.
+    ValueError
+        Fractions not positive or not summing to 1, too many segments, or a
+        segment of zero length in floating point.
+
+    Examples
+    --------
+    >>> from tcarod.models.segmented import segment_bounds
+    >>> tuple(segment_bounds((0.25, 0.75), 0.0, 0.040))      # [m]
+    ((0.0, 0.01), (0.01, 0.04))
     """
     s_start = V.real("s_start", s_start, lo=0.0, unit="m")
     s_end = V.real("s_end", s_end, lo=s_start, lo_open=True, unit="m")
@@ -62,13 +84,46 @@ def segmented_actuators(
     s_start: float,
     s_end: float,
 ) -> list[Any]:
-    """Actuators for ``tca``, spanning ``[s_start, s_end]`` [m] along ``routing``,
-    divided into segments in series (proximal first).
+    """Actuators for one TCA divided into segments in series, proximal first.
 
-    ``segments``: a number of equal segments or the fractions of the span.
-    Segment ``k`` is ``Actuator.tca(tca.segment(f_k), routing, s_k, s_{k+1})``;
-    give it one temperature [C] per segment when solving. With one segment
-    this is the whole TCA between the same anchors.
+    Segment ``k`` is ``Actuator.tca(tca.segment(f_k), routing, s_k, s_{k+1})``:
+    give it its own temperature [C] when solving. With one segment this is
+    the whole TCA between the same anchors.
+
+    Parameters
+    ----------
+    tca : Tca
+        The whole TCA.
+    routing : Routing
+        Its path in the body.
+    segments : int or sequence of float
+        A number of equal segments or the fractions of the span.
+    s_start, s_end : float
+        The span along the body [m].
+
+    Returns
+    -------
+    list of Actuator
+        One per segment.
+
+    Raises
+    ------
+    TypeError
+        ``tca`` or ``routing`` of the wrong type.
+    ValueError
+        As for :func:`segment_bounds`.
+
+    Examples
+    --------
+    >>> from tcarod import Robot, Routing
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.models.manipulators import manipulator_tca
+    >>> from tcarod.models.segmented import segmented_actuators
+    >>> acts = segmented_actuators(manipulator_tca(0.040), Routing.straight(0.003, 0.0), 2, 0.0, 0.040)
+    >>> robot = Robot(fig6_square_robot().body, acts)
+    >>> sol = robot.solve([120.0, 25.0], steps=20)   # heat the proximal half only
+    >>> len(acts), bool(sol.tip_position[0] < 0)
+    (2, True)
     """
     V.instance("tca", tca, _core.Tca, "a tcarod.Tca")
     V.instance("routing", routing, Routing, "a tcarod.Routing")

@@ -57,13 +57,40 @@ POLICIES: tuple[str, ...] = ("report", "require", "continue", "off")
 def stability(
     robot: _core.Robot, solution: _core.Solution, *, blocked: Sequence[Sequence[float]] | None = None
 ) -> Stability:
-    """Stability verdict of ``solution`` (an equilibrium of ``robot``).
+    """Stability verdict of ``solution``, an equilibrium of ``robot``.
 
-    ``blocked``: world directions along which the tip translation is held
-    (e.g. the block normal of a blocked-tip solution). One tangent
-    integration. Returns a :class:`Stability` with ``stable``, ``margin``
-    [-], ``conjugate_point`` [m] or None, and the profiles ``s``,
-    ``determinant`` and ``min_stiffness``.
+    Till and Rucker's conjugate-point test extended to the actuators, dead
+    loads and a blocked tip: one tangent integration.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot solved.
+    solution : Solution
+        One of ``robot``'s equilibria.
+    blocked : sequence of (3,) sequences of float, optional
+        World directions [-] along which the tip translation is held (e.g.
+        the block normal of a blocked-tip solution); default none.
+
+    Returns
+    -------
+    Stability
+        ``stable``, ``margin`` [-], ``conjugate_point`` [m] or None, and the
+        profiles ``s`` [m], ``determinant`` [-] and ``min_stiffness`` [-].
+
+    Raises
+    ------
+    ValueError
+        ``solution`` is not an equilibrium of ``robot``.
+
+    Examples
+    --------
+    >>> from tcarod.paper.buckling import column_robot
+    >>> from tcarod.models.stability import stability
+    >>> column = column_robot()                     # 50 mm soft column, upright under 1 g
+    >>> verdict = stability(column, column.solve([], steps=20, stability="off"))
+    >>> verdict.stable, round(verdict.margin, 2)    # [-]
+    (True, 0.33)
     """
     return _core.stability(robot, solution, blocked=None if blocked is None else [list(b) for b in blocked])
 
@@ -85,17 +112,52 @@ def follow_branch(
     tol: float = 1e-10,
     max_iter: int = 50,
 ) -> Branch:
-    """Follow the equilibria of ``robot`` as ``parameter`` goes from
-    ``start`` to ``end``.
+    """Follow the equilibria of ``robot`` as ``parameter`` goes from ``start`` to ``end``.
 
-    ``parameter="inputs"`` drives the inputs of ``actuators`` (default all)
-    together; the other inputs stay at ``inputs`` (default the reference
-    inputs). ``"gravity_scale"`` multiplies the body's gravity vector,
-    ``"tip_load_scale"`` its tip force and moment. Steps are arclengths in
-    units of ``|end - start|``. ``warm_start``: an equilibrium at ``start``
-    to begin on (one of several coexisting shapes). ``stable_only``: stop
-    following a branch where it loses stability or folds back and land on the
-    nearest stable equilibrium just beyond (``Branch.jumps``).
+    Pseudo-arclength continuation through folds, with each point's stability.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot.
+    parameter : {"inputs", "gravity_scale", "tip_load_scale"}
+        ``"inputs"`` drives the inputs of ``actuators`` together (temperature
+        [C] for TCAs); ``"gravity_scale"`` [-] multiplies the body's gravity
+        vector, ``"tip_load_scale"`` [-] its tip force and moment.
+    start, end : float
+        The parameter's range (its unit).
+    actuators, inputs : sequence, optional
+        The actuators driven by ``"inputs"`` (default all); the other
+        actuators' inputs (default the reference inputs).
+    warm_start : Solution, optional
+        An equilibrium at ``start`` to begin on (one of coexisting shapes).
+    stable_only : bool, optional
+        Sweep like a physical robot: leave a branch where it loses stability
+        or folds back for the nearest stable equilibrium (``Branch.jumps``).
+    step, max_step, max_points : optional
+        First and largest arclength step in units of ``|end - start|``
+        (0.02, 0.1) and the point budget (500).
+    steps, tol, max_iter : optional
+        RK4 steps (100), Newton tolerance on the dimensionless residual
+        (1e-10) and iterations per point (50), as for ``Robot.solve``.
+
+    Returns
+    -------
+    Branch
+        The points (tip [m], stability, margin [-]), folds, bifurcations, jumps.
+
+    Raises
+    ------
+    ValueError
+        An argument outside its range (named, with its unit).
+
+    Examples
+    --------
+    >>> from tcarod.paper.buckling import column_robot
+    >>> from tcarod.models.stability import follow_branch
+    >>> sweep = follow_branch(column_robot(), "gravity_scale", 0.0, 3.0, steps=20, stable_only=True)
+    >>> [round(p, 2) for p, before, after in sweep.jumps], bool(sweep.stable.all())   # buckles at 1.54 g
+    ([1.54], True)
     """
     return _core.follow_branch(
         robot,
@@ -124,10 +186,43 @@ def plot_branch(
     color: str | None = None,
     scale: float = 1e3,
 ) -> Any:
-    """Plot tip coordinate ``component`` (0 x, 1 y, 2 z; times ``scale``,
-    default mm) against the parameter: stable runs solid, unstable dashed,
-    folds as circles, bifurcations as crosses, jumps as dotted arrows.
-    Returns the matplotlib Axes."""
+    """Plot a tip coordinate against the branch's parameter.
+
+    Stable runs solid, unstable dashed, folds as circles, bifurcations as
+    crosses, jumps as dotted arrows (the ``plot`` extra).
+
+    Parameters
+    ----------
+    branch : Branch
+        From :func:`follow_branch`.
+    component : {0, 1, 2}, optional
+        Tip coordinate: 0 x, 1 y, 2 z (default).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into (default: a new figure's).
+    label, color : str, optional
+        Legend label and line colour.
+    scale : float, optional
+        Factor on the coordinate (default 1e3: mm).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn into.
+
+    Raises
+    ------
+    ValueError
+        ``component`` other than 0, 1 or 2.
+
+    Examples
+    --------
+    >>> from tcarod.paper.buckling import column_robot
+    >>> from tcarod.models.stability import follow_branch, plot_branch
+    >>> branch = follow_branch(column_robot(), "gravity_scale", 0.0, 3.0, steps=20)
+    >>> ax = plot_branch(branch, component=2, label="tip z")
+    >>> ax.get_legend_handles_labels()[1]
+    ['tip z']
+    """
     if component not in (0, 1, 2):
         raise ValueError(f"component must be 0, 1 or 2, got {component!r}")
     plt = require("matplotlib.pyplot")

@@ -62,7 +62,15 @@ PAPER_TABLE1_PREDICTIONS_C: Final[tuple[float, ...]] = TABLE1_PAPER_PREDICTIONS_
 
 @dataclass(frozen=True)
 class Parameter:
-    """A design parameter that a study scales."""
+    """A design parameter of the Table I finger that a study scales.
+
+    Examples
+    --------
+    >>> from tcarod.models.studies import PARAMETERS
+    >>> p = PARAMETERS[6]
+    >>> p.key, p.default, p.unit
+    ('E_B', 37800.0, 'Pa')
+    """
 
     key: str
     description: str
@@ -93,10 +101,35 @@ _KEYS: Final[tuple[str, ...]] = tuple(p.key for p in PARAMETERS)
 
 
 def perturbed_finger(scales: dict[str, float] | None = None) -> Robot:
-    """The Table I finger with parameters multiplied by ``scales``
-    (``{"rho": 0.5}`` halves ``rho(25 C)``); keys from :data:`PARAMETERS`.
+    """The Table I finger with parameters multiplied by ``scales``.
+
     Material coefficients not scaled keep their default values (``dG_T/dT``
-    included)."""
+    included).
+
+    Parameters
+    ----------
+    scales : dict of str to float, optional
+        Factors [-] by key of :data:`PARAMETERS` (``{"rho": 0.5}`` halves
+        ``rho(25 C)``); default none.
+
+    Returns
+    -------
+    Robot
+        The finger, hanging.
+
+    Raises
+    ------
+    TypeError
+        ``scales`` not a dict.
+    ValueError
+        An unknown key.
+
+    Examples
+    --------
+    >>> from tcarod.models.studies import perturbed_finger
+    >>> perturbed_finger({"E_B": 1.1}).body.youngs_modulus      # [Pa], 10 % stiffer body
+    41580.0
+    """
     if scales is not None and not isinstance(scales, dict):
         raise TypeError(f"scales must be a dict {{parameter: factor}}, not {type(scales).__name__}")
     s = dict(scales or {})
@@ -139,9 +172,33 @@ def _grip(finger: Robot, mass_kg: float) -> float:
 def table1_grip_temperatures(
     scales: dict[str, float] | None = None, masses_kg: Sequence[float] = TABLE1_MASSES_KG
 ) -> tuple[float, ...]:
-    """Grip temperatures [C] (eq 44, ``mu = 1.1``, two fingers) of the Table I
-    finger with ``scales`` applied (see :func:`perturbed_finger`). Raises
-    ``ValueError`` if a mass needs a temperature above the material's range."""
+    """Grip temperatures of the Table I finger with ``scales`` applied.
+
+    Eq 44 with ``mu = 1.1`` and two fingers (see :func:`perturbed_finger`).
+
+    Parameters
+    ----------
+    scales : dict of str to float, optional
+        Factors [-] by key of :data:`PARAMETERS`.
+    masses_kg : sequence of float, optional
+        Masses [kg] (default Table I's 1, 2 and 3 g).
+
+    Returns
+    -------
+    tuple of float
+        Grip temperature [C] per mass.
+
+    Raises
+    ------
+    ValueError
+        A mass that needs a temperature above the material's range.
+
+    Examples
+    --------
+    >>> from tcarod.models.studies import table1_grip_temperatures
+    >>> [round(t, 1) for t in table1_grip_temperatures()]     # [C]
+    [80.9, 88.7, 96.0]
+    """
     finger = perturbed_finger(scales)
     masses = V.real_array("masses_kg", masses_kg, ndim=1, max_size=100, unit="kg")
     return tuple(_grip(finger, float(m)) for m in masses)
@@ -149,7 +206,17 @@ def table1_grip_temperatures(
 
 @dataclass(frozen=True)
 class Sensitivity:
-    """Response of the Table I prediction to one parameter."""
+    """Response of the Table I prediction to one parameter.
+
+    Grip temperatures [C] at the base value and at ``1 -+ step`` times it.
+
+    Examples
+    --------
+    >>> from tcarod.models.studies import table1_sensitivity
+    >>> top = table1_sensitivity()[0]                   # the most influential parameter
+    >>> top.parameter.key, round(top.mean_abs_elasticity, 2)
+    ('coil_diameter', 1.1)
+    """
 
     parameter: Parameter
     step: float
@@ -160,17 +227,35 @@ class Sensitivity:
 
     @property
     def slope_c(self) -> tuple[float, ...]:
-        """``dT / d ln p`` [C] per mass (central difference)."""
+        """``dT / d ln p`` per mass (central difference) [C].
+
+        Returns
+        -------
+        tuple of float
+            One slope [C] per mass.
+        """
         return tuple((p - m) / (2.0 * self.step) for p, m in zip(self.plus_c, self.minus_c))
 
     @property
     def elasticity(self) -> tuple[float, ...]:
-        """``d ln(T - T_contact) / d ln p`` [-] per mass (the rise above contact)."""
+        """``d ln(T - T_contact) / d ln p`` per mass [-].
+
+        Returns
+        -------
+        tuple of float
+            One elasticity [-] per mass: of the rise above contact.
+        """
         return tuple(s / (b - TABLE1_CONTACT_TEMPERATURE_C) for s, b in zip(self.slope_c, self.base_c))
 
     @property
     def mean_abs_elasticity(self) -> float:
-        """Mean over the masses of ``|elasticity|`` [-]: the ranking key."""
+        """Mean over the masses of ``|elasticity|`` [-]: the ranking key.
+
+        Returns
+        -------
+        float
+            Mean [-].
+        """
         return float(np.mean(np.abs(self.elasticity)))
 
     def to_json(self) -> dict[str, Any]:
@@ -191,8 +276,34 @@ class Sensitivity:
 
 
 def table1_sensitivity(step: float = 0.10, masses_kg: Sequence[float] = TABLE1_MASSES_KG) -> tuple[Sensitivity, ...]:
-    """Every parameter of :data:`PARAMETERS` scaled by ``1 -+ step``; sorted
-    by :attr:`Sensitivity.mean_abs_elasticity`, largest first."""
+    """The sensitivity of the Table I prediction to every parameter, largest first.
+
+    Every parameter of :data:`PARAMETERS` scaled by ``1 -+ step``, sorted by
+    :attr:`Sensitivity.mean_abs_elasticity`.
+
+    Parameters
+    ----------
+    step : float, optional
+        Relative step [-], in (0, 0.5) (default 0.10).
+    masses_kg : sequence of float, optional
+        Masses [kg] (default Table I's).
+
+    Returns
+    -------
+    tuple of Sensitivity
+        One per parameter, largest first.
+
+    Raises
+    ------
+    ValueError
+        A step outside (0, 0.5).
+
+    Examples
+    --------
+    >>> from tcarod.models.studies import table1_sensitivity
+    >>> [s.parameter.key for s in table1_sensitivity()][:3]
+    ['coil_diameter', 'rho(T)', 'E_B']
+    """
     step = V.real("step", step, lo=0.0, hi=0.5, lo_open=True, hi_open=True)
     base = table1_grip_temperatures(None, masses_kg)
     out = []

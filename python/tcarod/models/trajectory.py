@@ -19,7 +19,34 @@ __all__ = ["ShapeTrajectory", "quasi_static_trajectory", "solve_with_voltages", 
 
 
 def steady_temperatures(models: Sequence[ThermalModel], voltages_v: Sequence[float]) -> list[float]:
-    """Steady temperature [C] of each actuator under its voltage [V]."""
+    """Steady temperature [C] of each actuator under its voltage [V].
+
+    Parameters
+    ----------
+    models : sequence of ThermalModel
+        One electro-thermal model per actuator.
+    voltages_v : sequence of float
+        One voltage per actuator [V].
+
+    Returns
+    -------
+    list of float
+        Steady temperatures [C].
+
+    Raises
+    ------
+    ValueError
+        Lengths that differ, or a voltage whose steady state exceeds ``t_max``.
+
+    Examples
+    --------
+    >>> from tcarod.models.thermal import ThermalModel
+    >>> from tcarod.models.trajectory import steady_temperatures
+    >>> heater = ThermalModel(fibre_length_m=0.155, threads=3, resistance=60.0)     # [m], [ohm]
+    >>> cold, warm = steady_temperatures((heater, heater), (0.0, 1.0))     # [C] at 0 V and 1 V
+    >>> round(cold, 1), round(warm, 1)
+    (25.0, 27.5)
+    """
     models = _models(models)
     voltages_v = V.sequence("voltages_v", voltages_v, V.MAX_SEGMENTS)
     if len(models) != len(voltages_v):
@@ -30,8 +57,40 @@ def steady_temperatures(models: Sequence[ThermalModel], voltages_v: Sequence[flo
 def solve_with_voltages(
     robot: Any, models: Sequence[ThermalModel], voltages_v: Sequence[float], **solve_kwargs: Any
 ) -> Any:
-    """Forward solution of ``robot`` with each actuator at the steady
-    temperature of its voltage [V] (one :class:`ThermalModel` per actuator)."""
+    """Forward solution with each actuator at the steady temperature of its voltage.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot.
+    models : sequence of ThermalModel
+        One electro-thermal model per actuator.
+    voltages_v : sequence of float
+        One voltage per actuator [V].
+    **solve_kwargs
+        Keywords of ``Robot.solve``.
+
+    Returns
+    -------
+    Solution
+        The shape at the steady temperatures.
+
+    Raises
+    ------
+    ValueError
+        One model per actuator is needed; a steady state above ``t_max``.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.models.thermal import ThermalModel, VoltageProfile
+    >>> robot = fig6_square_robot()
+    >>> heater = ThermalModel(fibre_length_m=0.155, threads=3, resistance=60.0)     # [m], [ohm]
+    >>> from tcarod.models.trajectory import solve_with_voltages
+    >>> sol = solve_with_voltages(robot, [heater, heater], [5.0, 5.0], steps=20)
+    >>> tuple(sol.inputs.round(1).tolist())     # steady temperatures [C]
+    (87.0, 87.0)
+    """
     _robot(robot)
     models = _models(models)
     if len(models) != len(robot.actuators):
@@ -41,9 +100,32 @@ def solve_with_voltages(
 
 @dataclass(frozen=True, eq=False)
 class ShapeTrajectory:
-    """Quasi-static shapes along a heating transient: at each ``time_s`` [s],
-    the actuator temperatures [C] (``(n_t, n_actuators)``), the tip position [m]
-    (``(n_t, 3)``) and the forward solution."""
+    """Quasi-static shapes along a heating transient.
+
+    Made by :func:`quasi_static_trajectory`.
+
+    Attributes
+    ----------
+    time_s : numpy.ndarray
+        Output times [s], shape ``(n_t,)``.
+    temperatures_c : numpy.ndarray
+        Actuator temperatures [C], shape ``(n_t, n_actuators)``.
+    tip_positions_m : numpy.ndarray
+        Tip positions [m], shape ``(n_t, 3)``.
+    solutions : list of Solution
+        The forward solution at each time.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.models.thermal import ThermalModel, VoltageProfile
+    >>> robot = fig6_square_robot()
+    >>> heater = ThermalModel(fibre_length_m=0.155, threads=3, resistance=60.0)     # [m], [ohm]
+    >>> from tcarod.models.trajectory import quasi_static_trajectory
+    >>> traj = quasi_static_trajectory(robot, [heater, heater], [VoltageProfile.step(5.0)] * 2, [0.0, 5.0, 60.0], steps=20)
+    >>> traj.temperatures_c[:, 0].round(1).tolist()       # [C], heating toward 87.0 C
+    [25.0, 64.7, 87.0]
+    """
 
     time_s: FloatArray
     temperatures_c: FloatArray
@@ -58,19 +140,52 @@ def quasi_static_trajectory(
     times_s: Sequence[float] | FloatArray,
     steps: int = 100,
 ) -> ShapeTrajectory:
-    """Temperatures from each actuator's voltage profile, then the quasi-static
-    shape at every time (heating takes seconds, the body settles in far less),
-    each solve warm-started from the previous one, without the stability
-    verdict (``stability="off"``; ``Solution.stable`` computes it on demand).
+    """Quasi-static shapes of a robot driven by voltage profiles.
 
-    With constant or temperature-dependent resistance the temperature
-    trajectories are computed first (:meth:`ThermalModel.transient`). If a
-    resistance depends on strain, heating and mechanics are coupled: between
-    output times the temperatures advance by RK4 with each TCA's strain
-    (elongation / coiled length) frozen at the last solved shape.
+    Temperatures from each actuator's voltage profile, then the shape at
+    every time (heating takes seconds, the body settles in far less), each
+    solve warm-started from the previous one, without the stability verdict
+    (``Solution.stable`` computes it on demand). With constant or
+    temperature-dependent resistance the temperature trajectories are
+    computed first (:meth:`ThermalModel.transient`). If a resistance depends
+    on strain, heating and mechanics are coupled: between output times the
+    temperatures advance by RK4 with each TCA's strain (elongation / coiled
+    length) frozen at the last solved shape.
 
-    Raises ``ValueError`` naming the time [s] at which a temperature first
-    exceeds ``t_max`` (the mechanics is not defined there).
+    Parameters
+    ----------
+    robot : Robot
+        The robot.
+    models : sequence of ThermalModel
+        One electro-thermal model per actuator.
+    profiles : sequence of VoltageProfile
+        One voltage profile per actuator [V against s].
+    times_s : sequence of float
+        Output times [s], increasing.
+    steps : int, optional
+        RK4 steps per solve (default 100).
+
+    Returns
+    -------
+    ShapeTrajectory
+        Temperatures [C], tip positions [m] and solutions at the times.
+
+    Raises
+    ------
+    ValueError
+        Naming the time [s] at which a temperature first exceeds ``t_max``
+        (the mechanics is not defined there), or mismatched lengths.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.models.thermal import ThermalModel, VoltageProfile
+    >>> robot = fig6_square_robot()
+    >>> heater = ThermalModel(fibre_length_m=0.155, threads=3, resistance=60.0)     # [m], [ohm]
+    >>> from tcarod.models.trajectory import quasi_static_trajectory
+    >>> traj = quasi_static_trajectory(robot, [heater, heater], [VoltageProfile.step(5.0)] * 2, [0.0, 60.0], steps=20)
+    >>> round(float(traj.tip_positions_m[-1, 2]) * 1e3, 1)    # tip height [mm] after 60 s
+    39.9
     """
     _robot(robot)
     models = _models(models)
@@ -97,6 +212,20 @@ def quasi_static_trajectory(
     )
     if over.size:
         raise ValueError(f"the temperature exceeds t_max at t = {t[over[0]]:.3f} s: lower the voltage")
+    return _trajectory(robot, models, profiles, t, temps, coupled, steps)
+
+
+def _trajectory(
+    robot: Any,
+    models: list[ThermalModel],
+    profiles: list[VoltageProfile],
+    t: FloatArray,
+    temps: FloatArray,
+    coupled: bool,
+    steps: int,
+) -> ShapeTrajectory:
+    """The solves of :func:`quasi_static_trajectory` at the times ``t`` [s]:
+    ``temps`` [C] as computed, or advanced here between times when coupled."""
     coiled = [_coiled_length(a) for a in robot.actuators]
     sols: list[Any] = []
     tips = np.empty((t.size, 3))

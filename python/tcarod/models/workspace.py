@@ -26,10 +26,32 @@ FloatArray = npt.NDArray[np.float64]
 
 
 def snake_grid(levels: Sequence[Sequence[float]]) -> FloatArray:
-    """All combinations of ``levels[i]`` (one list per input), ordered so that
-    consecutive rows differ in one input by one level (a boustrophedon), which
-    keeps warm starts close. Shape ``(prod(len), len(levels))``; at most
-    ``MAX_GRID_POINTS`` (100,000) rows (``ValueError`` beyond)."""
+    """All combinations of the input levels, in boustrophedon order.
+
+    Consecutive rows differ in one input by one level, which keeps warm
+    starts close.
+
+    Parameters
+    ----------
+    levels : sequence of sequences of float
+        ``levels[i]``: the values of input ``i`` (temperature [C] for a TCA).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(prod(len(levels[i])), len(levels))``.
+
+    Raises
+    ------
+    ValueError
+        More than ``MAX_GRID_POINTS`` (100,000) rows.
+
+    Examples
+    --------
+    >>> from tcarod.models.workspace import snake_grid
+    >>> snake_grid([[25.0, 60.0], [25.0, 60.0, 100.0]]).tolist()
+    [[25.0, 25.0], [25.0, 60.0], [25.0, 100.0], [60.0, 100.0], [60.0, 60.0], [60.0, 25.0]]
+    """
     lists = [V.real_array(f"levels[{i}]", lv, ndim=1).tolist() for i, lv in enumerate(V.sequence("levels", levels, 64))]
     total = 1
     for lv in lists:
@@ -47,11 +69,40 @@ def snake_grid(levels: Sequence[Sequence[float]]) -> FloatArray:
 
 
 def solve_rows(robot: Any, inputs: FloatArray, steps: int = 100) -> list[Any | None]:
-    """Forward solutions for each row of ``inputs`` (``None`` where a solve fails).
+    """Forward solutions for each row of ``inputs``, ``None`` where a solve fails.
 
     The one place the workspace's solves happen: a warm-started
     :meth:`Robot.sweep` over all rows; if it raises, the rows are solved one
-    at a time, warm-started from the last success.
+    by one, warm-started where possible. No stability verdict (tip positions
+    only).
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot.
+    inputs : numpy.ndarray
+        ``(n, n_actuators)`` inputs (temperature [C] for TCAs); at most
+        100,000 rows.
+    steps : int, optional
+        RK4 steps per solve (default 100).
+
+    Returns
+    -------
+    list of Solution or None
+        One per row.
+
+    Raises
+    ------
+    ValueError
+        Too many rows, or rows of the wrong width.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.models.workspace import solve_rows
+    >>> sols = solve_rows(fig6_square_robot(), np.array([[25.0, 25.0], [100.0, 100.0]]), steps=20)
+    >>> tuple(round(float(s.tip_position[0]) * 1e3, 1) for s in sols)      # tip x [mm]
+    (-0.9, -6.1)
     """
     _check_robot(robot)
     steps = V.integer("steps", steps, 1, 100_000)
@@ -82,14 +133,30 @@ def solve_rows(robot: Any, inputs: FloatArray, steps: int = 100) -> list[Any | N
 
 @dataclass(frozen=True, eq=False)
 class Workspace:
-    """Tip positions over a grid of inputs.
+    """Tip positions of a robot over a grid of inputs.
 
-    ``temperatures_c``: one row of inputs per point, shape ``(n, n_inputs)``
-    [C for TCAs]; ``tip_positions_m``: shape ``(n, 3)`` [m], NaN where the
-    solve failed; ``tip_tangents``: unit tip tangent (third column of the tip
-    rotation), shape ``(n, 3)``; ``bending_angle_rad``: angle between tip
-    tangent and the base tangent ``+z`` [rad]; ``elapsed_s``: wall time of
-    the solves [s].
+    Made by :func:`workspace_map`.
+
+    Attributes
+    ----------
+    grid_c : numpy.ndarray
+        The values each input takes [C for TCAs].
+    temperatures_c : numpy.ndarray
+        One row of inputs per point, shape ``(n, n_inputs)`` [C for TCAs].
+    tip_positions_m : numpy.ndarray
+        Shape ``(n, 3)`` [m], NaN where the solve failed.
+    tip_tangents : numpy.ndarray
+        Unit tip tangent (third column of the tip rotation), shape ``(n, 3)``.
+    elapsed_s : float
+        Wall time of the solves [s].
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.models.workspace import workspace_map
+    >>> ws = workspace_map(fig6_square_robot(), [25.0, 100.0], steps=20)
+    >>> ws.temperatures_c.shape, ws.n_failed
+    ((4, 2), 0)
     """
 
     grid_c: FloatArray
@@ -100,12 +167,24 @@ class Workspace:
 
     @property
     def n_failed(self) -> int:
-        """Points whose solve failed."""
+        """Points whose solve failed.
+
+        Returns
+        -------
+        int
+            Rows of ``tip_positions_m`` that are NaN [-].
+        """
         return int(np.sum(~np.all(np.isfinite(self.tip_positions_m), axis=1)))
 
     @property
     def bending_angle_rad(self) -> FloatArray:
-        """Angle [rad] between the tip tangent and ``+z``."""
+        """Angle between the tip tangent and the base tangent ``+z`` [rad].
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape ``(n,)`` [rad].
+        """
         return np.asarray(np.arccos(np.clip(self.tip_tangents[:, 2], -1.0, 1.0)), dtype=np.float64)
 
 
@@ -115,12 +194,37 @@ MAX_MAP_STEPS = 1000
 
 
 def workspace_map(robot: Any, grid_c: Sequence[float] | FloatArray, steps: int = 100) -> Workspace:
-    """Tip positions of ``robot`` over the ``k^n`` grid of inputs, each input
-    taking every value of ``grid_c`` [C for TCAs] (``n`` = number of actuators).
+    """Tip positions of ``robot`` over the ``k^n`` grid of inputs.
 
-    At most ``MAX_GRID_POINTS`` (100,000) points, at most ``MAX_MAP_STEPS``
-    (1,000) RK4 steps per solve, and at most ``MAX_RK4_STEPS`` (10,000,000)
-    RK4 steps over the whole map (points x steps); ``ValueError`` beyond.
+    Each input takes every value of ``grid_c`` (``n`` = number of actuators).
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot.
+    grid_c : sequence of float
+        The ``k`` values of each input [C for TCAs].
+    steps : int, optional
+        RK4 steps per solve, at most ``MAX_MAP_STEPS`` (1,000; default 100).
+
+    Returns
+    -------
+    Workspace
+        The tips [m], tangents and bending angles [rad] of the grid.
+
+    Raises
+    ------
+    ValueError
+        More than 100,000 points, more than 1,000 steps, or more than
+        10,000,000 RK4 steps over the whole map.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.models.workspace import workspace_map
+    >>> ws = workspace_map(fig6_square_robot(), [25.0, 60.0, 100.0], steps=20)
+    >>> round(float(np.degrees(ws.bending_angle_rad.max())), 1)     # [deg] at 100 C
+    16.1
     """
     _check_robot(robot)
     grid = V.real_array("grid_c", grid_c, ndim=1, unit="C")

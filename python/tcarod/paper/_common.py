@@ -9,6 +9,7 @@ negative force.
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -41,11 +42,30 @@ PAPER_TEMPERATURES_C: tuple[float, ...] = tuple(float(t) for t in range(25, 161,
 
 
 class ExperimentResult(Protocol):
-    """What ``tcarod reproduce`` needs from an experiment's prediction."""
+    """What ``tcarod reproduce`` needs from an experiment's prediction.
+
+    A protocol: ``name``, ``table()``, ``to_json()`` and ``plot(path)``.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig5 import FIG5
+    >>> result = dataclasses.replace(FIG5, temperatures_c=(25.0, 160.0)).predict()   # a Fig5Result
+    >>> result.name, result.table().splitlines()[0][:7], result.to_json()["name"]
+    ('fig5', 'Fig. 5:', 'fig5')
+    >>> result.plot("fig5.png").name
+    'fig5.png'
+    """
 
     @property
     def name(self) -> str:
-        """Registry name, e.g. ``"fig5"``."""
+        """Registry name.
+
+        Returns
+        -------
+        str
+            E.g. ``"fig5"``.
+        """
         ...
 
     def table(self) -> str:
@@ -159,3 +179,25 @@ def onset_temperature_c(tca: Tca, force_n: float) -> float | None:
         return None  # already open at the bottom of the range: no onset inside it
     # Coils closed at t_lo and open at t_hi: the onset is bracketed.
     return tca.onset_temperature(force_n)
+
+
+def mm_text(x: float) -> str:
+    """A length [m] as text in mm (two decimals), ``"inf"`` if infinite."""
+    return "inf" if not math.isfinite(x) else f"{x * 1e3:.2f}"
+
+
+def finite_or_none(x: float) -> float | None:
+    """``x`` for JSON: ``None`` where it is infinite (a straight body's radius)."""
+    return float(x) if math.isfinite(x) else None
+
+
+def relative_difference(a: FloatArray, b: FloatArray) -> float:
+    """Largest relative difference of two radius arrays [-]: 0 where both are
+    infinite (straight), infinite where only one is."""
+    both_inf = np.isinf(a) & np.isinf(b)
+    ok = np.isfinite(a) & np.isfinite(b)
+    if not np.all(ok | both_inf):
+        return math.inf  # one straight, the other not
+    if not ok.any():
+        return 0.0
+    return float(np.max(np.abs(a[ok] - b[ok]) / np.abs(b[ok])))

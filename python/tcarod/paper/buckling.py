@@ -42,6 +42,8 @@ from ..models.manipulators import (
 )
 from ..models.stability import Branch, follow_branch, plot_branch
 
+__all__ = ["BucklingResult", "column_robot", "heavy_circle", "predict_buckling", "weight_parameter"]
+
 #: EcoFlex 10 (Section V, the core's fixture): density [kg/m^3], Young's modulus [Pa], Poisson ratio [-].
 ECOFLEX10: Final[tuple[float, float, float]] = (
     ECOFLEX10_DENSITY_KG_PER_M3,
@@ -58,7 +60,21 @@ HEAVY_FACTOR: Final[float] = 2.0
 
 
 def column_robot() -> _core.Robot:
-    """The upright soft column under 1 g (gravity ``-z``)."""
+    """The upright soft column under 1 g (gravity ``-z``).
+
+    EcoFlex 10, 50 mm long, 10 x 9 mm section, no actuators.
+
+    Returns
+    -------
+    Robot
+        The column.
+
+    Examples
+    --------
+    >>> from tcarod.paper.buckling import column_robot, weight_parameter
+    >>> round(weight_parameter(column_robot()), 2)    # [-], below Greenhill's 7.84: it stands
+    5.0
+    """
     rho, e, nu = ECOFLEX10
     body = _core.Body(
         COLUMN_LENGTH_M,
@@ -72,7 +88,27 @@ def column_robot() -> _core.Robot:
 
 
 def weight_parameter(robot: _core.Robot) -> float:
-    """rho A g L^3 / EI [-] of ``robot`` at its gravity (weak axis)."""
+    """The weight parameter ``rho A g L^3 / EI`` of ``robot`` at its gravity [-].
+
+    About the weak axis; an upright clamped column buckles under its own
+    weight above Greenhill's 7.837.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot (its body's density, section, modulus, gravity and length).
+
+    Returns
+    -------
+    float
+        ``rho A g L^3 / EI`` [-].
+
+    Examples
+    --------
+    >>> from tcarod.paper.buckling import column_robot, weight_parameter
+    >>> round(weight_parameter(column_robot()), 3)
+    4.998
+    """
     b = robot.body
     area, ix, iy, _ = b.section.properties
     g = float(np.linalg.norm(b.gravity))
@@ -80,8 +116,25 @@ def weight_parameter(robot: _core.Robot) -> float:
 
 
 def heavy_circle(weight: float = HEAVY_FACTOR) -> _core.Robot:
-    """The Fig. 6 circle with its pre-curvature turned toward +x and its
-    weight times ``weight``."""
+    """The Fig. 6 circle manipulator with its gravity scaled and its pre-curvature toward +x.
+
+    Parameters
+    ----------
+    weight : float, optional
+        Factor on the body's weight, applied to gravity [-] (default 2).
+
+    Returns
+    -------
+    Robot
+        The manipulator, upright.
+
+    Examples
+    --------
+    >>> from tcarod.paper.buckling import heavy_circle
+    >>> robot = heavy_circle(2.0)
+    >>> robot.body.gravity.tolist()                # [m/s^2]: twice 1 g, upright
+    [0.0, 0.0, -19.62]
+    """
     base = _core._experiment_robot("fig6_circle", True)
     b = base.body
     body = b.replace(omega_star=[-w for w in b.omega_star], gravity=[g * weight for g in b.gravity])
@@ -90,7 +143,17 @@ def heavy_circle(weight: float = HEAVY_FACTOR) -> _core.Robot:
 
 @dataclass(frozen=True)
 class BucklingResult:
-    """Branches of the column and of the heated manipulator."""
+    """Branches of the upright column and of the heated heavy circle manipulator.
+
+    Made by :func:`predict_buckling` (``tcarod reproduce buckling``).
+
+    Examples
+    --------
+    >>> from tcarod.paper.buckling import predict_buckling
+    >>> result = predict_buckling()                  # a few seconds
+    >>> round(result.column_critical_scale(), 2)          # gravity scale [-] where the column buckles
+    1.54
+    """
 
     column_weight_per_g: float
     column_branch: Branch
@@ -101,19 +164,46 @@ class BucklingResult:
 
     @property
     def name(self) -> str:
+        """Registry name.
+
+        Returns
+        -------
+        str
+            ``"buckling"``.
+        """
         return "buckling"
 
     def column_critical_scale(self) -> float:
-        """Gravity scale [-] of the first bifurcation of the straight column."""
+        """Gravity scale of the first bifurcation of the straight column [-].
+
+        Returns
+        -------
+        float
+            Scale [-]; NaN if the branch has none.
+        """
         b = self.column_branch.bifurcations
         return float(b[0]) if len(b) else float("nan")
 
     def circle_critical_c(self) -> float:
-        """Temperature [C] where the in-plane shape of the heated circle turns stable."""
+        """Temperature where the in-plane shape of the heated circle turns stable [C].
+
+        Returns
+        -------
+        float
+            Temperature [C]; NaN if the branch has none.
+        """
         b = self.circle_planar.bifurcations
         return float(b[0]) if len(b) else float("nan")
 
     def table(self) -> str:
+        """The studies as a text table.
+
+        Returns
+        -------
+        str
+            The critical weight parameter against Greenhill's, the circle's
+            critical temperature [C] and the jumps of the stable sweeps.
+        """
         q = self.column_critical_scale() * self.column_weight_per_g
         lines = [
             "Self-weight buckling of an upright EcoFlex column (50 mm, 10 x 9 mm)",
@@ -142,6 +232,15 @@ class BucklingResult:
         return "\n".join(lines)
 
     def to_json(self) -> dict[str, Any]:
+        """JSON-serialisable branches, every key naming its unit.
+
+        Returns
+        -------
+        dict
+            Parameters, tip positions [m], stability and margins [-] of each
+            branch, with the critical values.
+        """
+
         def br(b: Branch) -> dict[str, Any]:
             return {
                 "parameter": b.parameter.tolist(),
@@ -169,6 +268,18 @@ class BucklingResult:
         }
 
     def plot(self, path: str | os.PathLike[str]) -> Path:
+        """Write the branches as a PNG to ``path``.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            Output file.
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
+        """
         from ..plotting import save_png
 
         from .._optional import require
@@ -194,7 +305,20 @@ class BucklingResult:
 
 
 def predict_buckling() -> BucklingResult:
-    """Run both studies (about 10 s on one core)."""
+    """Run both stability studies: the self-weight column and the heated heavy circle.
+
+    Returns
+    -------
+    BucklingResult
+        The followed branches and stable sweeps.
+
+    Examples
+    --------
+    >>> from tcarod.paper.buckling import predict_buckling
+    >>> result = predict_buckling()                  # a few seconds
+    >>> result.table().splitlines()[0]
+    'Self-weight buckling of an upright EcoFlex column (50 mm, 10 x 9 mm)'
+    """
     col = column_robot()
     q1 = weight_parameter(col)
     column_branch = follow_branch(col, "gravity_scale", 0.1, 3.0, step=0.02, max_step=0.05)

@@ -65,12 +65,19 @@ MANIPULATOR_TWIST_PER_M: Final[float] = TCA_TURNS / TURNS_ANCHOR_LENGTH_M
 
 @dataclass(frozen=True)
 class Fig1bManipulator:
-    """An illustrative Fig. 1(b) manipulator (see the module docstring).
+    """An illustrative Fig. 1(b) manipulator: three TCAs around a silicone cylinder.
 
-    Lengths in m, ``angles_deg`` in degrees, ``alpha0_rad`` in rad. ``segments`` divides TCA 0 (the
-    "leftmost" TCA of the figure) into that many equal segments in series,
-    each anchored to the body at its ends and driven by its own temperature;
-    1 keeps it whole.
+    See the module docstring. Lengths in m, ``angles_deg`` in degrees,
+    ``alpha0_rad`` in rad. ``segments`` divides TCA 0 (the "leftmost" TCA of
+    the figure) into that many equal segments in series, each anchored to the
+    body at its ends and driven by its own temperature; 1 keeps it whole.
+
+    Examples
+    --------
+    >>> from tcarod.paper.fig1b import FIG1B
+    >>> sol = FIG1B.robot().solve(FIG1B.inputs([120.0, 25.0, 25.0]), steps=20)
+    >>> FIG1B.n_inputs, bool(sol.tip_position[0] < 0)       # TCA 0 at +x bends it toward -x
+    (3, True)
     """
 
     length_m: float = 0.060
@@ -119,7 +126,13 @@ class Fig1bManipulator:
 
     @property
     def n_inputs(self) -> int:
-        """Number of actuator inputs (temperatures [C])."""
+        """Number of actuator inputs (temperatures [C]).
+
+        Returns
+        -------
+        int
+            TCAs, TCA 0 counted once per segment.
+        """
         return len(self.angles_deg) - 1 + max(1, self.segments)
 
     def robot(self, gravity: bool = True) -> Any:
@@ -129,9 +142,28 @@ class Fig1bManipulator:
     def inputs(
         self, temperatures_c: Sequence[float], segment_temperatures_c: Sequence[float] | None = None
     ) -> list[float]:
-        """Actuator inputs [C] from one temperature per TCA; with a segmented
-        TCA 0, ``segment_temperatures_c`` (one per segment, proximal first)
-        replaces ``temperatures_c[0]``."""
+        """Actuator inputs [C] from one temperature per TCA.
+
+        Parameters
+        ----------
+        temperatures_c : sequence of float
+            One temperature [C] per TCA.
+        segment_temperatures_c : sequence of float, optional
+            With a segmented TCA 0: one per segment, proximal first, replacing
+            ``temperatures_c[0]``.
+
+        Returns
+        -------
+        list of float
+            One input [C] per actuator.
+
+        Examples
+        --------
+        >>> import dataclasses
+        >>> from tcarod.paper.fig1b import FIG1B
+        >>> dataclasses.replace(FIG1B, segments=2).inputs([0.0, 25.0, 25.0], [120.0, 60.0])
+        [120.0, 60.0, 25.0, 25.0]
+        """
         temps = [float(t) for t in temperatures_c]
         if len(temps) != len(self.angles_deg):
             raise ValueError(f"temperatures_c: expected {len(self.angles_deg)} values (one per TCA), got {len(temps)}")
@@ -151,7 +183,16 @@ FIG1B: Final[Fig1bManipulator] = Fig1bManipulator()
 
 @dataclass(frozen=True, eq=False)
 class Fig1bWorkspaceResult:
-    """A workspace map of :data:`FIG1B` for ``tcarod reproduce fig1b``."""
+    """A workspace map of :data:`FIG1B` for ``tcarod reproduce fig1b``.
+
+    Examples
+    --------
+    >>> from tcarod.paper.fig1b import FIG1B, Fig1bWorkspaceResult
+    >>> from tcarod.models.workspace import workspace_map
+    >>> result = Fig1bWorkspaceResult(workspace_map(FIG1B.robot(), [25.0, 120.0], steps=20))
+    >>> result.name, len(result.to_json()["tip_position_m"])
+    ('fig1b', 8)
+    """
 
     workspace: Any  # tcarod.models.workspace.Workspace
     name: str = "fig1b"

@@ -34,32 +34,75 @@ _FIG5_LOAD_SHARING: Final[str] = (
 
 @dataclass(frozen=True)
 class Fig5Case:
-    """One curve of Fig. 5: a TCA under one dead weight, shared by the two
-    folded halves as :attr:`Fig5Experiment.load_sharing` states (a modelling
-    choice; the paper does not state it)."""
+    """One curve of Fig. 5: a TCA under one dead weight.
+
+    The weight is shared by the TCA's two folded halves as
+    :attr:`Fig5Experiment.load_sharing` states (a modelling choice; the paper
+    does not state it).
+
+    Examples
+    --------
+    >>> from tcarod.paper.fig5 import FIG5
+    >>> case = FIG5.cases[0]
+    >>> case.label, round(case.force_per_half_n, 4)       # [N], compressive
+    ('3 threads, 5 g', -0.0368)
+    """
 
     tca: TcaSpec
     load: DeadWeight
 
     @property
     def label(self) -> str:
-        """E.g. ``"3 threads, 5 g"``."""
+        """The curve's label.
+
+        Returns
+        -------
+        str
+            E.g. ``"3 threads, 5 g"``.
+        """
         return f"{self.tca.label}, {self.load.label}"
 
     @property
     def force_per_half_n(self) -> float:
-        """Axial force [N] on each half: ``-(mass + friction equivalent) g / 2`` (compressive, < 0)."""
+        """Axial force on each half [N].
+
+        Returns
+        -------
+        float
+            ``-(mass + friction equivalent) g / 2`` [N] (compressive, < 0).
+        """
         return -0.5 * self.load.weight_n
 
     def half_tca(self, material: Material | None = None) -> Tca:
-        """One folded half, ``Tca(l/2, L/2, D, N/2)``: :meth:`Tca.segment` of the whole TCA at 0.5."""
+        """One folded half, ``Tca(l/2, L/2, D, N/2)``: :meth:`Tca.segment` of the whole TCA at 0.5.
+
+        Parameters
+        ----------
+        material : Material, optional
+            Fibre material (default :meth:`Material.silver_coated_nylon`).
+
+        Returns
+        -------
+        Tca
+            The half TCA (lengths [m]).
+        """
         return self.tca.build(material).segment(0.5)
 
 
 @dataclass(frozen=True)
 class Fig5Experiment:
-    """Fig. 5 of the paper: displacement of free extension TCAs under dead
-    weights, heated in an oven. See :class:`Fig5Case` for the load sharing."""
+    """Fig. 5 of the paper: free extension TCAs under dead weights, heated in an oven.
+
+    See :class:`Fig5Case` for the load sharing; :data:`FIG5` is the paper's.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig5 import FIG5
+    >>> small = dataclasses.replace(FIG5, temperatures_c=(25.0, 90.0, 160.0))    # [C]
+    >>> [case.label for case in small.cases]
+    ['3 threads, 5 g', '3 threads, 10 g', '4 threads, 5 g', '4 threads, 10 g']
+    """
 
     tcas: tuple[TcaSpec, ...]
     loads: tuple[DeadWeight, ...]
@@ -76,11 +119,28 @@ class Fig5Experiment:
 
     @property
     def cases(self) -> tuple[Fig5Case, ...]:
-        """Every TCA under every load, TCA-major (the order of the table and the JSON)."""
+        """Every TCA under every load, TCA-major.
+
+        Returns
+        -------
+        tuple of Fig5Case
+            In the order of the table and the JSON.
+        """
         return tuple(Fig5Case(t, w) for t in self.tcas for w in self.loads)
 
     def predict(self, material: Material | None = None) -> Fig5Result:
-        """Predicted displacement curves and onset temperatures; see :func:`predict_fig5`."""
+        """Predicted displacement curves and onset temperatures; see :func:`predict_fig5`.
+
+        Parameters
+        ----------
+        material : Material, optional
+            Fibre material (default :meth:`Material.silver_coated_nylon`).
+
+        Returns
+        -------
+        Fig5Result
+            One curve per case.
+        """
         return predict_fig5(self, material)
 
 
@@ -104,7 +164,17 @@ FIG5: Final[Fig5Experiment] = Fig5Experiment(
 
 @dataclass(frozen=True, eq=False)
 class Fig5Curve:
-    """Prediction for one :class:`Fig5Case`."""
+    """Prediction of Fig. 5 for one :class:`Fig5Case`.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig5 import FIG5
+    >>> small = dataclasses.replace(FIG5, temperatures_c=(25.0, 90.0, 160.0))    # [C]
+    >>> curve = small.predict().curves[0]
+    >>> curve.final_temperature_c, round(curve.displacement_at_final_temperature_m * 1e3, 2)   # [C], [mm]
+    (160.0, 16.09)
+    """
 
     case: Fig5Case
     temperatures_c: FloatArray
@@ -117,12 +187,24 @@ class Fig5Curve:
 
     @property
     def final_temperature_c(self) -> float:
-        """Last (highest) temperature [C] of the sweep."""
+        """Last (highest) temperature of the sweep [C].
+
+        Returns
+        -------
+        float
+            Temperature [C].
+        """
         return float(self.temperatures_c[-1])
 
     @property
     def displacement_at_final_temperature_m(self) -> float:
-        """Displacement [m] at :attr:`final_temperature_c`."""
+        """Displacement at :attr:`final_temperature_c` [m].
+
+        Returns
+        -------
+        float
+            Elongation of one half [m].
+        """
         return float(self.displacements_m[-1])
 
 
@@ -132,24 +214,52 @@ def _fmt_onset(t: float | None) -> str:
 
 @dataclass(frozen=True, eq=False)
 class Fig5Result:
-    """Predicted Fig. 5: one :class:`Fig5Curve` per case."""
+    """Predicted Fig. 5: one :class:`Fig5Curve` per case.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig5 import FIG5
+    >>> small = dataclasses.replace(FIG5, temperatures_c=(25.0, 90.0, 160.0))    # [C]
+    >>> result = small.predict()
+    >>> result.name, len(result.curves), result.temperatures_c.tolist()
+    ('fig5', 4, [25.0, 90.0, 160.0])
+    """
 
     experiment: Fig5Experiment
     curves: tuple[Fig5Curve, ...]
 
     @property
     def name(self) -> str:
-        """Registry name, ``"fig5"``."""
+        """Registry name.
+
+        Returns
+        -------
+        str
+            ``"fig5"``.
+        """
         return self.experiment.name
 
     @property
     def temperatures_c(self) -> FloatArray:
-        """Temperatures [C] of the sweep (shared by all curves)."""
+        """Temperatures of the sweep [C], shared by all curves.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape ``(k,)`` [C].
+        """
         return np.asarray(self.experiment.temperatures_c, dtype=np.float64)
 
     def table(self) -> str:
-        """Displacement [mm] against temperature [C] for every case, then the
-        onset temperatures [C] and the final-temperature displacements [mm]."""
+        """The prediction as a text table.
+
+        Returns
+        -------
+        str
+            Displacement [mm] against temperature [C] for every case, then the
+            onset temperatures [C] and the final-temperature displacements [mm].
+        """
         exp = self.experiment
         labels = [c.case.label for c in self.curves]
         width = max(14, *(len(s) for s in labels))
@@ -229,12 +339,36 @@ class Fig5Result:
 
 
 def predict_fig5(experiment: Fig5Experiment = FIG5, material: Material | None = None) -> Fig5Result:
-    """Predicted displacement [m] of one folded half against temperature [C]
-    for every case of ``experiment``, with onset temperatures [C] from
-    :meth:`Tca.onset_temperature` (``None`` if no onset in the material's range).
+    """Predicted displacement of one folded half against temperature, for every case.
 
-    Raises ``ValueError`` if a temperature lies outside the material's range or
-    a load straightens the fibre.
+    Parameters
+    ----------
+    experiment : Fig5Experiment, optional
+        The set-up (default the paper's, :data:`FIG5`).
+    material : Material, optional
+        Fibre material (default :meth:`Material.silver_coated_nylon`).
+
+    Returns
+    -------
+    Fig5Result
+        Displacements [m] at each temperature [C], with onset temperatures
+        [C] from :meth:`Tca.onset_temperature` (``None`` if no onset in the
+        material's range).
+
+    Raises
+    ------
+    ValueError
+        A temperature outside the material's range, or a load that
+        straightens the fibre.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig5 import FIG5
+    >>> small = dataclasses.replace(FIG5, temperatures_c=(25.0, 90.0, 160.0))    # [C]
+    >>> from tcarod.paper.fig5 import predict_fig5
+    >>> [round(c.onset_temperature_c, 1) for c in predict_fig5(small).curves]    # [C]
+    [32.4, 38.0, 30.8, 35.4]
     """
     temps = np.asarray(experiment.temperatures_c, dtype=np.float64)
     curves = []

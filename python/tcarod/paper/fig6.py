@@ -55,6 +55,7 @@ from ..models.manipulators import (
 )
 from ..rod import Robot, Solution, inner_edge_radius
 from ._common import PAPER_SOURCE, identity_json, PAPER_TEMPERATURES_C, PublishedCurve, published_json
+from ._common import finite_or_none, mm_text, relative_difference
 
 __all__ = [
     "CIRCLE_PRECURVATURE_RADIUS_M",
@@ -88,12 +89,18 @@ _ASSUMPTIONS: Final[tuple[str, ...]] = (
 
 @dataclass(frozen=True)
 class Fig6Manipulator:
-    """One manipulator of Fig. 6. Lengths in m.
+    """One manipulator of Fig. 6, lengths in m.
 
     ``section`` is ``"circle"`` (``size_m`` = diameter) or ``"square"``
     (``size_m`` = side). ``tca_y_m`` lists the body-frame ``y`` [m] of each
     TCA leg, all at ``x = tca_offset_m``. ``precurvature_radius_m``: radius
     [m] of the reference shape, bent toward ``-x`` (``None``: straight).
+
+    Examples
+    --------
+    >>> from tcarod.paper.fig6 import FIG6
+    >>> FIG6.manipulators[1].section, FIG6.manipulators[1].size_m, FIG6.manipulators[1].tca_y_m      # [m]
+    ('square', 0.01, (0.0025, -0.0025))
     """
 
     label: str
@@ -110,18 +117,36 @@ class Fig6Manipulator:
     precurvature_is_assumption: bool = False
 
     def robot(self, gravity: bool = True, turns_reading: TurnsReading = DEFAULT_TURNS_READING) -> Robot:
-        """The manipulator as a :class:`Robot`, built by the core's fixture;
-        upright (base down, gravity ``(0, 0, -9.81) m/s^2``) if ``gravity``,
-        weightless otherwise; each leg with :func:`tcarod.models.manipulators.leg_turns`
-        turns under ``turns_reading``."""
+        """The manipulator as a :class:`Robot`, built by the core's fixture.
+
+        Parameters
+        ----------
+        gravity : bool, optional
+            Upright (base down, gravity ``(0, 0, -9.81)`` m/s^2; default), or weightless.
+        turns_reading : {"per_tca", "per_leg", "per_length"}, optional
+            Each leg has :func:`tcarod.models.manipulators.leg_turns` turns under it.
+
+        Returns
+        -------
+        Robot
+            The manipulator.
+        """
         g = UPRIGHT if gravity else (0.0, 0.0, 0.0)
         return _core.fixture_manipulator(self.fixture, gravity=g, turns_reading=turns_reading)
 
 
 @dataclass(frozen=True)
 class Fig6Experiment:
-    """Fig. 6: bending radius [m] against temperature [C] of the circular
-    (pre-curved) and square manipulators (see the module docstring)."""
+    """Fig. 6: bending radius against temperature of the circular (pre-curved) and square manipulators.
+
+    See the module docstring; :data:`FIG6` is the paper's.
+
+    Examples
+    --------
+    >>> from tcarod.paper.fig6 import FIG6
+    >>> [m.label for m in FIG6.manipulators]
+    ['circle (8 mm, pre-curved)', 'square (10 mm, U-shaped TCA)']
+    """
 
     manipulators: tuple[Fig6Manipulator, ...]
     temperatures_c: tuple[float, ...] = PAPER_TEMPERATURES_C
@@ -169,7 +194,17 @@ FIG6: Final[Fig6Experiment] = Fig6Experiment(
 
 @dataclass(frozen=True, eq=False)
 class Fig6Curve:
-    """Prediction for one manipulator, with or without gravity."""
+    """Prediction of Fig. 6 for one manipulator, with or without gravity.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig6 import FIG6
+    >>> result = dataclasses.replace(FIG6, temperatures_c=(25.0, 90.0, 160.0), steps=20).predict(readings=False)
+    >>> curve = result.curves[1][0]     # the square, with gravity
+    >>> curve.gravity, (curve.radii_m * 1e3).round(1).tolist()  # inner-edge radius [mm]
+    (True, [967.4, 171.8, 55.9])
+    """
 
     manipulator: Fig6Manipulator
     gravity: bool
@@ -190,17 +225,18 @@ class Fig6Curve:
     solutions: tuple[Solution, ...]
 
 
-def _mm(x: float) -> str:
-    return "inf" if not math.isfinite(x) else f"{x * 1e3:.2f}"
-
-
-def _finite_or_none(x: float) -> float | None:
-    return float(x) if math.isfinite(x) else None
-
-
 @dataclass(frozen=True, eq=False)
 class Fig6Result:
-    """Predicted Fig. 6: for each manipulator a curve with and one without gravity."""
+    """Predicted Fig. 6: per manipulator, a curve with and one without gravity.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig6 import FIG6
+    >>> result = dataclasses.replace(FIG6, temperatures_c=(25.0, 90.0, 160.0), steps=20).predict(readings=False)
+    >>> result.name, len(result.curves), result.temperatures_c.tolist()
+    ('fig6', 2, [25.0, 90.0, 160.0])
+    """
 
     experiment: Fig6Experiment
     #: ``(with gravity, without gravity)`` per manipulator, in the experiment's order.
@@ -210,17 +246,37 @@ class Fig6Result:
 
     @property
     def name(self) -> str:
-        """Registry name, ``"fig6"``."""
+        """Registry name, ``"fig6"``.
+
+        Returns
+        -------
+        str
+        """
         return self.experiment.name
 
     @property
     def temperatures_c(self) -> FloatArray:
-        """Temperatures [C] of the sweep."""
+        """Temperatures of the sweep [C], shape ``(k,)``.
+
+        Returns
+        -------
+        numpy.ndarray
+        """
         return np.asarray(self.experiment.temperatures_c, dtype=np.float64)
 
     def gravity_radius_change_m(self, index: int) -> FloatArray:
-        """Radius with gravity minus radius without [m] for manipulator ``index``
-        (NaN where either radius is infinite)."""
+        """Radius with gravity minus radius without, for one manipulator [m].
+
+        Parameters
+        ----------
+        index : int
+            The manipulator (0 circle, 1 square).
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape ``(k,)`` [m]; NaN where either radius is infinite.
+        """
         with_g, without = self.curves[index]
         diff = np.full(len(with_g.radii_m), np.nan)
         ok = np.isfinite(with_g.radii_m) & np.isfinite(without.radii_m)
@@ -228,9 +284,15 @@ class Fig6Result:
         return diff
 
     def table(self) -> str:
-        """Per manipulator: radius [mm] with and without gravity against
-        temperature [C], the change gravity makes, and the Newton iterations
-        of the warm-started sweep and of cold solves."""
+        """The prediction as a text table.
+
+        Returns
+        -------
+        str
+            Per manipulator: radius [mm] with and without gravity against
+            temperature [C], the change gravity makes, the readings, and the
+            Newton iterations of the warm-started sweep and of cold solves.
+        """
         exp = self.experiment
         lines = [f"{exp.title} ({exp.source})"]
         lines.append("Inner-edge bending radius (circle through base, middle and tip of the concave edge).")
@@ -261,7 +323,7 @@ class Fig6Result:
                 its = f"{with_g.iterations_warm[i]}/{without.iterations_warm[i]}"
                 cold = f"{with_g.iterations_cold[i]}/{without.iterations_cold[i]}"
                 lines.append(
-                    f"{t:>6.0f} | {_mm(with_g.radii_m[i]):>14} | {_mm(without.radii_m[i]):>17} | {ch:>19} | "
+                    f"{t:>6.0f} | {mm_text(with_g.radii_m[i]):>14} | {mm_text(without.radii_m[i]):>17} | {ch:>19} | "
                     f"{its:>22} | {cold:>11}"
                 )
             lines.append(rule)
@@ -278,14 +340,20 @@ class Fig6Result:
             ts = ", ".join(f"{t:g}" for t in exp.reading_temperatures_c)
             lines.append(f"Turns readings (default {exp.turns_reading!r}): radius [mm] with gravity at {ts} C")
             for (label, reading), radii in self.readings.items():
-                lines.append(f"  {label:<30} {reading:>10}: " + ", ".join(_mm(r) for r in radii))
+                lines.append(f"  {label:<30} {reading:>10}: " + ", ".join(mm_text(r) for r in radii))
         if exp.published_data is None:
             lines.append(f"Published data: none. {exp.published_data_note}")
         return "\n".join(lines)
 
     def to_json(self) -> dict[str, Any]:
-        """JSON-serialisable prediction: temperatures in C, lengths in m, forces in N;
-        ``null`` for an infinite radius (straight body)."""
+        """JSON-serialisable prediction, every key naming its unit.
+
+        Returns
+        -------
+        dict
+            Temperatures in C, lengths in m, forces in N; ``null`` for an
+            infinite radius (straight body).
+        """
         exp = self.experiment
         manipulators = []
         for k, (with_g, without) in enumerate(self.curves):
@@ -294,7 +362,7 @@ class Fig6Result:
             def case(c: Fig6Curve) -> dict[str, Any]:
                 return {
                     "gravity_m_per_s2": list(UPRIGHT) if c.gravity else [0.0, 0.0, 0.0],
-                    "radius_m": [_finite_or_none(r) for r in c.radii_m],
+                    "radius_m": [finite_or_none(r) for r in c.radii_m],
                     "tip_position_m": [[float(x) for x in p] for p in c.tip_positions_m],
                     "tension_n": [[float(x) for x in row] for row in c.tensions_n],
                     "newton_iterations_warm": list(c.iterations_warm),
@@ -314,7 +382,7 @@ class Fig6Result:
                     "precurvature_is_assumption": m.precurvature_is_assumption,
                     "with_gravity": case(with_g),
                     "without_gravity": case(without),
-                    "gravity_radius_change_m": [_finite_or_none(d) for d in self.gravity_radius_change_m(k)],
+                    "gravity_radius_change_m": [finite_or_none(d) for d in self.gravity_radius_change_m(k)],
                     "gravity_summary": _gravity_summary(with_g, without),
                 }
             )
@@ -330,7 +398,7 @@ class Fig6Result:
                     "manipulator": label,
                     "turns_reading": reading,
                     "temperature_c": list(exp.reading_temperatures_c),
-                    "radius_with_gravity_m": [_finite_or_none(r) for r in radii],
+                    "radius_with_gravity_m": [finite_or_none(r) for r in radii],
                 }
                 for (label, reading), radii in self.readings.items()
             ],
@@ -362,18 +430,8 @@ def _gravity_summary(with_g: Fig6Curve, without: Fig6Curve) -> str:
         worst = int(np.nanargmax(np.abs(rel)))
         text += f" and by up to {rel[worst] * 100:+.1f}% (at {t[worst]:.0f} C)"
     r0_g, r0 = with_g.radii_m[0], without.radii_m[0]
-    text += f"; at {t[0]:.0f} C the radius is {_mm(r0_g)} mm with gravity, {_mm(r0)} mm without."
+    text += f"; at {t[0]:.0f} C the radius is {mm_text(r0_g)} mm with gravity, {mm_text(r0)} mm without."
     return text
-
-
-def _relative_difference(a: FloatArray, b: FloatArray) -> float:
-    both_inf = np.isinf(a) & np.isinf(b)
-    ok = np.isfinite(a) & np.isfinite(b)
-    if not np.all(ok | both_inf):
-        return math.inf  # one straight, the other not
-    if not ok.any():
-        return 0.0
-    return float(np.max(np.abs(a[ok] - b[ok]) / np.abs(b[ok])))
 
 
 def _curve(experiment: Fig6Experiment, m: Fig6Manipulator, gravity: bool) -> Fig6Curve:
@@ -394,19 +452,40 @@ def _curve(experiment: Fig6Experiment, m: Fig6Manipulator, gravity: bool) -> Fig
         tensions_n=np.array([s.tensions for s in warm]),
         iterations_warm=tuple(s.iterations for s in warm),
         iterations_cold=tuple(s.iterations for s in cold),
-        cold_warm_max_relative_difference=_relative_difference(radii_cold, radii),
+        cold_warm_max_relative_difference=relative_difference(radii_cold, radii),
         solutions=tuple(warm),
     )
 
 
 def predict_fig6(experiment: Fig6Experiment = FIG6, *, readings: bool = True) -> Fig6Result:
-    """Bending radius [m] against temperature [C] for every manipulator of
-    ``experiment``, with gravity (upright, as in the oven) and without;
-    ``readings``: also the radius with gravity of every turns reading at
-    ``reading_temperatures_c``.
+    """Bending radius against temperature of every manipulator, with gravity (upright, as in the oven) and without.
 
-    Raises ``ValueError`` on temperatures outside the TCA material's range and
-    ``tcarod.ConvergenceError`` if a solve fails.
+    Parameters
+    ----------
+    experiment : Fig6Experiment, optional
+        The set-up (default the paper's, :data:`FIG6`).
+    readings : bool, optional
+        Also the radius with gravity of every turns reading at ``reading_temperatures_c`` (default).
+
+    Returns
+    -------
+    Fig6Result
+        Radii [m], tips [m] and tensions [N] at each temperature [C].
+
+    Raises
+    ------
+    ValueError
+        A temperature outside the TCA material's range.
+    ConvergenceError
+        A solve fails.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig6 import FIG6, predict_fig6
+    >>> small = dataclasses.replace(FIG6, temperatures_c=(25.0, 90.0, 160.0), steps=20)    # [C]
+    >>> predict_fig6(small, readings=False).gravity_radius_change_m(1).round(4).tolist()   # [m], the square
+    [nan, -0.0595, -0.0107]
     """
     curves = tuple((_curve(experiment, m, True), _curve(experiment, m, False)) for m in experiment.manipulators)
     rd: dict[tuple[str, str], tuple[float, ...]] = {}

@@ -63,7 +63,19 @@ _BLOCKING: Final[str] = (
 
 @dataclass(frozen=True)
 class Fig8Experiment:
-    """The Fig. 8 set-up; see the module docstring for the blocking geometry."""
+    """The Fig. 8 set-up: the blocked-tip force of a 26 mm square manipulator.
+
+    See the module docstring for the blocking geometry; :data:`FIG8` is the
+    paper's.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig8 import FIG8
+    >>> small = dataclasses.replace(FIG8, temperatures_c=(25.0, 100.0, 160.0), cross_check_temperatures_c=(100.0,))
+    >>> small.length_m, small.taut_temperature_c      # [m], [C]
+    (0.026, 55.0)
+    """
 
     length_m: float = PAPER_CONSTANTS["fig8_length"]
     #: Temperature [C] at which the wire becomes taut (the paper: about 55 C).
@@ -111,7 +123,18 @@ FIG8: Final[Fig8Experiment] = Fig8Experiment()
 
 @dataclass(frozen=True)
 class Fig8CrossCheck:
-    """The incremental eq-43 method fed the direct solve's force at one temperature."""
+    """The incremental eq-43 method fed the direct solve's force at one temperature.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig8 import FIG8
+    >>> small = dataclasses.replace(FIG8, temperatures_c=(25.0, 100.0, 160.0), cross_check_temperatures_c=(100.0,))
+    >>> from tcarod.paper.fig8 import predict_fig8
+    >>> check = predict_fig8(small, readings=False).cross_checks[0]
+    >>> check.temperature_c, abs(check.difference_c) < 0.01      # [C]
+    (100.0, True)
+    """
 
     temperature_c: float
     force_n: float
@@ -120,13 +143,31 @@ class Fig8CrossCheck:
 
     @property
     def difference_c(self) -> float:
-        """``incremental_temperature_c - temperature_c`` [C]."""
+        """``incremental_temperature_c - temperature_c`` [C].
+
+        Returns
+        -------
+        float
+            Difference [C].
+        """
         return self.incremental_temperature_c - self.temperature_c
 
 
 @dataclass(frozen=True)
 class Fig8Reading:
-    """Blocked force [N] of one reading (turns, material) at a few temperatures [C]."""
+    """Blocked force of one reading (turns, material) at a few temperatures.
+
+    Forces in N, temperatures in C.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig8 import FIG8
+    >>> small = dataclasses.replace(FIG8, temperatures_c=(25.0, 100.0, 160.0), cross_check_temperatures_c=(100.0,))
+    >>> reading = small.predict().readings[0]
+    >>> reading.turns_reading, reading.material, reading.temperatures_c
+    ('per_tca', 'sun_zhao', (100.0, 140.0))
+    """
 
     turns_reading: str
     material: str
@@ -148,10 +189,33 @@ def fig8_forces(
     turns_reading: TurnsReading | None = None,
     experiment: Fig8Experiment | None = None,
 ) -> tuple[float, ...]:
-    """Blocked-tip force [N] of the Fig. 8 set-up at each temperature [C]
-    (ascending) for a material and turns reading: 0 below the taut
-    temperature, else the direct mixed solve at the free tip's position at
-    the taut temperature (warm-started)."""
+    """Blocked-tip force of the Fig. 8 set-up at each temperature.
+
+    0 below the taut temperature, else the direct mixed solve at the free
+    tip's position at the taut temperature (warm-started).
+
+    Parameters
+    ----------
+    temperatures_c : tuple of float
+        Temperatures [C], ascending.
+    material : Material, optional
+        Fibre material (default :meth:`Material.silver_coated_nylon`).
+    turns_reading : ('per_tca', 'per_leg', 'per_length'), optional
+        How the paper's turns are read (default the experiment's).
+    experiment : Fig8Experiment, optional
+        The set-up (default :data:`FIG8`).
+
+    Returns
+    -------
+    tuple of float
+        Forces [N].
+
+    Examples
+    --------
+    >>> from tcarod.paper.fig8 import fig8_forces
+    >>> [round(f * 1e3, 2) for f in fig8_forces((50.0, 100.0))]     # [mN]: slack, then pulling
+    [0.0, 15.07]
+    """
     exp = FIG8 if experiment is None else experiment
     robot = exp.robot(material, turns_reading)
     n = len(robot.actuators)
@@ -169,7 +233,18 @@ def fig8_forces(
 
 @dataclass(frozen=True, eq=False)
 class Fig8Result:
-    """Predicted Fig. 8."""
+    """Predicted Fig. 8: the blocked-tip force against temperature.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig8 import FIG8
+    >>> small = dataclasses.replace(FIG8, temperatures_c=(25.0, 100.0, 160.0), cross_check_temperatures_c=(100.0,))
+    >>> from tcarod.paper.fig8 import predict_fig8
+    >>> result = predict_fig8(small, readings=False)
+    >>> result.name, round(result.force_at(160.0) * 1e3, 2)     # [mN]
+    ('fig8', 45.09)
+    """
 
     experiment: Fig8Experiment
     temperatures_c: FloatArray
@@ -183,7 +258,13 @@ class Fig8Result:
 
     @property
     def name(self) -> str:
-        """Registry name, ``"fig8"``."""
+        """Registry name.
+
+        Returns
+        -------
+        str
+            ``"fig8"``.
+        """
         return self.experiment.name
 
     def force_at(self, temperature_c: float) -> float:
@@ -261,16 +342,38 @@ class Fig8Result:
 def predict_fig8(
     experiment: Fig8Experiment = FIG8, material: Material | None = None, *, readings: bool = True
 ) -> Fig8Result:
-    """Blocked-tip force [N] at each temperature [C] of ``experiment``.
+    """Blocked-tip force at each temperature of ``experiment``.
 
     Below the taut temperature the force is 0 (slack wire). From it on, the
     direct mixed solve (:func:`tcarod.inverse.blocked_force`) warm-started
-    along the sweep; a negative solved force (the tip would move away from the
-    wire) is reported as 0. At ``cross_check_temperatures_c`` the incremental
-    eq-43 method (:func:`tcarod.inverse.blocked_temperature`, 10 increments)
-    is fed the force and must return the temperature. ``readings``: also
-    the force of every turns reading x material preset at
-    ``reading_temperatures_c``.
+    along the sweep; a negative solved force (the tip would move away from
+    the wire) is reported as 0. At ``cross_check_temperatures_c`` the
+    incremental eq-43 method (:func:`tcarod.inverse.blocked_temperature`, 10
+    increments) is fed the force and must return the temperature.
+
+    Parameters
+    ----------
+    experiment : Fig8Experiment, optional
+        The set-up (default the paper's, :data:`FIG8`).
+    material : Material, optional
+        Fibre material (default :meth:`Material.silver_coated_nylon`).
+    readings : bool, optional
+        Also the force of every turns reading x material preset at
+        ``reading_temperatures_c`` (default).
+
+    Returns
+    -------
+    Fig8Result
+        Forces [N] at the temperatures [C], cross-checks and readings.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig8 import FIG8
+    >>> small = dataclasses.replace(FIG8, temperatures_c=(25.0, 100.0, 160.0), cross_check_temperatures_c=(100.0,))
+    >>> from tcarod.paper.fig8 import predict_fig8
+    >>> (predict_fig8(small, readings=False).forces_n * 1e3).round(2).tolist()     # [mN]
+    [0.0, 15.07, 45.09]
     """
     robot = experiment.robot(material)
     groups = [0] * len(robot.actuators)

@@ -69,7 +69,16 @@ _CONTACT: Final[str] = (
 
 @dataclass(frozen=True)
 class Table1Experiment:
-    """The Table I set-up and the paper's numbers."""
+    """The Table I set-up (a two-finger TCA gripper) and the paper's numbers.
+
+    :data:`TABLE1` is the paper's.
+
+    Examples
+    --------
+    >>> from tcarod.paper.table1 import TABLE1
+    >>> TABLE1.masses_kg, TABLE1.experiment_c, TABLE1.paper_prediction_c     # [kg], [C], [C]
+    ((0.001, 0.002, 0.003), (95.0, 120.0, 135.0), (93.7, 114.8, 136.3))
+    """
 
     masses_kg: tuple[float, ...] = TABLE1_MASSES_KG
     #: Measured firm-grip temperatures [C] (oven steps of 5 C).
@@ -100,7 +109,15 @@ TABLE1: Final[Table1Experiment] = Table1Experiment()
 
 @dataclass(frozen=True, eq=False)
 class Table1Row:
-    """One mass: tcarod's grip temperature beside the paper's numbers."""
+    """One mass: tcarod's grip temperature beside the paper's numbers.
+
+    Examples
+    --------
+    >>> from tcarod.paper.table1 import TABLE1
+    >>> row = TABLE1.predict().rows[1]                    # 2 g
+    >>> round(row.predicted_c, 1), round(row.error_vs_experiment_c, 1)     # [C]
+    (88.7, -31.3)
+    """
 
     mass_kg: float
     grasp: Grasp
@@ -111,23 +128,51 @@ class Table1Row:
 
     @property
     def predicted_c(self) -> float:
-        """tcarod's grip temperature [C] (incremental eq-43 method)."""
+        """tcarod's grip temperature [C] (incremental eq-43 method).
+
+        Returns
+        -------
+        float
+            Temperature [C].
+        """
         return self.grasp.temperature_c
 
     @property
     def error_vs_experiment_c(self) -> float:
-        """``predicted - experiment`` [C]."""
+        """``predicted - experiment`` [C].
+
+        Returns
+        -------
+        float
+            Difference [C].
+        """
         return self.predicted_c - self.experiment_c
 
     @property
     def error_vs_paper_c(self) -> float:
-        """``predicted - paper's prediction`` [C]."""
+        """``predicted - paper's prediction`` [C].
+
+        Returns
+        -------
+        float
+            Difference [C].
+        """
         return self.predicted_c - self.paper_prediction_c
 
 
 @dataclass(frozen=True)
 class Table1Reading:
-    """Grip temperatures [C] of one reading (turns x material preset) at the default contact."""
+    """Grip temperatures of one reading (turns x material preset) at the default contact.
+
+    Temperatures in C.
+
+    Examples
+    --------
+    >>> from tcarod.paper.table1 import TABLE1
+    >>> reading = TABLE1.predict().readings[0]
+    >>> reading.turns_reading, reading.material
+    ('per_tca', 'sun_zhao')
+    """
 
     turns_reading: str
     material: str
@@ -147,7 +192,15 @@ class Table1Reading:
 
 @dataclass(frozen=True, eq=False)
 class Table1Result:
-    """Predicted Table I, the readings, and (optionally) the study and identification."""
+    """Predicted Table I, the readings, and optionally the study and identification.
+
+    Examples
+    --------
+    >>> from tcarod.paper.table1 import TABLE1
+    >>> result = TABLE1.predict()
+    >>> result.name, [round(r.predicted_c, 1) for r in result.rows]     # [C] for 1, 2, 3 g
+    ('table1', [80.9, 88.7, 96.0])
+    """
 
     experiment: Table1Experiment
     rows: tuple[Table1Row, ...]
@@ -159,7 +212,13 @@ class Table1Result:
 
     @property
     def name(self) -> str:
-        """Registry name, ``"table1"``."""
+        """Registry name.
+
+        Returns
+        -------
+        str
+            ``"table1"``.
+        """
         return self.experiment.name
 
     def _lines(self, masses: tuple[float, ...], temps: tuple[float, ...]) -> tuple[float, float]:
@@ -298,13 +357,41 @@ def predict_table1(
     study: bool = False,
     identification: bool = False,
 ) -> Table1Result:
-    """Grip temperature [C] for each mass of ``experiment`` on the Table I
-    finger by the incremental eq-43 method from the free solution at contact,
-    each checked by the direct solve; every turns reading x material preset
-    at the same contact. ``study``: the sensitivity ranking (default material
-    only, ~1 s); ``identification``: the fits of
-    :data:`tcarod.models.identification.IDENTIFICATION_READINGS` to the paper's
-    model and to the experiment (about a minute), each applied to Fig. 8."""
+    """Grip temperature for each mass of ``experiment`` on the Table I finger.
+
+    By the incremental eq-43 method from the free solution at contact, each
+    checked by the direct solve; every turns reading x material preset at the
+    same contact.
+
+    Parameters
+    ----------
+    experiment : Table1Experiment, optional
+        The set-up (default the paper's, :data:`TABLE1`).
+    material : Material, optional
+        Fibre material (default :meth:`Material.silver_coated_nylon`).
+    study : bool, optional
+        Also the sensitivity ranking (default material only, about 1 s).
+    identification : bool, optional
+        Also the fits of :data:`tcarod.models.identification.IDENTIFICATION_READINGS`
+        to the paper's model and to the experiment (about a minute), each
+        applied to Fig. 8.
+
+    Returns
+    -------
+    Table1Result
+        Grip temperatures [C] per mass [kg], with the paper's numbers.
+
+    Raises
+    ------
+    ValueError
+        A force that needs a temperature outside the material's range.
+
+    Examples
+    --------
+    >>> from tcarod.paper.table1 import predict_table1
+    >>> [round(r.direct_c, 1) for r in predict_table1().rows]     # [C], the direct solve
+    [80.9, 88.7, 96.0]
+    """
     finger = table1_finger(material=material, turns_reading=experiment.turns_reading)
     inc, direct = _grips(experiment, finger, "incremental"), _grips(experiment, finger, "direct")
     rows = tuple(

@@ -38,8 +38,24 @@ _DETACHED = [0]  # depth of active ``detached()`` blocks
 
 @contextlib.contextmanager
 def detached() -> Iterator[None]:
-    """Inside this block :func:`new_figure` makes figures outside pyplot
-    (Agg canvas), whatever the backend: for figures drawn only to be saved."""
+    """Make figures outside pyplot inside this block, whatever the backend.
+
+    For figures drawn only to be saved: :func:`new_figure` then draws on an
+    Agg canvas that pyplot never sees, so nothing is left open.
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> from tcarod.plotting import detached, new_figure, uses_pyplot
+    >>> with detached():
+    ...     fig = new_figure(3.0, 2.0)      # [in]
+    ...     inside = uses_pyplot()
+    >>> inside, fig.canvas.manager is None
+    (False, True)
+    """
     _DETACHED[0] += 1
     try:
         yield
@@ -48,9 +64,21 @@ def detached() -> Iterator[None]:
 
 
 def uses_pyplot() -> bool:
-    """Whether :func:`new_figure` makes pyplot figures now: ``matplotlib.pyplot``
-    is imported, its backend is not Jupyter's inline backend, and no
-    :func:`detached` block is active."""
+    """Whether :func:`new_figure` makes pyplot figures now.
+
+    Returns
+    -------
+    bool
+        ``True`` if ``matplotlib.pyplot`` is imported, its backend is not
+        Jupyter's inline backend, and no :func:`detached` block is active.
+
+    Examples
+    --------
+    >>> from tcarod.plotting import detached, uses_pyplot
+    >>> with detached():
+    ...     uses_pyplot()
+    False
+    """
     if _DETACHED[0] or "matplotlib.pyplot" not in sys.modules:
         return False
     import matplotlib
@@ -59,13 +87,33 @@ def uses_pyplot() -> bool:
 
 
 def is_pyplot_figure(fig: Figure) -> bool:
-    """Whether pyplot manages ``fig`` (it has a figure manager, so ``fig.show()`` works)."""
+    """Whether pyplot manages ``fig`` (it has a figure manager, so ``fig.show()`` works).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A figure.
+
+    Returns
+    -------
+    bool
+        ``True`` for a pyplot figure.
+
+    Examples
+    --------
+    >>> from tcarod.plotting import detached, new_figure
+    >>> from tcarod.plotting._figure import is_pyplot_figure
+    >>> with detached():
+    ...     is_pyplot_figure(new_figure(3.0, 2.0))
+    False
+    """
     return getattr(fig.canvas, "manager", None) is not None
 
 
 def new_figure(width_in: float, height_in: float) -> Figure:
-    """A constrained-layout ``Figure`` of ``width_in`` x ``height_in`` inches:
-    made by ``pyplot.figure`` when pyplot is in use (:func:`uses_pyplot`),
+    """A constrained-layout ``Figure`` of ``width_in`` x ``height_in`` inches.
+
+    Made by ``pyplot.figure`` when pyplot is in use (:func:`uses_pyplot`),
     otherwise on an Agg canvas (see the module docstring).
 
     Parameters
@@ -76,6 +124,14 @@ def new_figure(width_in: float, height_in: float) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        The empty figure.
+
+    Examples
+    --------
+    >>> from tcarod.plotting import new_figure
+    >>> fig = new_figure(4.0, 3.0)
+    >>> fig.get_size_inches().tolist()       # [in]
+    [4.0, 3.0]
     """
     if uses_pyplot():
         import matplotlib.pyplot as plt
@@ -87,7 +143,7 @@ def new_figure(width_in: float, height_in: float) -> Figure:
 
 
 def save_png(fig: Figure, path: str | os.PathLike[str], dpi: int = 150, *, keep_open: bool = False) -> Path:
-    """Save ``fig`` as a PNG at ``path`` (parent directories created).
+    """Save ``fig`` as a PNG at ``path``, creating parent directories.
 
     Parameters
     ----------
@@ -106,6 +162,13 @@ def save_png(fig: Figure, path: str | os.PathLike[str], dpi: int = 150, *, keep_
     -------
     pathlib.Path
         The path written.
+
+    Examples
+    --------
+    >>> from tcarod.plotting import new_figure, save_png
+    >>> fig = new_figure(2.0, 2.0)
+    >>> save_png(fig, "out/empty.png", dpi=50).stat().st_size > 0
+    True
     """
     out = Path(path)
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -29,7 +29,7 @@ def _graph_objects() -> Any:
 
 
 def plot_solution_plotly(solution: Solution, *, rings: int = 5, title: str | None = None) -> Any:
-    """The shape of ``solution`` as an interactive plotly 3-D figure (axes in mm).
+    """The shape of ``solution`` as an interactive plotly 3-D figure, axes in mm.
 
     The same lines as :func:`tcarod.plotting.plot_solution`: centre line
     (dashed), body outline (edge lines and ``rings`` rings), each actuator
@@ -47,11 +47,20 @@ def plot_solution_plotly(solution: Solution, *, rings: int = 5, title: str | Non
     Returns
     -------
     plotly.graph_objects.Figure
+        The figure; in a notebook it rotates and zooms.
 
     Raises
     ------
     ImportError
         If plotly is not installed (the message names ``tcarod[interactive]``).
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.plotting.interactive import plot_solution_plotly
+    >>> fig = plot_solution_plotly(fig6_square_robot().solve([100.0, 100.0], steps=20))
+    >>> fig.layout.scene.xaxis.title.text
+    'x [mm]'
     """
     go = _graph_objects()
     fig = go.Figure()

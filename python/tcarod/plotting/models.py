@@ -22,10 +22,38 @@ __all__ = ["plot_shape_trajectory", "plot_step_response", "plot_workspace", "sav
 
 
 def plot_workspace(ws: Workspace, colour_by: str = "bending") -> Figure:
-    """3-D scatter of the reachable tip positions [mm], coloured by the
-    bending angle [deg] (``colour_by="bending"``) or by the hottest input [C]
-    (``"max_temperature"``). Returns a matplotlib ``Figure`` (a pyplot figure
-    when pyplot is in use, see :mod:`tcarod.plotting`)."""
+    """3-D scatter of the reachable tip positions [mm] of a workspace map.
+
+    Parameters
+    ----------
+    ws : Workspace
+        A map from :func:`tcarod.models.workspace.workspace_map`.
+    colour_by : {"bending", "max_temperature"}, optional
+        Colour by the tip's bending angle [deg] (default) or by the hottest
+        input [C].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (a pyplot figure when pyplot is in use, see
+        :mod:`tcarod.plotting`).
+
+    Raises
+    ------
+    TypeError
+        ``ws`` is not a ``Workspace`` or ``colour_by`` not a str.
+    ValueError
+        An unknown ``colour_by``.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.models.workspace import workspace_map
+    >>> from tcarod.plotting import plot_workspace
+    >>> ws = workspace_map(fig6_square_robot(), [25.0, 60.0, 100.0], steps=20)   # [C] per TCA
+    >>> plot_workspace(ws).axes[0].get_title()
+    'Reachable tip positions: 3^2 = 9 input combinations'
+    """
     V.instance("ws", ws, Workspace, "a Workspace")
     if not isinstance(colour_by, str):
         raise TypeError(f"colour_by must be a str, not {type(colour_by).__name__}")
@@ -52,8 +80,37 @@ def plot_workspace(ws: Workspace, colour_by: str = "bending") -> Figure:
 
 
 def plot_step_response(model: ThermalModel, voltage_v: float, duration_s: float | None = None) -> Figure:
-    """Temperature [C] after a voltage step ``voltage_v`` [V] at t = 0, with the
-    steady state and the time constant marked. Returns a matplotlib ``Figure``."""
+    """Temperature [C] of a TCA after a voltage step at t = 0.
+
+    The steady state and the time constant are marked.
+
+    Parameters
+    ----------
+    model : ThermalModel
+        The TCA's electro-thermal model.
+    voltage_v : float
+        The step [V].
+    duration_s : float, optional
+        Time shown [s] (default five time constants).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+
+    Raises
+    ------
+    ValueError
+        A non-finite voltage or a non-positive duration.
+
+    Examples
+    --------
+    >>> from tcarod.models.thermal import ThermalModel
+    >>> from tcarod.plotting import plot_step_response
+    >>> heater = ThermalModel(fibre_length_m=0.155, threads=3, resistance=60.0)     # [m], [ohm]
+    >>> plot_step_response(heater, 1.0).axes[0].get_xlabel()
+    'time [s]'
+    """
     V.instance("model", model, ThermalModel, "a ThermalModel")
     voltage_v = V.real("voltage_v", voltage_v, unit="V")
     tau = model.time_constant_s
@@ -79,7 +136,36 @@ def plot_step_response(model: ThermalModel, voltage_v: float, duration_s: float 
 
 
 def plot_shape_trajectory(traj: ShapeTrajectory) -> Figure:
-    """Tip position [mm] and actuator temperatures [C] against time [s]. Returns a ``Figure``."""
+    """Tip position [mm] and actuator temperatures [C] against time [s].
+
+    Parameters
+    ----------
+    traj : ShapeTrajectory
+        A quasi-static trajectory (:func:`tcarod.models.trajectory.quasi_static_trajectory`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Two panels sharing the time axis.
+
+    Raises
+    ------
+    TypeError
+        ``traj`` is not a ``ShapeTrajectory``.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.models.thermal import ThermalModel, VoltageProfile
+    >>> from tcarod.models.trajectory import quasi_static_trajectory
+    >>> robot = fig6_square_robot()
+    >>> heater = ThermalModel(fibre_length_m=robot.actuators[0].tca_model.fibre_length, threads=3, resistance=60.0)
+    >>> step = VoltageProfile.step(1.0)                    # 1 V from t = 0
+    >>> traj = quasi_static_trajectory(robot, [heater, heater], [step, step], np.linspace(0.0, 20.0, 3), steps=20)
+    >>> from tcarod.plotting import plot_shape_trajectory
+    >>> plot_shape_trajectory(traj).axes[0].get_ylabel()
+    'tip position [mm]'
+    """
     V.instance("traj", traj, ShapeTrajectory, "a ShapeTrajectory")
     fig = new_figure(6.0, 5.0)
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
@@ -98,9 +184,47 @@ def plot_shape_trajectory(traj: ShapeTrajectory) -> Figure:
 
 
 def save_trajectory_frames(traj: ShapeTrajectory, directory: str | os.PathLike[str], every: int = 1) -> list[Path]:
-    """Animation frames: one PNG of the 3-D shape (:func:`tcarod.plotting.plot_solution`)
-    per ``every``-th time of ``traj``, on fixed axes, titled with the time [s] and
-    temperatures [C]. Returns the paths written (``frame_0000.png``, ...)."""
+    """Write animation frames of a shape trajectory, one PNG per time.
+
+    One 3-D shape (:func:`tcarod.plotting.plot_solution`) per ``every``-th
+    time of ``traj``, on fixed axes, titled with the time [s] and the
+    temperatures [C].
+
+    Parameters
+    ----------
+    traj : ShapeTrajectory
+        A quasi-static trajectory.
+    directory : str or os.PathLike
+        Where to write ``frame_0000.png``, ... (created if needed).
+    every : int, optional
+        Write every ``every``-th time (default 1).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+
+    Raises
+    ------
+    TypeError
+        ``traj`` is not a ``ShapeTrajectory``.
+    ValueError
+        ``every`` < 1.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.models.thermal import ThermalModel, VoltageProfile
+    >>> from tcarod.models.trajectory import quasi_static_trajectory
+    >>> robot = fig6_square_robot()
+    >>> heater = ThermalModel(fibre_length_m=robot.actuators[0].tca_model.fibre_length, threads=3, resistance=60.0)
+    >>> step = VoltageProfile.step(1.0)                    # 1 V from t = 0
+    >>> traj = quasi_static_trajectory(robot, [heater, heater], [step, step], np.linspace(0.0, 20.0, 3), steps=20)
+    >>> from tcarod.plotting import save_trajectory_frames
+    >>> paths = save_trajectory_frames(traj, "frames", every=2)
+    >>> len(paths), paths[0].name
+    (2, 'frame_0000.png')
+    """
     V.instance("traj", traj, ShapeTrajectory, "a ShapeTrajectory")
     every = V.integer("every", every, 1, 2**31)
     out = Path(directory)

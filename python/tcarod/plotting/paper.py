@@ -33,13 +33,32 @@ def _shade_published(ax: Any, published: Any, prefix: str) -> None:
 
 
 def plot_fig5(result: Any) -> Figure:
-    """``result``: a :class:`tcarod.paper.fig5.Fig5Result`.
-    Fig. 5: displacement [mm] against temperature [C], one panel per TCA
-    (3 and 4 threads), one line per load, the onset of extension marked.
+    """Fig. 5: TCA displacement [mm] against temperature [C].
 
-    The paper's figure also shades the measured mean +- standard deviation;
-    it prints no numbers for them, so only the model is drawn unless the
-    experiment carries published data.
+    One panel per TCA (3 and 4 threads), one line per load, the onset of
+    extension marked. The paper's figure also shades the measured mean +-
+    standard deviation; it prints no numbers for them, so only the model is
+    drawn unless the experiment carries published data.
+
+    Parameters
+    ----------
+    result : Fig5Result
+        A prediction of :mod:`tcarod.paper.fig5`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Two panels.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig5 import FIG5
+    >>> from tcarod.plotting import plot_fig5
+    >>> result = dataclasses.replace(FIG5, temperatures_c=(25.0, 90.0, 160.0)).predict()
+    >>> fig = plot_fig5(result)
+    >>> len(fig.axes), fig.axes[0].get_xlabel()
+    (2, 'Temperature [°C]')
     """
     tca_labels: list[str] = []
     for c in result.curves:
@@ -88,14 +107,33 @@ def plot_fig5(result: Any) -> Figure:
 
 
 def plot_fig6(result: Any) -> Figure:
-    """Fig. 6: inner-edge bending radius [mm] against temperature [C], one
-    panel per manipulator (circle above, square below, as in the paper), the
-    model with gravity (upright, as in the oven; solid) and without (dashed).
+    """Fig. 6: inner-edge bending radius [mm] against temperature [C].
 
-    The radius spans two decades (nearly straight when cool), so the radius
-    axis is logarithmic; a straight body (infinite radius) leaves a gap. The
-    paper's figure also shades the measured mean +- standard deviation; it
-    prints no numbers for them, so only the model is drawn.
+    One panel per manipulator (circle above, square below, as in the paper),
+    the model with gravity (upright, as in the oven; solid) and without
+    (dashed). The radius spans two decades (nearly straight when cool), so
+    the radius axis is logarithmic; a straight body (infinite radius) leaves
+    a gap. The paper's figure also shades the measured mean +- standard
+    deviation; it prints no numbers for them, so only the model is drawn.
+
+    Parameters
+    ----------
+    result : Fig6Result
+        A prediction of :mod:`tcarod.paper.fig6`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One panel per manipulator.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig6 import FIG6
+    >>> from tcarod.plotting import plot_fig6
+    >>> result = dataclasses.replace(FIG6, temperatures_c=(25.0, 90.0, 160.0), steps=20).predict(readings=False)
+    >>> len(plot_fig6(result).axes)
+    2
     """
     n = max(1, len(result.curves))
     fig = new_figure(4.6, 2.9 * n)
@@ -123,8 +161,29 @@ def plot_fig6(result: Any) -> Figure:
 
 
 def plot_fig8(result: Any) -> Figure:
-    """Fig. 8: blocked-tip force [mN] against temperature [C], the incremental
-    eq-43 cross-checks marked. ``result``: a :class:`tcarod.paper.fig8.Fig8Result`."""
+    """Fig. 8: blocked-tip force [mN] against temperature [C].
+
+    The incremental eq-43 cross-checks are marked.
+
+    Parameters
+    ----------
+    result : Fig8Result
+        A prediction of :mod:`tcarod.paper.fig8`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One panel.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from tcarod.paper.fig8 import FIG8
+    >>> from tcarod.plotting import plot_fig8
+    >>> small = dataclasses.replace(FIG8, temperatures_c=(25.0, 90.0, 160.0), cross_check_temperatures_c=(100.0,))
+    >>> plot_fig8(small.predict()).axes[0].get_ylabel()
+    'Tip force [mN]'
+    """
     exp = result.experiment
     fig = new_figure(4.5, 3.4)
     ax = fig.add_subplot()
@@ -148,9 +207,28 @@ def plot_fig8(result: Any) -> Figure:
 
 
 def plot_table1(result: Any) -> Figure:
-    """Table I: grip temperature [C] against mass [g] (tcarod, experiment, the
-    paper's model, the first plausible identified reading).
-    ``result``: a :class:`tcarod.paper.table1.Table1Result`."""
+    """Table I: grip temperature [C] against mass [g].
+
+    tcarod's prediction, the experiment, the paper's model and the first
+    plausible identified reading (when the result carries identifications).
+
+    Parameters
+    ----------
+    result : Table1Result
+        A prediction of :mod:`tcarod.paper.table1`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One panel.
+
+    Examples
+    --------
+    >>> from tcarod.paper.table1 import TABLE1
+    >>> from tcarod.plotting import plot_table1
+    >>> plot_table1(TABLE1.predict()).axes[0].get_xlabel()
+    'Grasped mass [g]'
+    """
     fig = new_figure(4.8, 3.6)
     ax = fig.add_subplot()
     rows = result.rows

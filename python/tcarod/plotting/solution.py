@@ -187,9 +187,8 @@ def plot_solution(
     Draws the centre line (dashed), the body's outline (edge lines and
     ``rings`` cross-section rings) and each actuator path in its own colour;
     the legend gives each actuator's tension in mN (negative: it pushes), the
-    title the inputs with their units (``"inputs: 120 °C, 25 °C"``).
-    ``Solution.plot(**kwargs)`` is ``plot_solution(solution, **kwargs)``;
-    figures and overlays: the module docstring.
+    title the inputs with their units (``"inputs: 120 °C, 25 °C"``). It is
+    ``Solution.plot(**kwargs)``; figures and overlays: the module docstring.
 
     Parameters
     ----------
@@ -229,6 +228,7 @@ def plot_solution(
     Examples
     --------
     >>> from tcarod.paper.fig6 import FIG6
+    >>> from tcarod.plotting import plot_solution
     >>> sol = FIG6.manipulators[1].robot().solve([100.0, 100.0])
     >>> ax = plot_solution(sol, view="xz").axes[0]
     >>> ax.get_xlabel(), ax.get_ylabel(), ax.get_title()

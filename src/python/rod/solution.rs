@@ -51,16 +51,26 @@ pub(crate) fn checked_solution(sol: Solution) -> Result<Solution> {
     }
 }
 
-/// A converged forward solution. Arrays are NumPy, SI units, world frame
-/// unless noted; `n` nodes along the body.
+/// A converged forward solution: the robot's shape and what held it there.
 ///
-/// SciPy-style fields: `success` (always `True`: a failed solve raises
-/// `ConvergenceError`), `status` 0, `message`, `nit` (Newton iterations),
-/// `nfev` (IVPs). Naming: `tip_position` [m] per solve, `tip_positions` per
-/// batch (`tcarod.batch.BatchResult`). Picklable (with its robot) and `==`.
-/// Stability: `stable` and `stability_margin`, computed by the solve (policy
+/// Returned by `Robot.solve`. Arrays are NumPy, SI units, world frame unless
+/// noted; `n` nodes along the body. SciPy-style fields: `success` (always
+/// `True`: a failed solve raises `ConvergenceError`), `status`, `message`,
+/// `nit` (Newton iterations), `nfev` (IVPs). Naming: `tip_position` [m] per
+/// solve, `tip_positions` per batch (`tcarod.batch.BatchResult`). Stability:
+/// `stable` and `stability_margin`, computed by the solve (policy
 /// `"report"`, the default) or on first access (one tangent IVP), cached;
-/// `continued` records a `stability="continue"` solve's route.
+/// `continued` records a `stability="continue"` solve's route. Picklable
+/// (with its robot) and comparable with `==`.
+///
+/// Examples
+/// --------
+/// >>> from tcarod.batch import fig6_square_robot
+/// >>> sol = fig6_square_robot().solve([100.0, 100.0])   # the paper's Fig. 6 square
+/// >>> sol.positions.shape, sol.tensions.shape            # (n, 3) [m], one tension per TCA [N]
+/// ((101, 3), (2,))
+/// >>> round(float(sol.tip_position[0]) * 1e3, 2), sol.stable   # tip x [mm]
+/// (-6.13, True)
 #[pyclass(name = "Solution", module = "tcarod._core", frozen, eq)]
 pub struct PySolution {
     pub(crate) inner: Solution,
@@ -149,30 +159,54 @@ impl Outcome for PySolution {
 
 scipy_fields!(
     PySolution,
-    "Status code (SciPy naming): `0` converged to `tol`; `1` `tol` lies below \
-     the estimated rounding floor and the residual reached the floor \
-     (`floor`). Both are successes, as in `scipy.optimize.least_squares`; a \
-     solve that fails raises `ConvergenceError` instead."
+    "Status code of the solve (SciPy naming).\n\n\
+     Returns\n\
+     -------\n\
+     int\n    \
+     `0` converged to `tol`; `1` `tol` lies below the estimated rounding \
+     floor and the residual reached the floor (`floor`). Both are \
+     successes, as in `scipy.optimize.least_squares`; a solve that fails \
+     raises `ConvergenceError` instead."
 );
 
 #[pymethods]
 impl PySolution {
-    /// The `Robot` solved.
+    /// The robot that was solved.
+    ///
+    /// Returns
+    /// -------
+    /// Robot
+    ///     The design (body, actuators, loads) this solution belongs to.
     #[getter]
     fn robot(&self, py: Python<'_>) -> Py<PyRobot> {
         self.robot.clone_ref(py)
     }
-    /// Arc length of each node [m], shape `(n,)`.
+    /// Arc length of each node [m].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n,)``, from 0 at the base to the body length at the tip [m].
     #[getter]
     fn s<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.inner.s)
     }
-    /// Centre-line positions [m], shape `(n, 3)`.
+    /// Centre-line positions [m], world frame.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n, 3)``: the position ``p(s)`` of each node [m].
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         stack3(py, &self.inner.positions)
     }
-    /// Rotation matrices (body to world), shape `(n, 3, 3)`.
+    /// Body-to-world rotation matrices [-].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n, 3, 3)``; column 3 of each is the tangent ``R e3``.
     #[getter]
     fn rotations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
         let flat: Vec<f64> = self
@@ -185,27 +219,54 @@ impl PySolution {
             .reshape([self.inner.rotations.len(), 3, 3])
             .expect("n x 3 x 3")
     }
-    /// Linear strain `nu` [-] (body frame), shape `(n, 3)`.
+    /// Linear strain ``nu`` [-], body frame.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n, 3)``; ``(0, 0, 1)`` where the body is neither sheared nor
+    ///     stretched.
     #[getter]
     fn nu<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         stack3(py, &self.inner.nu)
     }
-    /// Angular strain `omega` [1/m] (body frame), shape `(n, 3)`.
+    /// Angular strain (curvature and twist) ``omega`` [1/m], body frame.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n, 3)`` [1/m].
     #[getter]
     fn omega<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         stack3(py, &self.inner.omega)
     }
-    /// Internal force `n` [N], shape `(n, 3)`.
+    /// Internal force ``n`` [N], world frame.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n, 3)`` [N]: the force the distal part exerts on the proximal
+    ///     part across each section.
     #[getter]
     fn internal_force<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         stack3(py, &self.inner.internal_force)
     }
-    /// Internal moment `m` [N m], shape `(n, 3)`.
+    /// Internal moment ``m`` [N m], world frame.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n, 3)`` [N m].
     #[getter]
     fn internal_moment<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         stack3(py, &self.inner.internal_moment)
     }
-    /// Elongation of each actuator accumulated up to each node [m], shape `(n, n_actuators)`.
+    /// Elongation of each actuator accumulated up to each node [m].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n, n_actuators)`` [m]; the last row is ``elongations``.
     #[getter]
     fn elongation_profile<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let na = self.inner.tensions.len();
@@ -220,7 +281,12 @@ impl PySolution {
             .reshape([self.inner.s.len(), na])
             .expect("n x na")
     }
-    /// Path of each actuator `p + R r_i` [m] over its span: list of `(k_i, 3)` arrays.
+    /// Path ``p + R r_i`` of each actuator over its span [m], world frame.
+    ///
+    /// Returns
+    /// -------
+    /// list of numpy.ndarray
+    ///     One ``(k_i, 3)`` array per actuator [m].
     #[getter]
     fn actuator_paths<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray2<f64>>> {
         self.inner
@@ -229,81 +295,164 @@ impl PySolution {
             .map(|p| stack3(py, p))
             .collect()
     }
-    /// Actuator tensions [N] (negative: the actuator pushes), shape `(n_actuators,)`.
+    /// Actuator tensions [N] (negative: the actuator pushes).
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n_actuators,)`` [N].
     #[getter]
     fn tensions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.inner.tensions)
     }
-    /// Actuator total elongations [m], shape `(n_actuators,)`.
+    /// Total elongation of each actuator [m].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n_actuators,)`` [m].
     #[getter]
     fn elongations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.inner.elongations)
     }
-    /// Inputs solved for (temperature [C] for TCAs).
+    /// The inputs solved for, one per actuator.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n_actuators,)``: temperature [C] for a TCA, tension [N] for a
+    ///     tendon, pull [m] for a linear tendon.
     #[getter]
     fn inputs<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.inner.inputs)
     }
-    /// Force [N] transmitted to the base by body and actuators (the base reaction is its negative).
+    /// Force [N] transmitted to the base by the body and the actuators.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(3,)`` [N], world frame; the base reaction is its negative.
     #[getter]
     fn base_force<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.base_force)
     }
     /// Moment [N m] about the origin transmitted to the base.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(3,)`` [N m], world frame.
     #[getter]
     fn base_moment<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.base_moment)
     }
-    /// Tip position [m], shape `(3,)`.
+    /// Tip position [m], world frame.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(3,)`` [m].
     #[getter]
     fn tip_position<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.tip_position())
     }
-    /// Tip rotation, shape `(3, 3)`.
+    /// Tip rotation matrix (body to world) [-].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(3, 3)``; column 3 is the tip tangent.
     #[getter]
     fn tip_rotation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         mat3(py, &self.inner.tip_rotation())
     }
-    /// Newton iterations used (`nit`).
+    /// Newton iterations used (same as ``nit``).
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     Iterations of the last Newton solve [-].
     #[getter]
     fn iterations(&self) -> usize {
         self.inner.iterations
     }
-    /// IVPs integrated (`nfev`).
+    /// IVPs integrated (same as ``nfev``).
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     Integrations of the rod's ODE over the body, continuation included [-].
     #[getter]
     fn evaluations(&self) -> usize {
         self.inner.evaluations
     }
-    /// Final residual: max-norm of the dimensionless shooting residual [-].
+    /// Final residual of the shooting problem [-].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     Max-norm of the dimensionless shooting residual [-].
     #[getter]
     fn residual(&self) -> f64 {
         self.inner.residual
     }
-    /// Estimated rounding floor of the dimensionless residual at the
-    /// solution [-]: the residual cannot be computed more accurately; a `tol`
-    /// below it converges to it (`status == 1`).
+    /// Estimated rounding floor of the dimensionless residual [-].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     The residual cannot be computed more accurately than this at the
+    ///     solution; a ``tol`` below it converges to it (``status == 1``).
     #[getter]
     fn floor(&self) -> f64 {
         self.inner.floor
     }
-    /// Homotopy parameters `lambda` [-] (each in (0, 1], ending at 1) of the
-    /// continuation path the solve took when the direct Newton solve failed;
-    /// empty if it did not.
+    /// Homotopy parameters of the continuation path the solve took [-].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Each ``lambda`` in (0, 1], ending at 1, when the direct Newton solve
+    ///     failed and continuation took over; empty if it did not.
     #[getter]
     fn continuation_steps<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.inner.continuation_steps)
     }
-    /// Scaled shooting unknowns `[nu(0), L omega(0), delta_i / L]`.
+    /// Scaled shooting unknowns ``[nu(0), L omega(0), delta_i / L]`` [-].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(6 + n_actuators,)`` [-]: the base strains and the actuators'
+    ///     scaled elongations Newton converged to.
     #[getter]
     fn unknowns<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.inner.unknowns)
     }
-    /// The shape and everything solved as a dict of plain Python numbers and
-    /// lists (JSON-ready), every key naming its unit; see
-    /// `tcarod.io.results.solution_dict` (the package registers it at import).
-    /// `stability`: `None` (default) includes the verdict if it is already
-    /// known, `True` computes it if needed (one tangent IVP), `False` leaves
-    /// it out (`null`).
+    /// The shape and everything solved as a dict of plain numbers and lists.
+    ///
+    /// Every key names its unit (``positions_m``, ``tensions_n``, ...); the
+    /// document is JSON-ready. See ``tcarod.io.results.solution_dict`` and the
+    /// table in the documentation page "Exporting shapes".
+    ///
+    /// Parameters
+    /// ----------
+    /// stability : bool or None, optional
+    ///     ``None`` (default) includes the stability verdict if it is already
+    ///     known, ``True`` computes it if needed (one tangent IVP), ``False``
+    ///     leaves it out (``null``).
+    ///
+    /// Returns
+    /// -------
+    /// dict
+    ///     The document, format ``"tcarod.solution/1"``.
+    ///
+    /// Examples
+    /// --------
+    /// >>> from tcarod.batch import fig6_square_robot
+    /// >>> doc = fig6_square_robot().solve([60.0, 25.0], steps=20).to_dict()
+    /// >>> doc["format"], doc["nodes"], len(doc["positions_m"])
+    /// ('tcarod.solution/1', 21, 21)
     #[pyo3(signature = (*, stability=None))]
     fn to_dict<'py>(
         slf: &Bound<'py, Self>,
@@ -313,8 +462,30 @@ impl PySolution {
         kw.set_item("stability", stability)?;
         export(slf, "to_dict", PyTuple::empty(slf.py()), &kw)
     }
-    /// `to_dict()` as JSON text (NaN never occurs), also written to `path`
-    /// (UTF-8) if given; see `tcarod.io.results.solution_dict`.
+    /// ``to_dict()`` as JSON text, also written to ``path`` if given.
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike, optional
+    ///     File to write (UTF-8); default: none, the text is only returned.
+    /// stability : bool or None, optional
+    ///     As in ``to_dict``.
+    /// indent : int or None, optional
+    ///     JSON indentation (default 2; ``None``: one line).
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     The JSON document (NaN never occurs).
+    ///
+    /// Examples
+    /// --------
+    /// >>> import json
+    /// >>> from tcarod.batch import fig6_square_robot
+    /// >>> sol = fig6_square_robot().solve([60.0, 25.0], steps=20)
+    /// >>> doc = json.loads(sol.to_json("shape.json"))
+    /// >>> " ".join(doc["input_units"])
+    /// 'C C'
     #[pyo3(signature = (path=None, *, stability=None, indent=Some(2)),
         text_signature = "(self, path=None, *, stability=None, indent=2)")]
     fn to_json<'py>(
@@ -329,9 +500,27 @@ impl PySolution {
         kw.set_item("indent", indent)?;
         export(slf, "to_json", PyTuple::new(py, [path])?, &kw)
     }
-    /// One row per node (arc length, position, rotation, strains, internal
-    /// wrench, actuator elongations), columns named with their units, as CSV
-    /// text, also written to `path` if given; see `tcarod.io.results.solution_csv`.
+    /// One row per node as CSV text, columns named with their units.
+    ///
+    /// The columns: arc length, position, rotation, strains, internal wrench,
+    /// actuator elongations (``tcarod.io.results.solution_csv``).
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike, optional
+    ///     File to write; default: none, the text is only returned.
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     The CSV text, one header line and ``n`` rows.
+    ///
+    /// Examples
+    /// --------
+    /// >>> from tcarod.batch import fig6_square_robot
+    /// >>> lines = fig6_square_robot().solve([60.0, 25.0], steps=20).to_csv().splitlines()
+    /// >>> len(lines), lines[0].startswith("s_m,x_m,y_m,z_m,r11,")
+    /// (22, True)
     #[pyo3(signature = (path=None))]
     fn to_csv<'py>(
         slf: &Bound<'py, Self>,
@@ -340,9 +529,26 @@ impl PySolution {
         let py = slf.py();
         export(slf, "to_csv", PyTuple::new(py, [path])?, &PyDict::new(py))
     }
-    /// The centre line as a VTK polyline with the node data (`.vtu` or
-    /// `.vtk`, for ParaView), written with meshio (the `export` extra);
-    /// returns the path. See `tcarod.io.results.write_vtk`.
+    /// Write the centre line as a VTK polyline with the node data, for ParaView.
+    ///
+    /// Needs meshio (the ``export`` extra); see ``tcarod.io.results.write_vtk``.
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike
+    ///     ``.vtu`` (XML) or ``.vtk`` (legacy) file.
+    ///
+    /// Returns
+    /// -------
+    /// pathlib.Path
+    ///     The path written.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     A suffix other than ``.vtu`` or ``.vtk``.
+    /// ImportError
+    ///     meshio is not installed (names the ``export`` extra).
     fn to_vtk<'py>(slf: &Bound<'py, Self>, path: Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let py = slf.py();
         export(slf, "to_vtk", PyTuple::new(py, [path])?, &PyDict::new(py))
@@ -353,8 +559,27 @@ impl PySolution {
     fn _verdict(&self) -> Option<(bool, f64)> {
         self.verdict.get().copied()
     }
-    /// 3-D plot of the shape with the actuators (see `tcarod.plotting.plot_solution`;
-    /// the package registers that function at import, the bindings import nothing).
+    /// Plot the shape with the actuators (the ``plot`` extra, matplotlib).
+    ///
+    /// The keywords are those of ``tcarod.plotting.plot_solution``.
+    ///
+    /// Parameters
+    /// ----------
+    /// **kwargs
+    ///     ``view`` (``"3d"``, ``"xz"``, ``"yz"``, ``"xy"`` or ``"interactive"``),
+    ///     ``ax``, ``show_actuators``, ...
+    ///
+    /// Returns
+    /// -------
+    /// matplotlib.figure.Figure
+    ///     The figure (a plotly figure for ``view="interactive"``).
+    ///
+    /// Examples
+    /// --------
+    /// >>> from tcarod.batch import fig6_square_robot
+    /// >>> fig = fig6_square_robot().solve([60.0, 25.0], steps=20).plot(view="xz")
+    /// >>> fig.axes[0].get_xlabel()
+    /// 'x [mm]'
     #[pyo3(signature = (**kwargs))]
     fn plot<'py>(
         slf: &Bound<'py, Self>,
@@ -368,26 +593,39 @@ impl PySolution {
         })?;
         plotter.bind(py).call((slf,), kwargs)
     }
-    /// True if this equilibrium is stable: a strict local minimum of the
-    /// potential energy (Till and Rucker's criterion, extended to the
-    /// actuators and dead loads; see `tcarod.models.stability`). Computed by the
-    /// solve (default policy `"report"`) or on first access, from one
-    /// tangent integration (GIL released), and cached. A
-    /// `BlockedResult.solution` carries the verdict with the tip held on its
-    /// plane (mixed boundary condition).
+    /// Whether this equilibrium is stable.
+    ///
+    /// Returns
+    /// -------
+    /// bool
+    ///     ``True`` at a strict local minimum of the potential energy (Till and
+    ///     Rucker's criterion, extended to the actuators and dead loads; see
+    ///     ``tcarod.models.stability``). Computed by the solve (policy ``"report"``,
+    ///     the default) or on first access from one tangent integration, then
+    ///     cached. A ``BlockedResult.solution`` carries the verdict with the tip
+    ///     held on its plane (mixed boundary condition).
     #[getter]
     fn stable(&self, py: Python<'_>) -> PyResult<bool> {
         Ok(self.verdict(py)?.0)
     }
-    /// How `stability="continue"` reached this equilibrium from the unstable
-    /// one Newton found first (a `Continuation`), or None.
+    /// How ``stability="continue"`` reached this equilibrium, if it moved.
+    ///
+    /// Returns
+    /// -------
+    /// Continuation or None
+    ///     The route from the unstable equilibrium Newton found first; ``None``
+    ///     if the solve did not move.
     #[getter]
     fn continued(&self, py: Python<'_>) -> Option<Py<crate::python::stability::Continuation>> {
         self.continued.as_ref().map(|c| c.clone_ref(py))
     }
-    /// Stability margin [-] (dimensionless): the smallest eigenvalue of the
-    /// dimensionless tip stiffness, `> 0` iff `stable`. Computed and cached
-    /// with `stable`.
+    /// Stability margin [-].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     The smallest eigenvalue of the dimensionless tip stiffness [-],
+    ///     ``> 0`` if and only if ``stable``; computed and cached with ``stable``.
     #[getter]
     fn stability_margin(&self, py: Python<'_>) -> PyResult<f64> {
         Ok(self.verdict(py)?.1)
@@ -408,7 +646,13 @@ impl PySolution {
             stable
         )
     }
-    /// RK4 steps over the body used by the solve (`steps` argument).
+    /// RK4 steps over the body used by the solve [-].
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     The ``steps`` argument, or the finer grid an ``equilibrium_tol``
+    ///     solve needed.
     #[getter]
     fn steps(&self) -> usize {
         self.inner.steps

@@ -26,8 +26,23 @@ pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// A followed branch or a stable sweep: arrays over its points, located
-/// events and (sweep) jumps.
+/// A followed branch of equilibria, or a stable sweep.
+///
+/// Arrays over its ``k`` points (``parameter``, ``tip_positions`` [m],
+/// ``stable``, ``margin`` [-]), the located folds and bifurcations and, for a
+/// stable sweep, the jumps. Built by ``tcarod.models.stability.follow_branch``;
+/// ``len(branch)`` is ``k``.
+///
+/// Examples
+/// --------
+/// >>> from tcarod.paper.buckling import column_robot
+/// >>> from tcarod.models.stability import follow_branch
+/// >>> column = column_robot()          # a soft column, 50 mm, standing up under 1 g
+/// >>> branch = follow_branch(column, "gravity_scale", 0.0, 3.0, steps=20)
+/// >>> bool(branch.stable[0]), bool(branch.stable[-1])    # straight: stable, then not
+/// (True, False)
+/// >>> round(float(branch.bifurcations[0]), 2)          # buckles at 1.54 g
+/// 1.54
 #[pyclass(name = "Branch", module = "tcarod._core", frozen)]
 pub struct PyBranch {
     points: Vec<(f64, Vector3<f64>, bool, f64)>,
@@ -52,33 +67,63 @@ impl PyBranch {
 
 #[pymethods]
 impl PyBranch {
-    /// Parameter value of each point, shape `(k,)`.
+    /// Parameter value of each point.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(k,)``: input [C, N or m] or scale [-], as followed.
     #[getter]
     fn parameter<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         arr1(py, &self.points.iter().map(|p| p.0).collect::<Vec<_>>())
     }
-    /// Tip position of each point [m], shape `(k, 3)`.
+    /// Tip position of each point [m].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(k, 3)`` [m], world frame.
     #[getter]
     fn tip_positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         arr3(py, &self.points.iter().map(|p| p.1).collect::<Vec<_>>())
     }
-    /// Stability of each point, shape `(k,)`, bool.
+    /// Stability of each point.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(k,)``, bool.
     #[getter]
     fn stable<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<bool>> {
         PyArray1::from_vec(py, self.points.iter().map(|p| p.2).collect())
     }
-    /// Stability margin of each point [-], shape `(k,)`.
+    /// Stability margin of each point [-].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(k,)`` [-], ``> 0`` where stable.
     #[getter]
     fn margin<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         arr1(py, &self.points.iter().map(|p| p.3).collect::<Vec<_>>())
     }
     /// The equilibrium at each point.
+    ///
+    /// Returns
+    /// -------
+    /// list of Solution
+    ///     ``k`` solutions, in order along the branch.
     #[getter]
     fn solutions(&self, py: Python<'_>) -> Vec<Py<PySolution>> {
         self.solutions.iter().map(|s| s.clone_ref(py)).collect()
     }
-    /// Located events `(kind, parameter, tip position [m] (3,))`, kind
-    /// `"fold"` or `"bifurcation"`.
+    /// Located events along the branch.
+    ///
+    /// Returns
+    /// -------
+    /// list of tuple
+    ///     ``(kind, parameter, tip position (3,) [m])``, ``kind`` ``"fold"`` or
+    ///     ``"bifurcation"``.
     #[getter]
     fn events<'py>(&self, py: Python<'py>) -> Vec<(String, f64, Bound<'py, PyArray1<f64>>)> {
         self.events
@@ -86,17 +131,33 @@ impl PyBranch {
             .map(|(k, p, t)| (k.clone(), *p, arr1(py, t.as_slice())))
             .collect()
     }
-    /// Parameters of the located folds, shape `(j,)`.
+    /// Parameters of the located folds.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(j,)``, in the parameter's unit.
     #[getter]
     fn folds<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.events_of(py, "fold")
     }
-    /// Parameters of the located bifurcations, shape `(j,)`.
+    /// Parameters of the located bifurcations.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(j,)``, in the parameter's unit.
     #[getter]
     fn bifurcations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.events_of(py, "bifurcation")
     }
-    /// Jumps of a stable sweep: `(parameter, before, after)` solutions.
+    /// Jumps of a stable sweep.
+    ///
+    /// Returns
+    /// -------
+    /// list of tuple
+    ///     ``(parameter, before, after)``: the last stable solution before the
+    ///     robot jumps and the stable one it lands on (empty for a branch).
     #[getter]
     fn jumps(&self, py: Python<'_>) -> Vec<(f64, Py<PySolution>, Py<PySolution>)> {
         self.jumps
@@ -104,7 +165,12 @@ impl PyBranch {
             .map(|(p, a, b)| (*p, a.clone_ref(py), b.clone_ref(py)))
             .collect()
     }
-    /// Integrations spent (IVPs and tangent IVPs).
+    /// Integrations spent (IVPs and tangent IVPs) [-].
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     The work of the whole branch.
     #[getter]
     fn evaluations(&self) -> usize {
         self.evaluations
@@ -260,15 +326,59 @@ fn wrap(
     Py::new(py, PySolution::new(s, robot))
 }
 
-/// Follow the equilibria of `robot` in one scalar `parameter` from `start`
-/// to `end` by pseudo-arclength continuation, through folds, with the
-/// stability of every point (see `tcarod.models.stability.follow_branch`).
-/// `parameter`: `"inputs"` (the inputs of `actuators`, default all: a
-/// temperature [C], tension [N] or pull [m]), `"gravity_scale"` or
-/// `"tip_load_scale"` [-]. `inputs`: the other actuators' inputs (default
-/// the reference inputs). `stable_only`: sweep mode, stay on stable
-/// equilibria and record the jumps. `warm_start`: an equilibrium at `start`
-/// (or near it) to begin on, e.g. one of several coexisting shapes.
+/// Follow the equilibria of ``robot`` in one scalar parameter.
+///
+/// Pseudo-arclength continuation from ``start`` to ``end`` through folds,
+/// with the stability of every point; the public form is
+/// ``tcarod.models.stability.follow_branch``.
+///
+/// Parameters
+/// ----------
+/// robot : Robot
+///     The robot.
+/// parameter : {"inputs", "gravity_scale", "tip_load_scale"}
+///     ``"inputs"``: the inputs of ``actuators`` (a temperature [C], tension
+///     [N] or pull [m]); ``"gravity_scale"`` and ``"tip_load_scale"`` [-]
+///     multiply the body's gravity and its tip load.
+/// start, end : float
+///     The parameter's range.
+/// actuators : sequence of int, optional
+///     The actuators driven by ``"inputs"`` (default all).
+/// inputs : sequence of float, optional
+///     The other actuators' inputs (default the reference inputs).
+/// step, max_step : float, optional
+///     First and largest arclength step, in units of ``|end - start|``
+///     (defaults 0.02 and 0.1).
+/// max_points : int, optional
+///     Point budget (default 500).
+/// stable_only : bool, optional
+///     Sweep mode: stay on stable equilibria and record the jumps.
+/// warm_start : Solution, optional
+///     An equilibrium at ``start`` to begin on (one of coexisting shapes).
+/// steps : int, optional
+///     RK4 steps over the body (default 100).
+/// tol : float, optional
+///     Newton tolerance on the dimensionless residual (default 1e-10).
+/// max_iter : int, optional
+///     Newton iterations per point (default 50).
+///
+/// Returns
+/// -------
+/// Branch
+///     The points, events and jumps.
+///
+/// Raises
+/// ------
+/// ValueError
+///     An argument outside its range (named, with its unit).
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> from tcarod.paper.buckling import column_robot
+/// >>> branch = _core.follow_branch(column_robot(), parameter="gravity_scale", start=0.0, end=3.0, steps=20)
+/// >>> round(float(branch.bifurcations[0]), 2)       # gravity scale [-] where the column buckles
+/// 1.54
 #[pyfunction]
 #[pyo3(signature = (robot, *, parameter, start, end, actuators=None, inputs=None, step=Real(0.02), max_step=Real(0.1), max_points=None, stable_only=false, warm_start=None, steps=None, tol=Real(1e-10), max_iter=None),
     text_signature = "(robot, *, parameter, start, end, actuators=None, inputs=None, step=0.02, max_step=0.1, max_points=500, stable_only=False, warm_start=None, steps=100, tol=1e-10, max_iter=50)")]

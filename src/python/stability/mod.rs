@@ -24,7 +24,21 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     policy::register(m)
 }
 
-/// Stability verdict of one equilibrium (see `tcarod.models.stability`).
+/// Stability verdict of one equilibrium (see ``tcarod.models.stability``).
+///
+/// Till and Rucker's conjugate-point test (IEEE T-RO 2017) extended to
+/// embedded actuators, dead loads and a blocked tip: one tangent integration
+/// along the body. Built by ``tcarod.models.stability.stability``; a solve's
+/// own verdict is ``Solution.stable`` and ``Solution.stability_margin``.
+///
+/// Examples
+/// --------
+/// >>> from tcarod.batch import fig6_square_robot
+/// >>> from tcarod.models.stability import stability
+/// >>> robot = fig6_square_robot()
+/// >>> verdict = stability(robot, robot.solve([60.0, 25.0], steps=20))
+/// >>> verdict.stable, verdict.margin > 0, verdict.conjugate_point
+/// (True, True, None)
 #[pyclass(name = "Stability", module = "tcarod._core", frozen)]
 pub struct PyStability {
     inner: Stability,
@@ -59,28 +73,54 @@ fn arr3<'py>(py: Python<'py>, v: &[Vector3<f64>]) -> Bound<'py, PyArray2<f64>> {
 
 #[pymethods]
 impl PyStability {
-    /// True if the equilibrium is stable (a strict local energy minimum, up
-    /// to neutral symmetry modes).
+    /// Whether the equilibrium is stable.
+    ///
+    /// Returns
+    /// -------
+    /// bool
+    ///     ``True`` at a strict local minimum of the potential energy, up to
+    ///     neutral symmetry modes.
     #[getter]
     fn stable(&self) -> bool {
         self.inner.stable
     }
-    /// Smallest eigenvalue of the dimensionless tip stiffness [-]: > 0 iff stable.
+    /// Stability margin [-].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     Smallest eigenvalue of the dimensionless tip stiffness [-]: ``> 0``
+    ///     if and only if stable.
     #[getter]
     fn margin(&self) -> f64 {
         self.inner.margin
     }
-    /// Arc length [m] of the first conjugate point, or None.
+    /// Arc length [m] of the first conjugate point, if there is one.
+    ///
+    /// Returns
+    /// -------
+    /// float or None
+    ///     Where ``determinant`` first changes sign [m]; ``None`` if it does not.
     #[getter]
     fn conjugate_point(&self) -> Option<f64> {
         self.inner.conjugate_point
     }
-    /// Arc length of the nodes [m], shape `(n,)`.
+    /// Arc length of the nodes [m].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n,)`` [m].
     #[getter]
     fn s<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         arr1(py, &self.inner.s)
     }
-    /// Till and Rucker's determinant `det(Y(s) Y(0)^-1)` [-] at the nodes.
+    /// Till and Rucker's determinant ``det(Y(s) Y(0)^-1)`` at the nodes [-].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n,)`` [-]; a sign change marks a conjugate point.
     #[getter]
     fn determinant<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let v: Vec<f64> = self
@@ -91,8 +131,13 @@ impl PyStability {
             .collect();
         arr1(py, &v)
     }
-    /// Smallest eigenvalue of the truncated rod's tip stiffness [-] at the
-    /// nodes (the base node, where it is infinite, carries the largest float).
+    /// Smallest eigenvalue of the truncated rod's tip stiffness at the nodes [-].
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(n,)`` [-]; the base node, where it is infinite, carries the
+    ///     largest float.
     #[getter]
     fn min_stiffness<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let v: Vec<f64> = self
@@ -103,12 +148,22 @@ impl PyStability {
             .collect();
         arr1(py, &v)
     }
-    /// Softest tip mode `(dp / L, dtheta)` (world frame), shape `(6,)`.
+    /// Softest tip mode ``(dp / L, dtheta)`` [-, rad], world frame.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``(6,)``: tip translation over body length, then rotation.
     #[getter]
     fn mode<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         arr1(py, &self.inner.mode)
     }
-    /// Integrations spent on the verdict (1 tangent IVP).
+    /// Integrations spent on the verdict [-].
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     One tangent IVP.
     #[getter]
     fn evaluations(&self) -> usize {
         self.inner.evaluations
@@ -201,10 +256,37 @@ pub(crate) fn finite_margin(mut s: Stability) -> Stability {
     s
 }
 
-/// Stability of `solution`, an equilibrium of `robot`. `blocked`: world
-/// directions `(k, 3)` along which the tip translation is held (a blocked-tip
-/// solution's block normal). Raises ValueError if the solution is not one of
-/// this robot's.
+/// Stability verdict of ``solution``, an equilibrium of ``robot``.
+///
+/// The public form is ``tcarod.models.stability.stability``.
+///
+/// Parameters
+/// ----------
+/// robot : Robot
+///     The robot solved.
+/// solution : Solution
+///     One of ``robot``'s equilibria.
+/// blocked : sequence of (3,) sequences of float, optional
+///     World directions [-] along which the tip translation is held (a
+///     blocked-tip solution's block normal); default none.
+///
+/// Returns
+/// -------
+/// Stability
+///     The verdict, its margin [-] and the profiles along the body.
+///
+/// Raises
+/// ------
+/// ValueError
+///     ``solution`` is not an equilibrium of ``robot``.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import _core
+/// >>> from tcarod.batch import fig6_square_robot
+/// >>> robot = fig6_square_robot()
+/// >>> _core.stability(robot, robot.solve([60.0, 25.0], steps=20, stability="off")).stable
+/// True
 #[pyfunction]
 #[pyo3(signature = (robot, solution, *, blocked=None), text_signature = "(robot, solution, *, blocked=None)")]
 fn stability(

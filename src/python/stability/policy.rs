@@ -33,25 +33,60 @@ pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// How `stability='continue'` reached the stable equilibrium it handed back
-/// (`Solution.continued`): the unstable equilibrium Newton found first, its
+/// How ``stability="continue"`` reached the stable equilibrium it handed back.
+///
+/// ``Solution.continued``: the unstable equilibrium Newton found first, its
 /// margin, the route taken and the work.
+///
+/// Examples
+/// --------
+/// >>> from tcarod import Body, Robot, Section
+/// >>> heavy = Robot(Body(0.05, Section.rectangle(0.01, 0.009), 37.8e3, density=3120.0,
+/// ...                    gravity=(0.0, 0.0, -9.81)), [])     # past self-weight buckling
+/// >>> sol = heavy.solve([], steps=20, stability="continue")
+/// >>> sol.stable, sol.continued.margin < 0, sol.continued.unstable.stable
+/// (True, True, False)
 #[pyclass(name = "Continuation", module = "tcarod._core", frozen)]
 pub struct Continuation {
-    /// The route, in words (loading from rest with an imperfection along
-    /// the softest mode, or a perturbed Newton start).
+    /// The route taken, in words.
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     Loading from rest with an imperfection along the softest mode, or a
+    ///     perturbed Newton start.
     #[pyo3(get)]
     route: String,
     /// The unstable equilibrium found first.
+    ///
+    /// Returns
+    /// -------
+    /// Solution
+    ///     Its ``stable`` is ``False``.
     #[pyo3(get)]
     unstable: Py<PySolution>,
-    /// Its stability margin [-] (< 0).
+    /// Stability margin of the unstable equilibrium [-].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     ``< 0``.
     #[pyo3(get)]
     margin: f64,
-    /// Stable equilibria found (the one nearest the unstable tip is kept).
+    /// Stable equilibria found [-].
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     The one nearest the unstable tip is kept.
     #[pyo3(get)]
     candidates: usize,
-    /// IVPs integrated to get there (verdicts included).
+    /// IVPs integrated to get there, verdicts included [-].
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     The work of the continuation.
     #[pyo3(get)]
     evaluations: usize,
 }
