@@ -10,7 +10,11 @@
 #[non_exhaustive]
 pub enum Error {
     /// A scalar argument is non-finite or outside its allowed range.
-    #[error("invalid {name} = {value}: allowed {allowed}")]
+    ///
+    /// Displayed as `invalid NAME = VALUE UNIT: allowed RANGE`: the unit is
+    /// read from the trailing `[unit]` of `name` and printed after the value,
+    /// which is written as a person would ([`human`]: `0.004`, `170`, `1e-300`).
+    #[error("{}", param_message(name, *value, allowed))]
     InvalidParameter {
         /// Name of the argument, with its unit (e.g. `temperature \[C\]`).
         name: String,
@@ -144,6 +148,113 @@ impl Error {
     }
 }
 
+/// `invalid NAME = VALUE UNIT: allowed RANGE`, the unit taken from the last
+/// `[unit]` of `name` (an index such as `inputs[0]` is not a unit; `[-]`,
+/// dimensionless, prints no unit).
+fn param_message(name: &str, value: f64, allowed: &str) -> String {
+    let (bare, unit) = split_unit(name);
+    let unit = match unit {
+        Some(u) if u != "-" => format!(" {u}"),
+        _ => String::new(),
+    };
+    format!("invalid {bare} = {}{unit}: allowed {allowed}", human(value))
+}
+
+/// `name` without its unit and the unit: `"temperature [C]"` gives
+/// `("temperature", Some("C"))`, `"inputs[0] (temperature [C])"` gives
+/// `("inputs[0] (temperature)", Some("C"))`; a bracket holding only digits
+/// (an index) is part of the name.
+pub fn split_unit(name: &str) -> (String, Option<&str>) {
+    let mut search = name.len();
+    while let Some(open) = name[..search].rfind('[') {
+        if let Some(len) = name[open..].find(']') {
+            let inner = &name[open + 1..open + len];
+            if !inner.is_empty() && !inner.chars().all(|c| c.is_ascii_digit()) {
+                let head = name[..open].trim_end();
+                let tail = &name[open + len + 1..];
+                return (format!("{head}{tail}"), Some(inner));
+            }
+        }
+        search = open;
+    }
+    (name.to_string(), None)
+}
+
+/// `x` as a person writes it: at most 10 significant digits, trailing zeros
+/// dropped (`4`, `0.004`, `170`, `0.3` for `0.1 + 0.2`), an exponent only
+/// far from 1 (`1e-300`, `2.5e+20`), `inf`, `-inf`, `NaN` as such.
+pub fn human(x: f64) -> String {
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    if x == 0.0 {
+        return "0".to_string();
+    }
+    let ax = x.abs();
+    if (1e-4..1e15).contains(&ax) {
+        let magnitude = ax.log10().floor() as i32;
+        let decimals = (9 - magnitude).max(0) as usize;
+        let mut s = format!("{x:.decimals$}");
+        if s.contains('.') {
+            s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+        }
+        // rounding can carry into the next decade (9.99999999995e-5): still fine
+        s
+    } else {
+        let s = format!("{x:.9e}");
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        let mantissa = if mantissa.contains('.') {
+            mantissa.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            mantissa
+        };
+        let exponent = exponent.parse::<i32>().unwrap_or(0);
+        format!(
+            "{mantissa}e{}{}",
+            if exponent < 0 { "-" } else { "+" },
+            exponent.abs()
+        )
+    }
+}
+
+/// A length \[m\] for a message: in millimetres below 1 m (`6.85 mm`), in
+/// metres from 1 m (`4 m`).
+pub fn length_text(x: f64) -> String {
+    if x.is_finite() && x.abs() < 1.0 {
+        format!("{} mm", human(x * 1e3))
+    } else {
+        format!("{} m", human(x))
+    }
+}
+
+/// Lengths \[m\] above this, for a part of a soft robot (an offset, a coil
+/// radius, a section size), look like millimetres given as metres.
+pub const MM_LOOKING_M: f64 = 1.0;
+
+/// Beyond this length \[m\] (10,000 mm) a value is no millimetre typo.
+pub const MM_LOOKING_MAX_M: f64 = 1e4;
+
+/// The hint added to a length error or warning whose `value` \[m\] looks
+/// like millimetres (above [`MM_LOOKING_M`], up to [`MM_LOOKING_MAX_M`]):
+/// `" (millimetres? lengths are in metres: 4 mm is 0.004 m)"`; empty otherwise.
+pub fn mm_hint(value: f64) -> String {
+    if value.is_finite() && value.abs() > MM_LOOKING_M && value.abs() <= MM_LOOKING_MAX_M {
+        mm_question(value)
+    } else {
+        String::new()
+    }
+}
+
+/// `" (millimetres? lengths are in metres: 4 mm is 0.004 m)"` for `value`
+/// \[m\], whatever its size (for checks with their own threshold).
+pub fn mm_question(value: f64) -> String {
+    format!(
+        " (millimetres? lengths are in metres: {} mm is {} m)",
+        human(value),
+        human(value * 1e-3)
+    )
+}
+
 /// Check that `value` is finite and strictly positive.
 pub fn positive(name: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {
@@ -168,5 +279,56 @@ pub fn finite(name: &str, value: f64) -> Result<f64> {
         Ok(value)
     } else {
         Err(Error::param(name, value, "a finite number"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_written_as_a_person_would() {
+        assert_eq!(human(4.0), "4");
+        assert_eq!(human(0.004), "0.004");
+        assert_eq!(human(170.0), "170");
+        assert_eq!(human(0.1 + 0.2), "0.3");
+        assert_eq!(human(-2.5), "-2.5");
+        assert_eq!(human(1e-300), "1e-300");
+        assert_eq!(human(2.5e20), "2.5e+20");
+        assert_eq!(human(f64::INFINITY), "inf");
+        assert_eq!(human(f64::NAN), "NaN");
+        assert_eq!(human(160.0000001), "160.0000001");
+    }
+
+    #[test]
+    fn the_unit_follows_the_value() {
+        let e = Error::param("temperature [C]", 170.0, "25 <= T <= 160 C");
+        assert_eq!(
+            e.to_string(),
+            "invalid temperature = 170 C: allowed 25 <= T <= 160 C"
+        );
+        let e = Error::param("inputs[1] (temperature [C])", 170.0, "x");
+        assert_eq!(
+            e.to_string(),
+            "invalid inputs[1] (temperature) = 170 C: allowed x"
+        );
+        let e = Error::param("length_ratio [-]", 0.0, "> 0");
+        assert_eq!(e.to_string(), "invalid length_ratio = 0: allowed > 0");
+        let e = Error::param("steps", 0.0, ">= 1");
+        assert_eq!(e.to_string(), "invalid steps = 0: allowed >= 1");
+        let e = Error::param("x [m]", 4.0, "finite");
+        assert!(!e.to_string().contains("e0"));
+    }
+
+    #[test]
+    fn millimetres_are_suspected_above_a_metre() {
+        assert_eq!(
+            mm_hint(4.0),
+            " (millimetres? lengths are in metres: 4 mm is 0.004 m)"
+        );
+        assert_eq!(mm_hint(0.004), "");
+        assert_eq!(mm_hint(1e300), "");
+        assert_eq!(length_text(6.85e-3), "6.85 mm");
+        assert_eq!(length_text(4.0), "4 m");
     }
 }

@@ -132,23 +132,29 @@ def test_material_rejects_inconsistent_fields(changes: dict[str, float], field: 
     ids=["displacement", "force", "free_stroke", "blocked_force", "torque", "f11", "youngs_modulus"],
 )
 def test_solves_reject_out_of_range_temperatures(call: Callable[[float], object], temperature: float) -> None:
-    with pytest.raises(ValueError, match=r"temperature \[C\]"):
+    with pytest.raises(ValueError, match=r"^invalid temperature( \(element \d+\))? = \S+ C: allowed 25 <= T <= 160 C"):
         call(temperature)
 
 
 @pytest.mark.parametrize(
     ("call", "field"),
     [
-        (lambda: TCA.displacement(NAN, 50.0), r"force \[N\]"),
-        (lambda: TCA.displacement(INF, 50.0), r"force \[N\]"),
-        (lambda: TCA.force(-1e-3, 50.0), r"displacement \[m\]"),  # coils cannot close further
-        (lambda: TCA.force(NAN, 50.0), r"displacement \[m\]"),
-        (lambda: TCA.force(0.5, 50.0), r"displacement \[m\]"),  # beyond the straight fibre
-        (lambda: TCA.temperature(0.0, -1e-3), r"displacement \[m\]"),
-        (lambda: TCA.temperature(NAN, 1e-3), r"force \[N\]"),
-        (lambda: TCA.pitch_angle(INF), r"displacement \[m\]"),
-        (lambda: TCA.f11(NAN, 50.0), r"alpha \[rad\]"),
-        (lambda: TCA.f12(2.0, 50.0), r"alpha \[rad\]"),
+        (lambda: TCA.displacement(NAN, 50.0), r"^invalid force( \(element \d+\))? = \S+ N: allowed"),
+        (lambda: TCA.displacement(INF, 50.0), r"^invalid force( \(element \d+\))? = \S+ N: allowed"),
+        (
+            lambda: TCA.force(-1e-3, 50.0),
+            r"^invalid displacement( \(element \d+\))? = \S+ m: allowed",
+        ),  # coils cannot close further
+        (lambda: TCA.force(NAN, 50.0), r"^invalid displacement( \(element \d+\))? = \S+ m: allowed"),
+        (
+            lambda: TCA.force(0.5, 50.0),
+            r"^invalid displacement( \(element \d+\))? = \S+ m: allowed",
+        ),  # beyond the straight fibre
+        (lambda: TCA.temperature(0.0, -1e-3), r"^invalid displacement( \(element \d+\))? = \S+ m: allowed"),
+        (lambda: TCA.temperature(NAN, 1e-3), r"^invalid force( \(element \d+\))? = \S+ N: allowed"),
+        (lambda: TCA.pitch_angle(INF), r"^invalid displacement( \(element \d+\))? = \S+ m: allowed"),
+        (lambda: TCA.f11(NAN, 50.0), r"^invalid alpha = \S+ rad: allowed"),
+        (lambda: TCA.f12(2.0, 50.0), r"^invalid alpha = \S+ rad: allowed"),
         (lambda: TCA.displacement(1e3, 50.0), "straightens the fibre"),
         (lambda: TCA.temperature(-100.0, 0.01), "no temperature"),  # no such state in range
         (lambda: TCA.onset_temperature(-100.0), "no temperature"),
@@ -306,7 +312,7 @@ def test_tiny_and_huge_but_valid_geometry_never_returns_nan() -> None:
 @pytest.mark.parametrize(
     ("make", "bad", "allowed"),
     [
-        (lambda: tcarod.Actuator.tendon(tcarod.Routing.straight(1e-3, 0.0)), NAN, "input >= 0 (finite)"),
+        (lambda: tcarod.Actuator.tendon(tcarod.Routing.straight(1e-3, 0.0)), NAN, "input >= 0 N (finite)"),
         (lambda: tcarod.Actuator.linear_tendon(100.0, tcarod.Routing.straight(1e-3, 0.0)), INF, "a finite input"),
     ],
     ids=["tendon", "linear_tendon"],
@@ -398,7 +404,7 @@ def test_thermal_model_coefficients_outside_their_physical_range(name: str, bad:
 
     kwargs: dict[str, Any] = {"fibre_length_m": 0.3, "threads": 3, "resistance": 60.0, name: bad}
     lo, hi, _ = RANGES[name]
-    expected = re.escape(f"invalid {name} = {bad:g} [{unit}]: allowed in [{lo:g}, {hi:g}] (a physical range")
+    expected = re.escape(f"invalid {name} = {bad:g} {unit}: allowed in [{lo:g}, {hi:g}] {unit} (a physical range")
     with pytest.raises(ValueError, match=expected):
         ThermalModel(**kwargs)
 
@@ -556,6 +562,229 @@ def test_a_tca_temperature_in_kelvin_is_named_as_such() -> None:
     # 373.15 K is 100 C, inside the material's range once read as kelvin
     with pytest.raises(ValueError, match=r"inputs\[0\].*373\.15.*Celsius: 373\.15 K is 100\.00 C"):
         robot.solve([373.15, 373.15])
-    # beyond the range either way: the plain range
-    with pytest.raises(ValueError, match=r"allowed 25 <= input <= 160$"):
+    # beyond the range either way: the range, the material and what to change
+    with pytest.raises(ValueError, match=r"allowed 25 <= T <= 160 C, .*silver-coated nylon.*lower the temperature\)$"):
         robot.solve([170.0, 25.0])
+
+
+# ------------------------------------- one message format, from Rust and Python
+
+
+def _fig6() -> tcarod.Robot:
+    from tcarod.batch import fig6_square_robot
+
+    return fig6_square_robot()
+
+
+def _robot_12mm(offset: float = 3e-3, **kw: Any) -> tcarod.Robot:
+    """A 40 mm EcoFlex-like body of 12 mm diameter with one 1.7 mm TCA at
+    ``offset`` [m] along body x."""
+    body = tcarod.Body(0.04, tcarod.Section.circle(12e-3), 37.8e3, gravity=(0.0, 0.0, -9.81), density=1040.0)
+    tca = Tca.from_pitch_angle(0.04, math.radians(15.0), 1.7e-3, 76.4)
+    return tcarod.Robot(body, [tcarod.Actuator.tca(tca, tcarod.Routing.straight(offset, 0.0))], **kw)
+
+
+@pytest.mark.parametrize(
+    ("call", "name", "value", "allowed", "reason"),
+    [
+        pytest.param(
+            lambda: _fig6().solve([170.0, 25.0]),
+            "inputs[0] (temperature)",
+            "170 C",
+            "25 <= T <= 160 C",
+            "the valid range of the TCA's material silver-coated nylon",
+            id="tca-temperature-above",
+        ),
+        pytest.param(
+            lambda: _fig6().solve([25.0, 20.0]),
+            "inputs[1] (temperature)",
+            "20 C",
+            "25 <= T <= 160 C",
+            "t_min=<ambient>",
+            id="tca-temperature-below",
+        ),
+        pytest.param(
+            lambda: tcarod.Routing.straight(math.inf, 0.0),
+            "x",
+            "inf m",
+            "a finite number",
+            "",
+            id="routing-offset",
+        ),
+        pytest.param(
+            lambda: tcarod.Section.circle(-12e-3),
+            "diameter",
+            "-0.012 m",
+            "finite and > 0",
+            "",
+            id="section-diameter",
+        ),
+        pytest.param(
+            lambda: tcarod.Body(0.04, tcarod.Section.circle(12e-3), -5.0),
+            "youngs_modulus E_B",
+            "-5 Pa",
+            "finite and > 0",
+            "",
+            id="modulus",
+        ),
+        pytest.param(
+            lambda: Tca(0.497, 0.110, 0.0, 300.0),
+            "coil_diameter D",
+            "0 m",
+            "finite and > 0",
+            "",
+            id="coil-diameter",
+        ),
+        pytest.param(
+            lambda: tcarod.Robot(
+                tcarod.Body(0.04, tcarod.Section.circle(12e-3), 37.8e3),
+                [tcarod.Actuator.tendon(tcarod.Routing.straight(3e-3, 0.0), s_end=60.0)],
+            ),
+            "actuators[0].s_end",
+            "60 m",
+            "s_start = 0 m < s_end <= body length 0.04 m",
+            "millimetres? lengths are in metres: 60 mm is 0.06 m",
+            id="anchor-in-mm",
+        ),
+        pytest.param(
+            lambda: tcarod.Actuator.tendon(tcarod.Routing.straight(3e-3, 0.0), length_ratio=0.0),
+            "length_ratio",
+            "0",
+            "finite and > 0",
+            "",
+            id="dimensionless",
+        ),
+    ],
+)
+def test_every_core_error_reads_name_value_unit_range(
+    call: Callable[[], object], name: str, value: str, allowed: str, reason: str
+) -> None:
+    """``invalid NAME = VALUE UNIT: allowed RANGE (reason)``: the value as a
+    person writes it, its unit after it (not in the name), no Rust type or
+    function names and no Rust float formatting (``4.000000e0``)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", tcarod.UnitsWarning)
+        with pytest.raises(ValueError) as info:
+            call()
+    msg = str(info.value)
+    assert msg.startswith(f"invalid {name} = {value}"), msg
+    assert f"allowed {allowed}" in msg, msg
+    assert reason in msg, msg
+    assert "::" not in msg and not re.search(r"\de[+-]?0\b|\.0{6}", msg), msg
+    assert "[" not in msg.split(" = ")[0].replace("[0]", "").replace("[1]", ""), msg
+
+
+def test_a_temperature_above_the_range_names_the_material() -> None:
+    robot = _robot_12mm()
+    with pytest.raises(ValueError) as info:
+        robot.solve([170.0])
+    msg = str(info.value)
+    assert msg.startswith("invalid inputs[0] (temperature) = 170 C: allowed 25 <= T <= 160 C"), msg
+    assert "silver-coated nylon" in msg and "lower the temperature" in msg, msg
+
+
+@pytest.mark.parametrize(
+    ("inputs", "shape"),
+    [
+        (np.array([[170.0], [25.0]]), "(2, 1)"),
+        ([[100.0], [25.0]], "(2, 1)"),
+        (np.ones((1, 2)), "(1, 2)"),
+        (np.ones((2, 2, 1)), "(2, 2, 1)"),
+    ],
+    ids=["array-2x1", "list-2x1", "array-1x2", "array-3d"],
+)
+def test_a_two_dimensional_input_names_the_expected_shape(inputs: Any, shape: str) -> None:
+    robot = _fig6()
+    with pytest.raises(ValueError) as info:
+        robot.solve(inputs)
+    msg = str(info.value)
+    assert msg == f"invalid inputs: expected shape (2,) (one input per actuator), got {shape}", msg
+    assert "0-dimensional" not in msg
+
+
+def test_the_wrong_number_of_inputs_names_the_shape() -> None:
+    robot = _fig6()
+    with pytest.raises(
+        ValueError, match=r"invalid inputs: expected 2 values \(shape \(2,\), one input per actuator\), got 3"
+    ):
+        robot.solve([50.0, 50.0, 50.0])
+
+
+def test_an_offset_in_millimetres_warns_and_its_error_asks_about_millimetres() -> None:
+    with pytest.warns(tcarod.UnitsWarning, match=r"millimetres\? lengths are in metres: 4 mm is 0\.004 m"):
+        routing = tcarod.Routing.straight(4, 0)
+    body = tcarod.Body(0.04, tcarod.Section.circle(12e-3), 37.8e3)
+    with pytest.raises(ValueError) as info:
+        tcarod.Robot(body, [tcarod.Actuator.tendon(routing)])
+    msg = str(info.value)
+    assert "at offset (4 m, 0 m)" in msg, msg
+    assert "millimetres? lengths are in metres: 4 mm is 0.004 m" in msg, msg
+    assert "e0" not in msg and "Routing::" not in msg and "Rust" not in msg, msg
+
+
+@pytest.mark.parametrize(
+    ("make", "what"),
+    [
+        (lambda: tcarod.Routing.straight(0.0, 5.0), "offset 5 m"),
+        (lambda: tcarod.Routing.helix(1.7, 10.0), "radius 1.7 m"),
+        (lambda: tcarod.Actuator.tendon(tcarod.Routing.straight(3e-3, 0.0), 0.0, 60.0), "s_end = 60 m"),
+        (lambda: tcarod.Body(60.0, tcarod.Section.circle(12e-3), 37.8e3), "length = 60 m"),
+        (lambda: Tca(497.0, 110.0, 2e-3, 300.0), "fibre_length = 497 m"),
+        (lambda: Tca.from_pitch_angle(0.04, 0.26, 1.7, 76.4), "coil_diameter = 1.7 m"),
+    ],
+    ids=["offset", "helix-radius", "anchor", "body-length", "fibre-length", "coil-diameter"],
+)
+def test_lengths_that_look_like_millimetres_warn(make: Callable[[], object], what: str) -> None:
+    with pytest.warns(tcarod.UnitsWarning, match=re.escape(what)):
+        make()
+
+
+def test_metre_sizes_of_a_soft_robot_do_not_warn() -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        tcarod.Routing.straight(6e-3, -2e-3)
+        tcarod.Routing.helix(4e-3, 50.0)
+        tcarod.Actuator.tendon(tcarod.Routing.straight(3e-3, 0.0), 0.01, 0.04)
+        _robot_12mm()
+
+
+def test_a_density_without_gravity_warns_once_per_body() -> None:
+    with pytest.warns(tcarod.UnitsWarning, match=r"density = 1040 kg/m\^3 but no gravity.*weightless") as record:
+        body = tcarod.Body(0.04, tcarod.Section.circle(12e-3), 37.8e3, density=1040.0)
+    assert len([w for w in record if "weightless" in str(w.message)]) == 1
+    # building robots on it and solving them adds no warning: it was said where gravity was left out
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        robot = tcarod.Robot(body, [tcarod.Actuator.tendon(tcarod.Routing.straight(3e-3, 0.0))])
+        robot.solve([0.01])
+        # an explicit gravity, zero included, says the weight is meant (or not)
+        tcarod.Body(0.04, tcarod.Section.circle(12e-3), 37.8e3, density=1040.0, gravity=(0.0, 0.0, 0.0))
+        tcarod.Body(0.04, tcarod.Section.circle(12e-3), 37.8e3, density=1040.0, gravity=(0.0, 0.0, -9.81))
+        tcarod.Body(0.04, tcarod.Section.circle(12e-3), 37.8e3)
+        body.replace(tip_force=(0.0, 0.0, 0.0))  # replace passes the body's gravity on
+
+
+def test_a_thermal_model_without_threads_names_the_argument_and_its_unit() -> None:
+    from tcarod.models.thermal import ThermalModel
+
+    with pytest.raises(TypeError) as info:
+        ThermalModel(fibre_length_m=0.497, resistance=60.0)  # type: ignore[call-arg]
+    msg = str(info.value)
+    assert "missing 1 required argument: threads" in msg and "[-]" in msg, msg
+    assert "positional" not in msg
+    with pytest.raises(TypeError, match=r"fibre_length_m: the twisted-fibre length l \[m\].*resistance.*\[ohm\]"):
+        ThermalModel(threads=3)  # type: ignore[call-arg]
+
+
+def test_python_checks_write_the_same_format() -> None:
+    """``_validate.real`` (Python) and ``error::Error::param`` (Rust) agree."""
+    from tcarod import _validate as V
+
+    with pytest.raises(ValueError) as info:
+        V.real("fibre_length_m", 4000.0, lo=1e-4, hi=100.0, unit="m", reason="a physical range")
+    assert str(info.value) == (
+        "invalid fibre_length_m = 4000 m: allowed in [0.0001, 100] m (a physical range)"
+        " (millimetres? lengths are in metres: 4000 mm is 4 m)"
+    )
+    with pytest.raises(ValueError, match=r"^invalid ratio = 0\.3: allowed <= 0\.2$"):
+        V.real("ratio", 0.1 + 0.2, hi=0.2, unit="-")

@@ -21,7 +21,7 @@ import pytest
 from hypothesis import HealthCheck, Phase, example, given, settings
 
 from fuzz.harness import ALLOWED, classify
-from fuzz.primitives import Fix
+from fuzz.primitives import Fix, LyingLen
 from fuzz.strategies import ENTRIES, Call
 
 #: In-process time limit per call [s]: far above any valid call here (the
@@ -35,20 +35,6 @@ BUDGET = {name: max(3, min(100, int(150 / cost))) for name, (_, cost) in ENTRIES
 #: xfail fails every time whatever the random draws; a fix shows up as XPASS
 #: and the entry must go). ``TCAROD_FUZZ_NO_XFAIL=1`` runs them as plain tests.
 KNOWN: dict[str, tuple[str, Call]] = {}  # none known
-
-
-class LyingLen:
-    """Claims 2**62 items and yields a number at every index: ``list()`` and
-    NumPy allocate by the claim before reading (a ``MemoryError`` bait)."""
-
-    def __len__(self) -> int:
-        return 2**62
-
-    def __getitem__(self, i: int) -> float:
-        return 1.0
-
-    def __repr__(self) -> str:
-        return "LyingLen()"
 
 
 def _robot_without_actuators() -> Any:
@@ -85,6 +71,13 @@ REGRESSIONS: dict[str, tuple[Call, str]] = {
         Call("ThermalModel", (0.3, 3, 60.0), {"thread_radius_m": 1.7e308}),
         "ValueError",
     ),
+    "VoltageProfile-nested-lying-len": (Call("VoltageProfile", ([LyingLen(), -1.0, 2.0], None)), "ValueError"),
+    "Robot.solve-two-dimensional-inputs": (
+        Call("Robot.solve", (Fix("RNG"), np.array([[170.0], [25.0]]))),
+        "ValueError",
+    ),
+    "Robot-coil-outside-the-body": (Call("Robot", (Fix("BODY_CIRC"), [Fix("ACT_OUT")])), "ValueError"),
+    "Robot-coil-on-spacer-disks": (Call("Robot", (Fix("BODY_CIRC"), [Fix("ACT_OUT")]), {"spacer_disks": True}), "ok"),
     "ThermalModel-tiny-length-and-resistance": (Call("ThermalModel", (1e-300, 1, 1e-300)), "ValueError"),
     "tip_position-reflection": (
         Call("tip_position", (Fix("RNG"), Fix("TIP")), {"target_rotation": -np.eye(3)}),

@@ -232,7 +232,13 @@ def test_reference_temperature_keeps_reference_shape(design: Design, precurvatur
     # every actuator a TCA at 25 C; no load, no gravity; straight or pre-curved body
     omega_star = (precurvature[0], precurvature[1], 0.0)  # [1/m]
     body = Body(
-        design.length, design.section, design.youngs_modulus, poisson=0.5, density=design.density, omega_star=omega_star
+        design.length,
+        design.section,
+        design.youngs_modulus,
+        poisson=0.5,
+        density=design.density,
+        omega_star=omega_star,
+        gravity=(0.0, 0.0, 0.0),  # weightless on purpose: said explicitly, so no UnitsWarning
     )
     acts = []
     for a in design.actuators:
@@ -425,10 +431,17 @@ def test_bad_input_raises_value_error_naming_the_field(call: Any, field: str) ->
         call()
 
 
-@pytest.mark.parametrize("bad", ["100", None, [[100.0]]])
+@pytest.mark.parametrize("bad", ["100", None])
 def test_wrong_input_type_raises_type_error(bad: Any) -> None:
     with pytest.raises(TypeError):
         SQUARE.solve(bad)
+
+
+def test_nested_inputs_are_a_shape_error() -> None:
+    with pytest.raises(
+        ValueError, match=r"^invalid inputs: expected shape \(2,\) \(one input per actuator\), got \(1, 1\)$"
+    ):
+        SQUARE.solve([[100.0]])
 
 
 def test_solution_getters_are_finite() -> None:
@@ -440,3 +453,57 @@ def test_solution_getters_are_finite() -> None:
         assert np.all(np.isfinite(getattr(sol, name))), name
     assert all(np.all(np.isfinite(p)) for p in sol.actuator_paths)
     assert math.isfinite(sol.residual)
+
+
+# ------------------------------------------------------ physically possible geometry
+
+
+def _coil_robot(section: Section, x: float, y: float = 0.0, **kw: Any) -> Robot:
+    """A 40 mm body of ``section`` with the paper's 1.7 mm TCA at ``(x, y)`` [m]."""
+    body = Body(0.04, section, 37.8e3, poisson=0.5)
+    return Robot(body, [Actuator.tca(span_tca(0.0, None, 0.04), Routing.straight(x, y))], **kw)
+
+
+@pytest.mark.parametrize("offset", [5.5e-3, 6e-3])
+def test_a_coil_sticking_out_of_a_circular_body_is_rejected(offset: float) -> None:
+    """A 1.7 mm coil (outer radius 0.85 mm) at 5.5 or 6 mm in a 12 mm body
+    reaches 6.35 or 6.85 mm from the axis: outside the silicone."""
+    reach = (offset + 0.85e-3) * 1e3
+    with pytest.raises(ValueError) as info:
+        _coil_robot(Section.circle(12e-3), offset)
+    msg = str(info.value)
+    assert msg.startswith("invalid actuators[0].routing: the TCA's coil (outer radius 0.85 mm)"), msg
+    assert f"reaches {reach:g} mm from the axis, outside the 6 mm radius body section" in msg, msg
+    assert "move it inward, or pass spacer_disks=True" in msg, msg
+    # on spacer disks outside the body it is a valid robot, and it solves
+    robot = _coil_robot(Section.circle(12e-3), offset, spacer_disks=True)
+    assert robot.spacer_disks and robot.solve([60.0]).success
+
+
+def test_a_coil_inside_the_body_is_accepted() -> None:
+    # 5 mm + 0.85 mm = 5.85 mm < 6 mm; the paper's square leg at (3, 2.5) mm reaches (3.85, 3.35) mm < 5 mm
+    assert _coil_robot(Section.circle(12e-3), 5e-3).solve([60.0]).success
+    assert _coil_robot(Section.rectangle(10e-3, 10e-3), 3e-3, 2.5e-3).solve([60.0]).success
+
+
+def test_a_coil_is_checked_against_the_rectangle_along_each_axis() -> None:
+    # a 10 mm x 4 mm strip: along x there is room (3 + 0.85 < 5), along y
+    # the coil at y = 1.5 mm reaches 2.35 mm > 2 mm although its distance
+    # from the axis (3.35 mm) is well inside the half-width
+    strip = Section.rectangle(10e-3, 4e-3)
+    assert _coil_robot(strip, 3e-3, 1e-3).solve([60.0]).success
+    with pytest.raises(ValueError, match=r"reaches 3\.85 mm from the axis along x and 2\.35 mm along y.*rectangular"):
+        _coil_robot(strip, 3e-3, 1.5e-3)
+    assert _coil_robot(strip, 3e-3, 1.5e-3, spacer_disks=True).spacer_disks
+
+
+def test_a_tendon_is_a_line_and_may_run_on_the_edge() -> None:
+    body = Body(0.04, Section.circle(12e-3), 37.8e3, poisson=0.5)
+    assert Robot(body, [Actuator.tendon(Routing.straight(6e-3, 0.0))]).solve([0.01]).success
+
+
+def test_the_paper_robots_keep_their_coils_inside_the_body() -> None:
+    """Fig. 6 circle (8 mm, TCA at 3 mm: 3.85 mm < 4 mm) and square (10 mm,
+    legs at (3, +-2.5) mm): built without spacer disks, so the check passed."""
+    for m in FIG6.manipulators:
+        assert not m.robot(False).spacer_disks

@@ -204,7 +204,8 @@ def test_profile_starting_at_minus_1e300_returns_promptly() -> None:
 
 def test_tiny_heat_transfer_is_a_value_error_not_zero_division() -> None:
     with pytest.raises(
-        ValueError, match=r"heat_transfer_w_per_m2k = 4.94066e-324 \[W/\(m\^2 K\)\]: allowed in \[0.001, 100000\]"
+        ValueError,
+        match=r"heat_transfer_w_per_m2k = 4.940656458e-324 W/\(m\^2 K\): allowed in \[0.001, 100000\] W/\(m\^2 K\)",
     ):
         ThermalModel(0.3, 3, 60.0, heat_transfer_w_per_m2k=5e-324)
 

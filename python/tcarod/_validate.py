@@ -58,7 +58,9 @@ def real(
 
     ``TypeError`` if it is not a real number (bool counts as a number, as in
     Python); ``ValueError`` naming ``name`` if not finite or out of range:
-    ``invalid NAME = VALUE [UNIT]: allowed RANGE (reason)``.
+    ``invalid NAME = VALUE UNIT: allowed RANGE UNIT (reason)``, the value
+    written as a person would (:func:`human`: ``0.004``, ``170``, ``1e-300``),
+    as the core's errors are.
     """
     value = _any(value)
     if isinstance(value, (str, bytes, bytearray, complex, np.complexfloating)) or value is None:
@@ -78,15 +80,49 @@ def real(
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be a real number{_u(unit)}, not {_type_name(value)}") from exc
     why = f" ({reason})" if reason else ""
+    bounds = _range(lo, hi, lo_open, hi_open) + (_v(unit) if lo is not None or hi is not None else "")
     if not math.isfinite(x):
-        raise ValueError(
-            f"invalid {name} = {x}{_u(unit)}: allowed a finite number{_range(lo, hi, lo_open, hi_open)}{why}"
-        )
+        raise ValueError(f"invalid {name} = {human(x)}{_v(unit)}: allowed a finite number{bounds}{why}")
     bad_lo = lo is not None and (x <= lo if lo_open else x < lo)
     bad_hi = hi is not None and (x >= hi if hi_open else x > hi)
     if bad_lo or bad_hi:
-        raise ValueError(f"invalid {name} = {x:g}{_u(unit)}: allowed{_range(lo, hi, lo_open, hi_open)}{why}")
+        # a length valid once read as millimetres: say so
+        in_mm = x * 1e-3
+        fits = (lo is None or in_mm >= lo) and (hi is None or in_mm <= hi)
+        hint = mm_hint(x) if unit == "m" and fits else ""
+        raise ValueError(f"invalid {name} = {human(x)}{_v(unit)}: allowed{bounds}{why}{hint}")
     return x
+
+
+def human(x: float) -> str:
+    """``x`` as a person writes it: at most 10 significant digits, trailing
+    zeros dropped, an exponent only far from 1 (``4``, ``0.004``, ``0.3`` for
+    ``0.1 + 0.2``, ``1e-300``); the core's ``error::human`` in Python."""
+    if not math.isfinite(x):
+        return "NaN" if math.isnan(x) else ("inf" if x > 0 else "-inf")
+    if x == 0.0:
+        return "0"
+    if 1e-4 <= abs(x) < 1e15:
+        decimals = max(0, 9 - math.floor(math.log10(abs(x))))
+        text = f"{x:.{decimals}f}"
+        return text.rstrip("0").rstrip(".") if "." in text else text
+    return f"{x:.10g}"
+
+
+#: Lengths [m] above this, for a part of a soft robot, look like millimetres
+#: given as metres (the core's ``error::MM_LOOKING_M``) ...
+MM_LOOKING_M: Final[float] = 1.0
+#: ... up to this: beyond 10,000 mm the value is no millimetre typo.
+MM_LOOKING_MAX_M: Final[float] = 1e4
+
+
+def mm_hint(value: float) -> str:
+    """``" (millimetres? lengths are in metres: 4 mm is 0.004 m)"`` for a
+    length ``value`` [m] above :data:`MM_LOOKING_M` (up to
+    :data:`MM_LOOKING_MAX_M`), else ``""``."""
+    if math.isfinite(value) and MM_LOOKING_M < abs(value) <= MM_LOOKING_MAX_M:
+        return f" (millimetres? lengths are in metres: {human(value)} mm is {human(value * 1e-3)} m)"
+    return ""
 
 
 def positive(name: str, value: object, unit: str = "") -> float:
@@ -119,10 +155,17 @@ def real_array(
     if value is None or isinstance(value, (str, bytes, bytearray)):
         raise TypeError(f"{name} must be real numbers{_u(unit)}, not {_type_name(value)}")
     _check_len(name, value, max_size)
+    if isinstance(value, (list, tuple)):
+        # NumPy allocates by a nested sequence's __len__ too: refuse a claim beyond the cap
+        for item in value:
+            if not isinstance(item, (list, tuple, np.ndarray, str, bytes, bytearray)):
+                _check_len(f"{name} element", item, max_size)
     try:
         raw = np.asarray(value)
     except (ValueError, TypeError, OverflowError) as exc:  # ragged or exotic
         raise ValueError(f"invalid {name}: not an array of real numbers ({exc})") from None
+    except MemoryError:  # a length claimed deeper down
+        raise ValueError(f"invalid {name}: more values than memory holds (a length it claims)") from None
     if raw.size > max_size:
         raise ValueError(f"invalid {name}: {raw.size} values, at most {max_size} allowed")
     if raw.dtype.kind in "cSUVmMO" and raw.size:
@@ -217,6 +260,11 @@ def _check_len(name: str, value: Any, max_len: int) -> None:
 
 def _u(unit: str) -> str:
     return f" [{unit}]" if unit else ""
+
+
+def _v(unit: str) -> str:
+    """The unit after a value: `` m``; nothing for a dimensionless ``-``."""
+    return f" {unit}" if unit and unit != "-" else ""
 
 
 def _range(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:

@@ -23,10 +23,16 @@ argument and its allowed range; a wrong type (``str``, ``bytes``,
 ``complex``, ``None``, another class) raises ``TypeError``. Caps per call:
 ``steps`` <= 100,000 RK4 steps, ``max_iter`` <= 100,000, eq-43
 ``increments`` <= 10,000, batch rows <= 10,000,000 (stream more with
-``tcarod.batch.iter_batches``), sequences <= 10,000 values. Geometry is
-checked when a ``Robot`` is built: routings inside the section, TCAs no
-longer than 1.1x their anchored span; sizes that look like millimetres warn
-with ``tcarod.UnitsWarning``. An ambient below a material's ``t_min`` (the
+``tcarod.batch.iter_batches``), sequences <= 10,000 values. Messages read
+``invalid NAME = VALUE UNIT: allowed RANGE (reason)``. Geometry is checked
+when a ``Robot`` is built: routings inside the section, each TCA's whole coil
+(routing offset plus half the coil's outer diameter) inside the section
+unless ``Robot(..., spacer_disks=True)``, TCAs no longer than 1.1x their
+anchored span. Sizes that look like millimetres (a body longer than 10 m, a
+section or a routing offset above 1 m, an anchor above 10 m, a coil diameter
+above 0.1 m) warn with ``tcarod.UnitsWarning``, and a length error then asks
+"millimetres? lengths are in metres: 4 mm is 0.004 m"; so does a body with a
+``density`` but no ``gravity`` (weightless: pass ``gravity``, zero if meant). An ambient below a material's ``t_min`` (the
 preset starts at 25 C and is not extrapolated) is a ``ValueError`` pointing
 to a custom ``Material(..., t_ref=..., t_min=...)``.
 """

@@ -85,13 +85,35 @@ pub(crate) const MAX_SEQUENCE: usize = 10_000;
 
 /// `obj` as a list of reals, named `name` in errors: `TypeError` for
 /// `str`/`bytes`/non-sequences or non-real items, `ValueError` for a length
-/// other than `expect` (if given) or beyond [`MAX_SEQUENCE`]. A scalar is
-/// read as a list of one when `expect` allows it. Never trusts `__len__`
-/// for allocation.
+/// other than `expect` (if given) or beyond [`MAX_SEQUENCE`], and for an
+/// array or nested sequence of more than one dimension (naming its shape).
+/// A scalar is read as a list of one when `expect` allows it. Never trusts
+/// `__len__` for allocation.
 pub(crate) fn reals(
     name: &str,
     obj: &Bound<'_, PyAny>,
     expect: Option<usize>,
+) -> PyResult<Vec<f64>> {
+    let what = match expect {
+        Some(n) => format!("({n},)"),
+        None => "(n,)".to_string(),
+    };
+    reals_shaped(name, obj, expect, &what)
+}
+
+/// [`reals`] for one input per actuator of a robot with `n` actuators: a
+/// wrong shape is `invalid inputs: expected shape (n,) (one input per
+/// actuator), got (2, 1)`; the length itself is checked by the robot.
+pub(crate) fn one_per_actuator(name: &str, obj: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<f64>> {
+    reals_shaped(name, obj, None, &format!("({n},) (one input per actuator)"))
+}
+
+/// [`reals`], a shape error stating `expected shape {what}`.
+fn reals_shaped(
+    name: &str,
+    obj: &Bound<'_, PyAny>,
+    expect: Option<usize>,
+    what: &str,
 ) -> PyResult<Vec<f64>> {
     if is_text(obj) {
         return Err(PyTypeError::new_err(format!(
@@ -99,12 +121,15 @@ pub(crate) fn reals(
             obj.get_type().name()?
         )));
     }
+    let ndim = obj
+        .getattr("ndim")
+        .ok()
+        .and_then(|n| n.extract::<i64>().ok());
+    if ndim.is_some_and(|n| n >= 2) {
+        return Err(shape_error(name, obj, what));
+    }
     // a scalar (a number, or a 0-d array): one value
-    let is_scalar = obj.hasattr("__float__")? && !obj.hasattr("__len__")?
-        || obj
-            .getattr("ndim")
-            .map(|n| n.eq(0).unwrap_or(false))
-            .unwrap_or(false);
+    let is_scalar = obj.hasattr("__float__")? && !obj.hasattr("__len__")? || ndim == Some(0);
     if is_scalar {
         let x = obj
             .extract::<Real>()
@@ -125,11 +150,22 @@ pub(crate) fn reals(
     for (k, item) in iter.enumerate() {
         if k >= limit.max(MAX_SEQUENCE) {
             return Err(PyValueError::new_err(format!(
-                "{name}: more than {} values (the cap per call)",
+                "invalid {name}: more than {} values (the cap per call)",
                 limit.max(MAX_SEQUENCE)
             )));
         }
         let item = item?;
+        // an item that is itself a sequence or an array: a 2-D input
+        let nested = !is_text(&item)
+            && (item.hasattr("__len__")? && !item.hasattr("__float__")?
+                || item
+                    .getattr("ndim")
+                    .ok()
+                    .and_then(|n| n.extract::<i64>().ok())
+                    .is_some_and(|n| n >= 1));
+        if nested {
+            return Err(shape_error(name, obj, what));
+        }
         let x = item
             .extract::<Real>()
             .map_err(|e| PyTypeError::new_err(format!("{name}[{k}]: {}", e.value(obj.py()))))?;
@@ -138,10 +174,34 @@ pub(crate) fn reals(
     check_len(name, out, expect)
 }
 
+/// `invalid NAME: expected shape WHAT, got SHAPE`, the shape as NumPy
+/// reads it (`numpy.shape`; "a nested sequence" if NumPy cannot).
+fn shape_error(name: &str, obj: &Bound<'_, PyAny>, what: &str) -> PyErr {
+    let py = obj.py();
+    let shape = py
+        .import("numpy")
+        .and_then(|np| np.call_method1("shape", (obj,)))
+        .and_then(|s| s.extract::<Vec<usize>>())
+        .map(|s| match s.as_slice() {
+            [n] => format!("({n},)"),
+            dims => format!(
+                "({})",
+                dims.iter()
+                    .map(|d| d.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        })
+        .unwrap_or_else(|_| "a nested sequence".to_string());
+    PyValueError::new_err(format!(
+        "invalid {name}: expected shape {what}, got {shape}"
+    ))
+}
+
 fn check_len(name: &str, v: Vec<f64>, expect: Option<usize>) -> PyResult<Vec<f64>> {
     match expect {
         Some(n) if v.len() != n => Err(PyValueError::new_err(format!(
-            "{name}: expected {n} values, got {}",
+            "invalid {name}: expected {n} values, got {}",
             v.len()
         ))),
         _ => Ok(v),
@@ -250,7 +310,7 @@ pub(crate) fn counts(name: &str, obj: &Bound<'_, PyAny>, hi: usize) -> PyResult<
     for (k, item) in iter.enumerate() {
         if k >= MAX_SEQUENCE {
             return Err(PyValueError::new_err(format!(
-                "{name}: more than {MAX_SEQUENCE} values (the cap per call)"
+                "invalid {name}: more than {MAX_SEQUENCE} values (the cap per call)"
             )));
         }
         out.push(count(&format!("{name}[{k}]"), &item?, 0, hi)?);

@@ -2,7 +2,10 @@
 //!
 //! * `Error::InvalidParameter`, `Error::InvalidInput`, `Error::NoSolution`
 //!   -> `ValueError` (the message names the field, its value and the allowed
-//!   range);
+//!   range: `invalid NAME = VALUE UNIT: allowed RANGE (reason)`, the value
+//!   written by [`crate::error::human`] and the unit moved from the name's
+//!   `[unit]` to after the value, as `tcarod._validate.real` writes it in
+//!   Python);
 //! * `Error::NotConverged`, `Error::Integration` -> `tcarod.ConvergenceError`
 //!   (a `RuntimeError`) with attributes `residual` (best reached),
 //!   `iterations`, `evaluations` (IVPs) and `reason` (`"iteration_limit"`,

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use nalgebra::Vector3;
 
-use crate::error::{finite, non_negative, positive, Error, Result};
+use crate::error::{finite, human, non_negative, positive, Error, Result};
 use crate::tca::Tca;
 
 /// Path of an actuator in the body frame, with exact derivatives in `s`.
@@ -62,6 +62,26 @@ impl Routing {
                 format!("{kind:?} with {} values is not a routing", values.len()),
             )),
         }
+    }
+
+    /// A warning text if the routing's distance from the centre line looks
+    /// like millimetres given as metres (above [`crate::error::MM_LOOKING_M`],
+    /// 1 m, far beyond any soft robot's section): a valid SI number, so not an
+    /// error here (the robot rejects a routing outside its section).
+    pub fn units_warning(&self) -> Option<String> {
+        let r = self.distance();
+        (r.is_finite() && r > crate::error::MM_LOOKING_M).then(|| {
+            let what = match self {
+                Routing::Straight { .. } => "offset",
+                Routing::Helix { .. } => "radius",
+            };
+            format!(
+                "Routing.{}: {what} {} m from the centre line{}",
+                self.kind(),
+                human(r),
+                crate::error::mm_hint(r)
+            )
+        })
     }
 
     /// The constructor's name: `"straight"` or `"helix"`.
@@ -213,10 +233,14 @@ pub trait ForceLaw: Send + Sync + Debug {
 /// The error of an `input` outside a law's valid interval `(lo, hi)`; a
 /// side at `f64::MIN` / `f64::MAX` is stated as "finite", not as 309 digits.
 fn out_of_range(name: &'static str, input: f64, (lo, hi): (f64, f64)) -> Error {
+    let u = match crate::error::split_unit(name).1 {
+        Some(u) if u != "-" => format!(" {u}"),
+        _ => String::new(),
+    };
     let allowed = match (lo > f64::MIN, hi < f64::MAX) {
-        (true, true) => format!("{lo} <= input <= {hi}"),
-        (true, false) => format!("input >= {lo} (finite)"),
-        (false, true) => format!("input <= {hi} (finite)"),
+        (true, true) => format!("{} <= input <= {}{u}", human(lo), human(hi)),
+        (true, false) => format!("input >= {}{u} (finite)", human(lo)),
+        (false, true) => format!("input <= {}{u} (finite)", human(hi)),
         (false, false) => "a finite input".to_string(),
     };
     Error::param(name, input, allowed)
@@ -246,33 +270,45 @@ impl ForceLaw for TcaLaw {
     fn tca(&self) -> Option<&Tca> {
         Some(&self.0)
     }
-    /// The default check, except that a temperature below the material's
-    /// range points to the way out: a custom `Material` valid at that ambient.
+    /// The default check, naming the TCA's material and its valid range;
+    /// a temperature below the range points to the way out (a custom
+    /// `Material` valid at that ambient), one that lies in the range once
+    /// read as kelvin says temperatures are in Celsius.
     fn check_input(&self, input: f64) -> Result<()> {
         let (lo, hi) = self.input_bounds();
-        if input.is_finite() && input < lo {
-            return Err(Error::param(
-                self.input_name(),
-                input,
-                format!(
-                    "{lo} <= T <= {hi} C, the material's valid range (the preset's fits start at 25 C and \
-                     are not extrapolated). For a colder ambient build Material(..., t_ref=<ambient>, \
-                     t_min=<ambient>) with coefficients valid there and pass it to Tca(..., material=...)"
-                ),
-            ));
+        if input.is_finite() && input >= lo && input <= hi {
+            return Ok(());
         }
+        let material = self.0.material().name();
+        let range = format!(
+            "{} <= T <= {} C, the valid range of the TCA's material {material}",
+            human(lo),
+            human(hi)
+        );
         let celsius = input - crate::material::ZERO_CELSIUS_IN_KELVIN;
-        if input.is_finite() && input <= hi {
-            Ok(())
-        } else if (lo..=hi).contains(&celsius) {
-            // in the material's range once read as kelvin: say so
-            let allowed = format!(
-                "{lo} <= T <= {hi} C (temperatures are in Celsius: {input} K is {celsius:.2} C)"
-            );
-            Err(Error::param(self.input_name(), input, allowed))
+        let reason = if input.is_finite() && input < lo {
+            " (the preset's fits start at 25 C and are not extrapolated). For a colder ambient build \
+             Material(..., t_ref=<ambient>, t_min=<ambient>) with coefficients valid there and pass it \
+             to Tca(..., material=...)"
+                .to_string()
+        } else if input.is_finite() && (lo..=hi).contains(&celsius) {
+            format!(
+                " (temperatures are in Celsius: {} K is {celsius:.2} C)",
+                human(input)
+            )
+        } else if input.is_finite() {
+            format!(
+                " (above {} C the fibre's fits do not hold; lower the temperature)",
+                human(hi)
+            )
         } else {
-            Err(out_of_range(self.input_name(), input, (lo, hi)))
-        }
+            String::new()
+        };
+        Err(Error::param(
+            self.input_name(),
+            input,
+            format!("{range}{reason}"),
+        ))
     }
     /// Exact in the elongation ([`crate::tca::TcaAt::tension_slope`]) and
     /// in the temperature ([`crate::tca::TcaAt::tension_temperature_slope`]),
@@ -382,6 +418,13 @@ pub struct Actuator {
     /// the reference configuration, `|nu* + omega* x r + r'|`, which makes the
     /// reference configuration exactly unstrained for any routing and
     /// pre-curvature.
+    ///
+    /// The actuator's elongation is measured over its whole anchored span, so
+    /// a TCA shorter than its span is modelled as the TCA in series with
+    /// inextensible leads (knots, crimps, wire) filling the rest of the span:
+    /// in the reference shape it is relaxed with its coils touching, and all
+    /// of the span's elongation goes into the TCA's law (eqs 2, 13). Its
+    /// coiled length only has to fit the span (the robot checks it).
     pub length_ratio: Option<f64>,
     /// Force law.
     pub law: Arc<dyn ForceLaw>,
@@ -429,6 +472,22 @@ impl Actuator {
         let mut a = Actuator::new(routing, s_start, s_end.unwrap_or(Actuator::TIP), law);
         a.length_ratio = length_ratio;
         Ok(a)
+    }
+
+    /// A warning text if an anchor looks like millimetres given as metres
+    /// (above 10 m, the body-length threshold of
+    /// [`crate::rod::Body::units_warning`]).
+    pub fn units_warning(&self) -> Option<String> {
+        [("s_start", self.s_start), ("s_end", self.s_end)]
+            .into_iter()
+            .find(|(_, s)| s.is_finite() && *s > 10.0)
+            .map(|(name, s)| {
+                format!(
+                    "Actuator: {name} = {} m{}",
+                    human(s),
+                    crate::error::mm_hint(s)
+                )
+            })
     }
 
     /// A TCA actuator ([`Actuator::anchored`]) whose input is its temperature

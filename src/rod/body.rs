@@ -192,10 +192,13 @@ impl Body {
         let b = self;
         let (w, h) = b.section.extent();
         if b.length > 10.0 || w.max(h) > 1.0 {
+            use crate::error::{human, mm_question};
             Some(format!(
-                "Body: length = {} m, section {} m x {} m: sizes are in metres (SI); \
-                 did you give millimetres? (40 mm is length=0.04)",
-                b.length, w, h
+                "Body: length = {} m, section {} m x {} m: sizes are in metres (SI){}",
+                human(b.length),
+                human(w),
+                human(h),
+                mm_question(if b.length > 10.0 { b.length } else { w.max(h) })
             ))
         } else {
             None

@@ -105,10 +105,14 @@ impl Tca {
         brent(resid, lo, hi, 1e-10)
             .or_else(|| self.range_end_attaining(force, displacement))
             .ok_or_else(|| Error::NoSolution {
-            reason: format!(
-                "no temperature in [{lo}, {hi}] C gives displacement {displacement:.6e} m under force {force:.6e} N"
-            ),
-        })
+                reason: format!(
+                    "no temperature in [{}, {}] C gives displacement {} m under force {} N",
+                    crate::error::human(lo),
+                    crate::error::human(hi),
+                    crate::error::human(displacement),
+                    crate::error::human(force)
+                ),
+            })
     }
 
     /// The end of the temperature range \[C\] at which `force` \[N\] gives an
@@ -197,8 +201,9 @@ impl<'a> TcaAt<'a> {
         if h(dmax) <= 0.0 {
             return Err(Error::NoSolution {
                 reason: format!(
-                    "force {force:.6e} N straightens the fibre (delta would exceed l (1 - sin alpha0) = {:.6e} m)",
-                    t.max_displacement()
+                    "force {} N straightens the fibre (delta would exceed l (1 - sin alpha0) = {} m)",
+                    crate::error::human(force),
+                    crate::error::human(t.max_displacement())
                 ),
             });
         }

@@ -94,7 +94,10 @@ impl Tca {
             return Err(Error::param(
                 "coiled_length L [m]",
                 cl,
-                format!("0 < L < fibre_length l = {l} m (alpha0 = asin(L/l))"),
+                format!(
+                    "0 < L < fibre_length l = {} m (alpha0 = asin(L/l))",
+                    crate::error::human(l)
+                ),
             ));
         }
         if 2.0 * cl >= l {
@@ -103,7 +106,7 @@ impl Tca {
                 cl,
                 format!(
                     "L < l/2 = {} m so that the fibre diameter d0 = 2 D L / l is smaller than D",
-                    0.5 * l
+                    crate::error::human(0.5 * l)
                 ),
             ));
         }
@@ -170,12 +173,30 @@ impl Tca {
 
     /// A warning text if the coil diameter looks like millimetres given as
     /// metres (above 0.1 m): a valid SI number, so not an error.
+    ///
+    /// A fibre or coiled length above 10 m (the body-length threshold of
+    /// [`crate::rod::Body::units_warning`]) warns the same way.
     pub fn units_warning(&self) -> Option<String> {
+        use crate::error::{human, mm_hint, mm_question};
         let d = self.coil_diameter;
-        (d > 0.1).then(|| {
+        if d > 0.1 {
+            return Some(format!(
+                "Tca: coil_diameter = {} m: sizes are in metres (SI){}",
+                human(d),
+                mm_question(d)
+            ));
+        }
+        [
+            ("fibre_length", self.fibre_length),
+            ("coiled_length", self.coiled_length),
+        ]
+        .into_iter()
+        .find(|(_, x)| *x > 10.0)
+        .map(|(name, x)| {
             format!(
-                "Tca: coil_diameter = {d} m: sizes are in metres (SI); did you give millimetres? \
-                 (1.7 mm is 1.7e-3)"
+                "Tca: {name} = {} m: sizes are in metres (SI){}",
+                human(x),
+                mm_hint(x)
             )
         })
     }
@@ -235,8 +256,8 @@ impl Tca {
                 "displacement [m]",
                 delta,
                 format!(
-                    "-L < delta < l (1 - sin alpha0) = {:.6e} m (pitch angle between 0 and 90 deg)",
-                    self.max_displacement()
+                    "-L < delta < l (1 - sin alpha0) = {} m (pitch angle between 0 and 90 deg)",
+                    crate::error::human(self.max_displacement())
                 ),
             ));
         }

@@ -172,6 +172,17 @@ def _static(name: str) -> Any:  # noqa: C901 - one table of fixtures
         return _static("R").body
     if name == "ACT":
         return _static("R").actuators[0]
+    if name == "BODY_CIRC":  # 12 mm diameter, upright
+        return t.Body(0.04, _static("CIRC"), 37.8e3, density=1040.0, gravity=(0.0, 0.0, -9.81))
+    if name == "ACT_OUT":  # a 1.7 mm coil at 6 mm: outside the 12 mm body unless on spacer disks
+        tca = t.Tca.from_pitch_angle(0.04, math.radians(15.0), 1.7e-3, 76.4)
+        return t.Actuator.tca(tca, t.Routing.straight(0.006, 0.0))
+    if name == "ROUTE_MM":  # 3 mm typed as 3 (a UnitsWarning, then an error at the robot)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return t.Routing.straight(3.0, 0.0)
+    if name == "ACT_MM":
+        return t.Actuator.tendon(_static("ROUTE_MM"))
     if name == "ACT2":
         return t.Actuator.tendon(t.Routing.straight(-0.003, 0.0))
     if name == "SOL":

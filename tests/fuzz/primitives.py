@@ -73,6 +73,20 @@ class EvilLen:
         return "EvilLen()"
 
 
+class LyingLen:
+    """Claims 2**62 items and yields a number at every index: ``list()`` and
+    NumPy allocate by the claim before reading (a ``MemoryError`` bait)."""
+
+    def __len__(self) -> int:
+        return 2**62
+
+    def __getitem__(self, i: int) -> float:
+        return 1.0
+
+    def __repr__(self) -> str:
+        return "LyingLen()"
+
+
 SPECIAL_FLOATS = [
     math.nan,
     math.inf,
@@ -105,6 +119,7 @@ BAD_TYPES = [
     {},
     (),
     EvilLen(),
+    LyingLen(),
     True,
     False,
 ]
@@ -132,6 +147,13 @@ def fnum(lo: float, hi: float) -> st.SearchStrategy[Any]:
     )
 
 
+def flen(lo: float, hi: float) -> st.SearchStrategy[Any]:
+    """A length [m] as :func:`fnum`, sometimes the same length typed in
+    millimetres (1000 times larger: a ``UnitsWarning`` or an error that
+    asks about millimetres)."""
+    return st.one_of(*[fnum(lo, hi)] * 4, num(lo, hi).map(lambda x: x * 1e3), st.integers(1, 100))
+
+
 def fint(lo: int, hi: int) -> st.SearchStrategy[Any]:
     """Mostly an int in ``[lo, hi]``; sometimes negative, huge, a float or a wrong type."""
     return st.one_of(
@@ -154,6 +176,8 @@ def fvec(n: int, lo: float, hi: float) -> st.SearchStrategy[Any]:
         st.lists(fnum(lo, hi), min_size=0, max_size=n + 2),
         good.map(lambda v: np.asarray(v, dtype=np.complex128)),
         good.map(tuple),
+        good.map(lambda v: np.asarray(v, dtype=np.float64).reshape(n, 1)),
+        good.map(lambda v: [[x] for x in v]),
         bad_type,
     )
 

@@ -28,6 +28,7 @@ from .primitives import (
     bad_type,
     num,
     fnum,
+    flen,
     fint,
     fvec,
     maybe,
@@ -71,17 +72,17 @@ def _tca_rod_entries(reg: Callable[..., None]) -> None:
     reg("Material.youngs_modulus", 1, this("MAT"), TEMP)
     reg("Material.diameter_ratio", 1, this("MAT"), TEMP)
     # geometry
-    reg("Section.circle", 1, fnum(1e-3, 0.05))
-    reg("Section.rectangle", 1, fnum(1e-3, 0.05), fnum(1e-3, 0.05))
+    reg("Section.circle", 1, flen(1e-3, 0.05))
+    reg("Section.rectangle", 1, flen(1e-3, 0.05), flen(1e-3, 0.05))
     reg("Section.custom", 1, fnum(1e-6, 1e-3), fnum(1e-12, 1e-8), fnum(1e-12, 1e-8), fnum(1e-12, 1e-8))
     reg("Section.edge_distance", 1, this("SQ", "CIRC"), fnum(-7.0, 7.0))
-    reg("Routing.straight", 1, fnum(-0.01, 0.01), fnum(-0.01, 0.01))
-    reg("Routing.helix", 1, fnum(0.0, 0.01), fnum(-100.0, 100.0), phase=fnum(-7.0, 7.0))
+    reg("Routing.straight", 1, flen(-0.01, 0.01), flen(-0.01, 0.01))
+    reg("Routing.helix", 1, flen(0.0, 0.01), fnum(-100.0, 100.0), phase=fnum(-7.0, 7.0))
     reg("Routing.evaluate", 1, this("HELIX", "ROUTE"), fnum(0.0, 0.05))
     reg(
         "Body",
         2,
-        fnum(0.01, 0.2),
+        flen(0.01, 0.2),
         fix("SQ", "CIRC"),
         fnum(1e3, 1e6),
         poisson=fnum(0.0, 0.5),
@@ -95,14 +96,20 @@ def _tca_rod_entries(reg: Callable[..., None]) -> None:
         "Actuator.tca",
         1,
         fix("TCA"),
-        fix("ROUTE", "HELIX"),
-        fnum(0.0, 0.04),
-        maybe(fnum(0.0, 0.04)),
+        fix("ROUTE", "HELIX", "ROUTE_MM"),
+        flen(0.0, 0.04),
+        maybe(flen(0.0, 0.04)),
         maybe(fnum(0.5, 1.0)),
     )
-    reg("Actuator.tendon", 1, fix("ROUTE"), fnum(0.0, 0.04), maybe(fnum(0.0, 0.04)))
+    reg("Actuator.tendon", 1, fix("ROUTE", "ROUTE_MM"), flen(0.0, 0.04), maybe(flen(0.0, 0.04)))
     reg("Actuator.linear_tendon", 1, fnum(0.0, 1e3), fix("ROUTE"), fnum(0.0, 0.04), maybe(fnum(0.0, 0.04)))
-    reg("Robot", 2, fix("BODY"), st.one_of(st.lists(fix("ACT", "ACT2"), max_size=4), bad_type))
+    reg(
+        "Robot",
+        2,
+        fix("BODY", "BODY_CIRC"),
+        st.one_of(st.lists(fix("ACT", "ACT2", "ACT_OUT", "ACT_MM"), max_size=4), bad_type),
+        spacer_disks=st.one_of(st.booleans(), st.booleans(), bad_type),
+    )
 
 
 def _forward_entries(reg: Callable[..., None]) -> None:

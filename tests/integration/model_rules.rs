@@ -110,7 +110,8 @@ fn a_cold_tca_input_points_to_a_custom_material() {
     let law = TcaLaw(fig5_tca(3));
     let e = law.check_input(10.0).unwrap_err().to_string();
     assert!(
-        e.contains("temperature [C]") && e.contains("t_min=<ambient>"),
+        e.starts_with("invalid temperature = 10 C: allowed 25 <= T <= 160 C")
+            && e.contains("t_min=<ambient>"),
         "{e}"
     );
     assert!(law.check_input(200.0).is_err() && law.check_input(60.0).is_ok());

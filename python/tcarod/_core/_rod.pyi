@@ -51,11 +51,13 @@ class Routing:
 
     @staticmethod
     def straight(x: float, y: float) -> Routing:
-        """Parallel to the centre line at body-frame offset ``(x, y)`` [m]."""
+        """Parallel to the centre line at body-frame offset ``(x, y)`` [m]; an
+        offset above 1 m looks like millimetres and warns with ``UnitsWarning``."""
     @staticmethod
     def helix(radius: float, rate: float, phase: float = 0.0) -> Routing:
         """``r(s) = radius (cos(rate s + phase), sin(rate s + phase), 0)``: ``radius`` [m],
-        ``rate`` [rad/m] (positive: right-handed about +z), ``phase`` [rad]."""
+        ``rate`` [rad/m] (positive: right-handed about +z), ``phase`` [rad]; a
+        radius above 1 m warns with ``UnitsWarning``."""
     def evaluate(self, s: float) -> tuple[_FloatArray, _FloatArray, _FloatArray]:
         """``(r [m], r' [-], r'' [1/m])`` at arc length ``s`` [m], body frame, length 3 each."""
     @property
@@ -77,6 +79,8 @@ class Body:
     (default ``(0, 0, 1)`` and zero; non-zero ``omega_star``: pre-curved);
     ``gravity`` [m/s^2], ``distributed_force`` [N/m], ``distributed_moment``
     [N m/m], ``tip_force`` [N], ``tip_moment`` [N m] in the world frame.
+    A ``density`` without a ``gravity`` argument warns with ``UnitsWarning``
+    (the body would be weightless; pass ``gravity``, zero if that is meant).
     """
 
     def __new__(
@@ -184,7 +188,11 @@ class Actuator:
         pretension_n: float | None = None,
     ) -> Actuator:
         """``pretension_n`` [N]: tension at the reference temperature in the
-        undeformed body (makes contraction TCAs act); sets ``length_ratio``."""
+        undeformed body (makes contraction TCAs act); sets ``length_ratio``.
+
+        A TCA shorter than its span is taken in series with inextensible
+        leads filling the rest of the span: relaxed with its coils touching in
+        the reference shape, it takes all of the span's elongation."""
     @staticmethod
     def tendon(
         routing: Routing,
@@ -239,7 +247,12 @@ class Actuator:
 
 @disjoint_base
 class Robot:
-    """A body with its embedded actuators (see ``tcarod.Robot``)."""
+    """A body with its embedded actuators (see ``tcarod.Robot``).
+
+    Building checks that each routing, and each TCA's whole coil (offset plus
+    half the coil's outer diameter), lies inside the section (``ValueError``
+    naming ``actuators[i]``), unless ``spacer_disks=True``: actuators on
+    spacer disks outside the body."""
 
     def __new__(cls, body: Body, actuators: Sequence[Actuator] = (), *, spacer_disks: bool = False) -> Self: ...
     def __getnewargs_ex__(self) -> tuple[tuple[Any, ...], dict[str, Any]]: ...
@@ -247,7 +260,8 @@ class Robot:
     def __hash__(self) -> int: ...
     @property
     def spacer_disks(self) -> bool:
-        """``True`` if the actuators run through spacer disks outside the section."""
+        """``True`` if the actuators run through spacer disks outside the section
+        (the routing- and coil-inside-the-section rule waived)."""
     @property
     def body(self) -> Body: ...
     @property

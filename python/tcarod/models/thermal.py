@@ -89,6 +89,24 @@ MAX_TRANSIENT_SAMPLES: Final[int] = 1_000_000
 MAX_TRANSIENT_RK4_STEPS: Final[int] = 100_000
 
 
+class _Required:
+    """The default of a required :class:`ThermalModel` field: a missing
+    argument is reported with its meaning and unit, not only its name."""
+
+    def __repr__(self) -> str:
+        return "<required>"
+
+
+_REQUIRED: Any = _Required()
+
+#: What each required argument of :class:`ThermalModel` is, with its unit.
+_REQUIRED_ARGS: Final[dict[str, str]] = {
+    "fibre_length_m": "the twisted-fibre length l [m] (Tca.fibre_length)",
+    "threads": "the number of threads twisted together [-] (an integer 1..10,000)",
+    "resistance": "the TCA's electrical resistance [ohm]: a number, a LinearResistance or a callable R(T, strain)",
+}
+
+
 def _in_range(name: str, value: object) -> float:
     lo, hi, unit = RANGES[name]
     return V.real(name, value, lo=lo, hi=hi, unit=unit, reason="a physical range: the results stay finite")
@@ -187,7 +205,9 @@ class ThermalModel:
 
     ``fibre_length_m``: twisted-fibre length ``l`` [m] (``Tca.fibre_length``);
     ``threads``: number of threads twisted together; ``resistance``: [ohm],
-    required (see the module docstring). Temperatures in C, times in s.
+    required (see the module docstring). Temperatures in C, times in s. A
+    missing required argument raises ``TypeError`` naming it, its meaning and
+    its unit.
 
     Coefficients and a constant ``resistance`` within :data:`RANGES`, ``threads``
     1..10,000, ``ambient_c`` -273.15..1e6 C (``ValueError`` outside, naming the
@@ -195,9 +215,9 @@ class ThermalModel:
     with ``tcarod.UnitsWarning`` (Kelvin given as Celsius?).
     """
 
-    fibre_length_m: float
-    threads: int
-    resistance: Resistance
+    fibre_length_m: float = _REQUIRED
+    threads: int = _REQUIRED
+    resistance: Resistance = _REQUIRED
     thread_radius_m: float = THREAD_RADIUS_M
     density_kg_per_m3: float = DENSITY_KG_PER_M3
     specific_heat_j_per_kgk: float = SPECIFIC_HEAT_J_PER_KGK
@@ -207,6 +227,11 @@ class ThermalModel:
     _r: Callable[[float, float], float] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        missing = [name for name in _REQUIRED_ARGS if getattr(self, name) is _REQUIRED]
+        if missing:
+            what = "; ".join(f"{name}: {_REQUIRED_ARGS[name]}" for name in missing)
+            plural = "s" if len(missing) > 1 else ""
+            raise TypeError(f"ThermalModel() missing {len(missing)} required argument{plural}: {what}")
         for name in (
             "fibre_length_m",
             "thread_radius_m",

@@ -63,6 +63,14 @@ impl PyActuator {
     pub(crate) fn identity(&self) -> String {
         format!("{:?} {:?}", self.inner, self.stiffness)
     }
+    /// This actuator, after a `UnitsWarning` if an anchor looks like
+    /// millimetres ([`Actuator::units_warning`]).
+    fn warn_units(self) -> PyResult<Self> {
+        if let Some(msg) = self.inner.units_warning() {
+            Python::attach(|py| crate::python::warn_units(py, msg))?;
+        }
+        Ok(self)
+    }
     /// `s_end` as given (`None`: the tip).
     fn s_end_arg(&self) -> Option<f64> {
         (self.inner.s_end != Actuator::TIP).then_some(self.inner.s_end)
@@ -85,6 +93,15 @@ impl PyActuator {
     /// shape is unstrained). `pretension_n`: tension [N] the TCA carries at the
     /// reference temperature in the undeformed body (needed for contraction
     /// TCAs to act; sets `L_i`, so not together with `length_ratio`).
+    ///
+    /// A TCA shorter than its span: the elongation is measured over the whole
+    /// span from `s_start` to `s_end`, so the model takes the TCA in series
+    /// with inextensible leads (knots, crimps, wire) filling the rest of the
+    /// span; in the reference shape it is relaxed with its coils touching
+    /// (unless pre-tensioned) and all of the span's elongation goes into the
+    /// TCA's law. Its coiled length must not exceed the span by more than 10%.
+    /// Anchors above 10 m look like millimetres and warn with
+    /// `tcarod.UnitsWarning`.
     #[staticmethod]
     #[pyo3(signature = (tca, routing, s_start=Real(0.0), s_end=None, length_ratio=None, *, pretension_n=None),
         text_signature = "(tca, routing, s_start=0.0, s_end=None, length_ratio=None, *, pretension_n=None)")]
@@ -96,14 +113,15 @@ impl PyActuator {
         length_ratio: Option<Real>,
         pretension_n: Option<Real>,
     ) -> PyResult<Self> {
-        Ok(PyActuator::plain(Actuator::tca(
+        PyActuator::plain(Actuator::tca(
             tca.inner,
             routing.inner,
             s_start.0,
             s_end.map(|r| r.0),
             length_ratio.map(|r| r.0),
             pretension_n.map(|r| r.0),
-        )?))
+        )?)
+        .warn_units()
     }
     /// A tendon whose input is its tension [N] (>= 0), anchored from
     /// `s_start` [m] to `s_end` [m] (`None`: the tip); `length_ratio` [-] as
@@ -117,13 +135,14 @@ impl PyActuator {
         s_end: Option<Real>,
         length_ratio: Option<Real>,
     ) -> PyResult<Self> {
-        Ok(PyActuator::plain(Actuator::anchored(
+        PyActuator::plain(Actuator::anchored(
             routing.inner,
             s_start.0,
             s_end.map(|r| r.0),
             length_ratio.map(|r| r.0),
             Arc::new(ConstantTension),
-        )?))
+        )?)
+        .warn_units()
     }
     /// An elastic tendon of `stiffness` [N/m] whose input is the length [m]
     /// pulled in at the base; anchors and `length_ratio` as for `Actuator.tca`.
@@ -145,10 +164,11 @@ impl PyActuator {
             length_ratio.map(|r| r.0),
             Arc::new(LinearTendon { stiffness }),
         )?;
-        Ok(PyActuator {
+        PyActuator {
             inner,
             stiffness: Some(stiffness),
-        })
+        }
+        .warn_units()
     }
     /// Pre-tension [N] at the reference temperature (`Actuator.tca(..., pretension_n=...)`), or `None`.
     #[getter]

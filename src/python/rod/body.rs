@@ -31,6 +31,21 @@ fn modulus_warning(youngs_modulus: f64) -> Option<String> {
     })
 }
 
+/// A warning text if `body` has a density but was built without `gravity`:
+/// its weight `psi A g` (eq 24's distributed force) is then zero, so the
+/// density has no effect, which is rarely meant. An explicit `gravity`, even
+/// zero, says it is.
+fn weightless_warning(body: &Body) -> Option<String> {
+    (body.density > 0.0 && body.gravity == Vector3::zeros()).then(|| {
+        format!(
+            "Body: density = {} kg/m^3 but no gravity was given: the body is weightless (gravity defaults \
+             to zero). Pass gravity=(0, 0, -9.81) [m/s^2] for a robot standing upright (base at the \
+             bottom), or gravity=(0, 0, 0) or density=0 to keep it weightless",
+            crate::error::human(body.density)
+        )
+    })
+}
+
 /// The soft body (Cosserat rod): geometry, material, reference strains, loads.
 ///
 /// `Body(length, section, youngs_modulus, *, poisson=None, shear_modulus=None,
@@ -50,7 +65,9 @@ fn modulus_warning(youngs_modulus: f64) -> Option<String> {
 ///
 /// SI units: a body whose length or section looks like millimetres (length
 /// > 10 m, section size > 1 m) or whose `youngs_modulus` lies outside
-/// 1 kPa..1 TPa warns with `tcarod.UnitsWarning`. Value object:
+/// 1 kPa..1 TPa warns with `tcarod.UnitsWarning`, as does a body with a
+/// `density` but no `gravity` argument (it would be weightless; pass
+/// `gravity`, zero if that is meant). Value object:
 /// immutable, `==`, hashable, picklable; `repr` is a constructor call.
 #[pyclass(name = "Body", module = "tcarod._core", frozen, eq, hash)]
 #[derive(Clone, PartialEq)]
@@ -99,6 +116,11 @@ impl PyBody {
         b.tip_force = v("tip_force", &tip_force, [0.0; 3])?;
         b.tip_moment = v("tip_moment", &tip_moment, [0.0; 3])?;
         b.validate()?;
+        if gravity.is_none() {
+            if let Some(msg) = weightless_warning(&b) {
+                crate::python::warn_units(py, msg)?;
+            }
+        }
         if let Some(msg) = b.units_warning() {
             crate::python::warn_units(py, msg)?;
         }

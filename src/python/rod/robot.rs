@@ -8,9 +8,9 @@ use super::actuator::PyActuator;
 use super::body::{body_repr, PyBody};
 use super::solution::PySolution;
 use crate::error::Error;
-use crate::python::args::{budget_options, solve_options};
+use crate::python::args::{budget_options, one_per_actuator, solve_options};
 use crate::python::to_py::{hash_by_text, positional_args, NewArgs};
-use crate::python::{reals, Real, MAX_SEQUENCE};
+use crate::python::{Real, MAX_SEQUENCE};
 use crate::rod::{Actuator, Robot};
 
 /// A body with its embedded actuators: `Robot(body, actuators=(), *, spacer_disks=False)`.
@@ -18,10 +18,12 @@ use crate::rod::{Actuator, Robot};
 /// `body` is a `Body`; `actuators` a sequence of `Actuator` (inputs are given
 /// in this order to `solve`: temperature [C] for TCAs, tension [N] for
 /// tendons, pull [m] for linear tendons). Building checks the layout: anchors
-/// inside the body, routings inside the section, TCAs no longer than their
-/// span (ValueError naming `actuators[i]`). `spacer_disks=True`: a tendon
-/// robot whose actuators run through spacer disks outside the backbone's
-/// section (the routing-inside-the-section rule is waived). Value object: immutable, `==`
+/// inside the body, routings inside the section, each TCA's whole coil
+/// (routing offset plus half the coil's outer diameter) inside the section,
+/// TCAs no longer than their span (ValueError naming `actuators[i]`).
+/// `spacer_disks=True`: a robot whose actuators run through spacer disks
+/// outside the body's section (the routing- and coil-inside-the-section rule
+/// is waived). Value object: immutable, `==`
 /// (two identically built robots are equal), picklable, so it travels to
 /// process pools and Dask workers.
 #[pyclass(name = "Robot", module = "tcarod._core", frozen, subclass, eq, hash)]
@@ -69,7 +71,7 @@ impl PyRobot {
         self.actuators.clone()
     }
     /// `True` if the actuators run through spacer disks outside the section
-    /// (the routing-inside-the-section rule waived).
+    /// (the routing- and coil-inside-the-section rule waived).
     #[getter]
     fn spacer_disks(&self) -> bool {
         self.inner.spacer_disks
@@ -170,7 +172,7 @@ impl PyRobot {
         if require_stable {
             policy = crate::stability::Policy::Require;
         }
-        let q = reals("inputs", &inputs, None)?;
+        let q = one_per_actuator("inputs", &inputs, this.inner.actuators.len())?;
         this.inner.check_inputs(&q)?;
         let warm = warm_start.map(|w| w.inner.clone());
         crate::python::stability::solve_policy(py, slf, &q, &opts, warm, policy)
@@ -209,7 +211,8 @@ impl PyRobot {
                 )
                 .into());
             }
-            let row = reals(&format!("inputs[{k}]"), &row?, None)?;
+            let n = slf.get().inner.actuators.len();
+            let row = one_per_actuator(&format!("inputs[{k}]"), &row?, n)?;
             slf.get().inner.check_inputs(&row)?;
             rows.push(row);
         }

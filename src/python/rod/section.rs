@@ -127,20 +127,20 @@ pub struct PyRouting {
 
 #[pymethods]
 impl PyRouting {
-    /// Parallel to the centre line at body-frame offset `(x, y)` [m].
+    /// Parallel to the centre line at body-frame offset `(x, y)` [m]. An
+    /// offset above 1 m looks like millimetres and warns with
+    /// `tcarod.UnitsWarning` (4 mm is 0.004 m).
     #[staticmethod]
-    fn straight(x: Real, y: Real) -> PyResult<Self> {
-        Ok(PyRouting {
-            inner: Routing::straight(x.0, y.0)?,
-        })
+    fn straight(py: Python<'_>, x: Real, y: Real) -> PyResult<Self> {
+        PyRouting::checked(py, Routing::straight(x.0, y.0)?)
     }
-    /// Helix of `radius` [m] turning at `rate` [rad/m] from angle `phase` [rad].
+    /// Helix of `radius` [m] turning at `rate` [rad/m] from angle `phase`
+    /// [rad]. A radius above 1 m looks like millimetres and warns with
+    /// `tcarod.UnitsWarning`.
     #[staticmethod]
     #[pyo3(signature = (radius, rate, phase=Real(0.0)), text_signature = "(radius, rate, phase=0.0)")]
-    fn helix(radius: Real, rate: Real, phase: Real) -> PyResult<Self> {
-        Ok(PyRouting {
-            inner: Routing::helix(radius.0, rate.0, phase.0)?,
-        })
+    fn helix(py: Python<'_>, radius: Real, rate: Real, phase: Real) -> PyResult<Self> {
+        PyRouting::checked(py, Routing::helix(radius.0, rate.0, phase.0)?)
     }
     /// `(r, r', r'')` at arc length `s` [m] as three length-3 arrays (body frame).
     #[allow(clippy::type_complexity)]
@@ -161,6 +161,16 @@ impl PyRouting {
             }
         }
         Ok((vec3(py, &r), vec3(py, &rp), vec3(py, &rpp)))
+    }
+}
+
+impl PyRouting {
+    /// `inner`, after a `UnitsWarning` if its distance looks like millimetres.
+    fn checked(py: Python<'_>, inner: Routing) -> PyResult<Self> {
+        if let Some(msg) = inner.units_warning() {
+            crate::python::warn_units(py, msg)?;
+        }
+        Ok(PyRouting { inner })
     }
 }
 
