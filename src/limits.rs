@@ -125,14 +125,14 @@ mod tests {
                     time_limit: Some(std::time::Duration::from_secs(2_000_000_000)),
                     ..Default::default()
                 },
-                "invalid time_limit [s] = 2000000000: allowed 0 < time_limit <= 1e9 s",
+                "invalid time_limit = 2000000000 s: allowed 0 < time_limit <= 1e9 s",
             ),
             (
                 SolveOptions {
                     time_limit: Some(std::time::Duration::ZERO),
                     ..Default::default()
                 },
-                "invalid time_limit [s] = 0: allowed 0 < time_limit <= 1e9 s",
+                "invalid time_limit = 0 s: allowed 0 < time_limit <= 1e9 s",
             ),
         ];
         for (opts, message) in cases {

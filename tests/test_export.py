@@ -4,12 +4,11 @@
 from __future__ import annotations
 
 import csv
-import doctest
 import json
+import doctest
 import re
 import sys
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import pytest
@@ -211,27 +210,6 @@ def test_no_exporter_without_the_package_is_a_clear_error() -> None:
     assert SOL.to_dict() == results.export("to_dict", SOL)
     with pytest.raises(TypeError, match="callable"):
         _core._register_exporter(42)
-
-
-def _run_doctests(module: Any) -> None:
-    finder = doctest.DocTestFinder()
-    runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS)
-    tests = [t for t in finder.find(module) if t.examples]
-    assert tests, f"{module.__name__} has no examples"
-    for test in tests:
-        runner.run(test)
-    assert runner.failures == 0, f"{module.__name__}: {runner.failures} doctest failures (output above)"
-
-
-def test_docstring_examples_run() -> None:
-    from tcarod import batch
-
-    _run_doctests(results)
-    _run_doctests(batch)
-    pytest.importorskip("matplotlib", reason="matplotlib (the `plot` extra) is not installed")
-    from tcarod.plotting import batch as plotting_batch
-
-    _run_doctests(plotting_batch)
 
 
 def test_the_export_page_examples_run() -> None:

@@ -98,13 +98,16 @@ def test_from_material_builds_the_preset_body() -> None:
 
 
 def test_from_material_accepts_trade_names_and_an_identified_modulus() -> None:
-    a = Body.from_material("Dragon Skin 10", 0.05, SECTION)
+    up = (0.0, 0.0, -9.81)  # [m/s^2]
+    a = Body.from_material("Dragon Skin 10", 0.05, SECTION, gravity=up)
     assert (
-        a == Body.from_material("dragon_skin_10", 0.05, SECTION) == Body.from_material("dragon-skin-10", 0.05, SECTION)
+        a
+        == Body.from_material("dragon_skin_10", 0.05, SECTION, gravity=up)
+        == Body.from_material("dragon-skin-10", 0.05, SECTION, gravity=up)
     )
-    identified = Body.from_material("ecoflex-00-30", 0.06, SECTION, youngs_modulus=70e3)
+    identified = Body.from_material("ecoflex-00-30", 0.06, SECTION, youngs_modulus=70e3, gravity=up)
     assert identified.youngs_modulus == 70e3 and identified.density == 1070.0
-    g = Body.from_material("ecoflex-00-30", 0.06, SECTION, shear_modulus=20e3)
+    g = Body.from_material("ecoflex-00-30", 0.06, SECTION, shear_modulus=20e3, gravity=up)
     assert g.shear_modulus == 20e3
 
 

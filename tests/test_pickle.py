@@ -66,7 +66,15 @@ def _body() -> Any:
 
 def _column() -> Robot:
     """A slender round rod under a tip load along its axis (cheap branches)."""
-    body = _core.Body(0.5, _core.Section.circle(0.01), 1e6, poisson=0.5, density=1000.0, tip_force=[0.0, 0.0, -0.01])
+    body = _core.Body(
+        0.5,
+        _core.Section.circle(0.01),
+        1e6,
+        poisson=0.5,
+        density=1000.0,
+        gravity=(0.0, 0.0, 0.0),
+        tip_force=[0.0, 0.0, -0.01],
+    )
     return _core.Robot(body, [])
 
 

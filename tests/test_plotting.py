@@ -139,7 +139,8 @@ def test_titles_and_legends_carry_units_and_values() -> None:
 def test_title_of_a_tendon_robot_gives_newtons() -> None:
     from tcarod import Actuator, Body, Robot, Routing, Section
 
-    robot = Robot(Body(0.05, Section.circle(0.01), 1e6, density=1000.0), [Actuator.tendon(Routing.straight(3e-3, 0.0))])
+    body = Body(0.05, Section.circle(0.01), 1e6, density=1000.0, gravity=(0.0, 0.0, 0.0))
+    robot = Robot(body, [Actuator.tendon(Routing.straight(3e-3, 0.0))])
     fig = plot_solution(robot.solve([0.05]), view="yz")
     assert fig.axes[0].get_title() == "inputs: 0.05 N"
 

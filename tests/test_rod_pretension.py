@@ -19,7 +19,7 @@ import pytest
 from tcarod import Actuator, Body, Robot, Routing, Section, Tca
 
 LENGTH = 0.040
-BODY = Body(LENGTH, Section.rectangle(0.01, 0.01), 1e6, density=1040.0)
+BODY = Body(LENGTH, Section.rectangle(0.01, 0.01), 1e6, density=1040.0, gravity=(0.0, 0.0, 0.0))
 TCA = Tca.from_pitch_angle(LENGTH, math.radians(15.0), 1.7e-3, 76.4, "contraction")
 
 

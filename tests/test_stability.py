@@ -19,7 +19,9 @@ def column(tip_force_n: float = 0.0, rectangular: bool = False) -> core.Robot:
     ``rectangular``: 10 x 9 mm instead, so that its buckled shapes are
     isolated (a round column's form a circle about the vertical)."""
     section = core.Section.rectangle(0.01, 0.009) if rectangular else core.Section.circle(0.01)
-    body = core.Body(0.5, section, 1e6, poisson=0.5, density=1000.0, tip_force=[0.0, 0.0, -tip_force_n])
+    body = core.Body(
+        0.5, section, 1e6, poisson=0.5, density=1000.0, gravity=(0.0, 0.0, 0.0), tip_force=[0.0, 0.0, -tip_force_n]
+    )
     return core.Robot(body, [])
 
 

@@ -126,7 +126,8 @@ class BodyMaterial:
         Examples
         --------
         >>> from tcarod import Section, body_material
-        >>> body = body_material("ecoflex-00-30").body(0.060, Section.circle(0.012), youngs_modulus=70e3)
+        >>> ecoflex = body_material("ecoflex-00-30")
+        >>> body = ecoflex.body(0.060, Section.circle(0.012), youngs_modulus=70e3, gravity=(0, 0, -9.81))
         >>> body.youngs_modulus, body.density        # [Pa], [kg/m^3]
         (70000.0, 1070.0)
         """

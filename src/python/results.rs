@@ -87,7 +87,7 @@ pub struct PyInverseResult {
     /// Returns
     /// -------
     /// list of bool
-    ///     One per variable.
+    ///     One per variable, in the order of `variables`.
     #[pyo3(get)]
     pub(crate) at_bound: Vec<bool>,
     /// IVPs integrated in total (``nfev``).
@@ -269,7 +269,7 @@ pub struct PyBlockedResult {
     /// Returns
     /// -------
     /// Solution
-    ///     Carries the stability verdict with the tip held.
+    ///     Its `stable` is the verdict with the tip held.
     #[pyo3(get)]
     pub(crate) solution: Py<PySolution>,
     /// Contact force [N] the tip presses with along the plane's normal.

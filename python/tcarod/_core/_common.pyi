@@ -38,4 +38,11 @@ class UnstableEquilibriumError(RuntimeError):
     solution: Solution
 
 class UnitsWarning(UserWarning):
-    """Sizes that are valid SI numbers but look like millimetres (a body longer than 10 m, a section wider than 1 m, a TCA coil diameter above 0.1 m)."""
+    """Inputs that are valid SI numbers but look like a unit mix-up.
+
+    Sizes that look like millimetres (a body longer than 10 m, a section wider
+    than 1 m, a TCA coil diameter above 0.1 m, a routing offset or helix radius
+    above 1 m, an anchor or a TCA length above 10 m), a Young's modulus outside
+    1 kPa-1 TPa, temperatures above 273 C (kelvin typed as Celsius), and a
+    density given without gravity (a weightless body).
+    """

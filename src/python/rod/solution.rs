@@ -176,7 +176,7 @@ impl PySolution {
     /// Returns
     /// -------
     /// Robot
-    ///     The design (body, actuators, loads) this solution belongs to.
+    ///     The design (`body`, `actuators`) this solution belongs to.
     #[getter]
     fn robot(&self, py: Python<'_>) -> Py<PyRobot> {
         self.robot.clone_ref(py)
