@@ -127,7 +127,8 @@ def test_blocked_temperature_with_a_fixed_input(finger: Robot) -> None:
         ({"fixed_inputs": {"1": AMBIENT_C}}, TypeError, r"fixed_inputs"),
         ({"fixed_inputs": {True: AMBIENT_C}}, TypeError, r"fixed_inputs"),
         ({"fixed_inputs": {1: AMBIENT_C}, "groups": [0, 0]}, ValueError, r"groups / fixed_inputs"),
-        ({"groups": [0, None]}, ValueError, r"groups / fixed_inputs"),
+        ({"groups": [None, None], "fixed_inputs": {0: AMBIENT_C}}, ValueError, r"groups / fixed_inputs"),
+        ({"groups": [0, None]}, TypeError, r"groups: .*fixed_inputs"),
         ({"fixed_inputs": {1: AMBIENT_C}, "groups": [0, 1, 0]}, ValueError, r"groups"),
     ],
 )

@@ -57,20 +57,40 @@ impl InverseStatus {
     }
 }
 
-impl InverseResult {
-    /// Why the iteration ended, in words, with the closest tip point \[m\]
-    /// and the remaining distance \[m\] when the target was not reached.
-    pub fn message(&self, max_iter: usize) -> String {
-        let p = self.solution.tip_position();
+impl InverseStatus {
+    /// The status of an ended iteration from its outcome: the target
+    /// `reached`, the iteration budget `exhausted` while the error still
+    /// decreased, else unreachable if a variable rests on a bound
+    /// (`at_bound`), stalled if none does.
+    pub fn of(reached: bool, exhausted: bool, at_bound: &[bool]) -> Self {
+        if reached {
+            InverseStatus::Reached
+        } else if exhausted {
+            InverseStatus::BudgetExhausted
+        } else if at_bound.iter().any(|b| *b) {
+            InverseStatus::Unreachable
+        } else {
+            InverseStatus::Stalled
+        }
+    }
+
+    /// The status in words, with the closest tip point `tip` \[m\] and the
+    /// remaining distance `error` \[m\] when the target was not reached
+    /// (`at_bound`: which variables rest on a bound; `max_iter`: the budget).
+    pub fn message(
+        self,
+        tip: &Vector3<f64>,
+        error: f64,
+        at_bound: &[bool],
+        max_iter: usize,
+    ) -> String {
         let at = format!(
-            "closest tip point found [{:.6e}, {:.6e}, {:.6e}] m, {:.3e} m from the target",
-            p.x, p.y, p.z, self.error
+            "closest tip point found [{:.6e}, {:.6e}, {:.6e}] m, {error:.3e} m from the target",
+            tip.x, tip.y, tip.z
         );
-        let bound: Vec<usize> = (0..self.at_bound.len())
-            .filter(|&k| self.at_bound[k])
-            .collect();
-        match self.status {
-            InverseStatus::Reached => format!("target reached: error {:.3e} m", self.error),
+        let bound: Vec<usize> = (0..at_bound.len()).filter(|&k| at_bound[k]).collect();
+        match self {
+            InverseStatus::Reached => format!("target reached: error {error:.3e} m"),
             InverseStatus::Unreachable => format!(
                 "target unreachable within the inputs' range: {at}, variables {bound:?} at their bounds"
             ),
@@ -81,6 +101,15 @@ impl InverseResult {
                 "stalled: the error stopped decreasing with no variable at a bound (the target is off the set the tip reaches near this point, or a local minimum): {at}"
             ),
         }
+    }
+}
+
+impl InverseResult {
+    /// Why the iteration ended, in words ([`InverseStatus::message`]).
+    pub fn message(&self, max_iter: usize) -> String {
+        let tip = self.solution.tip_position();
+        self.status
+            .message(&tip, self.error, &self.at_bound, max_iter)
     }
 }
 
@@ -217,15 +246,7 @@ pub fn tip_position_inverse(
         .zip(&bounds)
         .map(|(v, (lo, hi))| *v <= *lo || *v >= *hi)
         .collect();
-    let status = if e <= opts.tol {
-        InverseStatus::Reached
-    } else if !stopped {
-        InverseStatus::BudgetExhausted
-    } else if at_bound.iter().any(|b| *b) {
-        InverseStatus::Unreachable
-    } else {
-        InverseStatus::Stalled
-    };
+    let status = InverseStatus::of(e <= opts.tol, !stopped, &at_bound);
     Ok(InverseResult {
         solution: s,
         variables: zb,

@@ -43,6 +43,13 @@ fn groups_for(
         Some(o) => fixed_entries(o)?,
         None => Vec::new(),
     };
+    // without fixed inputs `groups` is a sequence of integers: None there is
+    // a wrong type, not a missing actuator
+    if fixed.is_empty() && map.as_ref().is_some_and(|m| m.contains(&None)) {
+        return Err(pyo3::exceptions::PyTypeError::new_err(
+            "groups: expected integers; None marks an actuator in fixed_inputs, and none was given",
+        ));
+    }
     Ok(Groups::with_fixed(&robot.inner, map.as_deref(), &fixed)?)
 }
 
