@@ -229,7 +229,11 @@ def test_grasp_default_finger_hangs_and_bends_toward_minus_x() -> None:
         ({"mass_kg": 1e-3, "mu": -1.0}, "mu"),
         ({"mass_kg": 1e-3, "fingers": 0}, "fingers"),
         ({"mass_kg": 1e-3, "method": "newton"}, "method"),
-        ({"mass_kg": 0.05}, "outside"),  # 50 g needs more than 160 C
+        # 50 g needs more than 160 C: the error names the largest mass held
+        (
+            {"mass_kg": 0.05},
+            r"cannot hold 50 g .*: the largest blocked force in \[25, 160\] C is .* N \(.* g\) at 160 C",
+        ),
     ],
 )
 def test_grasp_bad_input(kwargs: dict[str, object], match: str) -> None:
@@ -348,3 +352,73 @@ def test_solution_and_blocked_results_read_like_scipy() -> None:
     # the tip is held on the plane x = tip_x: its x is unchanged (1e-9 m:
     # the mixed BVP's residual tolerance on the plane condition)
     assert abs(b.tip_position[0] - tip[0]) < 1e-9
+
+
+@pytest.fixture(scope="module")
+def planar_finger():  # type: ignore[no-untyped-def]
+    """The getting-started finger: two opposite TCAs in the x-z plane, so the tip never leaves it."""
+    from tcarod import Actuator, Body, Robot, Routing, Section
+    from tcarod.models.manipulators import leg_turns, manipulator_tca
+
+    body = Body.from_material("ecoflex-00-30", 0.060, Section.rectangle(12e-3, 12e-3), gravity=(0.0, 0.0, -9.81))
+    tca = manipulator_tca(0.060, turns=leg_turns(0.060, 1, "per_length"))
+    return Robot(body, [Actuator.tca(tca, Routing.straight(x, 0.0)) for x in (4e-3, -4e-3)])
+
+
+def test_inverse_with_a_fixed_input_is_a_forward_solve(planar_finger) -> None:  # type: ignore[no-untyped-def]
+    target = planar_finger.solve([100.0, 25.0]).tip_position
+    # the x-z plane has two coordinates and one variable: aim at a point on
+    # the one-TCA curve (reachable), the other TCA held at ambient
+    res = tip_position(planar_finger, target, fixed_inputs={1: 25.0})
+    assert res.success and res.status == 0
+    assert len(res.variables) == 1
+    assert res.variables[0] == pytest.approx(100.0, abs=1e-3)
+    assert res.solution.inputs[1] == 25.0
+    # a forward solve at the found variable with the fixed input is the
+    # inverse's tip (Newton tol 1e-10: tips agree to ~1e-12 m), within tol
+    again = planar_finger.solve([res.variables[0], 25.0])
+    assert np.linalg.norm(again.tip_position - target) <= 1e-7 + 1e-10
+    # the other conventions of groups are the same problem
+    for groups in ([0, None], [0]):
+        same = tip_position(planar_finger, target, fixed_inputs={1: 25.0}, groups=groups)
+        assert list(same.variables) == list(res.variables)
+
+
+def test_off_plane_target_of_a_planar_finger_stalls_at_the_closest_point(planar_finger) -> None:  # type: ignore[no-untyped-def]
+    in_plane = planar_finger.solve([100.0, 25.0]).tip_position
+    target = in_plane + np.array([0.0, 2e-3, 0.0])
+    res = tip_position(planar_finger, target, max_iter=500)
+    # the error cannot fall below the 2 mm off the plane: the iteration ends
+    # within a few Gauss-Newton steps (measured 4), not at max_iter
+    assert not res.success
+    assert res.status == 3
+    assert res.nit <= 10
+    assert "max_iter" not in res.message
+    # the closest point is the in-plane projection of the target: y = 0 by
+    # symmetry, distance 2 mm to the inverse's tol
+    assert abs(res.tip_position[1]) < 1e-12
+    assert res.error == pytest.approx(2e-3, abs=1e-7)
+    assert np.linalg.norm(res.tip_position - in_plane) < 1e-7
+    # variables and solution are the closest point's
+    again = planar_finger.solve(list(res.variables))
+    assert np.linalg.norm(again.tip_position - res.tip_position) < 1e-9
+
+
+def test_jacobian_with_a_fixed_input_has_columns_for_variables_only(planar_finger) -> None:  # type: ignore[no-untyped-def]
+    sol = planar_finger.solve([90.0, 40.0])
+    j, c = jacobian_and_compliance(sol, fixed_inputs={1: 40.0}, scheme="central")
+    j_all, c_all = jacobian_and_compliance(sol, scheme="central")
+    assert j.shape == (6, 1) and c.shape == (6, 6)
+    # central differences of forward solves in the heated TCA's temperature
+    # (h = 0.05 C: O(h^2) truncation ~1e-7 relative, Newton tol 1e-12 below it)
+    h = 0.05
+    plus = planar_finger.solve([90.0 + h, 40.0], tol=1e-12).tip_position
+    minus = planar_finger.solve([90.0 - h, 40.0], tol=1e-12).tip_position
+    fd = (plus - minus) / (2 * h)
+    assert np.allclose(j[:3, 0], fd, rtol=1e-5, atol=1e-6 * np.abs(fd).max())
+    # the same column as with one variable per actuator; C does not depend on the grouping
+    assert np.allclose(j[:, 0], j_all[:, 0], rtol=1e-7, atol=1e-12)
+    assert np.allclose(c, c_all, rtol=1e-7, atol=1e-12)
+    # the fixed input must be the solution's own
+    with pytest.raises(ValueError, match=r"fixed_inputs\[1\]"):
+        jacobian_and_compliance(sol, fixed_inputs={1: 25.0})

@@ -24,13 +24,16 @@ tangent along ``+z``; tip poses ``[dp (m); dtheta (rad)]``, tip wrenches
 ``[F (N); M (N m)]``, temperatures in degrees C. ``groups[i]`` is the
 actuation variable driving actuator ``i``: the two legs of a U-shaped TCA
 share one temperature with ``groups=[0, 0]``; the default is one variable per
-actuator. Argument errors raise ``ValueError``; a failed solve raises
+actuator. ``fixed_inputs={i: value}`` holds actuator ``i`` at a fixed input
+(C for a TCA) with no variable: ``groups`` then lists ``None`` for it, or
+maps only the other actuators (``fixed_inputs={1: 25.0}`` alone heats
+actuator 0 of a two-TCA finger and keeps actuator 1 at 25 C). Argument errors raise ``ValueError``; a failed solve raises
 :class:`tcarod.ConvergenceError`.
 """
 
 from __future__ import annotations
 
-from typing import Any, Literal, Optional, Sequence, Union
+from typing import Any, Literal, Mapping, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -69,20 +72,44 @@ def _vector(name: str, value: Vector | float, size: int | None = None) -> list[f
     return [float(x) for x in arr]
 
 
-def _groups(groups: Sequence[int] | None) -> Optional[list[int]]:
-    """``groups`` as a list of ints: ``TypeError`` for non-integers (bool,
-    float, str), ``ValueError`` for negative ones (the core checks the rest)."""
+def _groups(groups: Sequence[int | None] | None) -> Optional[list[int | None]]:
+    """``groups`` as a list of ints and ``None`` (an actuator in ``fixed_inputs``):
+    ``TypeError`` for other entries (bool, float, str), ``ValueError`` for
+    negative ones (the core checks the rest)."""
     if groups is None:
         return None
     if isinstance(groups, (str, bytes, bytearray)):
         raise TypeError(f"groups: expected a sequence of integers, not {type(groups).__name__}")
-    out = []
+    out: list[int | None] = []
     for g in groups:
+        if g is None:
+            out.append(None)
+            continue
         if isinstance(g, (bool, np.bool_)) or not isinstance(g, (int, np.integer)):
-            raise TypeError(f"groups: expected integers, got {g!r}")
+            raise TypeError(f"groups: expected integers (or None for an actuator in fixed_inputs), got {g!r}")
         if g < 0:
             raise ValueError(f"groups: invalid groups entry {g}: allowed 0 <= groups[i] < number of actuators")
         out.append(int(g))
+    return out
+
+
+def _fixed(fixed_inputs: Mapping[int, float] | None) -> Optional[dict[Any, Any]]:
+    """``fixed_inputs`` as a dict (``TypeError`` unless a mapping; the core
+    checks its keys and values)."""
+    if fixed_inputs is None:
+        return None
+    if not isinstance(fixed_inputs, Mapping):
+        raise TypeError(f"fixed_inputs: expected a dict {{actuator index: input}}, not {type(fixed_inputs).__name__}")
+    return dict(fixed_inputs)
+
+
+def _with_fixed(inputs: Sequence[float], fixed_inputs: Mapping[int, float] | None) -> list[float]:
+    """``inputs`` with the actuators in ``fixed_inputs`` at their fixed inputs
+    (keys that are no actuator index are left to the core's check)."""
+    out = [float(x) for x in inputs]
+    for i, v in (fixed_inputs or {}).items():
+        if isinstance(i, (int, np.integer)) and not isinstance(i, bool) and 0 <= i < len(out):
+            out[int(i)] = v
     return out
 
 
@@ -91,28 +118,76 @@ def _plane(point: Vector, normal: Vector) -> tuple[list[float], list[float]]:
     return _vector("point [m]", point, 3), _vector("normal", normal, 3)
 
 
-def _solver(groups: Sequence[int] | None, steps: int, tol: float, max_iter: int) -> dict[str, Any]:
+def _solver(
+    groups: Sequence[int | None] | None,
+    fixed_inputs: Mapping[int, float] | None,
+    steps: int,
+    tol: float,
+    max_iter: int,
+) -> dict[str, Any]:
     """The keyword arguments every blocked-tip solve passes to the core."""
-    return {"groups": _groups(groups), "steps": steps, "tol": tol, "max_iter": max_iter}
+    return {
+        "groups": _groups(groups),
+        "fixed_inputs": _fixed(fixed_inputs),
+        "steps": steps,
+        "tol": tol,
+        "max_iter": max_iter,
+    }
 
 
 def jacobian_and_compliance(
     solution: Solution,
-    groups: Sequence[int] | None = None,
+    groups: Sequence[int | None] | None = None,
     scheme: Literal["forward", "central"] = "forward",
+    *,
+    fixed_inputs: Mapping[int, float] | None = None,
 ) -> tuple[FloatArray, FloatArray]:
     """``(J, C)`` at a converged ``solution`` (eqs 41-42).
 
     ``J = E_q - E_u B_u^-1 B_q`` is ``6 x n_vars``: tip ``[dp (m); dtheta (rad)]``
-    per unit actuation variable (per C for TCAs). ``C = E_W - E_u B_u^-1 B_W`` is
+    per unit actuation variable (per C for TCAs), one column per variable (an
+    actuator in ``fixed_inputs`` has none). ``C = E_W - E_u B_u^-1 B_W`` is
     ``6 x 6``: tip pose per unit tip wrench ``[F (N); M (N m)]``. World frame;
     evaluated at the solution's own tip loads (a blocked solution includes its
     contact force). ``scheme="forward"`` integrates ``12 + 2N`` IVPs (the
     paper's count; relative error ~1e-8), ``"central"`` twice as many (~1e-11).
+
+    Parameters
+    ----------
+    solution : Solution
+        A converged solution of the robot.
+    groups : sequence of int or None, optional
+        ``groups[i]`` is the actuation variable driving actuator ``i`` (e.g.
+        ``[0, 0]``: the two legs of a U-shaped TCA share one temperature),
+        ``None`` for an actuator in ``fixed_inputs``: one entry per actuator,
+        or one per actuator not in ``fixed_inputs`` (in order). Default: one variable per actuator not in ``fixed_inputs``.
+    fixed_inputs : dict of int to float, optional
+        ``{actuator index: input}``: actuators held at a fixed input (C for a
+        TCA, N for a tendon; the range ``Robot.solve`` accepts), with no
+        actuation variable, e.g. ``{1: 25.0}`` keeps the opposite TCA of a
+        two-TCA finger at ambient. An actuator both grouped and fixed, or
+        neither, raises ``ValueError`` naming ``groups`` / ``fixed_inputs``.
+        Each fixed input must equal the solution's input of that actuator.
+    scheme : {"forward", "central"}
+        Finite-difference scheme.
+
+    Returns
+    -------
+    J : ndarray, shape (6, n_vars)
+        Tip pose per unit actuation variable [m/C; rad/C for TCAs].
+    C : ndarray, shape (6, 6)
+        Tip pose per unit tip wrench [m/N, rad/N; m/(N m), rad/(N m)].
+
+    Raises
+    ------
+    ValueError
+        Bad ``groups``, ``fixed_inputs`` or ``scheme``.
+    TypeError
+        ``groups`` or ``fixed_inputs`` of the wrong type.
     """
     if scheme not in ("forward", "central"):
         raise ValueError(f"scheme must be 'forward' or 'central', got {scheme!r}")
-    j, c = _core.sensitivities(solution, _groups(groups), scheme)
+    j, c = _core.sensitivities(solution, _groups(groups), scheme, _fixed(fixed_inputs))
     return np.asarray(j, dtype=np.float64), np.asarray(c, dtype=np.float64)
 
 
@@ -123,7 +198,8 @@ def blocked_temperature(
     force: float,
     start: Solution | None = None,
     *,
-    groups: Sequence[int] | None = None,
+    groups: Sequence[int | None] | None = None,
+    fixed_inputs: Mapping[int, float] | None = None,
     increments: int = 10,
     steps: int = 100,
     tol: float = 1e-10,
@@ -132,19 +208,55 @@ def blocked_temperature(
     """The actuation variable (temperature [C]) at which the blocked tip
     presses with ``force`` [N]: the paper's incremental method, eq (43).
 
-    From ``start``, a solution whose tip touches the plane with no force
-    (default: the free solution at the reference inputs, whose tip must then
-    lie on the plane), the contact force rises to ``force`` in ``increments``
-    steps; each step is ``dq = -(n^T J)^-1 n^T C dW`` with ``J`` and ``C``
-    exact (one tangent IVP), then one BVP solve and a position correction
-    that keeps the tip on the plane. Needs exactly one actuation variable
-    (e.g. ``groups=[0, 0]`` for a U-shaped TCA). Raises ``ValueError`` if the
-    force needs a temperature outside the material's range.
+    From ``start``, a solution whose tip touches the plane with no force,
+    the contact force rises to ``force`` in ``increments`` steps; each step
+    is ``dq = -(n^T J)^-1 n^T C dW`` with ``J`` and ``C`` exact (one tangent
+    IVP), then one BVP solve and a position correction that keeps the tip
+    on the plane. Needs exactly one actuation variable (e.g. ``groups=[0,
+    0]`` for a U-shaped TCA, or ``fixed_inputs={1: 25.0}`` for one of two
+    TCAs heated).
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot.
+    point, normal : sequence of 3 float
+        The blocking plane: a point [m] and the unit direction the tip presses in.
+    force : float
+        Contact force [N].
+    start : Solution, optional
+        Default: the free solution at the reference inputs with the fixed
+        inputs applied (its tip must then lie on the plane).
+    groups : sequence of int or None, optional
+        ``groups[i]`` is the actuation variable driving actuator ``i`` (e.g.
+        ``[0, 0]``: the two legs of a U-shaped TCA share one temperature),
+        ``None`` for an actuator in ``fixed_inputs``: one entry per actuator,
+        or one per actuator not in ``fixed_inputs`` (in order). Default: one variable per actuator not in ``fixed_inputs``.
+    fixed_inputs : dict of int to float, optional
+        ``{actuator index: input}``: actuators held at a fixed input (C for a
+        TCA, N for a tendon; the range ``Robot.solve`` accepts), with no
+        actuation variable, e.g. ``{1: 25.0}`` keeps the opposite TCA of a
+        two-TCA finger at ambient. An actuator both grouped and fixed, or
+        neither, raises ``ValueError`` naming ``groups`` / ``fixed_inputs``.
+    increments, steps, tol, max_iter : int, int, float, int
+        Force steps, RK4 steps per solve, Newton tolerance, Newton iterations.
+
+    Returns
+    -------
+    BlockedResult
+        ``variables[0]`` the temperature [C], ``force`` [N].
+
+    Raises
+    ------
+    ValueError
+        If the force needs a temperature outside the material's range, or
+        for bad arguments.
     """
     V.instance("robot", robot, Robot, "a tcarod.Robot")
     if start is None:
-        start = robot.solve(robot.reference_inputs, steps=steps, tol=tol, max_iter=max_iter)
-    solver = _solver(groups, steps, tol, max_iter)
+        inputs = _with_fixed(robot.reference_inputs, _fixed(fixed_inputs))
+        start = robot.solve(inputs, steps=steps, tol=tol, max_iter=max_iter)
+    solver = _solver(groups, fixed_inputs, steps, tol, max_iter)
     return _core.blocked_temperature(robot, *_plane(point, normal), force, start, increments=increments, **solver)
 
 
@@ -155,7 +267,8 @@ def blocked_temperature_direct(
     force: float,
     guess: float | None = None,
     *,
-    groups: Sequence[int] | None = None,
+    groups: Sequence[int | None] | None = None,
+    fixed_inputs: Mapping[int, float] | None = None,
     steps: int = 100,
     tol: float = 1e-10,
     max_iter: int = 50,
@@ -165,16 +278,47 @@ def blocked_temperature_direct(
     boundary-value problem with the contact ``force`` [N] given (Newton
     with the exact Jacobian of the augmented system).
 
-    ``guess``: starting temperature [C] (default: the midpoint of the first
-    actuator's input range). A robot without actuators raises ``ValueError``. Newton from a poor guess may fail with
-    :class:`tcarod.ConvergenceError`; the incremental method is the robust one.
+    Newton from a poor guess may fail with :class:`tcarod.ConvergenceError`;
+    the incremental method is the robust one.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot (with at least one actuator: ``ValueError`` otherwise).
+    point, normal : sequence of 3 float
+        The blocking plane: a point [m] and the unit direction the tip presses in.
+    force : float
+        Contact force [N].
+    guess : float, optional
+        Starting temperature [C] (default: the midpoint of the input range of
+        the first actuator not in ``fixed_inputs``).
+    groups : sequence of int or None, optional
+        ``groups[i]`` is the actuation variable driving actuator ``i`` (e.g.
+        ``[0, 0]``: the two legs of a U-shaped TCA share one temperature),
+        ``None`` for an actuator in ``fixed_inputs``: one entry per actuator,
+        or one per actuator not in ``fixed_inputs`` (in order). Default: one variable per actuator not in ``fixed_inputs``.
+    fixed_inputs : dict of int to float, optional
+        ``{actuator index: input}``: actuators held at a fixed input (C for a
+        TCA, N for a tendon; the range ``Robot.solve`` accepts), with no
+        actuation variable, e.g. ``{1: 25.0}`` keeps the opposite TCA of a
+        two-TCA finger at ambient. An actuator both grouped and fixed, or
+        neither, raises ``ValueError`` naming ``groups`` / ``fixed_inputs``.
+    steps, tol, max_iter : int, float, int
+        RK4 steps per solve, Newton tolerance, Newton iterations.
+
+    Returns
+    -------
+    BlockedResult
+        ``variables[0]`` the temperature [C], ``force`` [N].
     """
     V.instance("robot", robot, Robot, "a tcarod.Robot")
     if not robot.actuators:
         raise ValueError("invalid robot: it has no actuator to heat (the temperature is the unknown solved for)")
+    fixed = _fixed(fixed_inputs) or {}
     if guess is None:
-        lo, hi = robot.actuators[0].input_bounds
+        free = [a for i, a in enumerate(robot.actuators) if i not in fixed] or list(robot.actuators)
+        lo, hi = free[0].input_bounds
         guess = 0.5 * (lo + hi)
     return _core.blocked_temperature_direct(
-        robot, *_plane(point, normal), force, guess, **_solver(groups, steps, tol, max_iter)
+        robot, *_plane(point, normal), force, guess, **_solver(groups, fixed_inputs, steps, tol, max_iter)
     )

@@ -197,6 +197,7 @@ pub(crate) fn direct_from(
     coarse: Option<usize>,
 ) -> Result<BlockedResult> {
     one_variable_and_force(robot, groups, force)?;
+    groups.check_fixed(&start.inputs, "start")?;
     let scale = variable_scale(robot, groups);
     let extra = Extra::Variable { force, scale };
     let mut sys = Mixed::new(robot, groups, block, extra.clone(), opts.steps);
@@ -278,6 +279,15 @@ fn mixed_newton(
 /// an input outside the actuator's range is [`Error::NoSolution`]; a step that
 /// overshoots a bound by linearisation error (a tenth of the step at most) is
 /// clamped to it.
+///
+/// Where eq 43's linearisation fails within a step (a TCA whose coils touch
+/// at ambient barely moves the tip until it is heated past contact, so that
+/// `n^T J` is tiny at the start and grows a hundredfold within a few C), the
+/// step is halved: when it leaves the input range, when its forward solve
+/// fails, or when the tip then misses the block by more than half the
+/// motion the step predicted (`|n^T J dq|`). After an accepted halved step the
+/// increment doubles again, up to `force / increments`. Steps that
+/// linearise well are the paper's, unchanged.
 pub fn blocked_temperature(
     robot: &Robot,
     groups: &Groups,
@@ -288,27 +298,42 @@ pub fn blocked_temperature(
     opts: &SolveOptions,
 ) -> Result<BlockedResult> {
     check_increments(robot, groups, force, increments)?;
+    groups.check_fixed(&start.inputs, "start")?;
     let (lo, hi) = groups.bounds(robot)[0];
+    let unit = groups.unit(robot, 0);
     let n = block.normal;
+    let tight = 1e-9 * robot.body.length; // the tip on the block: gap below 1e-9 L
     let mut z = groups.vars(&start.inputs)[0];
     let mut sol = start.clone();
     let mut f = 0.0;
     let mut evals = 0;
     let mut pushed_out = false;
     let df = force / increments as f64;
-    for k in 0..increments + 3 {
-        let l = block.loads(robot, f);
-        // J and C exactly, from one tangent IVP (its B blocks: the warm start)
-        let blocks = exact_blocks(robot, &sol, &l, groups, opts.steps)?;
-        let sens = blocks.sensitivities()?;
-        evals += sens.evaluations;
-        let step = if k < increments { df } else { 0.0 };
-        let gap = n.dot(&(block.point - sol.tip_position()));
-        let Some(dz) = eq43_increment(&sens, &n, step, gap) else {
-            return Err(tip_cannot_move(k, evals));
+    let mut h = df; // the current force increment (halved where eq 43 fails)
+    let (mut halvings, mut corrections, mut taken) = (0, 0, 0);
+    // J and C exactly, from one tangent IVP at each accepted solution (its
+    // B blocks: the warm start)
+    let mut linearised: Option<(ExactBlocks, Sensitivities)> = None;
+    loop {
+        let current = match linearised.take() {
+            Some(current) => current,
+            None => {
+                let blocks = exact_blocks(robot, &sol, &block.loads(robot, f), groups, opts.steps)?;
+                let sens = blocks.sensitivities()?;
+                evals += sens.evaluations;
+                (blocks, sens)
+            }
         };
-        z += dz;
-        f += step;
+        let (blocks, sens) = (&current.0, &current.1);
+        // the last increment lands on `force` exactly
+        let remaining = force - f;
+        let last = remaining.abs() <= h.abs();
+        let step = if last { remaining } else { h };
+        let gap = n.dot(&(block.point - sol.tip_position()));
+        let Some(dz) = eq43_increment(sens, &n, step, gap) else {
+            return Err(tip_cannot_move(taken, evals));
+        };
+        let may_halve = step != 0.0 && halvings < MAX_HALVINGS;
         // Near a bound (e.g. the blocked force at 160 C, fed back), a step may
         // overshoot the bound by its linearisation error, a small fraction of
         // the step: clamp it and let the next position correction decide.
@@ -316,48 +341,84 @@ pub fn blocked_temperature(
         // the range), or twice in a row in the corrections at the final
         // force, the force needs an input outside the range.
         let slack = 1e-9 * (hi - lo).clamp(1.0, 1e3);
-        let over = (lo - z).max(z - hi).max(0.0);
+        let zt = z + dz;
+        let over = (lo - zt).max(zt - hi).max(0.0);
         let outside = over > slack;
         if over > 0.1 * dz.abs() + slack || (outside && step == 0.0 && pushed_out) {
+            if may_halve {
+                (h, halvings) = (0.5 * h, halvings + 1);
+                linearised = Some(current);
+                continue;
+            }
             return Err(Error::NoSolution {
-                reason: format!("the blocked force {force:.6e} N needs an input outside [{lo}, {hi}] (reached {z:.3} at force {f:.6e} N)"),
+                reason: format!("the blocked force {force:.6e} N needs an input outside [{lo}, {hi}] {unit} (the eq-43 increments reached {zt:.3} {unit} at force {:.6e} N)", f + step),
             });
         }
-        pushed_out = outside && step == 0.0;
-        let dz = z.clamp(lo, hi) - (z - dz);
-        z = z.clamp(lo, hi);
-        let l = block.loads(robot, f);
-        let warm = predicted(robot, groups, &sol, &blocks, dz, -n * step, z);
+        let zc = zt.clamp(lo, hi);
+        let dzc = zc - z;
+        let ft = if last { force } else { f + step };
+        let warm = predicted(robot, groups, &sol, blocks, dzc, -n * step, zc);
         // full-grid Newton from the eq-43 prediction, even if the pre-solve
         // is asked for (Table I grasp: 64 IVPs without it, 215 with it)
         let full = SolveOptions {
             presolve: false,
             ..*opts
         };
-        sol = solve_loaded(robot, &groups.inputs(&[z]), &l, &full, Some(&warm))?;
-        evals += sol.evaluations;
-        let gap = n.dot(&(block.point - sol.tip_position()));
-        if k + 1 >= increments && gap.abs() < 1e-9 * robot.body.length {
+        let inputs = groups.inputs(&[zc]);
+        let trial = solve_loaded(robot, &inputs, &block.loads(robot, ft), &full, Some(&warm));
+        let st = match trial {
+            Ok(st) => st,
+            Err(_) if may_halve => {
+                (h, halvings) = (0.5 * h, halvings + 1);
+                linearised = Some(current);
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
+        evals += st.evaluations;
+        let gap = n.dot(&(block.point - st.tip_position()));
+        let moved: f64 = (0..3).map(|i| n[i] * sens.jacobian[(i, 0)]).sum::<f64>() * dzc;
+        if may_halve && gap.abs() > 0.5 * moved.abs() + tight {
+            (h, halvings) = (0.5 * h, halvings + 1);
+            linearised = Some(current);
+            continue;
+        }
+        pushed_out = outside && step == 0.0;
+        (z, f, sol, taken) = (zc, ft, st, taken + 1);
+        if step == 0.0 {
+            corrections += 1;
+        } else if h.abs() < df.abs() {
+            h = (2.0 * h).clamp(-df.abs(), df.abs());
+        }
+        if last && gap.abs() < tight {
             let res = BlockedResult {
                 solution: sol,
                 force: f,
                 variables: vec![z],
                 evaluations: evals,
-                iterations: k + 1,
+                iterations: taken,
                 stability: None,
             };
             return block.check(robot, res);
         }
+        if corrections >= 3 {
+            break;
+        }
     }
     Err(Error::NotConverged {
         solver: "blocked-tip increments",
-        iterations: increments + 3,
+        iterations: taken,
         evaluations: evals,
         stop: StopReason::IterationLimit,
         residual: n.dot(&(block.point - sol.tip_position())).abs() / robot.body.length,
         reason: "tip did not settle on the block".into(),
     })
 }
+
+/// Halvings of the eq-43 force increment allowed in one
+/// [`blocked_temperature`] (`2^-60` of the increment: far below any force
+/// resolution, so the limit ends only a force out of reach).
+const MAX_HALVINGS: usize = 60;
 
 /// The error of an eq-43 increment whose actuator cannot move the tip along
 /// the block normal (`n^T J = 0`), after `iterations` increments.
@@ -388,7 +449,10 @@ fn one_variable_and_force(robot: &Robot, groups: &Groups, force: f64) -> Result<
     if groups.n_vars() != 1 {
         return Err(Error::input(
             "groups",
-            "a blocked-force temperature needs exactly one actuation variable",
+            format!(
+                "a blocked-force temperature needs exactly one actuation variable, got {} (share one with groups = [0, 0, ...], or hold the other actuators with fixed_inputs)",
+                groups.n_vars()
+            ),
         ));
     }
     crate::error::finite("force [N]", force)?;

@@ -310,7 +310,8 @@ fn actuator_columns(
         jac.column_mut(6 + i)
             .axpy(dt_de * len, &per_tension.column(i), 0.0);
         jac[(6 + i, 6 + i)] -= 1.0;
-        if variable {
+        // the variable moves only the actuators it drives (fixed inputs stay)
+        if variable && sys.groups.variable_of(i).is_some() {
             jac.column_mut(nx)
                 .axpy(dt_dq * scale, &per_tension.column(i), 1.0);
         }

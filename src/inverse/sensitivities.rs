@@ -193,7 +193,9 @@ pub(crate) fn exact_blocks(
         tau.push(t);
         seeds.tensions[(i, 6 + i)] = 1.0;
         chain[(i, 6 + i)] = dt_de * len;
-        chain[(i, nx + groups.0[i])] = dt_dq;
+        if let Some(k) = groups.variable_of(i) {
+            chain[(i, nx + k)] = dt_dq; // a fixed input has no column
+        }
     }
     let spec = loads.ivp(robot, &tau, steps);
     let (v0, u0) = base_strains(x, len);

@@ -22,7 +22,109 @@ pub struct InverseResult {
     /// Iterations (Jacobian evaluations) and IVPs integrated in total.
     pub iterations: usize,
     pub evaluations: usize,
+    /// Why the iteration ended.
+    pub status: InverseStatus,
 }
+
+/// Why [`tip_position_inverse`] ended (the codes are SciPy-style status
+/// codes, [`InverseStatus::code`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InverseStatus {
+    /// `0`: the tip is within `tol` of the target.
+    Reached,
+    /// `1`: no descent left with a variable on a bound: the closest point
+    /// within the inputs' range.
+    Unreachable,
+    /// `2`: `max_iter` iterations used while the error still decreased.
+    BudgetExhausted,
+    /// `3`: the error stopped decreasing with no variable on a bound: the
+    /// target lies off the set the tip reaches near the closest point (the
+    /// error is orthogonal to every direction the actuators move the tip,
+    /// `J^T e = 0`, e.g. off the bending plane of a planar robot), or a
+    /// local minimum of the distance.
+    Stalled,
+}
+
+impl InverseStatus {
+    /// The SciPy-style status code: 0 reached, 1 unreachable, 2 out of budget, 3 stalled.
+    pub fn code(self) -> i64 {
+        match self {
+            InverseStatus::Reached => 0,
+            InverseStatus::Unreachable => 1,
+            InverseStatus::BudgetExhausted => 2,
+            InverseStatus::Stalled => 3,
+        }
+    }
+}
+
+impl InverseStatus {
+    /// The status of an ended iteration from its outcome: the target
+    /// `reached`, the iteration budget `exhausted` while the error still
+    /// decreased, else unreachable if a variable rests on a bound
+    /// (`at_bound`), stalled if none does.
+    pub fn of(reached: bool, exhausted: bool, at_bound: &[bool]) -> Self {
+        if reached {
+            InverseStatus::Reached
+        } else if exhausted {
+            InverseStatus::BudgetExhausted
+        } else if at_bound.iter().any(|b| *b) {
+            InverseStatus::Unreachable
+        } else {
+            InverseStatus::Stalled
+        }
+    }
+
+    /// The status in words, with the closest tip point `tip` \[m\] and the
+    /// remaining distance `error` \[m\] when the target was not reached
+    /// (`at_bound`: which variables rest on a bound; `max_iter`: the budget).
+    pub fn message(
+        self,
+        tip: &Vector3<f64>,
+        error: f64,
+        at_bound: &[bool],
+        max_iter: usize,
+    ) -> String {
+        let at = format!(
+            "closest tip point found [{:.6e}, {:.6e}, {:.6e}] m, {error:.3e} m from the target",
+            tip.x, tip.y, tip.z
+        );
+        let bound: Vec<usize> = (0..at_bound.len()).filter(|&k| at_bound[k]).collect();
+        match self {
+            InverseStatus::Reached => format!("target reached: error {error:.3e} m"),
+            InverseStatus::Unreachable => format!(
+                "target unreachable within the inputs' range: {at}, variables {bound:?} at their bounds"
+            ),
+            InverseStatus::BudgetExhausted => format!(
+                "iteration budget exhausted (max_iter = {max_iter}) while the error still decreased: {at}; continue with start=result.variables or a larger max_iter"
+            ),
+            InverseStatus::Stalled => format!(
+                "stalled: the error stopped decreasing with no variable at a bound (the target is off the set the tip reaches near this point, or a local minimum): {at}"
+            ),
+        }
+    }
+}
+
+impl InverseResult {
+    /// Why the iteration ended, in words ([`InverseStatus::message`]).
+    pub fn message(&self, max_iter: usize) -> String {
+        let tip = self.solution.tip_position();
+        self.status
+            .message(&tip, self.error, &self.at_bound, max_iter)
+    }
+}
+
+/// Stall test of [`tip_position_inverse`]: over the last `STALL_WINDOW`
+/// iterations the error fell by less than `STALL_DECREASE` of itself
+/// (quadratically converging Gauss-Newton steps cut it by orders of
+/// magnitude per iteration; creeping 1e-9 steps along a null direction do
+/// not).
+const STALL_WINDOW: usize = 5;
+const STALL_DECREASE: f64 = 1e-6;
+
+/// Stationarity test: the linearised step `J dz` can reduce the error by
+/// less than this fraction of it (the error is orthogonal to the range of
+/// `J` to this accuracy: the tip cannot move toward the target).
+const STATIONARY: f64 = 1e-10;
 
 /// Options of the inverse solvers.
 #[derive(Debug, Clone, Copy)]
@@ -54,7 +156,12 @@ impl Default for InverseOptions {
 /// within their bounds (ambient to the material's limit for TCAs).
 ///
 /// An unreachable target ends at the closest configuration found with
-/// `reached = false`, not with an error.
+/// `reached = false` and its [`InverseStatus`], not with an error: the
+/// iteration stops as soon as the local inverse can no longer get closer
+/// (a linearised decrease below `1e-10` of the error, or less than `1e-6`
+/// of it over 5 iterations), e.g. within a few iterations for a target off
+/// the bending plane of a planar robot. Actuators with fixed inputs in
+/// `groups` keep them.
 #[allow(clippy::too_many_arguments)]
 pub fn tip_position_inverse(
     robot: &Robot,
@@ -89,12 +196,21 @@ pub fn tip_position_inverse(
     let mut err = err_vec(&sol);
     let mut best = (err.norm(), sol.clone(), z.clone());
     let mut iterations = 0;
+    let mut history = vec![err.norm()];
+    let mut stopped = false; // no descent left (stationary, stalled or no step accepted)
     while err.norm() > opts.tol && iterations < opts.max_iter {
         iterations += 1;
         let sens = sensitivities_exact(robot, &sol, &loads, groups, opts.forward.steps)?;
         evals += sens.evaluations;
         let jr = weighted_rows(&sens.jacobian, rows, target_rotation.map(|(_, w)| w));
         let dz = bounded_step(&jr, &err, &z, &bounds, opts.damping);
+        // predicted decrease of the linearised error |e| - |e - J dz|:
+        // below STATIONARY |e|, no step of the local inverse gets closer
+        let predicted = err.norm() - (&err - &jr * &dz).norm();
+        if !(predicted > STATIONARY * err.norm()) {
+            stopped = true;
+            break;
+        }
         // backtrack on the tip error, clamping to bounds
         let mut t = 1.0;
         let mut accepted = false;
@@ -116,16 +232,21 @@ pub fn tip_position_inverse(
         if err.norm() < best.0 {
             best = (err.norm(), sol.clone(), z.clone());
         }
-        if !accepted {
-            break; // no descent: closest reachable configuration
+        history.push(err.norm());
+        let window = history.len() > STALL_WINDOW
+            && history[history.len() - 1 - STALL_WINDOW] - err.norm() < STALL_DECREASE * err.norm();
+        if !accepted || (window && err.norm() > opts.tol) {
+            stopped = true; // no descent: closest reachable configuration
+            break;
         }
     }
     let (e, s, zb) = best;
-    let at_bound = zb
+    let at_bound: Vec<bool> = zb
         .iter()
         .zip(&bounds)
         .map(|(v, (lo, hi))| *v <= *lo || *v >= *hi)
         .collect();
+    let status = InverseStatus::of(e <= opts.tol, !stopped, &at_bound);
     Ok(InverseResult {
         solution: s,
         variables: zb,
@@ -134,6 +255,7 @@ pub fn tip_position_inverse(
         reached: e <= opts.tol,
         at_bound,
         evaluations: evals,
+        status,
     })
 }
 

@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use super::results::{PyBlockedResult, PyInverseResult};
 use super::rod::{solve_options, PyRobot, PySolution};
 use super::to_py::dmat;
-use super::{count_or, counts, reals, vec3_arg, Real};
+use super::{count_or, reals, vec3_arg, Real};
 use crate::error::Error;
 use crate::inverse::{self, Block, BlockedResult, Groups, InverseOptions, Scheme};
 use crate::limits::{MAX_INCREMENTS, MAX_ITER};
@@ -23,15 +23,100 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// `groups` from Python (each in `0..n_actuators`), or one variable per actuator.
-fn groups_for(robot: &PyRobot, groups: Option<&Bound<'_, PyAny>>) -> PyResult<Groups> {
+/// `groups` and `fixed_inputs` from Python: `groups` a sequence of
+/// variable indices (each in `0..n_actuators`) or `None` for an actuator
+/// with a fixed input, one per actuator or one per actuator not in
+/// `fixed_inputs`; `fixed_inputs` a dict `{actuator index: input}` (input in
+/// the actuator's unit, checked as `Robot.solve` checks inputs). Both
+/// absent: one variable per actuator.
+fn groups_for(
+    robot: &PyRobot,
+    groups: Option<&Bound<'_, PyAny>>,
+    fixed_inputs: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Groups> {
     let na = robot.inner.actuators.len();
-    let g = match groups {
-        Some(o) if !o.is_none() => Groups(counts("groups", o, na.max(1) - 1)?),
-        _ => Groups::identity(na),
+    let map = match groups.filter(|o| !o.is_none()) {
+        Some(o) => Some(group_entries(o, na.max(1) - 1)?),
+        None => None,
     };
-    g.validate(&robot.inner)?;
-    Ok(g)
+    let fixed = match fixed_inputs.filter(|o| !o.is_none()) {
+        Some(o) => fixed_entries(o)?,
+        None => Vec::new(),
+    };
+    // without fixed inputs `groups` is a sequence of integers: None there is
+    // a wrong type, not a missing actuator
+    if fixed.is_empty() && map.as_ref().is_some_and(|m| m.contains(&None)) {
+        return Err(pyo3::exceptions::PyTypeError::new_err(
+            "groups: expected integers; None marks an actuator in fixed_inputs, and none was given",
+        ));
+    }
+    Ok(Groups::with_fixed(&robot.inner, map.as_deref(), &fixed)?)
+}
+
+/// `groups` entries: integers in `0..=hi` or `None` (`TypeError` for
+/// text, bool, floats; `ValueError` naming `groups[k]` out of range).
+fn group_entries(obj: &Bound<'_, PyAny>, hi: usize) -> PyResult<Vec<Option<usize>>> {
+    if obj.is_instance_of::<pyo3::types::PyString>() || obj.is_instance_of::<pyo3::types::PyBytes>()
+    {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "groups: expected a sequence of integers (or None for an actuator in fixed_inputs), not {}",
+            obj.get_type().name()?
+        )));
+    }
+    let iter = obj.try_iter().map_err(|_| {
+        pyo3::exceptions::PyTypeError::new_err(
+            "groups: expected a sequence of integers (or None for an actuator in fixed_inputs)",
+        )
+    })?;
+    let mut out = Vec::new();
+    for (k, item) in iter.enumerate() {
+        if k >= super::MAX_SEQUENCE {
+            return Err(Error::input("groups", "more than the cap of values per call").into());
+        }
+        let item = item?;
+        out.push(if item.is_none() {
+            None
+        } else {
+            Some(super::args::count(&format!("groups[{k}]"), &item, 0, hi)?)
+        });
+    }
+    Ok(out)
+}
+
+/// `fixed_inputs` entries `(actuator index, input)`: a dict (`TypeError`
+/// otherwise), integer keys, real values (`TypeError` naming the entry).
+fn fixed_entries(obj: &Bound<'_, PyAny>) -> PyResult<Vec<(usize, f64)>> {
+    let dict = obj.cast::<pyo3::types::PyDict>().map_err(|_| {
+        pyo3::exceptions::PyTypeError::new_err(format!(
+            "fixed_inputs: expected a dict {{actuator index: input}}, not {}",
+            obj.get_type()
+                .name()
+                .map(|n| n.to_string())
+                .unwrap_or_default()
+        ))
+    })?;
+    let mut out = Vec::with_capacity(dict.len());
+    for (key, value) in dict.iter() {
+        let i = super::args::count(
+            "fixed_inputs key (actuator index)",
+            &key,
+            0,
+            super::MAX_SEQUENCE,
+        )?;
+        let v = value.extract::<Real>().map_err(|e| {
+            if e.is_instance_of::<pyo3::exceptions::PyTypeError>(obj.py()) {
+                pyo3::exceptions::PyTypeError::new_err(format!(
+                    "fixed_inputs[{i}]: {}",
+                    e.value(obj.py())
+                ))
+            } else {
+                e
+            }
+        })?;
+        out.push((i, v.0));
+    }
+    out.sort_by_key(|e| e.0);
+    Ok(out)
 }
 
 /// A required 3-vector argument (`None` is a `TypeError`, not the origin).
@@ -73,17 +158,36 @@ fn same_robot(py: Python<'_>, robot: &PyRobot, solution: &PySolution, name: &str
 /// `(J, C)` at `solution` (eqs 41-42): `J` is `6 x n_vars` (tip `[dp (m); dtheta (rad)]`
 /// per unit actuation variable, per C for TCAs), `C` is `6 x 6` (per unit tip wrench
 /// `[F (N); M (N m)]`), world frame. `groups[i]` is the variable driving actuator `i`.
+///
+/// Parameters
+/// ----------
+/// groups : sequence of int or None, optional
+///     ``groups[i]`` is the actuation variable driving actuator ``i`` (e.g.
+///     ``[0, 0]``: the two legs of a U-shaped TCA share one temperature),
+///     ``None`` for an actuator in ``fixed_inputs``: one entry per actuator,
+///     or one per actuator not in ``fixed_inputs`` (in order). Default: one
+///     variable per actuator not in ``fixed_inputs``.
+/// fixed_inputs : dict of int to float, optional
+///     ``{actuator index: input}``: actuators held at a fixed input (C for a
+///     TCA, N for a tendon; the range ``Robot.solve`` accepts, same message)
+///     that take no actuation variable, e.g. ``{1: 25.0}`` keeps the
+///     opposite TCA of a two-TCA finger at ambient. An actuator both grouped
+///     and fixed, or neither, is a ``ValueError`` naming ``groups`` /
+///     ``fixed_inputs``; a non-dict, a non-integer key or a non-real value a
+///     ``TypeError``.
 #[pyfunction]
-#[pyo3(signature = (solution, groups=None, scheme="forward"))]
+#[pyo3(signature = (solution, groups=None, scheme="forward", fixed_inputs=None))]
 #[allow(clippy::type_complexity)]
 fn sensitivities<'py>(
     py: Python<'py>,
     solution: PyRef<'py, PySolution>,
     groups: Option<Bound<'py, PyAny>>,
     scheme: &str,
+    fixed_inputs: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>)> {
     let robot = solution.robot.bind(py).get().clone();
-    let g = groups_for(&robot, groups.as_ref())?;
+    let g = groups_for(&robot, groups.as_ref(), fixed_inputs.as_ref())?;
+    g.check_fixed(&solution.inner.inputs, "solution")?;
     let sch = match scheme {
         "forward" => Scheme::Forward,
         "central" => Scheme::Central,
@@ -159,29 +263,78 @@ fn rotation_arg(obj: &Bound<'_, PyAny>) -> PyResult<Matrix3<f64>> {
 /// tangent IVP), a damped least-squares step
 /// `dz = (J^T J + damping^2 I)^-1 J^T dx` with variables frozen at a bound
 /// they would cross, a backtracking line search on the tip error, one BVP
-/// solve per trial. `start`: initial variables (default: the reference
-/// inputs, ambient temperature). With `target_rotation` (a 3x3 proper
-/// rotation matrix: orthogonal and of determinant +1 within 1e-6; anything
-/// else, a reflection included, is a `ValueError` naming it) the
-/// orientation is matched too, angles weighted by
-/// `orientation_weight` [m/rad]. `tol` [m]; `max_iter` iterations (1 to
-/// 100,000); `damping` [m per unit variable]; `steps` RK4 steps per forward
-/// solve (1 to 100,000); target coordinates within 1000 body lengths.
+/// solve per trial. The iteration stops as soon as the local inverse can no
+/// longer get closer (the linearised decrease below 1e-10 of the error, or
+/// less than 1e-6 of it over 5 iterations): a target off the bending plane
+/// of a planar robot ends in a few iterations, not at `max_iter`.
 ///
 /// An unreachable target is not an error: the result has `reached=False`
-/// (`success=False`), the closest configuration found, its `error` [m] and
-/// which variables rest on a bound (`at_bound`). `status` tells why it
-/// stopped, as in SciPy: 0 reached; 1 unreachable (no descent left with a
-/// variable on its temperature bound: the closest point within the range);
-/// 2 out of budget (`max_iter` used up: continue with
-/// `start=result.variables`); 3 stalled (no descent, no bound active).
+/// (`success=False`), the closest configuration found (its `solution`,
+/// `variables`, `tip_position` [m] and distance `error` [m]) and which
+/// variables rest on a bound (`at_bound`). `status` tells why it stopped,
+/// as in SciPy: 0 reached; 1 unreachable (no descent left with a variable
+/// on its bound: the closest point within the range); 2 out of budget
+/// (`max_iter` used up while the error still decreased: continue with
+/// `start=result.variables`); 3 stalled (no descent left with no variable
+/// on a bound: the target is off the set the tip reaches near the closest
+/// point, e.g. off the plane of a planar robot, or a local minimum).
 /// `message` says the same in words; `nit` / `nfev` count iterations and
 /// IVPs. The default budget reaches reachable targets on the paper's
 /// manipulators in 4-7 iterations.
+///
+/// Parameters
+/// ----------
+/// robot : Robot
+///     The robot.
+/// target : sequence of 3 float
+///     Target tip position [m], world frame, within 1000 body lengths.
+/// start : sequence of float, optional
+///     Initial actuation variables, one per variable (default: the reference
+///     inputs, ambient temperature).
+/// groups : sequence of int or None, optional
+///     ``groups[i]`` is the actuation variable driving actuator ``i`` (e.g.
+///     ``[0, 0]``: the two legs of a U-shaped TCA share one temperature),
+///     ``None`` for an actuator in ``fixed_inputs``: one entry per actuator,
+///     or one per actuator not in ``fixed_inputs`` (in order). Default: one
+///     variable per actuator not in ``fixed_inputs``.
+/// fixed_inputs : dict of int to float, optional
+///     ``{actuator index: input}``: actuators held at a fixed input (C for a
+///     TCA, N for a tendon; the range ``Robot.solve`` accepts, same message)
+///     that take no actuation variable, e.g. ``{1: 25.0}`` keeps the
+///     opposite TCA of a two-TCA finger at ambient. An actuator both grouped
+///     and fixed, or neither, is a ``ValueError`` naming ``groups`` /
+///     ``fixed_inputs``; a non-dict, a non-integer key or a non-real value a
+///     ``TypeError``.
+/// target_rotation : 3x3 array, optional
+///     Target tip orientation: a proper rotation matrix (orthogonal and of
+///     determinant +1 within 1e-6; anything else, a reflection included, is
+///     a ``ValueError`` naming it).
+/// orientation_weight : float, optional
+///     Weight [m/rad] of orientation errors against position errors.
+/// tol : float, optional
+///     Position tolerance [m].
+/// max_iter : int, optional
+///     Iterations, 1 to 100,000 (default 50).
+/// damping : float, optional
+///     Damping [m per unit variable] of the least squares.
+/// steps : int, optional
+///     RK4 steps per forward solve, 1 to 100,000 (default 100).
+///
+/// Returns
+/// -------
+/// InverseResult
+///     The closest configuration found and its status.
+///
+/// Raises
+/// ------
+/// ValueError
+///     An argument outside its range (named, with its unit).
+/// TypeError
+///     An argument of the wrong type.
 #[pyfunction]
-#[pyo3(signature = (robot, target, *, start=None, groups=None, target_rotation=None, orientation_weight=Real(0.01),
+#[pyo3(signature = (robot, target, *, start=None, groups=None, fixed_inputs=None, target_rotation=None, orientation_weight=Real(0.01),
     tol=Real(1e-7), max_iter=None, damping=Real(1e-6), steps=None),
-    text_signature = "(robot, target, *, start=None, groups=None, target_rotation=None, orientation_weight=0.01, \
+    text_signature = "(robot, target, *, start=None, groups=None, fixed_inputs=None, target_rotation=None, orientation_weight=0.01, \
         tol=1e-07, max_iter=50, damping=1e-06, steps=100)")]
 #[allow(clippy::too_many_arguments)]
 fn tip_position(
@@ -190,6 +343,7 @@ fn tip_position(
     target: Bound<'_, PyAny>,
     start: Option<Bound<'_, PyAny>>,
     groups: Option<Bound<'_, PyAny>>,
+    fixed_inputs: Option<Bound<'_, PyAny>>,
     target_rotation: Option<Bound<'_, PyAny>>,
     orientation_weight: Real,
     tol: Real,
@@ -198,7 +352,7 @@ fn tip_position(
     steps: Option<Bound<'_, PyAny>>,
 ) -> PyResult<PyInverseResult> {
     let r = robot.get();
-    let g = groups_for(r, groups.as_ref())?;
+    let g = groups_for(r, groups.as_ref(), fixed_inputs.as_ref())?;
     let t = vec3("target [m]", &target)?;
     // checked even without a target rotation: a bad keyword is never ignored
     crate::error::positive("orientation_weight [m/rad]", orientation_weight.0)?;
@@ -265,15 +419,15 @@ struct BlockedArgs {
     opts: crate::shooting::SolveOptions,
 }
 
-/// The optional arguments `groups`, `steps`, `max_iter` of a blocked-tip binding.
-type Optional<'py> = [Option<Bound<'py, PyAny>>; 3];
+/// The optional arguments `groups`, `fixed_inputs`, `steps`, `max_iter` of a blocked-tip binding.
+type Optional<'py> = [Option<Bound<'py, PyAny>>; 4];
 
 impl BlockedArgs {
-    /// Groups and solve options (`[groups, steps, max_iter]` and `tol`).
+    /// Groups and solve options (`[groups, fixed_inputs, steps, max_iter]` and `tol`).
     fn read_options(robot: &PyRobot, optional: Optional<'_>, tol: Real) -> PyResult<Self> {
-        let [groups, steps, max_iter] = optional;
+        let [groups, fixed_inputs, steps, max_iter] = optional;
         Ok(BlockedArgs {
-            groups: groups_for(robot, groups.as_ref())?,
+            groups: groups_for(robot, groups.as_ref(), fixed_inputs.as_ref())?,
             opts: solve_options(steps.as_ref(), tol, max_iter.as_ref())?,
             robot: robot.inner.clone(),
         })
@@ -292,17 +446,55 @@ impl BlockedArgs {
 }
 
 /// Contact force [N] of a tip held on the plane through `point` [m] with
-/// unit `normal` (the direction the tip presses in), at actuation
-/// `variables` (temperatures [C], one per group; a number for one group).
+/// unit `normal` (the direction the tip presses in), at given actuation
+/// variables.
 ///
 /// A mixed boundary-value problem solved directly: the contact force is an
 /// extra shooting unknown and `normal . (p(L) - point) = 0` an extra
 /// residual. The force comes out negative if the tip would pull away from
-/// the plane; whether contact holds is the caller's decision. `warm_start`:
-/// a nearby `BlockedResult` (e.g. the previous temperature of a sweep).
+/// the plane; whether contact holds is the caller's decision.
+///
+/// Parameters
+/// ----------
+/// robot : Robot
+///     The robot.
+/// point, normal : sequence of 3 float
+///     A point [m] of the blocking plane and its normal (the direction the
+///     tip presses in).
+/// variables : float or sequence of float
+///     Actuation variables (temperatures [C]), one per variable of
+///     ``groups``; a number for one variable.
+/// groups : sequence of int or None, optional
+///     ``groups[i]`` is the actuation variable driving actuator ``i`` (e.g.
+///     ``[0, 0]``: the two legs of a U-shaped TCA share one temperature),
+///     ``None`` for an actuator in ``fixed_inputs``: one entry per actuator,
+///     or one per actuator not in ``fixed_inputs`` (in order). Default: one
+///     variable per actuator not in ``fixed_inputs``.
+/// fixed_inputs : dict of int to float, optional
+///     ``{actuator index: input}``: actuators held at a fixed input (C for a
+///     TCA, N for a tendon; the range ``Robot.solve`` accepts, same message)
+///     that take no actuation variable, e.g. ``{1: 25.0}`` keeps the
+///     opposite TCA of a two-TCA finger at ambient. An actuator both grouped
+///     and fixed, or neither, is a ``ValueError`` naming ``groups`` /
+///     ``fixed_inputs``; a non-dict, a non-integer key or a non-real value a
+///     ``TypeError``.
+/// steps, tol, max_iter : int, float, int, optional
+///     RK4 steps, Newton tolerance, Newton iterations.
+/// warm_start : BlockedResult, optional
+///     A nearby blocked result (e.g. the previous temperature of a sweep).
+///
+/// Returns
+/// -------
+/// BlockedResult
+///     ``force`` [N] and the blocked solution.
+///
+/// Raises
+/// ------
+/// ValueError
+///     An argument outside its range (named, with its unit).
 #[pyfunction]
-#[pyo3(signature = (robot, point, normal, variables, *, groups=None, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None),
-    text_signature = "(robot, point, normal, variables, *, groups=None, steps=100, tol=1e-10, max_iter=50, warm_start=None)")]
+#[pyo3(signature = (robot, point, normal, variables, *, groups=None, fixed_inputs=None, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None),
+    text_signature = "(robot, point, normal, variables, *, groups=None, fixed_inputs=None, steps=100, tol=1e-10, max_iter=50, warm_start=None)")]
 #[allow(clippy::too_many_arguments)]
 fn blocked_force(
     py: Python<'_>,
@@ -311,6 +503,7 @@ fn blocked_force(
     normal: Bound<'_, PyAny>,
     variables: Bound<'_, PyAny>,
     groups: Option<Bound<'_, PyAny>>,
+    fixed_inputs: Option<Bound<'_, PyAny>>,
     steps: Option<Bound<'_, PyAny>>,
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
@@ -319,7 +512,7 @@ fn blocked_force(
     let (a, block) = BlockedArgs::read(
         robot.get(),
         (&point, &normal),
-        [groups, steps, max_iter],
+        [groups, fixed_inputs, steps, max_iter],
         tol,
     )?;
     let variables = reals("variables", &variables, Some(a.groups.n_vars()))?;
@@ -338,9 +531,26 @@ fn blocked_force(
 /// of this robot whose tip touches the block with no force), the single
 /// actuation variable at which the tip presses with `force` [N], in
 /// `increments` steps (1 to 10,000).
+///
+/// Parameters
+/// ----------
+/// groups : sequence of int or None, optional
+///     ``groups[i]`` is the actuation variable driving actuator ``i`` (e.g.
+///     ``[0, 0]``: the two legs of a U-shaped TCA share one temperature),
+///     ``None`` for an actuator in ``fixed_inputs``: one entry per actuator,
+///     or one per actuator not in ``fixed_inputs`` (in order). Default: one
+///     variable per actuator not in ``fixed_inputs``.
+/// fixed_inputs : dict of int to float, optional
+///     ``{actuator index: input}``: actuators held at a fixed input (C for a
+///     TCA, N for a tendon; the range ``Robot.solve`` accepts, same message)
+///     that take no actuation variable, e.g. ``{1: 25.0}`` keeps the
+///     opposite TCA of a two-TCA finger at ambient. An actuator both grouped
+///     and fixed, or neither, is a ``ValueError`` naming ``groups`` /
+///     ``fixed_inputs``; a non-dict, a non-integer key or a non-real value a
+///     ``TypeError``.
 #[pyfunction]
-#[pyo3(signature = (robot, point, normal, force, start, *, groups=None, increments=None, steps=None, tol=Real(1e-10), max_iter=None),
-    text_signature = "(robot, point, normal, force, start, *, groups=None, increments=10, steps=100, tol=1e-10, max_iter=50)")]
+#[pyo3(signature = (robot, point, normal, force, start, *, groups=None, fixed_inputs=None, increments=None, steps=None, tol=Real(1e-10), max_iter=None),
+    text_signature = "(robot, point, normal, force, start, *, groups=None, fixed_inputs=None, increments=10, steps=100, tol=1e-10, max_iter=50)")]
 #[allow(clippy::too_many_arguments)]
 fn blocked_temperature(
     py: Python<'_>,
@@ -350,6 +560,7 @@ fn blocked_temperature(
     force: Real,
     start: PyRef<'_, PySolution>,
     groups: Option<Bound<'_, PyAny>>,
+    fixed_inputs: Option<Bound<'_, PyAny>>,
     increments: Option<Bound<'_, PyAny>>,
     steps: Option<Bound<'_, PyAny>>,
     tol: Real,
@@ -358,7 +569,7 @@ fn blocked_temperature(
     let (a, block) = BlockedArgs::read(
         robot.get(),
         (&point, &normal),
-        [groups, steps, max_iter],
+        [groups, fixed_inputs, steps, max_iter],
         tol,
     )?;
     same_robot(py, robot.get(), &start, "start")?;
@@ -374,9 +585,26 @@ fn blocked_temperature(
 /// Direct solve (independent check of `blocked_temperature`): the actuation
 /// variable is a shooting unknown starting from `guess` (temperature [C]),
 /// the contact force [N] is given.
+///
+/// Parameters
+/// ----------
+/// groups : sequence of int or None, optional
+///     ``groups[i]`` is the actuation variable driving actuator ``i`` (e.g.
+///     ``[0, 0]``: the two legs of a U-shaped TCA share one temperature),
+///     ``None`` for an actuator in ``fixed_inputs``: one entry per actuator,
+///     or one per actuator not in ``fixed_inputs`` (in order). Default: one
+///     variable per actuator not in ``fixed_inputs``.
+/// fixed_inputs : dict of int to float, optional
+///     ``{actuator index: input}``: actuators held at a fixed input (C for a
+///     TCA, N for a tendon; the range ``Robot.solve`` accepts, same message)
+///     that take no actuation variable, e.g. ``{1: 25.0}`` keeps the
+///     opposite TCA of a two-TCA finger at ambient. An actuator both grouped
+///     and fixed, or neither, is a ``ValueError`` naming ``groups`` /
+///     ``fixed_inputs``; a non-dict, a non-integer key or a non-real value a
+///     ``TypeError``.
 #[pyfunction]
-#[pyo3(signature = (robot, point, normal, force, guess, *, groups=None, steps=None, tol=Real(1e-10), max_iter=None),
-    text_signature = "(robot, point, normal, force, guess, *, groups=None, steps=100, tol=1e-10, max_iter=50)")]
+#[pyo3(signature = (robot, point, normal, force, guess, *, groups=None, fixed_inputs=None, steps=None, tol=Real(1e-10), max_iter=None),
+    text_signature = "(robot, point, normal, force, guess, *, groups=None, fixed_inputs=None, steps=100, tol=1e-10, max_iter=50)")]
 #[allow(clippy::too_many_arguments)]
 fn blocked_temperature_direct(
     py: Python<'_>,
@@ -386,6 +614,7 @@ fn blocked_temperature_direct(
     force: Real,
     guess: Real,
     groups: Option<Bound<'_, PyAny>>,
+    fixed_inputs: Option<Bound<'_, PyAny>>,
     steps: Option<Bound<'_, PyAny>>,
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
@@ -393,7 +622,7 @@ fn blocked_temperature_direct(
     let (a, block) = BlockedArgs::read(
         robot.get(),
         (&point, &normal),
-        [groups, steps, max_iter],
+        [groups, fixed_inputs, steps, max_iter],
         tol,
     )?;
     let res = super::errors::detach_interruptible(py, || {
@@ -412,10 +641,27 @@ fn blocked_temperature_direct(
 /// Newton solve: the variable an extra shooting unknown, from an eq-43
 /// predictor). Returns `(blocked result of one finger, block point [m])`;
 /// the result's `force` [N] is `m g / (mu n)`.
+///
+/// Parameters
+/// ----------
+/// groups : sequence of int or None, optional
+///     ``groups[i]`` is the actuation variable driving actuator ``i`` (e.g.
+///     ``[0, 0]``: the two legs of a U-shaped TCA share one temperature),
+///     ``None`` for an actuator in ``fixed_inputs``: one entry per actuator,
+///     or one per actuator not in ``fixed_inputs`` (in order). Default: one
+///     variable per actuator not in ``fixed_inputs``.
+/// fixed_inputs : dict of int to float, optional
+///     ``{actuator index: input}``: actuators held at a fixed input (C for a
+///     TCA, N for a tendon; the range ``Robot.solve`` accepts, same message)
+///     that take no actuation variable, e.g. ``{1: 25.0}`` keeps the
+///     opposite TCA of a two-TCA finger at ambient. An actuator both grouped
+///     and fixed, or neither, is a ``ValueError`` naming ``groups`` /
+///     ``fixed_inputs``; a non-dict, a non-integer key or a non-real value a
+///     ``TypeError``.
 #[pyfunction]
-#[pyo3(signature = (robot, normal, mass, mu, fingers, *, gravity=Real(crate::experiments::G0), groups=None,
+#[pyo3(signature = (robot, normal, mass, mu, fingers, *, gravity=Real(crate::experiments::G0), groups=None, fixed_inputs=None,
     contact=None, method="incremental", increments=None, steps=None, tol=Real(1e-10), max_iter=None),
-    text_signature = "(robot, normal, mass, mu, fingers, *, gravity=9.81, groups=None, contact=None, \
+    text_signature = "(robot, normal, mass, mu, fingers, *, gravity=9.81, groups=None, fixed_inputs=None, contact=None, \
         method='incremental', increments=8, steps=100, tol=1e-10, max_iter=50)")]
 #[allow(clippy::too_many_arguments)]
 fn grasp_temperature(
@@ -427,6 +673,7 @@ fn grasp_temperature(
     fingers: Bound<'_, PyAny>,
     gravity: Real,
     groups: Option<Bound<'_, PyAny>>,
+    fixed_inputs: Option<Bound<'_, PyAny>>,
     contact: Option<Bound<'_, PyAny>>,
     method: &str,
     increments: Option<Bound<'_, PyAny>>,
@@ -434,7 +681,7 @@ fn grasp_temperature(
     tol: Real,
     max_iter: Option<Bound<'_, PyAny>>,
 ) -> PyResult<(PyBlockedResult, [f64; 3])> {
-    let a = BlockedArgs::read_options(robot.get(), [groups, steps, max_iter], tol)?;
+    let a = BlockedArgs::read_options(robot.get(), [groups, fixed_inputs, steps, max_iter], tol)?;
     let na = a.robot.actuators.len();
     let spec = inverse::Grasp {
         normal: direction("normal", &normal)?,

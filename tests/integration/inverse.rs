@@ -426,3 +426,88 @@ fn blocked_solves_carry_the_stability_verdict() {
     assert!(blocked_force(&robot, &groups, &require, &[100.0], &opts(), None).is_ok());
     assert!(block.with_stability(Policy::Continue).is_err());
 }
+
+/// A target off the curve the tip reaches with the two legs heated
+/// together: the error stops at the distance to that curve within a few
+/// Gauss-Newton steps, with the closest point in the result and its
+/// message, not at the iteration limit.
+#[test]
+fn tip_position_inverse_stalls_at_the_closest_point_of_an_off_curve_target() {
+    let robot = fig6_square(false);
+    let groups = Groups(vec![0, 0]); // one temperature: the legs at y = +-d stay symmetric
+    let on_curve = solve(&robot, &[100.0, 100.0], &opts(), None)
+        .unwrap()
+        .tip_position();
+    let target = on_curve + Vector3::new(0.0, 2e-3, 0.0);
+    let budget = InverseOptions {
+        max_iter: 500,
+        ..Default::default()
+    };
+    let res = tip_position_inverse(&robot, &groups, &target, None, &[25.0], &budget).unwrap();
+    assert_eq!(res.status, InverseStatus::Stalled, "{res:?}");
+    assert_eq!(res.status.code(), 3);
+    assert!(res.iterations <= 10, "{} iterations", res.iterations);
+    // the closest point is the target's projection on the curve: 2 mm off
+    // it (y stays 0 by symmetry), the curve point to the default tol 1e-7 m
+    let tip = res.solution.tip_position();
+    assert!(tip.y.abs() < 1e-12);
+    assert!((res.error - 2e-3).abs() < 1e-7, "{}", res.error);
+    assert!((tip - on_curve).norm() < 1e-7);
+    let message = res.message(budget.max_iter);
+    assert!(message.starts_with("stalled"), "{message}");
+    assert!(message.contains("closest tip point found") && message.contains(" m from the target"));
+    assert!(!message.contains("max_iter"), "{message}");
+}
+
+/// One of two independently driven legs held at a fixed input: the
+/// inverse over the other leg's temperature lands on a forward solve with
+/// the held leg at its value, and the grasp of that finger holds.
+#[test]
+fn fixed_inputs_drive_one_leg_of_two() {
+    let robot = fig6_square(false);
+    let groups = Groups::with_fixed(&robot, None, &[(1, 25.0)]).unwrap();
+    let truth = solve(&robot, &[110.0, 25.0], &opts(), None).unwrap();
+    let res = tip_position_inverse(
+        &robot,
+        &groups,
+        &truth.tip_position(),
+        None,
+        &[25.0],
+        &InverseOptions::default(),
+    )
+    .unwrap();
+    assert!(res.reached, "{res:?}");
+    assert_eq!(res.variables.len(), 1);
+    assert_eq!(res.solution.inputs[1], 25.0);
+    let again = solve(&robot, &[res.variables[0], 25.0], &opts(), None).unwrap();
+    // the inverse's tol 1e-7 m plus the two forward solves' agreement (1e-12 strain)
+    assert!((again.tip_position() - truth.tip_position()).norm() < 1e-7 + 1e-10);
+    // the grasp with that leg held, both methods: the blocked force at the
+    // grasp temperature is the force eq 44 asks for
+    let spec = Grasp {
+        normal: Vector3::new(-1.0, 0.0, 0.0),
+        mass: 2e-3,
+        mu: 1.0,
+        fingers: 2,
+        gravity: G0,
+        contact: None,
+        stability: tcarod::stability::Policy::Off,
+    };
+    let force = spec.force_per_finger().unwrap();
+    let mut temps = vec![];
+    for method in [GraspMethod::Incremental(10), GraspMethod::Direct] {
+        let (res, point) = spec.solve(&robot, &groups, method, &opts()).unwrap();
+        let block = Block::new(point, spec.normal).unwrap();
+        let f = blocked_force(&robot, &groups, &block, &res.variables, &opts(), None).unwrap();
+        // both converged to Newton tol 1e-12 (scaled): 1e-6 of the force
+        assert!(
+            (f.force - force).abs() < 1e-6 * force,
+            "{} vs {force}",
+            f.force
+        );
+        assert_eq!(res.solution.inputs[1], 25.0);
+        temps.push(res.variables[0]);
+    }
+    // as for the Table I finger: the two methods agree to 1e-5 C
+    assert!((temps[0] - temps[1]).abs() < 1e-5, "{temps:?}");
+}

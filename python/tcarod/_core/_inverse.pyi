@@ -1,6 +1,6 @@
 """Inverse kinetostatics of ``tcarod._core`` (src/python/inverse.rs)."""
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any, Literal, final, type_check_only
 
 import numpy as np
@@ -15,8 +15,10 @@ from ._solution import Solution
 # `Robot` and `Solution` are the rod classes of _rod.pyi / _solution.pyi. Tip poses are
 # `[dp (m); dtheta (rad)]` in the world frame; tip wrenches `[F (N); M (N m)]`.
 # `groups[i]` is the actuation variable driving actuator `i` (the two legs of
-# a U-shaped TCA share one temperature: `groups=[0, 0]`); default: one
-# variable per actuator.
+# a U-shaped TCA share one temperature: `groups=[0, 0]`), `None` for an
+# actuator in `fixed_inputs` (`{actuator index: input}`, held at that input,
+# no variable); `groups` has one entry per actuator or one per actuator not in
+# `fixed_inputs`; default: one variable per actuator not in `fixed_inputs`.
 # ---------------------------------------------------------------------------
 
 @type_check_only
@@ -71,7 +73,9 @@ class InverseResult(_Outcome):
         """The iteration budget of the solve."""
     @property
     def status(self) -> int:
-        """0 reached, 1 unreachable (at the bounds), 2 out of budget, 3 stalled."""
+        """0 reached, 1 unreachable (at the bounds), 2 out of budget (the error
+        still decreasing), 3 stalled (no descent left, no variable at a bound:
+        e.g. a target off the plane of a planar robot)."""
 
 @final
 class BlockedResult(_Outcome):
@@ -95,8 +99,9 @@ class BlockedResult(_Outcome):
 
 def sensitivities(
     solution: Solution,
-    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    groups: Sequence[int | None] | npt.NDArray[np.integer] | None = None,
     scheme: Literal["forward", "central", "exact"] = "forward",
+    fixed_inputs: Mapping[int, float] | None = None,
 ) -> tuple[_FloatArray, _FloatArray]:
     """``(J, C)`` at ``solution`` (eqs 41-42): ``J`` is ``6 x n_vars`` [m or rad per C],
     ``C`` is ``6 x 6`` [m or rad per N or N m]."""
@@ -106,7 +111,8 @@ def tip_position(
     target: Sequence[float] | _FloatArray,
     *,
     start: Sequence[float] | _FloatArray | None = None,
-    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    groups: Sequence[int | None] | npt.NDArray[np.integer] | None = None,
+    fixed_inputs: Mapping[int, float] | None = None,
     target_rotation: Sequence[Sequence[float]] | _FloatArray | None = None,
     orientation_weight: float = 0.01,
     tol: float = 1e-7,
@@ -145,7 +151,8 @@ def blocked_force(
     normal: Sequence[float] | _FloatArray,
     variables: float | Sequence[float] | _FloatArray,
     *,
-    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    groups: Sequence[int | None] | npt.NDArray[np.integer] | None = None,
+    fixed_inputs: Mapping[int, float] | None = None,
     steps: int = 100,
     tol: float = 1e-10,
     max_iter: int = 50,
@@ -169,7 +176,8 @@ def blocked_temperature(
     force: float,
     start: Solution,
     *,
-    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    groups: Sequence[int | None] | npt.NDArray[np.integer] | None = None,
+    fixed_inputs: Mapping[int, float] | None = None,
     increments: int = 10,
     steps: int = 100,
     tol: float = 1e-10,
@@ -185,7 +193,8 @@ def blocked_temperature_direct(
     force: float,
     guess: float,
     *,
-    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    groups: Sequence[int | None] | npt.NDArray[np.integer] | None = None,
+    fixed_inputs: Mapping[int, float] | None = None,
     steps: int = 100,
     tol: float = 1e-10,
     max_iter: int = 50,
@@ -201,7 +210,8 @@ def grasp_temperature(
     fingers: int,
     *,
     gravity: float = 9.81,
-    groups: Sequence[int] | npt.NDArray[np.integer] | None = None,
+    groups: Sequence[int | None] | npt.NDArray[np.integer] | None = None,
+    fixed_inputs: Mapping[int, float] | None = None,
     contact: Sequence[float] | _FloatArray | None = None,
     method: Literal["incremental", "direct"] = "incremental",
     increments: int = 8,
