@@ -182,8 +182,21 @@ pub fn split_unit(name: &str) -> (String, Option<&str>) {
 
 /// `x` as a person writes it: at most 10 significant digits, trailing zeros
 /// dropped (`4`, `0.004`, `170`, `0.3` for `0.1 + 0.2`), an exponent only
-/// far from 1 (`1e-300`, `2.5e+20`), `inf`, `-inf`, `NaN` as such.
+/// far from 1 (`1e-300`, `2.5e+20`), `inf`, `-inf`, `NaN` as such. For an
+/// input echoed back: every digit the user typed survives.
 pub fn human(x: f64) -> String {
+    to_digits(x, 10)
+}
+
+/// A computed quantity for a message: [`human`] to 6 significant digits
+/// (`31.9074`, `0.142278`), the precision of a reported result, not of an
+/// echoed input.
+pub fn significant(x: f64) -> String {
+    to_digits(x, 6)
+}
+
+/// `x` to at most `digits` significant digits (see [`human`]).
+fn to_digits(x: f64, digits: i32) -> String {
     if !x.is_finite() {
         return format!("{x}");
     }
@@ -193,7 +206,7 @@ pub fn human(x: f64) -> String {
     let ax = x.abs();
     if (1e-4..1e15).contains(&ax) {
         let magnitude = ax.log10().floor() as i32;
-        let decimals = (9 - magnitude).max(0) as usize;
+        let decimals = (digits - 1 - magnitude).max(0) as usize;
         let mut s = format!("{x:.decimals$}");
         if s.contains('.') {
             s = s.trim_end_matches('0').trim_end_matches('.').to_string();
@@ -201,7 +214,8 @@ pub fn human(x: f64) -> String {
         // rounding can carry into the next decade (9.99999999995e-5): still fine
         s
     } else {
-        let s = format!("{x:.9e}");
+        let mantissa_digits = (digits - 1) as usize;
+        let s = format!("{x:.mantissa_digits$e}");
         let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
         let mantissa = if mantissa.contains('.') {
             mantissa.trim_end_matches('0').trim_end_matches('.')

@@ -137,7 +137,7 @@ def test_unwritable_output_exits_2_with_one_line(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     "exc",
     [
-        ValueError("invalid temperature [C] = 200:\n allowed 25 <= T <= 160 C"),
+        ValueError("invalid temperature = 200 C:\n allowed 25 <= T <= 160 C"),
         tcarod.ConvergenceError("did not converge"),
     ],
     ids=["ValueError", "ConvergenceError"],

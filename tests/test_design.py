@@ -58,7 +58,13 @@ def test_round_trip_of_custom_material_helix_and_segments(tmp_path: Path) -> Non
     mat = Material(youngs_modulus=1.5e9, shear_modulus=3e8, expansion=2e-4, youngs_modulus_slope=-1e6, name="mine")
     tca = Tca.from_pitch_angle(0.02, 0.25, 1.7e-3, 40.0, "extension", mat)
     body = Body(
-        0.05, Section.custom(1e-4, 8e-10, 9e-10, 1.5e-9), 40e3, poisson=0.45, density=1000.0, tip_force=[0.0, 1e-3, 0.0]
+        0.05,
+        Section.custom(1e-4, 8e-10, 9e-10, 1.5e-9),
+        40e3,
+        poisson=0.45,
+        density=1000.0,
+        gravity=(0.0, 0.0, 0.0),
+        tip_force=[0.0, 1e-3, 0.0],
     )
     acts = [
         Actuator.tca(tca, Routing.helix(3e-3, 20.0, 0.3), 0.01, 0.03),

@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, Vector3};
 use super::mixed::{coarse_steps, predictor, Extra, Mixed};
 use super::mixed_presolve::presolve;
 use super::{exact_blocks, load_scales, ExactBlocks, Groups, Sensitivities};
-use crate::error::{Error, Result, StopReason};
+use crate::error::{significant, Error, Result, StopReason};
 use crate::rod::Robot;
 use crate::shooting::{initial_guess, solve_loaded, Loads, Shot, Solution, SolveOptions};
 use crate::solve::newton::newton_from;
@@ -351,7 +351,7 @@ pub fn blocked_temperature(
                 continue;
             }
             return Err(Error::NoSolution {
-                reason: format!("the blocked force {force:.6e} N needs an input outside [{lo}, {hi}] {unit} (the eq-43 increments reached {zt:.3} {unit} at force {:.6e} N)", f + step),
+                reason: format!("the blocked force {} N needs an input outside [{lo}, {hi}] {unit} (the eq-43 increments reached {} {unit} at force {} N)", significant(force), significant(zt), significant(f + step)),
             });
         }
         let zc = zt.clamp(lo, hi);

@@ -7,7 +7,7 @@ use super::{
     blocked_force, blocked_temperature, blocked_variable_direct, blocked_variable_from, Block,
     BlockedResult, Groups,
 };
-use crate::error::{Error, Result};
+use crate::error::{significant, Error, Result};
 use crate::rod::Robot;
 use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
 use crate::stability::Policy;
@@ -140,9 +140,10 @@ impl Grasp {
         let (lo, hi) = groups.bounds(robot)[0];
         let unit = groups.unit(robot, 0);
         let mut reason = format!(
-            "the finger cannot hold {} g (it needs a blocked force of {force:.6e} N per finger): the largest blocked force in [{lo}, {hi}] {unit} is {:.6e} N ({} g) at {} {unit}",
+            "the finger cannot hold {} g (it needs a blocked force of {} N per finger): the largest blocked force in [{lo}, {hi}] {unit} is {} N ({} g) at {} {unit}",
             significant(self.mass * 1e3),
-            peak.force,
+            significant(force),
+            significant(peak.force),
             significant(self.mass_held(peak.force.max(0.0)) * 1e3),
             significant(peak.variable),
         );
@@ -153,27 +154,9 @@ impl Grasp {
             reason += &format!(" (the {driven} actuators heated together do not press the tip along the normal: hold some at a fixed input with fixed_inputs, e.g. the one on the far side at ambient)");
         }
         if let Some(margin) = unstable {
-            reason += &format!(" (an unstable equilibrium with the tip held, stability margin {margin:.3e}: the finger may not hold even that)");
+            reason += &format!(" (an unstable equilibrium with the tip held, stability margin {}: the finger may not hold even that)", significant(margin));
         }
         Error::NoSolution { reason }
-    }
-}
-
-/// `x` to 6 significant digits, trailing zeros dropped (`50`, `0.909312`,
-/// `160`; `8.1e-16` in exponent form below 1e-3).
-fn significant(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x}");
-    }
-    if x.abs() < 1e-3 {
-        return format!("{x:.1e}");
-    }
-    let digits = (5 - x.abs().log10().floor() as i32).clamp(0, 17) as usize;
-    let s = format!("{x:.digits$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
     }
 }
 

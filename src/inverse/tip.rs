@@ -3,7 +3,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use super::{rotation_vector, sensitivities_exact, Groups};
-use crate::error::{Error, Result};
+use crate::error::{significant, Error, Result};
 use crate::rod::Robot;
 use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
 
@@ -85,8 +85,11 @@ impl InverseStatus {
         max_iter: usize,
     ) -> String {
         let at = format!(
-            "closest tip point found [{:.6e}, {:.6e}, {:.6e}] m, {error:.3e} m from the target",
-            tip.x, tip.y, tip.z
+            "closest tip point found [{}, {}, {}] m, {} m from the target",
+            significant(tip.x),
+            significant(tip.y),
+            significant(tip.z),
+            significant(error)
         );
         let bound: Vec<usize> = (0..at_bound.len()).filter(|&k| at_bound[k]).collect();
         match self {

@@ -25,9 +25,13 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// is within ``tol`` [m] of the target. ``status``: 0 reached; 1
 /// unreachable (no descent left and a variable rests on its bound: the
 /// closest configuration within the temperature range); 2 out of budget
-/// (``max_iter`` used up: call again with ``start=result.variables``); 3
-/// stalled (no descent and no variable on a bound). ``message`` says the
-/// same in words; ``nit`` iterations, ``nfev`` IVPs. ``variables``
+/// (``max_iter`` used up while the error still decreased: call again with
+/// ``start=result.variables``); 3 stalled (the error stopped decreasing with
+/// no variable on a bound: the target is off the set the tip can reach near
+/// the closest point, e.g. off the plane of a planar robot, or a local
+/// minimum). ``message`` says the same in words, with the closest tip point
+/// found [m] and its distance from the target [m]; ``nit`` iterations,
+/// ``nfev`` IVPs. ``variables``
 /// (temperature [C] per group), ``error`` [m], ``at_bound``, ``solution``
 /// (the final forward ``Solution``) and ``tip_position`` [m].
 ///
@@ -113,19 +117,9 @@ impl Outcome for PyInverseResult {
         self.code()
     }
     fn status_message(&self) -> String {
-        match self.code() {
-        0 => format!("target reached: error {:.3e} m", self.error),
-        1 => format!(
-            "target unreachable: the closest configuration found (error {:.3e} m) has variables {:?} at their bounds",
-            self.error,
-            self.at_bound.iter().enumerate().filter(|(_, b)| **b).map(|(k, _)| k).collect::<Vec<_>>()
-        ),
-        2 => format!(
-            "iteration budget exhausted: max_iter = {} iterations, error {:.3e} m; continue with start=result.variables or a larger max_iter",
-            self.max_iter, self.error
-        ),
-        _ => format!("stalled: no descent from error {:.3e} m with no variable at a bound (local minimum, or tol below the solver's accuracy)", self.error),
-    }
+        let tip = self.solution.get().inner.tip_position();
+        self.core_status()
+            .message(&tip, self.error, &self.at_bound, self.max_iter)
     }
     fn iteration_count(&self) -> usize {
         self.iterations
@@ -143,22 +137,22 @@ scipy_fields!(
      int\n    \
      `0` target reached to `tol`; `1` target \
      unreachable (the closest configuration found has variables at their \
-     bounds, `at_bound`); `2` iteration budget `max_iter` exhausted; `3` \
-     stalled (no descent, no variable at a bound)."
+     bounds, `at_bound`); `2` iteration budget `max_iter` exhausted while the \
+     error still decreased; `3` stalled (the error stopped decreasing with no \
+     variable at a bound: the target is off the set the tip reaches near the \
+     closest point, e.g. off the plane of a planar robot, or a local \
+     minimum). `message` gives the closest tip point [m] and its distance [m]."
 );
 tip_of_solution!(PyInverseResult);
 
 impl PyInverseResult {
+    /// The core's status of this outcome (the same rule as the solve's).
+    fn core_status(&self) -> crate::inverse::InverseStatus {
+        let exhausted = self.iterations >= self.max_iter;
+        crate::inverse::InverseStatus::of(self.reached, exhausted, &self.at_bound)
+    }
     fn code(&self) -> i64 {
-        if self.reached {
-            0
-        } else if self.iterations >= self.max_iter {
-            2
-        } else if self.at_bound.iter().any(|b| *b) {
-            1
-        } else {
-            3
-        }
+        self.core_status().code()
     }
 }
 

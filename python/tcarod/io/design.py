@@ -335,7 +335,10 @@ def dumps_design(robot: Any, temperatures_c: Sequence[float] | None = None) -> s
     for key, arg in _BODY_VECTORS.items():
         v = [float(x) for x in kw[arg]]
         default = [0.0, 0.0, 1.0] if arg == "nu_star" else [0.0, 0.0, 0.0]
-        if v != default:
+        # a weightless body with a density says so: zero gravity is written
+        # (read back without it, the density would warn of a missing gravity)
+        weightless = arg == "gravity" and float(kw["density"]) > 0.0
+        if v != default or weightless:
             body[key] = v
     acts = [_actuator_doc(i, a) for i, a in enumerate(robot.actuators)]
     doc: dict[str, Any] = {}

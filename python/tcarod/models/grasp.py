@@ -205,7 +205,7 @@ def grasp(
         holds the mass: the message gives the largest blocked force [N],
         the mass it holds [g] and the temperature [C] where it peaks, e.g.
         ``the finger cannot hold 50 g (...): the largest blocked force in
-        [25, 160] C is 8.918e-3 N (0.909 g) at 160 C`` (both methods alike).
+        [25, 160] C is 0.00891818 N (0.909312 g) at 160 C`` (both methods alike).
 
     Examples
     --------
