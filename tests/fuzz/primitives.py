@@ -211,6 +211,13 @@ TEMP = fnum(25.0, 160.0)
 TEMPS2 = fvec(2, 25.0, 160.0)
 ROBOTS = fix("R", "RNG")
 GROUPS = st.one_of(st.just([0, 0]), st.just([0, 0]), st.lists(fint(0, 2), min_size=0, max_size=3), bad_type)
+#: ``fixed_inputs`` of the inverse problems: one actuator held (the common
+#: case), dicts with any keys and values, or a wrong type.
+FIXED_INPUTS = st.one_of(
+    st.just({1: 25.0}),
+    st.dictionaries(fint(-1, 2), st.one_of(TEMP, bad_type), max_size=3),
+    bad_type,
+)
 VEC3_POS = fvec(3, -0.05, 0.05)
 VEC3_NORMAL = st.one_of(st.just([-1.0, 0.0, 0.0]), fvec(3, -1.0, 1.0))
 SOLVE_KW: dict[str, st.SearchStrategy[Any]] = {

@@ -39,6 +39,7 @@ from .primitives import (
     TEMPS2,
     ROBOTS,
     GROUPS,
+    FIXED_INPUTS,
     VEC3_POS,
     VEC3_NORMAL,
     SOLVE_KW,
@@ -137,12 +138,23 @@ def _inverse_entries(reg: Callable[..., None]) -> None:
         ROBOTS,
         near_tip,
         groups=GROUPS,
+        fixed_inputs=maybe(FIXED_INPUTS),
         max_iter=fint(1, 20),
         tol=fnum(1e-9, 1e-5),
         start=maybe(TEMPS2),
         steps=fint(2, 120),
     )
-    reg("blocked_force", 15, ROBOTS, near_tip, VEC3_NORMAL, st.one_of(TEMPS2, TEMP), groups=GROUPS, steps=fint(2, 120))
+    reg(
+        "blocked_force",
+        15,
+        ROBOTS,
+        near_tip,
+        VEC3_NORMAL,
+        st.one_of(TEMPS2, TEMP),
+        groups=GROUPS,
+        fixed_inputs=maybe(FIXED_INPUTS),
+        steps=fint(2, 120),
+    )
     reg(
         "blocked_temperature",
         40,
@@ -152,6 +164,7 @@ def _inverse_entries(reg: Callable[..., None]) -> None:
         fnum(1e-4, 0.05),
         start=maybe(fix("SOL0", "SOL_OTHER")),
         groups=GROUPS,
+        fixed_inputs=maybe(FIXED_INPUTS),
         increments=fint(1, 12),
         steps=fint(2, 120),
     )
@@ -164,6 +177,7 @@ def _inverse_entries(reg: Callable[..., None]) -> None:
         fnum(1e-4, 0.05),
         guess=maybe(TEMP),
         groups=GROUPS,
+        fixed_inputs=maybe(FIXED_INPUTS),
         steps=fint(2, 120),
     )
     reg(
@@ -171,6 +185,7 @@ def _inverse_entries(reg: Callable[..., None]) -> None:
         10,
         fix("SOL", "SOL_OTHER"),
         groups=GROUPS,
+        fixed_inputs=maybe(FIXED_INPUTS),
         scheme=st.sampled_from(["forward", "central", "sideways", None]),
     )
     reg(
@@ -183,6 +198,7 @@ def _inverse_entries(reg: Callable[..., None]) -> None:
         gravity=fnum(1.0, 20.0),
         method=st.sampled_from(["incremental", "direct", "x"]),
         increments=fint(1, 12),
+        fixed_inputs=maybe(FIXED_INPUTS),
     )
     reg(
         "solve_batch",
