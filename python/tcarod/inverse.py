@@ -184,6 +184,16 @@ def jacobian_and_compliance(
         Bad ``groups``, ``fixed_inputs`` or ``scheme``.
     TypeError
         ``groups`` or ``fixed_inputs`` of the wrong type.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> sol = fig6_square_robot().solve([100.0, 100.0], steps=50)
+    >>> J, C = tcarod.jacobian_and_compliance(sol, groups=[0, 0])   # both legs: one temperature
+    >>> J.shape, C.shape
+    ((6, 1), (6, 6))
+    >>> round(float(J[0, 0]) * 1e3, 3)       # tip x per degree [mm/C]: heating bends towards -x
+    -0.117
     """
     if scheme not in ("forward", "central"):
         raise ValueError(f"scheme must be 'forward' or 'central', got {scheme!r}")
@@ -205,10 +215,9 @@ def blocked_temperature(
     tol: float = 1e-10,
     max_iter: int = 50,
 ) -> BlockedResult:
-    """The actuation variable (temperature [C]) at which the blocked tip
-    presses with ``force`` [N]: the paper's incremental method, eq (43).
+    """The actuation variable (temperature [C]) at which the blocked tip presses with ``force`` [N].
 
-    From ``start``, a solution whose tip touches the plane with no force,
+    The paper's incremental method, eq (43). From ``start``, a solution whose tip touches the plane with no force,
     the contact force rises to ``force`` in ``increments`` steps; each step
     is ``dq = -(n^T J)^-1 n^T C dW`` with ``J`` and ``C`` exact (one tangent
     IVP), then one BVP solve and a position correction that keeps the tip
@@ -221,7 +230,7 @@ def blocked_temperature(
     robot : Robot
         The robot.
     point, normal : sequence of 3 float
-        The blocking plane: a point [m] and the unit direction the tip presses in.
+        The blocking plane: a point [m] and the unit direction [-] the tip presses in.
     force : float
         Contact force [N].
     start : Solution, optional
@@ -239,7 +248,8 @@ def blocked_temperature(
         two-TCA finger at ambient. An actuator both grouped and fixed, or
         neither, raises ``ValueError`` naming ``groups`` / ``fixed_inputs``.
     increments, steps, tol, max_iter : int, int, float, int
-        Force steps, RK4 steps per solve, Newton tolerance, Newton iterations.
+        Force steps [-], RK4 steps per solve [-], Newton tolerance [-]
+        (dimensionless residual), Newton iterations [-].
 
     Returns
     -------
@@ -251,6 +261,15 @@ def blocked_temperature(
     ValueError
         If the force needs a temperature outside the material's range, or
         for bad arguments.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> robot = fig6_square_robot()
+    >>> tip = robot.solve([25.0, 25.0], steps=20).tip_position       # blocked where it rests [m]
+    >>> res = tcarod.blocked_temperature(robot, tip, [-1.0, 0.0, 0.0], 0.002, groups=[0, 0], steps=20)
+    >>> round(res.variables[0], 1), round(res.force * 1e3, 3)         # [C] to press with [mN]
+    (54.3, 2.0)
     """
     V.instance("robot", robot, Robot, "a tcarod.Robot")
     if start is None:
@@ -273,8 +292,9 @@ def blocked_temperature_direct(
     tol: float = 1e-10,
     max_iter: int = 50,
 ) -> BlockedResult:
-    """The same unknown as :func:`blocked_temperature`, solved directly: the
-    single actuation variable is an extra shooting unknown of the mixed
+    """The temperature [C] of :func:`blocked_temperature`, solved directly.
+
+    The single actuation variable is an extra shooting unknown of the mixed
     boundary-value problem with the contact ``force`` [N] given (Newton
     with the exact Jacobian of the augmented system).
 
@@ -286,7 +306,7 @@ def blocked_temperature_direct(
     robot : Robot
         The robot (with at least one actuator: ``ValueError`` otherwise).
     point, normal : sequence of 3 float
-        The blocking plane: a point [m] and the unit direction the tip presses in.
+        The blocking plane: a point [m] and the unit direction [-] the tip presses in.
     force : float
         Contact force [N].
     guess : float, optional
@@ -304,12 +324,23 @@ def blocked_temperature_direct(
         two-TCA finger at ambient. An actuator both grouped and fixed, or
         neither, raises ``ValueError`` naming ``groups`` / ``fixed_inputs``.
     steps, tol, max_iter : int, float, int
-        RK4 steps per solve, Newton tolerance, Newton iterations.
+        RK4 steps per solve [-], Newton tolerance [-] (dimensionless
+        residual), Newton iterations [-].
 
     Returns
     -------
     BlockedResult
         ``variables[0]`` the temperature [C], ``force`` [N].
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> robot = fig6_square_robot()
+    >>> tip = robot.solve([25.0, 25.0], steps=20).tip_position       # blocked where it rests [m]
+    >>> res = tcarod.blocked_temperature_direct(robot, tip, [-1.0, 0.0, 0.0], 0.002, guess=50.0,
+    ...                                         groups=[0, 0], steps=20)
+    >>> round(res.variables[0], 1)                                   # the same 54.3 C as eq (43)
+    54.3
     """
     V.instance("robot", robot, Robot, "a tcarod.Robot")
     if not robot.actuators:

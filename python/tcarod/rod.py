@@ -76,6 +76,24 @@ def circle_radius(
     Coordinates are limited to ``|x| <= 1e150`` m (``ValueError`` beyond), so
     that the arithmetic below, done on coordinates scaled to order one, cannot
     overflow.
+
+    Parameters
+    ----------
+    a, b, c : sequence of 3 float
+        The three points [m].
+
+    Returns
+    -------
+    float
+        The radius [m]; ``inf`` for collinear or coincident points.
+
+    Examples
+    --------
+    >>> from tcarod.rod import circle_radius
+    >>> round(circle_radius([0.01, 0, 0], [0, 0.01, 0], [-0.01, 0, 0]), 6)   # [m]
+    0.01
+    >>> circle_radius([0, 0, 0], [1, 0, 0], [2, 0, 0])
+    inf
     """
     pts = [np.asarray(V.vector(n, x, 3, "m")) for n, x in (("a", a), ("b", b), ("c", c))]
     for n, p in zip("abc", pts):
@@ -95,14 +113,31 @@ def circle_radius(
 
 
 def inner_edge_radius(solution: Solution) -> float:
-    """Bending radius [m] as measured in the paper (Section V-B): the circle
-    through three points on the inner (concave) edge of the body, at the base,
-    the middle and the tip.
+    """Bending radius [m] as measured in the paper (Section V-B).
 
-    The inner edge is taken on the body-frame direction of the mean curvature
-    vector (``omega`` projected on the cross-section, averaged along the body),
-    at the section's edge distance in that direction. Returns ``inf`` for a
-    straight body.
+    The radius of the circle through three points on the inner (concave) edge
+    of the body, at the base, the middle and the tip. The inner edge is taken
+    on the body-frame direction of the mean curvature vector (``omega``
+    projected on the cross-section, averaged along the body), at the section's
+    edge distance in that direction.
+
+    Parameters
+    ----------
+    solution : Solution
+        A solution of a robot (positions [m], frames, strains [1/m]).
+
+    Returns
+    -------
+    float
+        The bending radius [m]; ``inf`` for a straight body.
+
+    Examples
+    --------
+    >>> from tcarod.batch import fig6_square_robot
+    >>> from tcarod.rod import inner_edge_radius
+    >>> sol = fig6_square_robot().solve([100.0, 100.0], steps=50)   # both legs at 100 C
+    >>> round(inner_edge_radius(sol) * 1e3, 1)                      # [mm]
+    140.2
     """
     V.instance("solution", solution, Solution, "a tcarod.Solution")
     omega = solution.omega

@@ -137,6 +137,16 @@ class Tca(_core.Tca):
 
     All solves accept scalars or NumPy arrays (broadcast together) and return
     a float for scalar input, an array of the broadcast shape otherwise.
+
+    Examples
+    --------
+    >>> tca = tcarod.Tca(0.15, 0.04, 0.0017, 38.2)   # l, L, D [m], N [turns]
+    >>> round(tca.free_stroke(100.0) * 1e3, 3)       # unloaded elongation at 100 C [mm]
+    1.337
+    >>> tca.free_stroke([25.0, 100.0]).round(5)      # arrays in, arrays out [m]
+    array([0.     , 0.00134])
+    >>> round(tca.blocked_force(100.0), 3)           # it pushes when heated [N]
+    -0.492
     """
 
     @overload

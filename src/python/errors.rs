@@ -46,18 +46,35 @@ pyo3::create_exception!(
     tcarod._core,
     ConvergenceError,
     PyRuntimeError,
-    "A solve stopped without meeting its tolerance. Attributes: `residual` \
-     (best residual norm reached, dimensionless), `iterations`, `evaluations` \
-     (IVPs integrated, failed attempts included) and `reason` (why it stopped)."
+    "A solve stopped without meeting its tolerance.\n\n\
+     Attributes\n\
+     ----------\n\
+     residual : float\n    \
+     Best residual norm reached [-] (dimensionless).\n\
+     iterations : int\n    \
+     Iterations done [-].\n\
+     evaluations : int\n    \
+     IVPs integrated [-], failed attempts included.\n\
+     reason : str\n    \
+     Why it stopped: `\"iteration_limit\"`, `\"line_search\"`, \
+     `\"singular_jacobian\"`, `\"non_finite\"`, `\"budget\"` (the IVP budget or \
+     the time limit ran out), `\"other\"`, or `\"integration\"` (an IVP could \
+     not be integrated)."
 );
 
 pyo3::create_exception!(
     tcarod._core,
     UnstableEquilibriumError,
     PyRuntimeError,
-    "`Robot.solve(..., require_stable=True)` converged to an unstable \
-     equilibrium. Attributes: `margin` (its stability margin [-], < 0) and \
-     `solution` (the unstable `Solution`)."
+    "A solve required a stable equilibrium and converged to an unstable one.\n\n\
+     Raised by `Robot.solve(..., stability=\"require\")` (or \
+     `require_stable=True`).\n\n\
+     Attributes\n\
+     ----------\n\
+     margin : float\n    \
+     The equilibrium's stability margin [-], negative.\n\
+     solution : Solution\n    \
+     The unstable equilibrium (shape [m], tensions [N])."
 );
 
 impl From<Error> for PyErr {

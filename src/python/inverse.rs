@@ -155,7 +155,9 @@ fn same_robot(py: Python<'_>, robot: &PyRobot, solution: &PySolution, name: &str
     }
 }
 
-/// `(J, C)` at `solution` (eqs 41-42): `J` is `6 x n_vars` (tip `[dp (m); dtheta (rad)]`
+/// The actuation Jacobian and the compliance `(J, C)` at `solution` (eqs 41-42).
+///
+/// `J` is `6 x n_vars` (tip `[dp (m); dtheta (rad)]`
 /// per unit actuation variable, per C for TCAs), `C` is `6 x 6` (per unit tip wrench
 /// `[F (N); M (N m)]`), world frame. `groups[i]` is the variable driving actuator `i`.
 ///
@@ -331,6 +333,17 @@ fn rotation_arg(obj: &Bound<'_, PyAny>) -> PyResult<Matrix3<f64>> {
 ///     An argument outside its range (named, with its unit).
 /// TypeError
 ///     An argument of the wrong type.
+///
+/// Examples
+/// --------
+/// >>> from tcarod.batch import fig6_square_robot
+/// >>> robot = fig6_square_robot()                 # two TCA legs, one variable with groups
+/// >>> target = robot.solve([100.0, 100.0], steps=50).tip_position   # [m]
+/// >>> res = tcarod.tip_position(robot, target, groups=[0, 0], steps=50)
+/// >>> res.success, round(res.variables[0], 3)     # temperature [C]
+/// (True, 100.0)
+/// >>> bool(res.error < 1e-7)                      # distance to the target [m]
+/// True
 #[pyfunction]
 #[pyo3(signature = (robot, target, *, start=None, groups=None, fixed_inputs=None, target_rotation=None, orientation_weight=Real(0.01),
     tol=Real(1e-7), max_iter=None, damping=Real(1e-6), steps=None),
@@ -445,9 +458,10 @@ impl BlockedArgs {
     }
 }
 
-/// Contact force [N] of a tip held on the plane through `point` [m] with
-/// unit `normal` (the direction the tip presses in), at given actuation
-/// variables.
+/// Contact force [N] of a tip held on a plane, at given actuation variables.
+///
+/// The plane passes through `point` [m] with unit `normal` (the direction
+/// the tip presses in).
 ///
 /// A mixed boundary-value problem solved directly: the contact force is an
 /// extra shooting unknown and `normal . (p(L) - point) = 0` an extra
@@ -492,6 +506,15 @@ impl BlockedArgs {
 /// ------
 /// ValueError
 ///     An argument outside its range (named, with its unit).
+///
+/// Examples
+/// --------
+/// >>> from tcarod.batch import fig6_square_robot
+/// >>> robot = fig6_square_robot()
+/// >>> tip = robot.solve([25.0, 25.0], steps=20).tip_position   # blocked where it rests [m]
+/// >>> res = tcarod.blocked_force(robot, tip, [-1.0, 0.0, 0.0], [80.0], groups=[0, 0], steps=20)
+/// >>> round(res.force * 1e3, 3)                   # contact force at 80 C [mN]
+/// 5.393
 #[pyfunction]
 #[pyo3(signature = (robot, point, normal, variables, *, groups=None, fixed_inputs=None, steps=None, tol=Real(1e-10), max_iter=None, warm_start=None),
     text_signature = "(robot, point, normal, variables, *, groups=None, fixed_inputs=None, steps=100, tol=1e-10, max_iter=50, warm_start=None)")]
@@ -527,6 +550,8 @@ fn blocked_force(
     blocked(py, robot, res, block.normal)
 }
 
+/// The actuation variable at which the blocked tip presses with `force` [N].
+///
 /// The paper's incremental method (eq 43, `dx = 0`): from `start` (a solution
 /// of this robot whose tip touches the block with no force), the single
 /// actuation variable at which the tip presses with `force` [N], in
@@ -582,6 +607,8 @@ fn blocked_temperature(
     blocked(py, robot, res, block.normal)
 }
 
+/// The actuation variable of `blocked_temperature`, solved directly.
+///
 /// Direct solve (independent check of `blocked_temperature`): the actuation
 /// variable is a shooting unknown starting from `guess` (temperature [C]),
 /// the contact force [N] is given.
@@ -632,7 +659,9 @@ fn blocked_temperature_direct(
     blocked(py, robot, res, block.normal)
 }
 
-/// Grasp temperature (eq 44): the actuation variable at which `fingers`
+/// Grasp temperature [C] (eq 44) of `fingers` identical fingers holding `mass` [kg].
+///
+/// The actuation variable at which `fingers`
 /// identical fingers (this `robot`) with friction coefficient `mu` [-] hold
 /// a mass `mass` [kg] under `gravity` [m/s^2], `mu n F(T) = m g`, each
 /// finger's tip blocked where it rests at the `contact` inputs (default: the

@@ -23,6 +23,18 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// `Material.silver_coated_nylon()` is the paper's thread (valid 25-160 C,
 /// not extrapolated): for a colder ambient build a `Material` with `t_ref` and
 /// `t_min` at that ambient. Value object: `==`, hashable, picklable.
+///
+/// Examples
+/// --------
+/// >>> m = tcarod.Material.silver_coated_nylon()      # the paper's thread
+/// >>> m.t_ref, m.t_max                                # valid range [C]
+/// (25.0, 160.0)
+/// >>> round(m.youngs_modulus(100.0) / 1e9, 3)         # E at 100 C [GPa]
+/// 1.101
+/// >>> cold = tcarod.Material(youngs_modulus=1.2e9, shear_modulus=2.2e8, expansion=1e-4,
+/// ...                        t_ref=10.0, t_min=10.0, name="nylon at 10 C")
+/// >>> cold.t_min                                      # [C]
+/// 10.0
 #[pyclass(name = "Material", module = "tcarod._core", frozen, eq, hash)]
 #[derive(Clone, PartialEq)]
 pub struct PyMaterial {
@@ -83,16 +95,20 @@ impl PyMaterial {
         }
     }
 
-    /// The same thread with the measured radial CTE of oriented nylon 6,6
-    /// (Choy et al. 1984) in place of the Sun & Zhao diameter fit.
+    /// The paper's thread with the measured radial CTE of oriented nylon 6,6.
+    ///
+    /// The expansion `rho(T)` [1/C] follows Choy et al. 1984 in place of the
+    /// Sun & Zhao diameter fit; moduli and range as `silver_coated_nylon`.
     #[staticmethod]
     fn nylon66_measured_cte() -> Self {
         PyMaterial {
             inner: Material::nylon66_measured_cte(),
         }
     }
-    /// Measured radial CTE [1/K] of oriented nylon 6,6 at `temperature` [C]
-    /// (Choy et al. 1984, linear interpolation, -41..160 C).
+    /// Measured radial CTE [1/K] of oriented nylon 6,6 at `temperature` [C].
+    ///
+    /// Choy et al. 1984, linear interpolation between the measured points,
+    /// valid from -41 to 160 C (`ValueError` outside).
     #[staticmethod]
     fn measured_radial_cte(temperature: Real) -> PyResult<f64> {
         Ok(crate::material::nylon66_radial_cte(temperature.0)?)
@@ -117,27 +133,55 @@ impl PyMaterial {
     }
 
     /// Name of the material (free text, e.g. `"my nylon"`).
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     The name given to the constructor (no unit).
     #[getter]
     fn name(&self) -> String {
         self.inner.name().to_string()
     }
-    /// Reference (ambient, passive) temperature `t_ref` [C]: the coefficients are given there.
+    /// Reference (ambient, passive) temperature `t_ref` [C].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     The temperature [C] at which the coefficients are given.
     #[getter]
     fn t_ref(&self) -> f64 {
         self.inner.t_ref()
     }
-    /// Lowest valid temperature `t_min` [C]. For an ambient below the preset's
-    /// 25 C build `Material(..., t_ref=..., t_min=...)` with coefficients valid there.
+    /// Lowest valid temperature `t_min` [C].
+    ///
+    /// For an ambient below the preset's 25 C build
+    /// `Material(..., t_ref=..., t_min=...)` with coefficients valid there.
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     The lower end [C] of the valid temperature range.
     #[getter]
     fn t_min(&self) -> f64 {
         self.inner.t_min()
     }
     /// Highest valid temperature `t_max` [C].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     The upper end [C] of the valid temperature range.
     #[getter]
     fn t_max(&self) -> f64 {
         self.inner.t_max()
     }
-    /// `(E_ref [Pa], dE/dT [Pa/C], G_ref [Pa], dG/dT [Pa/C], rho_ref [1/C], drho/dT [1/C^2])`.
+    /// The six coefficients of the linear temperature laws.
+    ///
+    /// Returns
+    /// -------
+    /// tuple of 6 float
+    ///     `(E_ref [Pa], dE/dT [Pa/C], G_ref [Pa], dG/dT [Pa/C], rho_ref [1/C],
+    ///     drho/dT [1/C^2])`, at `t_ref` [C].
     #[getter]
     fn coefficients(&self) -> (f64, f64, f64, f64, f64, f64) {
         self.inner.coefficients()

@@ -28,8 +28,12 @@ macro_rules! scipy_fields {
     ($ty:ty, $codes:literal) => {
         #[pyo3::pymethods]
         impl $ty {
-            /// `True` if the solve succeeded (see `status` for the success
-            /// codes), SciPy naming.
+            /// Whether the solve succeeded (SciPy naming).
+            ///
+            /// Returns
+            /// -------
+            /// bool
+            ///     `True` if `status` is one of the class's success codes.
             #[getter]
             fn success(&self) -> bool {
                 $crate::python::outcome::Outcome::succeeded(self)
@@ -39,17 +43,32 @@ macro_rules! scipy_fields {
             fn status(&self) -> i64 {
                 $crate::python::outcome::Outcome::status_code(self)
             }
-            /// Why the solve stopped, in words (`str`).
+            /// Why the solve stopped, in words (`str`, SciPy naming).
+            ///
+            /// Returns
+            /// -------
+            /// str
+            ///     The stopping reason with its numbers and their units.
             #[getter]
             fn message(&self) -> String {
                 $crate::python::outcome::Outcome::status_message(self)
             }
-            /// Iterations (same as `iterations`), SciPy naming.
+            /// Iterations of the solve (SciPy naming).
+            ///
+            /// Returns
+            /// -------
+            /// int
+            ///     Iterations [-], the same as `iterations`.
             #[getter]
             fn nit(&self) -> usize {
                 $crate::python::outcome::Outcome::iteration_count(self)
             }
-            /// IVPs integrated, i.e. function evaluations (same as `evaluations`), SciPy naming.
+            /// Function evaluations of the solve (SciPy naming).
+            ///
+            /// Returns
+            /// -------
+            /// int
+            ///     IVPs integrated [-], the same as `evaluations`.
             #[getter]
             fn nfev(&self) -> usize {
                 $crate::python::outcome::Outcome::ivp_count(self)
@@ -64,7 +83,12 @@ macro_rules! tip_of_solution {
     ($ty:ty) => {
         #[pyo3::pymethods]
         impl $ty {
-            /// Tip position [m] of `solution`, shape `(3,)`.
+            /// Tip position [m] of `solution`, world frame.
+            ///
+            /// Returns
+            /// -------
+            /// numpy.ndarray
+            ///     Shape `(3,)`: the tip position `p(L)` [m].
             #[getter]
             fn tip_position<'py>(
                 &self,

@@ -97,10 +97,17 @@ fn map_elements<T: Sync>(
     Ok(PyArray1::from_vec(py, out?).unbind())
 }
 
-/// A twisted-and-coiled actuator (paper Section II):
+/// A twisted-and-coiled actuator (paper Section II).
+///
 /// `Tca(fibre_length [m], coiled_length [m], coil_diameter [m], turns,
 /// chirality='extension', material=None)`. See `tcarod.Tca` for the
 /// NumPy-vectorised law. Value object: `==`, hashable, picklable.
+///
+/// Examples
+/// --------
+/// >>> tca = tcarod._core.Tca(0.15, 0.04, 0.0017, 38.2)   # l, L, D [m], N [turns]
+/// >>> round(tca.alpha0, 4), round(tca.d0 * 1e3, 4)       # [rad], [mm]
+/// (0.2699, 0.9067)
 #[pyclass(name = "Tca", module = "tcarod._core", subclass, frozen, eq, hash)]
 #[derive(Clone, PartialEq)]
 pub struct PyTca {
@@ -164,8 +171,9 @@ impl PyTca {
         Ok(cls.call1(constructor_args(&t))?.unbind())
     }
 
-    /// The fraction `fraction` (`0 < fraction <= 1`) of this TCA as a
-    /// segment in series: fibre length, coiled length and turns scaled by
+    /// The fraction `fraction` [-] (`0 < fraction <= 1`) of this TCA as a segment in series.
+    ///
+    /// Fibre length, coiled length and turns scaled by
     /// `fraction`; same coil diameter, `alpha0`, `d0`, twist density,
     /// chirality and material. Returns an instance of this object's class.
     fn segment(slf: &Bound<'_, Self>, fraction: Real) -> PyResult<Py<PyAny>> {
@@ -174,31 +182,62 @@ impl PyTca {
     }
 
     /// Twisted-fibre length `l` [m] (before coiling).
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     `l` [m].
     #[getter]
     fn fibre_length(&self) -> f64 {
         self.inner.fibre_length()
     }
-    /// Coiled length `L` [m] with the coils touching (`0 < L < l/2`).
+    /// Coiled length `L` [m] with the coils touching.
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     `L` [m], `0 < L < l/2`.
     #[getter]
     fn coiled_length(&self) -> f64 {
         self.inner.coiled_length()
     }
     /// Outer coil diameter `D` [m].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     `D` [m].
     #[getter]
     fn coil_diameter(&self) -> f64 {
         self.inner.coil_diameter()
     }
     /// Inserted twist `N` [turns].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     `N` [turns].
     #[getter]
     fn turns(&self) -> f64 {
         self.inner.turns()
     }
-    /// `"extension"` (lengthens when heated) or `"contraction"` (shortens when heated).
+    /// Which way the TCA moves when heated.
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     `"extension"` (lengthens when heated) or `"contraction"` (shortens
+    ///     when heated); no unit.
     #[getter]
     fn chirality(&self) -> &'static str {
         chirality_name(self.inner.chirality())
     }
-    /// The fibre material (`Material`).
+    /// The fibre material.
+    ///
+    /// Returns
+    /// -------
+    /// Material
+    ///     Its moduli [Pa] and expansion [1/C] over its range [C].
     #[getter]
     fn material(&self) -> PyMaterial {
         PyMaterial {
@@ -206,26 +245,51 @@ impl PyTca {
         }
     }
     /// Initial pitch angle `alpha0 = asin(L/l)` [rad].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     `alpha0` [rad].
     #[getter]
     fn alpha0(&self) -> f64 {
         self.inner.alpha0()
     }
     /// Number of coils `n = 2 cos(alpha0) l / (pi D)` [-].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     `n` [-].
     #[getter]
     fn n_coils(&self) -> f64 {
         self.inner.n_coils()
     }
     /// Inserted twist angle `phi0 = 2 pi N` [rad].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     `phi0` [rad].
     #[getter]
     fn phi0(&self) -> f64 {
         self.inner.phi0()
     }
     /// Fibre diameter at the reference temperature `d0 = 2 D L / l` [m].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     `d0` [m].
     #[getter]
     fn d0(&self) -> f64 {
         self.inner.d0()
     }
-    /// Elongation [m] at which the fibre would be straight (`l - L`): the upper bound of the law.
+    /// Elongation [m] at which the fibre would be straight (`l - L`).
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     `l - L` [m], the upper bound of the law.
     #[getter]
     fn max_displacement(&self) -> f64 {
         self.inner.max_displacement()

@@ -16,7 +16,22 @@ _Vec3 = Sequence[float] | _FloatArray
 _Policy = Literal["report", "require", "continue", "off"]
 
 class ConvergenceError(RuntimeError):
-    """A solve stopped without meeting its tolerance. Attributes: `residual` (best residual norm reached, dimensionless), `iterations`, `evaluations` (IVPs integrated, failed attempts included) and `reason` (why it stopped)."""
+    """A solve stopped without meeting its tolerance.
+
+    Attributes
+    ----------
+    residual : float
+        Best residual norm reached [-] (dimensionless).
+    iterations : int
+        Iterations done [-].
+    evaluations : int
+        IVPs integrated [-], failed attempts included.
+    reason : str
+        Why it stopped: `"iteration_limit"`, `"line_search"`,
+        `"singular_jacobian"`, `"non_finite"`, `"budget"` (the IVP budget or
+        the time limit ran out), `"other"`, or `"integration"` (an IVP could
+        not be integrated).
+    """
 
     #: Best residual norm reached (dimensionless unless the solver says otherwise).
     residual: float
@@ -30,7 +45,18 @@ class ConvergenceError(RuntimeError):
     reason: str
 
 class UnstableEquilibriumError(RuntimeError):
-    """`Robot.solve(..., require_stable=True)` converged to an unstable equilibrium. Attributes: `margin` (its stability margin [-], < 0) and `solution` (the unstable `Solution`)."""
+    """A solve required a stable equilibrium and converged to an unstable one.
+
+    Raised by `Robot.solve(..., stability="require")` (or
+    `require_stable=True`).
+
+    Attributes
+    ----------
+    margin : float
+        The equilibrium's stability margin [-], negative.
+    solution : Solution
+        The unstable equilibrium (shape [m], tensions [N]).
+    """
 
     #: Stability margin of the equilibrium found [-] (< 0).
     margin: float

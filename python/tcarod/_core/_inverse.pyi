@@ -103,8 +103,9 @@ def sensitivities(
     scheme: Literal["forward", "central", "exact"] = "forward",
     fixed_inputs: Mapping[int, float] | None = None,
 ) -> tuple[_FloatArray, _FloatArray]:
-    """``(J, C)`` at ``solution`` (eqs 41-42): ``J`` is ``6 x n_vars`` [m or rad per C],
-    ``C`` is ``6 x 6`` [m or rad per N or N m]."""
+    """The actuation Jacobian and the compliance ``(J, C)`` at ``solution`` (eqs 41-42).
+
+    ``J`` is ``6 x n_vars`` [m or rad per C], ``C`` is ``6 x 6`` [m or rad per N or N m]."""
 
 def tip_position(
     robot: Robot,
@@ -158,9 +159,11 @@ def blocked_force(
     max_iter: int = 50,
     warm_start: BlockedResult | None = None,
 ) -> BlockedResult:
-    """Contact force [N] of a tip held on the plane through ``point`` [m] with
-    unit ``normal`` (the direction the tip presses in), at actuation
-    ``variables`` (temperatures [C], one per group; a number for one group).
+    """Contact force [N] of a tip held on a plane, at given actuation variables.
+
+    The plane passes through ``point`` [m] with unit ``normal`` (the direction
+    the tip presses in); ``variables`` are temperatures [C], one per group (a
+    number for one group).
 
     A mixed boundary-value problem solved directly: the contact force is an
     extra shooting unknown and ``normal . (p(L) - point) = 0`` an extra
@@ -183,8 +186,9 @@ def blocked_temperature(
     tol: float = 1e-10,
     max_iter: int = 50,
 ) -> BlockedResult:
-    """The paper's incremental method (eq 43, ``dx = 0``): the single actuation
-    variable at which the blocked tip presses with ``force`` [N]."""
+    """The actuation variable at which the blocked tip presses with ``force`` [N].
+
+    The paper's incremental method (eq 43, ``dx = 0``), for a single actuation variable."""
 
 def blocked_temperature_direct(
     robot: Robot,
@@ -199,8 +203,10 @@ def blocked_temperature_direct(
     tol: float = 1e-10,
     max_iter: int = 50,
 ) -> BlockedResult:
-    """Direct mixed solve: the actuation variable is a shooting unknown, the
-    contact ``force`` [N] is given (check of :func:`blocked_temperature`)."""
+    """The actuation variable of :func:`blocked_temperature`, solved directly.
+
+    Direct mixed solve: the actuation variable is a shooting unknown, the
+    contact ``force`` [N] is given."""
 
 def grasp_temperature(
     robot: Robot,
@@ -219,8 +225,10 @@ def grasp_temperature(
     tol: float = 1e-10,
     max_iter: int = 50,
 ) -> tuple[BlockedResult, tuple[float, float, float]]:
-    """Grasp temperature (eq 44): the actuation variable at which ``fingers``
-    fingers with friction ``mu`` hold ``mass`` [kg], ``mu n F(T) = m g``, each
+    """Grasp temperature [C] (eq 44) of ``fingers`` identical fingers holding ``mass`` [kg].
+
+    The actuation variable at which ``fingers`` fingers with friction ``mu``
+    [-] hold ``mass`` [kg], ``mu n F(T) = m g``, each
     tip blocked where it rests at the ``contact`` inputs (default: the
     reference inputs), pressing along ``normal``; ``method``: eq 43 in
     ``increments`` steps or a direct solve. Returns (the blocked result of

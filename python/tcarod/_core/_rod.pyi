@@ -51,13 +51,16 @@ class Routing:
 
     @staticmethod
     def straight(x: float, y: float) -> Routing:
-        """Parallel to the centre line at body-frame offset ``(x, y)`` [m]; an
-        offset above 1 m looks like millimetres and warns with ``UnitsWarning``."""
+        """Parallel to the centre line at body-frame offset ``(x, y)`` [m].
+
+        An offset above 1 m looks like millimetres and warns with ``UnitsWarning``."""
     @staticmethod
     def helix(radius: float, rate: float, phase: float = 0.0) -> Routing:
-        """``r(s) = radius (cos(rate s + phase), sin(rate s + phase), 0)``: ``radius`` [m],
-        ``rate`` [rad/m] (positive: right-handed about +z), ``phase`` [rad]; a
-        radius above 1 m warns with ``UnitsWarning``."""
+        """Helix of ``radius`` [m] turning at ``rate`` [rad/m] from angle ``phase`` [rad].
+
+        ``r(s) = radius (cos(rate s + phase), sin(rate s + phase), 0)``; a
+        positive ``rate`` turns right-handed about +z; a radius above 1 m
+        warns with ``UnitsWarning``."""
     def evaluate(self, s: float) -> tuple[_FloatArray, _FloatArray, _FloatArray]:
         """``(r [m], r' [-], r'' [1/m])`` at arc length ``s`` [m], body frame, length 3 each."""
     @property
@@ -106,9 +109,11 @@ class Body:
     def __hash__(self) -> int: ...
     @staticmethod
     def from_material(name: str, length: float, section: Section, **kwargs: Any) -> Body:
-        """A body of the catalogued silicone ``name`` (a ``name`` of
-        :meth:`Body.materials`, e.g. ``"ecoflex-00-30"``; case, spaces and
-        underscores ignored), ``length`` [m], ``section``: the preset gives
+        """A body of a catalogued silicone: ``Body.from_material(name, length, section, **kwargs)``.
+
+        ``name`` is a ``name`` of :meth:`Body.materials`, e.g.
+        ``"ecoflex-00-30"`` (case, spaces and underscores ignored); ``length``
+        [m]; ``section`` a ``Section``. The preset gives
         ``youngs_modulus`` [Pa], ``poisson`` [-] and ``density`` [kg/m^3];
         ``kwargs`` are the constructor's other keywords and may replace a
         preset value (e.g. ``youngs_modulus=`` a modulus identified on your
@@ -117,8 +122,9 @@ class Body:
         :mod:`tcarod.materials` for the values and their sources."""
     @staticmethod
     def materials() -> list[dict[str, Any]]:
-        """The catalogue of :meth:`from_material`, one dict per material:
-        ``name``, ``label``, ``youngs_modulus`` [Pa], ``modulus_basis``,
+        """The catalogued silicones of :meth:`from_material`.
+
+        One dict per material: ``name``, ``label``, ``youngs_modulus`` [Pa], ``modulus_basis``,
         ``modulus_100`` [Pa] or ``None``, ``shore_hardness``, ``poisson`` [-],
         ``density`` [kg/m^3], ``sources``."""
     @property
@@ -171,7 +177,9 @@ class Body:
 
 @final
 class Actuator:
-    """A string-like actuator: ``Actuator.tca`` (input: temperature [C]),
+    """A string-like actuator embedded in the body.
+
+    ``Actuator.tca`` (input: temperature [C]),
     ``Actuator.tendon`` (input: tension [N]) or ``Actuator.linear_tendon``
     (input: length pulled in at the base [m]). It runs from arc length
     ``s_start`` [m] to ``s_end`` [m] (``None``: the tip); ``length_ratio`` is
@@ -260,8 +268,9 @@ class Robot:
     def __hash__(self) -> int: ...
     @property
     def spacer_disks(self) -> bool:
-        """``True`` if the actuators run through spacer disks outside the section
-        (the routing- and coil-inside-the-section rule waived)."""
+        """Whether the actuators run through spacer disks outside the section.
+
+        ``True``: the routing- and coil-inside-the-section rule is waived."""
     @property
     def body(self) -> Body: ...
     @property
@@ -357,8 +366,9 @@ class Robot:
         max_iter: int = 50,
         stability: _Policy = "report",
     ) -> list[Solution]:
-        """Solve along rows of ``inputs`` (shape ``(k, n_actuators)``), each
-        warm-started from the previous; ``stability`` as for ``solve`` (one
+        """Solve along rows of ``inputs``, each warm-started from the previous one.
+
+        ``inputs`` has shape ``(k, n_actuators)``; ``stability`` as for ``solve`` (one
         warning names the unstable rows; ``"continue"`` follows the physical
         robot's quasi-static path)."""
 

@@ -101,7 +101,8 @@ class Tca:
     ) -> Self:
         """Build from coiled length ``L`` [m] and pitch angle ``alpha0`` [rad]: ``l = L / sin(alpha0)``."""
     def segment(self, fraction: float) -> Self:
-        """The fraction ``fraction`` (0 < fraction <= 1) of this TCA as a segment in series:
+        """The fraction ``fraction`` [-] (0 < fraction <= 1) of this TCA as a segment in series.
+
         ``l``, ``L`` and ``N`` scaled by ``fraction``; same ``D``, ``alpha0``, ``d0``, material."""
     @property
     def fibre_length(self) -> float:

@@ -76,8 +76,39 @@ def table1_finger(
     turns_reading: TurnsReading = DEFAULT_TURNS_READING,
 ) -> Robot:
     """The Table I gripper finger (see the module docstring), hanging down.
+
     Keywords replace one design parameter (default: the paper's / the
-    documented default material; turns per :mod:`tcarod.models.manipulators`)."""
+    documented default material; turns per :mod:`tcarod.models.manipulators`).
+
+    Parameters
+    ----------
+    material : Material, optional
+        Fibre material of the TCA (default: the documented default material).
+    body_youngs_modulus_pa : float, optional
+        Young's modulus [Pa] of the EcoFlex body (default: the paper's).
+    tca_offset_m : float, optional
+        Offset [m] of the TCA legs from the centre line along body ``x``
+        (default 3 mm).
+    coil_diameter_m : float, optional
+        Outer coil diameter [m] of the TCA (default: the paper's).
+    turns_reading : {"per_tca", "per_leg", "per_length"}, optional
+        How the paper's inserted twist [turns] is read (see
+        :mod:`tcarod.models.manipulators`).
+
+    Returns
+    -------
+    Robot
+        A 20 mm finger [m] with one U-shaped TCA (two legs, inputs in C).
+
+    Examples
+    --------
+    >>> from tcarod.models.grasp import table1_finger
+    >>> finger = table1_finger()
+    >>> finger.body.length, len(finger.actuators)      # [m], the U-shaped TCA's two legs
+    (0.02, 2)
+    >>> finger.reference_inputs                         # ambient [C]
+    [25.0, 25.0]
+    """
     return _core.fixture_manipulator(
         "table1_finger",
         material=material,
@@ -90,7 +121,22 @@ def table1_finger(
 
 @dataclass(frozen=True, eq=False)
 class Grasp:
-    """Solution of eq (44) for one mass."""
+    """Solution of eq (44) for one mass: what :func:`grasp` returns.
+
+    Fields: ``mass_kg`` [kg], ``mu`` [-], ``fingers``, ``gravity_m_per_s2``
+    [m/s^2], ``force_per_finger_n`` [N], ``temperature_c`` [C],
+    ``block_point_m`` [m], ``normal`` [-], ``method`` and ``blocked`` (the
+    blocked solution of one finger).
+
+    Examples
+    --------
+    >>> from tcarod.models.grasp import grasp
+    >>> g = grasp(0.002, steps=30)                      # 2 g on the Table I fingers
+    >>> round(g.force_per_finger_n * 1e3, 3)            # m g / (mu n) [mN]
+    8.918
+    >>> round(g.temperature_c, 1)                       # grip temperature [C]
+    59.6
+    """
 
     mass_kg: float
     mu: float
@@ -139,9 +185,10 @@ def grasp(
     tol: float = 1e-10,
     contact_temperature_c: float | None = None,
 ) -> Grasp:
-    """Grip temperature [C] for a mass ``mass_kg`` [kg] held by ``fingers``
-    identical fingers with friction coefficient ``mu`` [-] under gravity
-    ``gravity`` [m/s^2] (eq 44), with its blocked-tip solution.
+    """Grip temperature [C] for a mass ``mass_kg`` [kg] (eq 44), with its blocked-tip solution.
+
+    The mass is held by ``fingers`` identical fingers with friction
+    coefficient ``mu`` [-] under gravity ``gravity`` [m/s^2].
 
     The fingertip touches the object at the contact inputs (below them the
     force is zero), is blocked there and presses along ``normal``; the
@@ -159,11 +206,11 @@ def grasp(
     mu : float
         Friction coefficient [-] between fingertip and object.
     fingers : int
-        Number of identical fingers.
+        Number of identical fingers [-].
     gravity : float
         Gravitational acceleration [m/s^2].
     normal : sequence of 3 float
-        Direction the fingertip presses in (world frame).
+        Direction [-] the fingertip presses in (world frame).
     groups : sequence of int or None, optional
         ``groups[i]`` is the actuation variable of actuator ``i``; all
         heated actuators must share the one variable ``0``. ``None`` for an
@@ -184,9 +231,9 @@ def grasp(
         started from one eq-43 step of the whole force (the same
         temperature to ~1e-10 C in about a quarter of the IVPs).
     increments, steps : int
-        Force steps of the incremental method; RK4 steps per solve.
+        Force steps [-] of the incremental method; RK4 steps [-] per solve.
     tol : float
-        Newton tolerance of the blocked solves.
+        Newton tolerance [-] of the blocked solves (dimensionless residual).
     contact_temperature_c : float, optional
         Temperature [C] of the heated actuators at which the freely closing
         fingertip touches the object (default: the finger's reference
@@ -270,11 +317,45 @@ def force_line(
     fingers: int = 2,
     gravity: float = GRAVITY_M_PER_S2,
 ) -> tuple[float, float]:
-    """Least-squares line through grip temperatures: the force per finger
-    ``m g / (mu n)`` [N] against temperature [C]. Returns ``(slope [N/C],
-    zero-force intercept [C])``: how fast a finger's force rises after
-    contact, and where it touches. The paper's Table I predictions give
-    0.209 mN/C and 72.3 C, its experiment 0.223 mN/C and 76.7 C."""
+    """Least-squares line through grip temperatures: force per finger [N] against temperature [C].
+
+    The force per finger is ``m g / (mu n)`` [N]. The slope says how fast a
+    finger's force rises after contact, the intercept where it touches. The
+    paper's Table I predictions give 0.209 mN/C and 72.3 C, its experiment
+    0.223 mN/C and 76.7 C.
+
+    Parameters
+    ----------
+    masses_kg : sequence of float
+        Masses held [kg], at least two, distinct.
+    temperatures_c : sequence of float
+        Grip temperature [C] of each mass.
+    mu : float
+        Friction coefficient [-] between fingertip and object.
+    fingers : int
+        Number of identical fingers [-].
+    gravity : float
+        Gravitational acceleration [m/s^2].
+
+    Returns
+    -------
+    slope : float
+        Force per finger per degree [N/C].
+    intercept : float
+        Temperature [C] at zero force (where the fingertip touches).
+
+    Raises
+    ------
+    ValueError
+        Fewer than two masses, lengths that differ, or no spread.
+
+    Examples
+    --------
+    >>> from tcarod.models.grasp import TABLE1_MASSES_KG, TABLE1_PAPER_PREDICTIONS_C, force_line
+    >>> slope, intercept = force_line(TABLE1_MASSES_KG, TABLE1_PAPER_PREDICTIONS_C)
+    >>> round(slope * 1e3, 3), round(intercept, 1)    # [mN/C], [C]
+    (0.209, 72.3)
+    """
     f = [m * gravity / (mu * fingers) for m in masses_kg]
     t = [float(x) for x in temperatures_c]
     if len(f) != len(t) or len(f) < 2:
@@ -303,10 +384,37 @@ def blocked_force_curve(
     normal: Sequence[float] = GRASP_NORMAL,
     steps: int = 100,
 ) -> list[float]:
-    """Contact force [N] of one finger at each temperature [C] (ascending):
-    zero up to ``contact_temperature_c`` (the fingertip closes freely until
+    """Contact force [N] of one finger at each temperature [C] (ascending).
+
+    Zero up to ``contact_temperature_c`` (the fingertip closes freely until
     it touches the object there), then the blocked-tip force at the free
-    tip position at contact (direct mixed solve, warm-started)."""
+    tip position at contact (direct mixed solve, warm-started).
+
+    Parameters
+    ----------
+    finger : Robot
+        The finger design, e.g. :func:`table1_finger`.
+    contact_temperature_c : float
+        Temperature [C] at which the freely closing fingertip touches the object.
+    temperatures_c : sequence of float
+        Temperatures [C], ascending.
+    normal : sequence of 3 float
+        Direction [-] the fingertip presses in (world frame).
+    steps : int
+        RK4 steps [-] per solve.
+
+    Returns
+    -------
+    list of float
+        Contact force [N] at each temperature (``>= 0``).
+
+    Examples
+    --------
+    >>> from tcarod.models.grasp import blocked_force_curve, table1_finger
+    >>> forces = blocked_force_curve(table1_finger(), 72.33, [60.0, 100.0, 140.0], steps=30)
+    >>> [round(f * 1e3, 2) for f in forces]           # [mN]: no contact below 72.33 C
+    [0.0, 15.95, 44.93]
+    """
     tc = float(contact_temperature_c)
     n = len(finger.actuators)
     point = tuple(float(x) for x in finger.solve([tc] * n, steps=steps).tip_position)
@@ -327,9 +435,44 @@ def _temperature_of(solve: Callable[_P, Grasp]) -> Callable[_P, float]:
     through the ``ParamSpec``, to type checkers."""
 
     def grasp_temperature(*args: _P.args, **kwargs: _P.kwargs) -> float:
-        """Grip temperature [C] for ``mass_kg`` [kg]: ``mu n F(T) = m g`` (eq 44)
-        solved on the blocked-tip finger, i.e. ``grasp(...).temperature_c``;
-        the parameters are :func:`grasp`'s."""
+        """Grip temperature [C] for ``mass_kg`` [kg]: ``mu n F(T) = m g`` (eq 44).
+
+        Solved on the blocked-tip finger, i.e. ``grasp(...).temperature_c``;
+        the parameters are :func:`grasp`'s.
+
+        Parameters
+        ----------
+        mass_kg : float
+            Mass held [kg].
+        finger : Robot, optional
+            The finger design (default: the Table I finger).
+        mu : float
+            Friction coefficient [-] between fingertip and object.
+        fingers : int
+            Number of identical fingers [-].
+        gravity : float
+            Gravitational acceleration [m/s^2].
+        **kwargs
+            ``normal`` [-], ``groups``, ``fixed_inputs`` (inputs in C),
+            ``method``, ``increments``, ``steps``, ``tol`` and
+            ``contact_temperature_c`` [C], as for :func:`grasp`.
+
+        Returns
+        -------
+        float
+            The grip temperature [C].
+
+        Raises
+        ------
+        ValueError
+            For bad arguments, or if no temperature in the material's range
+            holds the mass (the message gives the largest blocked force [N]).
+
+        Examples
+        --------
+        >>> round(tcarod.grasp_temperature(0.001, steps=30), 1)   # 1 g, Table I fingers [C]
+        46.4
+        """
         return solve(*args, **kwargs).temperature_c
 
     grasp_temperature.__qualname__ = "grasp_temperature"

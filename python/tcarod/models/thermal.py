@@ -1,40 +1,33 @@
 """Voltage to temperature: a lumped electro-thermal model of a Joule-heated TCA.
-Robots driven by voltages (steady states, quasi-static shape trajectories) are
-in :mod:`tcarod.models.trajectory`; the plots in :mod:`tcarod.plotting`.
+Robots driven by voltages (steady states, quasi-static shape trajectories) are in :mod:`tcarod.models.trajectory`;
+the plots in :mod:`tcarod.plotting`.
 
-Model (``thermal_model.m`` of the code released with Sun & Zhao, IEEE T-RO
-38(2), 2022; see ``docs/choices.md``, Sources)::
+Model (``thermal_model.m`` of the code released with Sun & Zhao, IEEE T-RO 38(2), 2022; see ``docs/choices.md``,
+Sources)::
 
     m c_p dT/dt = V^2 / R - h A (T - T_amb)
 
-* ``m = density x threads x pi r^2 l`` [kg]: the threads' volume (``r`` the
-  thread radius, 0.1 mm for the paper's 0.2 mm Shieldex thread; ``l`` the
-  twisted-fibre length);
+* ``m = density x threads x pi r^2 l`` [kg]: the threads' volume (``r`` the thread radius, 0.1 mm for the paper's
+  0.2 mm Shieldex thread; ``l`` the twisted-fibre length);
 * ``A = threads x 2 pi r l`` [m^2]: the threads' lateral surface;
 * ``density = 1127 kg/m^3``, ``c_p = 2000 J/(kg K)``, ``h = 23 W/(m^2 K)``.
 
-The time constant ``m c_p / (h A) = density c_p r / (2 h)`` does not depend on
-the length or the number of threads: 4.90 s with these coefficients, not the
-"about 3-4 s" quoted with them. (The source code computes its mass as
-``density^2 V / 1000``, 1.127 times the threads' mass, from *one* fibre of
-radius ``r_t`` with three fibres' surface; its time constant is about
-``18400 r_t`` s/m, 3-4 s for ``r_t`` = 0.16-0.22 mm.) This module follows the
-coefficients as stated; pass your own to change them.
+The time constant ``m c_p / (h A) = density c_p r / (2 h)`` does not depend on the length or the number of
+threads: 4.90 s with these coefficients, not the "about 3-4 s" quoted with them. (The source code computes its
+mass as ``density^2 V / 1000``, 1.127 times the threads' mass, from *one* fibre of radius ``r_t`` with three
+fibres' surface; its time constant is about ``18400 r_t`` s/m, 3-4 s for ``r_t`` = 0.16-0.22 mm.) This module
+follows the coefficients as stated; pass your own to change them.
 
-Resistance is a **required** input, with no default: a TCA's resistance
-depends on the thread, the number of threads, the twist and the coiling, and
-changes with temperature and strain (the paper's refs [24], [25] use that
-change for self-sensing). Measure it, or take the linear resistance of the
-thread from its datasheet (Shieldex publishes ohms per metre for its
-silver-coated nylon threads) times the fibre length divided by the number of
-threads in parallel. Give it as a constant [ohm], a :class:`LinearResistance`
-``R0 (1 + alpha_R (T - T_ref) + k_strain strain)``, or any callable
-``R(temperature_c, strain) -> ohm``. Constant resistance and piecewise-constant
-voltage give exact exponentials; otherwise a fixed-step RK4 integrates.
+Resistance is a **required** input, with no default: a TCA's resistance depends on the thread, the number of
+threads, the twist and the coiling, and changes with temperature and strain (the paper's refs [24], [25] use that
+change for self-sensing). Measure it, or take the linear resistance of the thread from its datasheet (Shieldex
+publishes ohms per metre for its silver-coated nylon threads) times the fibre length divided by the number of
+threads in parallel. Give it as a constant [ohm], a :class:`LinearResistance` ``R0 (1 + alpha_R (T - T_ref) +
+k_strain strain)``, or any callable ``R(temperature_c, strain) -> ohm``. Constant resistance and
+piecewise-constant voltage give exact exponentials; otherwise a fixed-step RK4 integrates.
 
-Temperatures are never clipped: a steady state above the material's ``t_max``
-raises ``ValueError``; a transient that exceeds it is reported
-(:attr:`TemperatureTrajectory.exceeds_t_max_at_s`).
+Temperatures are never clipped: a steady state above the material's ``t_max`` raises ``ValueError``; a transient
+that exceeds it is reported (:attr:`TemperatureTrajectory.exceeds_t_max_at_s`).
 """
 
 from __future__ import annotations
@@ -117,9 +110,14 @@ def _in_range(name: str, value: object) -> float:
 class LinearResistance:
     """``R = r0_ohm (1 + alpha_per_c (T - t_ref_c) + strain_coefficient strain)`` [ohm].
 
-    ``strain`` is the TCA's elongation over its coiled length [-]. All
-    coefficients are the user's (measured); none has a default value in the
-    literature that would fit every TCA.
+    ``strain`` is the TCA's elongation over its coiled length [-]. All coefficients are the user's (measured); none
+    has a default value in the literature that would fit every TCA.
+
+    Examples
+    --------
+    >>> from tcarod.models.thermal import LinearResistance
+    >>> LinearResistance(10.0, alpha_per_c=0.001)(125.0)   # 10 ohm at 25 C, at 125 C [ohm]
+    11.0
     """
 
     r0_ohm: float
@@ -139,7 +137,12 @@ class LinearResistance:
 
     @property
     def is_constant(self) -> bool:
-        """True if neither temperature nor strain changes it."""
+        """Whether the resistance is constant.
+
+        Returns
+        -------
+        bool
+            ``True`` if neither temperature [C] nor strain [-] changes it."""
         return self.alpha_per_c == 0.0 and self.strain_coefficient == 0.0
 
 
@@ -148,8 +151,17 @@ Resistance = Union[float, LinearResistance, Callable[[float, float], float]]
 
 @dataclass(frozen=True)
 class VoltageProfile:
-    """Piecewise-constant voltage: ``voltages_v[k]`` [V] from ``times_s[k]`` [s]
-    until ``times_s[k+1]`` (the last one holds on). ``times_s[0]`` is the start."""
+    """Piecewise-constant voltage [V] over time [s].
+
+    ``voltages_v[k]`` [V] from ``times_s[k]`` [s] until ``times_s[k+1]`` (the last holds on); ``times_s[0]`` starts.
+
+    Examples
+    --------
+    >>> from tcarod.models.thermal import VoltageProfile
+    >>> p = VoltageProfile.step(2.0, at_s=1.0)          # 2 V from 1 s on
+    >>> p(0.5), p(3.0)                                  # [V] at 0.5 s and 3 s
+    (0.0, 2.0)
+    """
 
     times_s: tuple[float, ...]
     voltages_v: tuple[float, ...]
@@ -183,8 +195,18 @@ class VoltageProfile:
 
 @dataclass(frozen=True, eq=False)
 class TemperatureTrajectory:
-    """Temperature [C] of one TCA at ``time_s`` [s], with the voltage [V] and
-    Joule power [W] at those instants."""
+    """Temperature [C] of one TCA at ``time_s`` [s], with the voltage [V] and Joule power [W].
+
+    What :meth:`ThermalModel.transient` returns: one value of each array per output time.
+
+    Examples
+    --------
+    >>> from tcarod.models.thermal import ThermalModel, VoltageProfile
+    >>> tca = ThermalModel(fibre_length_m=0.15, threads=2, resistance=20.0)   # [m], [-], [ohm]
+    >>> tr = tca.transient(VoltageProfile.step(5.0), [0.0, 5.0, 30.0])        # 5 V [V], times [s]
+    >>> tr.temperature_c.round(1), tr.exceeds_t_max_at_s                      # [C], [s]
+    (array([ 25. , 209.4, 312.7]), 5.0)
+    """
 
     time_s: FloatArray
     temperature_c: FloatArray
@@ -195,7 +217,12 @@ class TemperatureTrajectory:
 
     @property
     def exceeds_t_max_at_s(self) -> float | None:
-        """First sample time [s] above the material's ``t_max`` [C], or ``None``."""
+        """First sample time [s] above the material's ``t_max`` [C].
+
+        Returns
+        -------
+        float or None
+            The time [s], or ``None`` if the temperature stays within ``t_max_c``."""
         over = np.nonzero(self.temperature_c > self.t_max_c)[0]
         return None if over.size == 0 else float(self.time_s[over[0]])
 
@@ -204,16 +231,20 @@ class TemperatureTrajectory:
 class ThermalModel:
     """Lumped electro-thermal model of one Joule-heated TCA (see the module docstring).
 
-    ``fibre_length_m``: twisted-fibre length ``l`` [m] (``Tca.fibre_length``);
-    ``threads``: number of threads twisted together; ``resistance``: [ohm],
-    required (see the module docstring). Temperatures in C, times in s. A
-    missing required argument raises ``TypeError`` naming it, its meaning and
-    its unit.
+    ``fibre_length_m``: twisted-fibre length ``l`` [m] (``Tca.fibre_length``); ``threads``: number of threads
+    twisted together; ``resistance``: [ohm], required (see the module docstring). Temperatures in C, times in s. A
+    missing required argument raises ``TypeError`` naming it, its meaning and its unit.
 
-    Coefficients and a constant ``resistance`` within :data:`RANGES`, ``threads``
-    1..10,000, ``ambient_c`` -273.15..1e6 C (``ValueError`` outside, naming the
-    argument, its unit and the range); an ``ambient_c`` above 273 C warns
-    with ``tcarod.UnitsWarning`` (Kelvin given as Celsius?).
+    Coefficients and a constant ``resistance`` within :data:`RANGES`, ``threads`` 1..10,000, ``ambient_c``
+    -273.15..1e6 C (``ValueError`` outside, naming the argument, its unit and the range); an ``ambient_c`` above
+    273 C warns with ``tcarod.UnitsWarning`` (Kelvin given as Celsius?).
+
+    Examples
+    --------
+    >>> from tcarod.models.thermal import ThermalModel
+    >>> tca = ThermalModel(fibre_length_m=0.15, threads=2, resistance=20.0)   # [m], [-], [ohm]
+    >>> round(tca.time_constant_s, 2), round(tca.steady_temperature(3.0), 1)  # [s], [C] at 3 V
+    (4.9, 128.8)
     """
 
     fibre_length_m: float = _REQUIRED
@@ -277,33 +308,63 @@ class ThermalModel:
     # -- lumped parameters ---------------------------------------------------
     @property
     def mass_kg(self) -> float:
-        """Threads' mass ``density x threads x pi r^2 l`` [kg]."""
+        """Threads' mass ``density x threads x pi r^2 l`` [kg].
+
+        Returns
+        -------
+        float
+            The mass [kg]."""
         return self.density_kg_per_m3 * self.threads * math.pi * self.thread_radius_m**2 * self.fibre_length_m
 
     @property
     def area_m2(self) -> float:
-        """Cooled surface ``threads x 2 pi r l`` [m^2]."""
+        """Cooled surface ``threads x 2 pi r l`` [m^2].
+
+        Returns
+        -------
+        float
+            The lateral surface [m^2]."""
         return self.threads * 2.0 * math.pi * self.thread_radius_m * self.fibre_length_m
 
     @property
     def heat_capacity_j_per_k(self) -> float:
-        """``m c_p`` [J/K]."""
+        """Heat capacity ``m c_p`` [J/K].
+
+        Returns
+        -------
+        float
+            The heat capacity [J/K]."""
         return self.mass_kg * self.specific_heat_j_per_kgk
 
     @property
     def conductance_w_per_k(self) -> float:
-        """``h A`` [W/K]."""
+        """Convective conductance ``h A`` [W/K].
+
+        Returns
+        -------
+        float
+            The conductance [W/K]."""
         return self.heat_transfer_w_per_m2k * self.area_m2
 
     @property
     def time_constant_s(self) -> float:
-        """``m c_p / (h A)`` [s] (with constant resistance the response is ``1 - exp(-t/tau)``)."""
+        """Time constant ``tau = m c_p / (h A)`` [s].
+
+        Returns
+        -------
+        float
+            With constant resistance the response is ``1 - exp(-t/tau)`` [s]."""
         ha = self.conductance_w_per_k
         return self.heat_capacity_j_per_k / ha if ha > 0.0 else math.inf
 
     @property
     def constant_resistance(self) -> bool:
-        """True if the resistance depends on neither temperature nor strain."""
+        """Whether the resistance is constant.
+
+        Returns
+        -------
+        bool
+            ``True`` if it depends on neither temperature [C] nor strain [-]."""
         r: Any = self.resistance
         return (isinstance(r, (numbers.Real, np.number)) and not callable(r)) or (
             isinstance(r, LinearResistance) and r.is_constant
@@ -341,8 +402,9 @@ class ThermalModel:
 
     # -- steady state ----------------------------------------------------------
     def steady_temperature(self, voltage_v: float, strain: float = 0.0) -> float:
-        """Steady temperature [C] under ``voltage_v`` [V]: ``T_amb + V^2 / (R h A)``
-        (solved for ``T`` if ``R`` depends on it). ``ValueError`` above ``t_max_c``."""
+        """Steady temperature [C] under ``voltage_v`` [V].
+
+        ``T_amb + V^2 / (R h A)`` (solved for ``T`` if ``R`` depends on it). ``ValueError`` above ``t_max_c``."""
         v = V.real("voltage_v", voltage_v, unit="V")
         strain = V.real("strain", strain)
         ha = self.conductance_w_per_k
@@ -373,7 +435,8 @@ class ThermalModel:
         return t
 
     def steady_voltage(self, temperature_c: float, strain: float = 0.0) -> float:
-        """Voltage [V] that holds ``temperature_c`` [C] in steady state:
+        """Voltage [V] that holds ``temperature_c`` [C] in steady state.
+
         ``sqrt((T - T_amb) h A R(T))``. ``ValueError`` outside ``[T_amb, t_max]``."""
         t = V.real("temperature_c", temperature_c, unit="C")
         if not self.ambient_c <= t <= self.t_max_c:
@@ -395,17 +458,16 @@ class ThermalModel:
         strain: float = 0.0,
         max_step_s: float | None = None,
     ) -> TemperatureTrajectory:
-        """Temperature [C] at ``times_s`` [s] (increasing, from ``profile.times_s[0]``)
-        starting from ``initial_c`` (default ambient). Exact exponentials for a
-        constant resistance; otherwise RK4 with steps of at most ``max_step_s``
-        (default ``tau / 200``), restarted at every voltage switch.
+        """Temperature [C] at ``times_s`` [s] under a voltage ``profile`` [V].
 
-        Bounded work: at most ``MAX_TRANSIENT_SAMPLES`` (1,000,000) output
-        times, evaluated vectorised with a constant resistance (about 0.1 s
-        per million); with a resistance that depends on temperature or strain,
-        at most ``MAX_TRANSIENT_RK4_STEPS`` (100,000) RK4 steps, every output
-        time taking at least one (``ValueError`` beyond either, naming the
-        argument and the bound); ``initial_c`` within [-273.15, 1e6] C."""
+        ``times_s`` increase from ``profile.times_s[0]``; the TCA starts from ``initial_c`` [C] (default ambient).
+        Exact exponentials for a constant resistance; otherwise RK4 with steps of at most ``max_step_s`` (default
+        ``tau / 200``), restarted at every voltage switch.
+
+        Bounded work: at most ``MAX_TRANSIENT_SAMPLES`` (1,000,000) output times, evaluated vectorised with a
+        constant resistance (about 0.1 s per million); with a resistance that depends on temperature or strain, at
+        most ``MAX_TRANSIENT_RK4_STEPS`` (100,000) RK4 steps, every output time taking at least one (``ValueError``
+        beyond either, naming the argument and the bound); ``initial_c`` within [-273.15, 1e6] C."""
         V.instance("profile", profile, VoltageProfile, "a VoltageProfile")
         t_out = V.real_array("times_s", times_s, ndim=1, max_size=MAX_TRANSIENT_SAMPLES, unit="s")
         if t_out.size == 0 or np.any(np.diff(t_out) < 0.0) or t_out[0] < profile.times_s[0]:

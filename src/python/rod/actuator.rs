@@ -25,8 +25,10 @@ type ActuatorArgs = (
     Option<f64>,
 );
 
-/// A string-like actuator embedded in the body. Build with `Actuator.tca`,
-/// `Actuator.tendon` (constant tension) or `Actuator.linear_tendon`.
+/// A string-like actuator embedded in the body.
+///
+/// Build with `Actuator.tca`, `Actuator.tendon` (constant tension) or
+/// `Actuator.linear_tendon`.
 ///
 /// Sign conventions: tensions [N] are positive when the actuator pulls its
 /// anchors together (negative: it pushes); elongations [m] are the
@@ -42,6 +44,16 @@ type ActuatorArgs = (
 /// body then deforms under it, so the equilibrium tension is lower). This is
 /// the paper's constant length ratio `L_i` (eq 18), which `length_ratio` sets
 /// directly. Value object: immutable, `==`, picklable.
+///
+/// Examples
+/// --------
+/// >>> tca = tcarod.Tca(0.15, 0.04, 0.0017, 38.2)     # l, L, D [m], N [turns]
+/// >>> a = tcarod.Actuator.tca(tca, tcarod.Routing.straight(0.003, 0.0))
+/// >>> a.kind, a.input_name, a.input_bounds           # input range [C]
+/// ('tca', 'temperature [C]', (25.0, 160.0))
+/// >>> t = tcarod.Actuator.tendon(tcarod.Routing.straight(0.003, 0.0), s_end=0.05)
+/// >>> t.input_name, t.s_end                          # anchored at 50 mm [m]
+/// ('tension [N]', 0.05)
 #[pyclass(name = "Actuator", module = "tcarod._core", frozen, eq, hash)]
 #[derive(Clone)]
 pub struct PyActuator {
@@ -87,8 +99,10 @@ hash_by_text!(PyActuator, |a| a.identity());
 
 #[pymethods]
 impl PyActuator {
-    /// A TCA whose input is its temperature [C], anchored from `s_start` [m]
-    /// to `s_end` [m] (`None`: the tip). `length_ratio`: the paper's constant
+    /// A TCA whose input is its temperature [C].
+    ///
+    /// Anchored from `s_start` [m] to `s_end` [m] (`None`: the tip).
+    /// `length_ratio`: the paper's constant
     /// `L_i` [-] (eq 18; default: computed pointwise so that the reference
     /// shape is unstrained). `pretension_n`: tension [N] the TCA carries at the
     /// reference temperature in the undeformed body (needed for contraction
@@ -123,9 +137,11 @@ impl PyActuator {
         )?)
         .warn_units()
     }
-    /// A tendon whose input is its tension [N] (>= 0), anchored from
-    /// `s_start` [m] to `s_end` [m] (`None`: the tip); `length_ratio` [-] as
-    /// for `Actuator.tca` (irrelevant to the force of a constant-tension tendon).
+    /// A tendon whose input is its tension [N] (>= 0).
+    ///
+    /// Anchored from `s_start` [m] to `s_end` [m] (`None`: the tip);
+    /// `length_ratio` [-] as for `Actuator.tca` (irrelevant to the force of a
+    /// constant-tension tendon).
     #[staticmethod]
     #[pyo3(signature = (routing, s_start=Real(0.0), s_end=None, length_ratio=None),
         text_signature = "(routing, s_start=0.0, s_end=None, length_ratio=None)")]
@@ -144,8 +160,9 @@ impl PyActuator {
         )?)
         .warn_units()
     }
-    /// An elastic tendon of `stiffness` [N/m] whose input is the length [m]
-    /// pulled in at the base; anchors and `length_ratio` as for `Actuator.tca`.
+    /// An elastic tendon of `stiffness` [N/m] whose input is the length [m] pulled in at the base.
+    ///
+    /// Anchors [m] and `length_ratio` [-] as for `Actuator.tca`.
     #[staticmethod]
     #[pyo3(signature = (stiffness, routing, s_start=Real(0.0), s_end=None, length_ratio=None),
         text_signature = "(stiffness, routing, s_start=0.0, s_end=None, length_ratio=None)")]
@@ -170,12 +187,22 @@ impl PyActuator {
         }
         .warn_units()
     }
-    /// Pre-tension [N] at the reference temperature (`Actuator.tca(..., pretension_n=...)`), or `None`.
+    /// Pre-tension [N] at the reference temperature.
+    ///
+    /// Returns
+    /// -------
+    /// float or None
+    ///     The `pretension_n` [N] given to `Actuator.tca`, or `None`.
     #[getter]
     fn pretension_n(&self) -> Option<f64> {
         self.inner.pretension
     }
-    /// Tendon stiffness [N/m] of a linear tendon, else `None`.
+    /// Tendon stiffness [N/m] of a linear tendon.
+    ///
+    /// Returns
+    /// -------
+    /// float or None
+    ///     The stiffness [N/m]; `None` for a TCA or a constant-tension tendon.
     #[getter]
     fn stiffness(&self) -> Option<f64> {
         self.stiffness
@@ -196,49 +223,97 @@ impl PyActuator {
         );
         reduce_with(py, "_restore_actuator", args)
     }
-    /// `"tca"`, `"tension"` or `"linear_tendon"`.
+    /// Which law the actuator follows.
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     `"tca"`, `"tension"` or `"linear_tendon"` (no unit).
     #[getter]
     fn kind(&self) -> &'static str {
         self.inner.law.kind()
     }
-    /// Name and unit of the input, e.g. `"temperature [C]"`.
+    /// Name and unit of the input.
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     `"temperature [C]"`, `"tension [N]"` or `"pull [m]"`.
     #[getter]
     fn input_name(&self) -> &'static str {
         self.inner.law.input_name()
     }
-    /// `(lowest, highest)` valid input (temperature [C] for TCAs, tension [N], pull [m]).
+    /// Range of valid inputs.
+    ///
+    /// Returns
+    /// -------
+    /// tuple of 2 float
+    ///     `(lowest, highest)` input: temperature [C] for TCAs, tension [N],
+    ///     pull [m].
     #[getter]
     fn input_bounds(&self) -> (f64, f64) {
         self.inner.law.input_bounds()
     }
-    /// Input of the passive (reference) state (ambient temperature [C] for TCAs).
+    /// Input of the passive (reference) state.
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     Ambient temperature [C] for a TCA, zero tension [N] or pull [m] for a
+    ///     tendon.
     #[getter]
     fn reference_input(&self) -> f64 {
         self.inner.law.reference_input()
     }
-    /// Body-frame path (`Routing`).
+    /// Body-frame path of the actuator.
+    ///
+    /// Returns
+    /// -------
+    /// Routing
+    ///     Its offsets [m] from the centre line.
     #[getter]
     fn routing(&self) -> PyRouting {
         PyRouting {
             inner: self.inner.routing,
         }
     }
-    /// Proximal anchor [m] (0: the base).
+    /// Proximal anchor [m].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     Arc length [m] of the anchor nearer the base (0: the base).
     #[getter]
     fn s_start(&self) -> f64 {
         self.inner.s_start
     }
-    /// Distal anchor [m]; `inf` means the tip.
+    /// Distal anchor [m].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     Arc length [m] of the anchor nearer the tip; `inf` means the tip.
     #[getter]
     fn s_end(&self) -> f64 {
         self.inner.s_end
     }
-    /// The paper's constant length ratio `L_i` [-] (eq 18), or `None` (pointwise from the reference shape; `pretension_n` sets it when the robot is built).
+    /// The paper's constant length ratio `L_i` [-] (eq 18).
+    ///
+    /// Returns
+    /// -------
+    /// float or None
+    ///     `L_i` [-], or `None`: computed pointwise from the reference shape
+    ///     (`pretension_n` sets it when the robot is built).
     #[getter]
     fn length_ratio(&self) -> Option<f64> {
         self.inner.length_ratio
     }
-    /// The TCA (`Tca`) of a TCA actuator, else `None`.
+    /// The TCA of a TCA actuator.
+    ///
+    /// Returns
+    /// -------
+    /// Tca or None
+    ///     Its geometry [m] and material; `None` for a tendon.
     #[getter]
     fn tca_model(&self) -> Option<PyTca> {
         self.inner.law.tca().map(|t| PyTca { inner: t.clone() })

@@ -69,6 +69,17 @@ fn weightless_warning(body: &Body) -> Option<String> {
 /// `density` but no `gravity` argument (it would be weightless; pass
 /// `gravity`, zero if that is meant). Value object:
 /// immutable, `==`, hashable, picklable; `repr` is a constructor call.
+///
+/// Examples
+/// --------
+/// >>> section = tcarod.Section.circle(0.01)                   # [m]
+/// >>> body = tcarod.Body(0.1, section, 5e4, density=1040.0, gravity=(0, 0, -9.81))
+/// >>> body.shear_modulus                                      # E / (2 (1 + 0.5)) [Pa]
+/// 16666.666666666668
+/// >>> body.distributed_load.round(4)                          # psi A g [N/m]
+/// array([ 0.    ,  0.    , -0.8013])
+/// >>> body.replace(length=0.05).length                        # [m]
+/// 0.05
 #[pyclass(name = "Body", module = "tcarod._core", frozen, eq, hash)]
 #[derive(Clone, PartialEq)]
 pub struct PyBody {
@@ -149,8 +160,7 @@ impl PyBody {
         Ok(b.get().clone())
     }
 
-    /// A body of a catalogued silicone: `Body.from_material(name, length,
-    /// section, **kwargs)`.
+    /// A body of a catalogued silicone: `Body.from_material(name, length, section, **kwargs)`.
     ///
     /// `name` is one of `Body.materials()` (`"ecoflex-00-10"`,
     /// `"ecoflex-00-30"`, `"ecoflex-00-50"`, `"dragon-skin-10"`,
@@ -196,8 +206,9 @@ impl PyBody {
         Ok(b.get().clone())
     }
 
-    /// The catalogued silicones of `Body.from_material`, one dict per
-    /// material in catalogue order: `name`, `label`, `youngs_modulus` [Pa]
+    /// The catalogued silicones of `Body.from_material`.
+    ///
+    /// One dict per material in catalogue order: `name`, `label`, `youngs_modulus` [Pa]
     /// (small-strain Young's modulus used by the model), `modulus_basis`
     /// (which modulus and how it was obtained), `modulus_100` [Pa] (the
     /// manufacturer's stress at 100 % elongation, `None` if not published),
@@ -247,11 +258,21 @@ impl PyBody {
     }
 
     /// Length of the centre line [m].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     The arc length [m] from base to tip.
     #[getter]
     fn length(&self) -> f64 {
         self.inner.length
     }
     /// The cross-section (`Section`).
+    ///
+    /// Returns
+    /// -------
+    /// Section
+    ///     Its sizes [m].
     #[getter]
     fn section(&self) -> PySection {
         PySection {
@@ -259,21 +280,41 @@ impl PyBody {
         }
     }
     /// Young's modulus E_B [Pa].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     The body's Young's modulus [Pa].
     #[getter]
     fn youngs_modulus(&self) -> f64 {
         self.inner.youngs_modulus
     }
     /// Shear modulus G_B [Pa].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     Given, or `E_B / (2 (1 + poisson))` [Pa].
     #[getter]
     fn shear_modulus(&self) -> f64 {
         self.inner.shear_modulus
     }
     /// Density [kg/m^3].
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     The body's density psi [kg/m^3] (0: massless).
     #[getter]
     fn density(&self) -> f64 {
         self.inner.density
     }
     /// Total distributed force `psi A g + f` [N/m], world frame.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape `(3,)`: weight per length plus `distributed_force` [N/m].
     #[getter]
     fn distributed_load<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vec3(py, &self.inner.distributed_load())
@@ -287,6 +328,11 @@ impl PyBody {
         (mat3(py, &a), mat3(py, &b))
     }
     /// Shear coefficient [-] (Timoshenko).
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     The factor [-] on the shear stiffness `G A` (1 as in the paper).
     #[getter]
     fn shear_coefficient(&self) -> f64 {
         self.inner.shear_coefficient
@@ -302,14 +348,15 @@ impl PyBody {
 
 hash_by_text!(PyBody, |b| body_repr(&b.inner));
 
+// Each docstring: a summary, then a numpydoc `Returns` section.
 vec3_getters!(PyBody {
-    nu_star => "Reference linear strain `nu*` [-] (body frame), shape `(3,)`.",
-    omega_star => "Reference angular strain `omega*` [1/m] (body frame), shape `(3,)`.",
-    gravity => "Gravitational acceleration [m/s^2] (world frame), shape `(3,)`.",
-    tip_force => "Force applied to the tip [N] (world frame), shape `(3,)`.",
-    tip_moment => "Moment applied to the tip [N m] (world frame), shape `(3,)`.",
-    distributed_moment => "Distributed moment [N m/m] (world frame), shape `(3,)`.",
-    distributed_force => "Distributed force [N/m] besides gravity (world frame), shape `(3,)`."
+    nu_star => "Reference linear strain `nu*` [-], body frame.\n\nReturns\n-------\nnumpy.ndarray\n    Shape `(3,)`: the strain [-] of the unloaded body.",
+    omega_star => "Reference angular strain `omega*` [1/m], body frame.\n\nReturns\n-------\nnumpy.ndarray\n    Shape `(3,)`: the curvature and twist [1/m] of the unloaded body.",
+    gravity => "Gravitational acceleration [m/s^2], world frame.\n\nReturns\n-------\nnumpy.ndarray\n    Shape `(3,)`: the acceleration [m/s^2] acting on the body's density.",
+    tip_force => "Force applied to the tip [N], world frame.\n\nReturns\n-------\nnumpy.ndarray\n    Shape `(3,)`: the tip force [N].",
+    tip_moment => "Moment applied to the tip [N m], world frame.\n\nReturns\n-------\nnumpy.ndarray\n    Shape `(3,)`: the tip moment [N m].",
+    distributed_moment => "Distributed moment [N m/m], world frame.\n\nReturns\n-------\nnumpy.ndarray\n    Shape `(3,)`: the moment per length [N m/m].",
+    distributed_force => "Distributed force [N/m] besides gravity, world frame.\n\nReturns\n-------\nnumpy.ndarray\n    Shape `(3,)`: the force per length [N/m]."
 });
 
 /// Constructor call of a body, defaults left out (round-trips with `eval`).

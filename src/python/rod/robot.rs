@@ -26,6 +26,17 @@ use crate::rod::{Actuator, Robot};
 /// is waived). Value object: immutable, `==`
 /// (two identically built robots are equal), picklable, so it travels to
 /// process pools and Dask workers.
+///
+/// Examples
+/// --------
+/// >>> body = tcarod.Body(0.05, tcarod.Section.circle(0.01), 5e4)   # [m], [m], [Pa]
+/// >>> tendon = tcarod.Actuator.tendon(tcarod.Routing.straight(0.003, 0.0))
+/// >>> robot = tcarod.Robot(body, [tendon])
+/// >>> robot.reference_inputs[0]                       # passive input: zero tension [N]
+/// 0.0
+/// >>> sol = robot.solve([0.01], steps=20)             # pull with 10 mN
+/// >>> round(float(sol.tip_position[0]) * 1e3, 2)     # tip x [mm]: bent towards the tendon
+/// 1.52
 #[pyclass(name = "Robot", module = "tcarod._core", frozen, subclass, eq, hash)]
 #[derive(Clone)]
 pub struct PyRobot {
@@ -60,23 +71,43 @@ impl PyRobot {
             actuators,
         })
     }
-    /// The soft body (`Body`).
+    /// The soft body.
+    ///
+    /// Returns
+    /// -------
+    /// Body
+    ///     Its geometry [m], material [Pa, kg/m^3] and loads.
     #[getter]
     fn body(&self) -> PyBody {
         self.body.clone()
     }
-    /// The actuators (list of `Actuator`), in input order.
+    /// The actuators, in input order.
+    ///
+    /// Returns
+    /// -------
+    /// list of Actuator
+    ///     One per input of `solve` (temperature [C], tension [N], pull [m]).
     #[getter]
     fn actuators(&self) -> Vec<PyActuator> {
         self.actuators.clone()
     }
-    /// `True` if the actuators run through spacer disks outside the section
-    /// (the routing- and coil-inside-the-section rule waived).
+    /// Whether the actuators run through spacer disks outside the section.
+    ///
+    /// Returns
+    /// -------
+    /// bool
+    ///     `True`: the routing- and coil-inside-the-section rule is waived.
     #[getter]
     fn spacer_disks(&self) -> bool {
         self.inner.spacer_disks
     }
-    /// Passive inputs: ambient temperature [C] for TCAs, zero tension [N] / pull [m] for tendons.
+    /// Passive inputs of the actuators.
+    ///
+    /// Returns
+    /// -------
+    /// list of float
+    ///     Ambient temperature [C] for TCAs, zero tension [N] / pull [m] for
+    ///     tendons, in input order.
     #[getter]
     fn reference_inputs(&self) -> Vec<f64> {
         self.inner.reference_inputs()
@@ -178,8 +209,10 @@ impl PyRobot {
         crate::python::stability::solve_policy(py, slf, &q, &opts, warm, policy)
     }
 
-    /// Solve along rows of `inputs` (shape `(k, n_actuators)`, at most
-    /// 10,000,000 rows), each warm-started from the previous one. Returns a
+    /// Solve along rows of `inputs`, each warm-started from the previous one.
+    ///
+    /// `inputs` has shape `(k, n_actuators)` (at most 10,000,000 rows; units
+    /// as for `solve`). Returns a
     /// list of `Solution`. Options as for `solve`; `stability`: `"report"`
     /// (default: every solution carries its verdict, one warning names the
     /// unstable rows), `"require"` (raise at the first unstable row),

@@ -48,8 +48,22 @@ macro_rules! by_kind {
     };
 }
 
-/// Cross-section of a body. Build with `Section.circle`, `Section.rectangle`
-/// or `Section.custom`.
+/// Cross-section of a body (sizes in m).
+///
+/// Build with `Section.circle`, `Section.rectangle` or `Section.custom`.
+/// Value object: immutable, `==`, hashable, picklable; `repr` is the
+/// constructor call.
+///
+/// Examples
+/// --------
+/// >>> s = tcarod.Section.circle(0.01)                 # 10 mm diameter [m]
+/// >>> s
+/// Section.circle(diameter=0.01)
+/// >>> area, ix, iy, j = s.properties                  # [m^2], [m^4]
+/// >>> round(area * 1e6, 2), round(ix * 1e12, 1)       # [mm^2], [mm^4]
+/// (78.54, 490.9)
+/// >>> tcarod.Section.rectangle(0.02, 0.01).edge_distance(0.0)   # along body x [m]
+/// 0.01
 #[pyclass(name = "Section", module = "tcarod._core", frozen, eq, hash)]
 #[derive(Clone, PartialEq)]
 pub struct PySection {
@@ -79,7 +93,13 @@ impl PySection {
             inner: Section::custom(area.0, ix.0, iy.0, j.0)?,
         })
     }
-    /// `(area [m^2], ix [m^4], iy [m^4], j [m^4])`.
+    /// Area, second moments and torsion constant of the section.
+    ///
+    /// Returns
+    /// -------
+    /// tuple of 4 float
+    ///     `(area [m^2], ix [m^4], iy [m^4], j [m^4])`: second moments about
+    ///     body x and y, torsion constant.
     #[getter]
     fn properties(&self) -> (f64, f64, f64, f64) {
         self.inner.properties()
@@ -98,9 +118,17 @@ by_kind!(
     PySection,
     section_repr,
     "_restore_section",
-    "Constructor keywords, exactly as given: `{\"diameter\": ..}` [m], `{\"width\": .., \"height\": ..}` [m] \
-     or `{\"area\": .. [m^2], \"ix\", \"iy\", \"j\": .. [m^4]}`.",
-    "`\"circle\"`, `\"rectangle\"` or `\"custom\"`."
+    "Constructor keywords, exactly as given.\n\n\
+     Returns\n\
+     -------\n\
+     dict of str to float\n    \
+     `{\"diameter\": ..}` [m], `{\"width\": .., \"height\": ..}` [m] or \
+     `{\"area\": .. [m^2], \"ix\", \"iy\", \"j\": .. [m^4]}`.",
+    "Which constructor built the section.\n\n\
+     Returns\n\
+     -------\n\
+     str\n    \
+     `\"circle\"`, `\"rectangle\"` or `\"custom\"` (no unit)."
 );
 
 /// `Section.circle(diameter=...)` etc. in Python syntax.
@@ -119,6 +147,19 @@ pub(crate) fn restore_section(kind: &str, values: Vec<Real>) -> PyResult<PySecti
 }
 
 /// Body-frame path of an actuator: `Routing.straight(x, y)` or `Routing.helix(radius, rate, phase)`.
+///
+/// Offsets [m] from the centre line in the cross-section's body frame.
+/// Value object: immutable, `==`, hashable, picklable.
+///
+/// Examples
+/// --------
+/// >>> r = tcarod.Routing.straight(0.004, 0.0)         # 4 mm off the centre line [m]
+/// >>> r.kind, r.parameters
+/// ('straight', {'x': 0.004, 'y': 0.0})
+/// >>> h = tcarod.Routing.helix(0.004, 10.0)           # radius [m], rate [rad/m]
+/// >>> r_s, dr_s, ddr_s = h.evaluate(0.0)              # [m], [-], [1/m] at s = 0
+/// >>> r_s
+/// array([0.004, 0.   , 0.   ])
 #[pyclass(name = "Routing", module = "tcarod._core", frozen, eq, hash)]
 #[derive(Clone, PartialEq)]
 pub struct PyRouting {
@@ -127,15 +168,17 @@ pub struct PyRouting {
 
 #[pymethods]
 impl PyRouting {
-    /// Parallel to the centre line at body-frame offset `(x, y)` [m]. An
-    /// offset above 1 m looks like millimetres and warns with
+    /// Parallel to the centre line at body-frame offset `(x, y)` [m].
+    ///
+    /// An offset above 1 m looks like millimetres and warns with
     /// `tcarod.UnitsWarning` (4 mm is 0.004 m).
     #[staticmethod]
     fn straight(py: Python<'_>, x: Real, y: Real) -> PyResult<Self> {
         PyRouting::checked(py, Routing::straight(x.0, y.0)?)
     }
-    /// Helix of `radius` [m] turning at `rate` [rad/m] from angle `phase`
-    /// [rad]. A radius above 1 m looks like millimetres and warns with
+    /// Helix of `radius` [m] turning at `rate` [rad/m] from angle `phase` [rad].
+    ///
+    /// A radius above 1 m looks like millimetres and warns with
     /// `tcarod.UnitsWarning`.
     #[staticmethod]
     #[pyo3(signature = (radius, rate, phase=Real(0.0)), text_signature = "(radius, rate, phase=0.0)")]
@@ -178,9 +221,17 @@ by_kind!(
     PyRouting,
     routing_repr,
     "_restore_routing",
-    "Constructor keywords, exactly as given: `{\"x\": .., \"y\": ..}` [m] or \
+    "Constructor keywords, exactly as given.\n\n\
+     Returns\n\
+     -------\n\
+     dict of str to float\n    \
+     `{\"x\": .., \"y\": ..}` [m] or \
      `{\"radius\": .. [m], \"rate\": .. [rad/m], \"phase\": .. [rad]}`.",
-    "`\"straight\"` or `\"helix\"`."
+    "Which constructor built the routing.\n\n\
+     Returns\n\
+     -------\n\
+     str\n    \
+     `\"straight\"` or `\"helix\"` (no unit)."
 );
 
 /// `Routing.straight(x=..., y=...)` etc. in Python syntax.
