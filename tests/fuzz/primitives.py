@@ -215,7 +215,12 @@ GROUPS = st.one_of(st.just([0, 0]), st.just([0, 0]), st.lists(fint(0, 2), min_si
 #: case), dicts with any keys and values, or a wrong type.
 FIXED_INPUTS = st.one_of(
     st.just({1: 25.0}),
-    st.dictionaries(fint(-1, 2), st.one_of(TEMP, bad_type), max_size=3),
+    # keys: actuator indices, out of range or of the wrong (hashable) type
+    st.dictionaries(
+        st.one_of(st.integers(-1, 2), st.sampled_from(["0", 1.5, True, None, 2**70])),
+        st.one_of(TEMP, bad_type),
+        max_size=3,
+    ),
     bad_type,
 )
 VEC3_POS = fvec(3, -0.05, 0.05)
