@@ -443,18 +443,25 @@ fn check_increments(robot: &Robot, groups: &Groups, force: f64, increments: usiz
     Ok(())
 }
 
-/// Valid `groups` with exactly one actuation variable, and a finite force.
-fn one_variable_and_force(robot: &Robot, groups: &Groups, force: f64) -> Result<()> {
+/// Valid `groups` with exactly one actuation variable, which `what` (a
+/// blocked-force temperature, or its peak) is solved for.
+pub(super) fn one_variable(robot: &Robot, groups: &Groups, what: &str) -> Result<()> {
     groups.validate(robot)?;
     if groups.n_vars() != 1 {
         return Err(Error::input(
             "groups",
             format!(
-                "a blocked-force temperature needs exactly one actuation variable, got {} (share one with groups = [0, 0, ...], or hold the other actuators with fixed_inputs)",
+                "a {what} needs exactly one actuation variable, got {} (share one with groups = [0, 0, ...], or hold the other actuators with fixed_inputs)",
                 groups.n_vars()
             ),
         ));
     }
+    Ok(())
+}
+
+/// Valid `groups` with exactly one actuation variable, and a finite force.
+fn one_variable_and_force(robot: &Robot, groups: &Groups, force: f64) -> Result<()> {
+    one_variable(robot, groups, "blocked-force temperature")?;
     crate::error::finite("force [N]", force)?;
     Ok(())
 }

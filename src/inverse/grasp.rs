@@ -233,16 +233,7 @@ fn sweep(
     start: &Solution,
     opts: &SolveOptions,
 ) -> Result<Sweep> {
-    groups.validate(robot)?;
-    if groups.n_vars() != 1 {
-        return Err(Error::input(
-            "groups",
-            format!(
-                "a blocked-force peak needs exactly one actuation variable, got {}",
-                groups.n_vars()
-            ),
-        ));
-    }
+    super::blocked::one_variable(robot, groups, "blocked-force peak")?;
     let quiet = block.with_stability(Policy::Off)?;
     let (_, hi) = groups.bounds(robot)[0];
     let z0 = groups.vars(&start.inputs)[0].min(hi);
