@@ -294,13 +294,12 @@ pub(super) fn integrate_pass(
     let (v0, u0) = base_strains(eq.unknowns, len);
     let n = robot.n_states();
     let mut march = March::new(bound, n, nz, len, actuators);
-    let along = eq
-        .along
-        .map(|sol| recorded_states(robot, sol, eq.steps))
-        .transpose()?;
+    if let Some(sol) = eq.along {
+        check_grid(robot, sol, eq.steps)?;
+    }
     let tan = spec.integrate_tangent_hooked(&v0, &u0, &seeds, &mut |i, y, c, m| {
-        if let Some(r) = along.as_ref().and_then(|r| r.get(i * n..(i + 1) * n)) {
-            restart(y, r);
+        if let Some(sol) = eq.along {
+            restart(y, sol, i);
         }
         march.at_node(i, c, m)
     })?;
@@ -325,10 +324,9 @@ pub(super) fn integrate_pass(
     Ok((pass, tan.ivp))
 }
 
-/// The states of the recorded solution `sol` at its nodes, flat
-/// (`n_states` per node, as the IVP's): position, the rotation's
-/// quaternion, strains and elongations. `steps` must be the solution's grid.
-fn recorded_states(robot: &Robot, sol: &Solution, steps: usize) -> Result<Vec<f64>> {
+/// `sol` is recorded on the grid of `steps` steps (one state per node of
+/// the pass).
+fn check_grid(robot: &Robot, sol: &Solution, steps: usize) -> Result<()> {
     let nodes = Grid::new(robot, steps).tip() + 1;
     if sol.steps != steps || sol.s.len() != nodes {
         return Err(Error::input(
@@ -336,34 +334,35 @@ fn recorded_states(robot: &Robot, sol: &Solution, steps: usize) -> Result<Vec<f6
             format!("a solution on the grid of {steps} steps ({nodes} nodes)"),
         ));
     }
-    let n = robot.n_states();
-    let mut out = Vec::with_capacity(n * nodes);
-    for k in 0..nodes {
-        let q = UnitQuaternion::from_matrix(&sol.rotations[k]);
-        out.extend(sol.positions[k].iter());
-        out.extend([q.w, q.i, q.j, q.k]);
-        out.extend(sol.nu[k].iter().chain(sol.omega[k].iter()));
-        out.extend(sol.elongation_profile.row(k).iter());
-    }
-    Ok(out)
+    Ok(())
 }
 
-/// Continue the pass from the recorded state `r` instead of its own `y`;
-/// the quaternion's sign is `y`'s (`q` and `-q` are one rotation, and the
-/// tangent lanes are those of `y`'s sign). Where the pass is on the
-/// recorded state already (positions, strains and elongations equal, as
-/// on a solution of this very IVP) it goes on from its own: the recorded
-/// rotation is a matrix, and reading it back as a quaternion would cost a
-/// rounding error, so the verdict of such a solution stays its IVP's bit
-/// for bit.
-fn restart(y: &mut [f64], r: &[f64]) {
-    if (0..3).chain(7..y.len()).all(|j| y[j] == r[j]) {
+/// Continue the pass at node `k` from the recorded state of `sol` there
+/// (position, the rotation's quaternion, strains, elongations) instead of
+/// its own `y`. Where the pass is on the recorded state already (positions,
+/// strains and elongations equal, as on a solution of this very IVP) it
+/// goes on from its own: the recorded rotation is a matrix, and reading it
+/// back as a quaternion would cost a rounding error (and the work of the
+/// conversion), so the verdict of such a solution stays its IVP's bit for
+/// bit. The quaternion's sign is `y`'s (`q` and `-q` are one rotation, and
+/// the tangent lanes are those of `y`'s sign).
+fn restart(y: &mut [f64], sol: &Solution, k: usize) {
+    let (p, v, u) = (&sol.positions[k], &sol.nu[k], &sol.omega[k]);
+    let delta = sol.elongation_profile.row(k);
+    let others = (p.iter().chain(v.iter()).chain(u.iter())).chain(delta.iter());
+    let own = (y[0..3].iter()).chain(&y[7..]);
+    if own.zip(others).all(|(a, b)| a == b) {
         return;
     }
-    let dot: f64 = (3..7).map(|j| y[j] * r[j]).sum();
+    let q = UnitQuaternion::from_matrix(&sol.rotations[k]);
+    let dot = y[3] * q.w + y[4] * q.i + y[5] * q.j + y[6] * q.k;
     let sign = if dot < 0.0 { -1.0 } else { 1.0 };
-    y.copy_from_slice(r);
-    y[3..7].iter_mut().for_each(|x| *x *= sign);
+    y[0..3].copy_from_slice(p.as_slice());
+    y[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k].map(|x| sign * x));
+    let rest = v.iter().chain(u.iter()).chain(delta.iter());
+    for (x, r) in y[7..].iter_mut().zip(rest) {
+        *x = *r;
+    }
 }
 
 impl Pass {
