@@ -4,8 +4,10 @@
 //! to Numerical Continuation Methods*, SIAM 2003, ch. 2). The branch is
 //! parametrised by arclength in `|z|_w^2 = |x|^2 / n + w^2 lambda^2`,
 //! `z = (x, lambda)` (the `1/n` makes it independent of a field's grid, as in
-//! AUTO). From a point `z` with unit tangent `t` the Euler predictor `z + s t`
-//! is corrected by Newton's method on `[G; <t, z' - z - s t>_w] = 0` (its first
+//! AUTO). From a point `z` with unit tangent `t` the predictor `z_p` at arc
+//! length `s` (the Euler step `z + s t`, or for a homotopy the cubic Hermite
+//! extrapolation of the last two points and their tangents, [`Predictor`]) is
+//! corrected by Newton's method on `[G; <t, z' - z_p>_w] = 0` (its first
 //! step here, the rest by [`nleq::solve`], NLEQ-ERR), whose Jacobian, `G`'s
 //! bordered by `<t, .>_w`, is regular at a fold. A fold is the sign change of
 //! the tangent's `lambda` component, located on the cubic Hermite interpolant
@@ -14,7 +16,11 @@
 //!
 //! The step is adapted from the corrector's first contraction `Theta_0`
 //! (Deuflhard, *Newton Methods for Nonlinear Problems*, Springer 2004,
-//! sec. 5.1) within the bounds of Allgower & Georg ch. 6. A step that crosses
+//! sec. 5.1), which grows as the predictor's error, `O(s^2)` for the Euler
+//! step and `O(s^4)` for the Hermite one, within the bounds of Allgower &
+//! Georg ch. 6. On strongly bent branches the Hermite predictor takes steps
+//! several times longer for the same `Theta_0`; the tangent predictor's
+//! shorter steps resolve every fold with points on both sides. A step that crosses
 //! the target `lambda` is ended by a corrector at `lambda = target` (bordering
 //! row `e_lambda`) from the linear interpolation of its two points.
 
@@ -94,6 +100,11 @@ pub trait ParametrisedSystem {
     }
     /// Work spent so far, in the system's own unit (e.g. IVPs).
     fn work(&self) -> f64;
+    /// The interval of `lambda` on which `G` is the system's own; a path
+    /// stops where an accepted point leaves it. Unbounded by default.
+    fn domain(&self) -> (f64, f64) {
+        (f64::NEG_INFINITY, f64::INFINITY)
+    }
 }
 
 /// The direction in which the branch is followed from its start.
@@ -104,6 +115,21 @@ pub enum Heading {
     TowardTarget,
     /// `lambda` first moves away from the target, reached after a fold.
     AwayFromTarget,
+}
+
+/// The predictor of each step ([`ArclengthOptions::predictor`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Predictor {
+    /// The tangent (Euler) step `z + s t`, error `O(s^2)`: the step shrinks
+    /// with the branch's curvature, so every fold is resolved by points on
+    /// both sides (branch following, where the points matter).
+    #[default]
+    Tangent,
+    /// The cubic Hermite extrapolation of the last two points and their
+    /// tangents ([`hermite`]), error `O(s^4)`: steps several times longer on
+    /// strongly bent branches, which may step over a pair of folds narrower
+    /// than a step (a homotopy, where only the end matters).
+    Hermite,
 }
 
 /// Options of [`follow`].
@@ -127,6 +153,8 @@ pub struct ArclengthOptions {
     pub lambda_weight: f64,
     /// The direction taken from the start.
     pub heading: Heading,
+    /// The predictor of each step after the first (the first is the tangent's).
+    pub predictor: Predictor,
 }
 
 impl Default for ArclengthOptions {
@@ -138,6 +166,7 @@ impl Default for ArclengthOptions {
             max_step: 1.0,
             max_steps: 1000,
             max_work: f64::INFINITY,
+            predictor: Predictor::Tangent,
             deadline: None,
             lambda_weight: 1.0,
             heading: Heading::TowardTarget,
@@ -251,6 +280,7 @@ pub fn follow_with_events<S: ParametrisedSystem + ?Sized>(
         work0,
         failed: None,
         rejected_theta: None,
+        prev: None,
     };
     let mut stop = (lambda0 == target).then_some(Stop::ReachedTarget);
     while stop.is_none() {
@@ -588,15 +618,37 @@ fn start<S: ParametrisedSystem + ?Sized>(
     Ok(first)
 }
 
-/// Factor of the next step from the first contraction `theta` (Deuflhard
-/// sec. 5.1.3) within `[1/MAX_FACTOR, MAX_FACTOR]`: `MAX_FACTOR` at
-/// `theta = 0` (a predictor within tolerance), `1/MAX_FACTOR` for NaN.
-fn step_factor(theta: f64) -> f64 {
+/// The cubic Hermite interpolant of a branch through `a` and `b` (points
+/// and unit tangents, `h` apart in arc length) at arc length `s` beyond
+/// `b`. On a smooth branch its error is `O(s^4)` for `s ~ h`, against the
+/// tangent predictor's `O(s^2)` (the interpolant reproduces the branch's
+/// Taylor expansion at `b` through the cubic term up to the interpolation
+/// error of `z''` over `[a, b]`; Allgower & Georg, *Introduction to
+/// Numerical Continuation Methods*, SIAM 2003, sec. 6.1 and 9.2; the fold
+/// estimate of [`Walk::fold`] interpolates `lambda` the same way). Both
+/// points are converged solutions, so extrapolating them amplifies only
+/// their tolerance-sized errors.
+fn hermite(a: (&[f64], &[f64]), b: (&[f64], &[f64]), h: f64, s: f64) -> Vec<f64> {
+    let u = 1.0 + s / h;
+    let (u2, u3) = (u * u, u * u * u);
+    let (h00, h01) = (2.0 * u3 - 3.0 * u2 + 1.0, -2.0 * u3 + 3.0 * u2);
+    let (h10, h11) = ((u3 - 2.0 * u2 + u) * h, (u3 - u2) * h);
+    let ((z0, t0), (z1, t1)) = (a, b);
+    (0..z1.len())
+        .map(|i| h00 * z0[i] + h10 * t0[i] + h01 * z1[i] + h11 * t1[i])
+        .collect()
+}
+
+/// Factor of the next step from the first contraction `theta` of a
+/// predictor whose error is `O(s^order)` (Deuflhard sec. 5.1.3: `Theta_0`
+/// grows as that error) within `[1/MAX_FACTOR, MAX_FACTOR]`: `MAX_FACTOR`
+/// at `theta = 0` (a predictor within tolerance), `1/MAX_FACTOR` for NaN.
+fn step_factor(theta: f64, order: i32) -> f64 {
     let g = |t: f64| (1.0 + 4.0 * t).sqrt() - 1.0;
     if theta.is_nan() {
         return 1.0 / MAX_FACTOR;
     }
-    let factor = (g(THETA_TARGET) / g(theta)).sqrt();
+    let factor = (g(THETA_TARGET) / g(theta)).powf(1.0 / f64::from(order));
     factor.clamp(1.0 / MAX_FACTOR, MAX_FACTOR)
 }
 
@@ -616,6 +668,8 @@ struct Walk<'o> {
     failed: Option<f64>,
     /// `Theta_0` of the last step rejected for it since the last point.
     rejected_theta: Option<f64>,
+    /// The point before `at`, its unit tangent and the arc length between.
+    prev: Option<(Vec<f64>, Vec<f64>, f64)>,
 }
 
 impl Walk<'_> {
@@ -640,6 +694,11 @@ impl Walk<'_> {
         if lp * ln > 0.0 {
             self.accept(next, fold);
             self.s = (self.s * factor).clamp(self.opts.min_step, self.opts.max_step);
+            let (lo, hi) = sys.domain();
+            if !(lo..=hi).contains(&l1) {
+                let why = format!("it leaves the system's domain {lo} <= lambda <= {hi}");
+                return Err(self.error(StopReason::Other, &why));
+            }
             return match self.fire(events) {
                 None => self.check_closed(),
                 stop => Ok(stop),
@@ -652,22 +711,23 @@ impl Walk<'_> {
         Ok(Some(self.fire(events).unwrap_or(Stop::ReachedTarget)))
     }
 
-    /// The Euler predictor `z + s t` corrected on the hyperplane
-    /// `<t, z' - z - s t>_w = 0`, with its tangent and the factor of the next
-    /// step; `None` if the step was rejected.
+    /// The predictor ([`Self::predictor`]) corrected on the hyperplane
+    /// `<t, z' - z_p>_w = 0` through it, with its tangent and the factor of
+    /// the next step; `None` if the step was rejected.
     fn trial<S>(&mut self, sys: &mut S) -> Result<Option<(Found, f64)>>
     where
         S: ParametrisedSystem + ?Sized,
     {
-        let (z, t, tol) = (&self.at.z, &self.at.t, self.opts.tol);
-        let pred: Vec<f64> = z.iter().zip(t).map(|(z, t)| z + self.s * t).collect();
+        let (t, tol) = (&self.at.t, self.opts.tol);
+        let pred = self.predictor();
         let (row, at, fix) = (self.metric.row(t), pred.clone(), false);
         let mut aug = Augmented { sys, row, at, fix };
         let Some((z1, theta, r1, d1)) = first_step(&mut aug, &pred, tol, self.metric)? else {
             return self.reject(1.0 / MAX_FACTOR);
         };
         // Past `THETA_REJECT` the step is retried shorter, which on a smooth
-        // branch divides `Theta_0` by four. If halving the step did not halve
+        // branch divides `Theta_0` by four at least (`2^p` for a predictor
+        // whose error is `O(s^p)`). If halving the step did not halve
         // it, a kink of a piecewise-smooth `G` lies ahead (the predictor's
         // error is `O(s)` there, and the wrong piece's Jacobian keeps
         // `Theta_0` large): the corrector goes on, and its point is taken
@@ -689,7 +749,7 @@ impl Walk<'_> {
                 Ok(x) => x,
                 Err(best) => {
                     self.note(best.or(Some(r1)));
-                    return self.reject(step_factor(theta).min(1.0 / MAX_FACTOR));
+                    return self.reject(step_factor(theta, self.order()).min(1.0 / MAX_FACTOR));
                 }
             }
         };
@@ -697,8 +757,30 @@ impl Walk<'_> {
             return self.reject_theta(theta, r1);
         }
         match tangent(aug.sys, x, &aug.row, self.metric)? {
-            Some(next) => Ok(Some((next, step_factor(theta)))),
+            Some(next) => Ok(Some((next, step_factor(theta, self.order())))),
             None => self.reject(1.0 / MAX_FACTOR),
+        }
+    }
+
+    /// The predictor's error order `p` (error `O(s^p)`): 4 for the cubic
+    /// Hermite extrapolation once there is a previous point, 2 for the
+    /// tangent (Euler) predictor.
+    fn order(&self) -> i32 {
+        match (self.opts.predictor, &self.prev) {
+            (Predictor::Hermite, Some(_)) => 4,
+            _ => 2,
+        }
+    }
+
+    /// The predictor at arc length `s` beyond the last point: with
+    /// [`Predictor::Hermite`] after the first step, the cubic Hermite
+    /// interpolant of the last two points and their tangents, extrapolated
+    /// ([`hermite`]); else `z + s t`.
+    fn predictor(&self) -> Vec<f64> {
+        let (z, t, s) = (&self.at.z, &self.at.t, self.s);
+        match (self.order(), &self.prev) {
+            (4, Some((z0, t0, h))) => hermite((z0, t0), (z, t), *h, s),
+            _ => z.iter().zip(t).map(|(z, t)| z + s * t).collect(),
         }
     }
 
@@ -734,12 +816,7 @@ impl Walk<'_> {
         if !(d0 * d1 < 0.0) {
             return None;
         }
-        // The step's arclength: an arc whose tangents turn by `phi` is
-        // `phi / (2 sin(phi / 2))` times its chord.
-        let phi = self.metric.dot(&self.at.t, &next.t).clamp(-1.0, 1.0).acos();
-        let half = 0.5 * phi;
-        let arc = if phi > 1e-8 { half / half.sin() } else { 1.0 };
-        let h = arc * self.metric.distance(&next.z, &self.at.z);
+        let h = self.arc_length(next);
         let (m0, m1) = (h * d0, h * d1);
         let slope = |u: f64| {
             6.0 * u * (u - 1.0) * (l0 - l1)
@@ -757,6 +834,15 @@ impl Walk<'_> {
         Some(h00 * l0 + u * (1.0 - u) * (1.0 - u) * m0 + (1.0 - h00) * l1 + u * u * (u - 1.0) * m1)
     }
 
+    /// The arc length from the last point to `next`: an arc whose tangents
+    /// turn by `phi` is `phi / (2 sin(phi / 2))` times its chord.
+    fn arc_length(&self, next: &Found) -> f64 {
+        let phi = self.metric.dot(&self.at.t, &next.t).clamp(-1.0, 1.0).acos();
+        let half = 0.5 * phi;
+        let arc = if phi > 1e-8 { half / half.sin() } else { 1.0 };
+        arc * self.metric.distance(&next.z, &self.at.z)
+    }
+
     fn accept(&mut self, next: Found, fold: Option<f64>) {
         let step = self.metric.distance(&next.z, &self.at.z);
         let path = &mut self.path;
@@ -767,7 +853,10 @@ impl Walk<'_> {
         path.steps += 1;
         path.residual = next.residual;
         path.folds.extend(fold.map(|lf| (lf, path.steps)));
-        (self.at, self.failed, self.rejected_theta) = (next, None, None);
+        let arc = self.arc_length(&next);
+        let old = std::mem::replace(&mut self.at, next);
+        self.prev = Some((old.z, old.t, arc));
+        (self.failed, self.rejected_theta) = (None, None);
     }
 
     /// Records the best residual of a failed corrector.
@@ -782,7 +871,7 @@ impl Walk<'_> {
             self.rejected_theta = Some(theta);
         }
         self.note(Some(r1));
-        self.reject(step_factor(theta))
+        self.reject(step_factor(theta, self.order()))
     }
 
     /// A rejected step: retried `factor` times as long, unless below `min_step`.

@@ -588,3 +588,136 @@ fn starts_and_arguments() {
     );
     assert!(matches!(r, Err(Error::InvalidInput { .. })), "{r:?}");
 }
+
+/// The Hermite predictor's error on the unit circle `(cos a, sin a)`, from
+/// points `h` apart extrapolated by `h`, falls as `h^4` (Taylor: the cubic
+/// interpolant's extrapolation error is `z''''(xi) (u^2 (u - 1)^2 / 4!) h^4`
+/// at `u = 2`); the tangent step's as `h^2`. Halving `h` divides them by
+/// 16 and 4; the bounds 12 and 3.5 allow for the `O(h)` change of the
+/// leading coefficient over `h = 0.2 .. 0.05`.
+#[test]
+fn the_hermite_predictor_is_fourth_order() {
+    let on = |a: f64| (vec![a.cos(), a.sin()], vec![-a.sin(), a.cos()]);
+    let errors = |h: f64| {
+        let ((z0, t0), (z1, t1), (z2, _)) = (on(0.3), on(0.3 + h), on(0.3 + 2.0 * h));
+        let p = hermite((&z0, &t0), (&z1, &t1), h, h);
+        let e: Vec<f64> = z1.iter().zip(&t1).map(|(z, t)| z + h * t).collect();
+        let dist = |a: &[f64]| {
+            a.iter()
+                .zip(&z2)
+                .map(|(p, q)| (p - q).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        };
+        (dist(&p), dist(&e))
+    };
+    let mut last = errors(0.2);
+    for h in [0.1, 0.05] {
+        let now = errors(h);
+        assert!(
+            last.0 / now.0 > 12.0,
+            "Hermite at h = {h}: {last:?} -> {now:?}"
+        );
+        assert!(
+            last.1 / now.1 > 3.5,
+            "tangent at h = {h}: {last:?} -> {now:?}"
+        );
+        assert!(now.0 < 0.1 * now.1, "h = {h}: {now:?}");
+        last = now;
+    }
+}
+
+/// A path with the Hermite predictor ends where the tangent predictor's
+/// does, on every case of [`cases`]: through the circle's fold, both folds
+/// of the S-curve, Bratu's fold to its upper branch, and the Newton
+/// homotopies' turning points.
+#[test]
+fn the_hermite_predictor_reaches_the_same_ends() {
+    for mut case in cases() {
+        let tangent = options(1e-12, 1.0, case.heading);
+        let hermite = ArclengthOptions {
+            predictor: Predictor::Hermite,
+            ..tangent.clone()
+        };
+        let (name, target, sys) = (case.name, case.target, case.system.as_mut());
+        let (x0, l0) = (&case.x0, case.lambda0);
+        let a = follow(sys, x0, l0, target, &tangent, false).unwrap();
+        let b = follow(sys, x0, l0, target, &hermite, false).unwrap();
+        println!(
+            "{name:18} steps: tangent {:3}, Hermite {:3}",
+            a.steps, b.steps
+        );
+        let (ea, eb) = (a.points.last().unwrap(), b.points.last().unwrap());
+        assert_eq!(eb.lambda, target, "{name}");
+        let gap =
+            ea.x.iter()
+                .zip(&eb.x)
+                .map(|(p, q)| (p - q).abs())
+                .fold(0.0, f64::max);
+        // both ends solve G to 1e-12 at the same lambda on the same branch
+        assert!(gap < 1e-8, "{name}: ends {:?} and {:?}", ea.x, eb.x);
+    }
+}
+
+/// [`Bordered`] `S` with `G` defined on `domain` only.
+struct Within<S> {
+    inner: S,
+    domain: (f64, f64),
+}
+
+impl<S: ParametrisedSystem> ParametrisedSystem for Within<S> {
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+    fn residual(&mut self, x: &[f64], lambda: f64, f: &mut [f64]) -> Result<()> {
+        self.inner.residual(x, lambda, f)
+    }
+    fn linearise_bordered(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        row: (&[f64], f64),
+        f: &mut [f64],
+    ) -> Result<()> {
+        self.inner.linearise_bordered(x, lambda, row, f)
+    }
+    fn solve_bordered(&mut self, b: &[f64], c: f64, dx: &mut [f64], dl: &mut f64) -> Result<bool> {
+        self.inner.solve_bordered(b, c, dx, dl)
+    }
+    fn work(&self) -> f64 {
+        self.inner.work()
+    }
+    fn domain(&self) -> (f64, f64) {
+        self.domain
+    }
+}
+
+/// The S-curve from `lambda = -6` toward 6, on a system defined for
+/// `lambda <= 0.3` only: past its first fold (0.385) the branch would turn
+/// back, but the path stops at its first point beyond 0.3, with the domain
+/// in its message.
+#[test]
+fn a_path_stops_where_it_leaves_the_systems_domain() {
+    let mut sys = Within {
+        inner: Bordered::new(SCurve { c: 0.0 }),
+        domain: (-10.0, 0.3),
+    };
+    let opts = options(1e-12, 0.1, Heading::TowardTarget);
+    let (stop, residual, reason) = failure(follow(&mut sys, &[-2.0], -6.0, 6.0, &opts, false));
+    assert_eq!(stop, StopReason::Other, "{reason}");
+    assert!(residual <= 1e-12, "{reason}");
+    assert!(
+        reason.contains("leaves the system's domain -10 <= lambda <= 0.3"),
+        "{reason}"
+    );
+    let at: f64 = reason
+        .split("at lambda = ")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(at > 0.3 && at < 0.385, "{reason}");
+}

@@ -417,7 +417,23 @@ fn solve_on<'a>(
             let spent = sys.ms.work;
             let deadline = opts.time_limit.map(|t| started + t);
             let rest = remaining(opts, deadline, spent)?;
-            let (x, charts, path) = continued(robot, inputs, loads, &rest, starts, warm)?;
+            let (x, charts, path) = match continued(robot, inputs, loads, &rest, starts, warm) {
+                // The warm path's branch does not reach the target (it turns
+                // back at a fold: the body snaps through to another branch):
+                // the cold path from rest reaches an equilibrium there.
+                Err(e) if warm.is_some() && continues(&e) => {
+                    let failed = match e {
+                        crate::error::Error::NotConverged { evaluations, .. } => evaluations,
+                        _ => 0,
+                    } as f64;
+                    let rest = remaining(opts, deadline, spent + failed)?;
+                    let (x, charts, mut path) =
+                        continued(robot, inputs, loads, &rest, starts, None)?;
+                    path.work += failed;
+                    (x, charts, path)
+                }
+                out => out?,
+            };
             let ms = MultipleShooting::new(robot, inputs, *loads, opts.steps, starts, charts)?;
             let mut sys = ShootingSystem::new(ms)?;
             sys.ms.work = spent + path.work;
@@ -451,7 +467,7 @@ fn continued(
     starts: &[usize],
     warm: Option<&Solution>,
 ) -> Result<(Vec<f64>, Vec<Quaternion<f64>>, super::arclength::Path)> {
-    use super::arclength::{follow, ArclengthOptions};
+    use super::arclength::{follow, ArclengthOptions, Predictor};
     use super::homotopy::{unloaded, Endpoint, LoadPath};
     let to = Endpoint::loaded(robot, inputs, *loads);
     // (the target's segments: the path's loads are largest there)
@@ -473,8 +489,10 @@ fn continued(
         }
     };
     let mut path = LoadPath::new(robot, (from, to), opts.steps, starts.to_vec(), ms.clone());
+    // (only the path's end is wanted: the Hermite predictor's longer steps)
     let aopts = ArclengthOptions {
         tol: opts.tol,
+        predictor: Predictor::Hermite,
         max_work: opts.max_evaluations as f64,
         deadline: opts.time_limit.map(|t| std::time::Instant::now() + t),
         ..Default::default()
@@ -487,15 +505,16 @@ fn continued(
 /// The equilibrium of `robot` at `inputs` under `loads` that a loading
 /// history with an imperfection ends on: pseudo-arclength continuation
 /// ([`super::homotopy`]) from the unloaded body at rest to the loads with
-/// the tip wrench `imperfection` added, then from there to the loads
-/// alone. The imperfection selects one branch of a bifurcation on the way
-/// (a column loaded past its buckling load bends toward it instead of
-/// staying on the straight, unstable, branch; Thompson & Hunt, *A General
-/// Theory of Elastic Stability*, Wiley 1973, ch. 3) and the second path
-/// follows that branch as the imperfection is taken away. Both paths run
-/// on the coarse grid of the presolve where there is one, and [`solve`]
-/// finishes on the requested grid from there (with its accuracy
-/// control). The solution's `evaluations` count all of it.
+/// the tip wrench `imperfection` added, then the forward solve ([`solve`])
+/// of the loads alone, warm from there. The imperfection selects one branch
+/// of a bifurcation on the way (a column loaded past its buckling load
+/// bends toward it instead of staying on the straight, unstable, branch;
+/// Thompson & Hunt, *A General Theory of Elastic Stability*, Wiley 1973,
+/// ch. 3). Taking it away is a warm solve like any other: Newton from the
+/// imperfect shape, which lies on the selected branch's neighbourhood, and
+/// where Newton fails the continuation from the imperfect loads to the
+/// loads alone. The path runs on the coarse grid of the presolve where
+/// there is one; the solution's `evaluations` count all of it.
 pub fn solve_imperfect(
     robot: &Robot,
     inputs: &[f64],
@@ -509,7 +528,7 @@ pub fn solve_imperfect(
         coarse_grid(robot, loads, opts.steps, &starts).unwrap_or((opts.steps, starts));
     // a coarse IVP costs `scale` of a fine one: the budget is in fine IVPs
     let scale = steps as f64 / opts.steps as f64;
-    let mut o = SolveOptions {
+    let coarse = SolveOptions {
         steps,
         max_evaluations: (opts.max_evaluations as f64 / scale) as usize,
         ..*opts
@@ -518,31 +537,21 @@ pub fn solve_imperfect(
     let mut imperfect = *loads;
     imperfect.tip_force += imperfection.tip_force;
     imperfect.tip_moment += imperfection.tip_moment;
-    // one path to `at` (from rest, or from `from`'s loads): its end and work
-    let leg = |at: &Loads, o: &SolveOptions, from: Option<&Solution>| {
-        let (x, charts, path) = continued(robot, inputs, at, o, &starts, from)?;
-        let ms = MultipleShooting::new(robot, inputs, *at, steps, &starts, charts)?;
-        let mut sys = ShootingSystem::new(ms)?;
-        sys.ms.work = path.work;
-        let end = finish(Solved {
-            sys,
-            x,
-            iterations: path.steps,
-            residual: path.residual,
-            path: Vec::new(),
-            at_floor: path.residual > opts.tol,
-        })?;
-        Ok::<_, crate::error::Error>((end, path.work))
-    };
-    let (loaded, w1) = leg(&imperfect, &o, None)?;
-    o = remaining(&o, deadline, w1)?;
-    let (coarse, w2) = leg(loads, &o, Some(&loaded))?;
-    let work = w1 + w2;
-    // (on the requested grid too: the path's end is then Newton's solution
-    // at once, and `equilibrium_tol` is honoured the same way)
-    let spent = work * scale;
+    let (x, charts, path) = continued(robot, inputs, &imperfect, &coarse, &starts, None)?;
+    let ms = MultipleShooting::new(robot, inputs, imperfect, steps, &starts, charts)?;
+    let mut sys = ShootingSystem::new(ms)?;
+    sys.ms.work = path.work;
+    let loaded = finish(Solved {
+        sys,
+        x,
+        iterations: path.steps,
+        residual: path.residual,
+        path: Vec::new(),
+        at_floor: path.residual > opts.tol,
+    })?;
+    let spent = path.work * scale;
     let rest = remaining(opts, deadline, spent)?;
-    let mut sol = solve(robot, inputs, loads, &rest, Some(&coarse))?;
+    let mut sol = solve(robot, inputs, loads, &rest, Some(&loaded))?;
     sol.evaluations += spent.ceil() as usize;
     Ok(sol)
 }

@@ -250,6 +250,21 @@ impl ParametrisedSystem for LoadPath<'_> {
     fn work(&self) -> f64 {
         self.work
     }
+    /// Where every input `a + lambda (b - a)` lies within its law's range:
+    /// beyond, the inputs are held at the range's edge and `G` no longer
+    /// depends on `lambda` through them.
+    fn domain(&self) -> (f64, f64) {
+        let ends = self.from.inputs.iter().zip(&self.to.inputs);
+        let laws = ends.zip(&self.robot.actuators).filter(|((a, b), _)| a != b);
+        laws.fold(
+            (f64::NEG_INFINITY, f64::INFINITY),
+            |(lo, hi), ((&a, &b), act)| {
+                let (min, max) = act.law.input_bounds();
+                let (p, q) = ((min - a) / (b - a), (max - a) / (b - a));
+                (lo.max(p.min(q)), hi.min(p.max(q)))
+            },
+        )
+    }
 }
 
 /// `robot` with no load: the path's start for a cold solve, whose

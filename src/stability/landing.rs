@@ -16,8 +16,8 @@ use crate::shooting::{
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Route {
     /// Loading from rest with an imperfection, a tip wrench along the
-    /// softest mode of the start, then taking the imperfection away, both by
-    /// continuation.
+    /// softest mode of the start, by continuation, then taking the
+    /// imperfection away by a warm solve.
     Imperfection,
     /// Newton from the cold (reference) guess.
     Cold,
