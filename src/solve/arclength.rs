@@ -20,9 +20,11 @@
 //! step and `O(s^4)` for the Hermite one, within the bounds of Allgower &
 //! Georg ch. 6. On strongly bent branches the Hermite predictor takes steps
 //! several times longer for the same `Theta_0`; the tangent predictor's
-//! shorter steps resolve every fold with points on both sides. A step that crosses
-//! the target `lambda` is ended by a corrector at `lambda = target` (bordering
-//! row `e_lambda`) from the linear interpolation of its two points.
+//! shorter steps resolve every fold with points on both sides. A step that
+//! crosses the target `lambda` is ended by a corrector at `lambda = target`
+//! (bordering row `e_lambda`) from the linear interpolation of its two
+//! points. A path stops where it leaves the system's domain in `lambda`
+//! ([`ParametrisedSystem::domain`]).
 
 use std::time::Instant;
 
@@ -132,9 +134,9 @@ pub enum Predictor {
     #[default]
     Tangent,
     /// The cubic Hermite extrapolation of the last two points and their
-    /// tangents (`walk::hermite`), error `O(s^4)`: steps several times longer on
-    /// strongly bent branches, which may step over a pair of folds narrower
-    /// than a step (a homotopy, where only the end matters).
+    /// tangents (`walk::hermite`), error `O(s^4)`: steps several times
+    /// longer on strongly bent branches, which may step over a pair of folds
+    /// narrower than a step (a homotopy, where only the end matters).
     Hermite,
 }
 

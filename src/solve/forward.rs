@@ -418,9 +418,11 @@ fn solve_on<'a>(
             let deadline = opts.time_limit.map(|t| started + t);
             let rest = remaining(opts, deadline, spent)?;
             let (x, charts, path) = match continued(robot, inputs, loads, &rest, starts, warm) {
-                // The warm path's branch does not reach the target (it turns
-                // back at a fold: the body snaps through to another branch):
-                // the cold path from rest reaches an equilibrium there.
+                // The warm path does not reach the target (its branch turns
+                // back at a fold and leaves the inputs' range: the body snaps
+                // through to another branch; or its steps fall below
+                // `min_step`): the cold path from rest, which does not pass
+                // that fold, reaches an equilibrium at the target.
                 Err(e) if warm.is_some() && continues(&e) => {
                     let failed = match e {
                         crate::error::Error::NotConverged { evaluations, .. } => evaluations,

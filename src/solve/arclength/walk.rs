@@ -12,8 +12,9 @@ use crate::error::{Error, Result, StopReason};
 /// tangent predictor's `O(s^2)` (the interpolant reproduces the branch's
 /// Taylor expansion at `b` through the cubic term up to the interpolation
 /// error of `z''` over `[a, b]`; Allgower & Georg, *Introduction to
-/// Numerical Continuation Methods*, SIAM 2003, sec. 6.1 and 9.2; the fold
-/// estimate of [`Walk::fold`] interpolates `lambda` the same way). Both
+/// Numerical Continuation Methods*, SIAM 2003, ch. 6, on predictors of
+/// higher order; the fold estimate of [`Walk::fold`] interpolates `lambda`
+/// the same way). Both
 /// points are converged solutions, so extrapolating them amplifies only
 /// their tolerance-sized errors.
 pub(super) fn hermite(a: (&[f64], &[f64]), b: (&[f64], &[f64]), h: f64, s: f64) -> Vec<f64> {
