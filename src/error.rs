@@ -108,6 +108,15 @@ impl StopReason {
 pub type Result<T> = std::result::Result<T, Error>;
 
 impl Error {
+    /// The IVPs a solve spent before it failed ([`Error::NotConverged`]'s
+    /// `evaluations`); 0 for an error that reports no work.
+    pub fn evaluations(&self) -> usize {
+        match self {
+            Error::NotConverged { evaluations, .. } => *evaluations,
+            _ => 0,
+        }
+    }
+
     /// Shorthand for [`Error::InvalidParameter`].
     pub fn param(name: &str, value: f64, allowed: impl Into<String>) -> Self {
         Error::InvalidParameter {

@@ -104,11 +104,7 @@ impl Grasp {
                 match (method, sweep.restart(robot, groups, &block, force, opts)) {
                     (GraspMethod::Direct, Some(mut res)) => {
                         // the IVPs of the first Newton and of the sweep count too
-                        let failed = match e {
-                            Error::NotConverged { evaluations, .. } => evaluations,
-                            _ => 0,
-                        };
-                        res.evaluations += failed + sweep.peak.evaluations;
+                        res.evaluations += e.evaluations() + sweep.peak.evaluations;
                         res
                     }
                     _ => return Err(e),

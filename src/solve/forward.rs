@@ -424,10 +424,7 @@ fn solve_on<'a>(
                 // `min_step`): the cold path from rest, which does not pass
                 // that fold, reaches an equilibrium at the target.
                 Err(e) if warm.is_some() && continues(&e) => {
-                    let failed = match e {
-                        crate::error::Error::NotConverged { evaluations, .. } => evaluations,
-                        _ => 0,
-                    } as f64;
+                    let failed = e.evaluations() as f64;
                     let rest = remaining(opts, deadline, spent + failed)?;
                     let (x, charts, mut path) =
                         continued(robot, inputs, loads, &rest, starts, None)?;
@@ -436,19 +433,36 @@ fn solve_on<'a>(
                 }
                 out => out?,
             };
-            let ms = MultipleShooting::new(robot, inputs, *loads, opts.steps, starts, charts)?;
-            let mut sys = ShootingSystem::new(ms)?;
-            sys.ms.work = spent + path.work;
-            Ok(Solved {
-                sys,
-                x,
-                iterations: path.steps,
-                residual: path.residual,
-                path: path.points[1..].iter().map(|p| p.lambda).collect(),
-                at_floor: path.residual > opts.tol,
-            })
+            let grid = (opts.steps, starts, opts.tol);
+            let mut done = path_end(robot, inputs, *loads, grid, (x, charts, path))?;
+            done.sys.ms.work += spent;
+            Ok(done)
         }
     }
+}
+
+/// The end of a continuation `path` at the unknowns `x` with rotation
+/// charts `charts`, on `steps` RK4 steps with segments at `starts`: a
+/// solve of `robot` at `inputs` under `loads` whose work is the path's,
+/// converged to `tol` or at its floor.
+fn path_end<'a>(
+    robot: &'a Robot,
+    inputs: &'a [f64],
+    loads: Loads,
+    (steps, starts, tol): (usize, &[usize], f64),
+    (x, charts, path): (Vec<f64>, Vec<Quaternion<f64>>, super::arclength::Path),
+) -> Result<Solved<'a>> {
+    let ms = MultipleShooting::new(robot, inputs, loads, steps, starts, charts)?;
+    let mut sys = ShootingSystem::new(ms)?;
+    sys.ms.work = path.work;
+    Ok(Solved {
+        sys,
+        x,
+        iterations: path.steps,
+        residual: path.residual,
+        path: path.points[1..].iter().map(|p| p.lambda).collect(),
+        at_floor: path.residual > tol,
+    })
 }
 
 /// Whether a failed Newton solve hands over to continuation (not for
@@ -539,19 +553,10 @@ pub fn solve_imperfect(
     let mut imperfect = *loads;
     imperfect.tip_force += imperfection.tip_force;
     imperfect.tip_moment += imperfection.tip_moment;
-    let (x, charts, path) = continued(robot, inputs, &imperfect, &coarse, &starts, None)?;
-    let ms = MultipleShooting::new(robot, inputs, imperfect, steps, &starts, charts)?;
-    let mut sys = ShootingSystem::new(ms)?;
-    sys.ms.work = path.work;
-    let loaded = finish(Solved {
-        sys,
-        x,
-        iterations: path.steps,
-        residual: path.residual,
-        path: Vec::new(),
-        at_floor: path.residual > opts.tol,
-    })?;
-    let spent = path.work * scale;
+    let path = continued(robot, inputs, &imperfect, &coarse, &starts, None)?;
+    let spent = path.2.work * scale;
+    let grid = (steps, &starts[..], opts.tol);
+    let loaded = finish(path_end(robot, inputs, imperfect, grid, path)?)?;
     let rest = remaining(opts, deadline, spent)?;
     let mut sol = solve(robot, inputs, loads, &rest, Some(&loaded))?;
     sol.evaluations += spent.ceil() as usize;
