@@ -4,12 +4,10 @@
 //! baseline `benches/designs_baseline.json`.
 //!
 //! # What is run
-//! `TCAROD_SOLVER` picks the solver: `shooting` (the default,
-//! `tcarod::shooting::solve`: single shooting, its accuracy control
-//! included) or `multiple` (`tcarod::solve::forward::solve` under
-//! `Loads::of(robot)`: multiple shooting). Every solve below, cold or warm,
-//! is the chosen solver's; a warm solve is passed the previous solution as
-//! `warm`. Both read `SolveOptions::equilibrium_tol` (accuracy control).
+//! Every solve below, cold or warm, is `tcarod::shooting::solve`
+//! (multiple shooting, `docs/solver.md`); a warm solve is passed the
+//! previous solution as `warm`. It reads `SolveOptions::equilibrium_tol`
+//! (accuracy control).
 //!
 //! `TCAROD_FAMILY` picks the family: `random` (the default,
 //! `problems::random_design`) or `stress` (`problems::stress_design`, heavy
@@ -37,11 +35,9 @@
 //! (`tcarod::stability::stability`, one tangent IVP each).
 //!
 //! # What is measured
-//! IVPs are `Solution.evaluations`, each solver's own count: `shooting`
-//! counts every IVP (plain or tangent, which carries the Jacobian, on any
-//! grid) as one, `multiple` counts a tangent IVP of k directions as
-//! 1 + k/8 (rounded up), so IVP counts compare runs of one solver only.
-//! IVP-equivalents, the measure that compares the solvers, are a solve's
+//! IVPs are `Solution.evaluations`: a tangent IVP of k directions counts
+//! 1 + k/8 (rounded up), a coarse-grid IVP its share of the full grid's.
+//! IVP-equivalents, the measure that compares solvers, are a solve's
 //! CPU time over the CPU time of one plain IVP of the same design at its
 //! solution (a single-shooting IVP on the same grid, mean of 5),
 //! the median of `TCAROD_REPEAT` (default 3) such pairs, solve then IVPs,
@@ -57,7 +53,7 @@
 //!
 //! # Baseline
 //! Each seed's report is compared with its entry of the same solver, family
-//! and seed (an entry without `solver` is the `shooting` solver's) in
+//! and seed in
 //! `benches/designs_baseline.json` (or `TCAROD_BASELINE`): `REGRESSION`
 //! lines where a convergence count drops or a work quantile rises (IVP
 //! counts exactly, IVP-equivalents by more than 10 % at the median and p90,
@@ -118,49 +114,22 @@ fn reason(e: &Error) -> String {
     }
 }
 
-/// The solver a run uses (`TCAROD_SOLVER`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Solver {
-    /// `tcarod::shooting::solve`.
-    Shooting,
-    /// `tcarod::solve::forward::solve` under `Loads::of(robot)`.
-    Multiple,
-}
+/// The solver: `tcarod::shooting::solve`, multiple shooting.
+const SOLVER: SolverInfo<'static> = SolverInfo {
+    name: "multiple",
+    function: "tcarod::shooting::solve",
+    ivp_count: "a tangent IVP of k directions counts 1 + ceil(k/8)",
+    accuracy_control: true,
+};
 
-impl Solver {
-    fn info(self) -> SolverInfo<'static> {
-        match self {
-            Solver::Shooting => SolverInfo {
-                name: "shooting",
-                function: "tcarod::shooting::solve",
-                ivp_count: "every IVP, plain or tangent, counts 1",
-                accuracy_control: true,
-            },
-            Solver::Multiple => SolverInfo {
-                name: "multiple",
-                function: "tcarod::solve::forward::solve",
-                ivp_count: "a tangent IVP of k directions counts 1 + ceil(k/8)",
-                accuracy_control: true,
-            },
-        }
-    }
-
-    /// Solve `robot` at `inputs` (warm from `warm`, or cold).
-    fn solve(
-        self,
-        robot: &Robot,
-        inputs: &[f64],
-        opts: &SolveOptions,
-        warm: Option<&Solution>,
-    ) -> tcarod::Result<Solution> {
-        match self {
-            Solver::Shooting => tcarod::shooting::solve(robot, inputs, opts, warm),
-            Solver::Multiple => {
-                let loads = Loads::of(robot);
-                tcarod::solve::forward::solve(robot, inputs, &loads, opts, warm)
-            }
-        }
-    }
+/// Solve `robot` at `inputs` (warm from `warm`, or cold).
+fn solve(
+    robot: &Robot,
+    inputs: &[f64],
+    opts: &SolveOptions,
+    warm: Option<&Solution>,
+) -> tcarod::Result<Solution> {
+    tcarod::shooting::solve(robot, inputs, opts, warm)
 }
 
 /// The family of designs a run draws.
@@ -187,7 +156,6 @@ impl Family {
 
 /// The run's settings, from the environment (see the module docs).
 struct Config {
-    solver: Solver,
     family: Family,
     seeds: Vec<u64>,
     n: usize,
@@ -210,11 +178,6 @@ fn flag(name: &str) -> bool {
 
 impl Config {
     fn from_env() -> Config {
-        let solver = match std::env::var("TCAROD_SOLVER").as_deref() {
-            Err(_) | Ok("shooting") => Solver::Shooting,
-            Ok("multiple") => Solver::Multiple,
-            Ok(other) => panic!("TCAROD_SOLVER={other}: expected shooting or multiple"),
-        };
         let family = match std::env::var("TCAROD_FAMILY").as_deref() {
             Err(_) | Ok("random") => Family::Random,
             Ok("stress") => Family::Stress,
@@ -231,13 +194,7 @@ impl Config {
             opts.steps = steps;
         }
         opts.equilibrium_tol = env("TCAROD_EQUILIBRIUM_TOL");
-        assert!(
-            opts.equilibrium_tol.is_none() || solver.info().accuracy_control,
-            "TCAROD_EQUILIBRIUM_TOL: the {} solver does not read equilibrium_tol",
-            solver.info().name
-        );
         Config {
-            solver,
             family,
             seeds,
             n: env("TCAROD_DESIGNS").unwrap_or(default_n),
@@ -289,7 +246,7 @@ fn main() {
             .map(|&i| run_design(&cfg.family.design(seed, i), &cfg, &now))
             .collect();
         let run = Run {
-            solver: cfg.solver.info(),
+            solver: SOLVER,
             family: cfg.family.name(),
             seed,
             steps: cfg.opts.steps,
@@ -338,7 +295,7 @@ fn solve_one(d: &Design, cfg: &Config, now: &dyn Fn() -> f64) -> (Outcome, Optio
     let (verbose, diagnose) = (cfg.verbose, cfg.only.is_some());
     let opts = cfg.opts;
     let t0 = now();
-    let r = cfg.solver.solve(&d.robot, &d.inputs, &opts, None);
+    let r = solve(&d.robot, &d.inputs, &opts, None);
     let cpu = now() - t0;
     let result = match r {
         Ok(sol) => {
@@ -355,7 +312,7 @@ fn solve_one(d: &Design, cfg: &Config, now: &dyn Fn() -> f64) -> (Outcome, Optio
             }
             let ivp = plain_ivp_cpu(d, &d.inputs, &opts, &sol.unknowns, now);
             let ive = ivp_equivalents(d, (&d.inputs, None), cfg, (cpu, ivp), &sol, now);
-            let fine = (eq.relative > EQUILIBRIUM_TOL && cfg.solver.info().accuracy_control)
+            let fine = (eq.relative > EQUILIBRIUM_TOL && SOLVER.accuracy_control)
                 .then(|| controlled(d, cfg, now))
                 .flatten()
                 .map(|(e, cpu)| (e, cpu / ivp));
@@ -437,7 +394,7 @@ fn ivp_equivalents(
     let mut ratios = vec![cpu / ivp];
     for _ in 1..cfg.repeat {
         let t0 = now();
-        let _ = std::hint::black_box(cfg.solver.solve(&d.robot, inputs, opts, warm));
+        let _ = std::hint::black_box(solve(&d.robot, inputs, opts, warm));
         let cpu = now() - t0;
         ratios.push(cpu / plain_ivp_cpu(d, inputs, opts, &sol.unknowns, now));
     }
@@ -462,7 +419,7 @@ fn sweep(
         failed: None,
         end: None,
     };
-    let mut prev = match cfg.solver.solve(&d.robot, &reference, opts, None) {
+    let mut prev = match solve(&d.robot, &reference, opts, None) {
         Ok(s) => s,
         Err(e) => {
             out.failed = Some((0, reason(&e)));
@@ -483,7 +440,7 @@ fn sweep(
                 .collect()
         };
         let t0 = now();
-        let r = cfg.solver.solve(&d.robot, &inputs, opts, Some(&prev));
+        let r = solve(&d.robot, &inputs, opts, Some(&prev));
         let cpu = now() - t0;
         let sol = match r {
             Ok(sol) => sol,
@@ -538,6 +495,6 @@ fn controlled(d: &Design, cfg: &Config, now: &dyn Fn() -> f64) -> Option<(f64, f
         ..cfg.opts
     };
     let t0 = now();
-    let s = cfg.solver.solve(&d.robot, &d.inputs, &fo, None).ok()?;
+    let s = solve(&d.robot, &d.inputs, &fo, None).ok()?;
     Some((equilibrium(&d.robot, &s).relative, now() - t0))
 }

@@ -262,7 +262,7 @@ INTRO = """\
 | 1,000 seeded random designs solved cold and swept warm (IVPs, IVP-equivalents, equilibrium), against the committed baseline | `cargo bench --bench designs` (`TCAROD_SEED=tuning\|held-out`, `TCAROD_FAMILY=stress`, `TCAROD_DESIGNS`, `TCAROD_SWEEP=0`, `TCAROD_REPEAT`: see its module doc and [below](#held-out-solver-benchmark)) |
 | stability verdicts over the designs, cold against warm | `cargo bench --bench stability_designs` |
 | the tangent pass: hand-linearised lanes against the dual-number reference | `cargo bench --bench tangent` (`TCAROD_ROUNDS`, `TCAROD_REF=0`) |
-| solver counts and times of single cases | `cargo run --release --example solver_counts -- --compare`, `cargo run --release --example warm_counts -- --time` |
+| cold and warm solves of the speed fixtures in IVP times, interleaved, thread CPU | `cargo run --release --example fixture_costs` |
 | the inverse against a brute-force optimiser (paper, Section IV) | `python benches/inverse_vs_bruteforce.py` |
 | the NumPy/SciPy forward model against the core | `python benches/numpy_baseline.py` |
 | a 10,000-row sweep on a Dask cluster, bit for bit against serial | `python benches/dask_batch.py` (the `dask` extra) |

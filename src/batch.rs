@@ -14,9 +14,9 @@ use nalgebra::Vector3;
 use crate::error::{Error, Result};
 use crate::limits::{MAX_BATCH_ROWS, MAX_CHUNK, MAX_THREADS};
 use crate::rod::Robot;
-use crate::shooting::{assemble, solve_tip, Loads, SolveOptions, TipSolution};
+use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
 use crate::solve::cancel;
-use crate::stability::{stability_at, Equilibrium, Stability};
+use crate::stability::{stability, Stability};
 
 /// Options of [`solve_batch`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -181,12 +181,13 @@ impl<'a> ChunkOut<'a> {
     }
 
     /// Row `j` from the converged solve `s` and its verdict, if any.
-    fn set(&mut self, j: usize, s: &TipSolution, verdict: Option<&Stability>) {
+    fn set(&mut self, j: usize, s: &Solution, verdict: Option<&Stability>) {
         let na = s.tensions.len();
-        self.pos[j] = s.position.into();
+        self.pos[j] = s.tip_position().into();
+        let rotation = s.tip_rotation();
         for a in 0..3 {
             for b in 0..3 {
-                self.rot[j][3 * a + b] = s.rotation[(a, b)];
+                self.rot[j][3 * a + b] = rotation[(a, b)];
             }
         }
         self.tensions[j * na..(j + 1) * na].copy_from_slice(&s.tensions);
@@ -438,7 +439,7 @@ fn solve_chunk(
 ) -> Result<()> {
     let na = robot.actuators.len();
     let base = Loads::of(robot);
-    let mut warm: Option<TipSolution> = None;
+    let mut warm: Option<Solution> = None;
     for j in 0..out.rows() {
         let k = first + j;
         let loads = match wrenches {
@@ -454,35 +455,18 @@ fn solve_chunk(
         let q = &inputs[k * na..(k + 1) * na];
         cancel::check()?;
         let start = if opts.warm { warm.as_ref() } else { None };
-        match solve_tip(robot, q, &loads, &opts.solve, start) {
+        match solve_loaded(robot, q, &loads, &opts.solve, start) {
             Ok(s) => {
-                let verdict = if opts.stability {
-                    let eq = Equilibrium {
-                        along: None,
-                        unknowns: &s.unknowns,
-                        inputs: q,
-                        loads,
-                        steps: opts.solve.steps,
-                    };
-                    // a verdict that cannot be computed leaves the row without one (NaN margin)
-                    stability_at(robot, &eq, &[]).ok()
-                } else {
-                    None
+                // a verdict that cannot be computed leaves the row without one (NaN margin)
+                let verdict = match opts.stability {
+                    true => stability(robot, &s, &[]).ok(),
+                    false => None,
                 };
                 out.set(j, &s, verdict.as_ref());
                 if shapes {
-                    // a shape that cannot be rebuilt leaves the row without one
-                    if let Ok(full) =
-                        assemble(robot, q, &loads, &s.unknowns, opts.solve.steps, 0, 0)
-                    {
-                        out.shapes[j] = full
-                            .s
-                            .iter()
-                            .zip(&full.positions)
-                            .map(|(s, p)| [*s, p.x, p.y, p.z])
-                            .collect();
-                    }
-                    out.evals[j] += 1;
+                    out.shapes[j] = (s.s.iter().zip(&s.positions))
+                        .map(|(s, p)| [*s, p.x, p.y, p.z])
+                        .collect();
                 }
                 warm = Some(s);
             }

@@ -117,6 +117,15 @@ impl Error {
         }
     }
 
+    /// The best residual of a failed solve ([`Error::NotConverged`]);
+    /// infinite for any other error.
+    pub fn best_residual(&self) -> f64 {
+        match self {
+            Error::NotConverged { residual, .. } => *residual,
+            _ => f64::INFINITY,
+        }
+    }
+
     /// Shorthand for [`Error::InvalidParameter`].
     pub fn param(name: &str, value: f64, allowed: impl Into<String>) -> Self {
         Error::InvalidParameter {

@@ -172,8 +172,11 @@ def test_batch_result_carries_inputs_status_and_a_table() -> None:
 
 def test_failed_rows_have_status_one_and_nan_pose() -> None:
     robot = fig6_square_robot()
-    # max_iter=1 from cold starts: some rows cannot converge in one iteration
-    res = solve_batch(robot, _sweep(6), max_iter=1, chunk_size=1)
+    # a 10 N compressive tip force on the 40 mm silicone body, far past its
+    # buckling load, on every other row: no equilibrium is found there
+    w = np.zeros((6, 6))
+    w[1::2, 2] = -10.0
+    res = solve_batch(robot, _sweep(6), w, chunk_size=1)
     bad = ~res.converged
     assert bad.any()
     assert (res.status[bad] == 1).all() and np.isnan(res.tip_positions[bad]).all()
@@ -185,7 +188,7 @@ def test_failed_rows_have_status_one_and_nan_pose() -> None:
     # the repr summarises (a batch may hold millions of rows): counts, never arrays
     text = repr(res)
     assert text.startswith("<BatchResult: 6 rows") and f"converged {int(np.count_nonzero(~bad))}/6" in text, text
-    assert "[" not in text and len(text) < 300, text
+    assert "array(" not in text and len(text) < 300, text
 
 
 def test_batch_repr_and_notebook_view_summarise_without_arrays() -> None:
@@ -215,14 +218,14 @@ def test_shapes_keep_every_rows_centre_line() -> None:
     one = SQUARE.solve(SWEEP[3].tolist())
     assert np.array_equal(res.arc_length, one.s)
     assert res.positions.shape == (len(SWEEP), len(one.s), 3)
-    # the shape is rebuilt from the row's own converged unknowns: its last node is the tip
+    # the shape is the row's own solution: its last node is the tip
     assert np.array_equal(res.positions[:, -1], res.tip_positions)
     # a cold Robot.solve converges to the same equilibrium within its tol (1e-10,
     # dimensionless): the centre lines agree to far below a micrometre
     assert np.abs(res.positions[3] - one.positions).max() < 1e-9
-    # the same solves, plus exactly one IVP per converged row
+    # the same solves: every solve records its shape, at no extra IVP
     assert np.array_equal(res.tip_positions, tips.tip_positions)
-    assert np.array_equal(res.evaluations, tips.evaluations + 1)
+    assert np.array_equal(res.evaluations, tips.evaluations)
     assert tips.positions is None and tips.arc_length is None
     assert "nodes per row" in repr(res)
 

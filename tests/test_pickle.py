@@ -162,13 +162,13 @@ def test_a_pickled_solution_keeps_every_array_and_warm_starts_the_same() -> None
 
 
 def test_convergence_error_keeps_its_fields_through_pickle() -> None:
-    # a real one: one Newton iteration cannot reach 160 C from the straight guess
+    # a real one: a budget of one IVP cannot reach 160 C from the straight guess
     with pytest.raises(_core.ConvergenceError) as info:
-        SQUARE.solve([160.0, 160.0], max_iter=1)
+        SQUARE.solve([160.0, 160.0], max_evaluations=1)
     err = info.value
     back = pickle.loads(pickle.dumps(err))
     assert str(back) == str(err)
-    assert back.residual == err.residual > 0 and back.iterations == err.iterations > 0
+    assert back.residual == err.residual > 0 and back.evaluations == err.evaluations > 0
 
 
 def test_stability_and_branch_keep_every_field_through_pickle() -> None:

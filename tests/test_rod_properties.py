@@ -369,10 +369,12 @@ def test_opposite_equal_tcas_only_stretch(temperature: float, offset: float, ang
 def test_convergence_error_carries_residual_and_iterations() -> None:
     robot = FIG6.manipulators[1].robot(gravity=False)
     with pytest.raises(ConvergenceError) as info:
-        robot.solve([160.0, 160.0], max_iter=1)  # cold at 160 C needs ~4 iterations
+        robot.solve([160.0, 160.0], max_evaluations=1)  # cold at 160 C needs ~3 IVPs
     err = info.value
-    assert err.iterations >= 1
-    assert math.isfinite(err.residual) and err.residual > 1e-10
+    assert err.evaluations >= 1
+    # no full-grid residual within one IVP of the coarse grid's work: the
+    # best residual is unknown, reported as infinite (never NaN, never 0)
+    assert err.residual > 1e-10
     assert "did not converge" in str(err)
 
 

@@ -22,15 +22,13 @@ from tcarod.batch import fig6_square_robot
 
 def test_convergence_error_attributes_survive_pickle() -> None:
     robot = fig6_square_robot()
-    # one Newton iteration per solve is too few for a cold solve at 150 C
-    # (it needs 3) and for every continuation step
+    # a budget of one IVP is too little for a cold solve at 150 C (it needs 3)
     with pytest.raises(_core.ConvergenceError) as info:
-        robot.solve([150.0, 150.0], max_iter=1)
+        robot.solve([150.0, 150.0], max_evaluations=1)
     err = info.value
-    assert err.residual > 0.0 and np.isfinite(err.residual)
-    assert err.iterations >= 1
-    assert err.evaluations >= err.iterations  # every iteration integrates
-    assert err.reason == "iteration_limit"
+    assert err.residual > 0.0 and not np.isnan(err.residual)
+    assert err.evaluations >= 1
+    assert err.reason == "budget"
     back = pickle.loads(pickle.dumps(err))
     assert type(back) is _core.ConvergenceError
     assert back.residual == err.residual
@@ -113,14 +111,16 @@ def test_solution_reports_status_floor_and_path() -> None:
 
 def test_budget_bounds_a_solve() -> None:
     robot = fig6_square_robot()
-    # a cold solve at 150 C needs more than 5 IVPs
+    # a cold solve at 150 C needs about 3 IVPs (coarse ones counted in
+    # full-grid IVPs)
     with pytest.raises(_core.ConvergenceError) as info:
-        robot.solve([150.0, 150.0], max_evaluations=5)
+        robot.solve([150.0, 150.0], max_evaluations=1)
     err = info.value
     assert err.reason == "budget" and "budget" in str(err)
     # stopped at the first check past the budget: one Newton step's IVPs at most
-    assert 5 <= err.evaluations <= 8
-    assert np.isfinite(err.residual) and err.residual > 0.0
+    assert 1 <= err.evaluations <= 3
+    # the best full-grid residual, infinite where none was evaluated
+    assert err.residual > 0.0 and not np.isnan(err.residual)
     # a time limit far below one IVP's time stops it too
     with pytest.raises(_core.ConvergenceError) as info:
         robot.solve([150.0, 150.0], time_limit=1e-9)

@@ -99,9 +99,9 @@ pub(crate) struct Outcome {
     pub(crate) sweep: Option<SweepOutcome>,
 }
 
-/// The solver a run uses (`TCAROD_SOLVER`), for the report.
+/// The solver a run uses, for the report.
 pub(crate) struct SolverInfo<'a> {
-    /// `shooting` or `multiple`.
+    /// The solver's name (`multiple`).
     pub(crate) name: &'a str,
     /// The function it calls.
     pub(crate) function: &'a str,

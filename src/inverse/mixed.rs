@@ -25,7 +25,12 @@ use super::{load_scales, Block, Groups};
 use crate::error::Result;
 use crate::rod::{integrate_tangent, FlatNodes, IvpResult, Robot, TangentSeeds};
 use crate::shooting::{base_strains, residual_scales, Loads, Shot, System};
-use crate::solve::system::COARSE_JACOBIAN_MIN_STEPS;
+
+/// Fewest RK4 steps of the coarse-grid Newton Jacobian (below ten times
+/// this, the Jacobian is taken on the full grid): the coarse grid's
+/// tangents are a chord Jacobian, whose error (RK4's on ten times the
+/// step) the chord iteration contracts away.
+pub const COARSE_JACOBIAN_MIN_STEPS: usize = 10;
 
 /// RK4 steps of the coarse-grid Jacobian for `steps` (a tenth, at least
 /// [`COARSE_JACOBIAN_MIN_STEPS`]); `None`: too few steps, use the full grid.

@@ -72,8 +72,6 @@ pub const CORRECTOR_ITERATIONS: usize = 8;
 /// by a shorter step.
 pub const CORRECTOR_LAMBDA_MIN: f64 = 0.25;
 
-/// Iteration limit and smallest damping of a corrector from a predictor.
-const CORRECTOR: (usize, f64) = (CORRECTOR_ITERATIONS, CORRECTOR_LAMBDA_MIN);
 const SOLVER: &str = "pseudo-arclength continuation";
 
 /// A system `G(x, lambda) = 0` with a scalar parameter, linearised in the
@@ -163,6 +161,8 @@ pub struct ArclengthOptions {
     pub heading: Heading,
     /// The predictor of each step after the first (the first is the tangent's).
     pub predictor: Predictor,
+    /// Iterations of each corrector (default [`CORRECTOR_ITERATIONS`]).
+    pub corrector_iterations: usize,
 }
 
 impl Default for ArclengthOptions {
@@ -178,6 +178,7 @@ impl Default for ArclengthOptions {
             deadline: None,
             lambda_weight: 1.0,
             heading: Heading::TowardTarget,
+            corrector_iterations: CORRECTOR_ITERATIONS,
         }
     }
 }
@@ -501,16 +502,16 @@ type FirstStep = (Vec<f64>, f64, f64, Vec<f64>);
 /// at the predictor: each iteration one residual and one solve, no new
 /// Jacobian. The solution, or `None` where a correction fails to contract
 /// by [`THETA_REJECT`] over the last (the linear convergence of the chord
-/// iteration is then too slow to pay) or after [`CORRECTOR_ITERATIONS`].
+/// iteration is then too slow to pay) or after `iterations`.
 fn simplified<S: ParametrisedSystem + ?Sized>(
     aug: &mut Augmented<'_, S>,
     (mut z, mut d): (Vec<f64>, Vec<f64>),
-    tol: f64,
+    (tol, iterations): (f64, usize),
     metric: Metric,
 ) -> Result<Option<Vec<f64>>> {
     let mut f = vec![0.0; z.len()];
     let mut last = metric.norm(&d);
-    for _ in 0..CORRECTOR_ITERATIONS {
+    for _ in 0..iterations {
         z.iter_mut().zip(&d).for_each(|(a, b)| *a -= b);
         let ok = soft(aug.residual(&z, &mut f).map(|_| true), false)?;
         if !ok || !max_abs(&f).is_finite() {

@@ -21,7 +21,7 @@ use super::residual::Loads;
 use super::segments::segment_starts;
 use super::solution::{assemble_flat, Solution};
 use crate::error::Result;
-use crate::rod::{FlatNodes, Grid, Robot, RodState};
+use crate::rod::{Grid, Robot, RodState};
 
 /// A first guess of the multiple-shooting unknowns: the base unknowns
 /// `base` (as single shooting's) integrated segment by segment where that
@@ -110,43 +110,48 @@ pub(crate) fn newton_options(opts: &SolveOptions) -> NleqOptions {
     }
 }
 
-/// The [`Solution`] at the converged unknowns `x` of `ms`: each segment
-/// integrated once more from its block, its nodes recorded.
+/// The [`Solution`] at the converged unknowns `x` of `ms`: the nodes of
+/// the residual evaluation at `x` if it was recorded (Newton's last), else
+/// each segment integrated once more from its block; with one segment, by
+/// the single-shooting IVP from the base unknowns
+/// ([`super::solution::assemble`]), which is what rebuilds a pickled
+/// solution, so that the rebuilt one is the same bit for bit.
 pub(crate) fn assemble(
-    ms: &MultipleShooting<'_>,
+    ms: &mut MultipleShooting<'_>,
     x: &[f64],
     (iterations, evaluations): (usize, usize),
 ) -> Result<Solution> {
-    let (robot, na) = (ms.robot(), ms.robot().actuators.len());
-    let mut nodes = FlatNodes::default();
-    let mut elongation = vec![0.0; na];
-    let mut last = None;
-    let mut tau0 = Vec::new();
-    for k in 0..ms.segments() {
-        let (y, tau) = ms.block(x, k)?;
-        let spec = ms.loads().ivp(robot, &tau, ms.steps());
-        let ivp = spec.integrate_stretch_recorded(ms.stretch(k), &y, &mut nodes)?;
-        for i in (0..na).filter(|&i| ms.records(i) == k) {
-            elongation[i] = ivp.elongation[i];
+    let rec = match ms.recorded(x) {
+        Some(rec) => rec,
+        None if ms.segments() == 1 => {
+            let (robot, steps) = (ms.robot(), ms.steps());
+            let (inputs, loads, base) = (ms.inputs(), ms.loads(), ms.base(x)?);
+            let at = (iterations, evaluations);
+            return super::solution::assemble(robot, inputs, &loads, &base, steps, at.0, at.1);
         }
-        if k == 0 {
-            tau0 = tau;
+        None => {
+            let was = std::mem::replace(&mut ms.work, 0.0);
+            ms.record(true);
+            let mut f = vec![0.0; x.len()];
+            let out = ms.residual(x, &mut f);
+            ms.record(false);
+            ms.work = was;
+            out?;
+            ms.recorded(x).expect("the evaluation just recorded")
         }
-        last = Some(ivp);
-    }
-    let mut ivp = last.expect("at least one segment");
-    ivp.elongation = elongation;
+    };
+    let robot = ms.robot();
     let len = robot.body.length;
     let base = ms.base(x)?;
     let delta: Vec<f64> = base[6..].iter().map(|d| d * len).collect();
-    let r = super::residual::scaled_residual(robot, &ivp, &delta);
+    let r = super::residual::scaled_residual(robot, &rec.ivp, &delta);
     Ok(assemble_flat(
         robot,
         (ms.inputs(), &ms.loads(), &base),
         (ms.steps(), iterations, evaluations),
         r,
-        (ivp, nodes),
-        tau0,
+        (rec.ivp, rec.nodes),
+        rec.tau0,
     ))
 }
 
@@ -157,6 +162,13 @@ pub(crate) fn assemble(
 /// its Jacobian serves as the fine grid's chord Jacobian, whose steps then
 /// contract by about that relative difference each.
 pub const COARSENING: usize = 10;
+
+/// Fewest RK4 steps of the presolve's coarse grid: a body bent by up to a
+/// full turn (`kappa L <= 2 pi`) has `h kappa <= 0.63` on ten steps, where
+/// RK4's local error `(h kappa)^5 / 120` is below `1e-3`; on fewer steps
+/// a buckled or curled shape is no guess for the fine grid's (a column
+/// just past buckling, solved on 20 steps, has a coarse grid of 2).
+pub const COARSE_MIN_STEPS: usize = 10;
 
 /// The unknowns of a converged solve with their system.
 struct Solved<'a> {
@@ -188,7 +200,10 @@ pub fn solve(
     super::equilibrium::refine_with(robot, opts, sol, resolve)
 }
 
-/// [`solve`] on the grid of `opts.steps`.
+/// [`solve`] on the grid of `opts.steps`: from the solution on the
+/// coarse grid of the presolve where that grid carries the segments
+/// ([`presolved`]); where that fails, or without a coarse grid, damped
+/// Newton and continuation on the grid itself ([`solve_on`]).
 fn solve_on_grid(
     robot: &Robot,
     inputs: &[f64],
@@ -199,45 +214,48 @@ fn solve_on_grid(
     super::cancel::check()?;
     let starts = segment_starts(robot, loads, opts.steps);
     let deadline = opts.time_limit.map(|t| Instant::now() + t);
-    let mut spent = 0.0;
+    let (mut spent, mut best) = (0.0, f64::INFINITY);
     let coarse = match opts.presolve {
         true => coarse_grid(robot, loads, opts.steps, &starts),
         false => None,
     };
     if let Some((csteps, cstarts)) = coarse {
-        match presolved(
-            robot,
-            inputs,
-            loads,
-            opts,
-            csteps,
-            (&starts, &cstarts),
-            warm,
-        ) {
+        let grids = (&starts[..], &cstarts[..]);
+        match presolved(robot, inputs, loads, opts, csteps, grids, warm) {
             Ok(done) => return finish(done),
             Err((e, _)) if !continues(&e) => return Err(e),
-            Err((_, work)) => spent = work,
+            Err((e, work)) => (spent, best) = (work, e.best_residual()),
         }
     }
-    let rest = remaining(opts, deadline, spent)?;
+    let rest = remaining(opts, deadline, (spent, best))?;
     let mut done = solve_on(robot, inputs, loads, &rest, &starts, warm)?;
     done.sys.ms.work += spent;
     finish(done)
 }
 
 /// `opts` with what is left of its budget after `spent` IVPs and of its
-/// time until `deadline`; a budget error if nothing is left.
-fn remaining(opts: &SolveOptions, deadline: Option<Instant>, spent: f64) -> Result<SolveOptions> {
+/// time until `deadline`; a budget error if nothing is left, with the best
+/// full-grid residual `best` of the work spent (infinite if none was
+/// evaluated).
+fn remaining(
+    opts: &SolveOptions,
+    deadline: Option<Instant>,
+    (spent, best): (f64, f64),
+) -> Result<SolveOptions> {
     let now = Instant::now();
     let left = opts.max_evaluations.saturating_sub(spent.ceil() as usize);
     if left == 0 || deadline.is_some_and(|d| now >= d) {
+        let reason = match best.is_finite() {
+            true => "the IVP budget or the time limit was spent",
+            false => "the IVP budget or the time limit was spent before a full-grid residual",
+        };
         return Err(crate::error::Error::NotConverged {
             solver: "forward shooting",
             iterations: 0,
             evaluations: spent.ceil() as usize,
-            residual: f64::INFINITY,
+            residual: best,
             stop: crate::error::StopReason::Budget,
-            reason: "the IVP budget or the time limit was spent by the solve's first stage".into(),
+            reason: reason.into(),
         });
     }
     Ok(SolveOptions {
@@ -248,9 +266,9 @@ fn remaining(opts: &SolveOptions, deadline: Option<Instant>, spent: f64) -> Resu
 }
 
 /// The solution of a converged solve.
-fn finish(done: Solved<'_>) -> Result<Solution> {
+fn finish(mut done: Solved<'_>) -> Result<Solution> {
     let work = done.sys.ms.work.ceil() as usize;
-    let mut sol = assemble(&done.sys.ms, &done.x, (done.iterations, work))?;
+    let mut sol = assemble(&mut done.sys.ms, &done.x, (done.iterations, work))?;
     sol.residual = done.residual;
     sol.continuation_steps = done.path;
     sol.floor = nleq::NonlinearSystem::floor(&done.sys, &done.x, &[]);
@@ -312,8 +330,13 @@ fn presolved<'a>(
         .map_err(|e| (e, spent))?;
     let mut sys = ShootingSystem::with_factorisation(ms, c.sys);
     sys.ms.work = spent;
+    sys.ms.record(true);
     let mut f0 = vec![0.0; c.x.len()];
-    let rest = remaining(opts, opts.time_limit.map(|t| started + t), spent);
+    let rest = remaining(
+        opts,
+        opts.time_limit.map(|t| started + t),
+        (spent, f64::INFINITY),
+    );
     let nopts = NleqOptions {
         lambda_min: super::arclength::CORRECTOR_LAMBDA_MIN,
         ..newton_options(&rest.map_err(|e| (e, spent))?)
@@ -353,7 +376,7 @@ fn coarse_grid(
     // amplifies the decaying modes)
     let len = robot.body.length;
     let resolved = (len * super::segments::largest_rate(robot, loads)).ceil() as usize;
-    let coarse = (steps / COARSENING).max(resolved);
+    let coarse = (steps / COARSENING).max(resolved).max(COARSE_MIN_STEPS);
     if 2 * coarse > steps {
         return None;
     }
@@ -403,6 +426,7 @@ fn solve_on<'a>(
     }
     let (ms, x0) = first_guess(robot, inputs, *loads, opts.steps, (starts, &base), warm)?;
     let mut sys = ShootingSystem::new(ms)?;
+    sys.ms.record(true);
     match nleq::solve(&mut sys, &x0, &nopts, "forward shooting") {
         Ok(out) => Ok(Solved {
             sys,
@@ -413,10 +437,10 @@ fn solve_on<'a>(
             at_floor: out.status == nleq::Status::ConvergedAtFloor,
         }),
         Err(e) if !continues(&e) => Err(e),
-        Err(_) => {
-            let spent = sys.ms.work;
+        Err(e) => {
+            let (spent, best) = (sys.ms.work, e.best_residual());
             let deadline = opts.time_limit.map(|t| started + t);
-            let rest = remaining(opts, deadline, spent)?;
+            let rest = remaining(opts, deadline, (spent, best))?;
             let (x, charts, path) = match continued(robot, inputs, loads, &rest, starts, warm) {
                 // The warm path does not reach the target (its branch turns
                 // back at a fold and leaves the inputs' range: the body snaps
@@ -425,7 +449,8 @@ fn solve_on<'a>(
                 // that fold, reaches an equilibrium at the target.
                 Err(e) if warm.is_some() && continues(&e) => {
                     let failed = e.evaluations() as f64;
-                    let rest = remaining(opts, deadline, spent + failed)?;
+                    let best = best.min(e.best_residual());
+                    let rest = remaining(opts, deadline, (spent + failed, best))?;
                     let (x, charts, mut path) =
                         continued(robot, inputs, loads, &rest, starts, None)?;
                     path.work += failed;
@@ -509,6 +534,7 @@ fn continued(
     let aopts = ArclengthOptions {
         tol: opts.tol,
         predictor: Predictor::Hermite,
+        corrector_iterations: opts.max_iter.min(super::arclength::CORRECTOR_ITERATIONS),
         max_work: opts.max_evaluations as f64,
         deadline: opts.time_limit.map(|t| std::time::Instant::now() + t),
         ..Default::default()
@@ -557,7 +583,7 @@ pub fn solve_imperfect(
     let spent = path.2.work * scale;
     let grid = (steps, &starts[..], opts.tol);
     let loaded = finish(path_end(robot, inputs, imperfect, grid, path)?)?;
-    let rest = remaining(opts, deadline, spent)?;
+    let rest = remaining(opts, deadline, (spent, f64::INFINITY))?;
     let mut sol = solve(robot, inputs, loads, &rest, Some(&loaded))?;
     sol.evaluations += spent.ceil() as usize;
     Ok(sol)

@@ -1,34 +1,27 @@
-//! Solvers: one Newton solver ([`newton()`](fn@newton)), the shooting boundary value
-//! problem that uses it ([`shooting`]), homotopy continuation
-//! ([`continuation`]) and cooperative cancellation ([`cancel`]).
+//! Solvers: the forward problem by multiple shooting ([`forward`], on the
+//! system of [`ms`], its staircase factorisation [`abd`]), the
+//! error-oriented damped Newton method ([`nleq`]), pseudo-arclength
+//! continuation ([`arclength`], in the homotopies of [`homotopy`]), the
+//! public entry points ([`shooting`]), the Newton solver of the inverse
+//! problems and branch following ([`newton()`](fn@newton)) and cooperative
+//! cancellation ([`cancel`]). `docs/solver.md` describes the algorithm.
 
 pub mod abd;
 pub mod arclength;
 pub mod cancel;
-pub mod coarse_path;
-pub mod continuation;
-mod corrector;
 pub mod equilibrium;
 pub mod fn_system;
-mod fold;
 pub mod forward;
 pub mod guess;
 pub mod homotopy;
-mod hop_finish;
 pub mod law_coordinate;
-pub mod limit;
 pub mod ms;
 pub mod newton;
 pub mod nleq;
 pub mod options;
-pub mod predict;
-pub mod predict_warm;
-pub mod presolve;
 pub mod residual;
 pub mod segments;
 pub mod shooting;
 pub mod solution;
-pub mod system;
-mod track;
 
 pub use newton::{newton, FnSystem, NewtonOptions, NewtonResult, Status, System};

@@ -75,6 +75,26 @@ pub struct MultipleShooting<'a> {
     /// IVPs spent over the whole grid (a tangent IVP of `k` directions counts
     /// `1 + k / 8`).
     pub work: f64,
+    /// Whether [`MultipleShooting::residual`] records its nodes.
+    record: bool,
+    /// The recorded nodes of the last residual evaluation.
+    recorded: Option<Recording>,
+}
+
+/// The nodes and end results of one residual evaluation, the solution's
+/// profile where that evaluation is Newton's last: recording writes the
+/// states the IVP computes anyway, and a converged solve then needs no
+/// further integration to assemble its solution.
+pub(crate) struct Recording {
+    /// The unknowns evaluated.
+    pub x: Vec<f64>,
+    /// Every segment's nodes, base to tip.
+    pub nodes: crate::rod::FlatNodes,
+    /// The last segment's IVP with every actuator's elongation \[m\] at its
+    /// distal anchor (from the segment that records it).
+    pub ivp: IvpResult,
+    /// The tensions \[N\] of block 0.
+    pub tau0: Vec<f64>,
 }
 
 /// The state of one block in IVP units, with the elongations and tensions
@@ -143,6 +163,8 @@ impl<'a> MultipleShooting<'a> {
             d: Vec::new(),
             e: Vec::new(),
             work: 0.0,
+            record: false,
+            recorded: None,
         })
     }
 
@@ -372,18 +394,51 @@ impl<'a> MultipleShooting<'a> {
         }
     }
 
-    /// The residual at `x` into `f`.
+    /// The residual at `x` into `f`; with recording on (the forward
+    /// solve's), its nodes are kept for the solution's assembly.
     pub fn residual(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
+        self.recorded = None;
         let mut row = 0;
         let states = self.block_states(x)?;
+        let mut nodes = crate::rod::FlatNodes::default();
+        let mut elongation = vec![0.0; self.na()];
+        let mut last = None;
         for (k, cur) in states.iter().enumerate() {
             let spec = self.spec(&cur.tau);
-            let ivp = spec.integrate_stretch(self.stretch(k), &cur.y)?;
+            let ivp = match self.record {
+                true => spec.integrate_stretch_recorded(self.stretch(k), &cur.y, &mut nodes)?,
+                false => spec.integrate_stretch(self.stretch(k), &cur.y)?,
+            };
             let next = states.get(k + 1).map(|s| &s.y[..]);
             row += self.segment_rows(x, (k, cur), &ivp, next, &mut f[row..]);
+            for i in (0..self.na()).filter(|&i| self.ends_in[i] == k) {
+                elongation[i] = ivp.elongation[i];
+            }
+            last = Some(ivp);
         }
         self.work += 1.0;
+        if let (true, Some(mut ivp)) = (self.record, last) {
+            ivp.elongation = elongation;
+            let tau0 = states.into_iter().next().map(|s| s.tau).unwrap_or_default();
+            let x = x.to_vec();
+            self.recorded = Some(Recording {
+                x,
+                nodes,
+                ivp,
+                tau0,
+            });
+        }
         Ok(())
+    }
+
+    /// Record the nodes of every residual evaluation from now on (`on`).
+    pub(crate) fn record(&mut self, on: bool) {
+        self.record = on;
+    }
+
+    /// The recording of the last residual evaluation if it was at `x`.
+    pub(crate) fn recorded(&mut self, x: &[f64]) -> Option<Recording> {
+        self.recorded.take().filter(|r| r.x == x)
     }
 
     /// The rows of segment `k` (block state `cur`), whose IVP ended in
@@ -450,195 +505,11 @@ impl<'a> MultipleShooting<'a> {
         }
         interior_len(na)
     }
-
-    /// The residual at `x` into `f` and the Jacobian blocks `D_k`, `E_k`
-    /// (exact: tangents of the discrete map), kept for
-    /// [`MultipleShooting::dense_jacobian`] and the staircase solve.
-    pub fn linearise(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
-        let (m, na, len) = (self.segments(), self.na(), self.robot.body.length);
-        let (rows, cols) = (self.rows(), self.cols());
-        self.d = (0..m).map(|k| DMatrix::zeros(rows[k], cols[k])).collect();
-        self.e = (0..m.saturating_sub(1))
-            .map(|k| DMatrix::zeros(rows[k], cols[k + 1]))
-            .collect();
-        let mut row = 0;
-        let states = self.block_states(x)?;
-        for (k, cur) in states.iter().enumerate() {
-            let (dirs, seeds) = self.seeds(x, k, cur);
-            let spec = self.spec(&cur.tau);
-            let tan = spec.integrate_stretch_tangent(self.stretch(k), &cur.y, &seeds)?;
-            // (a segment's share of one tangent IVP over the whole grid)
-            let share = (self.bounds[k + 1] - self.bounds[k]) as f64 / self.tip() as f64;
-            self.work += share * (1.0 + dirs as f64 / 8.0);
-            let next = states.get(k + 1).map(|s| &s.y[..]);
-            row += self.segment_rows(x, (k, cur), &tan.ivp, next, &mut f[row..]);
-            let dcol = if k == 0 { 6 } else { 12 + na };
-            let col_of = |c: usize| direction_column(k, na, c);
-            let mut own = match next {
-                Some(y) => {
-                    self.continuity_blocks(k, &tan, y, x);
-                    interior_len(na)
-                }
-                None => {
-                    let (fs, ms) = residual_scales(self.robot);
-                    for j in 0..3 {
-                        for c in 0..dirs {
-                            self.d[k][(j, col_of(c))] = tan.tip_force_residual[(j, c)] * fs;
-                            self.d[k][(3 + j, col_of(c))] = tan.tip_moment_residual[(j, c)] * ms;
-                        }
-                    }
-                    6
-                }
-            };
-            for i in (0..na).filter(|&i| self.ends_in[i] == k) {
-                for c in 0..dirs {
-                    self.d[k][(own, col_of(c))] = tan.elongation[(i, c)] / len;
-                }
-                if k > 0 {
-                    self.d[k][(own, 12 + i)] += 1.0;
-                }
-                self.d[k][(own, dcol + i)] -= cur.dd[i];
-                own += 1;
-            }
-        }
-        Ok(())
-    }
-
-    /// The seed directions of segment `k`'s tangent IVP from its block
-    /// state `st`: block 0's `nu`, `L omega` and `sigma`; an interior
-    /// block's `theta`, `nu`, `L omega` and `sigma` (its `p` and `delta`
-    /// enter nothing but themselves). Returns their number and the seeds.
-    fn seeds(&self, x: &[f64], k: usize, st: &BlockState) -> (usize, TangentSeeds) {
-        let (na, len) = (self.na(), self.robot.body.length);
-        let n = BASE_STATES + na;
-        let (lead, strains_at) = if k == 0 { (0, 0) } else { (3, 3) };
-        let dirs = lead + 6 + na;
-        let mut seeds = TangentSeeds::zeros(na, dirs);
-        let mut s0 = DMatrix::zeros(n, dirs);
-        if k > 0 {
-            let o = self.offset(k);
-            let theta = Vector3::new(x[o + 3], x[o + 4], x[o + 5]);
-            for (j, dq) in dexp_half(&theta).iter().enumerate() {
-                let dq = self.charts[k] * dq;
-                for (r, v) in [dq.w, dq.i, dq.j, dq.k].into_iter().enumerate() {
-                    s0[(3 + r, j)] = v;
-                }
-            }
-        }
-        for j in 0..3 {
-            s0[(7 + j, strains_at + j)] = 1.0;
-            s0[(10 + j, strains_at + 3 + j)] = 1.0 / len;
-        }
-        for i in 0..na {
-            seeds.tensions[(i, lead + 6 + i)] = st.slope[i];
-        }
-        seeds.state0 = Some(s0);
-        (dirs, seeds)
-    }
-
-    /// `D_k` and `E_k` of the continuity rows of segment `k` from its
-    /// tangent IVP `tan` (directions as [`MultipleShooting::seeds`]) and
-    /// the next block's state `start`.
-    fn continuity_blocks(
-        &mut self,
-        k: usize,
-        tan: &crate::rod::TangentIvp,
-        start: &[f64],
-        x: &[f64],
-    ) {
-        let (na, len) = (self.na(), self.robot.body.length);
-        let end = &tan.ivp.tip;
-        let qb = Quaternion::new(start[3], start[4], start[5], start[6]);
-        let e = qb.conjugate() * end.q;
-        let sgn = if e.w < 0.0 { -2.0 } else { 2.0 };
-        let dcol = if k == 0 { 6 } else { 12 + na };
-        let d = &mut self.d[k];
-        for c in 0..tan.tip.ncols() {
-            let col = direction_column(k, na, c);
-            let t = tan.tip.column(c);
-            let dq = qb.conjugate() * Quaternion::new(t[3], t[4], t[5], t[6]);
-            for j in 0..3 {
-                d[(j, col)] = t[j] / len;
-                d[(3 + j, col)] = sgn * [dq.i, dq.j, dq.k][j];
-                d[(6 + j, col)] = t[7 + j];
-                d[(9 + j, col)] = t[10 + j] * len;
-            }
-            for i in 0..na {
-                d[(12 + i, col)] = t[BASE_STATES + i] / len;
-            }
-        }
-        if k > 0 {
-            for j in 0..3 {
-                d[(j, j)] += 1.0;
-            }
-            for i in 0..na {
-                d[(12 + i, 12 + i)] += 1.0;
-            }
-        }
-        for i in 0..na {
-            d[(12 + na + i, dcol + i)] = 1.0;
-        }
-        // the next block: minus its state, and the defect's rotation term
-        let o = self.offset(k + 1);
-        let eb = &mut self.e[k];
-        let theta = Vector3::new(x[o + 3], x[o + 4], x[o + 5]);
-        for (j, dexp) in dexp_half(&theta).iter().enumerate() {
-            let dqb = self.charts[k + 1] * dexp;
-            let de = dqb.conjugate() * end.q;
-            for (r, v) in [de.i, de.j, de.k].into_iter().enumerate() {
-                eb[(3 + r, 3 + j)] = sgn * v;
-            }
-        }
-        for j in 0..3 {
-            eb[(j, j)] = -1.0;
-            eb[(6 + j, 6 + j)] = -1.0;
-            eb[(9 + j, 9 + j)] = -1.0;
-        }
-        for i in 0..2 * na {
-            eb[(12 + i, 12 + i)] = -1.0;
-        }
-    }
-
-    /// A staircase of this system's shape, for [`MultipleShooting::factorise`].
-    pub(crate) fn staircase(&self) -> Result<super::abd::Staircase> {
-        let shape = super::abd::Shape {
-            rows: self.rows(),
-            cols: self.cols(),
-        };
-        super::abd::Staircase::new(shape)
-    }
-
-    /// The Jacobian blocks of the last linearisation factorised in `lu` (of
-    /// this system's shape); whether it was found singular.
-    pub(crate) fn factorise(&self, lu: &mut super::abd::Staircase) -> bool {
-        for (k, dk) in self.d.iter().enumerate() {
-            lu.d_mut(k).copy_from(dk);
-        }
-        for (k, ek) in self.e.iter().enumerate() {
-            lu.e_mut(k).copy_from(ek);
-        }
-        lu.factorise().is_err()
-    }
-
-    /// The Jacobian assembled dense (for checks and small systems).
-    pub fn dense_jacobian(&self) -> DMatrix<f64> {
-        let (rows, cols) = (self.rows(), self.cols());
-        let n = self.dim();
-        let mut j = DMatrix::zeros(n, n);
-        let (mut r0, mut c0) = (0, 0);
-        for k in 0..self.segments() {
-            j.view_mut((r0, c0), (rows[k], cols[k]))
-                .copy_from(&self.d[k]);
-            if k + 1 < self.segments() {
-                j.view_mut((r0, c0 + cols[k]), (rows[k], cols[k + 1]))
-                    .copy_from(&self.e[k]);
-            }
-            r0 += rows[k];
-            c0 += cols[k];
-        }
-        j
-    }
 }
+
+mod jacobian;
+mod system;
+pub use system::ShootingSystem;
 
 #[cfg(test)]
 #[path = "ms_tests.rs"]
@@ -757,71 +628,5 @@ impl MultipleShooting<'_> {
             0.0
         };
         4.0 * f64::EPSILON * f.max(m).max(grown)
-    }
-}
-
-/// [`MultipleShooting`] with its Jacobian factorised as a staircase
-/// ([`super::abd`]), the system the damped Newton method solves.
-pub struct ShootingSystem<'a> {
-    /// The residual and its Jacobian blocks.
-    pub ms: MultipleShooting<'a>,
-    lu: super::abd::Staircase,
-    singular: bool,
-}
-
-impl<'a> ShootingSystem<'a> {
-    /// The system of `ms`.
-    pub fn new(ms: MultipleShooting<'a>) -> Result<Self> {
-        Ok(ShootingSystem {
-            lu: ms.staircase()?,
-            ms,
-            singular: false,
-        })
-    }
-
-    /// Whether a Jacobian is factorised (a first linearisation was made).
-    pub fn is_factorised(&self) -> bool {
-        self.lu.is_factorised()
-    }
-
-    /// The system of `ms` with the factorised Jacobian of `other`, a
-    /// system of the same shape (the same problem on another grid), as its
-    /// first factorisation: a chord Jacobian for Newton's first steps.
-    pub fn with_factorisation(ms: MultipleShooting<'a>, other: ShootingSystem<'_>) -> Self {
-        ShootingSystem {
-            ms,
-            lu: other.lu,
-            singular: other.singular,
-        }
-    }
-}
-
-impl super::nleq::NonlinearSystem for ShootingSystem<'_> {
-    fn dim(&self) -> usize {
-        self.ms.dim()
-    }
-    fn residual(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
-        super::cancel::check()?;
-        self.ms.residual(x, f)
-    }
-    fn linearise(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
-        super::cancel::check()?;
-        self.ms.linearise(x, f)?;
-        self.singular = self.ms.factorise(&mut self.lu);
-        Ok(())
-    }
-    fn solve(&mut self, b: &[f64], dx: &mut [f64]) -> Result<bool> {
-        if self.singular {
-            return Ok(false);
-        }
-        dx.copy_from_slice(b);
-        self.lu.solve(dx)?;
-        Ok(dx.iter().all(|v| v.is_finite()))
-    }
-    fn floor(&self, x: &[f64], _f: &[f64]) -> f64 {
-        self.ms.rounding_floor(x)
-    }
-    fn work(&self) -> f64 {
-        self.ms.work
     }
 }

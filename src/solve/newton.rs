@@ -1,6 +1,8 @@
-//! The one Newton solver of the crate: options, status, result, stop
-//! reasons; Armijo backtracking on a scaled merit function; convergence
-//! against an estimated rounding floor.
+//! The Newton solver of the inverse problems with a blocked tip
+//! ([`crate::inverse`]) and of branch following ([`crate::branch`]):
+//! options, status, result, stop reasons; Armijo backtracking on a scaled
+//! merit function; convergence against an estimated rounding floor. (The
+//! forward solve's is the error-oriented [`super::nleq`].)
 //!
 //! Merit: `phi(x) = |f(x)|^2 / 2` of the *scaled* residual (each caller
 //! scales its residual to be dimensionless and of order one for an order-one
@@ -13,9 +15,7 @@
 //! quadratic-interpolation step stalled where a TCA's coil contact makes the
 //! residual only C1). A trial where `f` fails (e.g. an IVP that cannot
 //! be integrated) counts as an infinite merit. Where the full step fails the
-//! Armijo test, the system's limited step is tried first
-//! ([`System::limit_step`]; shooting: actuator elongations limited through
-//! their force laws, [`crate::solve::limit`]), then a watchdog step (`Run::watchdog` in
+//! Armijo test, a watchdog step is tried (`Run::watchdog` in
 //! `newton_steps.rs`): the full step and one more Newton step from there,
 //! kept if together they meet the first step's Armijo bound (a
 //! non-monotone step across a kink of a force law, where backtracking creeps).
@@ -80,21 +80,6 @@ pub trait System {
     }
     /// Function evaluations so far (IVPs for shooting, failed ones included).
     fn evaluations(&self) -> usize;
-    /// A limited version of the full Newton step `x + dx` (taken with the
-    /// Jacobian `jac` at `x`, residual `r`), tried where the full step fails
-    /// the Armijo test (before the watchdog and backtracking); `None` (the
-    /// default): no limiting. Shooting limits actuator elongations through
-    /// their force laws and relinearises a law on the piece a step lands on
-    /// (see [`crate::solve::limit`]).
-    fn limit_step(
-        &self,
-        _x: &[f64],
-        _dx: &[f64],
-        _r: &[f64],
-        _jac: &DMatrix<f64>,
-    ) -> Option<Vec<f64>> {
-        None
-    }
     /// Switch to a more accurate Jacobian at the current point `x`, if the
     /// system has one; `true` if it did (then a failed line search is
     /// retried with it).
@@ -183,16 +168,9 @@ const WATCHDOG_COOLDOWN: usize = 2;
 
 /// Largest `min_step` with a watchdog step (see `Run::watchdog`): a run
 /// whose line search takes full steps only (`min_step` above 1/2) treats
-/// a failed full step as the end of its reach, and its caller has a
-/// cheaper way on: a homotopy step's first attempt
-/// ([`crate::solve::continuation::CORRECTOR_MIN_STEP`]) quarters its step,
-/// a coarse path's finish hops to a finer grid. Taking the failed step
-/// anyway costs the watchdog a tangent IVP and a plain one, and near a
-/// fold it cycles: on a benchmark design past buckling its pairs return
-/// to the same point. On the 1,000 benchmark designs the bound leaves the
-/// converged set and the tips (to 7.2e-13 m) unchanged and costs 3 % less
-/// work in all; without the watchdog in homotopy retries (`min_step` 0.3)
-/// too, two designs fail.
+/// a failed full step as the end of its reach (its caller has a cheaper
+/// way on, a shorter continuation step), and near a fold the watchdog's
+/// pairs cycle back to the same point.
 const WATCHDOG_MIN_STEP: f64 = 0.5;
 
 fn inf_norm(r: &[f64]) -> f64 {
@@ -415,8 +393,6 @@ pub use super::fn_system::FnSystem;
 
 #[path = "newton_steps.rs"]
 mod steps;
-pub use steps::CHORD_STEPS_LEFT;
-pub(crate) use steps::{chord_then_newton, converged_status};
 
 #[cfg(test)]
 #[path = "newton_tests.rs"]

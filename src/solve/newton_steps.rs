@@ -1,14 +1,12 @@
 //! The steps of a Newton run ([`super::newton`]): the direction with its
 //! descent check, the chord step with a kept Jacobian, Armijo backtracking,
-//! and the slow-contraction count that refines the Jacobian; and a run of
-//! chord steps with a kept Jacobian that hands over to Newton
-//! ([`chord_then_newton`], the coarse pre-solve's).
+//! and the slow-contraction count that refines the Jacobian.
 
 use nalgebra::{DMatrix, DVector};
 
 use super::{
-    inf_norm, merit, newton_from, NewtonOptions, NewtonResult, Run, Status, Step, System,
-    SLOW_CONTRACTION, SLOW_STEPS_BEFORE_REFINE, WATCHDOG_COOLDOWN, WATCHDOG_MIN_STEP,
+    inf_norm, merit, Run, Step, System, SLOW_CONTRACTION, SLOW_STEPS_BEFORE_REFINE,
+    WATCHDOG_COOLDOWN, WATCHDOG_MIN_STEP,
 };
 use crate::error::{Error, Result, StopReason};
 
@@ -107,13 +105,8 @@ impl<S: System> Run<'_, S> {
                 .collect();
             let trial = self.sys.residual(&xt);
             let bound = phi0 + 1e-4 * slope;
-            if t == 1.0 && !matches!(&trial, Ok(rt) if merit(rt) <= bound) {
-                if let Err(Error::Interrupted) = trial {
-                    return Err(Error::Interrupted);
-                }
-                if self.limited(dx, bound, res)? {
-                    return Ok(Some(Step::Moved));
-                }
+            if let Err(Error::Interrupted) = trial {
+                return Err(Error::Interrupted);
             }
             match trial {
                 Ok(rt) => {
@@ -154,39 +147,6 @@ impl<S: System> Run<'_, S> {
                 }
                 return Ok(None);
             }
-        }
-    }
-
-    /// The system's limited step ([`System::limit_step`]) in place of a
-    /// full step `dx` that failed the Armijo bound `bound`: taken (`true`)
-    /// if it meets that bound, with a fresh Jacobian next; else the
-    /// watchdog pair is tried from the limited point (its Jacobian is that
-    /// of the state the limited step reached, not of the overshoot).
-    fn limited(&mut self, dx: &DVector<f64>, bound: f64, res: f64) -> Result<bool> {
-        let Some(jac) = self.jacobian.as_ref() else {
-            return Ok(false);
-        };
-        let Some(xl) = self.sys.limit_step(&self.x, dx.as_slice(), &self.r, jac) else {
-            return Ok(false);
-        };
-        match self.sys.residual(&xl) {
-            Ok(rl) if merit(&rl) <= bound => {
-                self.x = xl;
-                self.r = rl;
-                self.jacobian = None;
-                self.slow = 0;
-                self.history.push((res, false));
-                Ok(true)
-            }
-            Ok(rl) if merit(&rl).is_finite() => {
-                let taken = self.watchdog(&xl, &rl, bound)?;
-                if taken {
-                    self.history.push((res, false));
-                }
-                Ok(taken)
-            }
-            Err(Error::Interrupted) => Err(Error::Interrupted),
-            _ => Ok(false),
         }
     }
 
@@ -241,152 +201,5 @@ impl<S: System> Run<'_, S> {
     fn watchdog_failed(&mut self) -> bool {
         self.cooldown = WATCHDOG_COOLDOWN;
         false
-    }
-}
-
-/// Most chord steps with a kept coarse Jacobian (the warm neighbour's, or
-/// an earlier round's) still needed, at the contraction of the last one,
-/// for which the chord run goes on; beyond, Newton takes a fresh coarse
-/// tangent. A coarse tangent costs 3.2 (Fig. 6) to 4.3 (steel) coarse IVPs
-/// and Newton from it needs one or two steps, so four chord steps cost
-/// about as much. (Newton's own chord rule refreshes only below a 4x
-/// contraction: along a warm Fig. 6 sweep the neighbour's Jacobian, handed
-/// on from step to step, contracted 5-6x a step, 12 chord steps a run.)
-/// Judged from the first step on, although its contraction is also the
-/// warm start's nonlinearity (steel +1 %: 39x, then 250x; the refresh
-/// costs that solve one IVP more): judged from the second, a Fig. 6 warm
-/// sweep's chord runs go on beyond the 12 iterations a step that
-/// `tests/test_fig6.py` allows.
-pub const CHORD_STEPS_LEFT: f64 = 4.0;
-
-/// Margin of a chord step taken without evaluating its residual: the
-/// step after an evaluated one that contracted `max |f|` from `res` to
-/// `after` is predicted to reach `after^2 / res` (a chord iteration with a
-/// fixed Jacobian converges linearly, at a rate that does not grow as it
-/// nears the root), and is taken unevaluated when that is at most this
-/// times the tolerance (or floor). Its residual is then not known: the
-/// caller's next evaluation decides (the pre-solve's full-grid IVP, which
-/// decides convergence in any case). E.g. a cold Fig. 6 solve's second
-/// pre-solve round: `max |f|` 1.4e-6, then 4.6e-10 against a coarse
-/// tolerance of 1e-11, so the second step is predicted at 1.5e-13 (an
-/// evaluation there gives a point bit for bit the same and a residual
-/// under 1e-11).
-const UNEVALUATED_MARGIN: f64 = 0.1;
-
-/// Chord steps from `x0` with the kept Jacobian `jac` (the coarse
-/// pre-solve's, `super::presolve`) while at most
-/// [`CHORD_STEPS_LEFT`] more are needed at their contraction; then, unless converged,
-/// Newton ([`newton_from`]) from the point reached with a fresh Jacobian.
-/// The result carries the Jacobian last used. Where a chord step's
-/// contraction predicts that the next one converges with a margin
-/// ([`UNEVALUATED_MARGIN`]), that step is taken without evaluating the
-/// residual there: the result's `residual` is then empty and its `norm`
-/// the prediction.
-pub(crate) fn chord_then_newton<S: System>(
-    sys: &mut S,
-    x0: &[f64],
-    jac: &DMatrix<f64>,
-    nopts: &NewtonOptions,
-) -> Result<NewtonResult> {
-    let mut x = x0.to_vec();
-    let mut r = sys.residual(&x)?;
-    let mut res = inf_norm(&r);
-    let lu = jac.clone().lu();
-    let mut iterations = 0;
-    // the next step's residual predicted from the last one's contraction
-    let mut predicted = f64::INFINITY;
-    loop {
-        let floor = sys.floor(&x, &r);
-        if res <= nopts.tol.max(floor) {
-            return Ok(NewtonResult {
-                x,
-                residual: r,
-                norm: res,
-                floor,
-                status: converged_status(res, nopts.tol),
-                iterations,
-                evaluations: sys.evaluations(),
-                jacobian: Some(jac.clone()),
-            });
-        }
-        if predicted <= UNEVALUATED_MARGIN * nopts.tol.max(floor) {
-            if let Some(nr) = unevaluated_step(&lu, (x.as_slice(), &r), predicted, floor, jac) {
-                return Ok(NewtonResult {
-                    iterations: iterations + 1,
-                    evaluations: sys.evaluations(),
-                    status: converged_status(predicted, nopts.tol),
-                    ..nr
-                });
-            }
-        }
-        if iterations + 1 >= nopts.max_iter || sys.evaluations() >= nopts.max_evaluations {
-            break;
-        }
-        let rv = nalgebra::DVector::from_column_slice(&r);
-        let Some(dx) = lu.solve(&(-rv)).filter(|d| d.iter().all(|v| v.is_finite())) else {
-            break;
-        };
-        let xt: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
-        let rt = match sys.residual(&xt) {
-            Ok(rt) => rt,
-            Err(e @ Error::Interrupted) => return Err(e),
-            Err(_) => break,
-        };
-        let after = inf_norm(&rt);
-        if !(after < res) {
-            break;
-        }
-        iterations += 1;
-        (x, r) = (xt, rt);
-        // chord steps still needed at this contraction
-        let needed = (after / nopts.tol).ln() / (res / after).ln();
-        predicted = after * (after / res);
-        res = after;
-        if needed > CHORD_STEPS_LEFT {
-            break;
-        }
-    }
-    let rest = NewtonOptions {
-        max_iter: nopts.max_iter.saturating_sub(iterations).max(1),
-        ..*nopts
-    };
-    let mut nr = newton_from(sys, &x, &rest, "coarse pre-solve", None)?;
-    nr.iterations += iterations;
-    Ok(nr)
-}
-
-/// The chord step from `x` (residual `r`) with the factorised kept
-/// Jacobian `lu` of `jac`, unevaluated: `residual` empty, `norm` the
-/// `predicted` one (see [`UNEVALUATED_MARGIN`]); `None` if the step is
-/// not finite. The counters are the caller's to set.
-fn unevaluated_step(
-    lu: &nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
-    (x, r): (&[f64], &[f64]),
-    predicted: f64,
-    floor: f64,
-    jac: &DMatrix<f64>,
-) -> Option<NewtonResult> {
-    let dx = lu.solve(&(-DVector::from_column_slice(r)))?;
-    if !dx.iter().all(|v| v.is_finite()) {
-        return None;
-    }
-    Some(NewtonResult {
-        x: x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect(),
-        residual: Vec::new(),
-        norm: predicted,
-        floor,
-        status: Status::Converged,
-        iterations: 0,
-        evaluations: 0,
-        jacobian: Some(jac.clone()),
-    })
-}
-
-/// [`Status::Converged`] if `norm <= tol`, else at the floor.
-pub(crate) fn converged_status(norm: f64, tol: f64) -> Status {
-    if norm <= tol {
-        Status::Converged
-    } else {
-        Status::ConvergedAtFloor
     }
 }

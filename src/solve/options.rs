@@ -14,10 +14,14 @@ pub struct SolveOptions {
     /// Convergence tolerance on the max-norm of the dimensionless residual.
     pub tol: f64,
     /// Newton iteration limit (per Newton run: the direct solve and each
-    /// continuation step).
+    /// continuation step's corrector, whose own limit is
+    /// [`crate::solve::arclength::CORRECTOR_ITERATIONS`]).
     pub max_iter: usize,
-    /// Smallest line-search step before giving up; above 1/2 (full steps
-    /// only) the watchdog step is off too.
+    /// Smallest line-search step of the inverse problems' Newton runs
+    /// ([`crate::solve::newton()`](fn@crate::solve::newton)) before giving
+    /// up; above 1/2 (full steps only) the watchdog step is off too. The
+    /// forward solve's damping has its own floor
+    /// ([`crate::solve::nleq::DEFAULT_LAMBDA_MIN`]).
     pub min_step: f64,
     /// IVP budget of one solve, continuation included (a tangent IVP counts
     /// as one); exhausting it raises [`Error::NotConverged`] with
@@ -26,18 +30,13 @@ pub struct SolveOptions {
     /// Wall-time limit of one solve (`None`: none); passing it raises
     /// [`Error::NotConverged`] with [`crate::StopReason::Budget`].
     pub time_limit: Option<Duration>,
-    /// Pre-solve on a grid of a tenth of the steps and correct the defect
-    /// on the full grid (see [`crate::solve::presolve`]); the default,
-    /// `true`. `false`: Newton on the full grid from the start (the solver
-    /// before the pre-solve, unchanged). The pre-solve cuts a cold or warm
-    /// solve's CPU time (Fig. 6 cold about 35 %, steel warm about 40 %;
-    /// along warm sweeps of Fig. 6 and the steel robot 40-60 % a step) but
-    /// integrates more, cheap, coarse IVPs, each counted in
-    /// `Solution.evaluations`; the solution meets `tol` on the full grid
-    /// either way. The multiple-shooting solve
-    /// ([`crate::solve::forward::solve`]) solves on that grid first, cold
-    /// or warm, and starts Newton on the full grid from its solution and
-    /// Jacobian.
+    /// Solve first on a coarse grid of a tenth of the steps (at least
+    /// [`crate::solve::forward::COARSE_MIN_STEPS`]), cold or warm, and start
+    /// Newton on the full grid from its solution and Jacobian
+    /// ([`crate::solve::forward`]); the default, `true`. Its IVPs cost a
+    /// tenth each and are counted so in `Solution.evaluations`; the solution
+    /// meets `tol` on the full grid either way. `false`: Newton on the full
+    /// grid from the start.
     pub presolve: bool,
     /// Accuracy control (opt-in; `None`, the default: the grid is `steps`):
     /// the largest relative error of the global equilibrium check

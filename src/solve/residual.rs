@@ -2,9 +2,9 @@
 //! exact Jacobian from the tangents of the discrete RK4 map; the tension
 //! slopes of the force laws, with their onsets of tension.
 
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::{DMatrix, Vector3};
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::rod::{
     integrate, integrate_flat, integrate_tangent, FlatNodes, IvpResult, IvpSpec, Robot, TangentIvp,
     TangentSeeds,
@@ -12,103 +12,6 @@ use crate::rod::{
 
 /// Residual, its exact Jacobian, the tangent IVP and the tensions of one evaluation.
 type ResidualAndJacobian = (Vec<f64>, DMatrix<f64>, TangentIvp, Vec<f64>);
-
-/// The taut piece of a slack actuator's law, extended to its elongation,
-/// with the residual's response to its tension (for a semismooth step that
-/// crosses the onset, [`crate::solve::system::Shooting`]'s `limit_step`).
-#[derive(Debug, Clone)]
-pub(crate) struct SlackTangent {
-    /// The actuator.
-    pub index: usize,
-    /// The taut side's slope \[N/m\] at the onset.
-    pub slope: f64,
-    /// The onset's elongation \[m\] (zero tension, the taut side from there).
-    pub onset: f64,
-    /// `dr / d tau` of the scaled residual \[1/N\].
-    pub response: DVector<f64>,
-}
-
-/// The Newton step `dx` (Jacobian `jac` at `x`, residual `r`) recomputed
-/// where it carries a slack actuator taut (for
-/// [`crate::solve::system::Shooting`]'s `limit_step`): a semismooth
-/// Newton step (Qi and Sun, Math. Prog. 58, 1993) with the law's slope
-/// of the side the step goes to, the taut piece extended to `x`,
-/// `tau ~ k (d' - d0)` (`k` the taut slope, `d0` the onset): column
-/// `6 + i` becomes `g k L - e_(6+i)` (`g = dr / d tau_i`, from the
-/// Jacobian's tangent, [`SlackTangent`]) and the residual moves by `g k
-/// (d - d0)`. The slack Jacobian predicts no tension, so its step
-/// overshoots into a tension that throws the body far off (a tendon at its
-/// onset then flips between slack and taut from one iteration to the next,
-/// each line search accepting only a tiny step).
-/// `slack`: the Jacobian's slack actuators (at `x`), `len` the body
-/// length \[m\]. Taken only where the recomputed step also lands taut for
-/// each actuator taken taut; one that it lands slack is taken slack again
-/// and the step re-solved (the pieces chosen as a piecewise-linear solver
-/// does, Katzenelson, Bell Syst. Tech. J. 44, 1965: with two tendons slack
-/// at the Jacobian and the step carrying both taut, the taut model can
-/// carry one back slack, and taking that one slack again keeps the
-/// semismooth step for the other); `None` where no actuator is left taut.
-pub(crate) fn taut_step(
-    len: f64,
-    slack: &[SlackTangent],
-    x: &[f64],
-    dx: &[f64],
-    r: &[f64],
-    jac: &DMatrix<f64>,
-) -> Option<Vec<f64>> {
-    if slack.is_empty() || jac.nrows() != jac.ncols() {
-        return None;
-    }
-    let lands_taut = |s: &SlackTangent, step: &[f64]| {
-        let c = 6 + s.index;
-        (x[c] + step[c]) * len > s.onset
-    };
-    // the actuators taken taut: those the last step carries taut, until
-    // the step's pieces agree with where it lands (Katzenelson's
-    // iteration; at most one pass per slack actuator)
-    let mut taut: Vec<bool> = slack.iter().map(|s| lands_taut(s, dx)).collect();
-    for _ in 0..slack.len() {
-        if !taut.contains(&true) {
-            return None;
-        }
-        let step = taut_model_step(len, slack, &taut, x, r, jac)?;
-        let landed: Vec<bool> = slack.iter().map(|s| lands_taut(s, &step)).collect();
-        // an actuator taken slack that the step carries taut stays slack
-        // (its slack piece is the Jacobian's own: the caller's step)
-        let agree = taut.iter().zip(&landed).all(|(&t, &l)| !t || l);
-        if agree {
-            return Some(step);
-        }
-        for (t, l) in taut.iter_mut().zip(&landed) {
-            *t &= *l;
-        }
-    }
-    None
-}
-
-/// The Newton step of `jac dx = -r` with the slack actuators flagged in
-/// `taut` re-linearised on their taut pieces (see [`taut_step`]); `None`
-/// if singular or not finite.
-fn taut_model_step(
-    len: f64,
-    slack: &[SlackTangent],
-    taut: &[bool],
-    x: &[f64],
-    r: &[f64],
-    jac: &DMatrix<f64>,
-) -> Option<Vec<f64>> {
-    let mut jm = jac.clone();
-    let mut rm = DVector::from_column_slice(r);
-    for (s, _) in slack.iter().zip(taut).filter(|(_, &t)| t) {
-        let c = 6 + s.index;
-        let (slope, shift) = (s.slope * len, s.slope * (x[c] * len - s.onset));
-        super::limit::relinearise(&mut jm, &mut rm, c, &s.response, slope, shift);
-    }
-    let step = jm.lu().solve(&(-rm))?;
-    step.iter()
-        .all(|v| v.is_finite())
-        .then(|| step.iter().copied().collect())
-}
 
 /// Tensions \[N\] of all actuators for guessed elongations `delta` \[m\].
 pub fn tensions(robot: &Robot, inputs: &[f64], delta: &[f64]) -> Result<Vec<f64>> {
@@ -229,102 +132,27 @@ impl<'a> Shot<'a> {
         Ok((r, ivp, tau))
     }
 
-    /// The residual at `x` on `steps` RK4 steps extrapolated from this
-    /// problem's, `r` (on `c = self.steps`), and two plain IVPs on `2c`
-    /// and `3c` steps (counted in `ivps`): RK4's error expansion
-    /// `r_n = r_inf + a n^-4 + b n^-5` through the three grids, evaluated at
-    /// `n = steps`. Its error is the expansion's next term, `n^-6`: at a
-    /// cold Fig. 6 coarse root (defect `r_100 - r_10` 1.4e-6) measured
-    /// 6.2e-12 with grids 10/20/40, 2.9e-12 with 10/20/50 and 2.0e-12 with
-    /// 10/25/50, the latter two the `n^-6` term's prediction from the
-    /// first; for 10/20/30 it predicts 1.5e-11 (two grids, `a` only:
-    /// 20/40 1.6e-10, 25/50 4.9e-11). Steel robot: 3.9e-10, within its
-    /// rounding floor 8.9e-10. The two IVPs cost half of one on 10c steps.
-    pub fn extrapolated(
-        &self,
-        x: &[f64],
-        r: &[f64],
-        steps: usize,
-        ivps: &mut usize,
-    ) -> Result<Vec<f64>> {
-        let c = self.steps;
-        let mut rs = vec![r.to_vec()];
-        for n in [2 * c, 3 * c] {
-            *ivps += 1;
-            rs.push(self.with_steps(n).residual(x, false)?.0);
-        }
-        // weights w with sum_k w_k f(n_k) = f(steps) for f = 1, n^-4, n^-5
-        let basis = |n: usize| [1.0, (n as f64).powi(-4), (n as f64).powi(-5)];
-        let grids = [c, 2 * c, 3 * c];
-        let a = DMatrix::from_fn(3, 3, |i, k| basis(grids[k])[i]);
-        let e = nalgebra::DVector::from_column_slice(&basis(steps));
-        let w = a
-            .lu()
-            .solve(&e)
-            .ok_or_else(|| Error::param("steps", c as f64, "> 0"))?;
-        Ok((0..r.len())
-            .map(|i| (0..3).map(|k| w[k] * rs[k][i]).sum())
-            .collect())
-    }
-
     /// One tangent IVP from scaled unknowns `x`: the scaled residual (as
     /// [`Shot::residual`]) and its EXACT Jacobian with respect to `x` (the
     /// derivative of the discrete RK4 map, from the variational equations and
     /// the force laws' derivatives), `(6 + N) x (6 + N)`. With `record`, the
     /// IVP's nodes carry `d y(s) / d x` (see [`crate::rod::TangentNode`]).
     pub fn jacobian(&self, x: &[f64], record: bool) -> Result<ResidualAndJacobian> {
-        Ok(self.jacobian_side(x, record, false, false)?.0 .0)
-    }
-
-    /// [`Shot::jacobian`] with the side of the generalised derivative at an
-    /// actuator's onset of tension (see [`tension_slope`]); also returns
-    /// whether any actuator is at its onset. With `taut`, the tangent of a
-    /// slack actuator (zero tension and slope) is seeded with its law's taut
-    /// slope at the onset ([`crate::rod::ForceLaw::elongation`] of zero
-    /// tension), its response `dr / d tau` returned, and its column reset to
-    /// the slack one, `-e_(6+i)` (the columns are independent tangents: the
-    /// Jacobian is the same as without).
-    pub(crate) fn jacobian_side(
-        &self,
-        x: &[f64],
-        record: bool,
-        slack: bool,
-        taut: bool,
-    ) -> Result<((ResidualAndJacobian, bool), Vec<SlackTangent>)> {
         let len = self.robot.body.length;
         let na = self.robot.actuators.len();
         let nx = 6 + na;
         let (v0, u0) = base_strains(x, len);
         let mut tau = Vec::with_capacity(na);
         let mut seeds = TangentSeeds::zeros(na, nx);
-        let mut onset = false;
-        let mut slack_dirs = Vec::new();
         for k in 0..3 {
             seeds.nu0[(k, k)] = 1.0;
             seeds.omega0[(k, 3 + k)] = 1.0 / len;
         }
         for (i, a) in self.robot.actuators.iter().enumerate() {
-            let (t, dt_de, at) =
-                tension_slope(a.law.as_ref(), x[6 + i] * len, self.inputs[i], len, slack)?;
-            onset |= at;
+            let (t, dt_de, _) =
+                tension_slope(a.law.as_ref(), x[6 + i] * len, self.inputs[i], len, false)?;
             tau.push(t);
             seeds.tensions[(i, 6 + i)] = dt_de * len;
-            if taut && t == 0.0 && dt_de == 0.0 {
-                if let Some(d0) = a.law.elongation(0.0, self.inputs[i]) {
-                    match a.law.tension_derivatives(d0, self.inputs[i]) {
-                        Ok((_, k, _)) if k > 0.0 && k.is_finite() && d0.is_finite() => {
-                            seeds.tensions[(i, 6 + i)] = k * len;
-                            slack_dirs.push(SlackTangent {
-                                index: i,
-                                slope: k,
-                                onset: d0,
-                                response: DVector::zeros(0),
-                            });
-                        }
-                        _ => {}
-                    }
-                }
-            }
         }
         let spec = self.loads.ivp(self.robot, &tau, self.steps);
         let tan = integrate_tangent(&spec, &v0, &u0, &seeds, record)?;
@@ -347,47 +175,8 @@ impl<'a> Shot<'a> {
             }
             jac[(6 + i, 6 + i)] -= 1.0;
         }
-        for sd in &mut slack_dirs {
-            let c = 6 + sd.index;
-            let mut g = jac.column(c).clone_owned();
-            g[c] += 1.0;
-            sd.response = g / (sd.slope * len);
-            jac.column_mut(c).fill(0.0);
-            jac[(c, c)] = -1.0;
-        }
-        Ok((((r, jac, tan, tau), onset), slack_dirs))
+        Ok((r, jac, tan, tau))
     }
-}
-
-/// `jac` (a Jacobian at `x_from`, inputs `from`) with each actuator column
-/// rescaled to the tension slope at `x_to`, inputs `to`: column `6 + i` is
-/// `(dr/dtau_i) (dtau_i/ddelta_i) L - e_(6+i)`, and `dr/dtau_i` is the
-/// IVP's, which does not depend on the inputs. Columns of a slack actuator
-/// (zero slope) are kept.
-pub fn rescale_tension_columns(
-    robot: &Robot,
-    jac: &DMatrix<f64>,
-    (x_from, from): (&[f64], &[f64]),
-    (x_to, to): (&[f64], &[f64]),
-) -> DMatrix<f64> {
-    let len = robot.body.length;
-    let mut j = jac.clone();
-    for (i, a) in robot.actuators.iter().enumerate() {
-        let c = 6 + i;
-        let slope = |x: &[f64], u: &[f64]| {
-            tension_slope(a.law.as_ref(), x[c] * len, u[i], len, false).map(|s| s.1)
-        };
-        let (Ok(s0), Ok(s1)) = (slope(x_from, from), slope(x_to, to)) else {
-            continue;
-        };
-        if s0 == 0.0 || !(s1 / s0).is_finite() || c >= j.ncols() || c >= j.nrows() {
-            continue;
-        }
-        j[(c, c)] += 1.0;
-        j.column_mut(c).scale_mut(s1 / s0);
-        j[(c, c)] -= 1.0;
-    }
-    j
 }
 
 /// Relative band (of the body length) of elongation within which a slack
@@ -403,8 +192,8 @@ pub const ONSET_BAND: f64 = 1e-12;
 /// linear tendon (zero tension), where rounding of `pull + elongation`
 /// decides the side; there the merit has no descent along one of the two
 /// Newton directions (along it the merit grows like `t^2` from `t = 0`:
-/// no first-order decrease), so a failed line search is
-/// retried with the other side ([`crate::solve::system::Shooting`]'s `refine`).
+/// no first-order decrease); the taut side is the one the Newton
+/// Jacobian takes.
 pub fn tension_slope(
     law: &dyn crate::rod::ForceLaw,
     elongation: f64,
@@ -463,7 +252,3 @@ pub(crate) fn scaled_residual(robot: &Robot, ivp: &IvpResult, delta: &[f64]) -> 
     }
     r
 }
-
-#[cfg(test)]
-#[path = "residual_tests.rs"]
-mod tests;

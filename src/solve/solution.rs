@@ -1,12 +1,10 @@
-//! A converged forward solution sampled at the integration nodes, its
-//! assembly from the converged unknowns, and the tip-only result of batches.
+//! A converged forward solution sampled at the integration nodes, and its
+//! assembly from the converged unknowns.
 
 use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3};
 
-use super::newton::{NewtonResult, Status};
-use super::options::SolveOptions;
-use super::residual::{Loads, Shot};
-use super::system::{FinalIvp, Work};
+use super::newton::Status;
+use super::residual::Loads;
 use crate::error::Result;
 use crate::rod::{rot, FlatNodes, IvpResult, Robot, BASE_STATES};
 
@@ -88,7 +86,35 @@ pub fn assemble(
     iterations: usize,
     evaluations: usize,
 ) -> Result<Solution> {
-    let (r, ivp, tau, nodes) = Shot::new(robot, inputs, loads, steps).residual_flat(x)?;
+    let len = robot.body.length;
+    let delta: Vec<f64> = x[6..].iter().map(|d| d * len).collect();
+    let tau = super::residual::tensions(robot, inputs, &delta)?;
+    let counts = (iterations, evaluations);
+    assemble_at_tensions(robot, inputs, loads, x, &tau, steps, counts.0, counts.1)
+}
+
+/// [`assemble`] under the actuator tensions `tau` \[N\] (those of the
+/// solve that found `x`, which a force law's inverse may give to the last
+/// bit otherwise): the solution's IVP with its own arithmetic, so that a
+/// solution rebuilt from its unknowns and tensions (a pickled one) is the
+/// same bit for bit.
+#[allow(clippy::too_many_arguments)]
+pub fn assemble_at_tensions(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    x: &[f64],
+    tau: &[f64],
+    steps: usize,
+    iterations: usize,
+    evaluations: usize,
+) -> Result<Solution> {
+    let len = robot.body.length;
+    let (v0, u0) = super::residual::base_strains(x, len);
+    let spec = loads.ivp(robot, tau, steps);
+    let (ivp, nodes) = crate::rod::integrate_flat(&spec, &v0, &u0)?;
+    let delta: Vec<f64> = x[6..].iter().map(|d| d * len).collect();
+    let r = super::residual::scaled_residual(robot, &ivp, &delta);
     let counts = (steps, iterations, evaluations);
     Ok(assemble_flat(
         robot,
@@ -96,7 +122,7 @@ pub fn assemble(
         counts,
         r,
         (ivp, nodes),
-        tau,
+        tau.to_vec(),
     ))
 }
 
@@ -206,70 +232,4 @@ fn base_wrench(robot: &Robot, y0: &[f64], tau: &[f64]) -> (Vector3<f64>, Vector3
         }
     }
     (f, m)
-}
-
-/// Tip pose of a forward solution, without the sampled profile (for
-/// batches): `position` and `rotation` are [`Solution::tip_position`] and
-/// [`Solution::tip_rotation`]; every other field means what the
-/// [`Solution`] field of the same name means.
-#[derive(Debug, Clone)]
-pub struct TipSolution {
-    pub position: Vector3<f64>,
-    pub rotation: Matrix3<f64>,
-    pub unknowns: Vec<f64>,
-    pub tensions: Vec<f64>,
-    pub inputs: Vec<f64>,
-    pub iterations: usize,
-    pub evaluations: usize,
-    pub newton_jacobian: Option<DMatrix<f64>>,
-}
-
-impl TipSolution {
-    pub(crate) fn from_solution(s: Solution) -> Self {
-        TipSolution {
-            position: s.tip_position(),
-            rotation: s.tip_rotation(),
-            unknowns: s.unknowns,
-            tensions: s.tensions,
-            inputs: s.inputs,
-            iterations: s.iterations,
-            evaluations: s.evaluations,
-            newton_jacobian: s.newton_jacobian,
-        }
-    }
-}
-
-/// A [`Solution`] from a converged Newton result (integrating once more,
-/// recorded, unless the last IVP at the solution is given with its nodes).
-pub(crate) fn solution_from(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    nr: NewtonResult,
-    last: Option<FinalIvp>,
-    work: &mut Work,
-) -> Result<Solution> {
-    let mut s = match last {
-        Some(FinalIvp {
-            residual: r,
-            ivp,
-            nodes: Some(nodes),
-            tensions: tau,
-            ..
-        }) if !nodes.is_empty() => {
-            let problem = (inputs, loads, nr.x.as_slice());
-            assemble_flat(robot, problem, (opts.steps, 0, 0), r, (ivp, nodes), tau)
-        }
-        _ => {
-            work.evaluations += 1;
-            assemble(robot, inputs, loads, &nr.x, opts.steps, 0, 0)?
-        }
-    };
-    s.iterations = work.iterations;
-    s.evaluations = work.evaluations;
-    s.newton_jacobian = nr.jacobian;
-    s.status = nr.status;
-    s.floor = nr.floor;
-    Ok(s)
 }

@@ -91,17 +91,9 @@
 //! recorded nodes (measured in `benches/stability.rs`). It does not reuse
 //! the solver's tangents: those are taken on a tenth of the grid and at the
 //! last Newton iterate, not at the solution on the full grid. Under a
-//! policy ([`solve_checked`]) the solve's own IVPs record no nodes: the
-//! verdict's pass is the IVP at the solution too (its real part, recorded,
-//! is the plain IVP's arithmetic bit for bit), and the [`Solution`] is
-//! assembled from it, identical to the one a solve without a verdict hands
-//! back (with the accuracy control on, the solve records and refines
-//! first, and the verdict is taken on the refined solution). Where the
-//! solver predicts Newton's convergence at its next residual
-//! ([`crate::solve::system::Keep::Verdict`]), that residual is taken from
-//! the verdict's pass itself, so when Newton stops there the verdict costs
-//! no integration beyond the solve's own (a tangent IVP in place of the
-//! last plain one).
+//! policy ([`solve_checked`]) the verdict is this pass at the solution the
+//! forward solve hands back (with the accuracy control on, at the refined
+//! solution).
 //!
 //! # Growth
 //!
@@ -134,7 +126,7 @@
 use nalgebra::Vector3;
 
 use crate::error::{Error, Result};
-use crate::rod::{FlatNodes, IvpResult, Robot};
+use crate::rod::Robot;
 use crate::shooting::{Loads, Solution};
 
 mod landing;
@@ -308,61 +300,6 @@ pub fn stability_with_bound(
         verdict::verdict(t, robot.body.length, blocked, full, 1),
         count,
     ))
-}
-
-/// [`stability_at`] of a free tip, with the IVP of the verdict's tangent
-/// integration (its real part), its nodes (flat) and the tensions \[N\]:
-/// what assembles the [`Solution`] at these unknowns without another IVP.
-pub(crate) fn stability_profiled(
-    robot: &Robot,
-    eq: &Equilibrium<'_>,
-) -> Result<(Stability, (IvpResult, FlatNodes), Vec<f64>)> {
-    let full = check(robot, eq, &[])?;
-    let (t, ivp, tau, nodes) = tangents::exact_tangents(robot, eq, full, true, GROWTH_BOUND)?;
-    Ok((
-        verdict::verdict(t, robot.body.length, &[], full, 1),
-        (ivp, nodes.unwrap_or_default()),
-        tau,
-    ))
-}
-
-/// The verdict's tangent integration taken ahead, by the solver, at a
-/// point where it predicted Newton's convergence
-/// ([`crate::solve::system::Keep::Verdict`]): Newton's residual there is
-/// its real part (the plain IVP's arithmetic bit for bit), and if Newton
-/// stops there the verdict is read from it ([`verdict_of`]) without
-/// another integration.
-pub(crate) struct VerdictPass {
-    pass: tangents::Pass,
-    full: bool,
-}
-
-impl VerdictPass {
-    /// The IVP's nodes (the pass's recorded states), flat.
-    pub(crate) fn ivp_nodes(&self) -> FlatNodes {
-        self.pass.ivp_nodes()
-    }
-}
-
-/// The recorded tangent integration of [`stability_at`] (free tip) at
-/// `eq` under the actuator tensions `tau` \[N\] (the shooting residual's),
-/// its states recorded (the IVP's nodes, [`VerdictPass::ivp_nodes`]); with
-/// that IVP. `robot` must be valid (the
-/// solver's, validated by its solve).
-pub(crate) fn verdict_pass(
-    robot: &Robot,
-    eq: &Equilibrium<'_>,
-    tau: &[f64],
-) -> Result<(VerdictPass, IvpResult)> {
-    let full = check_equilibrium(robot, eq, &[])?;
-    let (pass, ivp) = tangents::integrate_pass(robot, eq, full, Some(tau), GROWTH_BOUND)?;
-    Ok((VerdictPass { pass, full }, ivp))
-}
-
-/// The verdict (free tip) from a pass integrated ahead ([`verdict_pass`]).
-pub(crate) fn verdict_of(robot: &Robot, p: &VerdictPass) -> Stability {
-    let t = tangents::tangents_of(robot, &p.pass);
-    verdict::verdict(t, robot.body.length, &[], p.full, 1)
 }
 
 /// [`stability`] from forward-difference tangents (`7 + N` IVPs); for

@@ -9,24 +9,15 @@
 //! themselves, or not at all).
 //!
 //! Cost: the verdict is one tangent integration ([`stability`]), the price
-//! of one full-grid Newton Jacobian; where Newton's convergence is
-//! predicted it is Newton's last residual evaluation, in place of a plain
-//! IVP (see [`solve_checked`]); `Off` saves it.
+//! of one full-grid Newton Jacobian; `Off` saves it.
 
 use std::str::FromStr;
 
 use super::landing::{land, Route};
-use super::{stability, stability_profiled, verdict_of, Equilibrium, Stability};
+use super::{stability, Stability};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
-use crate::shooting::{Loads, Solution, SolveOptions};
-use crate::solve::equilibrium::refine_to_equilibrium;
-use crate::solve::newton::NewtonResult;
-use crate::solve::predict_warm::ChordPolicy;
-use crate::solve::shooting::{
-    solution_from, solve_along, solve_direct, FinalIvp, Keep, Solved, Work,
-};
-use crate::solve::solution::assemble_flat;
+use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
 
 /// What a solve does with the stability verdict of the equilibrium found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -95,17 +86,9 @@ pub struct Checked {
 }
 
 /// [`solve_loaded`](crate::shooting::solve_loaded) (with the accuracy control of
-/// [`SolveOptions::equilibrium_tol`]) under a stability [`Policy`] (free tip).
-///
-/// With a verdict, Newton's IVPs record no nodes: the verdict's tangent
-/// integration at the solution (whose real part is the plain IVP, bit for
-/// bit) gives the solution's profile. Where Newton's convergence is
-/// predicted ([`Keep::Verdict`]) that integration is Newton's last
-/// residual evaluation itself, in place of its plain IVP: the verdict then
-/// costs no IVP more than the solve without it, only a tangent IVP in place
-/// of a plain one; else it costs its own tangent IVP. With the accuracy
-/// control on, the solution is recorded and refined first, and the verdict
-/// taken on the refined one.
+/// [`SolveOptions::equilibrium_tol`]) under a stability [`Policy`] (free tip):
+/// the verdict is one tangent integration at the solution ([`stability`]),
+/// counted in the solution's `evaluations`.
 pub fn solve_checked(
     robot: &Robot,
     inputs: &[f64],
@@ -114,69 +97,16 @@ pub fn solve_checked(
     warm: Option<&Solution>,
     policy: Policy,
 ) -> Result<Checked> {
-    checked_along(
-        robot,
-        inputs,
-        loads,
-        opts,
-        warm,
-        policy,
-        ChordPolicy::SINGLE,
-    )
-}
-
-/// [`solve_checked`] with the warm run's chord steps under `chord`
-/// ([`ChordPolicy::BATCH`] for a sweep's row).
-fn checked_along(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    warm: Option<&Solution>,
-    policy: Policy,
-    chord: ChordPolicy,
-) -> Result<Checked> {
+    let mut sol = solve_loaded(robot, inputs, loads, opts, warm)?;
     if policy == Policy::Off {
-        let sol = solve_along(robot, inputs, loads, opts, warm, chord)?;
         return Ok(Checked {
-            solution: refine_to_equilibrium(robot, inputs, opts, sol)?,
+            solution: sol,
             stability: None,
             continued: None,
         });
     }
-    // without the accuracy control Newton's solution is final, and its
-    // profile comes from the verdict's pass: Newton records no nodes
-    let final_newton = opts.equilibrium_tol.is_none();
-    let keep = Keep::Verdict {
-        tol: opts.tol,
-        nodes: !final_newton,
-    };
-    let (sol, st) = match solve_direct(robot, inputs, loads, opts, warm, keep, chord)? {
-        Solved::Newton(nr, last, work) if final_newton => {
-            profiled(robot, inputs, loads, opts, nr, last, work)?
-        }
-        solved => {
-            let (sol, pass) = match solved {
-                Solved::Newton(nr, mut last, mut work) => {
-                    let pass = last.as_mut().and_then(|l| l.verdict.take());
-                    let sol = solution_from(robot, inputs, loads, opts, nr, last, &mut work)?;
-                    (sol, pass)
-                }
-                Solved::Solution(sol) => (sol, None),
-            };
-            let steps = sol.steps;
-            let mut sol = refine_to_equilibrium(robot, inputs, opts, sol)?;
-            match pass {
-                // not refined: the verdict of Newton's last evaluation
-                Some(pass) if sol.steps == steps => (sol, verdict_of(robot, &pass)),
-                _ => {
-                    let st = stability(robot, &sol, &[])?;
-                    sol.evaluations += st.evaluations;
-                    (sol, st)
-                }
-            }
-        }
-    };
+    let st = stability(robot, &sol, &[])?;
+    sol.evaluations += st.evaluations;
     if st.stable || policy == Policy::Report {
         return Ok(Checked {
             solution: sol,
@@ -204,64 +134,6 @@ fn checked_along(
     })
 }
 
-/// The solution of a converged Newton run `nr` (work `work`) and its
-/// verdict, both from the verdict's recorded tangent IVP at `nr.x`: Newton's
-/// last evaluation `last` if it was that IVP, else one more (the residual is
-/// Newton's, from its last IVP there).
-fn profiled(
-    robot: &Robot,
-    inputs: &[f64],
-    loads: &Loads,
-    opts: &SolveOptions,
-    nr: NewtonResult,
-    last: Option<FinalIvp>,
-    work: Work,
-) -> Result<(Solution, Stability)> {
-    let (st, ivp, tau, evaluations) = match last {
-        Some(FinalIvp {
-            ivp,
-            nodes,
-            tensions,
-            verdict: Some(pass),
-            ..
-        }) => {
-            let nodes = nodes.unwrap_or_else(|| pass.ivp_nodes());
-            (
-                verdict_of(robot, &pass),
-                (ivp, nodes),
-                tensions,
-                work.evaluations,
-            )
-        }
-        _ => {
-            let eq = Equilibrium {
-                along: None,
-                unknowns: &nr.x,
-                inputs,
-                loads: *loads,
-                steps: opts.steps,
-            };
-            let (st, ivp, tau) = stability_profiled(robot, &eq)?;
-            let evaluations = work.evaluations + st.evaluations;
-            (st, ivp, tau, evaluations)
-        }
-    };
-    let (x, steps, it) = (&nr.x, opts.steps, work.iterations);
-    let r = nr.residual.clone();
-    let mut sol = assemble_flat(
-        robot,
-        (inputs, loads, x),
-        (steps, it, evaluations),
-        r,
-        ivp,
-        tau,
-    );
-    sol.newton_jacobian = nr.jacobian;
-    sol.status = nr.status;
-    sol.floor = nr.floor;
-    Ok((sol, st))
-}
-
 /// The error of [`Policy::Require`] for an unstable `sol`.
 pub fn unstable_error(sol: &Solution, st: &Stability) -> Error {
     let p = sol.tip_position();
@@ -275,8 +147,7 @@ pub fn unstable_error(sol: &Solution, st: &Stability) -> Error {
 }
 
 /// Solve along rows of `inputs`, each warm-started from the previous
-/// solution handed back (its Jacobian taken on, [`ChordPolicy::BATCH`], as
-/// in `shooting::sweep`), under `policy` (as `shooting::sweep`, which it
+/// solution handed back, under `policy` (as `shooting::sweep`, which it
 /// replaces when a verdict is wanted). With [`Policy::Continue`] the sweep
 /// follows what a physical robot does quasi-statically: where its
 /// equilibrium is lost it lands on a stable one and goes on from there.
@@ -291,7 +162,7 @@ pub fn sweep_checked(
     for q in inputs {
         crate::solve::cancel::check()?;
         let warm = out.last().map(|c| &c.solution);
-        let c = checked_along(robot, q, &loads, opts, warm, policy, ChordPolicy::BATCH)?;
+        let c = solve_checked(robot, q, &loads, opts, warm, policy)?;
         out.push(c);
     }
     Ok(out)

@@ -1,8 +1,7 @@
-//! The cold pre-solve's first round (`FIRST_ROUND_TOL` in
-//! `src/solve/presolve.rs`): a coarse run converged to 1e-5 is near enough
-//! its root to measure the defect at, and every cold solve still meets the
-//! tolerance on the full grid. The work it saves is the design benchmark's
-//! to report (`benches/designs.rs`).
+//! The coarse first solve (`SolveOptions::presolve`) is only a guess: every
+//! cold solve meets the tolerance on the full grid, checked by an
+//! independent single-shooting IVP at the solution's unknowns. The work it
+//! saves is the design benchmark's to report (`benches/designs.rs`).
 
 use tcarod::problems::{random_design, DEFAULT_SEED};
 use tcarod::shooting::{solve, Shot, SolveOptions};

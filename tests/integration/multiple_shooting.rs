@@ -1,15 +1,54 @@
 //! The multiple-shooting forward solve (`tcarod::solve::forward`) against
-//! the single-shooting solver and over seeded families of designs: the
-//! same equilibria where both converge, every design below self-weight
-//! buckling solved cold and along a warm sweep, heavy bodies that single
-//! shooting's growth defeats.
+//! an independent single-shooting Newton solve and over seeded families of
+//! designs: the same equilibria where both converge, every design below
+//! self-weight buckling solved cold and along a warm sweep, heavy bodies
+//! that single shooting's growth defeats.
 
+use nalgebra::DMatrix;
 use tcarod::experiments::{fig6_square, steel_tendon_robot, STEEL_TENDON_TENSIONS};
 use tcarod::problems::{
     equilibrium, random_design, stress_design, Orientation, STRESS_SEED, TUNING_SEED,
 };
-use tcarod::shooting::{solve, Loads, Solution, SolveOptions};
+use tcarod::shooting::{
+    assemble, initial_guess, linear_guess, newton, Loads, NewtonOptions, Shot, Solution,
+    SolveOptions, System,
+};
 use tcarod::solve::forward;
+
+/// The shooting residual (eqs 32-33) with its exact Jacobian as a plain
+/// Newton system: single shooting, independent of the forward solver.
+struct SingleShooting<'a>(Shot<'a>, usize);
+
+impl System for SingleShooting<'_> {
+    fn residual(&mut self, x: &[f64]) -> tcarod::Result<Vec<f64>> {
+        self.1 += 1;
+        Ok(self.0.residual(x, false)?.0)
+    }
+    fn residual_and_jacobian(&mut self, x: &[f64]) -> tcarod::Result<(Vec<f64>, DMatrix<f64>)> {
+        self.1 += 1;
+        let (r, j, _, _) = self.0.jacobian(x, false)?;
+        Ok((r, j))
+    }
+    fn evaluations(&self) -> usize {
+        self.1
+    }
+}
+
+/// Single shooting by damped Newton from the linear cold guess.
+fn solve(
+    robot: &tcarod::rod::Robot,
+    inputs: &[f64],
+    opts: &SolveOptions,
+    _warm: Option<&Solution>,
+) -> tcarod::Result<Solution> {
+    let loads = Loads::of(robot);
+    let mut x0 = initial_guess(robot, inputs, None);
+    linear_guess(robot, inputs, &loads, &mut x0);
+    let mut sys = SingleShooting(Shot::new(robot, inputs, &loads, opts.steps), 0);
+    let nopts: NewtonOptions = opts.newton();
+    let nr = newton(&mut sys, &x0, &nopts, "single shooting")?;
+    assemble(robot, inputs, &loads, &nr.x, opts.steps, 0, 0)
+}
 
 fn ms(
     robot: &tcarod::rod::Robot,

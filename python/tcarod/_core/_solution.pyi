@@ -455,4 +455,5 @@ def _restore_solution(
     jacobian: tuple[int, int, Sequence[float]] | None,
     outcome: tuple[int, float, Sequence[float]] | None = None,
     blocked: Sequence[Sequence[float]] | None = None,
+    tensions: Sequence[float] | None = None,
 ) -> Solution: ...

@@ -12,7 +12,7 @@ use crate::shooting::Status;
 /// support; not public API).
 #[pyfunction]
 #[pyo3(name = "_restore_solution",
-    signature = (robot, inputs, unknowns, tip_force, tip_moment, steps, iterations, evaluations, jacobian, outcome=None, blocked=None))]
+    signature = (robot, inputs, unknowns, tip_force, tip_moment, steps, iterations, evaluations, jacobian, outcome=None, blocked=None, tensions=None))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub(crate) fn restore_solution(
     py: Python<'_>,
@@ -27,6 +27,7 @@ pub(crate) fn restore_solution(
     jacobian: Option<(usize, usize, Vec<f64>)>,
     outcome: Option<(i64, f64, Vec<f64>)>,
     blocked: Option<Vec<[f64; 3]>>,
+    tensions: Option<Vec<f64>>,
 ) -> PyResult<PySolution> {
     let r = robot.get().inner.clone();
     let na = r.actuators.len();
@@ -49,16 +50,23 @@ pub(crate) fn restore_solution(
         Some(_) => return Err(Error::input("state", "Jacobian of the wrong size").into()),
         None => None,
     };
+    if tensions
+        .as_ref()
+        .is_some_and(|t| t.len() != na || t.iter().any(|v| !v.is_finite()))
+    {
+        return Err(Error::input("state", "tensions of the wrong size or not finite").into());
+    }
     let mut sol = py.detach(|| {
-        crate::shooting::assemble(
-            &r,
-            &inputs,
-            &loads,
-            &unknowns,
-            steps,
-            iterations,
-            evaluations,
-        )
+        let counts = (steps, iterations, evaluations);
+        match &tensions {
+            // the solve's own tensions: the same IVP, bit for bit
+            Some(tau) => crate::solve::solution::assemble_at_tensions(
+                &r, &inputs, &loads, &unknowns, tau, counts.0, counts.1, counts.2,
+            ),
+            None => crate::shooting::assemble(
+                &r, &inputs, &loads, &unknowns, counts.0, counts.1, counts.2,
+            ),
+        }
         .and_then(checked_solution)
     })?;
     sol.newton_jacobian = jac;

@@ -682,6 +682,7 @@ impl PySolution {
                 .iter()
                 .map(|b| [b.x, b.y, b.z])
                 .collect::<Vec<_>>(),
+            s.tensions.clone(),
         )
             .into_pyobject(py)?;
         match self.verdict.get() {

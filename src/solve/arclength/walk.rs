@@ -107,7 +107,8 @@ impl Walk<'_> {
     where
         S: ParametrisedSystem + ?Sized,
     {
-        let (t, tol) = (&self.at.t, self.opts.tol);
+        let (t, tol, iterations) = (&self.at.t, self.opts.tol, self.opts.corrector_iterations);
+        let corrector = (iterations, CORRECTOR_LAMBDA_MIN);
         let pred = self.predictor();
         let (row, at, fix) = (self.metric.row(t), pred.clone(), false);
         let mut aug = Augmented { sys, row, at, fix };
@@ -127,14 +128,14 @@ impl Walk<'_> {
         }
         let chord = match r1 <= tol {
             true => Some(z1.clone()),
-            false => simplified(&mut aug, (z1.clone(), d1), tol, self.metric)?,
+            false => simplified(&mut aug, (z1.clone(), d1), (tol, iterations), self.metric)?,
         };
         let x = if let Some(x) = chord {
             x
         } else {
             // Newton with a Jacobian at each iterate where the chord stalls
             let spent = aug.work() - self.work0;
-            match correct(&mut aug, &z1, self.opts, spent, CORRECTOR)? {
+            match correct(&mut aug, &z1, self.opts, spent, corrector)? {
                 Ok(x) => x,
                 Err(best) => {
                     self.note(best.or(Some(r1)));
@@ -186,8 +187,9 @@ impl Walk<'_> {
         let mut z: Vec<f64> = a.iter().zip(b).map(|(a, b)| a + u * (b - a)).collect();
         z[b.len() - 1] = t;
         let spent = sys.work() - self.work0;
+        let corrector = (self.opts.corrector_iterations, CORRECTOR_LAMBDA_MIN);
         let mut aug = Augmented::at_lambda(sys, &z);
-        match correct(&mut aug, &z, self.opts, spent, CORRECTOR)? {
+        match correct(&mut aug, &z, self.opts, spent, corrector)? {
             Ok(x) => tangent(sys, x, &self.metric.row(&next.t), self.metric),
             Err(best) => {
                 self.note(best);
