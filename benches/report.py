@@ -100,9 +100,10 @@ def run(cmd: list[str], env: dict[str, str] | None = None) -> tuple[str, float]:
     return proc.stdout, dt
 
 
-def json_line(stdout: str) -> dict[str, Any] | None:
-    """The last ``JSON `` line of a bench's output, parsed."""
+def json_line(stdout: str, bench: str | None = None) -> dict[str, Any] | None:
+    """The last ``JSON `` line of a bench's output (of those whose ``bench`` is ``bench``, if given), parsed."""
     docs = [json.loads(line[5:]) for line in stdout.splitlines() if line.startswith("JSON ")]
+    docs = [d for d in docs if bench is None or d.get("bench") == bench]
     return docs[-1] if docs else None
 
 
@@ -560,7 +561,7 @@ def measure(args: argparse.Namespace) -> dict[str, Any]:
         for name in CRITERION_BENCHES:
             out, _ = run(["cargo", "bench", "--bench", name, "--"] + crit)
             if name == "stability":
-                stability = json_line(out)
+                stability = json_line(out, "stability")
         meta["criterion"] = f"`--warm-up-time {args.warm_up_time:g} --measurement-time {args.measurement_time:g}`"
         meta["criterion_note"] = "measured in this run."
     else:

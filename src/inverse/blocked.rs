@@ -358,14 +358,8 @@ pub fn blocked_temperature(
         let dzc = zc - z;
         let ft = if last { force } else { f + step };
         let warm = predicted(robot, groups, &sol, blocks, dzc, -n * step, zc);
-        // full-grid Newton from the eq-43 prediction, even if the pre-solve
-        // is asked for (Table I grasp: 64 IVPs without it, 215 with it)
-        let full = SolveOptions {
-            presolve: false,
-            ..*opts
-        };
         let inputs = groups.inputs(&[zc]);
-        let trial = solve_loaded(robot, &inputs, &block.loads(robot, ft), &full, Some(&warm));
+        let trial = solve_loaded(robot, &inputs, &block.loads(robot, ft), opts, Some(&warm));
         let st = match trial {
             Ok(st) => st,
             Err(_) if may_halve => {

@@ -73,7 +73,7 @@ fn batch_stability(policy: &str) -> PyResult<bool> {
 ///     ``"report"``: one tangent integration per converged row for its
 ///     verdict; ``"off"``: none.
 /// shapes : bool, optional
-///     Also return every row's centre line (one more IVP per converged row).
+///     Also return every row's centre line (recorded by the solve: no extra IVP).
 ///
 /// Returns
 /// -------

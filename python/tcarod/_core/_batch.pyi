@@ -61,7 +61,7 @@ def solve_batch(
         ``"report"``: one tangent integration per converged row for its
         verdict; ``"off"``: none.
     shapes : bool, optional
-        Also return every row's centre line (one more IVP per converged row).
+        Also return every row's centre line (recorded by the solve: no extra IVP).
 
     Returns
     -------
