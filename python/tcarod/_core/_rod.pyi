@@ -294,7 +294,8 @@ class Robot:
     ) -> Solution:
         """Solve the forward kinetostatics: the robot's shape at the given inputs.
 
-        Shooting on the Cosserat rod (the paper's eqs 22-33), with continuation.
+        Multiple shooting on the Cosserat rod (the paper's eqs 22-33), with
+        continuation in the inputs and loads where Newton fails (docs: The solver).
 
         Parameters
         ----------
@@ -306,7 +307,8 @@ class Robot:
         tol : float, optional
             Newton tolerance on the dimensionless residual (default 1e-10).
         max_iter : int, optional
-            Newton iterations, 1 to 100,000 (default 50).
+            Newton iterations per Newton run (a continuation corrector takes at
+            most 8), 1 to 100,000 (default 50).
         warm_start : Solution, optional
             A nearby solution of this robot, or of a robot with the same actuators
             under other loads (load continuation).
