@@ -287,3 +287,24 @@ def test_a_forged_verdict_margin_is_refused() -> None:
     assert restore is _core._restore_solution_verdict and stable is True
     with pytest.raises(ValueError, match="margin"):
         restore(state, True, math.nan)
+
+
+def test_a_heavy_body_on_several_shooting_segments_pickles_to_its_shape() -> None:
+    # a soft rod hanging 5 degrees off vertical, weight ratio q L^3 / EI ~ 670:
+    # its single IVP from the base amplifies rounding by ~e^17, so the solve
+    # shoots from several nodes and the unpickled solution is solved again,
+    # on the same grid, to the same equilibrium (the same cold solve: the
+    # same shape, here bit for bit; 1e-9 of the length is the fixtures' bound)
+    length, g, tilt = 0.2, 9.81, math.radians(5.0)
+    body = _core.Body(
+        length,
+        _core.Section.circle(0.01),
+        20e3,
+        poisson=0.5,
+        density=1070.0,
+        gravity=[g * math.sin(tilt), 0.0, g * math.cos(tilt)],
+    )
+    sol = _core.Robot(body, []).solve([])
+    back = pickle.loads(pickle.dumps(sol))
+    assert np.abs(back.positions - sol.positions).max() <= 1e-9 * length
+    assert back.tip_position[0] > 0.01  # it hangs bent toward the tilt, 17.7 mm
