@@ -481,8 +481,7 @@ fn eq43_increment(sens: &Sensitivities, n: &Vector3<f64>, step: f64, gap: f64) -
 /// The warm start of an eq-43 increment: `sol` moved to first order
 /// along `dz` (variable) and `df` (tip force) by the exact blocks at `sol`
 /// (`du = -B_u^-1 (B_q dz + B_W dW)`), with its tensions at the predicted
-/// elongations and `B_u` as the Newton Jacobian (so that the corrector's
-/// chord steps need no new tangent IVP).
+/// elongations.
 fn predicted(
     robot: &Robot,
     groups: &Groups,
@@ -493,7 +492,6 @@ fn predicted(
     z: f64,
 ) -> Solution {
     let mut warm = sol.clone();
-    warm.newton_jacobian = Some(blocks.bu());
     let dw = [df.x, df.y, df.z, 0.0, 0.0, 0.0];
     let Some(du) = blocks.predict(&[dz], &dw) else {
         return warm;

@@ -142,11 +142,6 @@ impl ExactBlocks {
         })
     }
 
-    /// `B_u`, the exact shooting Jacobian at the solution.
-    pub(crate) fn bu(&self) -> DMatrix<f64> {
-        self.bm.columns(0, self.nx).into_owned()
-    }
-
     /// First-order change of the unknowns for changes `dz` of the
     /// variables and `dw` of the tip wrench: `-B_u^-1 (B_q dz + B_W dW)`.
     pub(crate) fn predict(&self, dz: &[f64], dw: &[f64; 6]) -> Option<DVector<f64>> {

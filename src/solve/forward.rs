@@ -228,7 +228,7 @@ fn solve_on_grid(
         }
     }
     let rest = remaining(opts, deadline, (spent, best))?;
-    let mut done = solve_on(robot, inputs, loads, &rest, &starts, warm)?;
+    let mut done = solve_on(robot, inputs, loads, &rest, (&starts, true), warm)?;
     done.sys.ms.work += spent;
     finish(done)
 }
@@ -301,7 +301,7 @@ fn presolved<'a>(
         max_evaluations: (opts.max_evaluations as f64 / scale) as usize,
         ..*opts
     };
-    let c = solve_on(robot, inputs, loads, &coarse, cstarts, warm);
+    let c = solve_on(robot, inputs, loads, &coarse, (cstarts, false), warm);
     let c = c.map_err(|e| match e {
         crate::error::Error::NotConverged {
             solver,
@@ -409,13 +409,15 @@ fn nearest_node(grid: &crate::rod::Grid, s: f64) -> usize {
 }
 
 /// The solve on the grid of `opts.steps` with segments at `starts`:
-/// damped Newton from the first guess; where it fails, continuation.
+/// damped Newton from the first guess; where it fails, continuation. With
+/// `record` (the requested grid, not the presolve's coarse one), Newton's
+/// evaluations record their nodes for the solution's assembly.
 fn solve_on<'a>(
     robot: &'a Robot,
     inputs: &'a [f64],
     loads: &Loads,
     opts: &SolveOptions,
-    starts: &[usize],
+    (starts, record): (&[usize], bool),
     warm: Option<&Solution>,
 ) -> Result<Solved<'a>> {
     let started = Instant::now();
@@ -426,7 +428,7 @@ fn solve_on<'a>(
     }
     let (ms, x0) = first_guess(robot, inputs, *loads, opts.steps, (starts, &base), warm)?;
     let mut sys = ShootingSystem::new(ms)?;
-    sys.ms.record(true);
+    sys.ms.record(record);
     match nleq::solve(&mut sys, &x0, &nopts, "forward shooting") {
         Ok(out) => Ok(Solved {
             sys,

@@ -273,15 +273,6 @@ impl<'a> MultipleShooting<'a> {
     pub fn steps(&self) -> usize {
         self.steps
     }
-    /// The segment that records actuator `i`'s elongation.
-    pub fn records(&self, i: usize) -> usize {
-        self.ends_in[i]
-    }
-    /// The IVP state of block `k` and its tensions \[N\].
-    pub fn block(&self, x: &[f64], k: usize) -> Result<(Vec<f64>, Vec<f64>)> {
-        let st = self.block_state(x, k)?;
-        Ok((st.y, st.tau))
-    }
 
     /// The tip node.
     fn tip(&self) -> usize {

@@ -53,8 +53,9 @@ pub struct Solution {
     pub loads: Loads,
     /// RK4 steps used.
     pub steps: usize,
-    /// The exact shooting Jacobian (scaled residual by scaled unknowns) of
-    /// the last Newton iteration; `None` if no iteration was needed.
+    /// The exact single-shooting Jacobian (scaled residual by scaled
+    /// unknowns) where a solve keeps one; the forward solve does not (its
+    /// factorisation is of the multiple-shooting system): `None`.
     pub newton_jacobian: Option<DMatrix<f64>>,
     /// How Newton converged (to `tol`, or to the rounding floor above it).
     pub status: Status,

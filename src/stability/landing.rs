@@ -122,7 +122,6 @@ pub fn land(
             crate::solve::cancel::check()?;
             let mut w = before.clone();
             w.unknowns = g;
-            w.newton_jacobian = None;
             if let Ok(s) = solve_loaded(robot, inputs, loads, opts, Some(&w)) {
                 consider(&mut found, s, route, &mut evals);
             }
