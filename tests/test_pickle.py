@@ -292,9 +292,11 @@ def test_a_forged_verdict_margin_is_refused() -> None:
 def test_a_heavy_body_on_several_shooting_segments_pickles_to_its_shape() -> None:
     # a soft rod hanging 5 degrees off vertical, weight ratio q L^3 / EI ~ 670:
     # its single IVP from the base amplifies rounding by ~e^17, so the solve
-    # shoots from several nodes and the unpickled solution is solved again,
-    # on the same grid, to the same equilibrium (the same cold solve: the
-    # same shape, here bit for bit; 1e-9 of the length is the fixtures' bound)
+    # shoots from several nodes, and the pickle carries the state at each
+    # segment's first node; unpickling integrates each segment from it (no
+    # solve: the same work counts), which reproduces the shape to the
+    # rounding of those states (a few eps) times the growth bound of a
+    # segment (100): 1e-12 of the length
     length, g, tilt = 0.2, 9.81, math.radians(5.0)
     body = _core.Body(
         length,
@@ -306,5 +308,14 @@ def test_a_heavy_body_on_several_shooting_segments_pickles_to_its_shape() -> Non
     )
     sol = _core.Robot(body, []).solve([])
     back = pickle.loads(pickle.dumps(sol))
-    assert np.abs(back.positions - sol.positions).max() <= 1e-9 * length
+    assert np.abs(back.positions - sol.positions).max() <= 1e-12 * length
+    assert (back.iterations, back.evaluations) == (sol.iterations, sol.evaluations)
+    restore, state = sol.__reduce__()
+    if restore is _core._restore_solution_verdict:
+        state = state[0]  # (the verdict travels beside the state)
+    assert state[-1] is not None and len(state[-1]) >= 2
+    with pytest.raises(ValueError, match="segment states"):
+        _core._restore_solution(*state[:-1], [row[:-1] for row in state[-1]])
+    with pytest.raises(ValueError, match="several shooting segments"):
+        _core._restore_solution(*state[:-1], None)
     assert back.tip_position[0] > 0.01  # it hangs bent toward the tilt, 17.7 mm

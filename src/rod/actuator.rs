@@ -217,6 +217,14 @@ pub trait ForceLaw: Send + Sync + Debug {
         let (f, de, _) = self.tension_derivatives(elongation, input)?;
         Ok((f, de))
     }
+    /// The elongation interval \[m\] `[a, b]` at `input` across which the
+    /// law passes from one smooth piece to another (a TCA's coil contact, a
+    /// tendon going slack), `a = b` for a kink; `None` for a smooth law.
+    /// The damped Newton method steps to the far end of the interval before
+    /// it linearises the law on the other piece ([`crate::solve::nleq`]).
+    fn kink(&self, _input: f64) -> Option<(f64, f64)> {
+        None
+    }
     /// `d tension / d input` by central differences within the input bounds
     /// (step `eps^(1/3) max(1, |input|)`, one-sided at a bound).
     fn input_slope(&self, elongation: f64, input: f64) -> Result<f64> {
@@ -329,6 +337,11 @@ impl ForceLaw for TcaLaw {
     fn input_slope(&self, elongation: f64, input: f64) -> Result<f64> {
         self.0.at(input)?.tension_temperature_slope(elongation)
     }
+    /// Coil contact: the smoothed onset below zero elongation
+    /// ([`crate::tca::TcaAt::CONTACT_SMOOTHING`]).
+    fn kink(&self, _input: f64) -> Option<(f64, f64)> {
+        Some((-crate::tca::TcaAt::CONTACT_SMOOTHING, 0.0))
+    }
     fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
         let at = self.0.at(input).ok()?;
         let f0 = at.force(0.0).ok()?;
@@ -399,6 +412,10 @@ impl ForceLaw for LinearTendon {
         } else {
             (0.0, 0.0, 0.0)
         })
+    }
+    /// Slack below the elongation `-input`.
+    fn kink(&self, input: f64) -> Option<(f64, f64)> {
+        Some((-input, -input))
     }
     fn elongation(&self, tension: f64, input: f64) -> Option<f64> {
         Some(tension.max(0.0) / self.stiffness - input)

@@ -51,16 +51,7 @@ pub(crate) fn first_guess<'a>(
             let inner = (1..own.tip()).filter(|&j| !own.is_breakpoint(j));
             inner.min_by(|&a, &b| (own.s(a) - s).abs().total_cmp(&(own.s(b) - s).abs()))
         };
-        let state = |k: usize| {
-            let j = nearest(grid.s(k)).unwrap_or(0);
-            RodState {
-                p: w.positions[j],
-                q: *UnitQuaternion::from_matrix(&w.rotations[j]).quaternion(),
-                v: w.nu[j],
-                u: w.omega[j],
-                delta: w.elongation_profile.row(j).iter().copied().collect(),
-            }
-        };
+        let state = |k: usize| node_state(w, nearest(grid.s(k)).unwrap_or(0));
         return with_blocks(robot, inputs, loads, steps, (starts, base), state);
     }
     match MultipleShooting::chained(robot, inputs, loads, steps, starts, base) {
@@ -76,6 +67,17 @@ pub(crate) fn first_guess<'a>(
             };
             with_blocks(robot, inputs, loads, steps, (starts, base), state)
         }
+    }
+}
+
+/// The rod state of the solution `w` at its node `j`.
+pub(crate) fn node_state(w: &Solution, j: usize) -> RodState {
+    RodState {
+        p: w.positions[j],
+        q: *UnitQuaternion::from_matrix(&w.rotations[j]).quaternion(),
+        v: w.nu[j],
+        u: w.omega[j],
+        delta: w.elongation_profile.row(j).iter().copied().collect(),
     }
 }
 
@@ -97,6 +99,38 @@ fn with_blocks<'a>(
         ms.set_block(&mut x, k, &state(node), &sigma);
     }
     Ok((ms, x))
+}
+
+/// The solution of `robot` at `inputs` under `loads` on `steps` RK4 steps
+/// whose base unknowns are `base` and whose later segments
+/// ([`segment_starts`]) start at the rod states `states`, one per segment
+/// after the first: each segment integrated once from its state, as the
+/// solve's last evaluation did (a pickled solution of several segments
+/// carries these states). An error if `states` does not match the
+/// segments.
+pub fn from_segment_states(
+    robot: &Robot,
+    inputs: &[f64],
+    loads: &Loads,
+    steps: usize,
+    base: &[f64],
+    states: &[RodState],
+) -> Result<Solution> {
+    let starts = segment_starts(robot, loads, steps);
+    if states.len() + 1 != starts.len() {
+        let why = format!(
+            "{} segment states for {} segments",
+            states.len(),
+            starts.len()
+        );
+        return Err(crate::error::Error::input("segment states", why));
+    }
+    let state = |node: usize| {
+        let k = starts.iter().position(|&n| n == node).unwrap_or(1);
+        states[k - 1].clone()
+    };
+    let (mut ms, x) = with_blocks(robot, inputs, *loads, steps, (&starts, base), state)?;
+    assemble(&mut ms, &x, (0, 0))
 }
 
 /// The Newton options of a forward solve.

@@ -54,6 +54,8 @@ pub(crate) struct LawCoordinate<'a> {
     c: f64,
     /// `tau(0)` \[N\].
     tau0: f64,
+    /// The law's kink interval ([`ForceLaw::kink`]) in the coordinate.
+    kink: Option<(f64, f64)>,
 }
 
 impl<'a> LawCoordinate<'a> {
@@ -79,7 +81,33 @@ impl<'a> LawCoordinate<'a> {
             len,
             c,
             tau0,
-        })
+            kink: None,
+        }
+        .with_kink())
+    }
+
+    /// `self` with the law's kink interval mapped to the coordinate (none
+    /// where the law cannot be evaluated at its ends).
+    fn with_kink(mut self) -> Self {
+        let ends = self.law.kink(self.input);
+        self.kink = ends.and_then(|(a, b)| Some((self.of(a).ok()?, self.of(b).ok()?)));
+        self
+    }
+
+    /// The fraction `lambda` in `(0, 1)` of the step `dsigma` from `sigma`
+    /// at which the coordinate reaches the far end of the law's kink
+    /// interval, if the whole step passes over the interval from one side
+    /// to the other: up to there the law is the smooth piece the Jacobian
+    /// was linearised on, beyond it the other piece.
+    pub(crate) fn crossing(&self, sigma: f64, dsigma: f64) -> Option<f64> {
+        let (a, b) = self.kink?;
+        let end = sigma + dsigma;
+        let far = match (sigma, end) {
+            _ if sigma >= b && end < a => a,
+            _ if sigma <= a && end > b => b,
+            _ => return None,
+        };
+        Some((far - sigma) / dsigma).filter(|l| *l > 0.0 && *l < 1.0)
     }
 
     /// The coordinate of elongation `d` \[m\].
@@ -250,6 +278,36 @@ mod tests {
             let p = c.point(c.of(d).unwrap(), 0.0).unwrap();
             assert!(p.dtau > 0.0 && p.dtau < c.len / c.c);
             assert!(p.dd > 0.0 && p.dd <= c.len);
+        }
+    }
+
+    /// A step of the coordinate over a law's kink interval stops at its far
+    /// end, whose elongation is the interval's end (to the inversion's
+    /// rounding, a few eps of the coordinate's terms), in either direction;
+    /// a step that stays on one side, or starts inside, has no crossing.
+    #[test]
+    fn a_step_over_a_kink_stops_at_its_far_end() {
+        for (law, inputs) in laws() {
+            for &input in &inputs {
+                let c = LawCoordinate::new(law.as_ref(), input, 0.06, 3.0).unwrap();
+                let Some((a, b)) = law.kink(input) else {
+                    assert!(c.crossing(1.0, -2.0).is_none());
+                    continue;
+                };
+                let (sa, sb) = (c.of(a).unwrap(), c.of(b).unwrap());
+                let w = sb - sa + 1e-3;
+                for (from, step, end) in [(sb + 1e-3, -2.0 * w, a), (sa - 1e-3, 2.0 * w, b)] {
+                    let l = c.crossing(from, step).unwrap();
+                    let d = c.point(from + l * step, end).unwrap().d;
+                    let size = (end.abs() + c.c * c.tau0.abs()) / c.len + from.abs();
+                    assert!(
+                        (c.of(d).unwrap() - c.of(end).unwrap()).abs() <= 8.0 * f64::EPSILON * size
+                    );
+                }
+                assert!(c.crossing(sb + 1e-3, 1e-3).is_none());
+                assert!(c.crossing(sa - 1e-3, -1e-3).is_none());
+                assert!(c.crossing(0.5 * (sa + sb), -w).is_none() || sa == sb);
+            }
         }
     }
 }

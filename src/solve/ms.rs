@@ -464,6 +464,19 @@ impl<'a> MultipleShooting<'a> {
         row
     }
 
+    /// The first `lambda` in `(0, 1)` at which a law coordinate of
+    /// `x + lambda dx` passes over its force law's kink
+    /// ([`LawCoordinate::crossing`]), in any block: where the law changes
+    /// from the piece a Newton step was linearised on to another.
+    pub(crate) fn breakpoint(&self, x: &[f64], dx: &[f64]) -> Option<f64> {
+        let crossings = (0..self.segments()).flat_map(|k| {
+            let (s, ds) = (self.sigma_of(x, k), self.sigma_of(dx, k));
+            let laws = self.laws.iter().zip(s.iter().zip(ds));
+            laws.filter_map(|(law, (&s, &ds))| law.crossing(s, ds))
+        });
+        crossings.min_by(f64::total_cmp)
+    }
+
     /// Block `k`'s law coordinates `sigma` (empty past the last block).
     fn sigma_of<'x>(&self, x: &'x [f64], k: usize) -> &'x [f64] {
         let (na, o) = (self.na(), self.offset(k));

@@ -44,6 +44,13 @@ pub trait NonlinearSystem {
     }
     /// Work spent so far, in the system's units (e.g. IVP-equivalents).
     fn work(&self) -> f64;
+    /// For a residual that is smooth by pieces (a force law's kink): the
+    /// smallest `lambda` in `(0, 1)` at which `x + lambda dx` leaves the piece
+    /// of `x` for another one, if the full step does; `None` if it stays on
+    /// one piece or the pieces are unknown.
+    fn breakpoint(&self, _x: &[f64], _dx: &[f64]) -> Option<f64> {
+        None
+    }
 }
 
 /// Default smallest damping factor, NLEQ1's for highly nonlinear problems: a
@@ -379,7 +386,17 @@ impl<S: NonlinearSystem + ?Sized> Run<'_, S> {
                 if self.stagnant() {
                     return Ok(Some(Status::ConvergedAtFloor));
                 }
-                (lambda, reduced) = (reduce(lambda, f64::min(mu, 0.5 * lambda)), true);
+                // A trial past a breakpoint of a piecewise smooth residual
+                // measures the other piece, not the curvature of this one:
+                // the next trial is the breakpoint, where the next Jacobian
+                // is the other piece's (Kojima & Shindo, J. Oper. Res. Soc.
+                // Japan 29, 1986)
+                let kink = self.sys.breakpoint(&self.w.x[0], &self.w.d[0]);
+                let next = match kink.filter(|&b| b < lambda) {
+                    Some(b) => b,
+                    None => f64::min(mu, 0.5 * lambda),
+                };
+                (lambda, reduced) = (reduce(lambda, next), true);
             } else if !reduced && lambda < 1.0 && f64::min(1.0, mu) >= 4.0 * lambda {
                 lambda = f64::min(1.0, mu); // a posteriori factor 4x larger: retry (NLEQ-ERR)
             } else {

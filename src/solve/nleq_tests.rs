@@ -626,3 +626,94 @@ fn table() {
     row(Bratu::new(3.5), "Bratu n=50 lambda=3.5");
     row(Obstacle::default(), "Obstacle n=20 k=30");
 }
+
+/// `F(x) = g(x) + c` for a spring law `g` that stiffens from slope 1 to
+/// slope `K` below zero over the interval `[-eps, 0]` (`g' = 1 - (K - 1) x
+/// / eps` there: C1, the shape of a TCA's coil contact,
+/// `crate::tca::TcaAt::tension`), with its breakpoints reported or not.
+struct Stiffening {
+    k: f64,
+    eps: f64,
+    c: f64,
+    report: bool,
+    lu: f64,
+    xs: Vec<f64>,
+}
+
+impl Stiffening {
+    fn g(&self, x: f64) -> (f64, f64) {
+        let (k, e) = (self.k, self.eps);
+        if x >= 0.0 {
+            (x, 1.0)
+        } else if x >= -e {
+            (x - (k - 1.0) * x * x / (2.0 * e), 1.0 - (k - 1.0) * x / e)
+        } else {
+            (-e - (k - 1.0) * e / 2.0 + k * (x + e), k)
+        }
+    }
+}
+
+impl NonlinearSystem for Stiffening {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn residual(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
+        f[0] = self.g(x[0]).0 + self.c;
+        Ok(())
+    }
+    fn linearise(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
+        self.xs.push(x[0]);
+        let (g, dg) = self.g(x[0]);
+        (f[0], self.lu) = (g + self.c, dg);
+        Ok(())
+    }
+    fn solve(&mut self, b: &[f64], dx: &mut [f64]) -> Result<bool> {
+        dx[0] = b[0] / self.lu;
+        Ok(true)
+    }
+    fn work(&self) -> f64 {
+        self.xs.len() as f64
+    }
+    fn breakpoint(&self, x: &[f64], dx: &[f64]) -> Option<f64> {
+        let (x, end, a) = (x[0], x[0] + dx[0], -self.eps);
+        (self.report && x >= 0.0 && end < a).then(|| (a - x) / dx[0])
+    }
+}
+
+/// A step over a kink of a piecewise smooth residual: Newton from the
+/// soft side predicts a root deep in the stiff side, where the residual
+/// is `K` times larger than predicted. Stepping to the breakpoint puts the
+/// next linearisation on the stiff piece, which is linear here, so that
+/// Newton's next step is exact: the linearisation points are the start,
+/// the breakpoint `-eps` and the root. Without the breakpoint each damped
+/// step stays on the soft piece, where the error-oriented damping, fed by
+/// trials on the stiff side, creeps toward the kink.
+#[test]
+fn a_step_over_a_kink_stops_at_the_breakpoint() {
+    let sys = |report| Stiffening {
+        k: 400.0,
+        eps: 1e-3,
+        c: 4.0,
+        report,
+        lu: 0.0,
+        xs: Vec::new(),
+    };
+    let mut kinked = sys(true);
+    let r = solve(&mut kinked, &[1.0], &opts(1e-12, false), "kink").unwrap();
+    let root = r.x[0];
+    assert!((kinked.g(root).0 + 4.0).abs() <= 1e-12);
+    assert!(root < -1e-3, "the root is on the stiff piece: {root}");
+    // (the start, the breakpoint to rounding, then the stiff piece's exact
+    // Newton step lands at the root: at most one more evaluation confirms)
+    assert!(kinked.xs.len() <= 4, "{:?}", kinked.xs);
+    assert!((kinked.xs[1] + 1e-3).abs() < 1e-15, "{:?}", kinked.xs);
+    // (without the breakpoint: not converged within three times the
+    // linearisations, or not at all within the iteration limit)
+    let mut plain = sys(false);
+    let p = solve(&mut plain, &[1.0], &opts(1e-12, false), "kink");
+    assert!(
+        p.is_err() || plain.xs.len() > 3 * kinked.xs.len(),
+        "{:?}",
+        plain.xs
+    );
+}

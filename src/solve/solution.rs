@@ -53,10 +53,6 @@ pub struct Solution {
     pub loads: Loads,
     /// RK4 steps used.
     pub steps: usize,
-    /// The exact single-shooting Jacobian (scaled residual by scaled
-    /// unknowns) where a solve keeps one; the forward solve does not (its
-    /// factorisation is of the multiple-shooting system): `None`.
-    pub newton_jacobian: Option<DMatrix<f64>>,
     /// How Newton converged (to `tol`, or to the rounding floor above it).
     pub status: Status,
     /// Estimated rounding floor of the scaled residual at the solution.
@@ -186,7 +182,6 @@ pub(crate) fn assemble_flat(
         unknowns: x.to_vec(),
         loads: *loads,
         steps,
-        newton_jacobian: None,
         status: Status::Converged,
         floor: 0.0,
         continuation_steps: Vec::new(),

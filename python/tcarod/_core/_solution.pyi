@@ -452,8 +452,8 @@ def _restore_solution(
     steps: int,
     iterations: int,
     evaluations: int,
-    jacobian: tuple[int, int, Sequence[float]] | None,
     outcome: tuple[int, float, Sequence[float]] | None = None,
     blocked: Sequence[Sequence[float]] | None = None,
     tensions: Sequence[float] | None = None,
+    segments: Sequence[Sequence[float]] | None = None,
 ) -> Solution: ...

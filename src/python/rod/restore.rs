@@ -12,8 +12,8 @@ use crate::shooting::Status;
 /// support; not public API).
 #[pyfunction]
 #[pyo3(name = "_restore_solution",
-    signature = (robot, inputs, unknowns, tip_force, tip_moment, steps, iterations, evaluations, jacobian, outcome=None, blocked=None, tensions=None))]
-#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+    signature = (robot, inputs, unknowns, tip_force, tip_moment, steps, iterations, evaluations, outcome=None, blocked=None, tensions=None, segments=None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn restore_solution(
     py: Python<'_>,
     robot: Bound<'_, PyRobot>,
@@ -24,10 +24,10 @@ pub(crate) fn restore_solution(
     steps: usize,
     iterations: usize,
     evaluations: usize,
-    jacobian: Option<(usize, usize, Vec<f64>)>,
     outcome: Option<(i64, f64, Vec<f64>)>,
     blocked: Option<Vec<[f64; 3]>>,
     tensions: Option<Vec<f64>>,
+    segments: Option<Vec<Vec<f64>>>,
 ) -> PyResult<PySolution> {
     let r = robot.get().inner.clone();
     let na = r.actuators.len();
@@ -43,23 +43,28 @@ pub(crate) fn restore_solution(
         tip_force: Vector3::from(tip_force),
         tip_moment: Vector3::from(tip_moment),
     };
-    let jac = match jacobian {
-        Some((m, n, v)) if m * n == v.len() && m == unknowns.len() && n == unknowns.len() => {
-            Some(nalgebra::DMatrix::from_vec(m, n, v))
-        }
-        Some(_) => return Err(Error::input("state", "Jacobian of the wrong size").into()),
-        None => None,
-    };
     if tensions
         .as_ref()
         .is_some_and(|t| t.len() != na || t.iter().any(|v| !v.is_finite()))
     {
         return Err(Error::input("state", "tensions of the wrong size or not finite").into());
     }
+    let states = segments.map(|v| rod_states(&v, na)).transpose()?;
     let mut sol = py.detach(|| {
         let counts = (steps, iterations, evaluations);
+        if let Some(states) = &states {
+            let at = (&r, &inputs[..], &loads);
+            let sol = crate::solve::forward::from_segment_states(
+                at.0, at.1, at.2, steps, &unknowns, states,
+            );
+            return sol.and_then(|mut s| {
+                (s.iterations, s.evaluations) = (iterations, evaluations);
+                checked_solution(s)
+            });
+        }
         if crate::solve::segments::segment_starts(&r, &loads, steps).len() > 1 {
-            return several_segments(&r, &inputs, &loads, &unknowns, counts);
+            let why = "a solution on several shooting segments without their states";
+            return Err(Error::input("state", why));
         }
         match &tensions {
             // the solve's own tensions: the same IVP, bit for bit
@@ -72,7 +77,6 @@ pub(crate) fn restore_solution(
         }
         .and_then(checked_solution)
     })?;
-    sol.newton_jacobian = jac;
     if let Some((code, floor, path)) = outcome {
         sol.status = match code {
             0 => Status::Converged,
@@ -101,32 +105,26 @@ pub(crate) fn restore_solution(
     Ok(out)
 }
 
-/// The solution of a body solved on several shooting segments (a heavy
-/// one, whose single IVP from the base amplifies rounding past the
-/// solution's accuracy): solved again, cold, on the same grid, and
-/// accepted where its base unknowns are the pickled ones to `1e-6` (the
-/// same equilibrium); else an error, never an unfaithful profile.
-fn several_segments(
-    r: &crate::rod::Robot,
-    inputs: &[f64],
-    loads: &crate::shooting::Loads,
-    unknowns: &[f64],
-    (steps, iterations, evaluations): (usize, usize, usize),
-) -> crate::error::Result<crate::shooting::Solution> {
-    let opts = crate::shooting::SolveOptions {
-        steps,
-        ..Default::default()
+/// The rod states of a pickle's `segments` (see `segment_states` in
+/// `solution.rs`: `p`, `q`, `nu`, `omega`, the `na` elongations), each
+/// quaternion normalised; an error for a wrong length, a value that is not
+/// finite or a zero quaternion.
+fn rod_states(segments: &[Vec<f64>], na: usize) -> PyResult<Vec<crate::rod::RodState>> {
+    let state = |v: &Vec<f64>| {
+        let q = nalgebra::Quaternion::new(v[3], v[4], v[5], v[6]);
+        let fine = v.iter().all(|x| x.is_finite()) && q.norm() > 0.0;
+        fine.then(|| crate::rod::RodState {
+            p: Vector3::new(v[0], v[1], v[2]),
+            q: q.normalize(),
+            v: Vector3::new(v[7], v[8], v[9]),
+            u: Vector3::new(v[10], v[11], v[12]),
+            delta: v[13..].to_vec(),
+        })
     };
-    let mut sol = crate::shooting::solve_loaded(r, inputs, loads, &opts, None)?;
-    let apart =
-        (sol.unknowns.iter().zip(unknowns)).any(|(a, b)| (a - b).abs() > 1e-6 * (1.0 + b.abs()));
-    if apart {
-        return Err(Error::input(
-            "state",
-            "a solution on several shooting segments whose equilibrium a cold solve does not \
-             reach again (pickle the robot and its inputs and solve again instead)",
-        ));
-    }
-    (sol.iterations, sol.evaluations) = (iterations, evaluations);
-    checked_solution(sol)
+    let bad = || Error::input("state", "segment states of the wrong size or not finite");
+    let states = segments.iter().map(|v| match v.len() == 13 + na {
+        true => state(v).ok_or_else(bad),
+        false => Err(bad()),
+    });
+    Ok(states.collect::<Result<_, _>>()?)
 }

@@ -659,32 +659,33 @@ impl PySolution {
     }
     /// Pickle support: the robot and the converged shooting unknowns; the
     /// profile is rebuilt by one IVP from them (bit-identical: the IVP is
-    /// deterministic), the Newton Jacobian kept for warm starts, and the
+    /// deterministic), or for a solution of several shooting segments by
+    /// one integration of each segment from its pickled first state; the
     /// stability verdict kept if it was computed.
     fn __reduce__<'py>(&self, py: Python<'py>) -> Reduce<'py, Bound<'py, PyTuple>> {
         let s = &self.inner;
-        let jac = s
-            .newton_jacobian
-            .as_ref()
-            .map(|j| (j.nrows(), j.ncols(), j.as_slice().to_vec()));
-        let args = (
+        let model = (
             self.robot.clone_ref(py),
             s.inputs.clone(),
             s.unknowns.clone(),
             s.loads.tip_force.as_slice().to_vec(),
             s.loads.tip_moment.as_slice().to_vec(),
             s.steps,
+        )
+            .into_pyobject(py)?;
+        let outcome = (
             s.iterations,
             s.evaluations,
-            jac,
             (status_code(s.status), s.floor, s.continuation_steps.clone()),
             self.blocked
                 .iter()
                 .map(|b| [b.x, b.y, b.z])
                 .collect::<Vec<_>>(),
             s.tensions.clone(),
+            segment_states(&self.robot.get().inner, s),
         )
             .into_pyobject(py)?;
+        let args = PyTuple::new(py, model.iter().chain(outcome.iter()).collect::<Vec<_>>())?;
         match self.verdict.get() {
             None => reduce_with(py, "_restore_solution", args),
             // the verdict travels with the state: no tangent IVP after unpickling
@@ -695,6 +696,34 @@ impl PySolution {
             ),
         }
     }
+}
+
+/// The rod states at the first nodes of the shooting segments after the
+/// first (`p`, the quaternion `q` as `w, x, y, z`, `nu`, `omega`, the
+/// elongations), for unpickling a solution of several segments: its
+/// profile is integrated from them, segment by segment, as the solve's
+/// last evaluation did. `None` for one segment, which the base unknowns
+/// rebuild alone.
+fn segment_states(
+    robot: &crate::rod::Robot,
+    s: &crate::shooting::Solution,
+) -> Option<Vec<Vec<f64>>> {
+    let starts = crate::solve::segments::segment_starts(robot, &s.loads, s.steps);
+    (starts.len() > 1).then(|| {
+        let flat = |j: usize| {
+            let st = crate::solve::forward::node_state(s, j);
+            let q = [st.q.w, st.q.i, st.q.j, st.q.k];
+            let parts = [
+                st.p.as_slice(),
+                &q,
+                st.v.as_slice(),
+                st.u.as_slice(),
+                &st.delta,
+            ];
+            parts.concat()
+        };
+        starts[1..].iter().map(|&j| flat(j)).collect()
+    })
 }
 
 impl PartialEq for PySolution {
@@ -722,7 +751,6 @@ impl PartialEq for PySolution {
             && a.actuator_paths == b.actuator_paths
             && a.base_force == b.base_force
             && a.base_moment == b.base_moment
-            && a.newton_jacobian == b.newton_jacobian
             && a.status == b.status
             && a.floor.to_bits() == b.floor.to_bits()
             && a.continuation_steps == b.continuation_steps

@@ -69,4 +69,7 @@ impl crate::solve::nleq::NonlinearSystem for ShootingSystem<'_> {
     fn work(&self) -> f64 {
         self.ms.work
     }
+    fn breakpoint(&self, x: &[f64], dx: &[f64]) -> Option<f64> {
+        self.ms.breakpoint(x, dx)
+    }
 }
