@@ -6,7 +6,8 @@
 //! reference configuration (reference inputs, no load: the unloaded body
 //! at rest, an exact solution) to the requested inputs and loads this is
 //! the homotopy of a cold solve; from a neighbouring solution's inputs
-//! and loads, a warm solve's.
+//! and loads, a warm solve's; between the problem at the two ends of a
+//! parameter's interval, a followed branch's ([`crate::branch`]).
 
 use nalgebra::{Quaternion, Vector3};
 
