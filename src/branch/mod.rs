@@ -1,27 +1,32 @@
-//! Branch following (beyond the paper; `docs/stability.md`): Keller's
-//! pseudo-arclength continuation (Keller 1977, "Numerical solution of
-//! bifurcation and nonlinear eigenvalue problems") of the
-//! shooting equilibria in one scalar parameter, through limit points, with
-//! folds, bifurcations and the stability of each point; and a sweep that
-//! stays on stable equilibria and reports where the physical robot jumps.
+//! Branch following (beyond the paper; `docs/stability.md`): the
+//! equilibria in one scalar parameter, through limit points, with folds,
+//! bifurcations and the stability of each point; and a sweep that stays on
+//! stable equilibria and reports where the physical robot jumps.
 //!
-//! The path is `y(sigma) = (x, lambda / scale)` with `x` the scaled shooting
-//! unknowns of [`crate::shooting`]; each step predicts along the unit tangent
-//! `t` (the null vector of `[F_x, F_lambda]`, oriented by `t_prev . t > 0`)
-//! and corrects on the hyperplane `t . (y - y_pred) = 0`. A fold (limit point)
-//! is a sign change of `d lambda / d sigma`; a bifurcation is a sign change
-//! of `det F_x` not explained by a fold, or a change of the stability verdict
-//! without a fold (a symmetric double root leaves `det F_x` positive).
-//! Events are located by regula falsi on the arclength.
+//! Every parameter enters the problem linearly (the inputs it sets, the tip
+//! wrench or the gravity load `psi A g` it scales), so a branch is the
+//! solver's own pseudo-arclength continuation (Keller 1977; Allgower &
+//! Georg, *Introduction to Numerical Continuation Methods*, SIAM 2003;
+//! [`crate::solve::arclength`]) of the multiple-shooting system along the
+//! straight path in inputs and loads between the problem at the two ends of
+//! the parameter's interval ([`crate::solve::homotopy::LoadPath`]),
+//! `parameter = start + lambda (end - start)`, `lambda` in `[0, 1]`. A fold
+//! (limit point) is a sign change of `d lambda / d s`; a bifurcation is a
+//! sign change of `det G_x` (the multiple-shooting Jacobian at fixed
+//! parameter, from its staircase factors) not explained by a fold, or a
+//! change of the stability verdict without a fold (a symmetric double root
+//! leaves the sign of `det G_x`). Events are located by regula falsi on the
+//! arclength.
 
 use nalgebra::Vector3;
 
 use crate::error::{Error, Result};
 use crate::rod::Robot;
-use crate::shooting::{assemble, solve_loaded, Loads, Shot, Solution, SolveOptions};
+use crate::shooting::{assemble, solve_loaded, Loads, Solution, SolveOptions};
 use crate::stability::{stability, Stability};
 
 mod follow;
+mod locate;
 mod sweep;
 
 pub use follow::follow_branch;
@@ -85,6 +90,14 @@ impl<'a> Problem<'a> {
     /// Robot, inputs and loads at parameter value `lambda`.
     pub fn at(&self, lambda: f64) -> Result<(Robot, Vec<f64>, Loads)> {
         crate::error::finite("parameter", lambda)?;
+        let (robot, inputs, loads) = self.unchecked(lambda);
+        robot.check_inputs(&inputs)?;
+        Ok((robot, inputs, loads))
+    }
+
+    /// [`Problem::at`] without the check of the inputs against their force
+    /// laws' ranges (the far end of a path that leaves a range on its way).
+    fn unchecked(&self, lambda: f64) -> (Robot, Vec<f64>, Loads) {
         let mut robot = self.robot.clone();
         let mut inputs = self.inputs.clone();
         let mut loads = Loads::of(self.robot);
@@ -100,16 +113,7 @@ impl<'a> Problem<'a> {
             }
             Parameter::GravityScale => robot.body.gravity *= lambda,
         }
-        robot.check_inputs(&inputs)?;
-        Ok((robot, inputs, loads))
-    }
-
-    /// Scaled shooting residual at `(x, lambda)`.
-    fn residual(&self, x: &[f64], lambda: f64, steps: usize) -> Result<Vec<f64>> {
-        let (robot, inputs, loads) = self.at(lambda)?;
-        Shot::new(&robot, &inputs, &loads, steps)
-            .residual(x, false)
-            .map(|t| t.0)
+        (robot, inputs, loads)
     }
 
     /// Equilibrium with its profile at `lambda` from unknowns `x`.
@@ -144,8 +148,11 @@ pub struct BranchOptions {
     /// Parameter value to reach (the path stops once it leaves the interval
     /// between `start` and `end`).
     pub end: f64,
-    /// Initial arclength step, in units of `|end - start|` (the path norm
-    /// is that of `(x, lambda / |end - start|)`).
+    /// Initial arclength step, in units of `|end - start|`: the path norm
+    /// is `|z|^2 = |x|^2 / n + lambda^2` with `x` the `n` scaled
+    /// multiple-shooting unknowns and `lambda = (parameter - start) / (end -
+    /// start)`, so a step along the parameter alone is its change over
+    /// `|end - start|`.
     pub step: f64,
     /// Largest arclength step (same units).
     pub max_step: f64,
@@ -155,7 +162,8 @@ pub struct BranchOptions {
     pub max_points: usize,
     /// Stop at the first point that is not stable or lies past a fold (sweep mode).
     pub stop_when_unstable: bool,
-    /// Shooting options (grid, tolerance, iterations of each corrector).
+    /// Shooting options (grid, tolerance, iterations of each corrector, at
+    /// most [`crate::solve::arclength::CORRECTOR_ITERATIONS`]).
     pub solve: SolveOptions,
 }
 
@@ -213,10 +221,15 @@ pub struct BranchPoint {
     pub solution: Solution,
     /// Its stability.
     pub stability: Stability,
-    /// `d lambda / d sigma` (scaled) of the path tangent.
+    /// `d (parameter / |end - start|) / d s` of the unit path tangent
+    /// (arclength `s` in the norm of [`BranchOptions::step`]); changes sign
+    /// at a fold.
     pub dparameter: f64,
-    /// `det F_x`, the determinant of the (scaled) shooting Jacobian at fixed
-    /// parameter (exact, from the tangent IVP).
+    /// `det G_x`, the determinant of the scaled multiple-shooting Jacobian
+    /// at fixed parameter (exact tangents of the discrete map, from its
+    /// staircase LU factors, [`crate::solve::abd::Staircase::determinant`]).
+    /// Its sign changes at a simple bifurcation or a fold; its size depends
+    /// on the segments and the scaling of the unknowns. NaN if unknown.
     pub jacobian_det: f64,
 }
 

@@ -6,7 +6,8 @@
 //! reference configuration (reference inputs, no load: the unloaded body
 //! at rest, an exact solution) to the requested inputs and loads this is
 //! the homotopy of a cold solve; from a neighbouring solution's inputs
-//! and loads, a warm solve's.
+//! and loads, a warm solve's; between the problem at the two ends of a
+//! parameter's interval, a followed branch's ([`crate::branch`]).
 
 use nalgebra::{Quaternion, Vector3};
 
@@ -71,6 +72,9 @@ pub struct LoadPath<'a> {
     row: (Vec<f64>, f64),
     singular: bool,
     work: f64,
+    /// The rounding floor of the last evaluation's residual
+    /// ([`MultipleShooting`]'s, as the forward solve's Newton uses).
+    floor: f64,
     /// Where the next evaluation's law coordinates start their inversion
     /// ([`MultipleShooting::hints`]): the last evaluation's elongations.
     hints: Vec<f64>,
@@ -101,7 +105,21 @@ impl<'a> LoadPath<'a> {
             row: (Vec::new(), 0.0),
             singular: false,
             work: 0.0,
+            floor: 0.0,
             hints: Vec::new(),
+        }
+    }
+
+    /// `det G_x`, the determinant of the scaled multiple-shooting Jacobian
+    /// at the last linearisation ([`ParametrisedSystem::linearise_bordered`]),
+    /// from its staircase factors ([`Staircase::determinant`]); `None` before
+    /// one, or where it was singular. Its sign changes at a simple
+    /// bifurcation or a fold of the path (Allgower & Georg, *Introduction to
+    /// Numerical Continuation Methods*, SIAM 2003, sec. 8.1).
+    pub fn determinant(&self) -> Option<f64> {
+        match self.singular {
+            true => None,
+            false => self.lu.as_ref().and_then(Staircase::determinant),
         }
     }
 
@@ -151,6 +169,7 @@ impl<'a> LoadPath<'a> {
         };
         self.hints = ms.hints();
         self.work += ms.work;
+        self.floor = ms.rounding_floor(x);
         out
     }
 
@@ -246,6 +265,15 @@ impl ParametrisedSystem for LoadPath<'_> {
         }
         *dlambda = dl + cl;
         Ok(dx.iter().all(|v| v.is_finite()) && dlambda.is_finite())
+    }
+    /// The rounding floor of `max |G_i|` at the last evaluation, which the
+    /// continuation asks for at the point it has just evaluated: `4 eps`
+    /// times the largest term of any row (the forward solve's,
+    /// [`MultipleShooting`]). A heavy body's terms reach `1e-10` relative
+    /// to the residual's scale, where a corrector at a fixed `1e-10` would
+    /// stall.
+    fn floor(&self, _x: &[f64], _f: &[f64]) -> f64 {
+        self.floor
     }
     fn work(&self) -> f64 {
         self.work

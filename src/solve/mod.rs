@@ -3,7 +3,7 @@
 //! error-oriented damped Newton method ([`nleq`]), pseudo-arclength
 //! continuation ([`arclength`], in the homotopies of [`homotopy`]), the
 //! public entry points ([`shooting`]), the Newton solver of the inverse
-//! problems and branch following ([`newton()`](fn@newton)) and cooperative
+//! problems ([`newton()`](fn@newton)) and cooperative
 //! cancellation ([`cancel`]). `docs/solver.md` describes the algorithm.
 
 pub mod abd;

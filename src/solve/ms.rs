@@ -607,7 +607,7 @@ impl MultipleShooting<'_> {
     /// segment, the tip rows' the largest term of the balance (32)-(33) as
     /// single shooting's (`K (strain - strain*)`, the tip loads and the
     /// tensions, scaled).
-    fn rounding_floor(&self, x: &[f64]) -> f64 {
+    pub(crate) fn rounding_floor(&self, x: &[f64]) -> f64 {
         let robot = self.robot;
         let (kse, kbt) = robot.body.stiffness();
         let (fs, ms) = residual_scales(robot);

@@ -8,6 +8,7 @@
 mod common;
 
 mod analytic;
+mod branch;
 mod cold_presolve;
 mod design_solves;
 mod designs;

@@ -114,7 +114,9 @@ def follow_branch(
 ) -> Branch:
     """Follow the equilibria of ``robot`` as ``parameter`` goes from ``start`` to ``end``.
 
-    Pseudo-arclength continuation through folds, with each point's stability.
+    Pseudo-arclength continuation through folds, with each point's stability:
+    the solver's own continuation on multiple shooting (``docs/solver.md``),
+    so heavy soft bodies are followed like light ones.
 
     Parameters
     ----------
@@ -139,7 +141,8 @@ def follow_branch(
         (0.02, 0.1) and the point budget (500).
     steps, tol, max_iter : optional
         RK4 steps (100), Newton tolerance on the dimensionless residual
-        (1e-10) and iterations per point (50), as for ``Robot.solve``.
+        (1e-10) and iterations of each point's corrector (50, of which at
+        most 8 are used), as for ``Robot.solve``.
 
     Returns
     -------

@@ -328,8 +328,8 @@ fn wrap(
 
 /// Follow the equilibria of ``robot`` in one scalar parameter.
 ///
-/// Pseudo-arclength continuation from ``start`` to ``end`` through folds,
-/// with the stability of every point; the public form is
+/// Pseudo-arclength continuation on multiple shooting from ``start`` to
+/// ``end`` through folds, with the stability of every point; the public form is
 /// ``tcarod.models.stability.follow_branch``.
 ///
 /// Parameters
@@ -360,7 +360,7 @@ fn wrap(
 /// tol : float, optional
 ///     Newton tolerance on the dimensionless residual (default 1e-10).
 /// max_iter : int, optional
-///     Newton iterations per point (default 50).
+///     Iterations of each point's corrector (default 50; at most 8 are used).
 ///
 /// Returns
 /// -------
