@@ -81,10 +81,18 @@ impl Walk<'_> {
             return self.reject(1.0 / MAX_FACTOR);
         }
         if lp * ln > 0.0 {
+            let (lo, hi) = sys.domain();
+            let (outside, dl) = (!(lo..=hi).contains(&l1), next.t[next.t.len() - 1]);
+            if (l1 < lo && dl > 0.0) || (l1 > hi && dl < 0.0) {
+                // Outside the domain with the branch heading back into it:
+                // the step cut across a bend of the branch (the corrector's
+                // hyperplane meets a strongly curved branch beyond the
+                // domain's edge). Shorter steps follow the bend.
+                return self.reject(1.0 / MAX_FACTOR);
+            }
             self.accept(next, fold);
             self.s = (self.s * factor).clamp(self.opts.min_step, self.opts.max_step);
-            let (lo, hi) = sys.domain();
-            if !(lo..=hi).contains(&l1) {
+            if outside {
                 let why = format!("it leaves the system's domain {lo} <= lambda <= {hi}");
                 return Err(self.error(StopReason::Other, &why));
             }
