@@ -514,12 +514,11 @@ fn fixed_inputs_drive_one_leg_of_two() {
 
 /// A blocked tip on a heavy soft body, which single shooting's growth
 /// defeats: a horizontal beam of the stress family sagging under its
-//// weight (`q L^3 / EI` of a few hundred), its tip held by a support under
-/// it, a tenth of the sag up from the free tip toward the base's height. The blocked
-/// force is solved on several multiple-shooting segments; the tip lies on
-/// the support to the bordered Newton's tolerance and the solution is in
-/// global equilibrium: the base wrench balances the weight and the
-/// contact force.
+/// weight (`q L^3 / EI` of a few hundred), its tip held by a support under
+/// it, a tenth of the sag up from the free tip toward the base's height.
+/// The blocked force is solved on several multiple-shooting segments; the
+/// tip lies on the support to 1e-9 L and the solution is in global
+/// equilibrium: the base wrench balances the weight and the contact force.
 #[test]
 fn blocked_tip_of_a_heavy_horizontal_body() {
     use tcarod::problems::{equilibrium, stress_design, weight_ratio, Orientation, STRESS_SEED};
