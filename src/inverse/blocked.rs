@@ -1,16 +1,15 @@
 //! A blocked tip (mixed boundary conditions) and the paper's incremental
 //! method (eq 43).
 
-use nalgebra::{DMatrix, Vector3};
+use nalgebra::Vector3;
 
-use super::mixed::{coarse_steps, predictor, Extra, Mixed};
-use super::mixed_presolve::presolve;
+use super::mixed::Extra;
+use super::mixed_solve::{mixed_solve, Guess};
+use super::predictor::{coarse_steps, predictor, Linearised};
 use super::{exact_blocks, load_scales, ExactBlocks, Groups, Sensitivities};
 use crate::error::{significant, Error, Result, StopReason};
 use crate::rod::Robot;
-use crate::shooting::{initial_guess, solve_loaded, Loads, Shot, Solution, SolveOptions};
-use crate::solve::newton::newton_from;
-use crate::solve::solution::assemble_flat;
+use crate::shooting::{solve_loaded, Loads, Solution, SolveOptions};
 use crate::stability::{stability, unstable_error, Policy, Stability};
 
 /// A blocked tip: the tip's displacement along `normal` (unit, world) is held
@@ -67,7 +66,7 @@ impl Block {
     }
     /// The block's verdict on `res` (see [`Block::stability`]); the
     /// verdict's tangent IVP is counted in `res.evaluations`.
-    fn check(&self, robot: &Robot, mut res: BlockedResult) -> Result<BlockedResult> {
+    pub(super) fn check(&self, robot: &Robot, mut res: BlockedResult) -> Result<BlockedResult> {
         if self.stability == Policy::Off {
             return Ok(res);
         }
@@ -101,10 +100,12 @@ pub struct BlockedResult {
 
 /// Direct solve with the tip held (mixed boundary condition): at given
 /// actuation variables `z`, the contact force `f` \[N\] is an extra unknown and
-/// `normal . (p(L) - point) = 0` an extra residual (Newton with the exact
-/// Jacobian, see `inverse::mixed`). `f` may come out negative
-/// if the tip would pull away from the block (the caller decides whether
-/// contact holds).
+/// `normal . (p(L) - point) = 0` an extra residual, solved by the damped
+/// Newton method on the multiple-shooting system bordered by that
+/// condition (see `inverse::mixed`), from the forward solution at `z`
+/// under the force of `warm` (zero without one), warm from its solution.
+/// `f` may come out negative if the tip would pull away from the block
+/// (the caller decides whether contact holds).
 pub fn blocked_force(
     robot: &Robot,
     groups: &Groups,
@@ -117,17 +118,26 @@ pub fn blocked_force(
     let inputs = groups.inputs(z);
     robot.check_inputs(&inputs)?;
     let (fc, _) = load_scales(robot);
-    let mut x0 = initial_guess(robot, &inputs, warm.map(|w| w.0));
-    x0.push(warm.map_or(0.0, |w| w.1) / fc);
+    let f0 = warm.map_or(0.0, |w| w.1);
+    crate::error::finite("warm force [N]", f0)?;
+    let start = solve_loaded(
+        robot,
+        &inputs,
+        &block.loads(robot, f0),
+        opts,
+        warm.map(|w| w.0),
+    )?;
     let extra = Extra::Force { inputs };
-    let mut sys = Mixed::new(robot, groups, block, extra, opts.steps);
-    mixed_newton(&mut sys, &x0, None, opts, "blocked-tip shooting", (0, 0))
+    let problem = (robot, groups, block);
+    let guess = Guess::Solution(&start);
+    let solver = "blocked-tip shooting";
+    mixed_solve(problem, extra, guess, f0 / fc, opts, solver, (0, 0.0))
 }
 
 /// Direct solve for the single actuation variable at which the blocked tip
-/// presses with `force` \[N\] (the variable is an extra unknown), Newton
-/// with the exact Jacobian from `z_guess`. Independent check of
-/// [`blocked_temperature`].
+/// presses with `force` \[N\] (the variable an extra unknown, see
+/// `inverse::mixed`), from the forward solution at `z_guess` under that
+/// force (warm from `warm`). Independent check of [`blocked_temperature`].
 pub fn blocked_variable_direct(
     robot: &Robot,
     groups: &Groups,
@@ -138,34 +148,34 @@ pub fn blocked_variable_direct(
     warm: Option<&Solution>,
 ) -> Result<BlockedResult> {
     one_variable_and_force(robot, groups, force)?;
+    crate::error::finite("z_guess", z_guess)?;
+    let inputs = groups.inputs(&[z_guess]);
+    robot.check_inputs(&inputs)?;
+    let start = solve_loaded(robot, &inputs, &block.loads(robot, force), opts, warm)?;
     let scale = variable_scale(robot, groups);
-    let mut x0 = initial_guess(robot, &groups.inputs(&[z_guess]), warm);
-    x0.push(z_guess / scale);
     let extra = Extra::Variable { force, scale };
-    let mut sys = Mixed::new(robot, groups, block, extra, opts.steps);
-    mixed_newton(
-        &mut sys,
-        &x0,
-        None,
+    let problem = (robot, groups, block);
+    let solver = "blocked-tip temperature shooting";
+    let guess = Guess::Solution(&start);
+    mixed_solve(
+        problem,
+        extra,
+        guess,
+        z_guess / scale,
         opts,
-        "blocked-tip temperature shooting",
-        (0, 0),
+        solver,
+        (0, 0.0),
     )
 }
 
 /// Direct solve for the single actuation variable at which the blocked tip
 /// presses with `force` \[N\], from `start` (a solution whose tip touches the
-/// block with no force): one augmented Newton solve (the variable an extra
-/// unknown, see `inverse::mixed`) started from an eq-43 predictor of the
-/// whole force in one step with the force law kept exact (see
-/// `inverse::mixed::predictor`). The predictor's tangents (one tangent IVP
-/// at `start`, on the Jacobian's coarse grid), with the force laws' slopes
-/// taken at the predicted point, are also the first Newton Jacobian of a
-/// coarse-grid pre-solve with defect correction (`inverse::mixed_presolve`),
-/// whose chord steps cost a tenth of an IVP each; the full-grid Newton
-/// then starts at its root (Table I grasp: 2 full-grid IVPs, 11 coarse
-/// IVPs and 2 coarse tangent IVPs after the predictor, against 7 full-grid
-/// chord steps without the pre-solve).
+/// block with no force): the damped Newton method on the multiple-shooting
+/// system under the contact force, with the variable as the extra unknown
+/// and the tip's gap as the extra condition (see `inverse::mixed`), from
+/// the eq-43 predictor of the whole force with the force law kept exact
+/// (see `inverse::predictor`: one tangent IVP at `start` on a tenth of the
+/// grid).
 pub fn blocked_variable_from(
     robot: &Robot,
     groups: &Groups,
@@ -174,42 +184,27 @@ pub fn blocked_variable_from(
     force: f64,
     opts: &SolveOptions,
 ) -> Result<BlockedResult> {
-    direct_from(
+    one_variable_and_force(robot, groups, force)?;
+    groups.check_fixed(&start.inputs, "start")?;
+    let z0 = groups.vars(&start.inputs)[0];
+    let scale = variable_scale(robot, groups);
+    let extra = Extra::Variable { force, scale };
+    let problem = (robot, groups, block);
+    let linear = Linearised {
         robot,
         groups,
         block,
-        start,
         force,
-        opts,
-        coarse_steps(opts.steps),
-    )
-}
-
-/// [`blocked_variable_from`] with the pre-solve on `coarse` RK4 steps
-/// (`None`: no pre-solve, full-grid Newton from the predictor).
-pub(crate) fn direct_from(
-    robot: &Robot,
-    groups: &Groups,
-    block: &Block,
-    start: &Solution,
-    force: f64,
-    opts: &SolveOptions,
-    coarse: Option<usize>,
-) -> Result<BlockedResult> {
-    one_variable_and_force(robot, groups, force)?;
-    groups.check_fixed(&start.inputs, "start")?;
-    let scale = variable_scale(robot, groups);
-    let extra = Extra::Variable { force, scale };
-    let mut sys = Mixed::new(robot, groups, block, extra.clone(), opts.steps);
-    let (x0, jac0) = predictor(&mut sys, start, groups.vars(&start.inputs)[0])?;
-    let Some(coarse) = coarse else {
-        return mixed_newton(&mut sys, &x0, Some(&jac0), opts, GRASP, (0, 0));
+        scale,
     };
-    let mut cs = Mixed::new(robot, groups, block, extra, coarse);
-    sys.record_below = f64::INFINITY; // each full-grid IVP may be the root's
-    let pre = presolve(&mut sys, &mut cs, &x0, jac0, &opts.newton());
-    let before = (pre.iterations, cs.evaluations);
-    mixed_newton(&mut sys, &pre.x, Some(&pre.jacobian), opts, GRASP, before)
+    // one tangent IVP on the predictor's grid, counted in IVPs of the
+    // requested grid (`1 + (6 + N) / 8` directions)
+    let coarse = coarse_steps(opts.steps);
+    let cost = coarse as f64 / opts.steps as f64 * (1.0 + start.unknowns.len() as f64 / 8.0);
+    let x = predictor(&linear, start, coarse, z0)?;
+    let n = x.len() - 1;
+    let guess = Guess::Base(x[..n].to_vec());
+    mixed_solve(problem, extra, guess, x[n], opts, GRASP, (0, cost))
 }
 
 /// Newton's name for the direct grasp solve.
@@ -219,55 +214,6 @@ const GRASP: &str = "blocked-tip grasp shooting";
 pub(crate) fn variable_scale(robot: &Robot, groups: &Groups) -> f64 {
     let (lo, hi) = groups.bounds(robot)[0];
     (hi - lo).clamp(1.0, 1e3)
-}
-
-/// Multiple of Newton's tol below which the mixed solve records its IVPs
-/// (see `Mixed::record_below`): a coarse-grid chord step contracts the
-/// residual 40-100x (Table I grasp), so from `1e4 tol` one or two steps end it.
-const RECORD_BELOW: f64 = 1e4;
-
-/// Newton on the augmented system from `x0` (with the Jacobian `jac0`, if
-/// given), the solution assembled at the root, the block's verdict
-/// attached; `before`: iterations and IVPs spent before (the coarse
-/// pre-solve), counted in the result.
-fn mixed_newton(
-    sys: &mut Mixed<'_>,
-    x0: &[f64],
-    jac0: Option<&DMatrix<f64>>,
-    opts: &SolveOptions,
-    solver: &'static str,
-    before: (usize, usize),
-) -> Result<BlockedResult> {
-    sys.record_below = RECORD_BELOW * opts.tol;
-    let mut nr = newton_from(sys, x0, &opts.newton(), solver, jac0)?;
-    nr.iterations += before.0;
-    nr.evaluations += before.1;
-    let (robot, nx) = (sys.robot(), x0.len() - 1);
-    let (inputs, loads, force) = sys.problem(&nr.x)?;
-    // the recorded IVP at the root if Newton's last residual was it (bit
-    // for bit the plain IVP's), else one more IVP
-    let ((r, ivp, tau), evaluations) = match sys.take_last(&nr.x) {
-        Some(last) => (last, nr.evaluations),
-        None => {
-            let shot = Shot::new(robot, &inputs, &loads, opts.steps);
-            let (r, ivp, tau, nodes) = shot.residual_flat(&nr.x[..nx])?;
-            ((r, (ivp, nodes), tau), nr.evaluations + 1)
-        }
-    };
-    let problem = (inputs.as_slice(), &loads, &nr.x[..nx]);
-    let counts = (opts.steps, nr.iterations, evaluations);
-    let mut sol = assemble_flat(robot, problem, counts, r, ivp, tau);
-    sol.status = nr.status;
-    sol.floor = nr.floor;
-    let res = BlockedResult {
-        solution: sol,
-        force,
-        variables: sys.groups().vars(&inputs),
-        evaluations,
-        iterations: nr.iterations,
-        stability: None,
-    };
-    sys.block().check(robot, res)
 }
 
 /// The paper's incremental method (eq 43 with `dx = 0`): starting from a

@@ -17,9 +17,10 @@ use crate::stability::Policy;
 pub enum GraspMethod {
     /// The paper's incremental inverse (eq 43) in this many force steps.
     Incremental(usize),
-    /// One augmented Newton solve: the shooting unknowns plus the
-    /// actuation variable, the residual plus the blocked-tip condition, the
-    /// exact Jacobian, from the eq-43 predictor of the whole force
+    /// One damped Newton solve of the multiple-shooting system with the
+    /// actuation variable as one more unknown and the blocked-tip
+    /// condition as one more row (a bordered solve), from the eq-43
+    /// predictor of the whole force with the force law kept exact
     /// ([`super::blocked_variable_from`]).
     Direct,
 }
@@ -99,7 +100,7 @@ impl Grasp {
                             .map(|st| st.margin);
                     return Err(self.cannot_hold(robot, groups, force, &sweep.peak, unstable));
                 }
-                // a force in reach: Newton on the same augmented system from
+                // a force in reach: Newton on the same bordered system from
                 // the sweep's blocked solve just past the root
                 match (method, sweep.restart(robot, groups, &block, force, opts)) {
                     (GraspMethod::Direct, Some(mut res)) => {

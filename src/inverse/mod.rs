@@ -16,7 +16,8 @@ use crate::rod::Robot;
 mod blocked;
 mod grasp;
 mod mixed;
-mod mixed_presolve;
+mod mixed_solve;
+mod predictor;
 mod sensitivities;
 mod tip;
 

@@ -79,6 +79,9 @@ pub struct MultipleShooting<'a> {
     record: bool,
     /// The recorded nodes of the last residual evaluation.
     recorded: Option<Recording>,
+    /// The tip (the last segment's end state) at the last evaluation, and
+    /// after a linearisation its position's tangent ([`MultipleShooting::tip_state`]).
+    tip: Option<(crate::rod::RodState, Option<DMatrix<f64>>)>,
 }
 
 /// The nodes and end results of one residual evaluation, the solution's
@@ -165,6 +168,7 @@ impl<'a> MultipleShooting<'a> {
             work: 0.0,
             record: false,
             recorded: None,
+            tip: None,
         })
     }
 
@@ -389,6 +393,7 @@ impl<'a> MultipleShooting<'a> {
     /// solve's), its nodes are kept for the solution's assembly.
     pub fn residual(&mut self, x: &[f64], f: &mut [f64]) -> Result<()> {
         self.recorded = None;
+        self.tip = None;
         let mut row = 0;
         let states = self.block_states(x)?;
         let mut nodes = crate::rod::FlatNodes::default();
@@ -408,6 +413,7 @@ impl<'a> MultipleShooting<'a> {
             last = Some(ivp);
         }
         self.work += 1.0;
+        self.tip = last.as_ref().map(|ivp| (ivp.tip.clone(), None));
         if let (true, Some(mut ivp)) = (self.record, last) {
             ivp.elongation = elongation;
             let tau0 = states.into_iter().next().map(|s| s.tau).unwrap_or_default();
@@ -420,6 +426,23 @@ impl<'a> MultipleShooting<'a> {
             });
         }
         Ok(())
+    }
+
+    /// The tip state (the last segment's end) at the last residual or
+    /// linearisation, and after a linearisation the derivatives of the tip
+    /// position \[m\] with respect to the last block's scaled unknowns
+    /// (`3 x` its column count, offset [`MultipleShooting::last_offset`]):
+    /// the position rows of the last segment's exact tangent (an interior
+    /// block's own `p / L` enters as `L I`, its `delta` not at all). `None`
+    /// before an evaluation or after a failed one. The blocked-tip inverse
+    /// (`inverse::mixed`) borders the system with the tip's gap from it.
+    pub(crate) fn tip_state(&self) -> Option<(&crate::rod::RodState, Option<&DMatrix<f64>>)> {
+        self.tip.as_ref().map(|(s, g)| (s, g.as_ref()))
+    }
+
+    /// Offset of the last block in the unknowns.
+    pub(crate) fn last_offset(&self) -> usize {
+        self.offset(self.segments() - 1)
     }
 
     /// Record the nodes of every residual evaluation from now on (`on`).

@@ -6,8 +6,7 @@ use nalgebra::{DMatrix, Vector3};
 
 use crate::error::Result;
 use crate::rod::{
-    integrate, integrate_flat, integrate_tangent, FlatNodes, IvpResult, IvpSpec, Robot, TangentIvp,
-    TangentSeeds,
+    integrate, integrate_tangent, IvpResult, IvpSpec, Robot, TangentIvp, TangentSeeds,
 };
 
 /// Residual, its exact Jacobian, the tangent IVP and the tensions of one evaluation.
@@ -98,21 +97,6 @@ impl<'a> Shot<'a> {
     /// its nodes if `record`) and the tensions \[N\].
     pub fn residual(&self, x: &[f64], record: bool) -> Result<(Vec<f64>, IvpResult, Vec<f64>)> {
         self.residual_by(x, |spec, v0, u0| integrate(spec, v0, u0, record))
-    }
-
-    /// [`Shot::residual`] with the IVP's nodes recorded flat (its own
-    /// `nodes` empty).
-    pub(crate) fn residual_flat(
-        &self,
-        x: &[f64],
-    ) -> Result<(Vec<f64>, IvpResult, Vec<f64>, FlatNodes)> {
-        let mut nodes = FlatNodes::default();
-        let (r, ivp, tau) = self.residual_by(x, |spec, v0, u0| {
-            let (ivp, flat) = integrate_flat(spec, v0, u0)?;
-            nodes = flat;
-            Ok(ivp)
-        })?;
-        Ok((r, ivp, tau, nodes))
     }
 
     /// The residual at `x` of the IVP `ivp(spec, v0, u0)`.

@@ -511,3 +511,55 @@ fn fixed_inputs_drive_one_leg_of_two() {
     // as for the Table I finger: the two methods agree to 1e-5 C
     assert!((temps[0] - temps[1]).abs() < 1e-5, "{temps:?}");
 }
+
+/// A blocked tip on a heavy soft body, which single shooting's growth
+/// defeats: a horizontal beam of the stress family sagging under its
+/// weight (`q L^3 / EI` of a few hundred), its tip held by a support under
+/// it, a tenth of the sag up from the free tip toward the base's height.
+/// The blocked force is solved on several multiple-shooting segments; the
+/// tip lies on the support to 1e-9 L and the solution is in global
+/// equilibrium: the base wrench balances the weight and the contact force.
+#[test]
+fn blocked_tip_of_a_heavy_horizontal_body() {
+    use tcarod::problems::{equilibrium, stress_design, weight_ratio, Orientation, STRESS_SEED};
+    let d = (0..200)
+        .map(|i| stress_design(STRESS_SEED, i))
+        .find(|d| {
+            let w = weight_ratio(&d.robot.body);
+            Orientation::of(&d.robot.body) == Some(Orientation::Horizontal)
+                && w > 100.0
+                && w < 1000.0
+        })
+        .expect("a horizontal design of weight ratio 100-1000");
+    let (robot, len) = (&d.robot, d.robot.body.length);
+    let o = SolveOptions {
+        steps: 400,
+        ..opts()
+    };
+    let free = solve(robot, &d.inputs, &o, None).unwrap();
+    let down = robot.body.gravity.normalize();
+    let sag = down.dot(&(free.tip_position() - free.positions[0]));
+    let point = free.tip_position() - down * (0.1 * sag);
+    let block = Block::new(point, down).unwrap();
+    let groups = Groups::identity(robot.actuators.len());
+    let r = blocked_force(robot, &groups, &block, &d.inputs, &o, None)
+        .unwrap_or_else(|e| panic!("{}: {e}", d.summary()));
+    let segments = tcarod::solve::segments::segment_starts(robot, &r.solution.loads, o.steps);
+    assert!(segments.len() > 1, "{} segments", segments.len());
+    // the support pushes the tip up: a positive force, below the weight
+    let weight = robot.body.distributed_load().norm() * len;
+    assert!(
+        r.force > 0.0 && r.force < weight,
+        "{} of {weight} N",
+        r.force
+    );
+    let gap = down.dot(&(r.solution.tip_position() - point));
+    assert!(gap.abs() < 1e-9 * len, "gap {gap:e} m");
+    // the equilibrium check's error is the grid's: RK4 on 400 steps, 4^4 =
+    // 256 times below the 100-step error of such bodies (1e-5 to 1e-2,
+    // tests/integration/multiple_shooting.rs) at most, well below 1e-6
+    // for a weight ratio below 1000; a wrong contact force or a tip off
+    // the support is an O(1) imbalance
+    let eq = equilibrium(robot, &r.solution);
+    assert!(eq.relative < 1e-6, "equilibrium {:e}", eq.relative);
+}

@@ -19,6 +19,7 @@ impl MultipleShooting<'_> {
             .map(|k| DMatrix::zeros(rows[k], cols[k + 1]))
             .collect();
         let mut row = 0;
+        self.tip = None;
         let states = self.block_states(x)?;
         for (k, cur) in states.iter().enumerate() {
             let (dirs, seeds) = self.seeds(x, k, cur);
@@ -37,6 +38,7 @@ impl MultipleShooting<'_> {
                     interior_len(na)
                 }
                 None => {
+                    self.tip = Some((tan.ivp.tip.clone(), Some(self.tip_tangent(k, &tan))));
                     let (fs, ms) = residual_scales(self.robot);
                     for j in 0..3 {
                         for c in 0..dirs {
@@ -59,6 +61,25 @@ impl MultipleShooting<'_> {
             }
         }
         Ok(())
+    }
+
+    /// The tip position's derivatives \[m\] with respect to block `k`'s
+    /// (the last block's) scaled unknowns, from its segment's tangent IVP
+    /// `tan` (see [`MultipleShooting::tip_state`]).
+    fn tip_tangent(&self, k: usize, tan: &crate::rod::TangentIvp) -> DMatrix<f64> {
+        let (na, len) = (self.na(), self.robot.body.length);
+        let mut g = DMatrix::zeros(3, self.cols()[k]);
+        for c in 0..tan.tip.ncols() {
+            for j in 0..3 {
+                g[(j, direction_column(k, na, c))] = tan.tip[(j, c)];
+            }
+        }
+        if k > 0 {
+            for j in 0..3 {
+                g[(j, j)] += len;
+            }
+        }
+        g
     }
 
     /// The seed directions of segment `k`'s tangent IVP from its block
