@@ -76,7 +76,7 @@ impl SolveOptions {
     /// Error unless the work of one solve is within the caps: `steps` in
     /// [`STEPS`], `max_iter` in [`ITERATIONS`], `max_evaluations` in
     /// [`EVALUATIONS`], `time_limit` (if any) in `(0, MAX_TIME_LIMIT_S]`.
-    /// The ranges of the other options (`tol`, `min_step`) are
+    /// The ranges of the other options (`tol`, `equilibrium_tol`) are
     /// [`SolveOptions::validate`]'s.
     pub fn check_limits(&self) -> Result<()> {
         STEPS.check(self.steps)?;

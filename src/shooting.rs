@@ -1,6 +1,5 @@
 //! The shooting boundary value problem (eqs 32-33): the public names of
-//! [`crate::solve::shooting`] and [`mod@crate::solve::newton`] at the crate
-//! root, `tcarod::shooting`, the path the tests, benches and examples use.
+//! [`crate::solve::shooting`] at the crate root, `tcarod::shooting`, the
+//! path the tests, benches and examples use.
 
-pub use crate::solve::newton::{newton, FnSystem, NewtonOptions, NewtonResult, Status, System};
 pub use crate::solve::shooting::*;

@@ -307,7 +307,7 @@ fn finish(mut done: Solved<'_>) -> Result<Solution> {
     sol.continuation_steps = done.path;
     sol.floor = nleq::NonlinearSystem::floor(&done.sys, &done.x, &[]);
     if done.at_floor {
-        sol.status = super::newton::Status::ConvergedAtFloor;
+        sol.status = nleq::Status::ConvergedAtFloor;
     }
     Ok(sol)
 }

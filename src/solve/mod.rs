@@ -2,26 +2,21 @@
 //! system of [`ms`], its staircase factorisation [`abd`]), the
 //! error-oriented damped Newton method ([`nleq`]), pseudo-arclength
 //! continuation ([`arclength`], in the homotopies of [`homotopy`]), the
-//! public entry points ([`shooting`]), the Newton solver of the inverse
-//! problems ([`newton()`](fn@newton)) and cooperative
-//! cancellation ([`cancel`]). `docs/solver.md` describes the algorithm.
+//! public entry points ([`shooting`]) and cooperative cancellation
+//! ([`cancel`]). `docs/solver.md` describes the algorithm.
 
 pub mod abd;
 pub mod arclength;
 pub mod cancel;
 pub mod equilibrium;
-pub mod fn_system;
 pub mod forward;
 pub mod guess;
 pub mod homotopy;
 pub mod law_coordinate;
 pub mod ms;
-pub mod newton;
 pub mod nleq;
 pub mod options;
 pub mod residual;
 pub mod segments;
 pub mod shooting;
 pub mod solution;
-
-pub use newton::{newton, FnSystem, NewtonOptions, NewtonResult, Status, System};

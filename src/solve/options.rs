@@ -3,10 +3,9 @@
 
 use std::time::Duration;
 
-use super::newton::NewtonOptions;
 use crate::error::{Error, Result};
 
-/// Options of the Newton shooting solver.
+/// Options of the forward shooting solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolveOptions {
     /// RK4 steps over the body length.
@@ -17,12 +16,6 @@ pub struct SolveOptions {
     /// continuation step's corrector, whose own limit is
     /// [`crate::solve::arclength::CORRECTOR_ITERATIONS`]).
     pub max_iter: usize,
-    /// Smallest line-search step of the inverse problems' Newton runs
-    /// ([`crate::solve::newton()`](fn@crate::solve::newton)) before giving
-    /// up; above 1/2 (full steps only) the watchdog step is off too. The
-    /// forward solve's damping has its own floor
-    /// ([`crate::solve::nleq::DEFAULT_LAMBDA_MIN`]).
-    pub min_step: f64,
     /// IVP budget of one solve, continuation included (a tangent IVP counts
     /// as one); exhausting it raises [`Error::NotConverged`] with
     /// [`crate::StopReason::Budget`].
@@ -56,24 +49,12 @@ pub struct SolveOptions {
 /// solves.
 pub const DEFAULT_MAX_EVALUATIONS: usize = 20_000;
 
-impl SolveOptions {
-    /// The Newton options of these (the IVP budget, no deadline, no stall
-    /// detection; a forward solve sets those per Newton run).
-    pub fn newton(&self) -> NewtonOptions {
-        NewtonOptions {
-            max_evaluations: self.max_evaluations,
-            ..NewtonOptions::new(self.tol, self.max_iter, self.min_step)
-        }
-    }
-}
-
 impl Default for SolveOptions {
     fn default() -> Self {
         SolveOptions {
             steps: 100,
             tol: 1e-10,
             max_iter: 50,
-            min_step: 1e-6,
             max_evaluations: DEFAULT_MAX_EVALUATIONS,
             time_limit: None,
             presolve: true,
@@ -103,9 +84,6 @@ impl SolveOptions {
                     "1e-12 <= equilibrium_tol < 1",
                 ));
             }
-        }
-        if !(self.min_step > 0.0 && self.min_step < 1.0) {
-            return Err(Error::param("min_step", self.min_step, "0 < min_step < 1"));
         }
         Ok(())
     }

@@ -20,7 +20,7 @@ use crate::error::{Error, Result, StopReason};
 use crate::rod::Robot;
 
 pub use super::guess::{initial_guess, linear_guess, reference_guess, warm_guess};
-pub use super::newton::Status;
+pub use super::nleq::Status;
 pub use super::options::{SolveOptions, DEFAULT_MAX_EVALUATIONS};
 pub use super::residual::{
     base_strains, residual_scales, tension_slope, tensions, Loads, Shot, ONSET_BAND,

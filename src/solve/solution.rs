@@ -3,7 +3,7 @@
 
 use nalgebra::{DMatrix, Matrix3, Quaternion, Vector3};
 
-use super::newton::Status;
+use super::nleq::Status;
 use super::residual::Loads;
 use crate::error::Result;
 use crate::rod::{rot, FlatNodes, IvpResult, Robot, BASE_STATES};

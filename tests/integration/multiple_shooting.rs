@@ -4,37 +4,57 @@
 //! self-weight buckling solved cold and along a warm sweep, heavy bodies
 //! that single shooting's growth defeats.
 
-use nalgebra::DMatrix;
+use nalgebra::DVector;
 use tcarod::experiments::{fig6_square, steel_tendon_robot, STEEL_TENDON_TENSIONS};
 use tcarod::problems::{
     equilibrium, random_design, stress_design, Orientation, STRESS_SEED, TUNING_SEED,
 };
 use tcarod::shooting::{
-    assemble, initial_guess, linear_guess, newton, Loads, NewtonOptions, Shot, Solution,
-    SolveOptions, System,
+    assemble, initial_guess, linear_guess, Loads, Shot, Solution, SolveOptions,
 };
 use tcarod::solve::forward;
+use tcarod::solve::nleq::{self, NleqOptions, NonlinearSystem};
 
-/// The shooting residual (eqs 32-33) with its exact Jacobian as a plain
-/// Newton system: single shooting, independent of the forward solver.
-struct SingleShooting<'a>(Shot<'a>, usize);
+/// The shooting residual (eqs 32-33) with its exact Jacobian, dense LU:
+/// single shooting, a formulation independent of the forward solver's.
+struct SingleShooting<'a> {
+    shot: Shot<'a>,
+    lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+    work: f64,
+}
 
-impl System for SingleShooting<'_> {
-    fn residual(&mut self, x: &[f64]) -> tcarod::Result<Vec<f64>> {
-        self.1 += 1;
-        Ok(self.0.residual(x, false)?.0)
+impl NonlinearSystem for SingleShooting<'_> {
+    fn dim(&self) -> usize {
+        self.shot.robot.actuators.len() + 6
     }
-    fn residual_and_jacobian(&mut self, x: &[f64]) -> tcarod::Result<(Vec<f64>, DMatrix<f64>)> {
-        self.1 += 1;
-        let (r, j, _, _) = self.0.jacobian(x, false)?;
-        Ok((r, j))
+    fn residual(&mut self, x: &[f64], f: &mut [f64]) -> tcarod::Result<()> {
+        self.work += 1.0;
+        f.copy_from_slice(&self.shot.residual(x, false)?.0);
+        Ok(())
     }
-    fn evaluations(&self) -> usize {
-        self.1
+    fn linearise(&mut self, x: &[f64], f: &mut [f64]) -> tcarod::Result<()> {
+        self.work += 1.0;
+        let (r, j, _, _) = self.shot.jacobian(x, false)?;
+        f.copy_from_slice(&r);
+        self.lu = Some(j.lu());
+        Ok(())
+    }
+    fn solve(&mut self, b: &[f64], dx: &mut [f64]) -> tcarod::Result<bool> {
+        let sol = self
+            .lu
+            .as_ref()
+            .and_then(|lu| lu.solve(&DVector::from_column_slice(b)));
+        Ok(sol.is_some_and(|s| {
+            dx.copy_from_slice(s.as_slice());
+            true
+        }))
+    }
+    fn work(&self) -> f64 {
+        self.work
     }
 }
 
-/// Single shooting by damped Newton from the linear cold guess.
+/// Single shooting by the damped Newton method from the linear cold guess.
 fn solve(
     robot: &tcarod::rod::Robot,
     inputs: &[f64],
@@ -44,10 +64,19 @@ fn solve(
     let loads = Loads::of(robot);
     let mut x0 = initial_guess(robot, inputs, None);
     linear_guess(robot, inputs, &loads, &mut x0);
-    let mut sys = SingleShooting(Shot::new(robot, inputs, &loads, opts.steps), 0);
-    let nopts: NewtonOptions = opts.newton();
-    let nr = newton(&mut sys, &x0, &nopts, "single shooting")?;
-    assemble(robot, inputs, &loads, &nr.x, opts.steps, 0, 0)
+    let shot = Shot::new(robot, inputs, &loads, opts.steps);
+    let mut sys = SingleShooting {
+        shot,
+        lu: None,
+        work: 0.0,
+    };
+    let nopts = NleqOptions {
+        tol: opts.tol,
+        max_iterations: opts.max_iter,
+        ..Default::default()
+    };
+    let x = nleq::solve(&mut sys, &x0, &nopts, "single shooting")?.x;
+    assemble(robot, inputs, &loads, &x, opts.steps, 0, 0)
 }
 
 fn ms(
