@@ -84,11 +84,12 @@ fn det6(mut a: M6) -> f64 {
 /// at a spread `S` of the columns (the ratio of the largest to the smallest
 /// diagonal entry of `R`) the form's smallest pivots carry a relative
 /// rounding error of about `eps S^2`. Under tension the columns grow apart
-/// exponentially (a heavy hanging rod reaches `S ~ 1e12` in this metric
-/// between re-orthonormalisations of the march, whose bound is taken on the
-/// state tangents, where the forces enter through the strains `v`, a factor
-/// `EA L^2 / EI` softer), and `eps S^2 >> 1` turns the test into a coin
-/// toss. Read through an orthonormal basis of the same span, the form
+/// exponentially, and the march bounds their spread on the state tangents,
+/// where a force enters through the strain `v`, a factor of up to
+/// `EA L^2 / EI = 4 (L / r)^2` softer than in `Y`: between two
+/// re-orthonormalisations the `[H; Y]` columns may spread by up to
+/// `GROWTH_BOUND EA L^2 / EI`, far past `eps^-1/2`, where `eps S^2 > 1`
+/// turns the test into a coin toss. Read through an orthonormal basis of the same span, the form
 /// `sym(H_q^T Y_q) = H_q^T sym(K) H_q` is as well conditioned as `K`
 /// itself allows (`H_q^T H_q + Y_q^T Y_q = I`): the Riccati variable is
 /// read from the span as in the Riccati method (Ascher, Mattheij &
