@@ -103,7 +103,13 @@
 //! pass re-orthonormalises them where their spread passes
 //! [`GROWTH_BOUND`] (a stabilised march, Ascher, Mattheij & Russell, ch. 4;
 //! the module `march`), within the same single integration: the check is a
-//! `k x k` Gram matrix per node.
+//! `k x k` Gram matrix per node. The march bounds the spread of the state
+//! columns; the `[H; Y]` columns the verdict reads can spread further (a
+//! force enters the state through the strain, a factor `EA L^2 / EI`
+//! softer), and a test form multiplying two columns squares that spread.
+//! So every test reads the span through an orthonormal basis of the node's
+//! `[H; Y]` columns (the module `verdict`): the tip stiffness `K` and the
+//! form congruent to it are then as well conditioned as `K` itself.
 //!
 //! The equilibrium itself can be as hard to reproduce from the base: a
 //! heavy body's IVP amplifies the rounding of its base unknowns past the

@@ -73,10 +73,67 @@ fn det6(mut a: M6) -> f64 {
     det
 }
 
+/// The node's columns `[H; Y]` (twelve dimensionless rows) made orthonormal:
+/// `[H; Y] = [H_q; Y_q] R` with `R` upper triangular and a positive
+/// diagonal; `None` if a column vanishes (or is not finite) after the
+/// projections, i.e. the columns are numerically dependent.
+///
+/// Each test of the verdict is invariant to `[H; Y] -> [H; Y] M` for an
+/// invertible `M` (`K = Y H^-1`; `sym(H^T Y)` by congruence), but its
+/// rounding is not: the entries of `H^T Y` are products of two columns, so
+/// at a spread `S` of the columns (the ratio of the largest to the smallest
+/// diagonal entry of `R`) the form's smallest pivots carry a relative
+/// rounding error of about `eps S^2`. Under tension the columns grow apart
+/// exponentially, and the march bounds their spread on the state tangents,
+/// where a force enters through the strain `v`, a factor of up to
+/// `EA L^2 / EI = 4 (L / r)^2` softer than in `Y`: between two
+/// re-orthonormalisations the `[H; Y]` columns may spread by up to
+/// `GROWTH_BOUND EA L^2 / EI`, far past `eps^-1/2`, where `eps S^2 > 1`
+/// turns the test into a coin toss. Read through an orthonormal basis of the same span, the form
+/// `sym(H_q^T Y_q) = H_q^T sym(K) H_q` is as well conditioned as `K`
+/// itself allows (`H_q^T H_q + Y_q^T Y_q = I`): the Riccati variable is
+/// read from the span as in the Riccati method (Ascher, Mattheij &
+/// Russell, ch. 6), never from the raw columns.
+///
+/// Modified Gram-Schmidt, each column projected twice ("twice is enough":
+/// Giraud, Langou & Rozloznik, Comput. Math. Appl. 50, 2005): the basis
+/// is orthonormal to a few `eps` for any numerically independent columns,
+/// and `[H; Y] + dA = [H_q; Y_q] R` with each column of `dA` a few `eps` of
+/// its own column (Bjorck, *Numerical Methods for Least Squares Problems*,
+/// SIAM 1996, 2.4), so the span is the one the columns carry.
+fn orthonormal(h: &Cols6, y: &Cols6) -> Option<(Cols6, Cols6)> {
+    let mut a: [[f64; 12]; 6] =
+        std::array::from_fn(|j| std::array::from_fn(|i| if i < 6 { h[j][i] } else { y[j][i - 6] }));
+    for j in 0..6 {
+        let (done, rest) = a.split_at_mut(j);
+        let v = &mut rest[0];
+        for _ in 0..2 {
+            for q in done.iter() {
+                let d: f64 = q.iter().zip(v.iter()).map(|(a, b)| a * b).sum();
+                for (x, qi) in v.iter_mut().zip(q) {
+                    *x -= d * qi;
+                }
+            }
+        }
+        let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(n > 0.0 && n.is_finite()) {
+            return None;
+        }
+        for x in v.iter_mut() {
+            *x /= n;
+        }
+    }
+    let hq = std::array::from_fn(|j| std::array::from_fn(|i| a[j][i]));
+    let yq = std::array::from_fn(|j| std::array::from_fn(|i| a[j][6 + i]));
+    Some((hq, yq))
+}
+
 /// True if `sym(H^T Y) + NEUTRAL H^T H` is positive definite (`LDL^T`,
 /// stopped at the first non-positive pivot); with `H` invertible this is
 /// `sym(K) + NEUTRAL I` for `K = Y H^-1` (S2), by congruence (`x = H z`): no
-/// inverse needed, and a singular `H` fails it too.
+/// inverse needed, and a singular `H` fails it too. The columns are those of
+/// [`orthonormal`] (any basis of the span gives the same answer; an
+/// orthonormal one gives it without squaring the columns' spread).
 /// `h`, `y` by columns: with `Y' = Y + NEUTRAL H` the matrix is
 /// `sym(H^T Y')`, whose entry `(i, j)` is the mean of the dot products of
 /// columns `h_i . y'_j` and `y'_i . h_j` (36 dot products of six).
@@ -138,16 +195,23 @@ fn scan(t: &Tangents, dirichlet: bool) -> Scan {
             out.min_stiffness.push(f64::INFINITY);
             continue;
         }
-        let h = &t.h[k];
+        // the span of the node's columns through an orthonormal basis;
+        // numerically dependent columns carry no span to test
+        let Some((h, y)) = orthonormal(&t.h[k], y) else {
+            out.conjugate.get_or_insert(sk);
+            out.min_stiffness.push(-1.0);
+            continue;
+        };
         if dirichlet {
-            let hd = det6(*h);
+            // det H = det H_q det R, det R > 0
+            let hd = det6(h);
             if hdet_sign == 0.0 {
                 hdet_sign = hd.signum();
             } else if out.dirichlet.is_none() && hd * hdet_sign <= 0.0 {
                 out.dirichlet = Some(sk);
             }
         }
-        let pd = positive_definite(h, y);
+        let pd = positive_definite(&h, &y);
         if out.conjugate.is_none() && !pd {
             out.conjugate = Some(sk);
         }
@@ -182,9 +246,13 @@ pub(super) fn verdict(
     // the frozen tip stiffness (S2) at s = L: its smallest eigenvalue is the
     // last node's min_stiffness and, without springs, the margin
     // (with springs the mode is (S3)'s: the eigenvalues only)
-    if nodes > 1 {
-        if let Some(hi) = matrix(&t.h[last]).try_inverse() {
-            let kk = matrix(&t.y[last]) * hi;
+    // (from the orthonormal basis of the columns' span, as the scan)
+    let tip = (nodes > 1)
+        .then(|| orthonormal(&t.h[last], &t.y[last]))
+        .flatten();
+    if let Some((hq, yq)) = tip {
+        if let Some(hi) = matrix(&hq).try_inverse() {
+            let kk = matrix(&yq) * hi;
             let sym = (kk + kk.transpose()) * 0.5;
             if full {
                 out.min_stiffness[last] = sym.symmetric_eigenvalues().min();
@@ -243,8 +311,13 @@ fn full_tip(t: &Tangents, blocked: &[Vector3<f64>]) -> Option<(f64, [f64; 6])> {
         z.view_mut((6, 0), (na, 6)).copy_from(&(-edi * ex));
         z
     };
-    let hi = (&t.h_tip * &z).try_inverse()?;
-    let kfull = &t.y_tip * &z * hi;
+    // K_full from the orthonormal basis of the span of [H_z Z; Y_z Z], as
+    // the scan reads (S2)
+    let cols =
+        |m: &DMatrix<f64>| -> Cols6 { std::array::from_fn(|j| std::array::from_fn(|i| m[(i, j)])) };
+    let (hq, yq) = orthonormal(&cols(&(&t.h_tip * &z)), &cols(&(&t.y_tip * &z)))?;
+    let hi = DMatrix::from_fn(6, 6, |i, j| hq[j][i]).try_inverse()?;
+    let kfull = DMatrix::from_fn(6, 6, |i, j| yq[j][i]) * hi;
     let basis: Vec<DVector<f64>> = blocked
         .iter()
         .map(|b| {

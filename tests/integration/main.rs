@@ -24,6 +24,7 @@ mod solver;
 mod stability;
 mod stability_batch;
 mod stability_growth;
+mod stability_heavy;
 mod stability_policy;
 mod tangent;
 mod tca_law;
