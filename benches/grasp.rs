@@ -1,5 +1,5 @@
 //! The Table I grasp temperature (eq 44, 1 g, the finger blocked where it
-//! rests at the reference inputs) by the direct augmented Newton solve and
+//! rests at the reference inputs) by the direct bordered Newton solve and
 //! by the paper's eq-43 increments (8), with and without the stability
 //! verdict of the blocked finger, and the pieces it is made of: one IVP and
 //! one full-grid tangent IVP of the finger, the free solve at contact.

@@ -294,9 +294,11 @@ def blocked_temperature_direct(
 ) -> BlockedResult:
     """The temperature [C] of :func:`blocked_temperature`, solved directly.
 
-    The single actuation variable is an extra shooting unknown of the mixed
-    boundary-value problem with the contact ``force`` [N] given (Newton
-    with the exact Jacobian of the augmented system).
+    The single actuation variable is an extra unknown of the mixed
+    boundary-value problem with the contact ``force`` [N] given, the tip's
+    contact an extra condition: Newton's method on the multiple-shooting
+    system bordered by them (docs/solver.md, "Blocked tip"), with
+    continuation in the variable where Newton fails.
 
     Newton from a poor guess may fail with :class:`tcarod.ConvergenceError`;
     the incremental method is the robust one.

@@ -666,8 +666,9 @@ fn blocked_temperature_direct(
 /// a mass `mass` [kg] under `gravity` [m/s^2], `mu n F(T) = m g`, each
 /// finger's tip blocked where it rests at the `contact` inputs (default: the
 /// reference inputs) and pressing along `normal`. `method`: `"incremental"`
-/// (eq 43 in `increments` steps, 1 to 10,000) or `"direct"` (one augmented
-/// Newton solve: the variable an extra shooting unknown, from an eq-43
+/// (eq 43 in `increments` steps, 1 to 10,000) or `"direct"` (one bordered
+/// Newton solve of the multiple-shooting system: the variable an extra
+/// unknown, the tip's contact an extra condition, from an eq-43
 /// predictor). Returns `(blocked result of one finger, block point [m])`;
 /// the result's `force` [N] is `m g / (mu n)`.
 ///

@@ -333,8 +333,8 @@ fn exact_sensitivities_match_differences() {
     }
 }
 
-/// The Table I grasp: one augmented Newton solve (direct) and the
-/// paper's eq-43 increments converge the same equations.
+/// The Table I grasp: one bordered Newton solve of the blocked tip
+/// (direct) and the paper's eq-43 increments converge the same equations.
 #[test]
 fn direct_grasp_agrees_with_the_incremental_method() {
     use tcarod::experiments::{table1_finger, table1_grasp, TABLE1_MASSES, TABLE1_NORMAL};
@@ -361,7 +361,7 @@ fn direct_grasp_agrees_with_the_incremental_method() {
         assert_eq!(p_inc, p_dir);
         // The incremental method stops at a tip gap of 1e-9 L = 2e-11 m;
         // the finger's tip moves n^T J ~ 2e-5 m per C along the normal, so
-        // the two temperatures agree to 1e-6 C (measured: 2e-11 C).
+        // the two temperatures agree to 1e-6 C.
         let dt = (inc.variables[0] - dir.variables[0]).abs();
         assert!(dt < 1e-6, "{} vs {}", inc.variables[0], dir.variables[0]);
         // the direct solve holds the tip on the block to its tolerance
@@ -370,19 +370,17 @@ fn direct_grasp_agrees_with_the_incremental_method() {
         assert!(gap.abs() < 1e-10 * len, "gap {gap:e} m");
         assert_eq!(dir.force, spec.force_per_finger().unwrap());
         assert!(dir.stability.is_none() && inc.stability.is_none());
-        // IVP counts (deterministic; measured 25 against 64, free solve
-        // included, a coarse-grid IVP counted as one): the direct solve
-        // needs at most half the increments'
+        // IVP counts (deterministic, the free solve included): the direct
+        // solve needs at most half the increments'
         assert!(
             2 * dir.evaluations <= inc.evaluations,
             "{} vs {} IVPs",
             dir.evaluations,
             inc.evaluations
         );
-        // the direct solve's profile is its last IVP, recorded at the root,
-        // not one more integration: the same, bit for bit, as assembling
-        // the solution afresh at its unknowns (the recorded and the plain
-        // IVP do the same arithmetic)
+        // the direct solve's profile is the single IVP of its one segment
+        // at its unknowns: the same, bit for bit, as assembling the
+        // solution afresh there (the same arithmetic)
         let mut loads = Loads::of(&finger);
         loads.tip_force -= Vector3::from(TABLE1_NORMAL) * dir.force;
         let s = &dir.solution;
