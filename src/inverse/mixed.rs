@@ -33,8 +33,8 @@ use super::{load_scales, Block, Groups};
 use crate::error::{Error, Result};
 use crate::rod::Robot;
 use crate::shooting::{residual_scales, Loads};
-use crate::solve::abd::Staircase;
 use crate::solve::arclength::ParametrisedSystem;
+use crate::solve::bordered::Bordered;
 use crate::solve::ms::MultipleShooting;
 use crate::solve::nleq::NonlinearSystem;
 
@@ -59,12 +59,10 @@ pub(crate) struct Blocked<'a> {
     charts: Vec<Quaternion<f64>>,
     /// Where the next evaluation's law coordinates start their inversion.
     hints: Vec<f64>,
-    lu: Option<Staircase>,
-    singular: bool,
-    /// `G_lambda`, `G_x^-1 G_lambda` and the border row of the last linearisation.
+    /// `G_x` of the last linearisation with its border.
+    lin: Bordered,
+    /// `G_lambda` of the last linearisation.
     g_lambda: Vec<f64>,
-    a_inv_g: Vec<f64>,
-    row: (Vec<f64>, f64),
     /// IVPs spent (a tangent IVP of `k` directions counts `1 + k / 8`).
     work: f64,
     /// The tip position \[m\] at the last evaluation, the rounding floor of
@@ -96,11 +94,8 @@ impl<'a> Blocked<'a> {
             starts,
             charts,
             hints: Vec::new(),
-            lu: None,
-            singular: false,
+            lin: Bordered::default(),
             g_lambda: Vec::new(),
-            a_inv_g: Vec::new(),
-            row: (Vec::new(), 0.0),
             work: 0.0,
             tip: Vector3::zeros(),
             floor: 0.0,
@@ -171,14 +166,7 @@ impl<'a> Blocked<'a> {
         let mut ms = MultipleShooting::new(robot, &inputs, loads, steps, &self.starts, charts)?;
         ms.set_hints(&self.hints);
         let out = match jacobian {
-            true => ms.linearise(x, f).and_then(|_| {
-                let lu = match self.lu.take() {
-                    Some(lu) if lu.shape().rows == ms.rows() && lu.shape().cols == ms.cols() => lu,
-                    _ => ms.staircase()?,
-                };
-                self.singular = ms.factorise(self.lu.insert(lu));
-                Ok(())
-            }),
+            true => ms.linearise(x, f).and_then(|_| self.lin.factorise(&ms)),
             false => ms.residual(x, f),
         };
         self.hints = ms.hints();
@@ -202,33 +190,6 @@ impl<'a> Blocked<'a> {
         }
         self.floor = ms.rounding_floor(x);
         Ok(())
-    }
-
-    /// Solve `G_x dx = b` in place with the last factorisation.
-    fn solve_a(&self, b: &mut [f64]) -> Result<()> {
-        match &self.lu {
-            Some(lu) => lu.solve(b),
-            None => Ok(()),
-        }
-    }
-
-    /// Replace the border row of the last linearisation.
-    fn set_row(&mut self, row: (&[f64], f64)) {
-        self.row = (row.0.to_vec(), row.1);
-    }
-
-    /// One block elimination of the bordered system `[[A, g], [r^T,
-    /// r_l]] (dx, dl) = (b, c)` (Govaerts sec. 3.3).
-    fn eliminate(&self, b: &[f64], c: f64, dx: &mut [f64]) -> Result<f64> {
-        dx.copy_from_slice(b);
-        self.solve_a(dx)?;
-        let (r, rl) = (&self.row.0, self.row.1);
-        let dot = |u: &[f64]| u.iter().zip(r).map(|(p, q)| p * q).sum::<f64>();
-        let dl = (c - dot(dx)) / (rl - dot(&self.a_inv_g));
-        for (d, v) in dx.iter_mut().zip(&self.a_inv_g) {
-            *d -= dl * v;
-        }
-        Ok(dl)
     }
 }
 
@@ -267,18 +228,9 @@ impl ParametrisedSystem for Blocked<'_> {
             self.tip_lambda = (self.tip - tip) / h;
             (self.tip, self.floor) = (tip, floor);
         }
-        self.set_row(row);
-        self.a_inv_g = self.g_lambda.clone();
-        if !self.singular {
-            let mut v = std::mem::take(&mut self.a_inv_g);
-            self.solve_a(&mut v)?;
-            self.a_inv_g = v;
-        }
-        Ok(())
+        self.lin.border(self.g_lambda.clone(), row)
     }
-    /// Block elimination and one step of iterative refinement on the whole
-    /// bordered system, stable also where `G_x` is nearly singular
-    /// (Govaerts & Pryce, BIT 30, 1990).
+    /// [`Bordered::solve`].
     fn solve_bordered(
         &mut self,
         b: &[f64],
@@ -286,27 +238,7 @@ impl ParametrisedSystem for Blocked<'_> {
         dx: &mut [f64],
         dlambda: &mut f64,
     ) -> Result<bool> {
-        if self.singular {
-            return Ok(false);
-        }
-        let dl = self.eliminate(b, b_last, dx)?;
-        let n = dx.len();
-        let mut ax = vec![0.0; n];
-        if let Some(lu) = &self.lu {
-            lu.mul(dx, &mut ax)?;
-        }
-        let rb: Vec<f64> = (0..n)
-            .map(|i| b[i] - ax[i] - self.g_lambda[i] * dl)
-            .collect();
-        let rdot: f64 = dx.iter().zip(&self.row.0).map(|(p, q)| p * q).sum();
-        let rc = b_last - rdot - self.row.1 * dl;
-        let mut cx = vec![0.0; n];
-        let cl = self.eliminate(&rb, rc, &mut cx)?;
-        for (d, c) in dx.iter_mut().zip(&cx) {
-            *d += c;
-        }
-        *dlambda = dl + cl;
-        Ok(dx.iter().all(|v| v.is_finite()) && dlambda.is_finite())
+        self.lin.solve(b, b_last, dx, dlambda)
     }
     fn floor(&self, _x: &[f64], _f: &[f64]) -> f64 {
         self.floor
@@ -350,7 +282,7 @@ impl NonlinearSystem for Contact<'_, '_> {
             row[o + c] = (0..3).map(|j| nrm[j] * t[(j, c)]).sum::<f64>() / len;
         }
         let rl = nrm.dot(&self.sys.tip_lambda) / len;
-        self.sys.set_row((&row, rl));
+        self.sys.lin.set_row((&row, rl));
         f[n] = self.sys.gap();
         Ok(())
     }

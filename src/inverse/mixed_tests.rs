@@ -15,7 +15,7 @@ fn check_border(sys: &mut Blocked<'_>, z: &[f64], what: &str) {
     let n = z.len();
     let mut f = vec![0.0; n];
     Contact { sys: &mut *sys }.linearise(z, &mut f).unwrap();
-    let (row, row_lambda) = (sys.row.0.clone(), sys.row.1);
+    let (row, row_lambda) = (sys.lin.row().0.to_vec(), sys.lin.row().1);
     let g_lambda = sys.g_lambda.clone();
     let mut contact = Contact { sys };
     let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);

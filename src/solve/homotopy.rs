@@ -11,8 +11,8 @@
 
 use nalgebra::{Quaternion, Vector3};
 
-use super::abd::Staircase;
 use super::arclength::ParametrisedSystem;
+use super::bordered::Bordered;
 use super::ms::MultipleShooting;
 use super::residual::Loads;
 use crate::error::Result;
@@ -65,12 +65,8 @@ pub struct LoadPath<'a> {
     charts: Vec<Quaternion<f64>>,
     /// The robot at the `lambda` of the last evaluation.
     at: Robot,
-    lu: Option<Staircase>,
-    /// `G_lambda`, `A^-1 G_lambda` and the border row of the last linearisation.
-    g_lambda: Vec<f64>,
-    a_inv_g: Vec<f64>,
-    row: (Vec<f64>, f64),
-    singular: bool,
+    /// `G_x` of the last linearisation with its border.
+    lin: Bordered,
     work: f64,
     /// The rounding floor of the last evaluation's residual
     /// ([`MultipleShooting`]'s, as the forward solve's Newton uses).
@@ -99,11 +95,7 @@ impl<'a> LoadPath<'a> {
             starts,
             charts,
             at: robot.clone(),
-            lu: None,
-            g_lambda: Vec::new(),
-            a_inv_g: Vec::new(),
-            row: (Vec::new(), 0.0),
-            singular: false,
+            lin: Bordered::default(),
             work: 0.0,
             floor: 0.0,
             hints: Vec::new(),
@@ -112,15 +104,12 @@ impl<'a> LoadPath<'a> {
 
     /// `det G_x`, the determinant of the scaled multiple-shooting Jacobian
     /// at the last linearisation ([`ParametrisedSystem::linearise_bordered`]),
-    /// from its staircase factors ([`Staircase::determinant`]); `None` before
+    /// from its staircase factors ([`Bordered::determinant`]); `None` before
     /// one, or where it was singular. Its sign changes at a simple
     /// bifurcation or a fold of the path (Allgower & Georg, *Introduction to
     /// Numerical Continuation Methods*, SIAM 2003, sec. 8.1).
     pub fn determinant(&self) -> Option<f64> {
-        match self.singular {
-            true => None,
-            false => self.lu.as_ref().and_then(Staircase::determinant),
-        }
+        self.lin.determinant()
     }
 
     /// The inputs and tip loads at `lambda`; the robot's distributed loads
@@ -157,43 +146,13 @@ impl<'a> LoadPath<'a> {
             MultipleShooting::new(&self.at, &inputs, loads, self.steps, &self.starts, charts)?;
         ms.set_hints(&self.hints);
         let out = match jacobian {
-            true => ms.linearise(x, f).and_then(|_| {
-                let lu = match self.lu.take() {
-                    Some(lu) if lu.shape().rows == ms.rows() && lu.shape().cols == ms.cols() => lu,
-                    _ => ms.staircase()?,
-                };
-                self.singular = ms.factorise(self.lu.insert(lu));
-                Ok(())
-            }),
+            true => ms.linearise(x, f).and_then(|_| self.lin.factorise(&ms)),
             false => ms.residual(x, f),
         };
         self.hints = ms.hints();
         self.work += ms.work;
         self.floor = ms.rounding_floor(x);
         out
-    }
-
-    /// Solve `A dx = b` in place with the last factorisation.
-    fn solve_a(&self, b: &mut [f64]) -> Result<()> {
-        match &self.lu {
-            Some(lu) => lu.solve(b),
-            None => Ok(()),
-        }
-    }
-
-    /// One block elimination of the bordered system `[[A, g], [r^T,
-    /// r_l]] (dx, dl) = (b, c)` (Govaerts, *Numerical Methods for
-    /// Bifurcations of Dynamical Equilibria*, SIAM 2000, sec. 3.3).
-    fn eliminate(&self, b: &[f64], c: f64, dx: &mut [f64]) -> Result<f64> {
-        dx.copy_from_slice(b);
-        self.solve_a(dx)?;
-        let (r, rl) = (&self.row.0, self.row.1);
-        let dot = |u: &[f64]| u.iter().zip(r).map(|(p, q)| p * q).sum::<f64>();
-        let dl = (c - dot(dx)) / (rl - dot(&self.a_inv_g));
-        for (d, v) in dx.iter_mut().zip(&self.a_inv_g) {
-            *d -= dl * v;
-        }
-        Ok(dl)
     }
 }
 
@@ -222,20 +181,10 @@ impl ParametrisedSystem for LoadPath<'_> {
         let h = f64::EPSILON.sqrt() * if lambda > 0.5 { -1.0 } else { 1.0 };
         let mut fh = vec![0.0; f.len()];
         self.eval(x, lambda + h, &mut fh, false)?;
-        self.g_lambda = fh.iter().zip(f.iter()).map(|(a, b)| (a - b) / h).collect();
-        self.row = (row.0.to_vec(), row.1);
-        self.a_inv_g = self.g_lambda.clone();
-        if !self.singular {
-            let mut v = std::mem::take(&mut self.a_inv_g);
-            self.solve_a(&mut v)?;
-            self.a_inv_g = v;
-        }
-        Ok(())
+        let g_lambda = fh.iter().zip(f.iter()).map(|(a, b)| (a - b) / h).collect();
+        self.lin.border(g_lambda, row)
     }
-    /// Block elimination and one step of iterative refinement on the whole
-    /// bordered system, stable also where `A` is nearly singular (a fold;
-    /// Govaerts & Pryce, "Block elimination with one refinement solves
-    /// bordered linear systems accurately", BIT 30, 1990).
+    /// [`Bordered::solve`].
     fn solve_bordered(
         &mut self,
         b: &[f64],
@@ -243,28 +192,7 @@ impl ParametrisedSystem for LoadPath<'_> {
         dx: &mut [f64],
         dlambda: &mut f64,
     ) -> Result<bool> {
-        if self.singular {
-            return Ok(false);
-        }
-        let dl = self.eliminate(b, b_last, dx)?;
-        // the residual of the bordered system at (dx, dl)
-        let n = dx.len();
-        let mut ax = vec![0.0; n];
-        if let Some(lu) = &self.lu {
-            lu.mul(dx, &mut ax)?;
-        }
-        let rb: Vec<f64> = (0..n)
-            .map(|i| b[i] - ax[i] - self.g_lambda[i] * dl)
-            .collect();
-        let rdot: f64 = dx.iter().zip(&self.row.0).map(|(p, q)| p * q).sum();
-        let rc = b_last - rdot - self.row.1 * dl;
-        let mut cx = vec![0.0; n];
-        let cl = self.eliminate(&rb, rc, &mut cx)?;
-        for (d, c) in dx.iter_mut().zip(&cx) {
-            *d += c;
-        }
-        *dlambda = dl + cl;
-        Ok(dx.iter().all(|v| v.is_finite()) && dlambda.is_finite())
+        self.lin.solve(b, b_last, dx, dlambda)
     }
     /// The rounding floor of `max |G_i|` at the last evaluation, which the
     /// continuation asks for at the point it has just evaluated: `4 eps`

@@ -7,6 +7,7 @@
 
 pub mod abd;
 pub mod arclength;
+pub mod bordered;
 pub mod cancel;
 pub mod equilibrium;
 pub mod forward;

@@ -72,6 +72,15 @@ impl Walk<'_> {
         };
         let fold = self.fold(&next);
         let (l0, l1) = (self.at.lambda(), next.lambda());
+        let (d0, d1) = (self.at.t[self.at.t.len() - 1], next.t[next.t.len() - 1]);
+        if d0 * d1 > 0.0 && (l1 - l0) * d0 < 0.0 {
+            // `lambda` moved against the tangents at both ends, which agree:
+            // no fold lies between, so the corrector's hyperplane met the
+            // branch behind the last point, across a sharp bend (a heavy
+            // body's path bends so near its start). Shorter steps follow
+            // the bend.
+            return self.reject(1.0 / MAX_FACTOR);
+        }
         let (lp, ln) = (l0 - self.target, l1 - self.target);
         let excursion = fold.map_or(0.0, |lf| lf - l0);
         if fold.is_some() && lp * excursion <= 0.0 && lp.abs() <= 2.0 * excursion.abs() {
@@ -81,18 +90,10 @@ impl Walk<'_> {
             return self.reject(1.0 / MAX_FACTOR);
         }
         if lp * ln > 0.0 {
-            let (lo, hi) = sys.domain();
-            let (outside, dl) = (!(lo..=hi).contains(&l1), next.t[next.t.len() - 1]);
-            if (l1 < lo && dl > 0.0) || (l1 > hi && dl < 0.0) {
-                // Outside the domain with the branch heading back into it:
-                // the step cut across a bend of the branch (the corrector's
-                // hyperplane meets a strongly curved branch beyond the
-                // domain's edge). Shorter steps follow the bend.
-                return self.reject(1.0 / MAX_FACTOR);
-            }
             self.accept(next, fold);
             self.s = (self.s * factor).clamp(self.opts.min_step, self.opts.max_step);
-            if outside {
+            let (lo, hi) = sys.domain();
+            if !(lo..=hi).contains(&l1) {
                 let why = format!("it leaves the system's domain {lo} <= lambda <= {hi}");
                 return Err(self.error(StopReason::Other, &why));
             }
