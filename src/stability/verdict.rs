@@ -95,9 +95,12 @@ fn det6(mut a: M6) -> f64 {
 /// read from the span as in the Riccati method (Ascher, Mattheij &
 /// Russell, ch. 6), never from the raw columns.
 ///
-/// Modified Gram-Schmidt, each column projected twice ("twice is enough":
-/// Giraud, Langou & Rozloznik, Comput. Math. Appl. 50, 2005): the basis
-/// is orthonormal to a few `eps` for any numerically independent columns,
+/// Modified Gram-Schmidt, a column projected a second time where the first
+/// projection cancelled more than `1 - 1/sqrt(2)` of its norm (the DGKS
+/// criterion: Daniel, Gragg, Kaufman & Stewart, Math. Comp. 30, 1976;
+/// "twice is enough": Giraud, Langou & Rozloznik, Comput. Math. Appl. 50,
+/// 2005): the basis is orthonormal to a few `eps` for any numerically
+/// independent columns,
 /// and `[H; Y] + dA = [H_q; Y_q] R` with each column of `dA` a few `eps` of
 /// its own column (Bjorck, *Numerical Methods for Least Squares Problems*,
 /// SIAM 1996, 2.4), so the span is the one the columns carry.
@@ -107,6 +110,8 @@ fn orthonormal(h: &Cols6, y: &Cols6) -> Option<(Cols6, Cols6)> {
     for j in 0..6 {
         let (done, rest) = a.split_at_mut(j);
         let v = &mut rest[0];
+        let norm = |v: &[f64; 12]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let mut n = norm(v);
         for _ in 0..2 {
             for q in done.iter() {
                 let d: f64 = q.iter().zip(v.iter()).map(|(a, b)| a * b).sum();
@@ -114,8 +119,13 @@ fn orthonormal(h: &Cols6, y: &Cols6) -> Option<(Cols6, Cols6)> {
                     *x -= d * qi;
                 }
             }
+            let projected = norm(v);
+            let cancelled = projected < std::f64::consts::FRAC_1_SQRT_2 * n;
+            n = projected;
+            if !cancelled {
+                break;
+            }
         }
-        let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
         if !(n > 0.0 && n.is_finite()) {
             return None;
         }
