@@ -10,6 +10,8 @@ use tcarod::shooting::{solve, SolveOptions};
 use tcarod::solve::equilibrium::equilibrium;
 use tcarod::solve::nleq::FLOOR_FACTOR;
 
+use crate::common::heavy_column;
+
 /// A soft round rod (L / r = 1000) hanging from its base at 45 degrees to
 /// the vertical under the weight ratio `w = rho A |g| L^3 / EI`: it bends
 /// toward the vertical within a bending length `sqrt(EI / T)` of the base
@@ -92,23 +94,14 @@ fn heavy_body_branch_on_multiple_shooting() {
 /// just above it, where no equilibrium bent to `-y` is left.
 #[test]
 fn snap_through_folds_located() {
-    let mut b = Body::new(
-        0.5,
-        Section::Rectangle {
-            width: 10e-3,
-            height: 9e-3,
-        },
-        1e6,
-        0.5,
-        1000.0,
-    )
-    .unwrap();
-    let (a, ix, iy, _) = b.section.properties();
-    let g0 = 1.15 * 7.837 * b.youngs_modulus * ix.min(iy) / (b.density * a * 0.125);
-    b.gravity = Vector3::new(0.0, 0.0, -g0);
+    // the column at 1.15 times its self-weight buckling load (Greenhill:
+    // rho A g L^3 / EI = 7.837)
+    let mut r = heavy_column();
+    r.body.gravity *= 1.15 * 7.837;
+    let b = &mut r.body;
+    let (a, len) = (b.section.properties().0, b.length);
     // a tenth of the weight, sideways
-    b.tip_force = Vector3::new(0.0, 0.1 * b.density * a * 0.5 * g0, 0.0);
-    let r = Robot::new(b, vec![]).unwrap();
+    b.tip_force = Vector3::new(0.0, 0.1 * b.density * a * len * b.gravity.norm(), 0.0);
     let pb = Problem::new(&r, Parameter::TipLoadScale, &[]).unwrap();
     let opts = BranchOptions {
         start: -1.0,

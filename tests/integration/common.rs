@@ -5,6 +5,7 @@
 
 use std::sync::Arc;
 
+use nalgebra::Vector3;
 use tcarod::experiments::{manipulator_tca, MANIPULATOR_TURNS, TURNS_ANCHOR_LENGTH};
 use tcarod::rod::{Actuator, Body, ConstantTension, Robot, Routing, Section, TcaLaw};
 use tcarod::shooting::{solve, Solution, SolveOptions};
@@ -57,4 +58,28 @@ pub fn max_diff(a: &[nalgebra::Vector3<f64>], b: &[nalgebra::Vector3<f64>]) -> f
         .zip(b)
         .map(|(x, y)| (x - y).amax())
         .fold(0.0, f64::max)
+}
+
+/// An upright 10 x 9 mm rectangular column with gravity `-z`, scaled so
+/// that the gravity parameter equals rho A g L^3 / EI (weak axis). Not
+/// round: a round (or square) column's buckled shapes form a circle of
+/// equilibria turned about the vertical (a neutral mode), along which a
+/// path cannot be continued uniquely; the verdict of such a column is tested
+/// in `stability.rs`, `euler_column_*`.
+pub fn heavy_column() -> Robot {
+    let mut b = Body::new(
+        0.5,
+        Section::Rectangle {
+            width: 10e-3,
+            height: 9e-3,
+        },
+        1e6,
+        0.5,
+        1000.0,
+    )
+    .unwrap();
+    let (a, ix, iy, _) = b.section.properties();
+    let g0 = b.youngs_modulus * ix.min(iy) / (b.density * a * 0.125);
+    b.gravity = Vector3::new(0.0, 0.0, -g0);
+    Robot::new(b, vec![]).unwrap()
 }

@@ -9,6 +9,8 @@ use tcarod::rod::{Body, Robot, Section};
 use tcarod::shooting::{solve, SolveOptions};
 use tcarod::stability::stability;
 
+use crate::common::heavy_column;
+
 /// A slender round steel-like column: L/r = 100, so shear and extension move
 /// the critical loads by ~1e-4 relative (P_E/(k G A) ~ 2e-4), well inside 0.5 %.
 fn column(tip_force: f64) -> Robot {
@@ -66,30 +68,6 @@ fn euler_column_critical_load_located() {
     // 0.5 %: the accuracy required of the located load; shear and extension
     // shift it by ~2e-4
     assert!((f - 1.0).abs() < 5e-3, "critical load ratio {f}");
-}
-
-/// An upright 10 x 9 mm rectangular column with gravity `-z`, scaled so
-/// that the gravity parameter equals rho A g L^3 / EI (weak axis). Not
-/// round: a round (or square) column's buckled shapes form a circle of
-/// equilibria turned about the vertical (a neutral mode), along which a
-/// path cannot be continued uniquely; the verdict of such a column is tested
-/// in `euler_column_*`.
-fn heavy_column() -> Robot {
-    let mut b = Body::new(
-        0.5,
-        Section::Rectangle {
-            width: 10e-3,
-            height: 9e-3,
-        },
-        1e6,
-        0.5,
-        1000.0,
-    )
-    .unwrap();
-    let (a, ix, iy, _) = b.section.properties();
-    let g0 = b.youngs_modulus * ix.min(iy) / (b.density * a * 0.125);
-    b.gravity = Vector3::new(0.0, 0.0, -g0);
-    Robot::new(b, vec![]).unwrap()
 }
 
 #[test]
