@@ -10,11 +10,11 @@ use nalgebra::Quaternion;
 use super::blocked::{Block, BlockedResult};
 use super::mixed::{Blocked, Contact, Extra};
 use super::Groups;
-use crate::error::{Error, Result, StopReason};
+use crate::error::{Error, Result};
 use crate::rod::Robot;
 use crate::shooting::{Solution, SolveOptions, Status};
 use crate::solve::arclength::{follow, ArclengthOptions, ParametrisedSystem, Predictor};
-use crate::solve::forward::{assemble, first_guess, newton_options};
+use crate::solve::forward::{assemble, continues, first_guess, newton_options};
 use crate::solve::ms::MultipleShooting;
 use crate::solve::nleq::{self, NonlinearSystem};
 use crate::solve::segments::segment_starts;
@@ -31,12 +31,11 @@ pub(crate) enum Guess<'s> {
 pub(crate) type Problem<'a> = (&'a Robot, &'a Groups, &'a Block);
 
 /// A converged blocked solve: the unknowns `(x, lambda)`, the system's
-/// segments and charts, Newton's last `max |F|` and status.
+/// segments and charts, and whether Newton stopped at the rounding floor.
 struct Converged {
     z: Vec<f64>,
     starts: Vec<usize>,
     charts: Vec<Quaternion<f64>>,
-    residual: f64,
     at_floor: bool,
 }
 
@@ -94,7 +93,6 @@ pub(crate) fn mixed_solve(
         true => Status::ConvergedAtFloor,
         false => Status::Converged,
     };
-    let _ = done.residual;
     let res = BlockedResult {
         solution: sol,
         force,
@@ -155,24 +153,8 @@ fn solve_on(
         z: out.x,
         starts: sys.starts().to_vec(),
         charts: sys.charts().to_vec(),
-        residual: out.residual,
         at_floor: out.status == nleq::Status::ConvergedAtFloor,
     })
-}
-
-/// Whether a failed Newton solve hands over to continuation (not for
-/// invalid input, an interrupt, or a spent budget).
-fn continues(e: &Error) -> bool {
-    !matches!(
-        e,
-        Error::InvalidParameter { .. }
-            | Error::InvalidInput { .. }
-            | Error::Interrupted
-            | Error::NotConverged {
-                stop: StopReason::Budget,
-                ..
-            }
-    )
 }
 
 /// `e` with `evaluations` IVPs (all of the blocked solve's work).

@@ -528,7 +528,7 @@ fn path_end<'a>(
 
 /// Whether a failed Newton solve hands over to continuation (not for
 /// invalid input, an interrupt, or a spent budget).
-fn continues(e: &crate::error::Error) -> bool {
+pub(crate) fn continues(e: &crate::error::Error) -> bool {
     !(super::shooting::is_input_error(e) || super::shooting::is_budget_error(e))
 }
 
